@@ -1,0 +1,26 @@
+// rheodda: contact rheology in Discontinuous Deformation Analysis.
+// Sample runs:
+//   rheodda law list
+//   rheodda law curve burgers --param E1=26.87 --param E2=192.43 --param eta1=34807.72
+//       --param eta2=2141.23 --force 0:0.232 --t-end 200 --dt 1
+#include <fmt/format.h>
+
+#include <exception>
+
+#include "commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"rheodda: creep of jointed rock with contact rheology laws in DDA"};
+  app.require_subcommand(1);
+  rheodda::apps::add_law_commands(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : rheodda::apps::kExitBadInput;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "rheodda: error: {}\n", e.what());
+    return rheodda::apps::kExitBadInput;
+  }
+  return 0;
+}

@@ -1,0 +1,117 @@
+// The contact rheology interface: what the DDA host needs from a creep law.
+//
+// Why this shape. A DDA step is solved several times (the open-close iteration),
+// so a law never owns history: it is an immutable parameter object with pure
+// functions of (old state, forces) -> (new state). The host keeps one plain
+// RheologyState per contact that has a law, and a copy of the old one for rollback.
+//
+// Units. Laws are written per unit area of joint: "force" F below is a shear
+// stress (e.g. MPa), "displacement" is a shear displacement (e.g. mm), a
+// stiffness E is stress/length (MPa/mm) and a viscosity eta is
+// stress*time/length (MPa*h/mm). Any consistent set works; the contact layer
+// converts contact forces to stresses by dividing by the contact area.
+//
+// The creep increment over a step is affine in the end-of-step force F_e:
+//     Delta d_c = h + c * F_e                                   (1)
+// (docs/laws.md; ../shared/reference/rheology.md "three schemes"). For the
+// lagged scheme c = 0 and h is the seed's increment, eq. (12)/(22). For the
+// implicit scheme c is the step's creep compliance, which the host folds into
+// the shear spring: k_eff = k / (1 + k c), and h is the history term that goes
+// to the load vector. Laws with a threshold (Nishihara) are piecewise affine:
+// linearize() returns the piece that holds at a guessed F_e.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string_view>
+
+#include "rheodda/laws/parameters.hpp"
+
+namespace rheodda::laws {
+
+/// How the force that drives a step's creep is chosen (docs/laws.md, "Schemes").
+enum class Scheme {
+  lagged,             ///< F = force at the start of the step (the seed's eqs. 12-16); explicit, 1st order
+  implicit,           ///< F = force at the end of the step; unconditionally stable, 1st order
+  exponential_linear  ///< F linear over the step, exact exponential integral; 2nd order, stable
+};
+
+/// Name used on the command line, in YAML and in CSV: "lagged", "implicit", "exponential-linear".
+std::string_view scheme_name(Scheme s);
+/// Parses a scheme name; throws LawError naming the allowed values.
+Scheme parse_scheme(std::string_view name);
+
+/// Most internal displacements a law may keep (one per creep element in series).
+inline constexpr int kMaxInternal = 4;
+
+/// History of one contact: the displacement of each creep element [length].
+/// The total creep displacement d_c is the sum of the used slots.
+struct RheologyState {
+  std::array<double, kMaxInternal> q{};
+  double creep() const { return q[0] + q[1] + q[2] + q[3]; }
+};
+
+/// Per-element constants for one step size, computed once per law and step
+/// (the exponential is evaluated here, never per contact).
+struct UnitStepConstants {
+  double b = 0.0;    ///< 1 - exp(-dt E/eta) for a Kelvin element [-]
+  double phi = 0.0;  ///< 1 - b/r, r = dt E/eta: weight of the force ramp [-]
+  double dt_over_eta = 0.0;  ///< dt/eta for a dashpot or Bingham element [length/force]
+};
+
+/// Everything a law needs to know about a step that does not depend on the contact.
+struct StepConstants {
+  double dt = 0.0;  ///< step size [time]
+  Scheme scheme = Scheme::implicit;
+  std::array<UnitStepConstants, kMaxInternal> unit{};
+};
+
+/// The affine form (1) of the creep increment over a step.
+struct Linearization {
+  double h = 0.0;  ///< history part of Delta d_c [length]
+  double c = 0.0;  ///< creep compliance of the step [length/force]
+};
+
+/// Abstract contact rheology law. Implementations are immutable after construction.
+class ContactRheology {
+ public:
+  virtual ~ContactRheology() = default;
+
+  /// Registry name, e.g. "burgers".
+  virtual std::string_view name() const = 0;
+  /// The validated parameter values the law was built from (registry names).
+  virtual const ParameterValues& parameters() const = 0;
+  /// Number of RheologyState slots the law uses (1..kMaxInternal).
+  virtual int internal_count() const = 0;
+  /// The instantaneous series spring E1 [force/length], if the law has one
+  /// (Maxwell, Burgers, Nishihara); Kelvin has none.
+  virtual std::optional<double> instantaneous_stiffness() const = 0;
+  /// True when creep is linear in force (Boltzmann superposition holds).
+  virtual bool is_linear() const = 0;
+
+  /// Constants of a step of size dt [time] for a scheme.
+  virtual StepConstants step_constants(double dt, Scheme scheme) const = 0;
+  /// Affine form (1) of the creep increment over the step, given the old state,
+  /// the force at the start of the step and a guess of the force at its end
+  /// (the guess only selects the piece of a piecewise-affine law).
+  virtual Linearization linearize(const StepConstants& k, const RheologyState& old,
+                                  double force_start, double force_end_guess) const = 0;
+  /// Advances the state over the step; returns Delta d_c [length].
+  /// Repeatable: `old` is never modified, so a step can be redone from it.
+  virtual double advance(const StepConstants& k, const RheologyState& old, double force_start,
+                         double force_end, RheologyState& next) const = 0;
+
+  /// Closed-form creep displacement (without the instantaneous spring) at time t
+  /// [time] under a constant force F applied at t = 0 [length].
+  virtual double creep_closed_form(double force, double t) const = 0;
+  /// Closed-form total displacement under constant force: F/E1 + creep [length].
+  double displacement_closed_form(double force, double t) const;
+  /// Relaxation modulus G(t) [force/length]: force per unit displacement held
+  /// from t = 0, where the law has a closed form (nullopt otherwise).
+  /// For a law with a threshold it holds only while |force| stays below it.
+  virtual std::optional<double> relaxation_modulus(double t) const;
+  /// Force below which the law is linear (infinity for linear laws) [force].
+  virtual double linear_limit() const;
+};
+
+}  // namespace rheodda::laws

@@ -1,0 +1,53 @@
+// Self-describing law parameters: each law declares its parameters once
+// (name, unit, meaning, valid range, default) and every input path - the
+// command line, YAML scenes, fits - is validated against that schema.
+#pragma once
+
+#include <limits>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace rheodda::laws {
+
+/// Error in user-given law input: names the offending key.
+class LawError : public std::runtime_error {
+ public:
+  LawError(std::string key, const std::string& message)
+      : std::runtime_error(message), key_(std::move(key)) {}
+  /// The parameter (or law) name the error is about; empty if none.
+  const std::string& key() const { return key_; }
+
+ private:
+  std::string key_;
+};
+
+/// One parameter of a law.
+struct ParameterSpec {
+  std::string name;     ///< key in YAML, on the command line and in fits, e.g. "eta1"
+  std::string unit;     ///< dimension per unit joint area, e.g. "stress/length"
+  std::string meaning;  ///< one line for `rheodda law list`
+  double min = 0.0;     ///< lower bound of the valid range
+  bool min_exclusive = true;  ///< true: value > min; false: value >= min
+  double max = std::numeric_limits<double>::max();  ///< upper bound (inclusive)
+  std::optional<double> default_value{};  ///< used when the key is absent
+  /// "(0, 1.8e308]"-style text of the valid range.
+  std::string range_text() const;
+};
+
+/// Parameter values by name.
+using ParameterValues = std::map<std::string, double, std::less<>>;
+
+/// Checks `given` against `specs`: rejects unknown keys (suggesting the nearest
+/// valid name), missing keys without default, NaN/inf and out-of-range values.
+/// Returns the complete set with defaults filled in. `law` is used in messages.
+ParameterValues validate_parameters(std::string_view law, const std::vector<ParameterSpec>& specs,
+                                    const ParameterValues& given);
+
+/// Nearest candidate to `word` by edit distance, for "did you mean" hints; empty if none is close.
+std::string nearest_name(std::string_view word, const std::vector<std::string>& candidates);
+
+}  // namespace rheodda::laws

@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages rheodda needs to build, test and plot.
+# Idempotent: only packages that are missing are installed. Needs root (or sudo).
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libeigen3-dev          # dense 6x6 blocks and sparse matrices
+  libsuitesparse-dev     # CHOLMOD sparse Cholesky
+  libyaml-cpp-dev        # scene files
+  libgsl-dev             # nonlinear least squares (rheodda fit)
+  libboost-test-dev      # unit tests
+  libcli11-dev           # command-line parsing
+  libfmt-dev             # formatting
+  nlohmann-json3-dev     # summary.json, fit reports
+  gnuplot-nox            # rheodda plot: PNG/SVG pictures
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
