@@ -1,0 +1,58 @@
+// The interface through which the DDA host runs contacts. The host owns it;
+// core/ adapts the contact layer's ContactSystem to it, and a scene without
+// contacts uses NullContactModel (no contact work at all).
+#pragma once
+
+#include <Eigen/Dense>
+#include <span>
+
+#include "rheodda/contact/kinematics.hpp"
+
+namespace rheodda::core {
+
+/// Facts of the step being solved.
+struct StepContext {
+  int step = 0;         ///< index of the step being solved (0-based)
+  double time = 0.0;    ///< time at the start of the step [time]
+  double dt = 0.0;      ///< step size [time]
+  double max_displacement = 0.0;  ///< allowed displacement per step (g2 * half model size) [length]
+};
+
+/// Result of checking a trial solution against the contact states.
+struct ContactCheck {
+  int state_changes = 0;         ///< open<->closed and slide<->lock changes this iteration
+  double max_penetration = 0.0;  ///< largest normal penetration [length]
+};
+
+/// How the host drives contacts through a step:
+///   begin_step -> { assemble -> solve -> check }* -> end_step   (converged)
+///   begin_step -> ... -> abandon_step                            (step cut, redone)
+class ContactModel {
+ public:
+  virtual ~ContactModel() = default;
+  /// Detect contacts on the step-start geometry; carry states over from the last step.
+  virtual void begin_step(std::span<const contact::BlockView> blocks, const StepContext& ctx) = 0;
+  /// Add springs and friction loads for the current trial states.
+  virtual void assemble(std::span<const contact::BlockView> blocks, contact::SystemSink& sink) = 0;
+  /// Check the trial displacements D (6 per block) and update the trial states.
+  virtual ContactCheck check(std::span<const contact::BlockView> blocks,
+                             const Eigen::VectorXd& D) = 0;
+  /// Accept the step: commit states, locking points, forces and rheology history.
+  virtual void end_step(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) = 0;
+  /// Reject the step (it will be redone with a smaller dt): restore the step-start states.
+  virtual void abandon_step() = 0;
+};
+
+/// No contacts: every call does nothing.
+class NullContactModel final : public ContactModel {
+ public:
+  void begin_step(std::span<const contact::BlockView>, const StepContext&) override {}
+  void assemble(std::span<const contact::BlockView>, contact::SystemSink&) override {}
+  ContactCheck check(std::span<const contact::BlockView>, const Eigen::VectorXd&) override {
+    return {};
+  }
+  void end_step(std::span<const contact::BlockView>, const Eigen::VectorXd&) override {}
+  void abandon_step() override {}
+};
+
+}  // namespace rheodda::core
