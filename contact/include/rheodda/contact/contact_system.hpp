@@ -1,0 +1,157 @@
+// The contacts of a DDA model through a time step: detection, transfer of
+// contact state from the last step, penalty springs, Mohr-Coulomb friction and
+// the open-close iteration (Shi 1988; the seed's Section 3, eqs. 17-29).
+//
+// Data layout (after Box2D). Persistent ("cold") records, one per contact, live
+// in a contiguous array sorted by ContactKey: identity, state, locking point,
+// forces, accumulated shear, rheology slot. Per-step ("hot") data - the
+// linearized gap and shear of each contact as 6-vectors per block - is computed
+// once in begin_step from the step-start geometry and reused by every
+// iteration. The committed records of the last accepted step are kept apart
+// from the working records of the step being solved, so abandon_step restores
+// the step-start states exactly (by discarding the working copy).
+//
+// Rheology. A contact on a joint set with a law owns a slot in a separate array
+// of laws::RheologyState (with its committed copy for rollback); contacts
+// without a law have none (rheology == -1). The creep increment
+// Delta d_c = h + c F (laws/contact_rheology.hpp) enters the shear spring
+// through ShearSeam: `locking_shift` moves the locking point along the
+// entrance edge and `compliance` softens the spring, k_eff = k / (1 + k c)
+// (the seed's eqs. 22-29). Both are zero until a law is coupled; this layer
+// carries the slots through transfer and rollback but does not advance laws.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "rheodda/contact/broad_phase.hpp"
+#include "rheodda/contact/detection.hpp"
+#include "rheodda/contact/joint_set.hpp"
+#include "rheodda/contact/kinematics.hpp"
+#include "rheodda/laws/contact_rheology.hpp"
+
+namespace rheodda::contact {
+
+/// State of a contact.
+enum class ContactState : std::uint8_t {
+  open,     ///< no spring, no force
+  sliding,  ///< normal spring + Mohr-Coulomb friction force along the entrance edge
+  locked    ///< normal spring + shear spring to the locking point
+};
+
+/// Name used in outputs: "open", "sliding", "locked".
+const char* contact_state_name(ContactState s);
+
+/// Persistent record of one contact (also the per-step output record).
+/// Forces are per unit thickness [force/length]; positive normal force is compression.
+struct Contact {
+  std::uint64_t id = 0;  ///< unique, kept from step to step while the contact persists
+  ContactKey key;        ///< vertex block/vertex, entrance-edge block/edge
+  ContactKind kind = ContactKind::vertex_edge;
+  ContactState state = ContactState::open;
+  int joint_set = 0;          ///< joint set of the entrance edge
+  double length = 0.0;        ///< contact length [length] (half the shared length for edge_edge)
+  double locking_ratio = 0.0; ///< locking point P0 on the entrance edge, as a fraction of its length [-]
+  int slide_direction = 0;    ///< +1 / -1: the vertex slides along +/- the edge direction
+  double normal_force = 0.0;  ///< p_n d_n [force/length]
+  double shear_force = 0.0;   ///< along the edge direction a->b; p_s d_t (locked) or friction (sliding) [force/length]
+  double shear_displacement = 0.0;  ///< accumulated relative slip + shear of the vertex along the edge [length]
+  double penetration = 0.0;   ///< d_n at the end of the step, > 0 into the edge's block [length]
+  bool intact = true;         ///< cohesion and tensile strength act until the contact first slides or opens
+  int rheology = -1;          ///< slot in rheology_states(), or -1 without a law
+};
+
+/// Hook for the creep increment of the shear spring (zero without a law).
+struct ShearSeam {
+  double locking_shift = 0.0;  ///< shift of the locking point along the edge direction [length]
+  double compliance = 0.0;     ///< step creep compliance c [length/(force/length)]
+};
+
+/// Result of checking a trial solution.
+struct CheckResult {
+  int state_changes = 0;         ///< open<->closed and slide<->lock changes
+  double max_penetration = 0.0;  ///< largest d_n over closed contacts [length]
+};
+
+/// Counters of the last begin_step (for benchmarks and logs).
+struct DetectionStats {
+  int candidate_pairs = 0;  ///< block pairs from the broad phase
+  int contacts = 0;         ///< contacts after the narrow phase
+  int transferred = 0;      ///< contacts that kept the identity of a last-step contact
+  double search_distance = 0.0;  ///< d0 [length]
+};
+
+class ContactSystem {
+ public:
+  /// Throws std::invalid_argument when the penalty is not positive or a joint set
+  /// has a negative friction angle, cohesion, tensile strength or stiffness.
+  ContactSystem(std::vector<JointSet> joint_sets, ContactSettings settings);
+
+  /// Detects contacts on the step-start geometry (search distance
+  /// search_factor * max_displacement [length]) and carries states over.
+  void begin_step(std::span<const BlockView> blocks, double max_displacement);
+  /// Springs and friction loads of the trial states (the seed's eqs. 28-29).
+  void assemble(std::span<const BlockView> blocks, SystemSink& sink) const;
+  /// Updates the trial states from the trial displacements D (6 per block).
+  CheckResult check(std::span<const BlockView> blocks, const Eigen::VectorXd& D);
+  /// Accepts the step: locking points, forces, accumulated shear; may raise the penalty.
+  void end_step(std::span<const BlockView> blocks, const Eigen::VectorXd& D);
+  /// Rejects the step: the records of the last accepted step stay as they were.
+  void abandon_step();
+
+  /// Records of the last accepted step, sorted by key.
+  std::span<const Contact> contacts() const { return committed_; }
+  /// Working records of the step being solved (trial states).
+  std::span<const Contact> trial_contacts() const { return work_; }
+  /// Rheology histories of the last accepted step (indexed by Contact::rheology).
+  std::span<const laws::RheologyState> rheology_states() const { return committed_rheology_; }
+  /// Creep seams of the step being solved, parallel to trial_contacts().
+  std::span<ShearSeam> shear_seams() { return seams_; }
+
+  const std::vector<JointSet>& joint_sets() const { return joint_sets_; }
+  const ContactSettings& settings() const { return settings_; }
+  double penalty() const { return penalty_; }  ///< current normal penalty [stress]
+  double allowed_penetration() const { return allowed_penetration_; }  ///< [length]
+  double last_max_penetration() const { return last_max_penetration_; }  ///< of the last accepted step [length]
+  const DetectionStats& stats() const { return stats_; }
+
+ private:
+  /// Linearized geometry of one contact on the step-start configuration:
+  /// d_n = dn0 + ni.D_i + nj.D_j (penetration, the seed's normal spring, Shi 1988)
+  /// d_t = dt0 + ti.D_i + tj.D_j (shear along the edge from the locking point, eqs. 23-27).
+  struct Hot {
+    Vec6 ni = Vec6::Zero(), nj = Vec6::Zero();
+    Vec6 ti = Vec6::Zero(), tj = Vec6::Zero();
+    double dn0 = 0.0;  ///< [length]
+    double dt0 = 0.0;  ///< [length]
+    double pn = 0.0;   ///< normal spring [stress]
+    double ps = 0.0;   ///< shear spring [stress]
+    double tan_phi = 0.0;
+    double cohesion = 0.0;          ///< [stress]
+    double tensile_strength = 0.0;  ///< [stress]
+    double normal_force = 0.0;      ///< N of the last iterate, drives friction [force/length]
+    ContactState start_state = ContactState::open;
+  };
+  void prepare(std::span<const BlockView> blocks, const Contact& c, Hot& h) const;
+  double shear_stiffness(size_t c) const;
+
+  std::vector<JointSet> joint_sets_;
+  ContactSettings settings_;
+  double penalty_ = 0.0;
+  double allowed_penetration_ = 0.0;
+  double last_max_penetration_ = 0.0;
+  double step_max_penetration_ = 0.0;
+  std::uint64_t next_id_ = 1;
+
+  std::vector<Contact> committed_, work_;
+  std::vector<laws::RheologyState> committed_rheology_, work_rheology_;
+  std::vector<ShearSeam> seams_;
+  std::vector<Hot> hot_;
+  std::vector<ContactKey> previous_keys_;
+  std::vector<Box> boxes_;
+  BroadPhase broad_;
+  DetectionStats stats_;
+};
+
+}  // namespace rheodda::contact

@@ -1,0 +1,77 @@
+// Narrow phase: which vertex touches which edge.
+//
+// Every DDA contact is a vertex of one block against an edge (the entrance
+// edge) of another (Shi 1988; the seed's Section 3.1 and Figure 4):
+//   vertex-edge    a vertex within the search distance of an edge's interior;
+//   vertex-vertex  two vertices within the search distance; the angle rule
+//                  picks which of the four edges at the two vertices is the
+//                  entrance edge (below);
+//   edge-edge      two antiparallel edges overlapping over a length L: found as
+//                  the two vertex-edge contacts at the ends of the overlap, each
+//                  with contact length L/2 (the seed: "the contact length of each
+//                  contact point is half of the total contact length").
+//
+// Angle rule. A vertex p can enter an edge only if both edges of p's block at p
+// stay on the outer side of that edge's line: with n the edge's outward normal
+// and u1, u2 the unit directions of p's two edges, the score min(n.u1, n.u2)
+// must be >= -sin(angle tolerance). For a vertex-vertex pair the candidate
+// with the highest score wins; candidates within sin(tolerance) of the best are
+// tied, and a tie is broken in favour of the contact that existed in the last
+// step (so a contact keeps its identity), then by a fixed order.
+#pragma once
+
+#include <compare>
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "rheodda/contact/kinematics.hpp"
+
+namespace rheodda::contact {
+
+/// Identity of a contact: vertex `vertex` of block `vblock` against edge `edge`
+/// (vertex edge -> edge+1, counter-clockwise) of block `eblock`.
+struct ContactKey {
+  int vblock = 0;
+  int vertex = 0;
+  int eblock = 0;
+  int edge = 0;
+  auto operator<=>(const ContactKey&) const = default;
+};
+
+/// How a contact was found.
+enum class ContactKind : std::uint8_t {
+  vertex_edge,    ///< vertex against the interior of an edge
+  vertex_vertex,  ///< two vertices; entrance edge chosen by the angle rule
+  edge_edge       ///< one end of two overlapping antiparallel edges (length = half the overlap)
+};
+
+/// Name used in outputs: "vertex_edge", "vertex_vertex", "edge_edge".
+const char* contact_kind_name(ContactKind kind);
+
+/// A detected contact.
+struct DetectedContact {
+  ContactKey key;
+  ContactKind kind = ContactKind::vertex_edge;
+  double length = 0.0;  ///< contact length [length]: half the shared length (edge-edge), else 0
+};
+
+/// Narrow-phase tolerances.
+struct DetectionParams {
+  double search_distance = 0.0;  ///< d0 = 2.5 g2 w0 [length]
+  double angle_tolerance = 3.0;  ///< [deg]
+};
+
+/// Contacts between blocks `ia` and `ib` (both orders), appended to `out`.
+/// `previous` holds the keys of the last step's contacts, sorted (angle-rule ties).
+void detect_pair(std::span<const BlockView> blocks, int ia, int ib, const DetectionParams& params,
+                 std::span<const ContactKey> previous, std::vector<DetectedContact>& out);
+
+/// All contacts among the candidate block pairs, sorted by key, without duplicates.
+std::vector<DetectedContact> detect_contacts(std::span<const BlockView> blocks,
+                                             std::span<const std::pair<int, int>> pairs,
+                                             const DetectionParams& params,
+                                             std::span<const ContactKey> previous);
+
+}  // namespace rheodda::contact

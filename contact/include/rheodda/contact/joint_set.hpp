@@ -1,0 +1,66 @@
+// Joint sets and contact settings: the inputs of the contact layer.
+//
+// Why this split. A joint set describes the rock (friction, cohesion, tensile
+// strength, joint stiffness, optionally a creep law); ContactSettings describes
+// the numerics (penalty, tolerances, iteration limit). Every block edge names
+// the joint set it belongs to (BlockView::edge_joint_set), and a contact takes
+// the joint set of its entrance edge.
+//
+// Units. 2D, unit thickness. A contact spring is a force per unit thickness per
+// unit length of relative displacement, i.e. [force/length/thickness] = [stress],
+// the unit of the penalty (the seed's eqs. 17-18: p_n = k1 E). Joint stiffnesses
+// are given per unit joint area, [stress/length]; a contact with a contact length
+// l (edge-edge contacts, each with half the shared length) gets the spring
+// k_joint * l. Point contacts (vertex-edge, vertex-vertex: l = 0) always use the
+// penalty springs.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "rheodda/laws/contact_rheology.hpp"
+
+namespace rheodda::contact {
+
+/// Mechanical properties of one family of joints.
+struct JointSet {
+  std::string name;               ///< joint_set name as the user gave it
+  double friction_angle = 0.0;    ///< Mohr-Coulomb friction angle phi [deg]
+  double cohesion = 0.0;          ///< cohesion c [stress]; acts on contact length, until the contact first fails
+  double tensile_strength = 0.0;  ///< tensile strength [stress]; acts on contact length, until the contact first fails
+  /// Joint normal stiffness per unit joint area [stress/length]; unset: penalty spring.
+  std::optional<double> normal_stiffness;
+  /// Joint shear stiffness per unit joint area [stress/length]; unset: the
+  /// penalty's shear spring p_n / shear_normal_ratio (the seed's eqs. 17-18).
+  std::optional<double> shear_stiffness;
+  /// Creep law of the joint's shear spring, or none. Contacts on a joint set with
+  /// a law get a laws::RheologyState slot that follows the contact (transfer,
+  /// rollback); the creep increment enters through ShearSeam (contact_system.hpp).
+  std::shared_ptr<const laws::ContactRheology> law;
+};
+
+/// Numerical settings of the contact layer (defaults: Shi's DDA code).
+struct ContactSettings {
+  /// Normal penalty spring p_n [stress] (force per unit thickness per length);
+  /// Shi: 10-100 x Young's modulus E (the seed's eq. 17, k1 = 10-100).
+  double penalty = 0.0;
+  /// p_n / p_s for penalty shear springs [-]; Shi: 2.5 = 2 (1 + nu) with nu = 0.25 (eq. 17).
+  double shear_normal_ratio = 2.5;
+  /// Contact search distance as a multiple of the allowed step displacement
+  /// g2 w0 (StepContext::max_displacement) [-]; Shi: 2.5.
+  double search_factor = 2.5;
+  /// Search distance used when the host gives no allowed displacement [length].
+  double min_search_distance = 0.0;
+  /// Angle tolerance of the angle rule and of edge parallelism [deg]; Shi: 3.
+  double angle_tolerance = 3.0;
+  /// Allowed penetration as a fraction of the half model size w0 [-]. A step
+  /// whose largest penetration exceeds it raises the penalty for the next steps.
+  double penetration_ratio = 1e-4;
+  /// Factor by which the penalty is raised [-].
+  double penalty_raise = 2.0;
+  /// Upper bound of the penalty as a multiple of the initial one [-].
+  double penalty_max_factor = 64.0;
+};
+
+}  // namespace rheodda::contact

@@ -1,0 +1,356 @@
+#include "rheodda/contact/contact_system.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace rheodda::contact {
+
+const char* contact_state_name(ContactState s) {
+  switch (s) {
+    case ContactState::open: return "open";
+    case ContactState::sliding: return "sliding";
+    case ContactState::locked: return "locked";
+  }
+  return "?";
+}
+
+namespace {
+
+int wrap(int k, int n) { return (k % n + n) % n; }
+
+/// perp(w) = (-w_y, w_x): perp(w).u = w x u.
+Vec2 perp(const Vec2& w) { return {-w.y(), w.x()}; }
+
+Vec2 edge_start(const BlockView& b, int e) { return b.vertices[e]; }
+Vec2 edge_end(const BlockView& b, int e) {
+  return b.vertices[wrap(e + 1, static_cast<int>(b.vertices.size()))];
+}
+
+/// Fraction along a -> b of the projection of p, clamped to [0, 1].
+double projection_ratio(const Vec2& a, const Vec2& b, const Vec2& p) {
+  const Vec2 ab = b - a;
+  return std::clamp(ab.dot(p - a) / ab.squaredNorm(), 0.0, 1.0);
+}
+
+void check_joint_set(const JointSet& js, size_t index) {
+  auto bad = [&](const char* key, double v) {
+    throw std::invalid_argument("joint set " + std::to_string(index) + " '" + js.name + "': " + key +
+                                " = " + std::to_string(v) + " must be >= 0");
+  };
+  if (!(js.friction_angle >= 0.0) || !(js.friction_angle < 90.0))
+    throw std::invalid_argument("joint set " + std::to_string(index) + " '" + js.name +
+                                "': friction_angle = " + std::to_string(js.friction_angle) +
+                                " must be in [0, 90) deg");
+  if (!(js.cohesion >= 0.0)) bad("cohesion", js.cohesion);
+  if (!(js.tensile_strength >= 0.0)) bad("tensile_strength", js.tensile_strength);
+  if (js.normal_stiffness && !(*js.normal_stiffness > 0.0)) bad("normal_stiffness", *js.normal_stiffness);
+  if (js.shear_stiffness && !(*js.shear_stiffness > 0.0)) bad("shear_stiffness", *js.shear_stiffness);
+}
+
+}  // namespace
+
+ContactSystem::ContactSystem(std::vector<JointSet> joint_sets, ContactSettings settings)
+    : joint_sets_(std::move(joint_sets)), settings_(settings), penalty_(settings.penalty) {
+  if (!(settings_.penalty > 0.0))
+    throw std::invalid_argument("contact penalty = " + std::to_string(settings_.penalty) +
+                                " must be > 0 (Shi: 10-100 x Young's modulus)");
+  if (!(settings_.shear_normal_ratio > 0.0))
+    throw std::invalid_argument("shear_normal_ratio must be > 0");
+  if (joint_sets_.empty()) {
+    JointSet js;
+    js.name = "default";
+    joint_sets_.push_back(js);
+  }
+  for (size_t k = 0; k < joint_sets_.size(); ++k) check_joint_set(joint_sets_[k], k);
+}
+
+void ContactSystem::prepare(std::span<const BlockView> blocks, const Contact& c, Hot& h) const {
+  const BlockView& bi = blocks[c.key.vblock];
+  const BlockView& bj = blocks[c.key.eblock];
+  const Vec2& p = bi.vertices[c.key.vertex];
+  const Vec2 a = edge_start(bj, c.key.edge), b = edge_end(bj, c.key.edge);
+  const double l = (b - a).norm();
+  const Vec2 t = (b - a) / l;
+
+  // Normal: d_n = S / l with S = (a - p) x (b - p) > 0 when p is inside block j
+  // (Shi 1988, the determinant form of the distance of P1 to P2P3); linearized
+  // in the displacements u = T D of p, a and b.
+  const double S = (a - p).x() * (b - p).y() - (a - p).y() * (b - p).x();
+  h.dn0 = S / l;
+  h.ni = displacement_matrix(bi.centroid, p).transpose() * perp(b - a) / l;
+  h.nj = -(displacement_matrix(bj.centroid, a).transpose() * perp(b - p) +
+           displacement_matrix(bj.centroid, b).transpose() * perp(p - a)) / l;
+
+  // Shear: d_t = (P0P1 . P2P3)/l + H^T D_i + G^T D_j (the seed's eqs. 23-24, 27),
+  // P0 the locking point on the entrance edge.
+  const Vec2 p0 = a + c.locking_ratio * (b - a);
+  h.dt0 = t.dot(p - p0);
+  h.ti = displacement_matrix(bi.centroid, p).transpose() * t;
+  h.tj = -displacement_matrix(bj.centroid, p0).transpose() * t;
+
+  // Springs: penalty (eq. 17, one value for every contact point), or the joint
+  // stiffness per unit area times the contact length where the contact has one.
+  const JointSet& js = joint_sets_[c.joint_set];
+  h.pn = (js.normal_stiffness && c.length > 0.0) ? *js.normal_stiffness * c.length : penalty_;
+  h.ps = (js.shear_stiffness && c.length > 0.0) ? *js.shear_stiffness * c.length
+                                                : penalty_ / settings_.shear_normal_ratio;
+  h.tan_phi = std::tan(js.friction_angle * std::numbers::pi / 180.0);
+  h.cohesion = c.intact ? js.cohesion : 0.0;
+  h.tensile_strength = c.intact ? js.tensile_strength : 0.0;
+}
+
+double ContactSystem::shear_stiffness(size_t c) const {
+  // Creep compliance folded into the spring: k_eff = k / (1 + k c) (laws/contact_rheology.hpp).
+  const double k = hot_[c].ps;
+  return k / (1.0 + k * seams_[c].compliance);
+}
+
+void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_displacement) {
+  const int nb = static_cast<int>(blocks.size());
+  // Half model size w0 [length].
+  Box model;
+  model.lo = Vec2::Constant(std::numeric_limits<double>::infinity());
+  model.hi = -model.lo;
+  boxes_.resize(nb);
+  for (int i = 0; i < nb; ++i) {
+    const Box b = bounding_box(blocks[i], 0.0);
+    model.lo = model.lo.cwiseMin(b.lo);
+    model.hi = model.hi.cwiseMax(b.hi);
+  }
+  const double w0 = nb > 0 ? 0.5 * (model.hi - model.lo).maxCoeff() : 0.0;
+  allowed_penetration_ = settings_.penetration_ratio * w0;
+  double d0 = std::max(settings_.search_factor * max_displacement, settings_.min_search_distance);
+  if (!(d0 > 0.0)) d0 = settings_.search_factor * 0.01 * w0;  // g2 = 0.01 when the host gives none
+
+  for (int i = 0; i < nb; ++i) boxes_[i] = bounding_box(blocks[i], 0.5 * d0);
+  const auto& pairs = broad_.find_pairs(boxes_);
+
+  previous_keys_.resize(committed_.size());
+  for (size_t k = 0; k < committed_.size(); ++k) previous_keys_[k] = committed_[k].key;
+  const std::vector<DetectedContact> found =
+      detect_contacts(blocks, pairs, {d0, settings_.angle_tolerance}, previous_keys_);
+
+  // Transfer: the same key keeps its record; otherwise the same vertex on an
+  // adjacent edge of the same block inherits it (the vertex slid over a corner).
+  const size_t n = found.size();
+  std::vector<int> from(n, -1);
+  std::vector<char> used(committed_.size(), 0);
+  auto find_key = [&](const ContactKey& k) -> int {
+    auto it = std::lower_bound(previous_keys_.begin(), previous_keys_.end(), k);
+    return (it != previous_keys_.end() && *it == k) ? static_cast<int>(it - previous_keys_.begin())
+                                                    : -1;
+  };
+  for (size_t c = 0; c < n; ++c)
+    if (int o = find_key(found[c].key); o >= 0) from[c] = o, used[o] = 1;
+  int transferred = 0;
+  for (size_t c = 0; c < n; ++c) {
+    if (from[c] >= 0) { ++transferred; continue; }
+    const ContactKey& k = found[c].key;
+    const int ne = static_cast<int>(blocks[k.eblock].vertices.size());
+    for (int de : {-1, 1}) {
+      const int o = find_key({k.vblock, k.vertex, k.eblock, wrap(k.edge + de, ne)});
+      if (o >= 0 && !used[o]) { from[c] = o; used[o] = 1; ++transferred; break; }
+    }
+  }
+
+  work_.resize(n);
+  work_rheology_.clear();
+  hot_.resize(n);
+  seams_.assign(n, ShearSeam{});
+  for (size_t c = 0; c < n; ++c) {
+    const DetectedContact& d = found[c];
+    const BlockView& eb = blocks[d.key.eblock];
+    const int js = eb.edge_joint_set.empty() ? 0 : eb.edge_joint_set[d.key.edge];
+    if (js < 0 || js >= static_cast<int>(joint_sets_.size()))
+      throw std::out_of_range("block " + std::to_string(d.key.eblock) + " edge " +
+                              std::to_string(d.key.edge) + ": joint set " + std::to_string(js) +
+                              " does not exist (" + std::to_string(joint_sets_.size()) + " defined)");
+    Contact rec;
+    const Contact* old = from[c] >= 0 ? &committed_[from[c]] : nullptr;
+    if (old) {
+      rec = *old;
+      if (old->key.edge != d.key.edge) {
+        // Moved to an adjacent edge: the locking point goes to its projection on the new edge.
+        const Vec2 a0 = edge_start(eb, old->key.edge), b0 = edge_end(eb, old->key.edge);
+        const Vec2 p0 = a0 + old->locking_ratio * (b0 - a0);
+        rec.locking_ratio = projection_ratio(edge_start(eb, d.key.edge), edge_end(eb, d.key.edge), p0);
+      }
+    } else {
+      rec.id = next_id_++;
+      rec.state = ContactState::open;
+    }
+    rec.key = d.key;
+    rec.kind = d.kind;
+    rec.length = d.length;
+    rec.joint_set = js;
+    // Rheology slot: kept on transfer, created for a new contact on a joint set with a law.
+    const bool has_law = static_cast<bool>(joint_sets_[js].law);
+    if (has_law) {
+      laws::RheologyState st;
+      if (old && old->rheology >= 0) st = committed_rheology_[old->rheology];
+      rec.rheology = static_cast<int>(work_rheology_.size());
+      work_rheology_.push_back(st);
+    } else {
+      rec.rheology = -1;
+    }
+    const Vec2 a = edge_start(eb, d.key.edge), b = edge_end(eb, d.key.edge);
+    const Vec2& p = blocks[d.key.vblock].vertices[d.key.vertex];
+    // An open contact locks where the vertex projects at the start of the step.
+    if (rec.state == ContactState::open) rec.locking_ratio = projection_ratio(a, b, p);
+    Hot& h = hot_[c];
+    prepare(blocks, rec, h);
+    // A new contact that already penetrates starts closed.
+    if (!old && h.dn0 > 0.0) rec.state = ContactState::locked;
+    h.start_state = rec.state;
+    h.normal_force = rec.state == ContactState::open ? 0.0 : rec.normal_force;
+    work_[c] = rec;
+  }
+  step_max_penetration_ = 0.0;
+  stats_ = {static_cast<int>(pairs.size()), static_cast<int>(n), transferred, d0};
+}
+
+void ContactSystem::assemble(std::span<const BlockView>, SystemSink& sink) const {
+  for (size_t c = 0; c < work_.size(); ++c) {
+    const Contact& r = work_[c];
+    if (r.state == ContactState::open) continue;
+    const Hot& h = hot_[c];
+    const int i = r.key.vblock, j = r.key.eblock;
+    // Normal spring: energy p_n d_n^2 / 2 (Shi 1988).
+    sink.add_stiffness(i, i, h.pn * h.ni * h.ni.transpose());
+    sink.add_stiffness(j, j, h.pn * h.nj * h.nj.transpose());
+    sink.add_stiffness(i, j, h.pn * h.ni * h.nj.transpose());
+    sink.add_load(i, -h.pn * h.dn0 * h.ni);
+    sink.add_load(j, -h.pn * h.dn0 * h.nj);
+    if (r.state == ContactState::locked) {
+      // Shear spring: the seed's eqs. 28-29, with the locking point shifted by
+      // the creep seam (zero without a law).
+      const double ps = shear_stiffness(c);
+      const double d0 = h.dt0 + seams_[c].locking_shift;
+      sink.add_stiffness(i, i, ps * h.ti * h.ti.transpose());
+      sink.add_stiffness(j, j, ps * h.tj * h.tj.transpose());
+      sink.add_stiffness(i, j, ps * h.ti * h.tj.transpose());
+      sink.add_load(i, -ps * d0 * h.ti);
+      sink.add_load(j, -ps * d0 * h.tj);
+    } else {
+      // Sliding: Mohr-Coulomb friction F = N tan(phi) + c l against the slip
+      // direction, N from the last iterate.
+      const double f = std::max(h.normal_force, 0.0) * h.tan_phi + h.cohesion * r.length;
+      sink.add_load(i, -r.slide_direction * f * h.ti);
+      sink.add_load(j, -r.slide_direction * f * h.tj);
+    }
+  }
+}
+
+CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen::VectorXd& D) {
+  assert(D.size() == 6 * static_cast<Eigen::Index>(blocks.size()));
+  (void)blocks;
+  CheckResult res;
+  for (size_t c = 0; c < work_.size(); ++c) {
+    Contact& r = work_[c];
+    Hot& h = hot_[c];
+    const auto Di = D.segment<6>(6 * r.key.vblock);
+    const auto Dj = D.segment<6>(6 * r.key.eblock);
+    const double dn = h.dn0 + h.ni.dot(Di) + h.nj.dot(Dj);
+    const double slip = h.ti.dot(Di) + h.tj.dot(Dj);  // tangential motion this step [length]
+    const double dt = h.dt0 + seams_[c].locking_shift + slip;
+    const double N = h.pn * dn;
+    switch (r.state) {
+      case ContactState::open:
+        if (dn > 0.0) {
+          r.state = ContactState::locked;
+          ++res.state_changes;
+        }
+        break;
+      case ContactState::locked:
+      case ContactState::sliding:
+        if (N < -h.tensile_strength * r.length) {
+          r.state = ContactState::open;
+          ++res.state_changes;
+        } else if (r.state == ContactState::locked) {
+          // Mohr-Coulomb: slip when |F_T| > N tan(phi) + c l.
+          const double S = shear_stiffness(c) * dt;
+          if (std::abs(S) > N * h.tan_phi + h.cohesion * r.length) {
+            r.state = ContactState::sliding;
+            r.slide_direction = dt >= 0.0 ? 1 : -1;
+            ++res.state_changes;
+          }
+        } else if (slip * r.slide_direction < 0.0) {
+          // The vertex moves against the friction direction assumed: it sticks.
+          r.state = ContactState::locked;
+          ++res.state_changes;
+        }
+        break;
+    }
+    h.normal_force = r.state == ContactState::open ? 0.0 : N;
+    if (r.state != ContactState::open) res.max_penetration = std::max(res.max_penetration, dn);
+  }
+  step_max_penetration_ = res.max_penetration;
+  return res;
+}
+
+void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::VectorXd& D) {
+  assert(D.size() == 6 * static_cast<Eigen::Index>(blocks.size()));
+  double max_pen = 0.0;
+  for (size_t c = 0; c < work_.size(); ++c) {
+    Contact& r = work_[c];
+    const Hot& h = hot_[c];
+    const auto Di = D.segment<6>(6 * r.key.vblock);
+    const auto Dj = D.segment<6>(6 * r.key.eblock);
+    const double dn = h.dn0 + h.ni.dot(Di) + h.nj.dot(Dj);
+    const double slip = h.ti.dot(Di) + h.tj.dot(Dj);
+    const double dt = h.dt0 + seams_[c].locking_shift + slip;
+    r.penetration = dn;
+    switch (r.state) {
+      case ContactState::open:
+        r.normal_force = r.shear_force = 0.0;
+        if (h.start_state != ContactState::open) r.intact = false;
+        break;
+      case ContactState::locked:
+        r.normal_force = h.pn * dn;
+        r.shear_force = shear_stiffness(c) * dt;
+        r.shear_displacement += slip;
+        max_pen = std::max(max_pen, dn);
+        break;
+      case ContactState::sliding: {
+        r.normal_force = h.pn * dn;
+        r.shear_force = r.slide_direction *
+                        (std::max(r.normal_force, 0.0) * h.tan_phi + h.cohesion * r.length);
+        r.shear_displacement += slip;
+        r.intact = false;
+        max_pen = std::max(max_pen, dn);
+        // The locking point follows the vertex: its projection on the displaced edge.
+        const BlockView& bi = blocks[r.key.vblock];
+        const BlockView& bj = blocks[r.key.eblock];
+        const Vec2& p = bi.vertices[r.key.vertex];
+        const Vec2 a = edge_start(bj, r.key.edge), b = edge_end(bj, r.key.edge);
+        const Vec2 p1 = p + displacement_matrix(bi.centroid, p) * Di;
+        const Vec2 a1 = a + displacement_matrix(bj.centroid, a) * Dj;
+        const Vec2 b1 = b + displacement_matrix(bj.centroid, b) * Dj;
+        r.locking_ratio = projection_ratio(a1, b1, p1);
+        break;
+      }
+    }
+  }
+  last_max_penetration_ = max_pen;
+  // Penetration control: raise the penalty for the next steps.
+  if (max_pen > allowed_penetration_ &&
+      penalty_ * settings_.penalty_raise <= settings_.penalty * settings_.penalty_max_factor)
+    penalty_ *= settings_.penalty_raise;
+  committed_.swap(work_);
+  committed_rheology_.swap(work_rheology_);
+  work_.clear();
+  work_rheology_.clear();
+}
+
+void ContactSystem::abandon_step() {
+  work_.clear();
+  work_rheology_.clear();
+  hot_.clear();
+  seams_.clear();
+}
+
+}  // namespace rheodda::contact
