@@ -1,0 +1,148 @@
+// The DDA host engine (Shi 1988): blocks with six unknowns each, the block
+// sub-matrices (elastic, initial stress, point loads, body force, inertia,
+// fixed points), a sparse global system solved by CHOLMOD or PCG, and time
+// stepping with the open-close iteration and step-size control.
+//
+// Contacts are not the engine's business: it drives a ContactModel
+// (contact_model.hpp) through begin_step -> {assemble -> solve -> check}* ->
+// end_step (or abandon_step when the step is cut) and gives it a SystemSink to
+// add its 6x6 terms. A scene without contacts uses NullContactModel and does
+// no contact work at all.
+//
+// Usage:
+//   rheodda::core::Model m;  m.blocks.push_back({.vertices = {{0,0},{1,0},{1,1},{0,1}}});
+//   rheodda::core::Engine engine(m);          // or Engine(m, contacts)
+//   engine.add_observer([](const Engine& e, const StepReport& r) { ... });
+//   engine.run(100);
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "rheodda/contact/kinematics.hpp"
+#include "rheodda/core/contact_model.hpp"
+#include "rheodda/core/model.hpp"
+
+namespace rheodda::core {
+
+using Mat2 = Eigen::Matrix2d;
+
+/// What happened in one accepted step.
+struct StepReport {
+  int step = 0;               ///< index of the step (0-based)
+  double time = 0.0;          ///< time at the end of the step [time]
+  double dt = 0.0;            ///< step size used [time]
+  int iterations = 0;         ///< open-close iterations of the accepted attempt [-]
+  int cuts = 0;               ///< times dt was cut before acceptance [-]
+  double max_displacement = 0.0;  ///< largest vertex displacement of the step [length]
+  double max_penetration = 0.0;   ///< largest penetration reported by the contacts [length]
+  double assembly_seconds = 0.0;  ///< wall time spent assembling K and F (all attempts) [s]
+  double solve_seconds = 0.0;     ///< wall time spent in the linear solver (all attempts) [s]
+};
+
+/// Counters of the linear solver since the engine was built.
+struct SolverStats {
+  long analyses = 0;        ///< CHOLMOD symbolic analyses (pattern changes) [-]
+  long factorizations = 0;  ///< CHOLMOD numeric factorisations [-]
+  long solves = 0;          ///< linear solves [-]
+  long pcg_iterations = 0;  ///< total PCG iterations [-]
+};
+
+/// Run-time state of one block.
+struct BlockState {
+  std::vector<Vec2> vertices;       ///< current vertices, counter-clockwise [length]
+  std::vector<int> edge_joint_set;  ///< joint set of edge k (vertex k -> k+1)
+  int material = 0;                 ///< index into Model::materials
+  Vec2 centroid = Vec2::Zero();     ///< current centroid [length]
+  Vec3 stress = Vec3::Zero();       ///< (sigma_x, sigma_y, tau_xy) [stress]
+  Vec6 velocity = Vec6::Zero();     ///< (u0, v0, r0, ex, ey, gxy) rates [length/time, 1/time];
+                                    ///< stays zero in a static analysis
+  /// Affine map from initial to current position of a material point:
+  /// x = map_A x0 + map_b (composed from every accepted step).
+  Mat2 map_A = Mat2::Identity();    ///< [-]
+  Vec2 map_b = Vec2::Zero();        ///< [length]
+};
+
+/// One recorded sample of a measurement point.
+struct MeasurementSample {
+  int step = 0;                      ///< step index (-1 = initial state)
+  double time = 0.0;                 ///< [time]
+  Vec2 position = Vec2::Zero();      ///< current position [length]
+  Vec2 displacement = Vec2::Zero();  ///< position minus initial position [length]
+};
+
+/// Everything that evolves during a run: copy it to checkpoint, hand it back
+/// to Engine::restore to resume (the ContactModel keeps its own state).
+struct EngineState {
+  int step = 0;              ///< steps accepted so far
+  double time = 0.0;         ///< [time]
+  double next_dt = 0.0;      ///< size of the next trial step [time]
+  std::vector<BlockState> blocks;
+  std::vector<std::vector<MeasurementSample>> measurements;  ///< per measurement point
+};
+
+/// Called after every accepted step.
+using StepObserver = std::function<void(const class Engine&, const StepReport&)>;
+
+class Engine {
+ public:
+  /// Validates the model (throws ModelError naming the key) and builds the
+  /// initial state; runs without contacts (NullContactModel).
+  explicit Engine(Model model);
+  /// As above, driving `contacts` (not owned; must outlive the engine).
+  Engine(Model model, ContactModel& contacts);
+  ~Engine();
+  Engine(const Engine&) = delete;
+  Engine& operator=(const Engine&) = delete;
+
+  /// Advances one accepted step (cutting dt as needed). Throws
+  /// std::runtime_error when the step still fails after Settings::max_cuts cuts.
+  StepReport step();
+  /// Advances `steps` accepted steps.
+  void run(int steps);
+  /// Advances until time() >= end_time (the last step is shortened to land on it).
+  void run_until(double end_time);
+  /// Called after every accepted step, in the order added.
+  void add_observer(StepObserver observer);
+
+  const Model& model() const;
+  int block_count() const;
+  int step_count() const;
+  double time() const;        ///< [time]
+  double half_model_size() const;  ///< w0: half the larger side of the initial bounding box [length]
+  double allowed_displacement() const;  ///< g2 * w0 [length]
+
+  const BlockState& block(int b) const;
+  std::span<const Vec2> vertices(int b) const;  ///< [length]
+  Vec2 centroid(int b) const;                   ///< [length]
+  double area(int b) const;                     ///< current area [length^2]
+  Vec3 stress(int b) const;                     ///< [stress]
+  Vec6 velocity(int b) const;                   ///< [length/time, 1/time]
+  /// Current position of the material point whose initial position was p0 [length].
+  Vec2 point_position(int b, const Vec2& p0) const;
+  /// Total displacement of the material point whose initial position was p0 [length].
+  Vec2 point_displacement(int b, const Vec2& p0) const;
+
+  /// Views of the step-start geometry, as handed to the contact model.
+  std::span<const contact::BlockView> views() const;
+  /// Displacements D (6 per block) of the last accepted step.
+  const Eigen::VectorXd& last_displacements() const;
+  /// Reports of all accepted steps.
+  const std::vector<StepReport>& reports() const;
+  /// Samples per measurement point (first sample = initial state, step -1).
+  const std::vector<std::vector<MeasurementSample>>& measurements() const;
+  const SolverStats& solver_stats() const;
+
+  /// Copy of everything that evolves.
+  EngineState save() const;
+  /// Resumes from a saved state of an engine built from the same model.
+  void restore(const EngineState& state);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace rheodda::core

@@ -1,0 +1,126 @@
+// The input of a DDA analysis: plain structs, one per idea, every field with
+// its unit and default. A scene reader (apps/) or a test fills a Model; the
+// Engine (engine.hpp) validates it once and owns the run-time state.
+//
+// Why plain structs: the reader and the engine stay independent, a model can
+// be written by hand in a test in a few lines, and defaults live in one place
+// (here). Units: any consistent system (the numbers in the defaults are SI:
+// kg, m, s, Pa). Bodies are plates of unit thickness, so "force" below is
+// force per unit thickness and "stress" is force/length^2.
+#pragma once
+
+#include <Eigen/Dense>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace rheodda::core {
+
+using Vec2 = Eigen::Vector2d;
+using Vec3 = Eigen::Vector3d;
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+
+/// Bad model input (geometry, parameters, indices). key() names the offending
+/// entry, e.g. "blocks[3].vertices" or "settings.g2", so a reader can map it
+/// back to its file and line.
+class ModelError : public std::invalid_argument {
+ public:
+  ModelError(std::string key, const std::string& message)
+      : std::invalid_argument(key + ": " + message), key_(std::move(key)) {}
+  const std::string& key() const { return key_; }
+
+ private:
+  std::string key_;
+};
+
+/// Plane stress (thin plate, sigma_z = 0) or plane strain (long body, epsilon_z = 0).
+enum class PlaneMode { plane_stress, plane_strain };
+
+/// Elastic material of a block (isotropic, linear).
+struct Material {
+  double density = 2600.0;        ///< mass density rho [mass/length^3]; > 0
+  double young_modulus = 1.0e10;  ///< Young's modulus E [stress]; > 0
+  double poisson_ratio = 0.25;    ///< Poisson's ratio nu [-]; in [0, 0.5)
+  PlaneMode plane = PlaneMode::plane_stress;  ///< default plane stress
+};
+
+/// One block: a simple polygon (convex or concave) given in either orientation.
+/// The engine normalises it to counter-clockwise; edge_joint_set follows the
+/// edges through that reversal (edge k always joins vertex k to vertex k+1).
+struct BlockDef {
+  std::vector<Vec2> vertices;      ///< >= 3 vertices, first not repeated [length]
+  std::vector<int> edge_joint_set; ///< joint set index of edge k (vertex k -> k+1 as given);
+                                   ///< empty = every edge in joint set 0; else one per edge, >= 0
+  int material = 0;                ///< index into Model::materials
+  Vec3 initial_stress = Vec3::Zero();  ///< (sigma_x, sigma_y, tau_xy) at t = 0 [stress], tension > 0
+  Vec2 initial_velocity = Vec2::Zero();  ///< centroid velocity at t = 0 [length/time]
+  double initial_angular_velocity = 0.0; ///< rotation rate at t = 0, counter-clockwise > 0 [1/time]
+};
+
+/// One sample of a load time history.
+struct LoadSample {
+  double time = 0.0;           ///< [time]
+  Vec2 force = Vec2::Zero();   ///< (fx, fy) [force]
+};
+
+/// A point load attached to a material point of a block (it moves with the
+/// block). Its force is piecewise-linear in time between samples and held
+/// constant before the first and after the last sample; it is evaluated at
+/// the end of each step (t + dt).
+struct PointLoad {
+  int block = 0;                     ///< index into Model::blocks
+  Vec2 point = Vec2::Zero();         ///< initial position of the material point [length]
+  std::vector<LoadSample> history;   ///< >= 1 sample, times strictly increasing
+};
+
+/// A fixed point: a stiff penalty spring holding a material point of a block
+/// at its initial position.
+struct FixedPoint {
+  int block = 0;                ///< index into Model::blocks
+  Vec2 point = Vec2::Zero();    ///< initial (and held) position [length]
+};
+
+/// A measurement point: the engine records the displacement of this material
+/// point after every accepted step.
+struct MeasurementPoint {
+  int block = 0;                ///< index into Model::blocks
+  Vec2 point = Vec2::Zero();    ///< initial position of the material point [length]
+};
+
+/// Linear solver of the global system K D = F.
+enum class SolverKind {
+  cholmod,  ///< sparse Cholesky LL' (SuiteSparse CHOLMOD), symbolic analysis reused
+  pcg,      ///< conjugate gradient with a block-Jacobi (6x6) preconditioner
+};
+
+/// Analysis settings (Shi's control parameters).
+struct Settings {
+  double dt = 1.0e-3;            ///< largest (and first) step size [time]; > 0
+  double dt_growth = 1.5;        ///< after a cut, each accepted step lets dt grow by this factor,
+                                 ///< up to dt [-]; >= 1
+  double dt_cut = 0.3;           ///< factor applied to dt when a step is cut [-]; in (0, 1)
+  int max_cuts = 30;             ///< cuts allowed in one step before the engine gives up [-]; >= 0
+  double g2 = 0.01;              ///< allowed displacement per step as a fraction of the half
+                                 ///< model size (Shi's g2) [-]; > 0
+  double dynamic_ratio = 1.0;    ///< share of the velocity carried to the next step [-], in [0, 1];
+                                 ///< 0 = static analysis (no velocities at all), 1 = fully dynamic
+  Vec2 gravity{0.0, -9.81};      ///< body acceleration (gx, gy) [length/time^2]
+  double fixed_point_stiffness = 0.0;  ///< penalty spring of fixed points [force/length];
+                                       ///< 0 = automatic: 100 x the largest Young's modulus
+  int max_open_close = 8;        ///< open-close iterations before a step is cut [-]; >= 1
+  SolverKind solver = SolverKind::cholmod;  ///< default cholmod
+  double pcg_tolerance = 1.0e-12;  ///< PCG stop: ||r|| <= tol ||F|| [-]; > 0
+  int pcg_max_iterations = 10000;  ///< PCG iteration limit per solve [-]; >= 1
+};
+
+/// A complete DDA model.
+struct Model {
+  std::vector<Material> materials{Material{}};  ///< default: one default material
+  std::vector<BlockDef> blocks;
+  std::vector<PointLoad> point_loads;
+  std::vector<FixedPoint> fixed_points;
+  std::vector<MeasurementPoint> measurement_points;
+  Settings settings;
+};
+
+}  // namespace rheodda::core
