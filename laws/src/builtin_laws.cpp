@@ -1,5 +1,6 @@
 #include "rheodda/laws/builtin_laws.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace rheodda::laws {
@@ -111,6 +112,45 @@ LawInfo Nishihara::info() {
        stiffness("E2", "delayed-elastic (Kelvin) shear stiffness"),
        viscosity("eta2", "viscosity of the Kelvin dashpot"),
        viscosity("eta3", "viscosity of the viscoplastic (Bingham) dashpot"), fs});
+}
+
+// ---- Generalized Kelvin ------------------------------------------------------
+GeneralizedKelvin::GeneralizedKelvin(const ParameterValues& p)
+    : SeriesLaw("generalized-kelvin", p, at(p, "E1"),
+                {{Kind::kelvin, at(p, "E2"), at(p, "eta2"), 0.0},
+                 {Kind::kelvin, at(p, "E3"), at(p, "eta3"), 0.0}}) {}
+
+std::optional<double> GeneralizedKelvin::relaxation_modulus(double t) const {
+  // Laplace: the creep compliance is J(s) = (1/s) [1/E1 + 1/(E2 + eta2 s) + 1/(E3 + eta3 s)]
+  // and G(s) = 1/(s^2 J(s)) = D(s)/(s N(s)) with D = E1 (E2 + eta2 s)(E3 + eta3 s) and
+  // N = (E2 + eta2 s)(E3 + eta3 s) + E1 (E3 + eta3 s) + E1 (E2 + eta2 s) = A s^2 + B s + C.
+  // Residues: D(0)/N(0) = G_inf at s = 0, D(-r)/(-r N'(-r)) at the roots s = -r.
+  const auto& p = parameters();
+  const double e1 = at(p, "E1"), e2 = at(p, "E2"), eta2 = at(p, "eta2"), e3 = at(p, "E3"),
+               eta3 = at(p, "eta3");
+  const double qa = eta2 * eta3;
+  const double qb = e2 * eta3 + e3 * eta2 + e1 * eta3 + e1 * eta2;
+  const double qc = e2 * e3 + e1 * e3 + e1 * e2;
+  const double disc = std::sqrt(std::max(qb * qb - 4.0 * qa * qc, 0.0));
+  const double r1 = (qb + disc) / (2.0 * qa);  // fast root
+  const double r2 = qc / (qa * r1);            // slow root, without cancellation
+  auto d_at = [&](double s) { return e1 * (e2 + eta2 * s) * (e3 + eta3 * s); };
+  const double g_inf = e1 * e2 * e3 / qc;
+  // N'(-r1) = B - 2 A r1 = -disc, N'(-r2) = B - 2 A r2 = +disc.
+  const double a1 = d_at(-r1) / (r1 * disc);
+  const double a2 = -d_at(-r2) / (r2 * disc);
+  return g_inf + a1 * std::exp(-r1 * t) + a2 * std::exp(-r2 * t);
+}
+
+LawInfo GeneralizedKelvin::info() {
+  return make_info<GeneralizedKelvin>(
+      "generalized-kelvin", "spring E1 + Kelvin (E2 || eta2) + Kelvin (E3 || eta3) in series",
+      "d(t) = F/E1 + F/E2*(1 - exp(-E2*t/eta2)) + F/E3*(1 - exp(-E3*t/eta3))",
+      {stiffness("E1", "instantaneous (elastic) shear stiffness"),
+       stiffness("E2", "stiffness of the first Kelvin spring"),
+       viscosity("eta2", "viscosity of the first Kelvin dashpot"),
+       stiffness("E3", "stiffness of the second Kelvin spring"),
+       viscosity("eta3", "viscosity of the second Kelvin dashpot")});
 }
 
 }  // namespace rheodda::laws

@@ -112,24 +112,28 @@ std::optional<double> exact_displacement(const ContactRheology& law, const Stage
 std::optional<double> exact_force(const ContactRheology& law, const StagedHistory& displacement,
                                   double t) {
   if (!law.relaxation_modulus(0.0)) return std::nullopt;
-  // F(t) = sum dd_i G(t - t_i) (Boltzmann superposition of the relaxation modulus).
-  auto force_at = [&](double time) {
+  // F(t) = sum dd_i G(t - t_i) (Boltzmann superposition of the relaxation
+  // modulus) over the stages that started at or before `time` (`inclusive`)
+  // or strictly before it (the left limit, just before a stage starts).
+  auto force_at = [&](double time, bool inclusive) {
     double f = 0.0, prev = 0.0;
     for (const auto& s : displacement.stages()) {
-      if (s.t > time) break;
+      if (inclusive ? s.t > time : s.t >= time) break;
       f += (s.value - prev) * *law.relaxation_modulus(time - s.t);
       prev = s.value;
     }
     return f;
   };
-  const double f = force_at(t);
+  const double f = force_at(t, true);
   const double limit = law.linear_limit();
   if (std::isfinite(limit)) {
-    // Below the threshold the law is a standard linear solid, whose force moves
-    // monotonically between stage starts: checking the stage starts and t suffices.
+    // Below the threshold the law is a standard linear solid (one relaxation
+    // time), whose force moves monotonically within a stage: the extremes of
+    // |F| over [0, t] are at t and at both ends of each stage that started.
     if (std::abs(f) > limit) return std::nullopt;
     for (const auto& s : displacement.stages())
-      if (s.t <= t && std::abs(force_at(s.t)) > limit) return std::nullopt;
+      if (s.t <= t && (std::abs(force_at(s.t, true)) > limit || std::abs(force_at(s.t, false)) > limit))
+        return std::nullopt;
   }
   return f;
 }
@@ -156,20 +160,29 @@ double solve_series_force(const ContactRheology& law, const StepConstants& k_ste
 }
 
 namespace {
+// Step boundaries: multiples of dt, every stage start and t_end. A multiple of
+// dt within round-off (1e-9 dt) of a stage start or of t_end is replaced by
+// that exact time, so a load change never falls a sliver after a boundary.
 std::vector<double> time_grid(const StagedHistory& history, double t_end, double dt) {
-  std::vector<double> grid;
-  const auto n = static_cast<long long>(std::floor(t_end / dt + 1e-9));
-  grid.reserve(static_cast<std::size_t>(n) + history.stages().size() + 2);
-  for (long long i = 0; i <= n; ++i) grid.push_back(static_cast<double>(i) * dt);
+  std::vector<double> exact_times;
   for (const auto& s : history.stages())
-    if (s.t > 0.0 && s.t < t_end) grid.push_back(s.t);
-  grid.push_back(t_end);
+    if (s.t > 0.0 && s.t < t_end) exact_times.push_back(s.t);
+  exact_times.push_back(t_end);
+  const double tol = 1e-9 * dt;
+  auto near_exact = [&](double t) {
+    auto it = std::lower_bound(exact_times.begin(), exact_times.end(), t - tol);
+    return it != exact_times.end() && *it <= t + tol;
+  };
+  std::vector<double> grid{0.0};
+  const auto n = static_cast<long long>(std::floor(t_end / dt + 1e-9));
+  grid.reserve(static_cast<std::size_t>(n) + exact_times.size() + 1);
+  for (long long i = 1; i <= n; ++i) {
+    const double t = static_cast<double>(i) * dt;
+    if (t < t_end && !near_exact(t)) grid.push_back(t);
+  }
+  grid.insert(grid.end(), exact_times.begin(), exact_times.end());
   std::sort(grid.begin(), grid.end());
-  std::vector<double> out;
-  for (double t : grid)
-    if (t <= t_end && (out.empty() || t - out.back() > 1e-9 * dt)) out.push_back(t);
-  if (out.back() < t_end) out.back() = t_end;
-  return out;
+  return grid;
 }
 }  // namespace
 
@@ -230,12 +243,27 @@ std::vector<CurveSample> integrate_curve(const ContactRheology& law, Control con
 
 double integrate_force_function(const ContactRheology& law, const ForceFunction& f, double t_end,
                                 double dt, Scheme scheme) {
-  const auto n = static_cast<long long>(std::llround(t_end / dt));
+  if (!(dt > 0.0) || !std::isfinite(dt))
+    throw LawError("dt", fmt::format("dt must be a positive finite time step, got {:g}", dt));
+  if (!(t_end >= 0.0) || !std::isfinite(t_end))
+    throw LawError("t-end", fmt::format("t_end must be a finite time >= 0, got {:g}", t_end));
+  // Whole steps of dt, then one shorter last step if t_end is not a multiple of dt.
+  const auto n = static_cast<long long>(std::floor(t_end / dt + 1e-9));
   const StepConstants k = law.step_constants(dt, scheme);
   RheologyState state, next;
+  double t0 = 0.0;
   for (long long i = 0; i < n; ++i) {
-    const double t0 = static_cast<double>(i) * dt;
-    law.advance(k, state, f(t0), f(t0 + dt), next);
+    t0 = static_cast<double>(i) * dt;
+    const double t1 = i + 1 == n && std::abs(t_end - static_cast<double>(n) * dt) <= 1e-9 * dt
+                          ? t_end
+                          : static_cast<double>(i + 1) * dt;
+    law.advance(k, state, f(t0), f(t1), next);
+    state = next;
+    t0 = t1;
+  }
+  if (t_end - t0 > 1e-9 * dt) {
+    const StepConstants last = law.step_constants(t_end - t0, scheme);
+    law.advance(last, state, f(t0), f(t_end), next);
     state = next;
   }
   const auto e1 = law.instantaneous_stiffness();

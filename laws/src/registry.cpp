@@ -12,6 +12,7 @@ void register_builtin_laws(LawRegistry& registry) {
   registry.add(Maxwell::info());
   registry.add(Kelvin::info());
   registry.add(Nishihara::info());
+  registry.add(GeneralizedKelvin::info());
 }
 
 const LawRegistry& LawRegistry::builtin() {

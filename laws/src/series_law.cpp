@@ -38,9 +38,16 @@ double kelvin_b(double r) { return -std::expm1(-r); }
 
 double kelvin_phi(double r) {
   // phi = 1 - (1 - e^-r)/r = (r - 1 + e^-r)/r. Direct evaluation cancels for
-  // small r; the Taylor series r/2 - r^2/6 + r^3/24 - r^4/120 is exact to
-  // round-off below 1e-3 (next term r^5/720 < 1.4e-18 relative to r/2).
-  if (r < 1e-3) return r * (0.5 - r * (1.0 / 6.0 - r * (1.0 / 24.0 - r / 120.0)));
+  // small r (relative error ~ 2 eps / r), so below r = 0.5 use the alternating
+  // Taylor series phi = r/2 - r^2/6 + r^3/24 - ... = sum_{j>=1} (-1)^(j+1) r^j/(j+1)!,
+  // in nested form r/2 (1 - r/3 (1 - r/4 (1 - ...))) to the term r^16/17!: the
+  // first omitted term, 0.5^17/18! < 1.2e-21, is far below round-off of
+  // phi >= 0.2 there. Above 0.5 the direct form loses at most a few ulps.
+  if (r < 0.5) {
+    double nested = 1.0;
+    for (int j = 17; j >= 3; --j) nested = 1.0 - r / j * nested;
+    return 0.5 * r * nested;
+  }
   if (r > 1e300) return 1.0;
   return 1.0 - kelvin_b(r) / r;
 }
@@ -68,9 +75,19 @@ double SeriesLaw::linear_limit() const {
 }
 
 StepConstants SeriesLaw::step_constants(double dt, Scheme scheme) const {
+  // The coefficients of (2) in contact_rheology.hpp, per element and scheme
+  // (rheology.md, "three schemes"; docs/laws.md, "Schemes"):
+  //   Kelvin  eta q' + E q = F, exact over the step for the scheme's force:
+  //           q' = a q + b F_s/E + (F_e - F_s) phi/E,  a = 1 - b  (exponential-linear)
+  //           lagged: F = F_s throughout (the seed's eqs. 12-16 in state form,
+  //           omega = F/E - q); implicit: F = F_e throughout.
+  //   dashpot eta q' = F: rectangle rule at F_s (lagged) or F_e (implicit),
+  //           trapezoid (exponential-linear).
+  //   Bingham eta q' = g(F): as the dashpot, with g(F) = sign(F)<|F| - Fs>.
   StepConstants k;
   k.dt = dt;
   k.scheme = scheme;
+  k.count = static_cast<int>(elements_.size());
   for (std::size_t i = 0; i < elements_.size(); ++i) {
     const auto& e = elements_[i];
     auto& u = k.unit[i];
@@ -79,6 +96,26 @@ StepConstants SeriesLaw::step_constants(double dt, Scheme scheme) const {
       const double r = dt * e.E / e.eta;  // dt / retardation time
       u.b = kelvin_b(r);
       u.phi = kelvin_phi(r);
+      u.per_q = -u.b;
+      switch (scheme) {
+        case Scheme::lagged: u.per_start = u.b / e.E; break;
+        case Scheme::implicit: u.per_end = u.b / e.E; break;
+        case Scheme::exponential_linear:
+          u.per_start = (u.b - u.phi) / e.E;
+          u.per_end = u.phi / e.E;
+          break;
+      }
+    } else {
+      u.bingham = e.kind == CreepElement::Kind::bingham;
+      u.threshold = u.bingham ? e.threshold : 0.0;
+      switch (scheme) {
+        case Scheme::lagged: u.per_start = u.dt_over_eta; break;
+        case Scheme::implicit: u.per_end = u.dt_over_eta; break;
+        case Scheme::exponential_linear:
+          u.per_start = 0.5 * u.dt_over_eta;
+          u.per_end = 0.5 * u.dt_over_eta;
+          break;
+      }
     }
   }
   return k;
@@ -91,73 +128,47 @@ inline double bingham_excess(double f, double threshold) {
   if (f < -threshold) return f + threshold;
   return 0.0;
 }
-}  // namespace
-
-Linearization SeriesLaw::element_step(int i, const StepConstants& k, double q, double fs,
-                                      double fe_guess) const {
-  const auto& e = elements_[static_cast<std::size_t>(i)];
-  const auto& u = k.unit[static_cast<std::size_t>(i)];
-  switch (e.kind) {
-    case CreepElement::Kind::kelvin:
-      // Exact exponential update of eta q' + E q = F over the step
-      // (rheology.md; the seed's eqs. 12-16 in state form: omega = F/E - q):
-      //   q' = a q + b F_s/E + (F_e - F_s) phi/E,   a = 1 - b.
-      switch (k.scheme) {
-        case Scheme::lagged: return {u.b * (fs / e.E - q), 0.0};
-        case Scheme::implicit: return {-u.b * q, u.b / e.E};
-        case Scheme::exponential_linear:
-          return {-u.b * q + (u.b - u.phi) * fs / e.E, u.phi / e.E};
-      }
-      break;
-    case CreepElement::Kind::dashpot:
-      // q' = q + integral F dt / eta: rectangle (lagged, implicit) or trapezoid.
-      switch (k.scheme) {
-        case Scheme::lagged: return {fs * u.dt_over_eta, 0.0};
-        case Scheme::implicit: return {0.0, u.dt_over_eta};
-        case Scheme::exponential_linear: return {0.5 * fs * u.dt_over_eta, 0.5 * u.dt_over_eta};
-      }
-      break;
-    case CreepElement::Kind::bingham: {
-      // q' = q + integral g(F) dt / eta; the piece of g is chosen by the guess.
-      auto piece = [&](double weight) -> Linearization {
-        if (fe_guess > e.threshold) return {-weight * e.threshold, weight};
-        if (fe_guess < -e.threshold) return {weight * e.threshold, weight};
-        return {0.0, 0.0};
-      };
-      switch (k.scheme) {
-        case Scheme::lagged: return {bingham_excess(fs, e.threshold) * u.dt_over_eta, 0.0};
-        case Scheme::implicit: return piece(u.dt_over_eta);
-        case Scheme::exponential_linear: {
-          Linearization l = piece(0.5 * u.dt_over_eta);
-          l.h += 0.5 * bingham_excess(fs, e.threshold) * u.dt_over_eta;
-          return l;
-        }
-      }
-      break;
-    }
-  }
-  return {};
+// g(F) of an element: F itself for Kelvin and dashpot, the excess for Bingham.
+inline double flow(const UnitStepConstants& u, double f) {
+  return u.bingham ? bingham_excess(f, u.threshold) : f;
 }
+}  // namespace
 
 Linearization SeriesLaw::linearize(const StepConstants& k, const RheologyState& old, double fs,
                                    double fe_guess) const {
+  // Delta d_c = sum_i per_q q_i + per_start g(F_s) + per_end g(F_e) = h + c F_e,
+  // where a Bingham g(F_e) is replaced by its affine piece at the guess.
   Linearization sum;
-  for (int i = 0; i < static_cast<int>(elements_.size()); ++i) {
-    const Linearization l = element_step(i, k, old.q[static_cast<std::size_t>(i)], fs, fe_guess);
-    sum.h += l.h;
-    sum.c += l.c;
+  for (int i = 0; i < k.count; ++i) {
+    const auto idx = static_cast<std::size_t>(i);
+    const auto& u = k.unit[idx];
+    sum.h += u.per_q * old.q[idx] + u.per_start * flow(u, fs);
+    if (!u.bingham) {
+      sum.c += u.per_end;
+    } else if (fe_guess > u.threshold) {
+      sum.h -= u.per_end * u.threshold;
+      sum.c += u.per_end;
+    } else if (fe_guess < -u.threshold) {
+      sum.h += u.per_end * u.threshold;
+      sum.c += u.per_end;
+    }
   }
   return sum;
 }
 
 double SeriesLaw::advance(const StepConstants& k, const RheologyState& old, double fs, double fe,
                           RheologyState& next) const {
-  next = old;
+  // The hot path (one call per contact and step): a few multiply-adds per
+  // element from constants computed once per step by step_constants().
   double total = 0.0;
-  for (int i = 0; i < static_cast<int>(elements_.size()); ++i) {
+  for (int i = 0; i < kMaxInternal; ++i) {
     const auto idx = static_cast<std::size_t>(i);
-    const Linearization l = element_step(i, k, old.q[idx], fs, fe);
-    const double dq = l.h + l.c * fe;
+    if (i >= k.count) {
+      next.q[idx] = old.q[idx];
+      continue;
+    }
+    const auto& u = k.unit[idx];
+    const double dq = u.per_q * old.q[idx] + u.per_start * flow(u, fs) + u.per_end * flow(u, fe);
     next.q[idx] = old.q[idx] + dq;
     total += dq;
   }

@@ -1,5 +1,6 @@
-// The four built-in laws: Maxwell, Kelvin (Kelvin-Voigt), Burgers, Nishihara.
-// Each is a SeriesLaw configuration plus its closed forms; see docs/laws.md.
+// The built-in laws: Maxwell, Kelvin (Kelvin-Voigt), Burgers, Nishihara and the
+// generalized Kelvin law. Each is a SeriesLaw configuration plus its closed
+// forms; see docs/laws.md.
 #pragma once
 
 #include "rheodda/laws/registry.hpp"
@@ -40,6 +41,19 @@ class Nishihara final : public SeriesLaw {
  public:
   explicit Nishihara(const ParameterValues& p);
   /// Standard linear solid below the threshold: E1 E2/(E1+E2) + E1^2/(E1+E2) exp(-(E1+E2) t/eta2).
+  std::optional<double> relaxation_modulus(double t) const override;
+  static LawInfo info();
+};
+
+/// Generalized Kelvin: spring E1 + Kelvin (E2, eta2) + Kelvin (E3, eta3) in series.
+/// d(t) = F/E1 + F/E2 (1 - exp(-E2 t/eta2)) + F/E3 (1 - exp(-E3 t/eta3)).
+/// Two retardation times, no steady creep (docs/laws.md, "Adding a fifth law").
+class GeneralizedKelvin final : public SeriesLaw {
+ public:
+  explicit GeneralizedKelvin(const ParameterValues& p);
+  /// G(t) = G_inf + A1 exp(-r1 t) + A2 exp(-r2 t), G_inf = 1/(1/E1 + 1/E2 + 1/E3),
+  /// -r1, -r2 the roots of eta2 eta3 s^2 + (E2 eta3 + E3 eta2 + E1 eta3 + E1 eta2) s
+  /// + E2 E3 + E1 E3 + E1 E2.
   std::optional<double> relaxation_modulus(double t) const override;
   static LawInfo info();
 };

@@ -53,16 +53,28 @@ struct RheologyState {
 
 /// Per-element constants for one step size, computed once per law and step
 /// (the exponential is evaluated here, never per contact).
+///
+/// The element's increment over the step is written as
+///     Delta q = per_q q + per_start g(F_s) + per_end g(F_e)            (2)
+/// with g(F) = F for a Kelvin element or a dashpot and g(F) = sign(F)<|F| - Fs>
+/// for a Bingham element (docs/laws.md, "Schemes"), so that advance() costs a
+/// few multiply-adds per element whatever the element or the scheme.
 struct UnitStepConstants {
   double b = 0.0;    ///< 1 - exp(-dt E/eta) for a Kelvin element [-]
   double phi = 0.0;  ///< 1 - b/r, r = dt E/eta: weight of the force ramp [-]
   double dt_over_eta = 0.0;  ///< dt/eta for a dashpot or Bingham element [length/force]
+  double per_q = 0.0;      ///< coefficient of the old q in (2) [-]
+  double per_start = 0.0;  ///< coefficient of g(F_s) in (2) [length/force]
+  double per_end = 0.0;    ///< coefficient of g(F_e) in (2) [length/force]
+  double threshold = 0.0;  ///< Bingham threshold Fs [force]; 0 for linear elements
+  bool bingham = false;    ///< true: g is the Bingham excess; false: g(F) = F
 };
 
 /// Everything a law needs to know about a step that does not depend on the contact.
 struct StepConstants {
   double dt = 0.0;  ///< step size [time]
   Scheme scheme = Scheme::implicit;
+  int count = 0;    ///< number of elements (used entries of `unit`)
   std::array<UnitStepConstants, kMaxInternal> unit{};
 };
 

@@ -73,7 +73,9 @@ double solve_series_force(const ContactRheology& law, const StepConstants& k_ste
 /// Force history given by a function (for ramps in tests and benches).
 using ForceFunction = std::function<double(double)>;
 /// Integrates under force control with F(t) from a function; returns the total
-/// displacement at t_end. Force at a step's start and end are f(t_n), f(t_n+1).
+/// displacement at t_end. Force at a step's start and end are f(t_n), f(t_n+1);
+/// steps are dt long, the last one shorter if t_end is not a multiple of dt.
+/// Throws LawError if dt <= 0 or t_end < 0 (or either is not finite).
 double integrate_force_function(const ContactRheology& law, const ForceFunction& f, double t_end,
                                 double dt, Scheme scheme);
 

@@ -48,10 +48,6 @@ class SeriesLaw : public ContactRheology {
   const std::vector<CreepElement>& elements() const { return elements_; }
 
  private:
-  // Affine increment of element i: Delta q_i = h + c F_e (rheology.md, three schemes).
-  Linearization element_step(int i, const StepConstants& k, double q, double force_start,
-                             double force_end_guess) const;
-
   std::string name_;
   ParameterValues parameters_;
   std::optional<double> spring_;
