@@ -120,12 +120,29 @@ void detect_pair(std::span<const BlockView> blocks, int ia, int ib, const Detect
         score[c] = wedge_score(blocks[cand[c].vblock], cand[c].vertex, n);
         best = std::max(best, score[c]);
       }
+      // Among the candidates tied with the best score, prefer one whose vertex
+      // projects inside its edge, then the contact of the last step, then the order above.
+      std::array<bool, 4> in_range{}, was{};
+      for (int c = 0; c < 4; ++c) {
+        const BlockView& eb = blocks[cand[c].eblock];
+        const int ne = static_cast<int>(eb.vertices.size());
+        const Vec2& a = eb.vertices[cand[c].edge];
+        const Vec2& b = eb.vertices[wrap(cand[c].edge + 1, ne)];
+        const double l2 = (b - a).squaredNorm();
+        const double r = (b - a).dot(blocks[cand[c].vblock].vertices[cand[c].vertex] - a) / l2;
+        in_range[c] = r >= -1e-9 && r <= 1.0 + 1e-9;
+        was[c] = std::binary_search(previous.begin(), previous.end(), cand[c]);
+      }
       int chosen = -1;
-      for (int c = 0; c < 4 && chosen < 0; ++c)
-        if (score[c] >= best - sin_tol && std::binary_search(previous.begin(), previous.end(), cand[c]))
-          chosen = c;
-      for (int c = 0; c < 4 && chosen < 0; ++c)
-        if (score[c] >= best - sin_tol) chosen = c;
+      for (int pass = 0; pass < 4 && chosen < 0; ++pass)
+        for (int c = 0; c < 4 && chosen < 0; ++c) {
+          if (score[c] < best - sin_tol) continue;
+          const bool ok = pass == 0 ? (in_range[c] && was[c])
+                        : pass == 1 ? in_range[c]
+                        : pass == 2 ? was[c]
+                                    : true;
+          if (ok) chosen = c;
+        }
       const ContactKey& key = cand[chosen];
       const double len = contact_length(blocks[key.vblock], key.vertex, blocks[key.eblock], key.edge,
                                         d0, cos_tol);

@@ -16,8 +16,9 @@
 // and u1, u2 the unit directions of p's two edges, the score min(n.u1, n.u2)
 // must be >= -sin(angle tolerance). For a vertex-vertex pair the candidate
 // with the highest score wins; candidates within sin(tolerance) of the best are
-// tied, and a tie is broken in favour of the contact that existed in the last
-// step (so a contact keeps its identity), then by a fixed order.
+// tied; a tie goes to a candidate whose vertex projects inside its edge, then
+// to the contact that existed in the last step (so a contact keeps its
+// identity), then to a fixed order.
 #pragma once
 
 #include <compare>

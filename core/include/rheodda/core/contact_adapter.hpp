@@ -1,0 +1,45 @@
+// Adapter: the contact layer's ContactSystem driven by the host as a
+// ContactModel (contact_model.hpp). The host owns the interface; the contact
+// layer knows nothing of the engine.
+//
+// Usage:
+//   rheodda::contact::ContactSystem contacts(joint_sets,
+//       rheodda::core::contact_settings_for(model));
+//   rheodda::core::ContactAdapter adapter(contacts);
+//   rheodda::core::Engine engine(model, adapter);
+//   engine.run(100);
+//   for (const auto& c : contacts.contacts()) ...   // forces, shear, state, joint set
+#pragma once
+
+#include "rheodda/contact/contact_system.hpp"
+#include "rheodda/core/contact_model.hpp"
+#include "rheodda/core/model.hpp"
+
+namespace rheodda::core {
+
+/// Contact settings for a model: the normal penalty is `penalty_factor` times
+/// the largest Young's modulus of the model's materials (the seed's eq. 17,
+/// k1 = 10-100; default 40) [stress]; the other settings keep their defaults.
+contact::ContactSettings contact_settings_for(const Model& model, double penalty_factor = 40.0);
+
+class ContactAdapter final : public ContactModel {
+ public:
+  /// `system` is not owned and must outlive the adapter.
+  explicit ContactAdapter(contact::ContactSystem& system) : system_(system) {}
+
+  void begin_step(std::span<const contact::BlockView> blocks, const StepContext& ctx) override;
+  void assemble(std::span<const contact::BlockView> blocks, contact::SystemSink& sink) override;
+  ContactCheck check(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) override;
+  void end_step(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) override;
+  void abandon_step() override;
+
+  contact::ContactSystem& system() { return system_; }
+  const contact::ContactSystem& system() const { return system_; }
+  /// Records of the last accepted step.
+  std::span<const contact::Contact> contacts() const { return system_.contacts(); }
+
+ private:
+  contact::ContactSystem& system_;
+};
+
+}  // namespace rheodda::core

@@ -1,0 +1,275 @@
+// ContactSystem at the contact level: springs, Mohr-Coulomb friction, the
+// open-close check, contact transfer and rollback, with hand-made blocks and a
+// small dense solver standing in for the host.
+#include <boost/test/unit_test.hpp>
+#include <cmath>
+#include <numbers>
+
+#include "rheodda/contact/contact_system.hpp"
+#include "rheodda/laws/registry.hpp"
+#include "test_blocks.hpp"
+
+using namespace rheodda::contact;
+using rheodda::contact::testing::Scene;
+
+namespace {
+
+/// Dense K and F of a few blocks (the host's job, in miniature).
+class DenseSink final : public SystemSink {
+ public:
+  explicit DenseSink(int blocks) : K(Eigen::MatrixXd::Zero(6 * blocks, 6 * blocks)),
+                                   F(Eigen::VectorXd::Zero(6 * blocks)) {}
+  void add_stiffness(int i, int j, const Mat6& k) override {
+    K.block<6, 6>(6 * i, 6 * j) += k;
+    if (i != j) K.block<6, 6>(6 * j, 6 * i) += k.transpose();
+  }
+  void add_load(int i, const Vec6& f) override { F.segment<6>(6 * i) += f; }
+  Eigen::MatrixXd K;
+  Eigen::VectorXd F;
+};
+
+/// One step of blocks 1.. on a fixed block 0 [SI]: inertia 2M/dt^2 on the
+/// translations of block 1 (the DDA step from rest is D = F dt^2 / 2M, exact
+/// for a constant force), a stiff diagonal on its rotation and strains, the
+/// load `load` on block 1; open-close iteration to no state change.
+struct StepResult {
+  Eigen::VectorXd D;
+  int iterations = 0;
+};
+StepResult solve_step(ContactSystem& cs, const Scene& s, double mass, double dt, const Vec6& load,
+                      double rigid = 1e13) {
+  const int n = static_cast<int>(s.views().size());
+  cs.begin_step(s.views(), 1e-4);
+  StepResult r;
+  for (r.iterations = 1; r.iterations <= 20; ++r.iterations) {
+    DenseSink sink(n);
+    cs.assemble(s.views(), sink);
+    for (int b = 1; b < n; ++b) {
+      sink.K(6 * b, 6 * b) += 2.0 * mass / (dt * dt);
+      sink.K(6 * b + 1, 6 * b + 1) += 2.0 * mass / (dt * dt);
+      for (int k = 2; k < 6; ++k) sink.K(6 * b + k, 6 * b + k) += rigid;
+      sink.F.segment<6>(6 * b) += load;
+    }
+    // Block 0 fixed: solve for the others only.
+    const int m = 6 * (n - 1);
+    r.D = Eigen::VectorXd::Zero(6 * n);
+    r.D.tail(m) = sink.K.bottomRightCorner(m, m).ldlt().solve(sink.F.tail(m));
+    if (cs.check(s.views(), r.D).state_changes == 0) break;
+  }
+  cs.end_step(s.views(), r.D);
+  return r;
+}
+
+ContactSettings settings(double penalty) {
+  ContactSettings st;
+  st.penalty = penalty;
+  st.penetration_ratio = 1.0;  // no penalty raise in these tests
+  return st;
+}
+
+JointSet joint(double phi_deg) {
+  JointSet j;
+  j.name = "joint";
+  j.friction_angle = phi_deg;
+  return j;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(contact_system)
+
+BOOST_AUTO_TEST_CASE(normal_springs_carry_the_weight_of_a_resting_block) {
+  Scene s;
+  s.add_rect(0, 0, 2, 1);
+  s.add_rect(0.5, 1, 1.5, 1.5);
+  const double pn = 1e10, W = 12740.0;  // weight per unit thickness [N/m]
+  ContactSystem cs({joint(30.0)}, settings(pn));
+  Vec6 load = Vec6::Zero();
+  load(1) = -W;
+  // Static: a huge "mass" step is the same as no inertia; use a tiny mass.
+  solve_step(cs, s, 1e-12, 1.0, load);
+  const auto c = cs.contacts();
+  BOOST_TEST_REQUIRE(c.size() == 2u);
+  double N = 0.0;
+  for (const Contact& k : c) {
+    BOOST_TEST((k.state == ContactState::locked));
+    BOOST_TEST(k.normal_force == W / 2, boost::test_tools::tolerance(1e-9));
+    BOOST_TEST(k.penetration == W / (2 * pn), boost::test_tools::tolerance(1e-9));
+    BOOST_TEST(std::abs(k.shear_force) < 1e-9 * W);
+    N += k.normal_force;
+  }
+  BOOST_TEST(N == W, boost::test_tools::tolerance(1e-12));
+}
+
+BOOST_AUTO_TEST_CASE(block_on_an_incline_accelerates_by_g_sin_minus_cos_tan_phi_or_holds) {
+  // Incline as tilted gravity on an axis-aligned scene: a = g (sin a - cos a tan phi).
+  const double alpha = 30.0 * std::numbers::pi / 180.0, g = 9.81, dt = 1e-3;
+  for (double phi : {20.0, 29.0, 31.0, 40.0}) {
+    Scene s;
+    s.add_rect(0, 0, 4, 1);
+    s.add_rect(1, 1, 3, 1.2);  // flat: the overturning moment barely unloads a contact
+    const double mass = 2600.0 * 0.4, W = mass * g;
+    const double pn = 1e14;  // stiff: penetration does not feed the inertia term
+    ContactSystem cs({joint(phi)}, settings(pn));
+    Vec6 load = Vec6::Zero();
+    load(0) = -W * std::sin(alpha);
+    load(1) = -W * std::cos(alpha);
+    // Two steps so that the friction uses a settled normal force.
+    solve_step(cs, s, mass, dt, load);
+    const auto r = solve_step(cs, s, mass, dt, load);
+    const double tan_phi = std::tan(phi * std::numbers::pi / 180.0);
+    int sliding = 0;
+    for (const Contact& k : cs.contacts()) sliding += k.state == ContactState::sliding;
+    if (tan_phi < std::tan(alpha)) {
+      BOOST_TEST(sliding == 2);
+      // The mini host carries no velocity and moves no vertex: each step is a
+      // step from rest, D = a dt^2 / 2 exactly.
+      const double a = g * (std::sin(alpha) - std::cos(alpha) * tan_phi);
+      BOOST_TEST(-r.D(6) == 0.5 * a * dt * dt, boost::test_tools::tolerance(2e-3));
+    } else {
+      // Held: at least one contact stays locked and the contacts' shear forces
+      // balance the down-slope weight (the inertia of a block at rest is ~0).
+      BOOST_TEST(sliding < 2);
+      if (phi >= 40.0) BOOST_TEST(sliding == 0);
+      double S = 0.0;
+      for (const Contact& k : cs.contacts()) S += k.shear_force;
+      BOOST_TEST(std::abs(S) == W * std::sin(alpha), boost::test_tools::tolerance(1e-3));
+      BOOST_TEST(std::abs(r.D(6)) < 1e-3 * 0.5 * g * std::sin(alpha) * dt * dt);
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(contact_moves_to_the_adjacent_edge_keeping_identity_state_and_rheology_slot) {
+  Scene s;
+  // Base with a top made of two collinear edges: 2: (2,1)->(1,1), 3: (1,1)->(0,1).
+  s.add({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {0, 1}});
+  const double x0 = 0.9;
+  s.add({{x0, 1.0 - 1e-6}, {x0 + 0.1, 1.2}, {x0 - 0.1, 1.2}});  // triangle, one vertex down
+  JointSet js = joint(30.0);
+  js.law = rheodda::laws::LawRegistry::builtin().create(
+      "burgers", {{"E1", 1.0}, {"eta1", 1.0}, {"E2", 1.0}, {"eta2", 1.0}});
+  ContactSystem cs({js}, settings(1e10));
+  const Eigen::VectorXd D = Eigen::VectorXd::Zero(12);
+  std::uint64_t id = 0;
+  ContactState last = ContactState::open;
+  // The vertex walks from edge 3 over the shared vertex (1, 1) onto edge 2 in
+  // steps of 0.4 d0 (d0 = 2.5e-4 m), through the vertex-vertex zone. The walk
+  // is imposed (D = 0), so the stretched shear spring eventually slides.
+  const double step = 1e-4;
+  int on_edge2 = 0;
+  for (int k = 0; k < 2000 && on_edge2 < 20; ++k) {
+    cs.begin_step(s.views(), 1e-4);
+    BOOST_TEST_REQUIRE(cs.trial_contacts().size() == 1u);
+    const Contact& t = cs.trial_contacts()[0];
+    if (k == 0) {
+      id = t.id;
+      BOOST_TEST((t.state == ContactState::locked));  // starts penetrating
+    } else {
+      BOOST_TEST(t.id == id);
+      BOOST_TEST((t.state == last));  // carried over, also onto the next edge
+    }
+    BOOST_TEST(t.rheology == 0);
+    BOOST_TEST((t.key.edge == 3 || t.key.edge == 2));
+    cs.check(s.views(), D);
+    cs.end_step(s.views(), D);
+    BOOST_TEST(cs.rheology_states().size() == 1u);
+    last = cs.contacts()[0].state;
+    BOOST_TEST((last != ContactState::open));
+    on_edge2 += cs.contacts()[0].key.edge == 2;
+    s.translate(1, {step, 0.0});
+  }
+  BOOST_TEST(on_edge2 == 20);
+  BOOST_TEST(cs.stats().transferred == 1);
+}
+
+BOOST_AUTO_TEST_CASE(contacts_without_a_law_have_no_rheology_slot) {
+  Scene s;
+  s.add_rect(0, 0, 2, 1);
+  s.add_rect(0.5, 1, 1.5, 1.5);
+  ContactSystem cs({joint(30.0)}, settings(1e10));
+  Vec6 load = Vec6::Zero();
+  load(1) = -1e4;
+  solve_step(cs, s, 1e-12, 1.0, load);
+  for (const Contact& c : cs.contacts()) BOOST_TEST(c.rheology == -1);
+  BOOST_TEST(cs.rheology_states().empty());
+}
+
+BOOST_AUTO_TEST_CASE(abandon_step_restores_the_step_start_contact_states_exactly) {
+  Scene s;
+  s.add_rect(0, 0, 2, 1);
+  s.add_rect(0.5, 1, 1.5, 1.5);
+  ContactSystem cs({joint(30.0)}, settings(1e10));
+  Vec6 load = Vec6::Zero();
+  load(1) = -1e4;
+  solve_step(cs, s, 1e-12, 1.0, load);
+  const std::vector<Contact> before(cs.contacts().begin(), cs.contacts().end());
+  BOOST_TEST_REQUIRE(before.size() == 2u);
+
+  cs.begin_step(s.views(), 1e-4);
+  const std::vector<Contact> trial0(cs.trial_contacts().begin(), cs.trial_contacts().end());
+  // A trial that lifts the block: both contacts open.
+  Eigen::VectorXd D = Eigen::VectorXd::Zero(12);
+  D(7) = 1e-3;
+  BOOST_TEST(cs.check(s.views(), D).state_changes == 2);
+  cs.abandon_step();
+
+  auto same = [](const Contact& a, const Contact& b) {
+    return a.id == b.id && a.key == b.key && a.state == b.state &&
+           a.locking_ratio == b.locking_ratio && a.normal_force == b.normal_force &&
+           a.shear_force == b.shear_force && a.shear_displacement == b.shear_displacement &&
+           a.intact == b.intact && a.slide_direction == b.slide_direction;
+  };
+  BOOST_TEST_REQUIRE(cs.contacts().size() == before.size());
+  for (size_t k = 0; k < before.size(); ++k) BOOST_TEST(same(cs.contacts()[k], before[k]));
+  // Redoing the step starts from exactly the same trial states.
+  cs.begin_step(s.views(), 1e-4);
+  BOOST_TEST_REQUIRE(cs.trial_contacts().size() == trial0.size());
+  for (size_t k = 0; k < trial0.size(); ++k) BOOST_TEST(same(cs.trial_contacts()[k], trial0[k]));
+}
+
+BOOST_AUTO_TEST_CASE(slide_to_lock_counts_as_a_state_change) {
+  Scene s;
+  s.add_rect(0, 0, 4, 1);
+  s.add_rect(1, 1, 2, 1.5);
+  ContactSystem cs({joint(10.0)}, settings(1e10));
+  Vec6 load = Vec6::Zero();
+  load(0) = -5e3;
+  load(1) = -1e4;
+  solve_step(cs, s, 1300.0, 1e-3, load);  // slides in -x
+  for (const Contact& c : cs.contacts()) BOOST_TEST((c.state == ContactState::sliding));
+  cs.begin_step(s.views(), 1e-4);
+  Eigen::VectorXd D = Eigen::VectorXd::Zero(12);
+  D(6) = +1e-6;  // the trial moves against the sliding direction
+  BOOST_TEST(cs.check(s.views(), D).state_changes == 2);
+  for (const Contact& c : cs.trial_contacts()) BOOST_TEST((c.state == ContactState::locked));
+  cs.abandon_step();
+}
+
+BOOST_AUTO_TEST_CASE(penetration_beyond_the_allowed_ratio_raises_the_penalty) {
+  Scene s;
+  s.add_rect(0, 0, 2, 1);
+  s.add_rect(0.5, 1, 1.5, 1.5);
+  ContactSettings st;
+  st.penalty = 1e6;
+  st.penetration_ratio = 1e-4;  // allowed: 1e-4 w0 = 1e-4 m
+  ContactSystem cs({joint(30.0)}, st);
+  Vec6 load = Vec6::Zero();
+  load(1) = -1e4;  // penetration W / (2 pn) = 5e-3 m
+  solve_step(cs, s, 1e-12, 1.0, load);
+  BOOST_TEST(cs.last_max_penetration() == 5e-3, boost::test_tools::tolerance(1e-6));
+  BOOST_TEST(cs.penalty() == 2e6);
+}
+
+BOOST_AUTO_TEST_CASE(bad_settings_and_joint_sets_are_rejected_with_the_key) {
+  BOOST_CHECK_THROW(ContactSystem({joint(30.0)}, settings(0.0)), std::invalid_argument);
+  JointSet j = joint(30.0);
+  j.cohesion = -1.0;
+  try {
+    ContactSystem cs({j}, settings(1e10));
+    BOOST_FAIL("no throw");
+  } catch (const std::invalid_argument& e) {
+    BOOST_TEST(std::string(e.what()).find("cohesion") != std::string::npos);
+  }
+}
+
+BOOST_AUTO_TEST_SUITE_END()

@@ -1,0 +1,141 @@
+// Narrow phase: each contact type, the angle rule and edge-edge halving.
+#include <boost/test/unit_test.hpp>
+#include <numbers>
+
+#include "rheodda/contact/detection.hpp"
+#include "test_blocks.hpp"
+
+using namespace rheodda::contact;
+using rheodda::contact::testing::Scene;
+using rheodda::contact::testing::rotated_square;
+
+namespace {
+constexpr double d0 = 1e-3;  // search distance [m]
+std::vector<DetectedContact> detect(const Scene& s, std::span<const ContactKey> previous = {}) {
+  std::vector<std::pair<int, int>> pairs;
+  const int n = static_cast<int>(s.views().size());
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j) pairs.emplace_back(i, j);
+  return detect_contacts(s.views(), pairs, {d0, 3.0}, previous);
+}
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(detection)
+
+BOOST_AUTO_TEST_CASE(tilted_corner_above_an_edge_is_one_vertex_edge_contact) {
+  Scene s;
+  s.add_rect(0, 0, 2, 1);  // base; top edge is edge 2 ((2,1) -> (0,1))
+  auto sq = rotated_square({0, 0}, 0.5, 20.0 * std::numbers::pi / 180.0);
+  const Vec2 lowest = sq[0];
+  for (Vec2& v : sq) v += Vec2(1.0, 1.0 + 0.3 * d0) - lowest;  // lowest vertex 0.3 d0 above (1, 1)
+  s.add(sq);
+  const auto c = detect(s);
+  BOOST_TEST_REQUIRE(c.size() == 1u);
+  BOOST_TEST((c[0].key == ContactKey{1, 0, 0, 2}));
+  BOOST_TEST((c[0].kind == ContactKind::vertex_edge));
+  BOOST_TEST(c[0].length == 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(corner_beyond_search_distance_is_no_contact) {
+  Scene s;
+  s.add_rect(0, 0, 2, 1);
+  auto sq = rotated_square({0, 0}, 0.5, 20.0 * std::numbers::pi / 180.0);
+  const Vec2 lowest = sq[0];
+  for (Vec2& v : sq) v += Vec2(1.0, 1.0 + 1.5 * d0) - lowest;
+  s.add(sq);
+  BOOST_TEST(detect(s).empty());
+}
+
+BOOST_AUTO_TEST_CASE(vertex_vertex_angle_rule_picks_the_edge_the_corner_faces) {
+  // Lowest corner of a square tilted 20 deg right next to the top-right corner
+  // (1, 1) of the base, slightly left of it: it enters the base's top edge,
+  // not the base's right edge, and the base corner enters none of its edges.
+  Scene s;
+  s.add_rect(0, 0, 1, 1);  // edge 1: right side, edge 2: top
+  auto sq = rotated_square({0, 0}, 0.5, 20.0 * std::numbers::pi / 180.0);
+  const Vec2 lowest = sq[0];
+  for (Vec2& v : sq) v += Vec2(1.0 - 0.3 * d0, 1.0 + 0.2 * d0) - lowest;
+  s.add(sq);
+  const auto c = detect(s);
+  BOOST_TEST_REQUIRE(c.size() == 1u);
+  BOOST_TEST((c[0].key == ContactKey{1, 0, 0, 2}));
+  BOOST_TEST((c[0].kind == ContactKind::vertex_vertex));
+
+  // Mirror: the corner slightly right of (1, 1), below the top: it enters the right side.
+  Scene m;
+  m.add_rect(0, 0, 1, 1);
+  auto sq2 = rotated_square({0, 0}, 0.5, (90.0 + 20.0) * std::numbers::pi / 180.0);
+  // vertex 3 is now the lowest-left... choose the vertex with the smallest x.
+  int left = 0;
+  for (int k = 1; k < 4; ++k) if (sq2[k].x() < sq2[left].x()) left = k;
+  const Vec2 lv = sq2[left];
+  for (Vec2& v : sq2) v += Vec2(1.0 + 0.2 * d0, 1.0 - 0.3 * d0) - lv;
+  m.add(sq2);
+  const auto c2 = detect(m);
+  BOOST_TEST_REQUIRE(c2.size() == 1u);
+  BOOST_TEST((c2[0].key == ContactKey{1, left, 0, 1}));
+}
+
+BOOST_AUTO_TEST_CASE(edge_edge_contact_is_two_vertex_edge_contacts_with_half_the_shared_length) {
+  Scene s;
+  s.add_rect(0, 0, 1, 1);
+  s.add_rect(0.2, 1.0, 0.8, 1.5);  // bottom edge 0 lies on the base's top edge 2
+  const auto c = detect(s);
+  BOOST_TEST_REQUIRE(c.size() == 2u);
+  BOOST_TEST((c[0].key == ContactKey{1, 0, 0, 2}));
+  BOOST_TEST((c[1].key == ContactKey{1, 1, 0, 2}));
+  for (const auto& k : c) {
+    BOOST_TEST((k.kind == ContactKind::edge_edge));
+    BOOST_TEST(k.length == 0.3, boost::test_tools::tolerance(1e-12));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(offset_edge_edge_puts_one_contact_on_each_block) {
+  Scene s;
+  s.add_rect(0, 0, 1, 1);
+  s.add_rect(0.5, 1.0, 1.5, 1.5);  // overhangs the base by 0.5
+  const auto c = detect(s);
+  BOOST_TEST_REQUIRE(c.size() == 2u);
+  // base corner (1, 1) = vertex 2 of block 0 on the upper block's bottom edge 0,
+  // upper block's vertex 0 on the base's top edge 2.
+  BOOST_TEST((c[0].key == ContactKey{0, 2, 1, 0}));
+  BOOST_TEST((c[1].key == ContactKey{1, 0, 0, 2}));
+  BOOST_TEST(c[0].length + c[1].length == 0.5, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(c[0].length == 0.25, boost::test_tools::tolerance(1e-12));
+}
+
+BOOST_AUTO_TEST_CASE(equal_stacked_blocks_resolve_coincident_corners_into_two_half_length_contacts) {
+  Scene s;
+  s.add_rect(0, 0, 1, 1);
+  s.add_rect(0, 1, 1, 2);
+  const auto c = detect(s);
+  BOOST_TEST_REQUIRE(c.size() == 2u);
+  double total = 0.0;
+  for (const auto& k : c) {
+    // each resolved contact is a vertex on the facing horizontal edge
+    const bool upper_on_base = k.key.vblock == 1 && k.key.eblock == 0 && k.key.edge == 2;
+    const bool base_on_upper = k.key.vblock == 0 && k.key.eblock == 1 && k.key.edge == 0;
+    BOOST_TEST((upper_on_base || base_on_upper));
+    BOOST_TEST((k.kind == ContactKind::edge_edge));
+    total += k.length;
+  }
+  BOOST_TEST(total == 1.0, boost::test_tools::tolerance(1e-12));
+}
+
+BOOST_AUTO_TEST_CASE(angle_rule_tie_keeps_the_contact_of_the_last_step) {
+  Scene s;
+  s.add_rect(0, 0, 1, 1);
+  s.add_rect(0, 1, 1, 2);
+  const auto first = detect(s);
+  BOOST_TEST_REQUIRE(first.size() == 2u);
+  // Offer the swapped alternative of the first contact as the previous one.
+  const ContactKey k = first[0].key;
+  const ContactKey alt = k.vblock == 1 ? ContactKey{0, 3, 1, 0} : ContactKey{1, 0, 0, 2};
+  std::vector<ContactKey> prev{alt};
+  const auto again = detect(s, prev);
+  bool kept = false;
+  for (const auto& c : again) kept |= c.key == alt;
+  BOOST_TEST(kept);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
