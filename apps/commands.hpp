@@ -12,4 +12,7 @@ inline constexpr int kExitBadInput = 2;
 /// `rheodda law list`, `rheodda law curve`.
 void add_law_commands(CLI::App& app);
 
+/// `rheodda check`, `rheodda run`, `rheodda plot` (apps/run_commands.cpp).
+void add_scene_commands(CLI::App& app);
+
 }  // namespace rheodda::apps

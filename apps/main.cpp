@@ -13,8 +13,11 @@ int main(int argc, char** argv) {
   CLI::App app{"rheodda: creep of jointed rock with contact rheology laws in DDA"};
   app.require_subcommand(1);
   rheodda::apps::add_law_commands(app);
+  rheodda::apps::add_scene_commands(app);
   try {
     app.parse(argc, argv);
+  } catch (const CLI::RuntimeError& e) {
+    return e.get_exit_code();  // a command's own exit code (e.g. 1: run failed)
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : rheodda::apps::kExitBadInput;

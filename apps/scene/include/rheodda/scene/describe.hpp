@@ -1,0 +1,17 @@
+// What `rheodda check` prints: the scene as it will be modelled, every default
+// filled in, with an estimate of the contacts at the start.
+#pragma once
+
+#include <string>
+
+#include "rheodda/scene/scene.hpp"
+
+namespace rheodda::scene {
+
+/// Human-readable account of the scene (units spelled out); ends with a newline.
+std::string describe_scene(const SceneDescription& scene);
+
+/// Contact search distance at the start: search_factor * g2 * w0 [length] (Shi's rule).
+double search_distance(const SceneDescription& scene);
+
+}  // namespace rheodda::scene

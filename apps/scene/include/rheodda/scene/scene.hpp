@@ -1,0 +1,141 @@
+// SceneDescription: a scene file (docs/scene-format.md) as plain structs.
+//
+// Why plain structs. The loader (loader.hpp) turns YAML into these, checks every
+// value and the geometry, and fills in every default; after that nothing in the
+// program reads YAML again. `rheodda check` prints them, `rheodda run` builds the
+// engine's model from them (build.hpp), summary.json echoes them.
+//
+// Names: each field has the name of its YAML key (snake_case), which is also its
+// CSV column and the word the docs use. Units are the scene's own (`units:`):
+// [length], [force], [time]; derived: [stress] = force/length^2 (per unit
+// thickness: 2D), [mass] = force*time^2/length. Geometry is 2D, unit thickness.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rheodda/laws/contact_rheology.hpp"
+#include "rheodda/laws/parameters.hpp"
+#include "rheodda/scene/error.hpp"
+
+namespace rheodda::scene {
+
+using Point = std::array<double, 2>;  ///< (x, y) [length]
+
+/// Unit labels; free text, repeated in every output. The numbers in the file must be consistent with them.
+struct Units {
+  std::string length;  ///< e.g. "m", "mm"
+  std::string force;   ///< e.g. "N", "MN"
+  std::string time;    ///< e.g. "s", "h", "d"
+  /// "force/length^2" spelled with the labels, e.g. "N/mm^2".
+  std::string stress() const { return force + "/" + length + "^2"; }
+};
+
+enum class AnalysisType { static_analysis, dynamic_analysis };
+enum class PlaneKind { strain, stress };
+enum class SolverKind { cholmod, pcg };
+
+/// `analysis:` — time stepping, contact numerics, outputs.
+struct Analysis {
+  AnalysisType type = AnalysisType::static_analysis;  ///< `type: static|dynamic`
+  double duration = 0.0;               ///< simulated time [time]; required, > 0
+  double dt = 0.0;                     ///< first and largest time step [time]; required, > 0
+  double dt_min = 0.0;                 ///< smallest step before the run fails [time]; default dt * 1e-6
+  double max_displacement_ratio = 0.01;  ///< g2: allowed step displacement / half model size [-]
+  double dynamic_ratio = 0.0;          ///< share of velocity carried to the next step [-]; default 1 dynamic, 0 static
+  laws::Scheme scheme = laws::Scheme::implicit;  ///< rheology scheme `lagged|implicit|exponential-linear`
+  double penalty = 0.0;                ///< normal contact penalty p_n [stress]; default 40 x largest young_modulus (seed eq. 17)
+  double shear_normal_ratio = 2.5;     ///< p_n / p_s of penalty shear springs [-]
+  double search_factor = 2.5;          ///< contact search distance / (g2 w0) [-]
+  double angle_tolerance = 3.0;        ///< angle rule tolerance [deg]
+  double penetration_ratio = 1e-4;     ///< allowed penetration / half model size [-]
+  int open_close_limit = 8;            ///< open-close iterations before a step is cut [-]
+  double fixed_point_stiffness = 0.0;  ///< fixed-point spring [stress]; default 10 x penalty
+  SolverKind solver = SolverKind::cholmod;  ///< `solver: cholmod|pcg`
+  double output_interval = 0.0;        ///< time between output frames [time]; default duration / 100
+  Point gravity{0.0, 0.0};             ///< gravity acceleration (gx, gy) [length/time^2]; required
+  SourceLocation where{};
+};
+
+/// `materials: {NAME: {...}}` — block material.
+struct Material {
+  std::string name;
+  double density = 0.0;        ///< [mass/length^3] = [force*time^2/length^4]; required, > 0
+  double young_modulus = 0.0;  ///< E [stress]; required, > 0
+  double poisson_ratio = 0.0;  ///< nu [-]; required, in [0, 0.5)
+  PlaneKind plane = PlaneKind::strain;  ///< `plane: strain|stress`
+  SourceLocation where{};
+};
+
+/// `law:` of a joint set: a law of laws::LawRegistry::builtin() with complete, validated parameters.
+struct LawChoice {
+  std::string name;               ///< e.g. "burgers"
+  laws::ParameterValues parameters;  ///< by the registry's names (E1, E2, eta1, eta2, ...), defaults filled in
+};
+
+/// `joint_sets: {NAME: {...}}` — joints: strength, stiffness, optional creep law.
+struct JointSetDescription {
+  std::string name;
+  double friction_angle = 0.0;    ///< phi [deg]; required, in [0, 90)
+  double cohesion = 0.0;          ///< c [stress], >= 0
+  double tensile_strength = 0.0;  ///< [stress], >= 0
+  std::optional<double> normal_stiffness;  ///< per unit joint area [stress/length]; unset: penalty
+  std::optional<double> shear_stiffness;   ///< per unit joint area [stress/length]; unset: penalty / shear_normal_ratio
+  std::optional<LawChoice> law;   ///< creep of the shear spring; unset: none
+  bool record = false;            ///< history.csv gets this set's mean shear displacement and force
+  SourceLocation where{};
+};
+
+/// One block after expansion of the shorthands (`rectangle`, `grid`).
+struct BlockDescription {
+  std::string name;              ///< user name, or "block<i>", or "<grid>.r<row>.c<col>"
+  int material = 0;              ///< index into SceneDescription::materials
+  std::vector<Point> polygon;    ///< counter-clockwise, first vertex not repeated [length]
+  std::vector<int> edge_joint_set;  ///< joint set index of edge k (vertex k -> k+1)
+  bool fixed = false;            ///< fixed points at every vertex
+  std::array<double, 3> initial_stress{0.0, 0.0, 0.0};    ///< (sigma_x, sigma_y, tau_xy) [stress]
+  std::array<double, 3> initial_velocity{0.0, 0.0, 0.0};  ///< (vx, vy [length/time], omega [1/time])
+  SourceLocation where{};
+};
+
+/// A point attached to a block (fixed, loaded or measured).
+struct BlockPoint {
+  Point point{0.0, 0.0};  ///< [length]
+  int block = 0;          ///< index into SceneDescription::blocks
+  SourceLocation where{};
+};
+
+/// `loads:` — a point load, constant or piecewise linear in time.
+struct LoadDescription {
+  BlockPoint at;
+  /// (t [time], fx, fy [force]) samples, strictly increasing t; linear in between,
+  /// held constant before the first and after the last. A constant `force` is one sample at t = 0.
+  std::vector<std::array<double, 3>> history;
+};
+
+/// `measurement_points:` — a point whose displacement goes to history.csv.
+struct MeasurementPoint {
+  std::string name;  ///< column prefix in history.csv
+  BlockPoint at;
+};
+
+struct SceneDescription {
+  std::string file;   ///< the scene file's path as given
+  std::string title;  ///< `title:`; default: the file name
+  Units units;
+  Analysis analysis;
+  std::vector<Material> materials;
+  std::vector<JointSetDescription> joint_sets;
+  std::vector<BlockDescription> blocks;
+  std::vector<BlockPoint> fixed_points;  ///< explicit ones only; `fixed: true` blocks are in BlockDescription
+  std::vector<LoadDescription> loads;
+  std::vector<MeasurementPoint> measurement_points;
+};
+
+std::string_view analysis_type_name(AnalysisType t);
+std::string_view plane_name(PlaneKind p);
+std::string_view solver_name(SolverKind s);
+
+}  // namespace rheodda::scene

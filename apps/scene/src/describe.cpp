@@ -1,0 +1,105 @@
+#include "rheodda/scene/describe.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "rheodda/scene/geometry.hpp"
+
+namespace rheodda::scene {
+
+double search_distance(const SceneDescription& s) {
+  return s.analysis.search_factor * s.analysis.max_displacement_ratio * half_model_size(s.blocks);
+}
+
+std::string describe_scene(const SceneDescription& s) {
+  const Units& u = s.units;
+  const Analysis& a = s.analysis;
+  const std::string stress = u.stress();
+  std::string out;
+  auto line = [&out](const std::string& t) { out += t + '\n'; };
+
+  line(fmt::format("scene: {} ({})", s.title, s.file));
+  line(fmt::format("units: length {}, force {}, time {}; stress {}", u.length, u.force, u.time, stress));
+  line(fmt::format("analysis: {}, duration {:g} {}, dt {:g} {} (min {:g}), dynamic_ratio {:g}",
+                   analysis_type_name(a.type), a.duration, u.time, a.dt, u.time, a.dt_min, a.dynamic_ratio));
+  line(fmt::format("  gravity ({:g}, {:g}) {}/{}^2, scheme {}, solver {}", a.gravity[0], a.gravity[1],
+                   u.length, u.time, laws::scheme_name(a.scheme), solver_name(a.solver)));
+  line(fmt::format("  max_displacement_ratio {:g}, penalty {:g} {}, shear_normal_ratio {:g}, "
+                   "fixed_point_stiffness {:g} {}",
+                   a.max_displacement_ratio, a.penalty, stress, a.shear_normal_ratio,
+                   a.fixed_point_stiffness, stress));
+  line(fmt::format("  open_close_limit {}, penetration_ratio {:g}, angle_tolerance {:g} deg, search_factor {:g}",
+                   a.open_close_limit, a.penetration_ratio, a.angle_tolerance, a.search_factor));
+  line(fmt::format("  output every {:g} {}: {} frames", a.output_interval, u.time,
+                   static_cast<long long>(std::ceil(a.duration / a.output_interval - 1e-9)) + 1));
+
+  line(fmt::format("materials ({}):", s.materials.size()));
+  for (const auto& m : s.materials)
+    line(fmt::format("  {}: density {:g} {}*{}^2/{}^4, young_modulus {:g} {}, poisson_ratio {:g}, plane {}",
+                     m.name, m.density, u.force, u.time, u.length, m.young_modulus, stress,
+                     m.poisson_ratio, plane_name(m.plane)));
+
+  line(fmt::format("joint sets ({}):", s.joint_sets.size()));
+  for (const auto& j : s.joint_sets) {
+    auto stiff = [&](const std::optional<double>& k, const char* fallback) {
+      return k ? fmt::format("{:g} {}/{}", *k, stress, u.length) : std::string(fallback);
+    };
+    line(fmt::format("  {}: friction_angle {:g} deg, cohesion {:g} {}, tensile_strength {:g} {}", j.name,
+                     j.friction_angle, j.cohesion, stress, j.tensile_strength, stress));
+    line(fmt::format("    normal_stiffness {}, shear_stiffness {}{}",
+                     stiff(j.normal_stiffness, "penalty"),
+                     stiff(j.shear_stiffness, "penalty / shear_normal_ratio"),
+                     j.record ? ", recorded in history.csv" : ""));
+    if (j.law) {
+      std::string params;
+      for (const auto& [k, v] : j.law->parameters) params += fmt::format(" {}={:g}", k, v);
+      line(fmt::format("    law {}:{}", j.law->name, params));
+    } else {
+      line("    law: none (no creep)");
+    }
+  }
+
+  double area = 0.0;
+  int fixed_blocks = 0;
+  for (const auto& b : s.blocks) {
+    area += signed_area(b.polygon);
+    fixed_blocks += b.fixed ? 1 : 0;
+  }
+  line(fmt::format("blocks ({}): total area {:g} {}^2, {} fixed", s.blocks.size(), area, u.length, fixed_blocks));
+  constexpr std::size_t kListed = 40;
+  for (std::size_t i = 0; i < s.blocks.size() && i < kListed; ++i) {
+    const auto& b = s.blocks[i];
+    std::string sets;
+    for (std::size_t k = 0; k < b.edge_joint_set.size(); ++k)
+      sets += (k ? "," : "") + s.joint_sets[b.edge_joint_set[k]].name;
+    line(fmt::format("  {}: {} vertices, area {:g} {}^2, material {}, edges [{}]{}", b.name, b.polygon.size(),
+                     signed_area(b.polygon), u.length, s.materials[b.material].name, sets,
+                     b.fixed ? ", fixed" : ""));
+  }
+  if (s.blocks.size() > kListed) line(fmt::format("  ... and {} more", s.blocks.size() - kListed));
+
+  line(fmt::format("fixed points: {}", s.fixed_points.size()));
+  for (const auto& p : s.fixed_points)
+    line(fmt::format("  ({:g}, {:g}) on {}", p.point[0], p.point[1], s.blocks[p.block].name));
+  line(fmt::format("loads: {}", s.loads.size()));
+  for (const auto& l : s.loads) {
+    const auto& h = l.history;
+    line(h.size() == 1
+             ? fmt::format("  ({:g}, {:g}) on {}: force ({:g}, {:g}) {}", l.at.point[0], l.at.point[1],
+                           s.blocks[l.at.block].name, h[0][1], h[0][2], u.force)
+             : fmt::format("  ({:g}, {:g}) on {}: history of {} samples, t = {:g} .. {:g} {}", l.at.point[0],
+                           l.at.point[1], s.blocks[l.at.block].name, h.size(), h.front()[0], h.back()[0], u.time));
+  }
+  line(fmt::format("measurement points: {}", s.measurement_points.size()));
+  for (const auto& m : s.measurement_points)
+    line(fmt::format("  {}: ({:g}, {:g}) on {}", m.name, m.at.point[0], m.at.point[1], s.blocks[m.at.block].name));
+
+  const double d = search_distance(s);
+  const ContactEstimate est = estimate_contacts(s.blocks, d);
+  line(fmt::format("estimated contacts at the start: {} between {} block pairs (search distance {:g} {})",
+                   est.vertex_edge, est.block_pairs, d, u.length));
+  return out;
+}
+
+}  // namespace rheodda::scene

@@ -1,0 +1,709 @@
+// The scene loader: YAML -> SceneDescription, checking as it goes.
+//
+// Each YAML map is read through a MapReader that knows the map's valid keys, so
+// an unknown (mistyped) key is reported before anything else, with a "did you
+// mean" hint (laws::nearest_name). Duplicated keys are refused too: yaml-cpp
+// would silently keep one of them.
+#include "rheodda/scene/loader.hpp"
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <sstream>
+
+#include "rheodda/laws/registry.hpp"
+#include "rheodda/scene/geometry.hpp"
+
+namespace rheodda::scene {
+
+std::string_view analysis_type_name(AnalysisType t) {
+  return t == AnalysisType::static_analysis ? "static" : "dynamic";
+}
+std::string_view plane_name(PlaneKind p) { return p == PlaneKind::strain ? "strain" : "stress"; }
+std::string_view solver_name(SolverKind s) { return s == SolverKind::cholmod ? "cholmod" : "pcg"; }
+
+SceneError::SceneError(std::string file, SourceLocation where, std::string key, std::string message)
+    : std::runtime_error(fmt::format("{}:{}:{}: {}{}", file, where.line, where.column,
+                                     key.empty() ? "" : key + ": ", message)),
+      file_(std::move(file)),
+      where_(where),
+      key_(std::move(key)),
+      message_(std::move(message)) {}
+
+namespace {
+
+// Guards against absurd sizes (a typo such as `columns: 1e9`): generous for real scenes.
+constexpr std::size_t kMaxBlocks = 200000;
+constexpr std::size_t kMaxVertices = 10000;
+constexpr std::size_t kMaxSamples = 1000000;
+
+SourceLocation location(const YAML::Node& n) {
+  if (!n.IsDefined()) return {};
+  const YAML::Mark m = n.Mark();
+  return {m.line + 1, m.column + 1};
+}
+
+struct Ctx {
+  std::string file;
+  [[noreturn]] void fail(const YAML::Node& n, const std::string& key, const std::string& msg) const {
+    throw SceneError(file, location(n), key, msg);
+  }
+  [[noreturn]] void fail(SourceLocation where, const std::string& key,
+                         const std::string& msg) const {
+    throw SceneError(file, where, key, msg);
+  }
+};
+
+std::string join(const std::vector<std::string>& v) { return fmt::format("{}", fmt::join(v, ", ")); }
+
+const char* type_word(const YAML::Node& n) {
+  switch (n.Type()) {
+    case YAML::NodeType::Null: return "empty";
+    case YAML::NodeType::Scalar: return "a single value";
+    case YAML::NodeType::Sequence: return "a list";
+    case YAML::NodeType::Map: return "a map";
+    default: return "undefined";
+  }
+}
+
+/// One YAML map with a fixed set of valid keys.
+class MapReader {
+ public:
+  MapReader(const Ctx& ctx, const YAML::Node& node, std::string path,
+            std::vector<std::string> allowed)
+      : ctx_(ctx), node_(node), path_(std::move(path)), allowed_(std::move(allowed)) {
+    if (!node.IsMap())
+      ctx.fail(node, path_, fmt::format("expected a map of keys ({}), got {}", join(allowed_),
+                                        type_word(node)));
+    for (auto it = node.begin(); it != node.end(); ++it) {
+      const YAML::Node k = it->first;
+      if (!k.IsScalar()) ctx.fail(k, path_, "a key must be a plain word");
+      const std::string key = k.Scalar();
+      if (std::find(allowed_.begin(), allowed_.end(), key) == allowed_.end()) {
+        const std::string hint = laws::nearest_name(key, allowed_);
+        ctx.fail(k, child(key),
+                 fmt::format("unknown key '{}'{}; valid keys here: {}", key,
+                             hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint),
+                             join(allowed_)));
+      }
+      for (const auto& e : entries_)
+        if (e.key == key)
+          ctx.fail(k, child(key), fmt::format("key '{}' is given twice (first at line {})", key,
+                                              location(e.key_node).line));
+      entries_.push_back({key, k, it->second});
+    }
+  }
+
+  std::string child(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  const YAML::Node& node() const { return node_; }
+  SourceLocation where() const { return location(node_); }
+
+  /// The value of `key`, or an undefined node.
+  YAML::Node find(const std::string& key) const {
+    for (const auto& e : entries_)
+      if (e.key == key) return e.value;
+    return YAML::Node(YAML::NodeType::Undefined);
+  }
+  bool has(const std::string& key) const { return find(key).IsDefined(); }
+  YAML::Node required(const std::string& key, const std::string& what) const {
+    YAML::Node v = find(key);
+    if (!v.IsDefined())
+      ctx_.fail(node_, child(key), fmt::format("missing required key '{}' ({})", key, what));
+    return v;
+  }
+  /// Key nodes in file order (for maps of named items).
+  const auto& entries() const { return entries_; }
+
+ private:
+  struct Entry {
+    std::string key;
+    YAML::Node key_node;
+    YAML::Node value;
+  };
+  const Ctx& ctx_;
+  YAML::Node node_;
+  std::string path_;
+  std::vector<std::string> allowed_;
+  std::vector<Entry> entries_;
+};
+
+/// Valid range of a number; `unit` goes into messages.
+struct Range {
+  double min = std::numeric_limits<double>::lowest();
+  bool min_exclusive = false;
+  double max = std::numeric_limits<double>::max();
+  bool max_exclusive = false;
+  const char* unit = "";
+};
+Range positive(const char* unit) { return {0.0, true, std::numeric_limits<double>::max(), false, unit}; }
+Range non_negative(const char* unit) { return {0.0, false, std::numeric_limits<double>::max(), false, unit}; }
+Range any(const char* unit) { return {std::numeric_limits<double>::lowest(), false, std::numeric_limits<double>::max(), false, unit}; }
+
+std::string range_text(const Range& r) {
+  auto num = [](double v) {
+    if (v == std::numeric_limits<double>::max()) return std::string("inf");
+    if (v == std::numeric_limits<double>::lowest()) return std::string("-inf");
+    return fmt::format("{:g}", v);
+  };
+  return fmt::format("{}{}, {}{}", r.min_exclusive ? "(" : "[", num(r.min), num(r.max),
+                     r.max_exclusive ? ")" : "]");
+}
+
+double number(const Ctx& ctx, const YAML::Node& n, const std::string& key, const Range& r) {
+  if (!n.IsScalar())
+    ctx.fail(n, key, fmt::format("expected a number{}, got {}",
+                                 *r.unit ? fmt::format(" [{}]", r.unit) : "", type_word(n)));
+  double v = 0.0;
+  try {
+    v = n.as<double>();
+  } catch (const YAML::Exception&) {
+    ctx.fail(n, key, fmt::format("'{}' is not a number", n.Scalar()));
+  }
+  if (!std::isfinite(v))
+    ctx.fail(n, key, fmt::format("'{}' is not a finite number (NaN and inf are not allowed)", n.Scalar()));
+  const bool low_ok = r.min_exclusive ? v > r.min : v >= r.min;
+  const bool high_ok = r.max_exclusive ? v < r.max : v <= r.max;
+  if (!low_ok || !high_ok)
+    ctx.fail(n, key, fmt::format("{:g} is out of range {}{}", v, range_text(r),
+                                 *r.unit ? fmt::format(" [{}]", r.unit) : ""));
+  return v;
+}
+
+int integer(const Ctx& ctx, const YAML::Node& n, const std::string& key, int min, int max) {
+  const double v = number(ctx, n, key, {double(min), false, double(max), false, ""});
+  if (v != std::floor(v)) ctx.fail(n, key, fmt::format("{:g} is not a whole number", v));
+  return static_cast<int>(v);
+}
+
+std::string text(const Ctx& ctx, const YAML::Node& n, const std::string& key) {
+  if (!n.IsScalar() || n.Scalar().empty())
+    ctx.fail(n, key, fmt::format("expected a word, got {}", type_word(n)));
+  return n.Scalar();
+}
+
+/// A name that can head a CSV column: letters, digits, '_', '-', '.'.
+std::string name_text(const Ctx& ctx, const YAML::Node& n, const std::string& key) {
+  std::string s = text(ctx, n, key);
+  for (char c : s)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'))
+      ctx.fail(n, key, fmt::format("name '{}' may only hold letters, digits, '_', '-' and '.'", s));
+  return s;
+}
+
+bool flag(const Ctx& ctx, const YAML::Node& n, const std::string& key) {
+  bool b = false;
+  if (!n.IsScalar()) ctx.fail(n, key, fmt::format("expected true or false, got {}", type_word(n)));
+  try {
+    b = n.as<bool>();
+  } catch (const YAML::Exception&) {
+    ctx.fail(n, key, fmt::format("'{}' is not true or false", n.Scalar()));
+  }
+  return b;
+}
+
+std::string choice(const Ctx& ctx, const YAML::Node& n, const std::string& key,
+                   const std::vector<std::string>& values) {
+  const std::string s = text(ctx, n, key);
+  if (std::find(values.begin(), values.end(), s) == values.end()) {
+    const std::string hint = laws::nearest_name(s, values);
+    ctx.fail(n, key, fmt::format("'{}' is not one of: {}{}", s, join(values),
+                                 hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint)));
+  }
+  return s;
+}
+
+std::vector<double> numbers(const Ctx& ctx, const YAML::Node& n, const std::string& key,
+                            std::size_t count, const Range& r) {
+  if (!n.IsSequence() || n.size() != count)
+    ctx.fail(n, key, fmt::format("expected a list of {} numbers [{}], got {}", count, r.unit,
+                                 n.IsSequence() ? fmt::format("{} items", n.size())
+                                                : std::string(type_word(n))));
+  std::vector<double> out;
+  for (std::size_t i = 0; i < count; ++i)
+    out.push_back(number(ctx, n[i], fmt::format("{}[{}]", key, i), r));
+  return out;
+}
+
+Point point(const Ctx& ctx, const YAML::Node& n, const std::string& key) {
+  const auto v = numbers(ctx, n, key, 2, any("length"));
+  return {v[0], v[1]};
+}
+
+/// Index of `name` among items with a `.name`; error with a hint if absent.
+template <class T>
+int resolve(const Ctx& ctx, const YAML::Node& n, const std::string& key, const std::vector<T>& items,
+            const char* what) {
+  const std::string s = text(ctx, n, key);
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (items[i].name == s) return static_cast<int>(i);
+    names.push_back(items[i].name);
+  }
+  const std::string hint = laws::nearest_name(s, names);
+  ctx.fail(n, key, fmt::format("unknown {} '{}'{}; defined: {}", what, s,
+                               hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint),
+                               join(names)));
+}
+
+Units read_units(const Ctx& ctx, const YAML::Node& n) {
+  MapReader m(ctx, n, "units", {"length", "force", "time"});
+  Units u;
+  u.length = text(ctx, m.required("length", "label of the length unit, e.g. m"), m.child("length"));
+  u.force = text(ctx, m.required("force", "label of the force unit, e.g. N"), m.child("force"));
+  u.time = text(ctx, m.required("time", "label of the time unit, e.g. s"), m.child("time"));
+  return u;
+}
+
+Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
+  MapReader m(ctx, n, "analysis",
+              {"type", "duration", "dt", "dt_min", "max_displacement_ratio", "dynamic_ratio",
+               "scheme", "penalty", "shear_normal_ratio", "search_factor", "angle_tolerance",
+               "penetration_ratio", "open_close_limit", "fixed_point_stiffness", "solver",
+               "output_interval", "gravity"});
+  Analysis a;
+  a.where = m.where();
+  auto num = [&](const char* key, double& field, const Range& r) {
+    if (YAML::Node v = m.find(key); v.IsDefined()) field = number(ctx, v, m.child(key), r);
+  };
+  if (YAML::Node v = m.find("type"); v.IsDefined())
+    a.type = choice(ctx, v, m.child("type"), {"static", "dynamic"}) == "static"
+                 ? AnalysisType::static_analysis
+                 : AnalysisType::dynamic_analysis;
+  a.duration = number(ctx, m.required("duration", "simulated time [time]"), m.child("duration"),
+                      positive("time"));
+  YAML::Node dt = m.required("dt", "first and largest time step [time]");
+  a.dt = number(ctx, dt, m.child("dt"), positive("time"));
+  if (a.dt > a.duration)
+    ctx.fail(dt, m.child("dt"), fmt::format("dt = {:g} is longer than duration = {:g}", a.dt, a.duration));
+  a.dt_min = a.dt * 1e-6;
+  num("dt_min", a.dt_min, {0.0, true, a.dt, false, "time"});
+  num("max_displacement_ratio", a.max_displacement_ratio, {0.0, true, 1.0, false, ""});
+  a.dynamic_ratio = a.type == AnalysisType::dynamic_analysis ? 1.0 : 0.0;
+  if (YAML::Node v = m.find("dynamic_ratio"); v.IsDefined()) {
+    if (a.type == AnalysisType::static_analysis)
+      ctx.fail(v, m.child("dynamic_ratio"),
+               "a static analysis carries no velocity; dynamic_ratio needs `type: dynamic`");
+    a.dynamic_ratio = number(ctx, v, m.child("dynamic_ratio"), {0.0, false, 1.0, false, ""});
+  }
+  if (YAML::Node v = m.find("scheme"); v.IsDefined())
+    a.scheme = laws::parse_scheme(
+        choice(ctx, v, m.child("scheme"), {"lagged", "implicit", "exponential-linear"}));
+  num("penalty", a.penalty, positive("stress"));
+  num("shear_normal_ratio", a.shear_normal_ratio, positive(""));
+  num("search_factor", a.search_factor, positive(""));
+  num("angle_tolerance", a.angle_tolerance, {0.0, true, 45.0, false, "deg"});
+  num("penetration_ratio", a.penetration_ratio, {0.0, true, 1.0, false, ""});
+  if (YAML::Node v = m.find("open_close_limit"); v.IsDefined())
+    a.open_close_limit = integer(ctx, v, m.child("open_close_limit"), 1, 1000);
+  num("fixed_point_stiffness", a.fixed_point_stiffness, positive("stress"));
+  if (YAML::Node v = m.find("solver"); v.IsDefined())
+    a.solver = choice(ctx, v, m.child("solver"), {"cholmod", "pcg"}) == "cholmod" ? SolverKind::cholmod
+                                                                                  : SolverKind::pcg;
+  a.output_interval = a.duration / 100.0;
+  if (YAML::Node v = m.find("output_interval"); v.IsDefined()) {
+    a.output_interval = number(ctx, v, m.child("output_interval"), positive("time"));
+    if (a.output_interval > a.duration)
+      ctx.fail(v, m.child("output_interval"),
+               fmt::format("output_interval = {:g} is longer than duration = {:g}", a.output_interval, a.duration));
+  }
+  const auto g = numbers(ctx, m.required("gravity", "gravity acceleration [gx, gy] [length/time^2]"),
+                         m.child("gravity"), 2, any("length/time^2"));
+  a.gravity = {g[0], g[1]};
+  return a;
+}
+
+std::vector<Material> read_materials(const Ctx& ctx, const YAML::Node& n) {
+  if (!n.IsMap() || n.size() == 0)
+    ctx.fail(n, "materials", "expected a map of named materials, e.g. `rock: {density: ..., ...}`");
+  std::vector<Material> out;
+  std::vector<std::string> keys;
+  for (auto it = n.begin(); it != n.end(); ++it) keys.push_back(it->first.IsScalar() ? it->first.Scalar() : "");
+  MapReader all(ctx, n, "materials", keys);
+  for (const auto& e : all.entries()) {
+    Material mat;
+    mat.name = name_text(ctx, e.key_node, "materials");
+    const std::string path = all.child(e.key);
+    MapReader m(ctx, e.value, path, {"density", "young_modulus", "poisson_ratio", "plane"});
+    mat.where = location(e.key_node);
+    mat.density = number(ctx, m.required("density", "[mass/length^3]"), m.child("density"),
+                         positive("mass/length^3"));
+    mat.young_modulus = number(ctx, m.required("young_modulus", "E [stress]"),
+                               m.child("young_modulus"), positive("stress"));
+    mat.poisson_ratio = number(ctx, m.required("poisson_ratio", "nu [-]"), m.child("poisson_ratio"),
+                               {0.0, false, 0.5, true, ""});
+    if (YAML::Node v = m.find("plane"); v.IsDefined())
+      mat.plane = choice(ctx, v, m.child("plane"), {"strain", "stress"}) == "strain" ? PlaneKind::strain
+                                                                                   : PlaneKind::stress;
+    out.push_back(std::move(mat));
+  }
+  return out;
+}
+
+LawChoice read_law(const Ctx& ctx, const YAML::Node& n, const std::string& path) {
+  const auto& registry = laws::LawRegistry::builtin();
+  if (!n.IsMap()) ctx.fail(n, path, fmt::format("expected a map `{{name: LAW, PARAM: value, ...}}`, got {}", type_word(n)));
+  YAML::Node name_node = n["name"];
+  if (!name_node.IsDefined())
+    ctx.fail(n, path + ".name", "missing required key 'name' (the law: see `rheodda law list`)");
+  const std::string name = text(ctx, name_node, path + ".name");
+  const laws::LawInfo* info = registry.find(name);
+  if (!info) {
+    std::vector<std::string> names;
+    for (const auto& l : registry.laws()) names.push_back(l.name);
+    const std::string hint = laws::nearest_name(name, names);
+    ctx.fail(name_node, path + ".name",
+             fmt::format("unknown law '{}'{}; known laws: {}", name,
+                         hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint), join(names)));
+  }
+  std::vector<std::string> allowed{"name"};
+  for (const auto& p : info->parameters) allowed.push_back(p.name);
+  MapReader m(ctx, n, path, allowed);
+  LawChoice law;
+  law.name = name;
+  laws::ParameterValues given;
+  for (const auto& e : m.entries())
+    if (e.key != "name") given[e.key] = number(ctx, e.value, m.child(e.key), any(""));
+  try {
+    law.parameters = laws::validate_parameters(name, info->parameters, given);
+  } catch (const laws::LawError& err) {
+    YAML::Node at = m.find(err.key());
+    ctx.fail(at.IsDefined() ? at : n, m.child(err.key()), err.what());
+  }
+  // The law must also build (a law may check relations between its parameters).
+  try {
+    (void)registry.create(name, law.parameters);
+  } catch (const laws::LawError& err) {
+    YAML::Node at = m.find(err.key());
+    ctx.fail(at.IsDefined() ? at : n, m.child(err.key()), err.what());
+  }
+  return law;
+}
+
+std::vector<JointSetDescription> read_joint_sets(const Ctx& ctx, const YAML::Node& n) {
+  if (!n.IsMap() || n.size() == 0)
+    ctx.fail(n, "joint_sets", "expected a map of named joint sets, e.g. `bedding: {friction_angle: 30}`");
+  std::vector<std::string> keys;
+  for (auto it = n.begin(); it != n.end(); ++it) keys.push_back(it->first.IsScalar() ? it->first.Scalar() : "");
+  MapReader all(ctx, n, "joint_sets", keys);
+  std::vector<JointSetDescription> out;
+  for (const auto& e : all.entries()) {
+    JointSetDescription js;
+    js.name = name_text(ctx, e.key_node, "joint_sets");
+    js.where = location(e.key_node);
+    MapReader m(ctx, e.value, all.child(e.key),
+                {"friction_angle", "cohesion", "tensile_strength", "normal_stiffness",
+                 "shear_stiffness", "law", "record"});
+    js.friction_angle = number(ctx, m.required("friction_angle", "phi [deg], 0 <= phi < 90"),
+                               m.child("friction_angle"), {0.0, false, 90.0, true, "deg"});
+    if (YAML::Node v = m.find("cohesion"); v.IsDefined())
+      js.cohesion = number(ctx, v, m.child("cohesion"), non_negative("stress"));
+    if (YAML::Node v = m.find("tensile_strength"); v.IsDefined())
+      js.tensile_strength = number(ctx, v, m.child("tensile_strength"), non_negative("stress"));
+    if (YAML::Node v = m.find("normal_stiffness"); v.IsDefined())
+      js.normal_stiffness = number(ctx, v, m.child("normal_stiffness"), positive("stress/length"));
+    if (YAML::Node v = m.find("shear_stiffness"); v.IsDefined())
+      js.shear_stiffness = number(ctx, v, m.child("shear_stiffness"), positive("stress/length"));
+    if (YAML::Node v = m.find("law"); v.IsDefined()) js.law = read_law(ctx, v, m.child("law"));
+    if (YAML::Node v = m.find("record"); v.IsDefined()) js.record = flag(ctx, v, m.child("record"));
+    out.push_back(std::move(js));
+  }
+  return out;
+}
+
+/// A block entry before the geometry checks: one or many blocks (grid).
+struct RawBlock {
+  BlockDescription block;
+  std::string path;
+  YAML::Node node;
+  YAML::Node geometry_node;
+};
+
+std::vector<int> edge_sets(const Ctx& ctx, const MapReader& m, const SceneDescription& s,
+                           std::size_t edges, const char* order) {
+  YAML::Node all = m.find("joint_set");
+  YAML::Node each = m.find("edge_joint_sets");
+  if (all.IsDefined() && each.IsDefined())
+    ctx.fail(each, m.child("edge_joint_sets"), "give either joint_set (every edge) or edge_joint_sets, not both");
+  if (each.IsDefined()) {
+    if (!each.IsSequence() || each.size() != edges)
+      ctx.fail(each, m.child("edge_joint_sets"),
+               fmt::format("expected a list of {} joint set names, one per edge ({})", edges, order));
+    std::vector<int> out;
+    for (std::size_t k = 0; k < edges; ++k)
+      out.push_back(resolve(ctx, each[k], fmt::format("{}[{}]", m.child("edge_joint_sets"), k),
+                            s.joint_sets, "joint set"));
+    return out;
+  }
+  int js = 0;
+  if (all.IsDefined())
+    js = resolve(ctx, all, m.child("joint_set"), s.joint_sets, "joint set");
+  else if (s.joint_sets.size() != 1)
+    ctx.fail(m.node(), m.child("joint_set"),
+             "missing key 'joint_set' (or edge_joint_sets): the scene has several joint sets");
+  return std::vector<int>(edges, js);
+}
+
+void read_blocks(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, std::vector<RawBlock>& raw) {
+  if (!n.IsSequence() || n.size() == 0)
+    ctx.fail(n, "blocks", "expected a list of blocks, e.g. `- {rectangle: {x: 0, y: 0, width: 1, height: 1}}`");
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    const std::string path = fmt::format("blocks[{}]", i);
+    MapReader m(ctx, n[i], path,
+                {"name", "material", "polygon", "rectangle", "grid", "joint_set", "edge_joint_sets",
+                 "fixed", "initial_stress", "initial_velocity"});
+    BlockDescription b;
+    b.where = m.where();
+    if (YAML::Node v = m.find("material"); v.IsDefined())
+      b.material = resolve(ctx, v, m.child("material"), s.materials, "material");
+    else if (s.materials.size() != 1)
+      ctx.fail(m.node(), m.child("material"), "missing key 'material': the scene has several materials");
+    if (YAML::Node v = m.find("fixed"); v.IsDefined()) b.fixed = flag(ctx, v, m.child("fixed"));
+    if (YAML::Node v = m.find("initial_stress"); v.IsDefined()) {
+      const auto x = numbers(ctx, v, m.child("initial_stress"), 3, any("stress"));
+      b.initial_stress = {x[0], x[1], x[2]};
+    }
+    if (YAML::Node v = m.find("initial_velocity"); v.IsDefined()) {
+      const auto x = numbers(ctx, v, m.child("initial_velocity"), 3, any("length/time, 1/time"));
+      if (s.analysis.type == AnalysisType::static_analysis && (x[0] != 0 || x[1] != 0 || x[2] != 0))
+        ctx.fail(v, m.child("initial_velocity"),
+                 "a static analysis carries no velocity; initial_velocity needs `analysis: {type: dynamic}`");
+      b.initial_velocity = {x[0], x[1], x[2]};
+    }
+    std::string name;
+    if (YAML::Node v = m.find("name"); v.IsDefined()) name = name_text(ctx, v, m.child("name"));
+
+    const int shapes = int(m.has("polygon")) + int(m.has("rectangle")) + int(m.has("grid"));
+    if (shapes != 1)
+      ctx.fail(m.node(), path, shapes == 0 ? "missing the shape: give one of polygon, rectangle, grid"
+                                           : "give only one of polygon, rectangle, grid");
+    if (YAML::Node v = m.find("polygon"); v.IsDefined()) {
+      if (!v.IsSequence())
+        ctx.fail(v, m.child("polygon"), fmt::format("expected a list of [x, y] vertices, got {}", type_word(v)));
+      if (v.size() > kMaxVertices)
+        ctx.fail(v, m.child("polygon"), fmt::format("more than {} vertices", kMaxVertices));
+      for (std::size_t k = 0; k < v.size(); ++k)
+        b.polygon.push_back(point(ctx, v[k], fmt::format("{}[{}]", m.child("polygon"), k)));
+      if (b.polygon.size() < 3)
+        ctx.fail(v, m.child("polygon"), fmt::format("has {} vertices; a polygon needs at least 3", b.polygon.size()));
+      b.edge_joint_set = edge_sets(ctx, m, s, b.polygon.size(), "edge k runs from vertex k to k+1");
+      b.name = name;
+      raw.push_back({b, path, n[i], v});
+      continue;
+    }
+    const bool grid = m.has("grid");
+    const std::string key = grid ? "grid" : "rectangle";
+    YAML::Node g = m.find(key);
+    std::vector<std::string> gkeys{"x", "y", "width", "height", "angle"};
+    if (grid) {
+      gkeys.push_back("columns");
+      gkeys.push_back("rows");
+    }
+    MapReader r(ctx, g, m.child(key), gkeys);
+    const double x = number(ctx, r.required("x", "x of the lower-left corner [length]"), r.child("x"), any("length"));
+    const double y = number(ctx, r.required("y", "y of the lower-left corner [length]"), r.child("y"), any("length"));
+    const double w = number(ctx, r.required("width", "[length]"), r.child("width"), positive("length"));
+    const double h = number(ctx, r.required("height", "[length]"), r.child("height"), positive("length"));
+    double angle = 0.0;  // counter-clockwise rotation about (x, y) [deg]
+    if (YAML::Node v = r.find("angle"); v.IsDefined())
+      angle = number(ctx, v, r.child("angle"), {-360.0, false, 360.0, false, "deg"});
+    const double ca = std::cos(angle * std::numbers::pi / 180.0), sa = std::sin(angle * std::numbers::pi / 180.0);
+    auto place = [&](double ls, double lt) -> Point { return {x + ca * ls - sa * lt, y + sa * ls + ca * lt}; };
+    int cols = 1, rows = 1;
+    if (grid) {
+      cols = integer(ctx, r.required("columns", "number of blocks along x"), r.child("columns"), 1, int(kMaxBlocks));
+      rows = integer(ctx, r.required("rows", "number of blocks along y"), r.child("rows"), 1, int(kMaxBlocks));
+      if (std::size_t(cols) * std::size_t(rows) + raw.size() > kMaxBlocks)
+        ctx.fail(g, m.child(key), fmt::format("more than {} blocks in the scene", kMaxBlocks));
+    }
+    b.edge_joint_set = edge_sets(ctx, m, s, 4, "bottom, right, top, left");
+    for (int row = 0; row < rows; ++row)
+      for (int col = 0; col < cols; ++col) {
+        BlockDescription c = b;
+        const double s0 = col * w, t0 = row * h;
+        c.polygon = {place(s0, t0), place(s0 + w, t0), place(s0 + w, t0 + h), place(s0, t0 + h)};
+        c.name = grid ? fmt::format("{}.r{}.c{}", name.empty() ? fmt::format("grid{}", i + 1) : name,
+                                    row + 1, col + 1)
+                      : name;
+        raw.push_back({c, path, n[i], g});
+      }
+  }
+}
+
+/// Tolerance for "same place": a billionth of the model size [length].
+double geometry_tolerance(const std::vector<BlockDescription>& blocks) {
+  return std::max(1e-9 * 2.0 * half_model_size(blocks), std::numeric_limits<double>::min());
+}
+
+BlockPoint read_block_point(const Ctx& ctx, const MapReader& m, const SceneDescription& s, double tol) {
+  BlockPoint bp;
+  bp.where = m.where();
+  YAML::Node p = m.required("point", "[x, y] [length]");
+  bp.point = point(ctx, p, m.child("point"));
+  if (YAML::Node v = m.find("block"); v.IsDefined()) {
+    bp.block = resolve(ctx, v, m.child("block"), s.blocks, "block");
+    if (!contains(s.blocks[bp.block].polygon, bp.point, tol))
+      ctx.fail(p, m.child("point"),
+               fmt::format("({:g}, {:g}) is not on block '{}'", bp.point[0], bp.point[1], s.blocks[bp.block].name));
+    return bp;
+  }
+  std::vector<int> hits;
+  for (std::size_t i = 0; i < s.blocks.size(); ++i)
+    if (contains(s.blocks[i].polygon, bp.point, tol)) hits.push_back(static_cast<int>(i));
+  if (hits.empty())
+    ctx.fail(p, m.child("point"), fmt::format("({:g}, {:g}) lies on no block", bp.point[0], bp.point[1]));
+  if (hits.size() > 1) {
+    std::vector<std::string> names;
+    for (int h : hits) names.push_back(s.blocks[h].name);
+    ctx.fail(p, m.child("point"),
+             fmt::format("({:g}, {:g}) lies on the boundary of several blocks ({}); say which with `block:`",
+                         bp.point[0], bp.point[1], join(names)));
+  }
+  bp.block = hits.front();
+  return bp;
+}
+
+void read_points(const Ctx& ctx, const MapReader& top, SceneDescription& s) {
+  const double tol = geometry_tolerance(s.blocks);
+  auto list = [&](const char* key) {
+    YAML::Node n = top.find(key);
+    if (n.IsDefined() && !n.IsSequence() && !n.IsNull())
+      ctx.fail(n, key, fmt::format("expected a list, got {}", type_word(n)));
+    return n;
+  };
+  if (YAML::Node n = list("fixed_points"); n.IsSequence())
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      MapReader m(ctx, n[i], fmt::format("fixed_points[{}]", i), {"point", "block"});
+      s.fixed_points.push_back(read_block_point(ctx, m, s, tol));
+    }
+  if (YAML::Node n = list("loads"); n.IsSequence())
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      MapReader m(ctx, n[i], fmt::format("loads[{}]", i), {"point", "block", "force", "history"});
+      LoadDescription load;
+      load.at = read_block_point(ctx, m, s, tol);
+      YAML::Node f = m.find("force"), h = m.find("history");
+      if (f.IsDefined() == h.IsDefined())
+        ctx.fail(m.node(), m.child("force"),
+                 "give exactly one of force: [fx, fy] or history: [[t, fx, fy], ...]");
+      if (f.IsDefined()) {
+        const auto v = numbers(ctx, f, m.child("force"), 2, any("force"));
+        load.history.push_back({0.0, v[0], v[1]});
+      } else {
+        if (!h.IsSequence() || h.size() == 0 || h.size() > kMaxSamples)
+          ctx.fail(h, m.child("history"), "expected a list of [t, fx, fy] samples");
+        for (std::size_t k = 0; k < h.size(); ++k) {
+          const std::string key = fmt::format("{}[{}]", m.child("history"), k);
+          const auto v = numbers(ctx, h[k], key, 3, any("time, force, force"));
+          if (v[0] < 0.0) ctx.fail(h[k], key, fmt::format("time {:g} is negative", v[0]));
+          if (!load.history.empty() && v[0] <= load.history.back()[0])
+            ctx.fail(h[k], key, fmt::format("times must increase strictly: {:g} after {:g}", v[0],
+                                            load.history.back()[0]));
+          load.history.push_back({v[0], v[1], v[2]});
+        }
+      }
+      s.loads.push_back(std::move(load));
+    }
+  if (YAML::Node n = list("measurement_points"); n.IsSequence())
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      MapReader m(ctx, n[i], fmt::format("measurement_points[{}]", i), {"name", "point", "block"});
+      MeasurementPoint mp;
+      YAML::Node name = m.required("name", "column prefix in history.csv");
+      mp.name = name_text(ctx, name, m.child("name"));
+      for (const auto& other : s.measurement_points)
+        if (other.name == mp.name)
+          ctx.fail(name, m.child("name"), fmt::format("measurement point '{}' is defined twice", mp.name));
+      mp.at = read_block_point(ctx, m, s, tol);
+      s.measurement_points.push_back(std::move(mp));
+    }
+}
+
+void check_geometry(const Ctx& ctx, std::vector<RawBlock>& raw, SceneDescription& s) {
+  std::vector<BlockDescription> blocks;
+  for (const auto& r : raw) blocks.push_back(r.block);
+  const double tol = geometry_tolerance(blocks);
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    BlockDescription& b = raw[i].block;
+    if (b.name.empty()) b.name = fmt::format("block{}", i + 1);
+    for (std::size_t j = 0; j < i; ++j)
+      if (raw[j].block.name == b.name)
+        ctx.fail(raw[i].node, raw[i].path + ".name", fmt::format("block name '{}' is used twice", b.name));
+    if (auto defect = polygon_defect(b.polygon, tol))
+      ctx.fail(raw[i].geometry_node, raw[i].path + ".polygon",
+               fmt::format("block '{}' {}", b.name, *defect));
+    if (signed_area(b.polygon) < 0.0) {
+      // Clockwise input: reverse to counter-clockwise. New edge k (v'_k -> v'_k+1) is
+      // old edge n-2-k (mod n), so the edge joint sets follow their edges.
+      const std::size_t n = b.polygon.size();
+      std::vector<Point> p(n);
+      std::vector<int> e(n);
+      for (std::size_t k = 0; k < n; ++k) {
+        p[k] = b.polygon[n - 1 - k];
+        e[k] = b.edge_joint_set[(2 * n - 2 - k) % n];
+      }
+      b.polygon = std::move(p);
+      b.edge_joint_set = std::move(e);
+    }
+    blocks[i] = b;
+  }
+  const auto overlaps = overlapping_blocks(blocks, tol);
+  if (!overlaps.empty()) {
+    const auto [i, j] = overlaps.front();
+    ctx.fail(raw[j].node, raw[j].path,
+             fmt::format("blocks '{}' and '{}' overlap at the start (blocks may touch, not overlap)",
+                         blocks[i].name, blocks[j].name));
+  }
+  s.blocks = std::move(blocks);
+}
+
+}  // namespace
+
+SceneDescription parse_scene(const std::string& text_in, const std::string& file) {
+  Ctx ctx{file};
+  YAML::Node root;
+  try {
+    root = YAML::Load(text_in);
+  } catch (const YAML::ParserException& e) {
+    throw SceneError(file, {e.mark.line + 1, e.mark.column + 1}, "", "YAML syntax: " + e.msg);
+  }
+  try {
+    SceneDescription s;
+    s.file = file;
+    MapReader top(ctx, root, "",
+                  {"title", "units", "analysis", "materials", "joint_sets", "blocks",
+                   "fixed_points", "loads", "measurement_points"});
+    s.title = file.substr(file.find_last_of('/') == std::string::npos ? 0 : file.find_last_of('/') + 1);
+    if (YAML::Node v = top.find("title"); v.IsDefined()) s.title = text(ctx, v, "title");
+    s.units = read_units(ctx, top.required("units", "labels {length, force, time}"));
+    s.analysis = read_analysis(ctx, top.required("analysis", "time stepping: duration, dt, gravity, ..."));
+    s.materials = read_materials(ctx, top.required("materials", "named block materials"));
+    s.joint_sets = read_joint_sets(ctx, top.required("joint_sets", "named joint sets"));
+    std::vector<RawBlock> raw;
+    read_blocks(ctx, top.required("blocks", "the list of blocks"), s, raw);
+    check_geometry(ctx, raw, s);
+    read_points(ctx, top, s);
+    if (s.analysis.penalty == 0.0) {
+      // Shi's penalty p_n = k1 E with k1 = 10-100 (the seed's eq. 17): k1 = 40.
+      for (const auto& m : s.materials) s.analysis.penalty = std::max(s.analysis.penalty, 40.0 * m.young_modulus);
+    }
+    if (s.analysis.fixed_point_stiffness == 0.0) s.analysis.fixed_point_stiffness = 10.0 * s.analysis.penalty;
+    return s;
+  } catch (const YAML::Exception& e) {
+    // Anything yaml-cpp raises past parsing is still a fault of the file.
+    throw SceneError(file, {e.mark.line + 1, e.mark.column + 1}, "", e.msg);
+  }
+}
+
+SceneDescription load_scene(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(path, {}, "", "cannot open the scene file");
+  std::ostringstream buf;
+  buf << in.rdbuf();
+  return parse_scene(buf.str(), path);
+}
+
+}  // namespace rheodda::scene
