@@ -1,0 +1,518 @@
+// The DDA time step (Shi 1988; docs/engine.md).
+//
+// Per step, with D_i = (u0, v0, r0, ex, ey, gxy) the unknowns of block i at
+// its centroid (x0, y0) and T_i(x, y) the first-order displacement matrix
+// (contact/kinematics.hpp, the seed's eq. 27):
+//   K_ii += S E_e                              elastic strain energy
+//   F_i  -= S sigma                            initial (carried) stress
+//   F_i  += T_i(p)^T f(t + dt)                 point load at p
+//   F_i  += rho S (gx, gy, 0, 0, 0, 0)         body force
+//   K_ii += 2/dt^2 M_i,  F_i += 2/dt M_i v_i   inertia, M_i = rho int T^T T dA
+//   K_ii += p T^T T,     F_i += p T^T (x0 - x) fixed point (penalty spring)
+// then the contacts add their springs and friction through the SystemSink,
+// K D = F is solved (the seed's eq. 30) and the contacts check the trial D.
+#include "rheodda/core/engine.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "rheodda/core/block_system.hpp"
+#include "rheodda/core/polygon.hpp"
+#include "rheodda/core/solver.hpp"
+
+namespace rheodda::core {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+bool finite(const Vec2& v) { return std::isfinite(v.x()) && std::isfinite(v.y()); }
+
+std::string at(const char* list, std::size_t k) { return std::string(list) + "[" + std::to_string(k) + "]"; }
+
+/// Elastic matrix E_e relating (sigma_x, sigma_y, tau_xy) to (ex, ey, gxy) [stress]
+/// (Shi 1988, elastic stress submatrix):
+///   plane stress: E/(1-nu^2)        | 1   nu  0         |
+///                                   | nu  1   0         |
+///                                   | 0   0   (1-nu)/2  |
+///   plane strain: E/((1+nu)(1-2nu)) | 1-nu nu   0        |
+///                                   | nu   1-nu 0        |
+///                                   | 0    0    (1-2nu)/2|
+Eigen::Matrix3d elastic_matrix(const Material& m) {
+  const double E = m.young_modulus, nu = m.poisson_ratio;
+  Eigen::Matrix3d e;
+  if (m.plane == PlaneMode::plane_stress) {
+    e << 1.0, nu, 0.0, nu, 1.0, 0.0, 0.0, 0.0, 0.5 * (1.0 - nu);
+    e *= E / (1.0 - nu * nu);
+  } else {
+    e << 1.0 - nu, nu, 0.0, nu, 1.0 - nu, 0.0, 0.0, 0.0, 0.5 * (1.0 - 2.0 * nu);
+    e *= E / ((1.0 + nu) * (1.0 - 2.0 * nu));
+  }
+  return e;
+}
+
+/// int T^T T dA over a block with central moments (S, a = int dx^2,
+/// b = int dy^2, c = int dx dy), dx = x - x0, dy = y - y0 (the first moments
+/// vanish about the centroid). Shi 1988, mass (inertia) submatrix / rho.
+Mat6 unit_mass_matrix(const PolygonIntegrals& m) {
+  const double S = m.S, a = m.Sxx, b = m.Syy, c = m.Sxy;
+  Mat6 M = Mat6::Zero();
+  M(0, 0) = S;
+  M(1, 1) = S;
+  M(2, 2) = a + b;
+  M(2, 3) = -c;
+  M(2, 4) = c;
+  M(2, 5) = 0.5 * (a - b);
+  M(3, 3) = a;
+  M(3, 5) = 0.5 * c;
+  M(4, 4) = b;
+  M(4, 5) = 0.5 * c;
+  M(5, 5) = 0.25 * (a + b);
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < i; ++j) M(i, j) = M(j, i);
+  return M;
+}
+
+/// Piecewise-linear value of a load history at time t (held beyond the ends).
+Vec2 load_at(const std::vector<LoadSample>& h, double t) {
+  if (t <= h.front().time) return h.front().force;
+  if (t >= h.back().time) return h.back().force;
+  const auto it = std::upper_bound(h.begin(), h.end(), t,
+                                   [](double v, const LoadSample& s) { return v < s.time; });
+  const LoadSample& b = *it;
+  const LoadSample& a = *(it - 1);
+  const double w = (t - a.time) / (b.time - a.time);
+  return (1.0 - w) * a.force + w * b.force;
+}
+
+/// Is p inside the polygon or within tol of its boundary?
+bool inside_or_near(std::span<const Vec2> v, const Vec2& p, double tol) {
+  bool inside = false;
+  const std::size_t n = v.size();
+  for (std::size_t k = 0, j = n - 1; k < n; j = k++) {
+    const Vec2& a = v[k];
+    const Vec2& b = v[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) &&
+        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
+      inside = !inside;
+    const Vec2 e = b - a;
+    const double s = std::clamp((p - a).dot(e) / e.squaredNorm(), 0.0, 1.0);
+    if ((a + s * e - p).norm() <= tol) return true;
+  }
+  return inside;
+}
+
+}  // namespace
+
+struct Engine::Impl {
+  Model model;
+  NullContactModel null_contacts;
+  ContactModel* contacts = nullptr;
+
+  EngineState st;
+  std::vector<PolygonIntegrals> moments;  // central integrals of the step-start geometry
+  std::vector<contact::BlockView> views;
+  std::vector<Eigen::Matrix3d> elastic;   // per material
+  double w0 = 0.0;                        // half model size [length]
+  double fixed_k = 0.0;                   // fixed point penalty [force/length]
+  bool dynamic = true;
+
+  BlockSystem system;
+  std::unique_ptr<LinearSolver> solver;
+  Eigen::VectorXd D;
+  std::vector<StepReport> reports;
+  std::vector<StepObserver> observers;
+
+  void validate();
+  void initialise();
+  void refresh_geometry();
+  void assemble_blocks(double dt, double t_end, std::vector<Mat6>& diag, Eigen::VectorXd& rhs) const;
+  double max_vertex_displacement(const Eigen::VectorXd& d) const;
+  void accept(const Eigen::VectorXd& d, double dt, int step_index, double t_end);
+  void record_measurements(int step_index);
+  StepReport step(double dt_cap);
+};
+
+void Engine::Impl::validate() {
+  const Model& m = model;
+  if (m.materials.empty()) throw ModelError("materials", "at least one material is required");
+  for (std::size_t k = 0; k < m.materials.size(); ++k) {
+    const Material& mat = m.materials[k];
+    if (!(mat.density > 0.0 && std::isfinite(mat.density)))
+      throw ModelError(at("materials", k) + ".density", "must be > 0 (mass/length^3)");
+    if (!(mat.young_modulus > 0.0 && std::isfinite(mat.young_modulus)))
+      throw ModelError(at("materials", k) + ".young_modulus", "must be > 0 (stress)");
+    if (!(mat.poisson_ratio >= 0.0 && mat.poisson_ratio < 0.5))
+      throw ModelError(at("materials", k) + ".poisson_ratio", "must be in [0, 0.5)");
+  }
+  if (m.blocks.empty()) throw ModelError("blocks", "at least one block is required");
+  const Settings& s = m.settings;
+  for (std::size_t k = 0; k < m.blocks.size(); ++k) {
+    const BlockDef& b = m.blocks[k];
+    const std::string key = at("blocks", k);
+    if (b.vertices.size() < 3)
+      throw ModelError(key + ".vertices", "a block needs at least 3 vertices");
+    for (const auto& v : b.vertices)
+      if (!finite(v)) throw ModelError(key + ".vertices", "vertex coordinates must be finite");
+    if (!is_simple_polygon(b.vertices))
+      throw ModelError(key + ".vertices",
+                       "not a simple polygon (edges cross, touch or have zero length)");
+    if (polygon_integrals(b.vertices).S == 0.0)
+      throw ModelError(key + ".vertices", "the polygon has zero area");
+    if (!b.edge_joint_set.empty() && b.edge_joint_set.size() != b.vertices.size())
+      throw ModelError(key + ".edge_joint_set",
+                       "needs one joint set per edge (" + std::to_string(b.vertices.size()) +
+                           "), or none");
+    for (int j : b.edge_joint_set)
+      if (j < 0) throw ModelError(key + ".edge_joint_set", "joint set indices must be >= 0");
+    if (b.material < 0 || b.material >= static_cast<int>(m.materials.size()))
+      throw ModelError(key + ".material", "no material with index " + std::to_string(b.material));
+    if (!b.initial_stress.allFinite())
+      throw ModelError(key + ".initial_stress", "must be finite");
+    if (!finite(b.initial_velocity) || !std::isfinite(b.initial_angular_velocity))
+      throw ModelError(key + ".initial_velocity", "must be finite");
+    if (s.dynamic_ratio == 0.0 &&
+        (b.initial_velocity != Vec2::Zero() || b.initial_angular_velocity != 0.0))
+      throw ModelError(key + ".initial_velocity",
+                       "a static analysis (settings.dynamic_ratio = 0) carries no velocities");
+  }
+  auto check_point = [&](const std::string& key, int block, const Vec2& p) {
+    if (block < 0 || block >= static_cast<int>(m.blocks.size()))
+      throw ModelError(key + ".block", "no block with index " + std::to_string(block));
+    if (!finite(p)) throw ModelError(key + ".point", "must be finite");
+    const auto& v = m.blocks[block].vertices;
+    Eigen::AlignedBox2d box;
+    for (const auto& q : v) box.extend(q);
+    if (!inside_or_near(v, p, 1e-9 * box.diagonal().norm()))
+      throw ModelError(key + ".point", "lies outside block " + std::to_string(block));
+  };
+  for (std::size_t k = 0; k < m.point_loads.size(); ++k) {
+    const PointLoad& l = m.point_loads[k];
+    const std::string key = at("point_loads", k);
+    check_point(key, l.block, l.point);
+    if (l.history.empty()) throw ModelError(key + ".history", "needs at least one sample");
+    for (std::size_t i = 0; i < l.history.size(); ++i) {
+      if (!std::isfinite(l.history[i].time) || !finite(l.history[i].force))
+        throw ModelError(key + ".history", "time and force must be finite");
+      if (i > 0 && !(l.history[i].time > l.history[i - 1].time))
+        throw ModelError(key + ".history", "times must increase strictly");
+    }
+  }
+  for (std::size_t k = 0; k < m.fixed_points.size(); ++k)
+    check_point(at("fixed_points", k), m.fixed_points[k].block, m.fixed_points[k].point);
+  for (std::size_t k = 0; k < m.measurement_points.size(); ++k)
+    check_point(at("measurement_points", k), m.measurement_points[k].block,
+                m.measurement_points[k].point);
+
+  if (!(s.dt > 0.0 && std::isfinite(s.dt))) throw ModelError("settings.dt", "must be > 0 (time)");
+  if (!(s.dt_growth >= 1.0 && std::isfinite(s.dt_growth)))
+    throw ModelError("settings.dt_growth", "must be >= 1");
+  if (!(s.dt_cut > 0.0 && s.dt_cut < 1.0)) throw ModelError("settings.dt_cut", "must be in (0, 1)");
+  if (s.max_cuts < 0) throw ModelError("settings.max_cuts", "must be >= 0");
+  if (!(s.g2 > 0.0 && std::isfinite(s.g2))) throw ModelError("settings.g2", "must be > 0");
+  if (!(s.dynamic_ratio >= 0.0 && s.dynamic_ratio <= 1.0))
+    throw ModelError("settings.dynamic_ratio", "must be in [0, 1]");
+  if (!finite(s.gravity)) throw ModelError("settings.gravity", "must be finite");
+  if (!(s.fixed_point_stiffness >= 0.0 && std::isfinite(s.fixed_point_stiffness)))
+    throw ModelError("settings.fixed_point_stiffness", "must be >= 0 (0 = automatic)");
+  if (s.max_open_close < 1) throw ModelError("settings.max_open_close", "must be >= 1");
+  if (!(s.pcg_tolerance > 0.0)) throw ModelError("settings.pcg_tolerance", "must be > 0");
+  if (s.pcg_max_iterations < 1) throw ModelError("settings.pcg_max_iterations", "must be >= 1");
+}
+
+void Engine::Impl::initialise() {
+  const Settings& s = model.settings;
+  dynamic = s.dynamic_ratio > 0.0;
+  double e_max = 0.0;
+  for (const auto& mat : model.materials) {
+    elastic.push_back(elastic_matrix(mat));
+    e_max = std::max(e_max, mat.young_modulus);
+  }
+  // Fixed points: Shi's code uses a penalty of the order of 10-100 E (dda.md).
+  fixed_k = s.fixed_point_stiffness > 0.0 ? s.fixed_point_stiffness : 100.0 * e_max;
+
+  Eigen::AlignedBox2d box;
+  st.blocks.resize(model.blocks.size());
+  for (std::size_t k = 0; k < model.blocks.size(); ++k) {
+    const BlockDef& def = model.blocks[k];
+    BlockState& b = st.blocks[k];
+    b.vertices = def.vertices;
+    b.edge_joint_set = def.edge_joint_set.empty() ? std::vector<int>(def.vertices.size(), 0)
+                                                  : def.edge_joint_set;
+    normalise_orientation(b.vertices, b.edge_joint_set);
+    b.material = def.material;
+    b.stress = def.initial_stress;
+    b.velocity.setZero();
+    b.velocity << def.initial_velocity.x(), def.initial_velocity.y(), def.initial_angular_velocity,
+        0.0, 0.0, 0.0;
+    for (const auto& v : b.vertices) box.extend(v);
+  }
+  w0 = 0.5 * std::max(box.sizes().x(), box.sizes().y());
+  st.step = 0;
+  st.time = 0.0;
+  st.next_dt = s.dt;
+  solver = std::make_unique<LinearSolver>(s.solver, s.pcg_tolerance, s.pcg_max_iterations);
+  D = Eigen::VectorXd::Zero(6 * static_cast<Eigen::Index>(st.blocks.size()));
+  refresh_geometry();
+  st.measurements.assign(model.measurement_points.size(), {});
+  record_measurements(-1);
+}
+
+void Engine::Impl::refresh_geometry() {
+  const std::size_t n = st.blocks.size();
+  moments.resize(n);
+  views.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    BlockState& b = st.blocks[k];
+    moments[k] = central_integrals(b.vertices, &b.centroid);
+    views[k] = contact::BlockView{b.vertices, b.centroid, b.edge_joint_set};
+  }
+}
+
+void Engine::Impl::assemble_blocks(double dt, double t_end, std::vector<Mat6>& diag,
+                                   Eigen::VectorXd& rhs) const {
+  const Settings& s = model.settings;
+  const std::size_t n = st.blocks.size();
+  diag.resize(n);
+  rhs.resize(6 * static_cast<Eigen::Index>(n));
+  const double ratio = s.dynamic_ratio;
+  for (std::size_t k = 0; k < n; ++k) {
+    const BlockState& b = st.blocks[k];
+    const PolygonIntegrals& g = moments[k];
+    const double rho = model.materials[b.material].density;
+    Mat6& K = diag[k];
+    auto F = rhs.segment<6>(6 * static_cast<Eigen::Index>(k));
+    // Inertia (Shi 1988, Newmark beta = 1/2, gamma = 1): a = 2 (D - v dt)/dt^2,
+    // so K += 2 M/dt^2 and F += 2 M v/dt with v the carried velocity.
+    const Mat6 M = rho * unit_mass_matrix(g);
+    K = (2.0 / (dt * dt)) * M;
+    // Elastic strain energy S/2 e^T E_e e: K(ex..gxy) += S E_e.
+    K.block<3, 3>(3, 3) += g.S * elastic[b.material];
+    // Body force rho g over the area; the other rows vanish about the centroid.
+    F.setZero();
+    F(0) = rho * s.gravity.x() * g.S;
+    F(1) = rho * s.gravity.y() * g.S;
+    // Initial stress: potential S e^T sigma gives F(ex..gxy) -= S sigma.
+    F.tail<3>() -= g.S * b.stress;
+    if (dynamic) F.noalias() += (2.0 / dt) * M * (ratio * b.velocity);
+  }
+  // Point loads: F += T(p)^T f at the current position p of the material point.
+  for (const auto& l : model.point_loads) {
+    const BlockState& b = st.blocks[l.block];
+    const Vec2 p = b.map_A * l.point + b.map_b;
+    const Vec2 f = load_at(l.history, t_end);
+    rhs.segment<6>(6 * l.block) += contact::displacement_matrix(b.centroid, p).transpose() * f;
+  }
+  // Fixed points: spring p between the material point x and its held position x0,
+  // energy p/2 |T D - (x0 - x)|^2.
+  for (const auto& fp : model.fixed_points) {
+    const BlockState& b = st.blocks[fp.block];
+    const Vec2 x = b.map_A * fp.point + b.map_b;
+    const contact::Mat26 T = contact::displacement_matrix(b.centroid, x);
+    diag[fp.block].noalias() += fixed_k * T.transpose() * T;
+    rhs.segment<6>(6 * fp.block).noalias() += fixed_k * T.transpose() * (fp.point - x);
+  }
+}
+
+double Engine::Impl::max_vertex_displacement(const Eigen::VectorXd& d) const {
+  double worst = 0.0;
+  for (std::size_t k = 0; k < st.blocks.size(); ++k) {
+    const BlockState& b = st.blocks[k];
+    const auto Dk = d.segment<6>(6 * static_cast<Eigen::Index>(k));
+    for (const auto& v : b.vertices) {
+      const Vec2 u = contact::displacement_matrix(b.centroid, v) * Dk;
+      worst = std::max(worst, u.squaredNorm());
+    }
+  }
+  return std::sqrt(worst);
+}
+
+void Engine::Impl::accept(const Eigen::VectorXd& d, double dt, int step_index, double t_end) {
+  const double ratio = model.settings.dynamic_ratio;
+  for (std::size_t k = 0; k < st.blocks.size(); ++k) {
+    BlockState& b = st.blocks[k];
+    const Vec6 Dk = d.segment<6>(6 * static_cast<Eigen::Index>(k));
+    // Geometry with the exact-rotation post-correction: the first-order T
+    // moves a point by r0 (-dy, dx), which scales areas by (1 + r0^2); instead
+    // rotate exactly: x' = c + u + R(r0) (I + eps) (x - c), where eps is the
+    // small strain (ex, gxy/2; gxy/2, ey). Rigid rotation keeps the area.
+    const double r0 = Dk(2);
+    Mat2 R;
+    R << std::cos(r0), -std::sin(r0), std::sin(r0), std::cos(r0);
+    Mat2 strain;
+    strain << 1.0 + Dk(3), 0.5 * Dk(5), 0.5 * Dk(5), 1.0 + Dk(4);
+    const Mat2 Fm = R * strain;
+    const Vec2 c = b.centroid;
+    const Vec2 c_new = c + Dk.head<2>();
+    for (auto& v : b.vertices) v = c_new + Fm * (v - c);
+    b.map_A = Fm * b.map_A;
+    b.map_b = c_new + Fm * (b.map_b - c);
+    // Stress: sigma += E_e (ex, ey, gxy) (Shi 1988, stress update).
+    b.stress += elastic[b.material] * Dk.tail<3>();
+    // Velocity (Newmark beta = 1/2, gamma = 1): v' = 2 D/dt - v, v = carried velocity.
+    if (dynamic) b.velocity = (2.0 / dt) * Dk - ratio * b.velocity;
+  }
+  st.step = step_index + 1;
+  st.time = t_end;
+  refresh_geometry();
+  record_measurements(step_index);
+}
+
+void Engine::Impl::record_measurements(int step_index) {
+  for (std::size_t k = 0; k < model.measurement_points.size(); ++k) {
+    const auto& mp = model.measurement_points[k];
+    const BlockState& b = st.blocks[mp.block];
+    const Vec2 x = b.map_A * mp.point + b.map_b;
+    st.measurements[k].push_back({step_index, st.time, x, x - mp.point});
+  }
+}
+
+StepReport Engine::Impl::step(double dt_cap) {
+  const Settings& s = model.settings;
+  StepReport rep;
+  rep.step = st.step;
+  const bool capped = dt_cap < st.next_dt;
+  double dt = std::min(st.next_dt, dt_cap);
+  const double allowed = s.g2 * w0;
+  std::vector<Mat6> base_diag;
+  Eigen::VectorXd base_rhs;
+  for (;;) {
+    const StepContext ctx{st.step, st.time, dt, allowed};
+    contacts->begin_step(views, ctx);
+    auto t0 = Clock::now();
+    assemble_blocks(dt, st.time + dt, base_diag, base_rhs);
+    rep.assembly_seconds += seconds_since(t0);
+    bool converged = false;
+    int iterations = 0;
+    ContactCheck check;
+    while (iterations < s.max_open_close) {
+      t0 = Clock::now();
+      system.reset(static_cast<int>(base_diag.size()));
+      for (std::size_t k = 0; k < base_diag.size(); ++k) system.diagonal(static_cast<int>(k)) = base_diag[k];
+      system.rhs() = base_rhs;
+      contacts->assemble(views, system);
+      system.finalize();
+      rep.assembly_seconds += seconds_since(t0);
+      t0 = Clock::now();
+      D = solver->solve(system);
+      rep.solve_seconds += seconds_since(t0);
+      ++iterations;
+      check = contacts->check(views, D);
+      if (check.state_changes == 0) {
+        converged = true;
+        break;
+      }
+    }
+    const double max_disp = converged ? max_vertex_displacement(D) : 0.0;
+    if (converged && max_disp <= allowed) {
+      contacts->end_step(views, D);
+      rep.dt = dt;
+      rep.iterations = iterations;
+      rep.max_displacement = max_disp;
+      rep.max_penetration = check.max_penetration;
+      accept(D, dt, st.step, st.time + dt);
+      rep.time = st.time;
+      if (rep.cuts > 0 || !capped) st.next_dt = std::min(s.dt, dt * s.dt_growth);
+      return rep;
+    }
+    contacts->abandon_step();
+    if (rep.cuts >= s.max_cuts)
+      throw std::runtime_error(
+          "step " + std::to_string(st.step) + " at time " + std::to_string(st.time) + ": " +
+          (converged ? "displacement " + std::to_string(max_disp) + " exceeds g2 * w0 = " +
+                           std::to_string(allowed)
+                     : "open-close iteration did not converge") +
+          " after " + std::to_string(rep.cuts) + " cuts of dt (settings.max_cuts)");
+    dt *= s.dt_cut;
+    ++rep.cuts;
+  }
+}
+
+Engine::Engine(Model model) : impl_(std::make_unique<Impl>()) {
+  impl_->model = std::move(model);
+  impl_->contacts = &impl_->null_contacts;
+  impl_->validate();
+  impl_->initialise();
+}
+
+Engine::Engine(Model model, ContactModel& contacts) : impl_(std::make_unique<Impl>()) {
+  impl_->model = std::move(model);
+  impl_->contacts = &contacts;
+  impl_->validate();
+  impl_->initialise();
+}
+
+Engine::~Engine() = default;
+
+StepReport Engine::step() {
+  StepReport r = impl_->step(std::numeric_limits<double>::infinity());
+  impl_->reports.push_back(r);
+  for (const auto& o : impl_->observers) o(*this, r);
+  return r;
+}
+
+void Engine::run(int steps) {
+  for (int k = 0; k < steps; ++k) step();
+}
+
+void Engine::run_until(double end_time) {
+  while (impl_->st.time < end_time) {
+    const double remaining = end_time - impl_->st.time;
+    // A sliver below round-off of the end time is not worth a step.
+    if (remaining <= 1e-12 * std::max(1.0, std::abs(end_time))) break;
+    StepReport r = impl_->step(remaining);
+    impl_->reports.push_back(r);
+    for (const auto& o : impl_->observers) o(*this, r);
+  }
+}
+
+void Engine::add_observer(StepObserver observer) { impl_->observers.push_back(std::move(observer)); }
+
+const Model& Engine::model() const { return impl_->model; }
+int Engine::block_count() const { return static_cast<int>(impl_->st.blocks.size()); }
+int Engine::step_count() const { return impl_->st.step; }
+double Engine::time() const { return impl_->st.time; }
+double Engine::half_model_size() const { return impl_->w0; }
+double Engine::allowed_displacement() const { return impl_->model.settings.g2 * impl_->w0; }
+const BlockState& Engine::block(int b) const { return impl_->st.blocks.at(b); }
+std::span<const Vec2> Engine::vertices(int b) const { return impl_->st.blocks.at(b).vertices; }
+Vec2 Engine::centroid(int b) const { return impl_->st.blocks.at(b).centroid; }
+double Engine::area(int b) const { return impl_->moments.at(b).S; }
+Vec3 Engine::stress(int b) const { return impl_->st.blocks.at(b).stress; }
+Vec6 Engine::velocity(int b) const { return impl_->st.blocks.at(b).velocity; }
+Vec2 Engine::point_position(int b, const Vec2& p0) const {
+  const BlockState& s = impl_->st.blocks.at(b);
+  return s.map_A * p0 + s.map_b;
+}
+Vec2 Engine::point_displacement(int b, const Vec2& p0) const { return point_position(b, p0) - p0; }
+std::span<const contact::BlockView> Engine::views() const { return impl_->views; }
+const Eigen::VectorXd& Engine::last_displacements() const { return impl_->D; }
+const std::vector<StepReport>& Engine::reports() const { return impl_->reports; }
+const std::vector<std::vector<MeasurementSample>>& Engine::measurements() const {
+  return impl_->st.measurements;
+}
+const SolverStats& Engine::solver_stats() const { return impl_->solver->stats(); }
+
+EngineState Engine::save() const { return impl_->st; }
+
+void Engine::restore(const EngineState& state) {
+  if (state.blocks.size() != impl_->st.blocks.size() ||
+      state.measurements.size() != impl_->st.measurements.size())
+    throw std::invalid_argument("Engine::restore: the state belongs to a different model");
+  for (std::size_t k = 0; k < state.blocks.size(); ++k)
+    if (state.blocks[k].vertices.size() != impl_->st.blocks[k].vertices.size())
+      throw std::invalid_argument("Engine::restore: the state belongs to a different model (block " +
+                                  std::to_string(k) + ")");
+  impl_->st = state;
+  impl_->refresh_geometry();
+}
+
+}  // namespace rheodda::core

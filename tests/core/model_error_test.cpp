@@ -1,0 +1,81 @@
+// Bad model input is refused with a ModelError whose key names the entry.
+#include <boost/test/unit_test.hpp>
+
+#include "rheodda/core/engine.hpp"
+#include "test_support.hpp"
+
+using namespace rheodda::core;
+using rheodda::core::test::block;
+
+namespace {
+
+Model good() {
+  Model m;
+  m.blocks.push_back(block({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));
+  return m;
+}
+
+std::string key_of(const Model& m) {
+  try {
+    Engine e(m);
+  } catch (const ModelError& err) {
+    return err.key();
+  }
+  return "";
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(model_error)
+
+BOOST_AUTO_TEST_CASE(bad_input_names_its_key) {
+  BOOST_TEST(key_of(good()).empty());
+  {
+    Model m = good();
+    m.blocks.push_back(block({{0, 0}, {1, 1}, {1, 0}, {0, 1}}));
+    BOOST_TEST(key_of(m) == "blocks[1].vertices");
+  }
+  {
+    Model m = good();
+    m.blocks[0].edge_joint_set = {0, 1};
+    BOOST_TEST(key_of(m) == "blocks[0].edge_joint_set");
+  }
+  {
+    Model m = good();
+    m.blocks[0].material = 3;
+    BOOST_TEST(key_of(m) == "blocks[0].material");
+  }
+  {
+    Model m = good();
+    m.materials[0].poisson_ratio = 0.5;
+    BOOST_TEST(key_of(m) == "materials[0].poisson_ratio");
+  }
+  {
+    Model m = good();
+    m.point_loads.push_back({.block = 0, .point = {0.5, 0.5}, .history = {{1.0, {0, 0}}, {1.0, {1, 0}}}});
+    BOOST_TEST(key_of(m) == "point_loads[0].history");
+  }
+  {
+    Model m = good();
+    m.fixed_points.push_back({.block = 0, .point = {5.0, 0.5}});
+    BOOST_TEST(key_of(m) == "fixed_points[0].point");
+  }
+  {
+    Model m = good();
+    m.measurement_points.push_back({.block = 2, .point = {0.5, 0.5}});
+    BOOST_TEST(key_of(m) == "measurement_points[0].block");
+  }
+  {
+    Model m = good();
+    m.settings.dynamic_ratio = 0.0;
+    m.blocks[0].initial_velocity = {1.0, 0.0};
+    BOOST_TEST(key_of(m) == "blocks[0].initial_velocity");
+  }
+  {
+    Model m = good();
+    m.settings.g2 = 0.0;
+    BOOST_TEST(key_of(m) == "settings.g2");
+  }
+}
+
+BOOST_AUTO_TEST_SUITE_END()
