@@ -1,0 +1,644 @@
+#include "rheodda/fit/fit.hpp"
+
+#include <gsl/gsl_blas.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_multifit_nlinear.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <fmt/format.h>
+#include <limits>
+#include <memory>
+#include <optional>
+
+#include "rheodda/laws/series_law.hpp"
+
+namespace rheodda::fit {
+
+laws::ParameterValues FitResult::values() const {
+  laws::ParameterValues v;
+  for (const auto& p : parameters) v[p.name] = p.value;
+  return v;
+}
+
+std::vector<double> predict(const laws::ContactRheology& law, const laws::StagedHistory& history,
+                            const std::vector<double>& times) {
+  std::vector<double> out;
+  out.reserve(times.size());
+  for (double t : times) {
+    const auto d = laws::exact_displacement(law, history, t);
+    if (!d)
+      throw FitError(std::string(law.name()),
+                     fmt::format("law '{}' has no exact response to a staged stress history",
+                                 law.name()));
+    out.push_back(*d);
+  }
+  return out;
+}
+
+namespace {
+
+using Kind = laws::CreepElement::Kind;
+
+// ---- The law as a spring plus creep elements, in terms of its parameters ----
+struct Element {
+  Kind kind = Kind::dashpot;
+  int E = -1, eta = -1, threshold = -1;  // parameter indices
+};
+
+struct SeriesStructure {
+  int spring = -1;  // parameter index of E1, -1 without instantaneous spring
+  std::vector<Element> elements;
+};
+
+// Builds the law once with distinct probe values and matches each constant of
+// its spring and elements to the parameter that carries it; this gives the
+// analytic model (and its Jacobian) for any registered SeriesLaw. nullopt if
+// the law is not a SeriesLaw whose constants are its parameters one to one.
+std::optional<SeriesStructure> probe_structure(const laws::LawInfo& info) {
+  const std::size_t np = info.parameters.size();
+  laws::ParameterValues probe;
+  std::vector<double> values(np);
+  for (std::size_t k = 0; k < np; ++k) {
+    values[k] = 1.5 + 0.75 * static_cast<double>(k);
+    probe[info.parameters[k].name] = values[k];
+  }
+  std::unique_ptr<laws::ContactRheology> law;
+  try {
+    law = info.make(laws::validate_parameters(info.name, info.parameters, probe));
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  const auto* series = dynamic_cast<const laws::SeriesLaw*>(law.get());
+  if (!series) return std::nullopt;
+  std::vector<int> used(np, 0);
+  bool ok = true;
+  auto index_of = [&](double v) {
+    for (std::size_t k = 0; k < np; ++k)
+      if (values[k] == v) {
+        ++used[k];
+        return static_cast<int>(k);
+      }
+    ok = false;
+    return -1;
+  };
+  SeriesStructure s;
+  if (const auto e1 = series->instantaneous_stiffness()) s.spring = index_of(*e1);
+  for (const auto& el : series->elements()) {
+    Element e;
+    e.kind = el.kind;
+    e.eta = index_of(el.eta);
+    if (el.kind == Kind::kelvin) e.E = index_of(el.E);
+    if (el.kind == Kind::bingham) e.threshold = index_of(el.threshold);
+    s.elements.push_back(e);
+  }
+  if (!ok) return std::nullopt;
+  for (int u : used)
+    if (u != 1) return std::nullopt;
+  return s;
+}
+
+// ---- The least-squares problem ------------------------------------------------
+struct Problem {
+  const laws::LawInfo* info = nullptr;
+  const CreepData* data = nullptr;
+  std::optional<SeriesStructure> structure;
+  std::size_t n = 0, np = 0;
+  double inv_scale = 1.0;  // residuals are (model - data) / max|data|, so that they are O(1)
+  std::vector<double> stage_t, stage_f, flow_before;  // flow_before[k] = sum_{i<k} F_i (t_{i+1} - t_i)
+  // Cache: the analytic Jacobian is computed with the residuals, at no extra exp() cost.
+  std::vector<double> cached_x, cached_jac;
+  std::vector<double> values;  // scratch: exp(x)
+};
+
+void to_values(const gsl_vector* x, Problem& pr) {
+  for (std::size_t k = 0; k < pr.np; ++k)
+    pr.values[k] = std::exp(std::clamp(gsl_vector_get(x, k), -700.0, 700.0));
+}
+
+// Exact staged response of a series law and its derivatives with respect to
+// the log parameters (docs/fitting.md, "What is fitted"):
+//   spring   F(t)/E1                                   d/dlnE1 = -F(t)/E1
+//   Kelvin   sum_i dF_i/E (1 - e^-r_i), r_i = E (t - t_i)/eta
+//            d/dlnE = dF_i/E (r_i e^-r_i - b_i),  d/dlneta = -dF_i/E r_i e^-r_i
+//   dashpot  sum_i F_i dt_i/eta                        d/dlneta = -term
+//   Bingham  sum_i sign(F_i)<|F_i| - Fs> dt_i/eta      d/dlnFs = -sign(F_i) Fs dt_i/eta
+// (the seed's eq. 2 superposed over the stages, eqs. 4-6; laws::exact_displacement).
+void evaluate_series(Problem& pr, double* f, double* jac) {
+  const auto& s = *pr.structure;
+  const auto& data = *pr.data;
+  const double* p = pr.values.data();
+  const std::size_t np = pr.np;
+  for (std::size_t k = 0; k < data.stages.size(); ++k) {
+    const auto& stage = data.stages[k];
+    const double fk = pr.stage_f[k];
+    for (std::size_t j = stage.first; j < stage.first + stage.count; ++j) {
+      const double t = data.t[j];
+      double model = 0.0;
+      double* row = jac + j * np;
+      std::fill(row, row + np, 0.0);
+      if (s.spring >= 0) {
+        const double v = fk / p[s.spring];
+        model += v;
+        row[s.spring] -= v;
+      }
+      for (const auto& el : s.elements) {
+        const double eta = p[el.eta];
+        if (el.kind == Kind::kelvin) {
+          const double e = p[el.E];
+          double prev = 0.0;
+          for (std::size_t i = 0; i <= k; ++i) {
+            const double df = pr.stage_f[i] - prev;
+            prev = pr.stage_f[i];
+            if (df == 0.0) continue;
+            const double r = e * (t - pr.stage_t[i]) / eta;
+            const double b = laws::kelvin_b(r);
+            const double re = r * std::exp(-r);
+            const double a = df / e;
+            model += a * b;
+            row[el.E] += a * (re - b);
+            row[el.eta] -= a * re;
+          }
+        } else if (el.kind == Kind::dashpot) {
+          const double g = (pr.flow_before[k] + fk * (t - pr.stage_t[k])) / eta;
+          model += g;
+          row[el.eta] -= g;
+        } else {  // Bingham
+          const double fs = p[el.threshold];
+          for (std::size_t i = 0; i <= k; ++i) {
+            const double fi = pr.stage_f[i];
+            if (std::abs(fi) <= fs) continue;
+            const double dt = (i < k ? pr.stage_t[i + 1] : t) - pr.stage_t[i];
+            const double sign = fi > 0.0 ? 1.0 : -1.0;
+            const double g = (fi - sign * fs) * dt / eta;
+            model += g;
+            row[el.eta] -= g;
+            row[el.threshold] -= sign * fs * dt / eta;
+          }
+        }
+      }
+      f[j] = (model - data.displacement[j]) * pr.inv_scale;
+      for (std::size_t c = 0; c < np; ++c) row[c] *= pr.inv_scale;
+    }
+  }
+}
+
+// Any other registered law: build it and use laws::exact_displacement.
+bool evaluate_generic(Problem& pr, double* f) {
+  laws::ParameterValues v;
+  for (std::size_t k = 0; k < pr.np; ++k) v[pr.info->parameters[k].name] = pr.values[k];
+  std::unique_ptr<laws::ContactRheology> law;
+  try {
+    law = pr.info->make(laws::validate_parameters(pr.info->name, pr.info->parameters, v));
+  } catch (const std::exception&) {
+    return false;
+  }
+  for (std::size_t j = 0; j < pr.n; ++j) {
+    const auto d = laws::exact_displacement(*law, pr.data->history, pr.data->t[j]);
+    if (!d) return false;
+    f[j] = (*d - pr.data->displacement[j]) * pr.inv_scale;
+  }
+  return true;
+}
+
+// A residual that is not finite (parameters far out) becomes a large finite
+// one, so the trust region rejects the step instead of failing.
+void sanitize(double* f, std::size_t n) {
+  for (std::size_t j = 0; j < n; ++j)
+    if (!std::isfinite(f[j])) f[j] = 1e100;
+}
+
+int residual_cb(const gsl_vector* x, void* params, gsl_vector* f) {
+  auto& pr = *static_cast<Problem*>(params);
+  to_values(x, pr);
+  if (pr.structure) {
+    evaluate_series(pr, f->data, pr.cached_jac.data());
+    for (std::size_t k = 0; k < pr.np; ++k) pr.cached_x[k] = gsl_vector_get(x, k);
+  } else if (!evaluate_generic(pr, f->data)) {
+    for (std::size_t j = 0; j < pr.n; ++j) f->data[j] = 1e100;
+  }
+  sanitize(f->data, pr.n);
+  return GSL_SUCCESS;
+}
+
+int jacobian_cb(const gsl_vector* x, void* params, gsl_matrix* jac) {
+  auto& pr = *static_cast<Problem*>(params);
+  bool same = true;
+  for (std::size_t k = 0; k < pr.np; ++k) same = same && pr.cached_x[k] == gsl_vector_get(x, k);
+  if (!same) {
+    std::vector<double> f(pr.n);
+    to_values(x, pr);
+    evaluate_series(pr, f.data(), pr.cached_jac.data());
+    for (std::size_t k = 0; k < pr.np; ++k) pr.cached_x[k] = gsl_vector_get(x, k);
+  }
+  for (std::size_t j = 0; j < pr.n; ++j)
+    for (std::size_t k = 0; k < pr.np; ++k) {
+      const double v = pr.cached_jac[j * pr.np + k];
+      gsl_matrix_set(jac, j, k, std::isfinite(v) ? v : 0.0);
+    }
+  return GSL_SUCCESS;
+}
+
+// ---- Starting values from the curve itself ----------------------------------
+struct CurveFeatures {
+  double df = 0.0;     // stress step of the analysed stage [stress]
+  double c0 = 0.0;     // compliance at the first point (instantaneous jump) [length/stress]
+  double slope = 0.0;  // late compliance rate [length/(stress*time)]
+  double intercept = 0.0;  // late line extrapolated to the stage start [length/stress]
+  double c_last = 0.0, c_max = 0.0;
+  double duration = 0.0;   // of the stage [time]
+  double t63 = 0.0;        // time to 63% of the transient [time]
+  double f_max = 0.0;      // largest |stress| [stress]
+};
+
+CurveFeatures analyse_curve(const CreepData& data, double j0_hint_fraction) {
+  (void)j0_hint_fraction;
+  CurveFeatures c;
+  // The first stage that changes the stress and has enough points.
+  std::size_t k = 0;
+  double prev = 0.0;
+  for (std::size_t i = 0; i < data.stages.size(); ++i) {
+    const double df = data.stages[i].stress - (i ? data.stages[i - 1].stress : 0.0);
+    c.f_max = std::max(c.f_max, std::abs(data.stages[i].stress));
+    if (c.df == 0.0 && df != 0.0 && data.stages[i].count >= 3) {
+      k = i;
+      c.df = df;
+    }
+  }
+  if (c.df == 0.0) {  // fall back on the first loaded stage, whatever its size
+    for (std::size_t i = 0; i < data.stages.size(); ++i)
+      if (data.stages[i].stress != (i ? data.stages[i - 1].stress : 0.0)) {
+        k = i;
+        c.df = data.stages[i].stress - (i ? data.stages[i - 1].stress : 0.0);
+        break;
+      }
+  }
+  const auto& st = data.stages[k];
+  prev = k ? data.displacement[st.first - 1] : 0.0;
+  std::vector<double> tau, comp;
+  for (std::size_t j = st.first; j < st.first + st.count; ++j) {
+    tau.push_back(data.t[j] - st.t);
+    comp.push_back((data.displacement[j] - prev) / c.df);
+  }
+  const std::size_t m = tau.size();
+  c.c0 = comp.front();
+  c.c_last = comp.back();
+  for (double v : comp) c.c_max = std::max(c.c_max, std::abs(v));
+  c.duration = tau.back();
+  // Late line: least squares over the last third of the stage.
+  const std::size_t from = m >= 6 ? m - m / 3 : (m >= 2 ? m - 2 : 0);
+  double st_ = 0, sc = 0, stt = 0, stc = 0, cnt = 0;
+  for (std::size_t j = from; j < m; ++j) {
+    st_ += tau[j];
+    sc += comp[j];
+    stt += tau[j] * tau[j];
+    stc += tau[j] * comp[j];
+    cnt += 1;
+  }
+  const double den = cnt * stt - st_ * st_;
+  c.slope = den > 0 ? (cnt * stc - st_ * sc) / den : 0.0;
+  c.intercept = cnt > 0 ? (sc - c.slope * st_) / cnt : c.c_last;
+  // Time to 63% of the transient above the jump and below the late line.
+  const double amp = c.intercept - c.c0;
+  c.t63 = c.duration / 3.0;
+  if (amp > 0)
+    for (std::size_t j = 0; j < m; ++j)
+      if (comp[j] - c.c0 - std::max(c.slope, 0.0) * tau[j] >= (1.0 - std::exp(-1.0)) * amp) {
+        c.t63 = tau[j];
+        break;
+      }
+  if (!(c.t63 > 0)) c.t63 = c.duration > 0 ? c.duration / 100.0 : 1.0;
+  if (!(c.duration > 0)) c.duration = data.t.back() > 0 ? data.t.back() : 1.0;
+  return c;
+}
+
+// Start derived from the curve: jump -> E1, late slope -> dashpot viscosity,
+// late intercept minus jump -> Kelvin compliance 1/E2, time to 63% of the
+// transient -> retardation time eta2/E2.
+std::vector<double> series_start(const SeriesStructure& s, std::size_t np, const CurveFeatures& c) {
+  std::vector<double> v(np, 1.0);
+  const double cmax = c.c_max > 0 ? c.c_max : 1.0;
+  const double j0 = s.spring >= 0 ? (c.c0 > 0.01 * cmax ? c.c0 : 0.5 * cmax) : 0.0;
+  if (s.spring >= 0) v[s.spring] = 1.0 / j0;
+  bool flow = false;
+  int kelvins = 0;
+  for (const auto& el : s.elements) {
+    flow = flow || el.kind != Kind::kelvin;
+    kelvins += el.kind == Kind::kelvin;
+  }
+  const double rate = c.slope > 0.01 * cmax / c.duration ? c.slope : 0.1 * cmax / c.duration;
+  double amp = (flow ? c.intercept : c.c_last) - j0;
+  if (!(amp > 0.02 * cmax)) amp = 0.1 * cmax;
+  int kelvin_index = 0;
+  for (const auto& el : s.elements) {
+    if (el.kind == Kind::kelvin) {
+      // Split the transient among the Kelvin elements, retardation times spread around t63.
+      const double e = kelvins / amp;
+      const double spread = kelvins == 1 ? 1.0 : std::pow(9.0, kelvin_index - 0.5 * (kelvins - 1));
+      v[el.E] = e;
+      v[el.eta] = e * c.t63 * spread;
+      ++kelvin_index;
+    } else if (el.kind == Kind::dashpot) {
+      v[el.eta] = 1.0 / rate;
+    } else {
+      const double fs = 0.5 * c.f_max;
+      v[el.threshold] = fs;
+      v[el.eta] = std::max(c.f_max - fs, 0.1 * c.f_max) / (c.f_max * rate);
+    }
+  }
+  return v;
+}
+
+// Without a series structure: a start from each parameter's dimension.
+std::vector<double> generic_start(const laws::LawInfo& info, const CurveFeatures& c) {
+  std::vector<double> v;
+  const double cmax = c.c_max > 0 ? c.c_max : 1.0;
+  for (const auto& spec : info.parameters) {
+    if (spec.unit == "stress/length") v.push_back(1.0 / cmax);
+    else if (spec.unit == "stress*time/length") v.push_back(c.duration / cmax);
+    else if (spec.unit == "stress") v.push_back(0.5 * c.f_max);
+    else if (spec.unit == "time") v.push_back(c.duration / 3.0);
+    else v.push_back(1.0);
+  }
+  return v;
+}
+
+// Restart r >= 1: the retardation times, the Kelvin compliances and the
+// threshold scaled by fixed factors, then log-uniform factors in [1/10, 10]
+// from a fixed-seed generator (the fit is deterministic).
+std::vector<double> restart_start(const std::vector<double>& base, const std::optional<SeriesStructure>& s,
+                                  int r, double f_max) {
+  std::vector<double> v = base;
+  static constexpr double tau_f[] = {0.1, 10.0, 0.3, 3.0};
+  static constexpr double amp_f[] = {1.0, 1.0, 2.0, 0.5};
+  static constexpr double fs_f[] = {0.3, 1.5, 0.6, 1.2};
+  if (s && r <= 4) {
+    for (const auto& el : s->elements) {
+      if (el.kind == Kind::kelvin) {
+        v[el.E] /= amp_f[r - 1];
+        v[el.eta] *= tau_f[r - 1] / amp_f[r - 1];
+      } else if (el.kind == Kind::bingham) {
+        v[el.threshold] = std::min(v[el.threshold] * fs_f[r - 1], 0.95 * f_max);
+      }
+    }
+    return v;
+  }
+  std::uint64_t state = 0x9E3779B97F4A7C15ull * static_cast<std::uint64_t>(r + 1);
+  for (auto& x : v) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    const double u = static_cast<double>(state >> 11) * 0x1.0p-53;
+    x *= std::pow(10.0, 2.0 * u - 1.0);
+  }
+  return v;
+}
+
+struct ErrorHandlerOff {
+  gsl_error_handler_t* old = gsl_set_error_handler_off();
+  ~ErrorHandlerOff() { gsl_set_error_handler(old); }
+};
+
+struct GslFree {
+  void operator()(gsl_multifit_nlinear_workspace* w) const { gsl_multifit_nlinear_free(w); }
+  void operator()(gsl_vector* v) const { gsl_vector_free(v); }
+  void operator()(gsl_matrix* m) const { gsl_matrix_free(m); }
+};
+
+std::string fmt_g(double v) { return fmt::format("{:.4g}", v); }
+
+}  // namespace
+
+FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOptions& options) {
+  const ErrorHandlerOff handler_off;
+  const std::size_t n = data.t.size(), np = info.parameters.size();
+  for (const auto& spec : info.parameters)
+    if (spec.min < 0.0)
+      throw FitError(info.name, fmt::format("law '{}': parameter {} may be negative (range {}); fits "
+                                            "work on positive parameters only",
+                                            info.name, spec.name, spec.range_text()));
+  if (n < np + 1)
+    throw FitError(info.name,
+                   fmt::format("{}: too few points for law '{}': {} parameters need at least {} "
+                               "points, the data has {}",
+                               data.source, info.name, np, np + 1, n));
+  bool loaded = false;
+  for (const auto& s : data.stages) loaded = loaded || s.stress != 0.0;
+  if (!loaded)
+    throw FitError(info.name, fmt::format("{}: the applied stress is zero in every stage; nothing "
+                                          "to fit", data.source));
+  double dmax = 0.0, mean = 0.0;
+  for (double d : data.displacement) {
+    dmax = std::max(dmax, std::abs(d));
+    mean += d / static_cast<double>(n);
+  }
+  if (dmax == 0.0)
+    throw FitError(info.name,
+                   fmt::format("{}: the displacement is zero everywhere; nothing to fit", data.source));
+
+  Problem pr;
+  pr.info = &info;
+  pr.data = &data;
+  pr.structure = probe_structure(info);
+  pr.n = n;
+  pr.np = np;
+  pr.inv_scale = 1.0 / dmax;
+  pr.values.resize(np);
+  pr.cached_x.assign(np, std::numeric_limits<double>::quiet_NaN());
+  pr.cached_jac.assign(n * np, 0.0);
+  double flow = 0.0;
+  for (std::size_t k = 0; k < data.stages.size(); ++k) {
+    pr.stage_t.push_back(data.stages[k].t);
+    pr.stage_f.push_back(data.stages[k].stress);
+    pr.flow_before.push_back(flow);
+    if (k + 1 < data.stages.size())
+      flow += data.stages[k].stress * (data.stages[k + 1].t - data.stages[k].t);
+  }
+
+  const CurveFeatures features = analyse_curve(data, 0.0);
+  const std::vector<double> base = pr.structure ? series_start(*pr.structure, np, features)
+                                                : generic_start(info, features);
+
+  gsl_multifit_nlinear_fdf fdf;
+  fdf.f = residual_cb;
+  fdf.df = pr.structure ? jacobian_cb : nullptr;  // nullptr: GSL's finite differences
+  fdf.fvv = nullptr;
+  fdf.n = n;
+  fdf.p = np;
+  fdf.params = &pr;
+  gsl_multifit_nlinear_parameters params = gsl_multifit_nlinear_default_parameters();
+  params.trs = gsl_multifit_nlinear_trs_lm;
+  std::unique_ptr<gsl_multifit_nlinear_workspace, GslFree> w(
+      gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &params, n, np));
+  std::unique_ptr<gsl_vector, GslFree> x(gsl_vector_alloc(np));
+
+  const int starts = 1 + std::max(options.restarts, 0);
+  std::vector<double> best_x(np), rss_of_start;
+  double best_rss = std::numeric_limits<double>::infinity();
+  int best_iter = 0, best_status = GSL_FAILURE;
+  for (int r = 0; r < starts; ++r) {
+    const std::vector<double> start = r == 0 ? base : restart_start(base, pr.structure, r, features.f_max);
+    for (std::size_t k = 0; k < np; ++k) gsl_vector_set(x.get(), k, std::log(start[k]));
+    gsl_multifit_nlinear_init(x.get(), &fdf, w.get());
+    int info_code = 0;
+    const int status = gsl_multifit_nlinear_driver(static_cast<std::size_t>(options.max_iterations),
+                                                   1e-10, 1e-15, 0.0, nullptr, nullptr, &info_code,
+                                                   w.get());
+    double chisq = 0.0;
+    gsl_blas_ddot(gsl_multifit_nlinear_residual(w.get()), gsl_multifit_nlinear_residual(w.get()),
+                  &chisq);
+    rss_of_start.push_back(chisq);
+    if (std::isfinite(chisq) && chisq < best_rss) {
+      best_rss = chisq;
+      best_iter = static_cast<int>(gsl_multifit_nlinear_niter(w.get()));
+      best_status = status;
+      const gsl_vector* xs = gsl_multifit_nlinear_position(w.get());
+      for (std::size_t k = 0; k < np; ++k) best_x[k] = gsl_vector_get(xs, k);
+    }
+  }
+  if (!std::isfinite(best_rss))
+    throw FitError(info.name, fmt::format("law '{}': no start gave a finite fit", info.name));
+
+  // Kelvin elements in series are interchangeable; report them ordered by
+  // retardation time eta/E, shortest first (E2, eta2 the fast one), so the
+  // labels do not depend on which start won.
+  if (pr.structure) {
+    std::vector<const Element*> kelvins;
+    for (const auto& el : pr.structure->elements)
+      if (el.kind == Kind::kelvin) kelvins.push_back(&el);
+    std::vector<std::pair<double, double>> pairs;  // (ln E, ln eta)
+    for (const auto* el : kelvins) pairs.emplace_back(best_x[el->E], best_x[el->eta]);
+    std::stable_sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) {
+      return a.second - a.first < b.second - b.first;
+    });
+    for (std::size_t i = 0; i < kelvins.size(); ++i) {
+      best_x[kelvins[i]->E] = pairs[i].first;
+      best_x[kelvins[i]->eta] = pairs[i].second;
+    }
+  }
+
+  // Jacobian at the best point, then the covariance of the log parameters:
+  // C = s^2 (J^T J)^-1 with s^2 = RSS/(n - p).
+  for (std::size_t k = 0; k < np; ++k) gsl_vector_set(x.get(), k, best_x[k]);
+  gsl_multifit_nlinear_init(x.get(), &fdf, w.get());
+  std::unique_ptr<gsl_matrix, GslFree> covar(gsl_matrix_alloc(np, np));
+  gsl_multifit_nlinear_covar(gsl_multifit_nlinear_jac(w.get()), 1e-12, covar.get());
+  std::vector<double> fitted_scaled(gsl_multifit_nlinear_residual(w.get())->data,
+                                    gsl_multifit_nlinear_residual(w.get())->data + n);
+
+  FitResult res;
+  res.law = info.name;
+  res.points = n;
+  res.starts = starts;
+  res.iterations = best_iter;
+  res.converged = best_status == GSL_SUCCESS || best_status == GSL_ENOPROG;
+  const double scale = dmax;
+  res.rss = best_rss * scale * scale;
+  double tss = 0.0;
+  for (std::size_t j = 0; j < n; ++j) {
+    res.fitted.push_back(data.displacement[j] + fitted_scaled[j] * scale);
+    tss += (data.displacement[j] - mean) * (data.displacement[j] - mean);
+  }
+  res.r2 = tss > 0 ? 1.0 - res.rss / tss : 1.0;
+  res.rmse = std::sqrt(res.rss / static_cast<double>(n));
+  const double nd = static_cast<double>(n), k = static_cast<double>(np);
+  const double log_mse = std::log(std::max(res.rss / nd, std::numeric_limits<double>::min()));
+  res.aic = nd * log_mse + 2.0 * k;
+  res.bic = nd * log_mse + k * std::log(nd);
+  for (double rs : rss_of_start)
+    res.starts_agreeing += std::abs(rs - best_rss) <= 1e-6 * best_rss + 1e-24;
+
+  const double s2 = best_rss / (nd - k);  // scaled residual variance
+  for (std::size_t i = 0; i < np; ++i) {
+    ParameterEstimate e;
+    e.name = info.parameters[i].name;
+    e.unit = info.parameters[i].unit;
+    e.value = std::exp(best_x[i]);
+    const double var = gsl_matrix_get(covar.get(), i, i);
+    e.identifiable = var > 0.0 && std::isfinite(var);
+    e.std_error = e.identifiable ? e.value * std::sqrt(var * s2) : 0.0;  // delta method: dp = p dln p
+    res.parameters.push_back(e);
+  }
+  res.correlation.assign(np * np, 0.0);
+  for (std::size_t i = 0; i < np; ++i)
+    for (std::size_t j = 0; j < np; ++j) {
+      const double d = gsl_matrix_get(covar.get(), i, i) * gsl_matrix_get(covar.get(), j, j);
+      res.correlation[i * np + j] =
+          i == j ? 1.0 : (d > 0 ? gsl_matrix_get(covar.get(), i, j) / std::sqrt(d) : 0.0);
+    }
+
+  // ---- Warnings: what the data cannot tell ----
+  auto& warn = res.warnings;
+  if (!res.converged)
+    warn.push_back(fmt::format("the fit stopped before converging ({}, {} iterations)",
+                               gsl_strerror(best_status), best_iter));
+  for (const auto& e : res.parameters)
+    if (!e.identifiable)
+      warn.push_back(fmt::format("{} is not identifiable: the data do not depend on it independently "
+                                 "of the other parameters",
+                                 e.name));
+  for (std::size_t i = 0; i < np; ++i)
+    for (std::size_t j = i + 1; j < np; ++j)
+      if (res.parameters[i].identifiable && res.parameters[j].identifiable &&
+          std::abs(res.correlation_at(i, j)) > options.correlation_limit)
+        warn.push_back(fmt::format("{} and {} are strongly correlated (corr = {:.4f}): the data "
+                                   "fix a combination of them, not each",
+                                   res.parameters[i].name, res.parameters[j].name,
+                                   res.correlation_at(i, j)));
+  for (const auto& e : res.parameters)
+    if (e.identifiable && e.std_error > options.relative_error_limit * e.value)
+      warn.push_back(fmt::format("{} is poorly constrained: its standard error is {:.0f}% of its "
+                                 "value",
+                                 e.name, 100.0 * e.std_error / e.value));
+  if (pr.structure) {
+    const double duration = data.t.back() - data.stages.front().t;
+    double first_step = duration;
+    for (std::size_t j = 0; j < n; ++j)
+      if (data.t[j] > data.stages.front().t) {
+        first_step = data.t[j] - data.stages.front().t;
+        break;
+      }
+    for (const auto& el : pr.structure->elements) {
+      const auto& p = res.parameters;
+      if (el.kind == Kind::kelvin) {
+        const double tau = p[el.eta].value / p[el.E].value;
+        if (duration < options.retardation_factor * tau)
+          warn.push_back(fmt::format(
+              "the test lasts {} (time), shorter than {} x {}/{} = {}: the Kelvin element has not "
+              "settled, so {} and {} trade off with the other parameters",
+              fmt_g(duration), fmt_g(options.retardation_factor), p[el.eta].name, p[el.E].name,
+              fmt_g(options.retardation_factor * tau), p[el.E].name, p[el.eta].name));
+        if (tau < first_step)
+          warn.push_back(fmt::format(
+              "{}/{} = {} (time) is shorter than the first sampling interval {}: that Kelvin "
+              "element acts as part of the instantaneous response",
+              p[el.eta].name, p[el.E].name, fmt_g(tau), fmt_g(first_step)));
+      } else if (el.kind == Kind::bingham) {
+        if (p[el.threshold].value >= features.f_max)
+          warn.push_back(fmt::format("the threshold {} = {} is above every applied stress (max {}): "
+                                     "{} is not constrained by the data",
+                                     p[el.threshold].name, fmt_g(p[el.threshold].value),
+                                     fmt_g(features.f_max), p[el.eta].name));
+      }
+    }
+  }
+  return res;
+}
+
+std::vector<FitResult> fit_all(const laws::LawRegistry& registry, const CreepData& data,
+                               Criterion criterion, std::vector<std::string>& skipped,
+                               const FitOptions& options) {
+  std::vector<FitResult> out;
+  for (const auto& info : registry.laws()) {
+    try {
+      out.push_back(fit_law(info, data, options));
+    } catch (const FitError& e) {
+      skipped.push_back(fmt::format("{}: {}", info.name, e.what()));
+    }
+  }
+  std::stable_sort(out.begin(), out.end(), [criterion](const FitResult& a, const FitResult& b) {
+    return criterion == Criterion::aic ? a.aic < b.aic : a.bic < b.bic;
+  });
+  return out;
+}
+
+}  // namespace rheodda::fit
