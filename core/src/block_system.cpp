@@ -7,7 +7,14 @@ namespace rheodda::core {
 void BlockSystem::reset(int n) {
   diagonal_.assign(static_cast<std::size_t>(n), Mat6::Zero());
   off_.clear();
-  rhs_ = Eigen::VectorXd::Zero(6 * static_cast<Eigen::Index>(n));
+  rhs_.setZero(6 * static_cast<Eigen::Index>(n));
+  finalized_ = true;
+}
+
+void BlockSystem::reset(const std::vector<Mat6>& diagonal, const Eigen::VectorXd& rhs) {
+  diagonal_ = diagonal;  // reuses the storage when the size is unchanged
+  off_.clear();
+  rhs_ = rhs;
   finalized_ = true;
 }
 

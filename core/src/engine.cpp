@@ -395,9 +395,7 @@ StepReport Engine::Impl::step(double dt_cap) {
     ContactCheck check;
     while (iterations < s.max_open_close) {
       t0 = Clock::now();
-      system.reset(static_cast<int>(base_diag.size()));
-      for (std::size_t k = 0; k < base_diag.size(); ++k) system.diagonal(static_cast<int>(k)) = base_diag[k];
-      system.rhs() = base_rhs;
+      system.reset(base_diag, base_rhs);
       contacts->assemble(views, system);
       system.finalize();
       rep.assembly_seconds += seconds_since(t0);

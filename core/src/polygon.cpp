@@ -12,12 +12,15 @@
 
 namespace rheodda::core {
 
-PolygonIntegrals polygon_integrals(std::span<const Vec2> v) {
+namespace {
+
+// Fan sums with coordinates measured from o (no copy of the vertices).
+PolygonIntegrals integrals_about(std::span<const Vec2> v, const Vec2& o) {
   PolygonIntegrals r;
   const std::size_t n = v.size();
   for (std::size_t k = 0; k < n; ++k) {
-    const Vec2& p = v[k];
-    const Vec2& q = v[(k + 1) % n];
+    const Vec2 p = v[k] - o;
+    const Vec2 q = v[(k + 1) % n] - o;
     const double c = p.x() * q.y() - q.x() * p.y();
     r.S += c;
     r.Sx += c * (p.x() + q.x());
@@ -35,17 +38,17 @@ PolygonIntegrals polygon_integrals(std::span<const Vec2> v) {
   return r;
 }
 
+}  // namespace
+
+PolygonIntegrals polygon_integrals(std::span<const Vec2> v) { return integrals_about(v, Vec2::Zero()); }
+
 PolygonIntegrals central_integrals(std::span<const Vec2> v, Vec2* centroid) {
   // Two passes: a rough centre (first vertex) removes the far-origin
   // cancellation, then the exact centroid of the shifted polygon.
-  std::vector<Vec2> shifted(v.begin(), v.end());
   const Vec2 o = v.empty() ? Vec2::Zero() : v[0];
-  for (auto& p : shifted) p -= o;
-  const PolygonIntegrals first = polygon_integrals(shifted);
-  const Vec2 c_local = first.centroid();
-  for (auto& p : shifted) p -= c_local;
-  if (centroid) *centroid = o + c_local;
-  return polygon_integrals(shifted);
+  const Vec2 c = o + integrals_about(v, o).centroid();
+  if (centroid) *centroid = c;
+  return integrals_about(v, c);
 }
 
 namespace {

@@ -27,6 +27,8 @@ class BlockSystem final : public contact::SystemSink {
  public:
   /// n blocks, all terms zero.
   void reset(int n);
+  /// Starts from the given diagonal blocks and right-hand side, no off-diagonal blocks.
+  void reset(const std::vector<Mat6>& diagonal, const Eigen::VectorXd& rhs);
   int block_count() const { return static_cast<int>(diagonal_.size()); }
 
   /// K_ij += k (and K_ji += k^T for i != j). Call once per pair.
