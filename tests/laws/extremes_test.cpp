@@ -126,8 +126,8 @@ BOOST_AUTO_TEST_CASE(million_steps_of_burgers_do_not_drift_from_closed_form) {
   // dashpot sums 1e6 equal increments, whose rounding errors (each <= eps/2
   // relative to the running sum) add up to at most ~1e6 * 1.1e-16 = 1.1e-10
   // relative in the worst case and ~1e3 * 1.1e-16 as a random walk; the
-  // Kelvin recurrence contracts its errors. Measured: ~1e-13 (see bench
-  // laws_bench). 1e-9 keeps a decade of margin over the worst case.
+  // Kelvin recurrence contracts its errors. Measured: 1.5e-12 for each scheme
+  // (bench/laws_bench). 1e-9 keeps a decade of margin over the worst case.
   const auto& r = table1()[0];
   const auto law = burgers(r);
   for (Scheme scheme : all_schemes()) {

@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Builds (Release) and runs every benchmark in bench/; prints their figures.
+# Usage: scripts/bench.sh            (build dir: $RHEODDA_BUILD_DIR or build/)
+# Add a new benchmark to BENCHES below when you add it to bench/CMakeLists.txt.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${RHEODDA_BUILD_DIR:-$root/build}"
+BENCHES=(
+  laws_bench
+  contact_bench
+  engine_bench
+)
+"$root/scripts/install-deps.sh"
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRHEODDA_BUILD_BENCH=ON >/dev/null
+cmake --build "$build" -j "$(nproc)" --target "${BENCHES[@]}"
+for b in "${BENCHES[@]}"; do
+  echo "==== $b ===="
+  "$build/bench/$b"
+  echo
+done
