@@ -15,4 +15,7 @@ void add_law_commands(CLI::App& app);
 /// `rheodda check`, `rheodda run`, `rheodda plot` (apps/run_commands.cpp).
 void add_scene_commands(CLI::App& app);
 
+/// `rheodda fit`: fit laws to laboratory creep curves (apps/fit_command.cpp).
+void add_fit_command(CLI::App& app);
+
 }  // namespace rheodda::apps

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   rheodda::apps::add_law_commands(app);
   rheodda::apps::add_scene_commands(app);
+  rheodda::apps::add_fit_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

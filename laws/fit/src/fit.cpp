@@ -603,13 +603,13 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
         const double tau = p[el.eta].value / p[el.E].value;
         if (duration < options.retardation_factor * tau)
           warn.push_back(fmt::format(
-              "the test lasts {} (time), shorter than {} x {}/{} = {}: the Kelvin element has not "
+              "the test lasts {}, shorter than {} x {}/{} = {}: the Kelvin element has not "
               "settled, so {} and {} trade off with the other parameters",
               fmt_g(duration), fmt_g(options.retardation_factor), p[el.eta].name, p[el.E].name,
               fmt_g(options.retardation_factor * tau), p[el.E].name, p[el.eta].name));
         if (tau < first_step)
           warn.push_back(fmt::format(
-              "{}/{} = {} (time) is shorter than the first sampling interval {}: that Kelvin "
+              "{}/{} = {} is shorter than the first sampling interval {}: that Kelvin "
               "element acts as part of the instantaneous response",
               p[el.eta].name, p[el.E].name, fmt_g(tau), fmt_g(first_step)));
       } else if (el.kind == Kind::bingham) {

@@ -1,0 +1,404 @@
+// `rheodda fit`: fit rheology laws to a laboratory creep curve (docs/fitting.md).
+// Sample runs:
+//   rheodda fit examples/creep-data/table1-row1.csv --law burgers --stress 0.232 --units "MPa, mm, h"
+//   rheodda fit examples/creep-data/table1-row1.csv --law all --stress 0.232 --units "MPa, mm, h"
+//       --json fit.json --yaml law.yaml --plot fit.png
+//   rheodda fit steps.csv --law burgers --stress-column tau
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "rheodda/fit/fit.hpp"
+#include "rheodda/laws/registry.hpp"
+
+namespace rheodda::apps {
+namespace {
+
+using namespace rheodda::laws;
+using rheodda::fit::CreepData;
+using rheodda::fit::FitResult;
+
+struct FitArgs {
+  std::string data;
+  std::string law;
+  std::string stress, stress_column;
+  std::string time_column = "t", displacement_column = "displacement";
+  std::string units;
+  std::string rank_by = "bic";
+  int restarts = 4;
+  std::string json, yaml, plot;
+};
+
+/// The user's unit names for the three dimensions of the laws' schemas.
+struct Units {
+  std::string text;  ///< as given, echoed in reports; empty if not given
+  std::string stress = "stress", length = "length", time = "time";
+  /// "stress*time/length" -> "MPa*h/mm".
+  std::string of(const std::string& dimension) const {
+    std::string out;
+    std::size_t i = 0;
+    while (i < dimension.size()) {
+      std::size_t j = i;
+      while (j < dimension.size() && std::isalpha(static_cast<unsigned char>(dimension[j]))) ++j;
+      if (j == i) {
+        out += dimension[i++];
+        continue;
+      }
+      const std::string word = dimension.substr(i, j - i);
+      out += word == "stress" ? stress : word == "length" ? length : word == "time" ? time : word;
+      i = j;
+    }
+    return out;
+  }
+};
+
+Units parse_units(const std::string& text) {
+  Units u;
+  if (text.empty()) return u;
+  u.text = text;
+  std::vector<std::string> items;
+  std::size_t pos = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', pos);
+    std::string item = text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+    item.erase(0, item.find_first_not_of(" \t"));
+    item.erase(item.find_last_not_of(" \t") + 1);
+    items.push_back(item);
+    if (comma == std::string::npos) break;
+    pos = comma + 1;
+  }
+  if (items.size() != 3 || items[0].empty() || items[1].empty() || items[2].empty())
+    throw std::invalid_argument(fmt::format(
+        "--units '{}': expected three units 'STRESS, LENGTH, TIME', e.g. \"MPa, mm, h\"", text));
+  u.stress = items[0];
+  u.length = items[1];
+  u.time = items[2];
+  return u;
+}
+
+StagedHistory parse_stress(const std::string& text) {
+  if (text.find(':') != std::string::npos) return StagedHistory::parse(text, "--stress");
+  double v = 0.0;
+  const auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || ec != std::errc() || p != text.data() + text.size() || !std::isfinite(v))
+    throw LawError("stress", fmt::format("--stress '{}' is neither a number nor a staged history "
+                                         "T:V[,T:V...]",
+                                         text));
+  return StagedHistory({{0.0, v}});
+}
+
+std::string plot_terminal(const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext == ".png") return "pngcairo size 960,720 enhanced font 'Sans,10'";
+  if (ext == ".svg") return "svg size 960,720 enhanced font 'Sans,10'";
+  throw std::invalid_argument(
+      fmt::format("--plot {}: the file name must end in .png or .svg", path));
+}
+
+// ---- Screen report -------------------------------------------------------------
+std::string g6(double v) { return fmt::format("{:.6g}", v); }
+
+void print_data(const CreepData& d, const Units& u) {
+  fmt::print("data: {} ({} points, {} stage{}, t from {} to {} {}); units: {}\n", d.source,
+             d.t.size(), d.stages.size(), d.stages.size() == 1 ? "" : "s", g6(d.t.front()),
+             g6(d.t.back()), u.time, u.text.empty() ? "not stated (--units)" : u.text);
+  for (std::size_t i = 0; i < d.stages.size(); ++i)
+    fmt::print("  stage {}: stress {} {} from t = {} ({} points)\n", i + 1, g6(d.stages[i].stress),
+               u.stress, g6(d.stages[i].t), d.stages[i].count);
+}
+
+void print_fit(const FitResult& r, const Units& u) {
+  const auto& info = LawRegistry::builtin().get(r.law);
+  fmt::print("\nlaw {}: {}\n  {}\n", r.law, info.summary, info.equation);
+  fmt::print("  {:<9} {:>14} {:>14} {:>10}  {}\n", "parameter", "value", "std. error", "rel. error",
+             "unit");
+  for (const auto& p : r.parameters)
+    fmt::print("  {:<9} {:>14.7g} {:>14} {:>10}  {}\n", p.name, p.value,
+               p.identifiable ? fmt::format("{:.3g}", p.std_error) : "-",
+               p.identifiable ? fmt::format("{:.3g}%", 100.0 * p.std_error / p.value) : "-",
+               u.of(p.unit));
+  fmt::print("  R^2 {:.8f}   RMSE {:.4g} {}   AIC {:.2f}   BIC {:.2f}   (n = {}, k = {})\n", r.r2,
+             r.rmse, u.length, r.aic, r.bic, r.points, r.parameters.size());
+  fmt::print("  best of {} starts ({} reached it), {} iterations, {}\n", r.starts, r.starts_agreeing,
+             r.iterations, r.converged ? "converged" : "NOT converged");
+  for (const auto& w : r.warnings) fmt::print("  warning: {}\n", w);
+}
+
+std::vector<double> weights(const std::vector<FitResult>& ranked, bool bic) {
+  std::vector<double> w;
+  double sum = 0.0;
+  const double best = bic ? ranked.front().bic : ranked.front().aic;
+  for (const auto& r : ranked) {
+    w.push_back(std::exp(-0.5 * ((bic ? r.bic : r.aic) - best)));
+    sum += w.back();
+  }
+  for (auto& x : w) x /= sum;
+  return w;
+}
+
+void print_ranking(const std::vector<FitResult>& ranked, bool bic, const Units& u) {
+  const auto w = weights(ranked, bic);
+  fmt::print("\nranking by {} (lower is better; weight = exp(-delta/2), normalized):\n",
+             bic ? "BIC" : "AIC");
+  fmt::print("  {:>4}  {:<20} {:>2} {:>12} {:>12} {:>12} {:>10} {:>12} {:>10} {:>8}\n", "rank", "law",
+             "k", fmt::format("RMSE [{}]", u.length), "R^2", "AIC", "dAIC", "BIC", "dBIC", "weight");
+  for (std::size_t i = 0; i < ranked.size(); ++i) {
+    const auto& r = ranked[i];
+    fmt::print("  {:>4}  {:<20} {:>2} {:>12.4g} {:>12.8f} {:>12.2f} {:>10.2f} {:>12.2f} {:>10.2f} {:>8.4f}\n",
+               i + 1, r.law, r.parameters.size(), r.rmse, r.r2, r.aic, r.aic - ranked.front().aic,
+               r.bic, r.bic - ranked.front().bic, w[i]);
+  }
+}
+
+// ---- Files ---------------------------------------------------------------------------
+std::ofstream open_output(const std::string& path, const char* flag) {
+  std::ofstream out(path);
+  if (!out) throw std::invalid_argument(fmt::format("{} {}: cannot open the file for writing", flag, path));
+  return out;
+}
+
+void write_json(const std::string& path, const CreepData& d, const Units& u,
+                const std::vector<FitResult>& fits, const std::vector<std::string>& skipped,
+                const std::string& rank_by) {
+  using nlohmann::json;
+  json stages = json::array();
+  for (const auto& s : d.stages) stages.push_back({{"t", s.t}, {"stress", s.stress}, {"points", s.count}});
+  json out;
+  out["data"] = {{"file", d.source},
+                 {"points", d.t.size()},
+                 {"time_column", d.time_column},
+                 {"displacement_column", d.displacement_column},
+                 {"stress_column", d.stress_column},
+                 {"stages", stages}};
+  out["units"] = {{"text", u.text}, {"stress", u.stress}, {"length", u.length}, {"time", u.time}};
+  json arr = json::array();
+  for (const auto& r : fits) {
+    json params = json::array();
+    for (const auto& p : r.parameters)
+      params.push_back({{"name", p.name},
+                        {"value", p.value},
+                        {"std_error", p.identifiable ? json(p.std_error) : json(nullptr)},
+                        {"unit", u.of(p.unit)},
+                        {"identifiable", p.identifiable}});
+    json corr = json::array();
+    for (std::size_t i = 0; i < r.parameters.size(); ++i) {
+      json row = json::array();
+      for (std::size_t j = 0; j < r.parameters.size(); ++j) row.push_back(r.correlation_at(i, j));
+      corr.push_back(row);
+    }
+    arr.push_back({{"law", r.law},
+                   {"parameters", params},
+                   {"correlation", corr},
+                   {"points", r.points},
+                   {"rss", r.rss},
+                   {"r2", r.r2},
+                   {"rmse", r.rmse},
+                   {"aic", r.aic},
+                   {"bic", r.bic},
+                   {"iterations", r.iterations},
+                   {"starts", r.starts},
+                   {"starts_agreeing", r.starts_agreeing},
+                   {"converged", r.converged},
+                   {"warnings", r.warnings}});
+  }
+  out["fits"] = arr;
+  out["rank_by"] = rank_by;
+  out["best"] = fits.front().law;
+  out["skipped"] = skipped;
+  auto f = open_output(path, "--json");
+  f << out.dump(2) << '\n';
+}
+
+void write_yaml(const std::string& path, const CreepData& d, const Units& u, const FitResult& r) {
+  auto f = open_output(path, "--yaml");
+  f << fmt::format("# rheodda fit: law {} fitted to {} ({} points, R^2 {:.6f}){}\n", r.law, d.source,
+                   r.points, r.r2, u.text.empty() ? "" : fmt::format("; units {}", u.text));
+  f << "# paste under a joint set of a scene; the comments give the standard errors\n";
+  f << "law:\n";
+  f << fmt::format("  name: {}\n", r.law);
+  for (const auto& p : r.parameters)
+    f << fmt::format("  {}: {:.7g}   # +- {} {}\n", p.name, p.value,
+                     p.identifiable ? fmt::format("{:.3g}", p.std_error) : "(not identifiable)",
+                     u.of(p.unit));
+}
+
+void write_plot(const std::string& path, const std::string& terminal, const CreepData& d,
+                const Units& u, const std::vector<FitResult>& fits) {
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
+    fmt::print(stderr, "rheodda: error: --plot needs gnuplot on the PATH (scripts/install-deps.sh "
+                       "installs it)\n");
+    throw CLI::RuntimeError(1);
+  }
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / fmt::format("rheodda-fit-{}", ::getpid());
+  fs::create_directories(dir);
+  // Data and residuals of each law at the data points.
+  {
+    std::ofstream f(dir / "data.csv");
+    for (std::size_t j = 0; j < d.t.size(); ++j) {
+      f << fmt::format("{:.10g},{:.10g}", d.t[j], d.displacement[j]);
+      for (const auto& r : fits) f << fmt::format(",{:.10g}", d.displacement[j] - r.fitted[j]);
+      f << '\n';
+    }
+  }
+  // Fitted curves on a fine grid, with the value just before each stage start
+  // so the instantaneous jumps are drawn vertical.
+  {
+    std::vector<double> grid;
+    const double t0 = d.stages.front().t, t1 = d.t.back();
+    for (int i = 0; i <= 1000; ++i) grid.push_back(t0 + (t1 - t0) * i / 1000.0);
+    for (std::size_t i = 1; i < d.stages.size(); ++i) {
+      grid.push_back(d.stages[i].t);
+      grid.push_back(std::nextafter(d.stages[i].t, -1.0));
+    }
+    std::sort(grid.begin(), grid.end());
+    std::vector<std::vector<double>> curves;
+    for (const auto& r : fits) {
+      const auto law = LawRegistry::builtin().create(r.law, r.values());
+      curves.push_back(fit::predict(*law, d.history, grid));
+    }
+    std::ofstream f(dir / "curve.csv");
+    for (std::size_t i = 0; i < grid.size(); ++i) {
+      f << fmt::format("{:.12g}", grid[i]);
+      for (const auto& c : curves) f << fmt::format(",{:.10g}", c[i]);
+      f << '\n';
+    }
+  }
+  auto quote = [](const std::string& s) {
+    std::string q;
+    for (char c : s) q += c == '\'' ? std::string("''") : std::string(1, c);
+    return "'" + q + "'";
+  };
+  std::string top, bottom;
+  for (std::size_t i = 0; i < fits.size(); ++i) {
+    top += fmt::format(", {} using 1:{} with lines lw 2 lc {} title '{}'", quote((dir / "curve.csv").string()),
+                       i + 2, i + 2, fits[i].law);
+    bottom += fmt::format("{}{} using 1:{} with points pt 7 ps 0.35 lc {} title '{}'",
+                          i ? ", " : "", quote((dir / "data.csv").string()), i + 3, i + 2, fits[i].law);
+  }
+  std::string script = fmt::format(
+      "set terminal {}\nset output {}\nset datafile separator ','\n"
+      "set multiplot\nset lmargin 12\nset rmargin 3\nset grid\n"
+      "set origin 0,0.33\nset size 1,0.67\nset key bottom right\n"
+      "set title {}\nset ylabel 'shear displacement [{}]'\nset format x ''\n"
+      "plot {} using 1:2 with points pt 6 ps 0.5 lc rgb 'black' title 'data'{}\n"
+      "set origin 0,0\nset size 1,0.35\nunset title\nset format x '%g'\nset key top right\n"
+      "set xlabel 'time [{}]'\nset ylabel 'residual [{}]'\n"
+      "plot {}, 0 with lines lc rgb 'gray' notitle\nunset multiplot\n",
+      terminal, quote(path),
+      quote(fmt::format("{}: {} fit{}", fs::path(d.source).filename().string(),
+                        fits.size() == 1 ? fits.front().law : "law",
+                        fits.size() == 1 ? "" : "s by rank")),
+      u.length, quote((dir / "data.csv").string()), top, u.time, u.length, bottom);
+  {
+    std::ofstream f(dir / "plot.gp");
+    f << script;
+  }
+  const std::string cmd = fmt::format("gnuplot {} 2>{}", quote((dir / "plot.gp").string()),
+                                      quote((dir / "gnuplot.err").string()));
+  const int rc = std::system(cmd.c_str());
+  std::string err;
+  {
+    std::ifstream e(dir / "gnuplot.err");
+    err.assign(std::istreambuf_iterator<char>(e), {});
+  }
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+  if (rc != 0) {
+    fmt::print(stderr, "rheodda: error: gnuplot failed drawing {}:\n{}", path, err);
+    throw CLI::RuntimeError(1);
+  }
+}
+
+void run_fit(const FitArgs& a) {
+  if (a.stress.empty() == a.stress_column.empty())
+    throw std::invalid_argument(
+        "give the applied shear stress either for the whole file (--stress VALUE or "
+        "--stress T:V,...) or per row (--stress-column NAME), not both");
+  const Units units = parse_units(a.units);
+  const std::string terminal = a.plot.empty() ? "" : plot_terminal(a.plot);
+  if (a.restarts < 0 || a.restarts > 100)
+    throw std::invalid_argument(fmt::format("--restarts {}: expected 0 to 100", a.restarts));
+  const bool all = a.law == "all";
+  const LawInfo* single = all ? nullptr : &LawRegistry::builtin().get(a.law);
+
+  fit::CsvOptions csv;
+  csv.time_column = a.time_column;
+  csv.displacement_column = a.displacement_column;
+  csv.stress_column = a.stress_column;
+  if (!a.stress.empty()) csv.stress = parse_stress(a.stress);
+  const CreepData data = fit::read_creep_csv(a.data, csv);
+
+  fit::FitOptions opt;
+  opt.restarts = a.restarts;
+  std::vector<FitResult> fits;
+  std::vector<std::string> skipped;
+  if (all) {
+    fits = fit::fit_all(LawRegistry::builtin(), data,
+                        a.rank_by == "aic" ? fit::Criterion::aic : fit::Criterion::bic, skipped, opt);
+    if (fits.empty()) {
+      std::string why;
+      for (const auto& s : skipped) why += "\n  " + s;
+      throw std::invalid_argument(fmt::format("{}: no law can be fitted to these data:{}", a.data, why));
+    }
+  } else {
+    fits.push_back(fit::fit_law(*single, data, opt));
+  }
+
+  print_data(data, units);
+  for (const auto& r : fits) print_fit(r, units);
+  for (const auto& s : skipped) fmt::print("\nskipped {}\n", s);
+  if (all) {
+    print_ranking(fits, a.rank_by != "aic", units);
+    fmt::print("\nbest: {}\n", fits.front().law);
+  }
+  if (!a.json.empty()) write_json(a.json, data, units, fits, skipped, a.rank_by);
+  if (!a.yaml.empty()) write_yaml(a.yaml, data, units, fits.front());
+  if (!a.plot.empty()) write_plot(a.plot, terminal, data, units, fits);
+}
+
+}  // namespace
+
+void add_fit_command(CLI::App& app) {
+  auto a = std::make_shared<FitArgs>();
+  auto* cmd = app.add_subcommand(
+      "fit", "Fit laws to a laboratory creep curve (CSV of time and shear displacement)");
+  cmd->add_option("DATA", a->data, "CSV file with a header row")->required();
+  cmd->add_option("--law", a->law, "Law to fit (see `rheodda law list`), or 'all' to fit and rank every law")
+      ->required();
+  auto* s = cmd->add_option("--stress", a->stress,
+                            "Applied shear stress of the whole file: VALUE, or staged T:V[,T:V...]")
+                ->type_name("VALUE|T:V,...");
+  auto* sc = cmd->add_option("--stress-column", a->stress_column,
+                             "Column holding the applied shear stress of each row (multi-stage tests)")
+                 ->type_name("NAME");
+  s->excludes(sc);
+  cmd->add_option("--time-column", a->time_column, "Column of the time")->capture_default_str();
+  cmd->add_option("--displacement-column", a->displacement_column,
+                  "Column of the total shear displacement")
+      ->capture_default_str();
+  cmd->add_option("--units", a->units, "Units 'STRESS, LENGTH, TIME' of the data, e.g. \"MPa, mm, h\"");
+  cmd->add_option("--rank-by", a->rank_by, "Criterion ranking the laws with --law all")
+      ->check(CLI::IsMember({"aic", "bic"}))
+      ->capture_default_str();
+  cmd->add_option("--restarts", a->restarts, "Extra starts besides the one derived from the curve")
+      ->capture_default_str();
+  cmd->add_option("--json", a->json, "Write the full report as JSON")->type_name("FILE");
+  cmd->add_option("--yaml", a->yaml, "Write the (best) law as a YAML block for a joint set")
+      ->type_name("FILE");
+  cmd->add_option("--plot", a->plot, "Draw data, fit and residuals with gnuplot (.png or .svg)")
+      ->type_name("FILE");
+  cmd->callback([a] { run_fit(*a); });
+}
+
+}  // namespace rheodda::apps
