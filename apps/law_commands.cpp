@@ -94,15 +94,16 @@ void add_law_commands(CLI::App& app) {
   curve->add_option("--param", opts->params, "Law parameter NAME=VALUE (repeat)")
       ->type_name("NAME=VALUE");
   auto* f = curve->add_option("--force", opts->force,
-                              "Staged force T:F[,T:F...]: F holds from time T on")
+                              "Staged force T:F[,T:F...]: F [stress, e.g. MPa] holds from time T on")
                 ->type_name("T:F,...");
   auto* d = curve->add_option("--displacement", opts->displacement,
-                              "Staged total displacement T:D[,T:D...] (relaxation)")
+                              "Staged total displacement T:D[,T:D...] [length, e.g. mm] (relaxation)")
                 ->type_name("T:D,...");
   f->excludes(d);
-  curve->add_option("--t-end", opts->t_end, "End time")->required();
-  curve->add_option("--dt", opts->dt, "Time step")->required();
-  curve->add_option("--scheme", opts->scheme, "Integration scheme")
+  curve->add_option("--t-end", opts->t_end, "End time [time, e.g. h]")->required();
+  curve->add_option("--dt", opts->dt, "Time step [time]; stage starts are added as step ends")
+      ->required();
+  curve->add_option("--scheme", opts->scheme, "Integration scheme (docs/laws.md, \"Schemes\")")
       ->check(CLI::IsMember({"lagged", "implicit", "exponential-linear"}))
       ->capture_default_str();
   curve->callback([opts, curve] {

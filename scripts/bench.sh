@@ -13,8 +13,14 @@ BENCHES=(
 "$root/scripts/install-deps.sh"
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRHEODDA_BUILD_BENCH=ON >/dev/null
 cmake --build "$build" -j "$(nproc)" --target "${BENCHES[@]}"
+# Run them all even if one fails; report the failures at the end.
+failed=()
 for b in "${BENCHES[@]}"; do
   echo "==== $b ===="
-  "$build/bench/$b"
+  "$build/bench/$b" || failed+=("$b")
   echo
 done
+if ((${#failed[@]})); then
+  echo "failed: ${failed[*]}" >&2
+  exit 1
+fi
