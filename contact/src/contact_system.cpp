@@ -258,34 +258,50 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
     const double slip = h.ti.dot(Di) + h.tj.dot(Dj);  // tangential motion this step [length]
     const double dt = h.dt0 + seams_[c].locking_shift + slip;
     const double N = h.pn * dn;
+    const ContactState before = r.state;
+    bool refine = false;  // friction force from a stale normal force
     switch (r.state) {
       case ContactState::open:
         if (dn > 0.0) {
-          r.state = ContactState::locked;
-          ++res.state_changes;
+          // Closes; Mohr-Coulomb decides at once whether it holds or slides (a
+          // vertex arriving with tangential speed would otherwise be caught by
+          // a fully stretched shear spring for one iterate).
+          const double S = shear_stiffness(c) * dt;
+          if (std::abs(S) > N * h.tan_phi + h.cohesion * r.length) {
+            r.state = ContactState::sliding;
+            r.slide_direction = dt >= 0.0 ? 1 : -1;
+          } else {
+            r.state = ContactState::locked;
+          }
         }
         break;
       case ContactState::locked:
       case ContactState::sliding:
         if (N < -h.tensile_strength * r.length) {
           r.state = ContactState::open;
-          ++res.state_changes;
         } else if (r.state == ContactState::locked) {
           // Mohr-Coulomb: slip when |F_T| > N tan(phi) + c l.
           const double S = shear_stiffness(c) * dt;
           if (std::abs(S) > N * h.tan_phi + h.cohesion * r.length) {
             r.state = ContactState::sliding;
             r.slide_direction = dt >= 0.0 ? 1 : -1;
-            ++res.state_changes;
           }
         } else if (slip * r.slide_direction < 0.0) {
           // The vertex moves against the friction direction assumed: it sticks.
           r.state = ContactState::locked;
-          ++res.state_changes;
+        } else {
+          // The friction force N tan(phi) came from the last iterate's N.
+          refine = std::abs(N - h.normal_force) >
+                   settings_.friction_tolerance * std::max(std::abs(N), std::abs(h.normal_force));
         }
         break;
     }
-    h.normal_force = r.state == ContactState::open ? 0.0 : N;
+    if (r.state != before || refine) ++res.state_changes;
+    // The normal force that drives friction in the next iterate. A contact that
+    // just closed has N from a trial without its spring (the whole free
+    // approach of the step as penetration): start its friction from zero and
+    // let the refinement above bring it to its own N.
+    h.normal_force = (r.state == ContactState::open || before == ContactState::open) ? 0.0 : N;
     if (r.state != ContactState::open) res.max_penetration = std::max(res.max_penetration, dn);
   }
   step_max_penetration_ = res.max_penetration;

@@ -26,6 +26,17 @@ Vec2 outward_normal(const Vec2& a, const Vec2& b) {
   return {t.y(), -t.x()};
 }
 
+/// True when vertex v is a corner that can enter an edge: convex, and not a
+/// straight angle (a vertex that only subdivides a straight side) within the
+/// angle tolerance. Reflex vertices never enter an edge.
+bool is_corner(const BlockView& blk, int v, double sin_tol) {
+  const int nv = static_cast<int>(blk.vertices.size());
+  const Vec2& p = blk.vertices[v];
+  const Vec2 u1 = (p - blk.vertices[wrap(v - 1, nv)]).normalized();
+  const Vec2 u2 = (blk.vertices[wrap(v + 1, nv)] - p).normalized();
+  return u1.x() * u2.y() - u1.y() * u2.x() > sin_tol;
+}
+
 /// Angle-rule score of vertex v of `blk` entering the edge with outward normal n.
 double wedge_score(const BlockView& blk, int v, const Vec2& n) {
   const int nv = static_cast<int>(blk.vertices.size());
@@ -80,6 +91,7 @@ void vertex_edge(std::span<const BlockView> blocks, int iv, int ie, double d0, d
       const double r = t.dot(p - a);
       if (r <= 0.0 || r >= l) continue;
       if ((p - a).norm() < d0 || (p - b).norm() < d0) continue;  // vertex-vertex
+      if (!is_corner(vb, v, sin_tol)) continue;
       if (wedge_score(vb, v, n) < -sin_tol) continue;
       const double len = contact_length(vb, v, eb, e, d0, cos_tol);
       out.push_back({{iv, v, ie, e}, len > 0.0 ? ContactKind::edge_edge : ContactKind::vertex_edge,
@@ -106,6 +118,8 @@ void detect_pair(std::span<const BlockView> blocks, int ia, int ib, const Detect
       const Vec2& p = A.vertices[k];
       const Vec2& q = B.vertices[m];
       if ((p - q).norm() >= d0) continue;
+      const bool p_corner = is_corner(A, k, sin_tol), q_corner = is_corner(B, m, sin_tol);
+      if (!p_corner && !q_corner) continue;
       const std::array<ContactKey, 4> cand{ContactKey{ia, k, ib, wrap(m - 1, nb)},
                                            ContactKey{ia, k, ib, m},
                                            ContactKey{ib, m, ia, wrap(k - 1, na)},
@@ -113,6 +127,8 @@ void detect_pair(std::span<const BlockView> blocks, int ia, int ib, const Detect
       std::array<double, 4> score{};
       double best = -2.0;
       for (int c = 0; c < 4; ++c) {
+        // Only a corner can be the entering vertex.
+        if (!(c < 2 ? p_corner : q_corner)) { score[c] = -3.0; continue; }
         const BlockView& eb = blocks[cand[c].eblock];
         const int ne = static_cast<int>(eb.vertices.size());
         const Vec2 n =
@@ -120,8 +136,10 @@ void detect_pair(std::span<const BlockView> blocks, int ia, int ib, const Detect
         score[c] = wedge_score(blocks[cand[c].vblock], cand[c].vertex, n);
         best = std::max(best, score[c]);
       }
-      // Among the candidates tied with the best score, prefer one whose vertex
-      // projects inside its edge, then the contact of the last step, then the order above.
+      // Candidates tied with the best score are equally valid. Every one of them
+      // that was a contact in the last step stays (two blocks sliding past a
+      // straight-angle vertex keep both contacts and their identities); if none
+      // was, one is taken: preferably one whose vertex projects inside its edge.
       std::array<bool, 4> in_range{}, was{};
       for (int c = 0; c < 4; ++c) {
         const BlockView& eb = blocks[cand[c].eblock];
@@ -133,20 +151,22 @@ void detect_pair(std::span<const BlockView> blocks, int ia, int ib, const Detect
         in_range[c] = r >= -1e-9 && r <= 1.0 + 1e-9;
         was[c] = std::binary_search(previous.begin(), previous.end(), cand[c]);
       }
+      auto emit = [&](int c) {
+        const ContactKey& key = cand[c];
+        const double len = contact_length(blocks[key.vblock], key.vertex, blocks[key.eblock],
+                                          key.edge, d0, cos_tol);
+        out.push_back({key, len > 0.0 ? ContactKind::edge_edge : ContactKind::vertex_vertex, len});
+      };
+      bool kept = false;
+      for (int c = 0; c < 4; ++c)
+        if (score[c] >= best - sin_tol && was[c]) emit(c), kept = true;
+      if (kept) continue;
       int chosen = -1;
-      for (int pass = 0; pass < 4 && chosen < 0; ++pass)
-        for (int c = 0; c < 4 && chosen < 0; ++c) {
-          if (score[c] < best - sin_tol) continue;
-          const bool ok = pass == 0 ? (in_range[c] && was[c])
-                        : pass == 1 ? in_range[c]
-                        : pass == 2 ? was[c]
-                                    : true;
-          if (ok) chosen = c;
-        }
-      const ContactKey& key = cand[chosen];
-      const double len = contact_length(blocks[key.vblock], key.vertex, blocks[key.eblock], key.edge,
-                                        d0, cos_tol);
-      out.push_back({key, len > 0.0 ? ContactKind::edge_edge : ContactKind::vertex_vertex, len});
+      for (int c = 0; c < 4 && chosen < 0; ++c)
+        if (score[c] >= best - sin_tol && in_range[c]) chosen = c;
+      for (int c = 0; c < 4 && chosen < 0; ++c)
+        if (score[c] >= best - sin_tol) chosen = c;
+      emit(chosen);
     }
 
   vertex_edge(blocks, ia, ib, d0, sin_tol, cos_tol, out);
@@ -167,6 +187,57 @@ std::vector<DetectedContact> detect_contacts(std::span<const BlockView> blocks,
                           return x.key == y.key;
                         }),
             out.end());
+
+  // One vertex on two adjacent edges of the same block: a true double contact
+  // only in a notch (reflex shared vertex). Otherwise - the edges meet at a
+  // corner or continue straight, and the vertex is within the search distance
+  // of both - keep one: the last step's contact, else the one the vertex
+  // projects into.
+  const double sin_tol = std::sin(params.angle_tolerance * std::numbers::pi / 180.0);
+  auto was = [&](const ContactKey& k) {
+    return std::binary_search(previous.begin(), previous.end(), k);
+  };
+  auto inside = [&](const ContactKey& k) {
+    const BlockView& eb = blocks[k.eblock];
+    const int ne = static_cast<int>(eb.vertices.size());
+    const Vec2& a = eb.vertices[k.edge];
+    const Vec2& b = eb.vertices[wrap(k.edge + 1, ne)];
+    const double r = (b - a).dot(blocks[k.vblock].vertices[k.vertex] - a) / (b - a).squaredNorm();
+    return r >= 0.0 && r <= 1.0;
+  };
+  std::vector<char> drop(out.size(), 0);
+  for (size_t g = 0; g < out.size();) {
+    size_t end = g + 1;
+    const ContactKey& k0 = out[g].key;
+    while (end < out.size() && out[end].key.vblock == k0.vblock &&
+           out[end].key.vertex == k0.vertex && out[end].key.eblock == k0.eblock)
+      ++end;
+    const BlockView& eb = blocks[k0.eblock];
+    const int ne = static_cast<int>(eb.vertices.size());
+    for (size_t x = g; x < end; ++x)
+      for (size_t y = x + 1; y < end; ++y) {
+        if (drop[x] || drop[y]) continue;
+        const int ex = out[x].key.edge, ey = out[y].key.edge;
+        int shared;
+        if (wrap(ex + 1, ne) == ey) shared = ey;
+        else if (wrap(ey + 1, ne) == ex) shared = ex;
+        else continue;
+        // Reflex shared vertex (a notch): both contacts are real.
+        const Vec2 u1 = (eb.vertices[shared] - eb.vertices[wrap(shared - 1, ne)]).normalized();
+        const Vec2 u2 = (eb.vertices[wrap(shared + 1, ne)] - eb.vertices[shared]).normalized();
+        if (u1.x() * u2.y() - u1.y() * u2.x() < -sin_tol) continue;
+        const bool wx = was(out[x].key), wy = was(out[y].key);
+        bool keep_x;
+        if (wx != wy) keep_x = wx;
+        else keep_x = inside(out[x].key) || !inside(out[y].key);
+        drop[keep_x ? y : x] = 1;
+      }
+    g = end;
+  }
+  size_t w = 0;
+  for (size_t k = 0; k < out.size(); ++k)
+    if (!drop[k]) out[w++] = out[k];
+  out.resize(w);
   return out;
 }
 

@@ -70,7 +70,8 @@ struct ShearSeam {
 
 /// Result of checking a trial solution.
 struct CheckResult {
-  int state_changes = 0;         ///< open<->closed and slide<->lock changes
+  int state_changes = 0;         ///< open<->closed and slide<->lock changes, plus sliding
+                                 ///< contacts whose friction force is not yet settled
   double max_penetration = 0.0;  ///< largest d_n over closed contacts [length]
 };
 

@@ -11,14 +11,20 @@
 //                  with contact length L/2 (the seed: "the contact length of each
 //                  contact point is half of the total contact length").
 //
+// Corners only. The entering vertex must be a corner: convex, and not a
+// straight angle within the angle tolerance. A vertex that only subdivides a
+// straight side (a joint trace ending there) never enters an edge, and a
+// reflex vertex cannot poke into anything.
+//
 // Angle rule. A vertex p can enter an edge only if both edges of p's block at p
 // stay on the outer side of that edge's line: with n the edge's outward normal
 // and u1, u2 the unit directions of p's two edges, the score min(n.u1, n.u2)
 // must be >= -sin(angle tolerance). For a vertex-vertex pair the candidate
 // with the highest score wins; candidates within sin(tolerance) of the best are
-// tied; a tie goes to a candidate whose vertex projects inside its edge, then
-// to the contact that existed in the last step (so a contact keeps its
-// identity), then to a fixed order.
+// tied. Every tied candidate that was a contact in the last step is kept (so
+// contacts keep their identity, also where two blocks slide past a
+// straight-angle vertex and both vertices touch); if none was, one is taken:
+// preferably one whose vertex projects inside its edge, then in a fixed order.
 #pragma once
 
 #include <compare>

@@ -57,6 +57,10 @@ struct ContactSettings {
   /// Allowed penetration as a fraction of the half model size w0 [-]. A step
   /// whose largest penetration exceeds it raises the penalty for the next steps.
   double penetration_ratio = 1e-4;
+  /// A sliding contact whose normal force moved by more than this fraction
+  /// between two iterates asks for another iteration (its friction force
+  /// N tan(phi) is taken from the previous iterate) [-].
+  double friction_tolerance = 0.01;
   /// Factor by which the penalty is raised [-].
   double penalty_raise = 2.0;
   /// Upper bound of the penalty as a multiple of the initial one [-].

@@ -1,0 +1,64 @@
+// A DDA run with contacts: model + ContactSystem + adapter + Engine, and
+// small geometry helpers for the validation scenes.
+#pragma once
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "rheodda/contact/contact_system.hpp"
+#include "rheodda/core/contact_adapter.hpp"
+#include "rheodda/core/engine.hpp"
+
+namespace rheodda::testing {
+
+using core::Vec2;
+
+inline double deg(double d) { return d * std::numbers::pi / 180.0; }
+
+/// Counter-clockwise rectangle [x0, x1] x [y0, y1] rotated by `angle` [rad] about the origin.
+inline std::vector<Vec2> rect(double x0, double y0, double x1, double y1, double angle = 0.0) {
+  const Eigen::Rotation2Dd r(angle);
+  return {r * Vec2(x0, y0), r * Vec2(x1, y0), r * Vec2(x1, y1), r * Vec2(x0, y1)};
+}
+
+inline contact::JointSet joint(double phi_deg) {
+  contact::JointSet j;
+  j.name = "joint";
+  j.friction_angle = phi_deg;
+  return j;
+}
+
+/// A block of the default material, optionally moving [m/s].
+inline core::BlockDef block(std::vector<Vec2> vertices, Vec2 velocity = Vec2::Zero()) {
+  core::BlockDef b;
+  b.vertices = std::move(vertices);
+  b.initial_velocity = velocity;
+  return b;
+}
+
+/// Adds a block and fixes it at three of its vertices.
+inline int add_fixed(core::Model& m, std::vector<Vec2> vertices) {
+  m.blocks.push_back(block(vertices));
+  const int b = static_cast<int>(m.blocks.size()) - 1;
+  for (int k = 0; k < 3; ++k) m.fixed_points.push_back({b, vertices[k]});
+  return b;
+}
+
+struct Sim {
+  Sim(core::Model m, std::vector<contact::JointSet> joints, double penalty_factor = 40.0)
+      : contacts(std::move(joints), core::contact_settings_for(m, penalty_factor)),
+        adapter(contacts),
+        engine(std::move(m), adapter) {}
+  contact::ContactSystem contacts;
+  core::ContactAdapter adapter;
+  core::Engine engine;
+
+  /// Rotation of block b since the start [rad], counter-clockwise positive.
+  double rotation(int b) const {
+    const auto& A = engine.block(b).map_A;
+    return std::atan2(A(1, 0) - A(0, 1), A(0, 0) + A(1, 1));
+  }
+};
+
+}  // namespace rheodda::testing
