@@ -22,6 +22,7 @@ BOOST_AUTO_TEST_CASE(stack_of_blocks_at_rest_stays_at_rest_for_ten_thousand_step
   std::vector<Vec2> c0;
   for (int b = 1; b <= 3; ++b) c0.push_back(sim.engine.centroid(b));
   sim.engine.run(10000);
+  BOOST_TEST(sim.engine.step_count() == 10000);
   const double size = 1.0;  // block width [m]
   for (int b = 1; b <= 3; ++b) {
     const double d = sim.engine.point_displacement(b, c0[b - 1]).norm();
