@@ -1,0 +1,171 @@
+// `rheodda fit` end to end through the built binary: the report, the JSON and
+// YAML files, the plot, multi-stage data from a stress column, and exit code 2
+// with file, line and column for bad input.
+#include <boost/test/unit_test.hpp>
+
+#include <sys/wait.h>
+#include <unistd.h>
+#include <yaml-cpp/yaml.h>
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "rheodda/laws/registry.hpp"
+#include "synthetic.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Run {
+  int code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct TempDir {
+  fs::path path = fs::temp_directory_path() / ("rheodda-fit-cli-test-" + std::to_string(::getpid()));
+  TempDir() { fs::create_directories(path); }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+  fs::path operator/(const std::string& name) const { return path / name; }
+};
+
+Run run_rheodda(const std::string& args, const TempDir& dir, const std::string& env = "") {
+  const std::string cmd = env + " '" RHEODDA_BINARY "' " + args + " >'" + (dir / "out.txt").string() +
+                          "' 2>'" + (dir / "err.txt").string() + "'";
+  const int status = std::system(cmd.c_str());
+  Run r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(dir / "out.txt");
+  r.err = slurp(dir / "err.txt");
+  return r;
+}
+
+const std::string kExample = std::string(RHEODDA_SOURCE_DIR) + "/examples/creep-data/table1-row1.csv";
+
+void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(fit_cli)
+
+BOOST_AUTO_TEST_CASE(yaml_block_builds_the_law_and_recovers_table1_row1_within_two_sigma) {
+  TempDir dir;
+  const Run r = run_rheodda("fit '" + kExample + "' --law burgers --stress 0.232 --units 'MPa, mm, h' --yaml '" +
+                            (dir / "law.yaml").string() + "' --json '" + (dir / "fit.json").string() + "'",
+                        dir);
+  BOOST_TEST_REQUIRE(r.code == 0, r.err);
+  BOOST_TEST(r.out.find("MPa*h/mm") != std::string::npos);  // units from --units
+  BOOST_TEST(r.out.find("units: MPa, mm, h") != std::string::npos);
+  const YAML::Node law = YAML::LoadFile((dir / "law.yaml").string())["law"];
+  BOOST_TEST(law["name"].as<std::string>() == "burgers");
+  rheodda::laws::ParameterValues values;
+  for (const auto& kv : law)
+    if (kv.first.as<std::string>() != "name") values[kv.first.as<std::string>()] = kv.second.as<double>();
+  BOOST_CHECK_NO_THROW(rheodda::laws::LawRegistry::builtin().create("burgers", values));
+  const auto json = nlohmann::json::parse(slurp(dir / "fit.json"));
+  const auto truth = rheodda::fit::test::burgers_values(rheodda::fit::test::kTable1[0]);
+  for (const auto& p : json["fits"][0]["parameters"]) {
+    const std::string name = p["name"];
+    BOOST_TEST(values.at(name) == p["value"].get<double>(), boost::test_tools::tolerance(1e-6));
+    BOOST_TEST(std::abs(p["value"].get<double>() - truth.at(name)) <= 2.0 * p["std_error"].get<double>(),
+               name);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(law_all_ranks_burgers_first_on_the_example) {
+  TempDir dir;
+  const Run r = run_rheodda("fit '" + kExample + "' --law all --stress 0.232 --json '" +
+                            (dir / "fit.json").string() + "'",
+                        dir);
+  BOOST_TEST_REQUIRE(r.code == 0, r.err);
+  const auto json = nlohmann::json::parse(slurp(dir / "fit.json"));
+  BOOST_TEST(json["best"] == "burgers");
+  BOOST_TEST(json["rank_by"] == "bic");
+  BOOST_TEST(json["fits"].size() == rheodda::laws::LawRegistry::builtin().laws().size());
+  for (std::size_t i = 1; i < json["fits"].size(); ++i)
+    BOOST_TEST(json["fits"][i - 1]["bic"].get<double>() <= json["fits"][i]["bic"].get<double>());
+  BOOST_TEST(r.out.find("ranking by BIC") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(stress_column_multi_stage_with_unloading_is_fitted_at_once) {
+  TempDir dir;
+  const rheodda::laws::StagedHistory h({{0.0, 0.232}, {100.0, 0.424}, {200.0, 0.0}});
+  const auto truth = rheodda::fit::test::burgers_values(rheodda::fit::test::kTable1[0]);
+  const auto data = rheodda::fit::test::synthetic_curve("burgers", truth, h,
+                                                        rheodda::fit::test::sample_times(300, 1, h));
+  std::string csv = "hours,tau,u\n";
+  for (std::size_t j = 0; j < data.t.size(); ++j)
+    csv += fmt::format("{},{},{:.17g}\n", data.t[j], h.at(data.t[j]), data.displacement[j]);
+  write(dir / "steps.csv", csv);
+  const Run r = run_rheodda("fit '" + (dir / "steps.csv").string() +
+                            "' --law burgers --stress-column tau --time-column hours "
+                            "--displacement-column u --json '" + (dir / "fit.json").string() + "'",
+                        dir);
+  BOOST_TEST_REQUIRE(r.code == 0, r.err);
+  BOOST_TEST(r.out.find("3 stages") != std::string::npos);
+  const auto json = nlohmann::json::parse(slurp(dir / "fit.json"));
+  for (const auto& p : json["fits"][0]["parameters"])
+    BOOST_TEST(p["value"].get<double>() == truth.at(p["name"].get<std::string>()),
+               boost::test_tools::tolerance(1e-6));
+}
+
+BOOST_AUTO_TEST_CASE(plot_writes_an_svg_and_fails_clearly_without_gnuplot) {
+  TempDir dir;
+  const std::string args = "fit '" + kExample + "' --law burgers --stress 0.232 --plot '" +
+                           (dir / "fit.svg").string() + "'";
+  const Run r = run_rheodda(args, dir);
+  BOOST_TEST_REQUIRE(r.code == 0, r.err);
+  BOOST_TEST(slurp(dir / "fit.svg").find("<svg") != std::string::npos);
+  const Run none = run_rheodda(args, dir, "PATH=/nonexistent");
+  BOOST_TEST(none.code == 1);
+  BOOST_TEST(none.err.find("gnuplot") != std::string::npos, none.err);
+}
+
+BOOST_AUTO_TEST_CASE(bad_input_exits_2_naming_file_line_and_column) {
+  TempDir dir;
+  const std::string bad = (dir / "bad.csv").string();
+  write(bad, "t,displacement\n0,0.0086\n1,nan\n");
+  Run r = run_rheodda("fit '" + bad + "' --law burgers --stress 0.232", dir);
+  BOOST_TEST(r.code == 2);
+  BOOST_TEST(r.err.find(bad + ":3: column 'displacement'") != std::string::npos, r.err);
+
+  write(bad, "t,displacement\n0,0.0086\n1,0.009\n2,0.0093\n");
+  r = run_rheodda("fit '" + bad + "' --law burgers --stress 0.232", dir);  // 3 points, 4 parameters
+  BOOST_TEST(r.code == 2);
+  BOOST_TEST(r.err.find("too few points") != std::string::npos, r.err);
+
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--law burgerz --stress 0.232", "burgers"},                  // unknown law, with a hint
+      {"--law burgers", "--stress"},                                // no stress at all
+      {"--law burgers --stress abc", "--stress"},                   // stress not a number
+      {"--law burgers --stress 0:0.2,100:0.4", "stage 2"},          // a stage without points
+      {"--law burgers --stress 0.232 --units MPa", "--units"},      // units not STRESS, LENGTH, TIME
+      {"--law burgers --stress 0.232 --plot fit.jpg", "--plot"},    // unknown picture format
+      {"--law burgers --stress 0.232 --time-column hours", "hours"} // no such column
+  };
+  for (const auto& [args, words] : cases) {
+    r = run_rheodda("fit '" + bad + "' " + args, dir);
+    BOOST_TEST(r.code == 2, args);
+    BOOST_TEST(r.err.find(words) != std::string::npos, args << ": " << r.err);
+  }
+  r = run_rheodda("fit '" + (dir / "missing.csv").string() + "' --law burgers --stress 0.2", dir);
+  BOOST_TEST(r.code == 2);
+  BOOST_TEST(r.err.find("cannot open") != std::string::npos, r.err);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
