@@ -161,6 +161,18 @@ BOOST_AUTO_TEST_CASE(steps_exceeding_the_allowed_displacement_are_cut) {
   BOOST_TEST(std::abs(e.centroid(0).y() - (0.5 - 0.5 * 9.81 * t * t)) <= 1e-12);
 }
 
+BOOST_AUTO_TEST_CASE(a_step_that_cannot_be_made_small_enough_throws_after_max_cuts) {
+  Model m;
+  m.settings.dt = 0.05;
+  m.settings.g2 = 1e-9;  // would need dt ~ 1e-5: more than 2 cuts of x0.3
+  m.settings.max_cuts = 2;
+  m.blocks.push_back(block({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));
+  Engine e(m);
+  BOOST_CHECK_THROW(e.step(), std::runtime_error);
+  BOOST_TEST(e.step_count() == 0);
+  BOOST_TEST(e.centroid(0).y() == 0.5);
+}
+
 BOOST_AUTO_TEST_CASE(observers_see_every_accepted_step) {
   Model m;
   m.settings.g2 = 1.0;
