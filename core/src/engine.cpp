@@ -125,6 +125,23 @@ struct Engine::Impl {
   double fixed_k = 0.0;                   // fixed point penalty [force/length]
   bool dynamic = true;
 
+  /// Newmark parameters of the current step. The trapezoidal rule needs the
+  /// acceleration at the step start; the first step has none, so it uses Shi's
+  /// scheme (exact for a constant acceleration), which yields it.
+  struct Newmark {
+    double beta, gamma;
+  };
+  Newmark newmark() const {
+    if (model.settings.time_integration == TimeIntegration::trapezoidal && st.step > 0)
+      return {0.25, 0.5};
+    return {0.5, 1.0};
+  }
+  /// Newmark predictor Dp = v dt + (1/2 - beta) dt^2 a from the carried v, a.
+  Vec6 predictor(const BlockState& b, double dt, const Newmark& nm) const {
+    const double ratio = model.settings.dynamic_ratio;
+    return ratio * (dt * b.velocity + (0.5 - nm.beta) * dt * dt * b.acceleration);
+  }
+
   BlockSystem system;
   std::unique_ptr<LinearSolver> solver;
   Eigen::VectorXd D;
@@ -226,6 +243,9 @@ void Engine::Impl::validate() {
   if (s.max_open_close < 1) throw ModelError("settings.max_open_close", "must be >= 1");
   if (!(s.pcg_tolerance > 0.0)) throw ModelError("settings.pcg_tolerance", "must be > 0");
   if (s.pcg_max_iterations < 1) throw ModelError("settings.pcg_max_iterations", "must be >= 1");
+  if (s.time_integration == TimeIntegration::trapezoidal && s.dynamic_ratio == 0.0)
+    throw ModelError("settings.time_integration",
+                     "the trapezoidal rule needs a dynamic analysis (settings.dynamic_ratio > 0)");
 }
 
 void Engine::Impl::initialise() {
@@ -283,17 +303,19 @@ void Engine::Impl::assemble_blocks(double dt, double t_end, std::vector<Mat6>& d
   const std::size_t n = st.blocks.size();
   diag.resize(n);
   rhs.resize(6 * static_cast<Eigen::Index>(n));
-  const double ratio = s.dynamic_ratio;
+  const Newmark nm = newmark();
   for (std::size_t k = 0; k < n; ++k) {
     const BlockState& b = st.blocks[k];
     const PolygonIntegrals& g = moments[k];
     const double rho = model.materials[b.material].density;
     Mat6& K = diag[k];
     auto F = rhs.segment<6>(6 * static_cast<Eigen::Index>(k));
-    // Inertia (Shi 1988, Newmark beta = 1/2, gamma = 1): a = 2 (D - v dt)/dt^2,
-    // so K += 2 M/dt^2 and F += 2 M v/dt with v the carried velocity.
+    // Inertia (Shi 1988; Newmark): the end-of-step acceleration is
+    // a' = (D - Dp)/(beta dt^2), Dp = v dt + (1/2 - beta) dt^2 a, so
+    // K += M/(beta dt^2) and F += M Dp/(beta dt^2). Shi's beta = 1/2, gamma = 1
+    // gives K += 2 M/dt^2 and F += 2 M v/dt with v the carried velocity.
     const Mat6 M = rho * unit_mass_matrix(g);
-    K = (2.0 / (dt * dt)) * M;
+    K = (1.0 / (nm.beta * dt * dt)) * M;
     // Elastic strain energy S/2 e^T E_e e: K(ex..gxy) += S E_e.
     K.block<3, 3>(3, 3) += g.S * elastic[b.material];
     // Body force rho g over the area; the other rows vanish about the centroid.
@@ -302,7 +324,7 @@ void Engine::Impl::assemble_blocks(double dt, double t_end, std::vector<Mat6>& d
     F(1) = rho * s.gravity.y() * g.S;
     // Initial stress: potential S e^T sigma gives F(ex..gxy) -= S sigma.
     F.tail<3>() -= g.S * b.stress;
-    if (dynamic) F.noalias() += (2.0 / dt) * M * (ratio * b.velocity);
+    if (dynamic) F.noalias() += (1.0 / (nm.beta * dt * dt)) * M * predictor(b, dt, nm);
   }
   // Point loads: F += T(p)^T f at the current position p of the material point.
   for (const auto& l : model.point_loads) {
@@ -337,6 +359,8 @@ double Engine::Impl::max_vertex_displacement(const Eigen::VectorXd& d) const {
 
 void Engine::Impl::accept(const Eigen::VectorXd& d, double dt, int step_index, double t_end) {
   const double ratio = model.settings.dynamic_ratio;
+  const bool keep_acceleration = model.settings.time_integration == TimeIntegration::trapezoidal;
+  const Newmark nm = newmark();
   for (std::size_t k = 0; k < st.blocks.size(); ++k) {
     BlockState& b = st.blocks[k];
     const Vec6 Dk = d.segment<6>(6 * static_cast<Eigen::Index>(k));
@@ -357,8 +381,13 @@ void Engine::Impl::accept(const Eigen::VectorXd& d, double dt, int step_index, d
     b.map_b = c_new + Fm * (b.map_b - c);
     // Stress: sigma += E_e (ex, ey, gxy) (Shi 1988, stress update).
     b.stress += elastic[b.material] * Dk.tail<3>();
-    // Velocity (Newmark beta = 1/2, gamma = 1): v' = 2 D/dt - v, v = carried velocity.
-    if (dynamic) b.velocity = (2.0 / dt) * Dk - ratio * b.velocity;
+    // Velocity (Newmark): a' = (D - Dp)/(beta dt^2), v' = v + dt ((1 - gamma) a + gamma a')
+    // with the carried v, a; for Shi's scheme this is v' = 2 D/dt - v.
+    if (dynamic) {
+      const Vec6 a_new = (Dk - predictor(b, dt, nm)) / (nm.beta * dt * dt);
+      b.velocity = ratio * b.velocity + dt * ((1.0 - nm.gamma) * ratio * b.acceleration + nm.gamma * a_new);
+      if (keep_acceleration) b.acceleration = a_new;
+    }
   }
   st.step = step_index + 1;
   st.time = t_end;

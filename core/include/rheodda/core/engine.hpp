@@ -59,6 +59,8 @@ struct BlockState {
   Vec3 stress = Vec3::Zero();       ///< (sigma_x, sigma_y, tau_xy) [stress]
   Vec6 velocity = Vec6::Zero();     ///< (u0, v0, r0, ex, ey, gxy) rates [length/time, 1/time];
                                     ///< stays zero in a static analysis
+  Vec6 acceleration = Vec6::Zero(); ///< at the end of the last step [length/time^2, 1/time^2];
+                                    ///< kept by the trapezoidal rule only (zero otherwise)
   /// Affine map from initial to current position of a material point:
   /// x = map_A x0 + map_b (composed from every accepted step).
   Mat2 map_A = Mat2::Identity();    ///< [-]

@@ -93,6 +93,12 @@ enum class SolverKind {
   pcg,      ///< conjugate gradient with a block-Jacobi (6x6) preconditioner
 };
 
+/// Time integration of the inertia terms (Newmark family; docs/engine.md).
+enum class TimeIntegration {
+  shi,          ///< beta = 1/2, gamma = 1 (Shi 1988): exact for constant acceleration, dissipative
+  trapezoidal,  ///< beta = 1/4, gamma = 1/2: keeps the energy of linear vibrations (dynamic only)
+};
+
 /// Analysis settings (Shi's control parameters).
 struct Settings {
   double dt = 1.0e-3;            ///< largest (and first) step size [time]; > 0
@@ -104,6 +110,7 @@ struct Settings {
                                  ///< model size (Shi's g2) [-]; > 0
   double dynamic_ratio = 1.0;    ///< share of the velocity carried to the next step [-], in [0, 1];
                                  ///< 0 = static analysis (no velocities at all), 1 = fully dynamic
+  TimeIntegration time_integration = TimeIntegration::shi;  ///< default shi
   Vec2 gravity{0.0, -9.81};      ///< body acceleration (gx, gy) [length/time^2]
   double fixed_point_stiffness = 0.0;  ///< penalty spring of fixed points [force/length];
                                        ///< 0 = automatic: 100 x the largest Young's modulus
