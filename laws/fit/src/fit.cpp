@@ -153,8 +153,8 @@ void evaluate_series(Problem& pr, double* f, double* jac) {
             prev = pr.stage_f[i];
             if (df == 0.0) continue;
             const double r = e * (t - pr.stage_t[i]) / eta;
-            const double b = laws::kelvin_b(r);
-            const double re = r * std::exp(-r);
+            const double b = laws::kelvin_b(r);  // 1 - e^-r without cancellation
+            const double re = r * (1.0 - b);       // r e^-r: one exponential per term
             const double a = df / e;
             model += a * b;
             row[el.E] += a * (re - b);
@@ -232,11 +232,11 @@ int jacobian_cb(const gsl_vector* x, void* params, gsl_matrix* jac) {
     evaluate_series(pr, f.data(), pr.cached_jac.data());
     for (std::size_t k = 0; k < pr.np; ++k) pr.cached_x[k] = gsl_vector_get(x, k);
   }
-  for (std::size_t j = 0; j < pr.n; ++j)
-    for (std::size_t k = 0; k < pr.np; ++k) {
-      const double v = pr.cached_jac[j * pr.np + k];
-      gsl_matrix_set(jac, j, k, std::isfinite(v) ? v : 0.0);
-    }
+  for (std::size_t j = 0; j < pr.n; ++j) {
+    const double* src = pr.cached_jac.data() + j * pr.np;
+    double* dst = jac->data + j * jac->tda;
+    for (std::size_t k = 0; k < pr.np; ++k) dst[k] = std::isfinite(src[k]) ? src[k] : 0.0;
+  }
   return GSL_SUCCESS;
 }
 
@@ -467,6 +467,10 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
   fdf.params = &pr;
   gsl_multifit_nlinear_parameters params = gsl_multifit_nlinear_default_parameters();
   params.trs = gsl_multifit_nlinear_trs_lm;
+  // Modified Cholesky on the normal equations: a quarter faster than QR here,
+  // and robust when a parameter is unidentifiable (J^T J near singular). The
+  // covariance below still comes from a QR of J.
+  params.solver = gsl_multifit_nlinear_solver_mcholesky;
   std::unique_ptr<gsl_multifit_nlinear_workspace, GslFree> w(
       gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &params, n, np));
   std::unique_ptr<gsl_vector, GslFree> x(gsl_vector_alloc(np));
@@ -479,15 +483,28 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
     const std::vector<double> start = r == 0 ? base : restart_start(base, pr.structure, r, features.f_max);
     for (std::size_t k = 0; k < np; ++k) gsl_vector_set(x.get(), k, std::log(start[k]));
     gsl_multifit_nlinear_init(x.get(), &fdf, w.get());
-    int info_code = 0;
-    const int status = gsl_multifit_nlinear_driver(static_cast<std::size_t>(options.max_iterations),
-                                                   1e-10, 1e-15, 0.0, nullptr, nullptr, &info_code,
-                                                   w.get());
-    double chisq = 0.0;
-    gsl_blas_ddot(gsl_multifit_nlinear_residual(w.get()), gsl_multifit_nlinear_residual(w.get()),
-                  &chisq);
+    // The loop of gsl_multifit_nlinear_driver (step tolerance 1e-10 on the log
+    // parameters), except that a restart stops as soon as it reaches the best
+    // sum of squares found so far: it has found the same minimum.
+    auto rss_now = [&] {
+      double c = 0.0;
+      gsl_blas_ddot(gsl_multifit_nlinear_residual(w.get()), gsl_multifit_nlinear_residual(w.get()), &c);
+      return c;
+    };
+    int status = GSL_CONTINUE, info_code = 0;
+    for (int iter = 0; iter < options.max_iterations && status == GSL_CONTINUE; ++iter) {
+      const int step = gsl_multifit_nlinear_iterate(w.get());
+      if (step == GSL_ENOPROG && iter == 0) {
+        status = GSL_ENOPROG;
+        break;
+      }
+      status = gsl_multifit_nlinear_test(1e-10, 1e-15, 0.0, &info_code, w.get());
+      if (status == GSL_CONTINUE && r > 0 && rss_now() <= best_rss * (1.0 + 1e-12)) status = GSL_SUCCESS;
+    }
+    if (status == GSL_CONTINUE) status = GSL_EMAXITER;
+    const double chisq = rss_now();
     rss_of_start.push_back(chisq);
-    if (std::isfinite(chisq) && chisq < best_rss) {
+    if (std::isfinite(chisq) && (r == 0 || chisq < best_rss * (1.0 - 1e-9))) {  // a restart must improve
       best_rss = chisq;
       best_iter = static_cast<int>(gsl_multifit_nlinear_niter(w.get()));
       best_status = status;
