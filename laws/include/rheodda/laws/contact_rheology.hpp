@@ -31,9 +31,13 @@ namespace rheodda::laws {
 
 /// How the force that drives a step's creep is chosen (docs/laws.md, "Schemes").
 enum class Scheme {
-  lagged,             ///< F = force at the start of the step (the seed's eqs. 12-16); explicit, 1st order
-  implicit,           ///< F = force at the end of the step; unconditionally stable, 1st order
-  exponential_linear  ///< F linear over the step, exact exponential integral; 2nd order, stable
+  lagged,             ///< F = force at the start of the step (the seed's eqs. 12-16); explicit,
+                      ///< 1st order; with a series spring k stable only for dt < 2 eta/k
+  implicit,           ///< F = force at the end of the step; unconditionally stable and
+                      ///< monotone, 1st order (the choice for stiff DDA contact springs)
+  exponential_linear  ///< F linear over the step, exact exponential integral; 2nd order,
+                      ///< exact for ramps; stable, but rings (decaying) under a stiff
+                      ///< series spring when dt > 2 eta/k
 };
 
 /// Name used on the command line, in YAML and in CSV: "lagged", "implicit", "exponential-linear".
