@@ -288,11 +288,12 @@ void write_plot(const std::string& path, const std::string& terminal, const Cree
   }
   std::string script = fmt::format(
       "set terminal {}\nset output {}\nset datafile separator ','\n"
-      "set multiplot\nset lmargin 12\nset rmargin 3\nset grid\n"
-      "set origin 0,0.33\nset size 1,0.67\nset key bottom right\n"
+      "set multiplot\nset lmargin 12\nset rmargin 24\nset grid\n"
+      "set key outside right top Left reverse\n"
+      "set origin 0,0.33\nset size 1,0.67\n"
       "set title {}\nset ylabel 'shear displacement [{}]'\nset format x ''\n"
       "plot {} using 1:2 with points pt 6 ps 0.5 lc rgb 'black' title 'data'{}\n"
-      "set origin 0,0\nset size 1,0.35\nunset title\nset format x '%g'\nset key top right\n"
+      "set origin 0,0\nset size 1,0.35\nunset title\nset format x '%g'\n"
       "set xlabel 'time [{}]'\nset ylabel 'residual [{}]'\n"
       "plot {}, 0 with lines lc rgb 'gray' notitle\nunset multiplot\n",
       terminal, quote(path),
