@@ -93,9 +93,9 @@ int main(int argc, char** argv) {
   joint.friction_angle = 30.0;
 
   std::printf("# running-bond brick wall, %d steps, dt = 1e-3 s (one core)\n", steps);
-  std::printf("%8s %6s %6s %8s %12s %12s %14s %8s %7s %7s %12s\n", "blocks", "NX", "NY", "contacts",
-              "detect_ms", "step_ms", "block-steps/s", "exponent", "iters", "cuts",
-              "max_disp_m");
+  std::printf("%8s %6s %6s %8s %10s %10s %10s %10s %14s %8s %6s %5s %8s %12s\n", "blocks", "NX",
+              "NY", "contacts", "detect_ms", "step_ms", "solve_ms", "assemb_ms", "block-steps/s",
+              "exponent", "iters", "cuts", "analyses", "max_disp_m");
   double prev_n = 0.0, prev_step = 0.0;
   for (int side : {10, 32, 100, 316}) {
     const int nx = side, ny = side;
@@ -120,16 +120,22 @@ int main(int argc, char** argv) {
     const auto s0 = Clock::now();
     engine.run(steps);
     const double step_time = seconds(s0, Clock::now()) / steps;
-    double max_disp = 0.0, iters = 0.0;
+    double max_disp = 0.0, iters = 0.0, solve = 0.0, assembly = 0.0;
     int cuts = 0;
     for (int b = 1; b < engine.block_count(); ++b)
       max_disp = std::max(max_disp, engine.point_displacement(b, c0[b]).norm());
-    for (const auto& r : engine.reports()) iters += r.iterations, cuts += r.cuts;
+    for (const auto& r : engine.reports()) {
+      iters += r.iterations;
+      cuts += r.cuts;
+      solve += r.solve_seconds;
+      assembly += r.assembly_seconds;
+    }
     const double exponent =
         prev_n > 0.0 ? std::log(step_time / prev_step) / std::log(n / prev_n) : std::nan("");
-    std::printf("%8.0f %6d %6d %8zu %12.3f %12.3f %14.3g %8.2f %7.2f %7d %12.3g\n", n, nx, ny,
-                contacts.contacts().size(), 1e3 * detect, 1e3 * step_time, n / step_time,
-                exponent, iters / steps, cuts, max_disp);
+    std::printf("%8.0f %6d %6d %8zu %10.3f %10.3f %10.3f %10.3f %14.3g %8.2f %6.2f %5d %8ld %12.3g\n",
+                n, nx, ny, contacts.contacts().size(), 1e3 * detect, 1e3 * step_time,
+                1e3 * solve / steps, 1e3 * assembly / steps, n / step_time, exponent,
+                iters / steps, cuts, engine.solver_stats().analyses, max_disp);
     std::fflush(stdout);
     prev_n = n;
     prev_step = step_time;

@@ -203,22 +203,32 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
     if (rec.state == ContactState::open) rec.locking_ratio = projection_ratio(a, b, p);
     Hot& h = hot_[c];
     prepare(blocks, rec, h);
-    // A new contact that already penetrates starts closed.
-    if (!old && h.dn0 > 0.0) rec.state = ContactState::locked;
+    // A new contact that already touches (to round-off: 1e-9 of the edge
+    // length) or penetrates starts closed: blocks built touching each other
+    // carry load from the first iterate instead of closing row by row.
+    if (!old && h.dn0 > -1e-9 * (b - a).norm()) rec.state = ContactState::locked;
     h.start_state = rec.state;
+    h.flips = h.refinements = 0;
     h.normal_force = rec.state == ContactState::open ? 0.0 : rec.normal_force;
     work_[c] = rec;
   }
   step_max_penetration_ = 0.0;
+  force_scale_ = 0.0;
+  for (const Contact& c : committed_) force_scale_ = std::max(force_scale_, std::abs(c.normal_force));
   stats_ = {static_cast<int>(pairs.size()), static_cast<int>(n), transferred, d0};
 }
 
 void ContactSystem::assemble(std::span<const BlockView>, SystemSink& sink) const {
   for (size_t c = 0; c < work_.size(); ++c) {
     const Contact& r = work_[c];
-    if (r.state == ContactState::open) continue;
-    const Hot& h = hot_[c];
     const int i = r.key.vblock, j = r.key.eblock;
+    if (r.state == ContactState::open) {
+      // A zero block keeps the matrix pattern of the pair through the
+      // open-close iteration, so the host can reuse its symbolic factorisation.
+      sink.add_stiffness(i, j, Mat6::Zero());
+      continue;
+    }
+    const Hot& h = hot_[c];
     // Normal spring: energy p_n d_n^2 / 2 (Shi 1988).
     sink.add_stiffness(i, i, h.pn * h.ni * h.ni.transpose());
     sink.add_stiffness(j, j, h.pn * h.nj * h.nj.transpose());
@@ -247,8 +257,12 @@ void ContactSystem::assemble(std::span<const BlockView>, SystemSink& sink) const
 
 CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen::VectorXd& D) {
   assert(D.size() == 6 * static_cast<Eigen::Index>(blocks.size()));
-  (void)blocks;
   CheckResult res;
+  // Force resolution: forces below this are zero for the state decisions, so
+  // contacts that carry (almost) nothing - the vertical joints of a wall - do
+  // not flip on round-off.
+  const double f_res = settings_.force_resolution * force_scale_;
+  double scale = 0.0;
   for (size_t c = 0; c < work_.size(); ++c) {
     Contact& r = work_[c];
     Hot& h = hot_[c];
@@ -258,16 +272,17 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
     const double slip = h.ti.dot(Di) + h.tj.dot(Dj);  // tangential motion this step [length]
     const double dt = h.dt0 + seams_[c].locking_shift + slip;
     const double N = h.pn * dn;
+    r.penetration = dn;
     const ContactState before = r.state;
     bool refine = false;  // friction force from a stale normal force
     switch (r.state) {
       case ContactState::open:
-        if (dn > 0.0) {
+        if (N > f_res) {
           // Closes; Mohr-Coulomb decides at once whether it holds or slides (a
           // vertex arriving with tangential speed would otherwise be caught by
           // a fully stretched shear spring for one iterate).
           const double S = shear_stiffness(c) * dt;
-          if (std::abs(S) > N * h.tan_phi + h.cohesion * r.length) {
+          if (std::abs(S) > N * h.tan_phi + h.cohesion * r.length + f_res) {
             r.state = ContactState::sliding;
             r.slide_direction = dt >= 0.0 ? 1 : -1;
           } else {
@@ -277,33 +292,72 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
         break;
       case ContactState::locked:
       case ContactState::sliding:
-        if (N < -h.tensile_strength * r.length) {
+        if (N < -h.tensile_strength * r.length - f_res) {
           r.state = ContactState::open;
         } else if (r.state == ContactState::locked) {
           // Mohr-Coulomb: slip when |F_T| > N tan(phi) + c l.
           const double S = shear_stiffness(c) * dt;
-          if (std::abs(S) > N * h.tan_phi + h.cohesion * r.length) {
+          if (std::abs(S) > N * h.tan_phi + h.cohesion * r.length + f_res) {
             r.state = ContactState::sliding;
             r.slide_direction = dt >= 0.0 ? 1 : -1;
           }
-        } else if (slip * r.slide_direction < 0.0) {
-          // The vertex moves against the friction direction assumed: it sticks.
+        } else if (shear_stiffness(c) * slip * r.slide_direction < -f_res) {
+          // The vertex moves against the friction direction assumed: it sticks
+          // where it stood at the start of the step (the shear spring restarts
+          // unstretched there, as after any sliding).
           r.state = ContactState::locked;
+          const BlockView& eb = blocks[r.key.eblock];
+          r.locking_ratio = projection_ratio(edge_start(eb, r.key.edge), edge_end(eb, r.key.edge),
+                                             blocks[r.key.vblock].vertices[r.key.vertex]);
+          prepare(blocks, r, h);
         } else {
           // The friction force N tan(phi) came from the last iterate's N.
           refine = std::abs(N - h.normal_force) >
-                   settings_.friction_tolerance * std::max(std::abs(N), std::abs(h.normal_force));
+                   std::max(settings_.friction_tolerance *
+                                std::max(std::abs(N), std::abs(h.normal_force)),
+                            f_res);
         }
         break;
     }
-    if (r.state != before || refine) ++res.state_changes;
+    if (r.state != before) {
+      if (h.flips >= settings_.max_flips && r.state != ContactState::locked) {
+        // Anti-chattering: a contact that already changed max_flips times in
+        // this step (typically a vertex that stops within the step: sliding
+        // reverses it, locking needs more than friction to stop it) may only
+        // go to the most constrained state, locked, for the rest of the step.
+        // Any Mohr-Coulomb excess lasts one step: the next step starts from it.
+        if (before == ContactState::locked) {
+          r.state = before;
+        } else {
+          if (before == ContactState::sliding) {
+            const BlockView& eb = blocks[r.key.eblock];
+            r.locking_ratio = projection_ratio(edge_start(eb, r.key.edge),
+                                               edge_end(eb, r.key.edge),
+                                               blocks[r.key.vblock].vertices[r.key.vertex]);
+            prepare(blocks, r, h);
+          }
+          r.state = ContactState::locked;
+        }
+      }
+      if (r.state != before) {
+        ++h.flips;
+        ++res.state_changes;
+      }
+    } else if (refine && h.refinements < settings_.max_refinements) {
+      ++h.refinements;
+      ++res.state_changes;
+    }
     // The normal force that drives friction in the next iterate. A contact that
     // just closed has N from a trial without its spring (the whole free
     // approach of the step as penetration): start its friction from zero and
     // let the refinement above bring it to its own N.
     h.normal_force = (r.state == ContactState::open || before == ContactState::open) ? 0.0 : N;
-    if (r.state != ContactState::open) res.max_penetration = std::max(res.max_penetration, dn);
+    if (r.state != ContactState::open) {
+      res.max_penetration = std::max(res.max_penetration, dn);
+      scale = std::max(scale, std::abs(N));
+    }
   }
+  force_scale_ = scale;
   step_max_penetration_ = res.max_penetration;
   return res;
 }

@@ -57,7 +57,7 @@ struct Contact {
   double normal_force = 0.0;  ///< p_n d_n [force/length]
   double shear_force = 0.0;   ///< along the edge direction a->b; p_s d_t (locked) or friction (sliding) [force/length]
   double shear_displacement = 0.0;  ///< accumulated relative slip + shear of the vertex along the edge [length]
-  double penetration = 0.0;   ///< d_n at the end of the step, > 0 into the edge's block [length]
+  double penetration = 0.0;   ///< d_n at the end of the step (trial records: of the last iterate), > 0 into the edge's block [length]
   bool intact = true;         ///< cohesion and tensile strength act until the contact first slides or opens
   int rheology = -1;          ///< slot in rheology_states(), or -1 without a law
 };
@@ -133,6 +133,8 @@ class ContactSystem {
     double tensile_strength = 0.0;  ///< [stress]
     double normal_force = 0.0;      ///< N of the last iterate, drives friction [force/length]
     ContactState start_state = ContactState::open;
+    int flips = 0;        ///< state changes of this contact in this step
+    int refinements = 0;  ///< friction refinements of this contact in this step
   };
   void prepare(std::span<const BlockView> blocks, const Contact& c, Hot& h) const;
   double shear_stiffness(size_t c) const;
@@ -143,6 +145,7 @@ class ContactSystem {
   double allowed_penetration_ = 0.0;
   double last_max_penetration_ = 0.0;
   double step_max_penetration_ = 0.0;
+  double force_scale_ = 0.0;  ///< largest |N| of the last iterate [force/length]
   std::uint64_t next_id_ = 1;
 
   std::vector<Contact> committed_, work_;

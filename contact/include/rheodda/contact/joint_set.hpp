@@ -61,6 +61,17 @@ struct ContactSettings {
   /// between two iterates asks for another iteration (its friction force
   /// N tan(phi) is taken from the previous iterate) [-].
   double friction_tolerance = 0.01;
+  /// Force resolution of the open-close decisions, as a fraction of the
+  /// largest contact normal force of the last iterate [-]: a contact closes
+  /// only when its spring would push by more than this, opens only when pulled
+  /// by more than tensile strength plus this, slides only when its shear
+  /// exceeds the Mohr-Coulomb limit by more than this.
+  double force_resolution = 1e-3;
+  /// Anti-chattering: after this many state changes in one step a contact may
+  /// only change to locked for the rest of the step [-].
+  int max_flips = 2;
+  /// Friction refinements (see friction_tolerance) a contact may ask for in one step [-].
+  int max_refinements = 3;
   /// Factor by which the penalty is raised [-].
   double penalty_raise = 2.0;
   /// Upper bound of the penalty as a multiple of the initial one [-].
