@@ -429,7 +429,12 @@ StepReport Engine::Impl::step(double dt_cap) {
       system.finalize();
       rep.assembly_seconds += seconds_since(t0);
       t0 = Clock::now();
-      D = solver->solve(system);
+      try {
+        D = solver->solve(system);
+      } catch (...) {
+        contacts->abandon_step();  // leave the contacts at their step-start states
+        throw;
+      }
       rep.solve_seconds += seconds_since(t0);
       ++iterations;
       check = contacts->check(views, D);
