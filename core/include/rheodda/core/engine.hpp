@@ -10,7 +10,9 @@
 // no contact work at all.
 //
 // Usage:
-//   rheodda::core::Model m;  m.blocks.push_back({.vertices = {{0,0},{1,0},{1,1},{0,1}}});
+//   rheodda::core::Model m;
+//   rheodda::core::BlockDef b;  b.vertices = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+//   m.blocks.push_back(b);
 //   rheodda::core::Engine engine(m);          // or Engine(m, contacts)
 //   engine.add_observer([](const Engine& e, const StepReport& r) { ... });
 //   engine.run(100);
