@@ -389,9 +389,9 @@ void add_fit_command(CLI::App& app) {
                   "Column of the total shear displacement")
       ->capture_default_str();
   cmd->add_option("--units", a->units, "Units 'STRESS, LENGTH, TIME' of the data, e.g. \"MPa, mm, h\"");
-  cmd->add_option("--rank-by", a->rank_by, "Criterion ranking the laws with --law all")
-      ->check(CLI::IsMember({"aic", "bic"}))
-      ->capture_default_str();
+  auto* rank = cmd->add_option("--rank-by", a->rank_by, "Criterion ranking the laws with --law all")
+                   ->check(CLI::IsMember({"aic", "bic"}))
+                   ->capture_default_str();
   cmd->add_option("--restarts", a->restarts, "Extra starts besides the one derived from the curve")
       ->capture_default_str();
   cmd->add_option("--json", a->json, "Write the full report as JSON")->type_name("FILE");
@@ -399,7 +399,11 @@ void add_fit_command(CLI::App& app) {
       ->type_name("FILE");
   cmd->add_option("--plot", a->plot, "Draw data, fit and residuals with gnuplot (.png or .svg)")
       ->type_name("FILE");
-  cmd->callback([a] { run_fit(*a); });
+  cmd->callback([a, rank] {
+    if (rank->count() > 0 && a->law != "all")
+      throw std::invalid_argument("--rank-by ranks the laws of --law all; it does nothing with one law");
+    run_fit(*a);
+  });
 }
 
 }  // namespace rheodda::apps

@@ -85,6 +85,7 @@ CreepData parse_creep_csv(std::istream& in, const std::string& source, const Csv
     const auto cells = split(text);
     if (header.empty()) {
       for (const auto c : cells) header.emplace_back(c);
+      if (header[0].rfind("\xEF\xBB\xBF", 0) == 0) header[0].erase(0, 3);  // UTF-8 byte order mark
       col_t = find_column(options.time_column, "--time-column");
       col_d = find_column(options.displacement_column, "--displacement-column");
       if (per_row) col_s = find_column(options.stress_column, "--stress-column");

@@ -110,6 +110,7 @@ struct Problem {
   // Cache: the analytic Jacobian is computed with the residuals, at no extra exp() cost.
   std::vector<double> cached_x, cached_jac;
   std::vector<double> values;  // scratch: exp(x)
+  std::vector<double> scratch_f;  // residuals when GSL's f is not contiguous
 };
 
 void to_values(const gsl_vector* x, Problem& pr) {
@@ -212,13 +213,18 @@ void sanitize(double* f, std::size_t n) {
 int residual_cb(const gsl_vector* x, void* params, gsl_vector* f) {
   auto& pr = *static_cast<Problem*>(params);
   to_values(x, pr);
+  // GSL's finite-difference Jacobian passes a column of J (stride p): work in
+  // a contiguous buffer then unless f is contiguous.
+  double* out = f->stride == 1 ? f->data : (pr.scratch_f.resize(pr.n), pr.scratch_f.data());
   if (pr.structure) {
-    evaluate_series(pr, f->data, pr.cached_jac.data());
+    evaluate_series(pr, out, pr.cached_jac.data());
     for (std::size_t k = 0; k < pr.np; ++k) pr.cached_x[k] = gsl_vector_get(x, k);
-  } else if (!evaluate_generic(pr, f->data)) {
-    for (std::size_t j = 0; j < pr.n; ++j) f->data[j] = 1e100;
+  } else if (!evaluate_generic(pr, out)) {
+    std::fill(out, out + pr.n, 1e100);
   }
-  sanitize(f->data, pr.n);
+  sanitize(out, pr.n);
+  if (out != f->data)
+    for (std::size_t j = 0; j < pr.n; ++j) gsl_vector_set(f, j, out[j]);
   return GSL_SUCCESS;
 }
 

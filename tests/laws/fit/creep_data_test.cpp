@@ -56,6 +56,12 @@ BOOST_AUTO_TEST_CASE(single_stress_file_gives_one_stage_with_every_row) {
   BOOST_TEST(d.line[2] == 6u);  // comments and blank lines still count as file lines
 }
 
+BOOST_AUTO_TEST_CASE(byte_order_mark_and_spaces_around_cells_are_accepted) {
+  const auto d = parse("\xEF\xBB\xBFt, displacement\n0, 0.0086\n1 ,0.0090\r\n", with_stress(0.232));
+  BOOST_TEST(d.t.size() == 2u);
+  BOOST_TEST(d.displacement[1] == 0.0090);
+}
+
 BOOST_AUTO_TEST_CASE(stress_column_starts_a_stage_at_each_new_value) {
   const auto d = parse("time,tau,u\n0,0.2,1\n5,0.2,2\n10,0.4,3\n15,0.4,4\n20,0,2\n",
                        fit::CsvOptions{"time", "u", "tau", std::nullopt});

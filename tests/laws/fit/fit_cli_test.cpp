@@ -156,7 +156,8 @@ BOOST_AUTO_TEST_CASE(bad_input_exits_2_naming_file_line_and_column) {
       {"--law burgers --stress 0:0.2,100:0.4", "stage 2"},          // a stage without points
       {"--law burgers --stress 0.232 --units MPa", "--units"},      // units not STRESS, LENGTH, TIME
       {"--law burgers --stress 0.232 --plot fit.jpg", "--plot"},    // unknown picture format
-      {"--law burgers --stress 0.232 --time-column hours", "hours"} // no such column
+      {"--law burgers --stress 0.232 --time-column hours", "hours"}, // no such column
+      {"--law burgers --stress 0.232 --rank-by aic", "--rank-by"}   // ranking needs --law all
   };
   for (const auto& [args, words] : cases) {
     r = run_rheodda("fit '" + bad + "' " + args, dir);

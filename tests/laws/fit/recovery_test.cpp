@@ -4,6 +4,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <memory>
 
 #include "rheodda/fit/fit.hpp"
 #include "synthetic.hpp"
@@ -84,6 +85,22 @@ BOOST_AUTO_TEST_CASE(every_linear_law_recovered_exactly_without_noise) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(every_linear_law_recovered_within_two_sigma_with_noise) {
+  const laws::StagedHistory h({{0.0, 0.3}});
+  const std::vector<std::pair<std::string, laws::ParameterValues>> cases = {
+      {"maxwell", {{"E1", 30.0}, {"eta1", 20000.0}}},
+      {"kelvin", {{"E2", 50.0}, {"eta2", 1500.0}}},
+      {"generalized-kelvin",
+       {{"E1", 30.0}, {"E2", 200.0}, {"eta2", 400.0}, {"E3", 80.0}, {"eta3", 4000.0}}},
+  };
+  unsigned seed = 21;
+  for (const auto& [law, truth] : cases) {
+    const auto data = fit::test::synthetic_curve(law, truth, h, fit::test::sample_times(200, 0.5, h),
+                                                 2e-5, seed++);
+    check_two_sigma(fit::fit_law(law_info(law), data), truth);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(multi_stage_burgers_with_unloading_recovered_by_superposition) {
   // Table 1 row 1 loaded in two steps, then unloaded: the fit sees all stages at once.
   const laws::StagedHistory h({{0.0, 0.232}, {100.0, 0.424}, {200.0, 0.0}});
@@ -126,6 +143,54 @@ BOOST_AUTO_TEST_CASE(fitted_curve_equals_exact_law_response) {
   const auto expected = fit::predict(*law, h, data.t);
   for (std::size_t j = 0; j < data.t.size(); ++j)
     BOOST_TEST(std::abs(r.fitted[j] - expected[j]) <= 1e-12 * std::abs(expected[j]) + 1e-15);
+}
+
+namespace {
+// A law that is not a SeriesLaw (it wraps one), as a law added later might be:
+// the fit falls back on laws::exact_displacement with finite-difference derivatives.
+class Wrapped final : public laws::ContactRheology {
+ public:
+  explicit Wrapped(const laws::ParameterValues& p)
+      : inner_(laws::LawRegistry::builtin().create("burgers", p)) {}
+  std::string_view name() const override { return "wrapped-burgers"; }
+  const laws::ParameterValues& parameters() const override { return inner_->parameters(); }
+  int internal_count() const override { return inner_->internal_count(); }
+  std::optional<double> instantaneous_stiffness() const override {
+    return inner_->instantaneous_stiffness();
+  }
+  bool is_linear() const override { return true; }
+  laws::StepConstants step_constants(double dt, laws::Scheme s) const override {
+    return inner_->step_constants(dt, s);
+  }
+  laws::Linearization linearize(const laws::StepConstants& k, const laws::RheologyState& old,
+                                double fs, double fe) const override {
+    return inner_->linearize(k, old, fs, fe);
+  }
+  double advance(const laws::StepConstants& k, const laws::RheologyState& old, double fs, double fe,
+                 laws::RheologyState& next) const override {
+    return inner_->advance(k, old, fs, fe, next);
+  }
+  double creep_closed_form(double force, double t) const override {
+    return inner_->creep_closed_form(force, t);
+  }
+
+ private:
+  std::unique_ptr<laws::ContactRheology> inner_;
+};
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(law_of_another_shape_fitted_through_its_exact_response) {
+  laws::LawInfo info = law_info("burgers");
+  info.name = "wrapped-burgers";
+  info.make = [](const laws::ParameterValues& p) -> std::unique_ptr<laws::ContactRheology> {
+    return std::make_unique<Wrapped>(p);
+  };
+  const laws::StagedHistory h({{0.0, 0.232}, {100.0, 0.424}, {200.0, 0.0}});
+  const auto truth = fit::test::burgers_values(kTable1[0]);
+  const auto times = fit::test::sample_times(300, 1, h);
+  check_exact(fit::fit_law(info, fit::test::synthetic_curve("burgers", truth, h, times)), truth);
+  check_two_sigma(fit::fit_law(info, fit::test::synthetic_curve("burgers", truth, h, times, 2e-5, 8)),
+                  truth);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
