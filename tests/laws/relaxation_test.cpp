@@ -154,4 +154,54 @@ BOOST_AUTO_TEST_CASE(schemes_converge_to_exact_relaxation_at_order_1_and_2) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(nishihara_relaxation_above_threshold_converges_to_rk4_at_scheme_order) {
+  // Held displacement with E1 d0 = 0.3 MPa above Fs: the Bingham element flows
+  // while F > Fs, so the host's piecewise solve (solve_series_force) is used at
+  // every step. Reference: RK4 with h = 1e-4 h on
+  //   eta2 qK' = F - E2 qK,  eta3 qB' = <F - Fs>,  F = E1 (d0 - qK - qB).
+  // Case "above": F stays above Fs to t = 40 h; case "crossing": the Kelvin
+  // unit pulls F below Fs, where the Bingham element stops (a kink in time).
+  const auto& r = table1()[0];
+  const double d0 = 0.3 / r.E1, t_end = 40.0;
+  struct Case { const char* what; double eta3, fs; bool all_halvings; };
+  for (const Case& c : {Case{"above", r.eta1 / 100.0, 0.15, true}, Case{"crossing", r.eta1 / 1000.0, 0.27, false}}) {
+    const auto law = make("nishihara", {{"E1", r.E1}, {"E2", r.E2}, {"eta2", r.eta2}, {"eta3", c.eta3}, {"Fs", c.fs}});
+    double qk = 0.0, qb = 0.0;
+    auto rate = [&](double k, double b, double* rk, double* rb) {
+      const double f = r.E1 * (d0 - k - b);
+      *rk = (f - r.E2 * k) / r.eta2;
+      *rb = (f > c.fs ? f - c.fs : 0.0) / c.eta3;
+    };
+    const double h = 1e-4;
+    for (long n = 0; n < std::lround(t_end / h); ++n) {
+      double a1, b1, a2, b2, a3, b3, a4, b4;
+      rate(qk, qb, &a1, &b1);
+      rate(qk + h / 2 * a1, qb + h / 2 * b1, &a2, &b2);
+      rate(qk + h / 2 * a2, qb + h / 2 * b2, &a3, &b3);
+      rate(qk + h * a3, qb + h * b3, &a4, &b4);
+      qk += h / 6 * (a1 + 2 * a2 + 2 * a3 + a4);
+      qb += h / 6 * (b1 + 2 * b2 + 2 * b3 + b4);
+    }
+    const double reference = r.E1 * (d0 - qk - qb);
+    BOOST_TEST((c.all_halvings ? reference > c.fs : reference < c.fs), c.what);
+    for (Scheme scheme : all_schemes()) {
+      std::vector<double> err;
+      for (double dt : {2.0, 1.0, 0.5, 0.25, 0.125}) {
+        const auto s = integrate_curve(*law, Control::displacement, StagedHistory({{0.0, d0}}), t_end, dt, scheme);
+        for (std::size_t i = 1; i < s.size(); ++i)  // relaxes monotonically at these steps
+          BOOST_TEST(s[i].force <= s[i - 1].force, c.what << " " << scheme_name(scheme) << " dt " << dt);
+        err.push_back(rel(s.back().force, reference));
+      }
+      // The kink makes the first halvings pre-asymptotic in the crossing case:
+      // there only the last halving is held to the order.
+      const double expected = scheme == Scheme::exponential_linear ? 2.0 : 1.0;
+      for (std::size_t i = c.all_halvings ? 1 : err.size() - 1; i < err.size(); ++i) {
+        const double order = std::log2(err[i - 1] / err[i]);
+        BOOST_TEST(std::abs(order - expected) <= 0.1,
+                   c.what << " " << scheme_name(scheme) << " order " << order);
+      }
+    }
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()
