@@ -62,8 +62,13 @@ int run_curve(const CurveOptions& o) {
   const auto law = LawRegistry::builtin().create(o.law, parse_params(o.params));
   const Scheme scheme = parse_scheme(o.scheme);
   const bool by_force = !o.force.empty();
-  const StagedHistory history = by_force ? StagedHistory::parse(o.force, "--force")
-                                         : StagedHistory::parse(o.displacement, "--displacement");
+  const char* what = by_force ? "--force" : "--displacement";
+  const StagedHistory history = StagedHistory::parse(by_force ? o.force : o.displacement, what);
+  // A stage that starts after the end would be silently dropped: refuse it.
+  for (const auto& stage : history.stages())
+    if (stage.t > o.t_end)
+      throw LawError(what, fmt::format("{}: stage at time {:g} starts after --t-end {:g}", what,
+                                       stage.t, o.t_end));
   const auto samples = integrate_curve(*law, by_force ? Control::force : Control::displacement,
                                        history, o.t_end, o.dt, scheme);
   bool any_exact = false;

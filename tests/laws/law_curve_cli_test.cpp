@@ -121,6 +121,8 @@ BOOST_AUTO_TEST_CASE(law_curve_bad_input_exits_2_naming_the_key) {
       {std::string(kRow1) + "--force 0:abc", "--force"},
       {std::string(kRow1) + "--force 5:1,2:1", "--force"},
       {std::string(kRow1) + "--force 0:1 --scheme bogus", "--scheme"},
+      {std::string(kRow1) + "--force 0:1,300:0", "starts after --t-end"},
+      {std::string(kRow1) + "--displacement 0:1,300:0", "--displacement"},
       {"law curve maxwell --param E1=3 --param eta1=1 --force 0:1 --t-end 1 --dt 0", "--dt"},
       {"law curve kelvin --param E2=3 --param eta2=1 --displacement 0:1 --t-end 1 --dt 1", "displacement"},
       {std::string(kRow1), "--force"},
