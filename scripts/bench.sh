@@ -9,6 +9,7 @@ BENCHES=(
   laws_bench
   contact_bench
   engine_bench
+  fit_bench
 )
 "$root/scripts/install-deps.sh"
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRHEODDA_BUILD_BENCH=ON >/dev/null
