@@ -157,10 +157,9 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
     }
   }
 
-  work_.resize(n);
+  work_.clear();
   work_rheology_.clear();
-  hot_.resize(n);
-  seams_.assign(n, ShearSeam{});
+  hot_.clear();
   for (size_t c = 0; c < n; ++c) {
     const DetectedContact& d = found[c];
     const BlockView& eb = blocks[d.key.eblock];
@@ -180,16 +179,32 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
         rec.locking_ratio = projection_ratio(edge_start(eb, d.key.edge), edge_end(eb, d.key.edge), p0);
       }
     } else {
-      rec.id = next_id_++;
       rec.state = ContactState::open;
     }
     rec.key = d.key;
     rec.kind = d.kind;
     rec.length = d.length;
     rec.joint_set = js;
+    const Vec2 a = edge_start(eb, d.key.edge), b = edge_end(eb, d.key.edge);
+    const Vec2& p = blocks[d.key.vblock].vertices[d.key.vertex];
+    // An open contact locks where the vertex projects at the start of the step.
+    if (rec.state == ContactState::open) rec.locking_ratio = projection_ratio(a, b, p);
+    Hot h;
+    prepare(blocks, rec, h);
+    if (!old) {
+      // A new contact deeper than the allowed penetration is no contact: the
+      // vertex lies inside the other block beyond this edge (it belongs to
+      // another face, e.g. a step corner within the search distance of the
+      // next block's base).
+      if (h.dn0 > allowed_penetration_) continue;
+      rec.id = next_id_++;
+      // A new contact that already touches (to round-off: 1e-9 of the edge
+      // length) or penetrates starts closed: blocks built touching each other
+      // carry load from the first iterate instead of closing row by row.
+      if (h.dn0 > -1e-9 * (b - a).norm()) rec.state = ContactState::locked;
+    }
     // Rheology slot: kept on transfer, created for a new contact on a joint set with a law.
-    const bool has_law = static_cast<bool>(joint_sets_[js].law);
-    if (has_law) {
+    if (joint_sets_[js].law) {
       laws::RheologyState st;
       if (old && old->rheology >= 0) st = committed_rheology_[old->rheology];
       rec.rheology = static_cast<int>(work_rheology_.size());
@@ -197,25 +212,17 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
     } else {
       rec.rheology = -1;
     }
-    const Vec2 a = edge_start(eb, d.key.edge), b = edge_end(eb, d.key.edge);
-    const Vec2& p = blocks[d.key.vblock].vertices[d.key.vertex];
-    // An open contact locks where the vertex projects at the start of the step.
-    if (rec.state == ContactState::open) rec.locking_ratio = projection_ratio(a, b, p);
-    Hot& h = hot_[c];
-    prepare(blocks, rec, h);
-    // A new contact that already touches (to round-off: 1e-9 of the edge
-    // length) or penetrates starts closed: blocks built touching each other
-    // carry load from the first iterate instead of closing row by row.
-    if (!old && h.dn0 > -1e-9 * (b - a).norm()) rec.state = ContactState::locked;
     h.start_state = rec.state;
     h.flips = h.refinements = 0;
     h.normal_force = rec.state == ContactState::open ? 0.0 : rec.normal_force;
-    work_[c] = rec;
+    work_.push_back(rec);
+    hot_.push_back(h);
   }
+  seams_.assign(work_.size(), ShearSeam{});
   step_max_penetration_ = 0.0;
   force_scale_ = 0.0;
   for (const Contact& c : committed_) force_scale_ = std::max(force_scale_, std::abs(c.normal_force));
-  stats_ = {static_cast<int>(pairs.size()), static_cast<int>(n), transferred, d0};
+  stats_ = {static_cast<int>(pairs.size()), static_cast<int>(work_.size()), transferred, d0};
 }
 
 void ContactSystem::assemble(std::span<const BlockView>, SystemSink& sink) const {

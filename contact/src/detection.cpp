@@ -37,6 +37,15 @@ bool is_corner(const BlockView& blk, int v, double sin_tol) {
   return u1.x() * u2.y() - u1.y() * u2.x() > sin_tol;
 }
 
+/// True when vertex v is reflex (interior angle above 180 deg + tolerance).
+bool is_reflex(const BlockView& blk, int v, double sin_tol) {
+  const int nv = static_cast<int>(blk.vertices.size());
+  const Vec2& p = blk.vertices[v];
+  const Vec2 u1 = (p - blk.vertices[wrap(v - 1, nv)]).normalized();
+  const Vec2 u2 = (blk.vertices[wrap(v + 1, nv)] - p).normalized();
+  return u1.x() * u2.y() - u1.y() * u2.x() < -sin_tol;
+}
+
 /// Angle-rule score of vertex v of `blk` entering the edge with outward normal n.
 double wedge_score(const BlockView& blk, int v, const Vec2& n) {
   const int nv = static_cast<int>(blk.vertices.size());
@@ -120,6 +129,9 @@ void detect_pair(std::span<const BlockView> blocks, int ia, int ib, const Detect
       if ((p - q).norm() >= d0) continue;
       const bool p_corner = is_corner(A, k, sin_tol), q_corner = is_corner(B, m, sin_tol);
       if (!p_corner && !q_corner) continue;
+      // A corner in a notch (the other vertex reflex) touches both edges of the notch.
+      const bool p_in_notch = p_corner && is_reflex(B, m, sin_tol);
+      const bool q_in_notch = q_corner && is_reflex(A, k, sin_tol);
       const std::array<ContactKey, 4> cand{ContactKey{ia, k, ib, wrap(m - 1, nb)},
                                            ContactKey{ia, k, ib, m},
                                            ContactKey{ib, m, ia, wrap(k - 1, na)},
@@ -157,6 +169,11 @@ void detect_pair(std::span<const BlockView> blocks, int ia, int ib, const Detect
                                           key.edge, d0, cos_tol);
         out.push_back({key, len > 0.0 ? ContactKind::edge_edge : ContactKind::vertex_vertex, len});
       };
+      if (p_in_notch || q_in_notch) {
+        for (int c = 0; c < 4; ++c)
+          if ((c < 2 ? p_in_notch : q_in_notch) && score[c] >= -sin_tol) emit(c);
+        continue;
+      }
       bool kept = false;
       for (int c = 0; c < 4; ++c)
         if (score[c] >= best - sin_tol && was[c]) emit(c), kept = true;

@@ -260,6 +260,21 @@ BOOST_AUTO_TEST_CASE(penetration_beyond_the_allowed_ratio_raises_the_penalty) {
   BOOST_TEST(cs.penalty() == 2e6);
 }
 
+BOOST_AUTO_TEST_CASE(a_vertex_deep_inside_another_block_is_no_new_contact) {
+  // A step corner 0.5 m inside the next block's base line but within a large
+  // search distance: the vertex-vertex pair is found, yet no contact is made.
+  Scene s;
+  s.add({{0, -1}, {2, -1}, {2, 0.5}, {1, 0.5}, {1, 0}, {0, 0}});  // step of 0.5 m at x = 1
+  s.add_rect(0.0, 0.0, 1.0, 2.0);  // its right side stands against the riser
+  ContactSettings st = settings(1e10);
+  st.penetration_ratio = 1e-4;  // allowed penetration 1e-4 w0 = 1.5e-4 m
+  ContactSystem cs({joint(30.0)}, st);
+  cs.begin_step(s.views(), 0.4);  // search distance 1 m > step height
+  for (const Contact& c : cs.trial_contacts()) BOOST_TEST(c.penetration <= 0.0 + 1e-12);
+  for (const Contact& c : cs.trial_contacts())
+    BOOST_TEST(!(c.key.vblock == 0 && c.key.vertex == 3 && c.key.eblock == 1 && c.key.edge == 0));
+}
+
 BOOST_AUTO_TEST_CASE(bad_settings_and_joint_sets_are_rejected_with_the_key) {
   BOOST_CHECK_THROW(ContactSystem({joint(30.0)}, settings(0.0)), std::invalid_argument);
   JointSet j = joint(30.0);

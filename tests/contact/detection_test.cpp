@@ -138,4 +138,30 @@ BOOST_AUTO_TEST_CASE(angle_rule_tie_keeps_the_contact_of_the_last_step) {
   BOOST_TEST(kept);
 }
 
+BOOST_AUTO_TEST_CASE(corner_in_a_notch_touches_both_edges_of_the_notch) {
+  // Stepped base: a reflex vertex at (1, 0) between the tread (1,0)->(0,0) and
+  // the riser (1,1)->(1,0); a block's corner sits in it.
+  Scene s;
+  s.add({{0, -1}, {2, -1}, {2, 1}, {1, 1}, {1, 0}, {0, 0}});
+  s.add_rect(0.2, 0.0, 1.0, 0.5);
+  const auto c = detect(s);
+  // corner (1, 0) = vertex 1 of block 1 on the riser (edge 3) and on the tread (edge 4),
+  // plus the block's other bottom corner on the tread.
+  bool riser = false, tread = false;
+  for (const auto& k : c) {
+    riser |= k.key == ContactKey{1, 1, 0, 3};
+    tread |= k.key == ContactKey{1, 1, 0, 4};
+  }
+  BOOST_TEST(riser);
+  BOOST_TEST(tread);
+}
+
+BOOST_AUTO_TEST_CASE(straight_angle_vertices_never_enter_an_edge) {
+  // The base's top is split at (1, 0) (a straight angle); the block lies across it.
+  Scene s;
+  s.add({{0, -1}, {2, -1}, {2, 0}, {1, 0}, {0, 0}});
+  s.add_rect(0.5, 0.0, 1.5, 0.5);
+  for (const auto& k : detect(s)) BOOST_TEST(!(k.key.vblock == 0 && k.key.vertex == 3));
+}
+
 BOOST_AUTO_TEST_SUITE_END()

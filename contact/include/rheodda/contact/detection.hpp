@@ -21,7 +21,8 @@
 // and u1, u2 the unit directions of p's two edges, the score min(n.u1, n.u2)
 // must be >= -sin(angle tolerance). For a vertex-vertex pair the candidate
 // with the highest score wins; candidates within sin(tolerance) of the best are
-// tied. Every tied candidate that was a contact in the last step is kept (so
+// tied. A corner sitting in a notch (the other vertex is reflex) touches both
+// edges of the notch: every valid candidate is kept. Otherwise every tied candidate that was a contact in the last step is kept (so
 // contacts keep their identity, also where two blocks slide past a
 // straight-angle vertex and both vertices touch); if none was, one is taken:
 // preferably one whose vertex projects inside its edge, then in a fixed order.
