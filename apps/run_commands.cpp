@@ -4,15 +4,75 @@
 //   rheodda run examples/shear-creep-test.yaml -o out/shear-creep
 //   rheodda plot out/shear-creep
 #include <fmt/format.h>
+#include <unistd.h>
 
+#include <csignal>
+#include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "rheodda/scene/describe.hpp"
 #include "rheodda/scene/loader.hpp"
+#include "rheodda/scene/output.hpp"
+#include "rheodda/scene/plot.hpp"
+#include "rheodda/scene/run.hpp"
 
 namespace rheodda::apps {
+namespace {
+
+volatile std::sig_atomic_t g_stop = 0;
+extern "C" void on_stop_signal(int signo) { g_stop = signo; }
+
+struct RunArgs {
+  std::string scene;
+  std::string out;
+  bool resume = false;
+};
+
+void run_command(const RunArgs& args) {
+  const std::string text = scene::read_scene_text(args.scene);
+  const scene::SceneDescription s = scene::parse_scene(text, args.scene);
+  scene::RunOptions opt;
+  opt.out_dir = args.out.empty()
+                    ? (std::filesystem::path("out") / std::filesystem::path(args.scene).stem()).string()
+                    : args.out;
+  opt.resume = args.resume;
+  opt.progress = ::isatty(STDERR_FILENO) != 0;
+  opt.stop = &g_stop;
+  // Stop between two steps on Ctrl-C or kill: files stay consistent, the run can be resumed.
+  struct sigaction sa {};
+  sa.sa_handler = on_stop_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+
+  scene::RunResult r;
+  try {
+    r = scene::run_scene(s, text, opt);
+  } catch (const scene::SceneError&) {
+    throw;
+  } catch (const std::invalid_argument&) {
+    throw;  // bad arguments (e.g. --resume on another scene): exit 2
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "rheodda: error: {}\n", e.what());
+    throw CLI::RuntimeError(1);
+  }
+  for (const auto& w : r.warnings) fmt::print(stderr, "rheodda: warning: {}\n", w);
+  const char* status = r.status == scene::RunStatus::completed ? "completed" : "interrupted";
+  fmt::print("{}: {} at t = {:g} of {:g} {}: {} steps ({} cuts of dt){}, {} frames, largest penetration {:g} {}, "
+             "wall time {:.2f} s\n  outputs in {}/ (history.csv, contacts.csv, blocks.pvd, summary.json)\n",
+             s.title, status, r.time, s.analysis.duration, s.units.time, r.steps, r.cuts,
+             r.resumed_from_step >= 0 ? fmt::format(", resumed from step {}", r.resumed_from_step) : "",
+             r.frames, r.max_penetration, s.units.length, r.wall_seconds, opt.out_dir);
+  if (r.status == scene::RunStatus::interrupted) {
+    fmt::print("  resume with: rheodda run {} -o {} --resume\n", args.scene, opt.out_dir);
+    throw CLI::RuntimeError(128 + (g_stop ? static_cast<int>(g_stop) : SIGINT));
+  }
+}
+
+}  // namespace
 
 void add_scene_commands(CLI::App& app) {
   auto file = std::make_shared<std::string>();
@@ -23,6 +83,25 @@ void add_scene_commands(CLI::App& app) {
     const scene::SceneDescription s = scene::load_scene(*file);
     fmt::print("{}", scene::describe_scene(s));
     fmt::print("scene OK\n");
+  });
+
+  auto args = std::make_shared<RunArgs>();
+  auto* run = app.add_subcommand("run", "Run a scene; outputs go to OUTDIR (docs/outputs.md)");
+  run->add_option("SCENE", args->scene, "Scene file (YAML, docs/scene-format.md)")->required();
+  run->add_option("-o,--out", args->out, "Output directory (default out/<scene name>)")->type_name("OUTDIR");
+  run->add_flag("--resume", args->resume, "Continue an interrupted run from OUTDIR/checkpoint.json");
+  run->callback([args] { run_command(*args); });
+
+  auto plot = std::make_shared<scene::PlotOptions>();
+  auto* p = app.add_subcommand("plot", "Draw the blocks at chosen times and the history curves (gnuplot)");
+  p->add_option("OUTDIR", plot->out_dir, "Output directory of a run")->required();
+  p->add_option("--times", plot->times, "Times to draw the blocks at (default: first, middle, last frame)")
+      ->delimiter(',');
+  p->add_option("--format", plot->format, "png or svg")->check(CLI::IsMember({"png", "svg"}))->capture_default_str();
+  p->add_option("--scale", plot->scale,
+                "Displacement magnification of the block pictures (default: automatic, shown in the title)");
+  p->callback([plot] {
+    for (const auto& f : scene::plot_run(*plot)) fmt::print("{}\n", f);
   });
 }
 

@@ -21,14 +21,14 @@ std::string describe_scene(const SceneDescription& s) {
 
   line(fmt::format("scene: {} ({})", s.title, s.file));
   line(fmt::format("units: length {}, force {}, time {}; stress {}", u.length, u.force, u.time, stress));
-  line(fmt::format("analysis: {}, duration {:g} {}, dt {:g} {} (min {:g}), dynamic_ratio {:g}",
-                   analysis_type_name(a.type), a.duration, u.time, a.dt, u.time, a.dt_min, a.dynamic_ratio));
+  line(fmt::format("analysis: {}, duration {:g} {}, dt {:g} {} (max_cuts {}), dynamic_ratio {:g}",
+                   analysis_type_name(a.type), a.duration, u.time, a.dt, u.time, a.max_cuts, a.dynamic_ratio));
   line(fmt::format("  gravity ({:g}, {:g}) {}/{}^2, scheme {}, solver {}", a.gravity[0], a.gravity[1],
                    u.length, u.time, laws::scheme_name(a.scheme), solver_name(a.solver)));
   line(fmt::format("  max_displacement_ratio {:g}, penalty {:g} {}, shear_normal_ratio {:g}, "
-                   "fixed_point_stiffness {:g} {}",
+                   "fixed_point_stiffness {:g} {}/{}",
                    a.max_displacement_ratio, a.penalty, stress, a.shear_normal_ratio,
-                   a.fixed_point_stiffness, stress));
+                   a.fixed_point_stiffness, u.force, u.length));
   line(fmt::format("  open_close_limit {}, penetration_ratio {:g}, angle_tolerance {:g} deg, search_factor {:g}",
                    a.open_close_limit, a.penetration_ratio, a.angle_tolerance, a.search_factor));
   line(fmt::format("  output every {:g} {}: {} frames", a.output_interval, u.time,
@@ -54,7 +54,8 @@ std::string describe_scene(const SceneDescription& s) {
     if (j.law) {
       std::string params;
       for (const auto& [k, v] : j.law->parameters) params += fmt::format(" {}={:g}", k, v);
-      line(fmt::format("    law {}:{}", j.law->name, params));
+      line(fmt::format("    law {}:{} (scheme {})", j.law->name, params, laws::scheme_name(a.scheme)));
+      line("    note: the contact layer does not couple creep laws yet; `rheodda run` warns and runs without creep");
     } else {
       line("    law: none (no creep)");
     }

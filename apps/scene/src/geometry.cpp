@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <unordered_map>
 
 namespace rheodda::scene {
 namespace {
@@ -76,24 +77,59 @@ Box bounding_box(const std::vector<Point>& poly) {
   return b;
 }
 
-/// Calls f(i, j) for each pair of blocks whose boxes, enlarged by `margin`, overlap.
+/// Calls f(i, j), i < j, once for each pair of blocks whose boxes, enlarged by
+/// `margin`, overlap. Boxes are binned in a uniform grid (cell = median box size,
+/// at most ~4N cells along the model's larger side), and a pair is reported by the
+/// cell holding the lower-left corner of the two boxes' overlap: O(N) for blocks
+/// of similar size, never all N^2 pairs.
 template <class F>
 void for_near_pairs(const std::vector<BlockDescription>& blocks, double margin, F&& f) {
+  const std::size_t n = blocks.size();
+  if (n < 2) return;
   std::vector<Box> boxes;
-  boxes.reserve(blocks.size());
-  for (const auto& b : blocks) boxes.push_back(bounding_box(b.polygon));
-  std::vector<int> order(blocks.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return boxes[a].x0 < boxes[b].x0; });
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    const Box& a = boxes[order[k]];
-    for (std::size_t m = k + 1; m < order.size(); ++m) {
-      const Box& b = boxes[order[m]];
-      if (b.x0 > a.x1 + margin) break;
-      if (b.y0 > a.y1 + margin || a.y0 > b.y1 + margin) continue;
-      f(std::min(order[k], order[m]), std::max(order[k], order[m]));
-    }
+  boxes.reserve(n);
+  Box all{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+          std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest()};
+  std::vector<double> sizes;
+  for (const auto& b : blocks) {
+    Box x = bounding_box(b.polygon);
+    x = {x.x0 - margin, x.y0 - margin, x.x1 + margin, x.y1 + margin};
+    boxes.push_back(x);
+    sizes.push_back(std::max(x.x1 - x.x0, x.y1 - x.y0));
+    all = {std::min(all.x0, x.x0), std::min(all.y0, x.y0), std::max(all.x1, x.x1), std::max(all.y1, x.y1)};
   }
+  std::nth_element(sizes.begin(), sizes.begin() + n / 2, sizes.end());
+  const double extent = std::max(all.x1 - all.x0, all.y1 - all.y0);
+  double cell = std::max(sizes[n / 2], extent / (4.0 * double(n)));
+  if (!(cell > 0.0)) cell = 1.0;
+  // A few large blocks (a base under a wall) must not cover a huge number of cells.
+  for (;;) {
+    double covered = 0.0;
+    for (const Box& b : boxes) covered += (std::floor((b.x1 - b.x0) / cell) + 2) * (std::floor((b.y1 - b.y0) / cell) + 2);
+    if (covered <= 16.0 * double(n) + 64.0) break;
+    cell *= 2.0;
+  }
+  auto index = [&](double v, double lo) {
+    return static_cast<long long>(std::min(std::floor((v - lo) / cell), 4.0 * double(n) + 1.0));
+  };
+  std::unordered_map<long long, std::vector<int>> grid;
+  const long long stride = static_cast<long long>(4 * n + 4);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Box& b = boxes[i];
+    for (long long cx = index(b.x0, all.x0); cx <= index(b.x1, all.x0); ++cx)
+      for (long long cy = index(b.y0, all.y0); cy <= index(b.y1, all.y0); ++cy)
+        grid[cx * stride + cy].push_back(static_cast<int>(i));
+  }
+  for (const auto& [key, items] : grid)
+    for (std::size_t a = 0; a < items.size(); ++a)
+      for (std::size_t c = a + 1; c < items.size(); ++c) {
+        const Box& p = boxes[items[a]];
+        const Box& q = boxes[items[c]];
+        if (p.x0 > q.x1 || q.x0 > p.x1 || p.y0 > q.y1 || q.y0 > p.y1) continue;
+        const long long owner = index(std::max(p.x0, q.x0), all.x0) * stride + index(std::max(p.y0, q.y0), all.y0);
+        if (owner != key) continue;
+        f(std::min(items[a], items[c]), std::max(items[a], items[c]));
+      }
 }
 
 }  // namespace

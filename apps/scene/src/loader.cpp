@@ -262,7 +262,7 @@ Units read_units(const Ctx& ctx, const YAML::Node& n) {
 
 Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   MapReader m(ctx, n, "analysis",
-              {"type", "duration", "dt", "dt_min", "max_displacement_ratio", "dynamic_ratio",
+              {"type", "duration", "dt", "max_cuts", "max_displacement_ratio", "dynamic_ratio",
                "scheme", "penalty", "shear_normal_ratio", "search_factor", "angle_tolerance",
                "penetration_ratio", "open_close_limit", "fixed_point_stiffness", "solver",
                "output_interval", "gravity"});
@@ -281,8 +281,8 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   a.dt = number(ctx, dt, m.child("dt"), positive("time"));
   if (a.dt > a.duration)
     ctx.fail(dt, m.child("dt"), fmt::format("dt = {:g} is longer than duration = {:g}", a.dt, a.duration));
-  a.dt_min = a.dt * 1e-6;
-  num("dt_min", a.dt_min, {0.0, true, a.dt, false, "time"});
+  if (YAML::Node v = m.find("max_cuts"); v.IsDefined())
+    a.max_cuts = integer(ctx, v, m.child("max_cuts"), 0, 200);
   num("max_displacement_ratio", a.max_displacement_ratio, {0.0, true, 1.0, false, ""});
   a.dynamic_ratio = a.type == AnalysisType::dynamic_analysis ? 1.0 : 0.0;
   if (YAML::Node v = m.find("dynamic_ratio"); v.IsDefined()) {
@@ -301,7 +301,7 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   num("penetration_ratio", a.penetration_ratio, {0.0, true, 1.0, false, ""});
   if (YAML::Node v = m.find("open_close_limit"); v.IsDefined())
     a.open_close_limit = integer(ctx, v, m.child("open_close_limit"), 1, 1000);
-  num("fixed_point_stiffness", a.fixed_point_stiffness, positive("stress"));
+  num("fixed_point_stiffness", a.fixed_point_stiffness, positive("force/length"));
   if (YAML::Node v = m.find("solver"); v.IsDefined())
     a.solver = choice(ctx, v, m.child("solver"), {"cholmod", "pcg"}) == "cholmod" ? SolverKind::cholmod
                                                                                   : SolverKind::pcg;
@@ -690,7 +690,11 @@ SceneDescription parse_scene(const std::string& text_in, const std::string& file
       // Shi's penalty p_n = k1 E with k1 = 10-100 (the seed's eq. 17): k1 = 40.
       for (const auto& m : s.materials) s.analysis.penalty = std::max(s.analysis.penalty, 40.0 * m.young_modulus);
     }
-    if (s.analysis.fixed_point_stiffness == 0.0) s.analysis.fixed_point_stiffness = 10.0 * s.analysis.penalty;
+    if (s.analysis.fixed_point_stiffness == 0.0) {
+      // The engine's default: 100 x the largest Young's modulus (core/model.hpp).
+      for (const auto& m : s.materials)
+        s.analysis.fixed_point_stiffness = std::max(s.analysis.fixed_point_stiffness, 100.0 * m.young_modulus);
+    }
     return s;
   } catch (const YAML::Exception& e) {
     // Anything yaml-cpp raises past parsing is still a fault of the file.
@@ -698,12 +702,14 @@ SceneDescription parse_scene(const std::string& text_in, const std::string& file
   }
 }
 
-SceneDescription load_scene(const std::string& path) {
+std::string read_scene_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path, {}, "", "cannot open the scene file");
   std::ostringstream buf;
   buf << in.rdbuf();
-  return parse_scene(buf.str(), path);
+  return buf.str();
 }
+
+SceneDescription load_scene(const std::string& path) { return parse_scene(read_scene_text(path), path); }
 
 }  // namespace rheodda::scene

@@ -15,6 +15,9 @@
 
 namespace rheodda::scene {
 
+/// The text of the scene file at `path`; throws SceneError if it cannot be read.
+std::string read_scene_text(const std::string& path);
+
 /// Reads and validates the scene file at `path`; throws SceneError.
 SceneDescription load_scene(const std::string& path);
 

@@ -42,7 +42,7 @@ struct Analysis {
   AnalysisType type = AnalysisType::static_analysis;  ///< `type: static|dynamic`
   double duration = 0.0;               ///< simulated time [time]; required, > 0
   double dt = 0.0;                     ///< first and largest time step [time]; required, > 0
-  double dt_min = 0.0;                 ///< smallest step before the run fails [time]; default dt * 1e-6
+  int max_cuts = 30;                   ///< cuts of dt (x 0.3 each) allowed in one step before the run fails [-]
   double max_displacement_ratio = 0.01;  ///< g2: allowed step displacement / half model size [-]
   double dynamic_ratio = 0.0;          ///< share of velocity carried to the next step [-]; default 1 dynamic, 0 static
   laws::Scheme scheme = laws::Scheme::implicit;  ///< rheology scheme `lagged|implicit|exponential-linear`
@@ -52,7 +52,7 @@ struct Analysis {
   double angle_tolerance = 3.0;        ///< angle rule tolerance [deg]
   double penetration_ratio = 1e-4;     ///< allowed penetration / half model size [-]
   int open_close_limit = 8;            ///< open-close iterations before a step is cut [-]
-  double fixed_point_stiffness = 0.0;  ///< fixed-point spring [stress]; default 10 x penalty
+  double fixed_point_stiffness = 0.0;  ///< fixed-point spring [force/length]; default 100 x largest young_modulus
   SolverKind solver = SolverKind::cholmod;  ///< `solver: cholmod|pcg`
   double output_interval = 0.0;        ///< time between output frames [time]; default duration / 100
   Point gravity{0.0, 0.0};             ///< gravity acceleration (gx, gy) [length/time^2]; required

@@ -1,0 +1,28 @@
+// From a validated SceneDescription to the objects a run needs: the engine's
+// core::Model and the contact layer's joint sets and settings. One field of the
+// scene maps to one field of the model; the mapping is listed in
+// docs/scene-format.md.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "rheodda/contact/joint_set.hpp"
+#include "rheodda/core/model.hpp"
+#include "rheodda/scene/scene.hpp"
+
+namespace rheodda::scene {
+
+struct BuiltScene {
+  core::Model model;
+  std::vector<contact::JointSet> joint_sets;  ///< same order as SceneDescription::joint_sets
+  contact::ContactSettings contact_settings;
+  /// Things the scene asks for that this build cannot honour yet; `run` prints them
+  /// and summary.json lists them (nothing is dropped silently).
+  std::vector<std::string> warnings;
+};
+
+/// Builds the model; throws SceneError if the engine refuses it (its ModelError key is reported).
+BuiltScene build_scene(const SceneDescription& scene);
+
+}  // namespace rheodda::scene

@@ -1,0 +1,24 @@
+// `rheodda plot`: pictures of a run's outputs drawn by gnuplot (an external
+// program, called with a generated script): the blocks at chosen times (initial
+// outline dashed, deformed outline solid, displacements magnified when they are
+// too small to see) and the history curves of history.csv.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace rheodda::scene {
+
+struct PlotOptions {
+  std::string out_dir;         ///< a run's output directory
+  std::vector<double> times;   ///< draw the frames nearest these times [time]; empty: first, middle, last
+  std::string format = "png";  ///< "png" or "svg"
+  double scale = 0.0;          ///< displacement magnification; 0: automatic (1 unless displacements are tiny)
+};
+
+/// Writes OUTDIR/plots/blocks_<frame>.<format> and OUTDIR/plots/history.<format>
+/// (and the gnuplot scripts and data next to them); returns the pictures' paths.
+/// Throws std::invalid_argument for a directory that holds no run, std::runtime_error if gnuplot fails.
+std::vector<std::string> plot_run(const PlotOptions& options);
+
+}  // namespace rheodda::scene

@@ -1,0 +1,55 @@
+// `rheodda run`: a scene through the DDA engine with contacts, writing the
+// outputs (docs/outputs.md) as it goes, stoppable between steps and resumable.
+//
+// Resume. A checkpoint (checkpoint.json, rewritten whole at every output frame
+// and when a run is stopped) records the accepted steps, the time, the frames
+// written, the byte length of each CSV, a hash of the scene text and a digest of
+// the engine state. Resuming truncates the CSVs to those lengths, replays the
+// accepted steps exactly as the first run took them (the run is deterministic;
+// the contact layer's state is rebuilt this way rather than read from disk),
+// checks that the replayed state has the checkpoint's digest bit for bit, and
+// carries on writing. The result is the same as that of an uninterrupted run.
+#pragma once
+
+#include <csignal>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "rheodda/scene/scene.hpp"
+
+namespace rheodda::scene {
+
+struct RunOptions {
+  std::string out_dir;   ///< created if missing
+  bool resume = false;   ///< continue from out_dir/checkpoint.json
+  bool progress = false; ///< draw a one-line progress display on `progress_stream`
+  std::FILE* progress_stream = stderr;
+  /// When non-null and set non-zero (e.g. by a SIGINT handler), the run stops after
+  /// the current step, leaving every file consistent and a checkpoint to resume from.
+  const volatile std::sig_atomic_t* stop = nullptr;
+  /// When >= 0: stop exactly as on a signal once this many steps are accepted
+  /// (scripted pauses; the tests' way to interrupt at a known step).
+  int stop_after_step = -1;
+};
+
+enum class RunStatus { completed, interrupted };
+
+struct RunResult {
+  RunStatus status = RunStatus::completed;
+  int steps = 0;                 ///< accepted steps (all, including replayed ones)
+  int cuts = 0;                  ///< dt cuts over all steps
+  double max_penetration = 0.0;  ///< largest contact penetration of any step [length]
+  double time = 0.0;             ///< simulated time reached [time]
+  int frames = 0;                ///< output frames written
+  double wall_seconds = 0.0;     ///< wall time of this and earlier (resumed) sessions [s]
+  int resumed_from_step = -1;    ///< -1: not resumed
+  std::vector<std::string> warnings;
+};
+
+/// Runs the scene; `scene_text` is the file's text (echoed in summary.json, hashed in
+/// checkpoints). Throws SceneError for a scene the engine refuses, std::runtime_error
+/// when the run fails (summary.json then says "failed" and why).
+RunResult run_scene(const SceneDescription& scene, const std::string& scene_text, const RunOptions& options);
+
+}  // namespace rheodda::scene

@@ -1,0 +1,160 @@
+#include "rheodda/scene/output.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace rheodda::scene {
+
+void write_file_atomic(const std::string& path, const std::string& content) {
+  const std::string tmp = path + ".tmp";
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (!f) throw std::runtime_error(fmt::format("cannot write {}: {}", tmp, std::strerror(errno)));
+  const bool ok = std::fwrite(content.data(), 1, content.size(), f) == content.size() &&
+                  std::fflush(f) == 0;
+  std::fclose(f);
+  if (!ok) throw std::runtime_error(fmt::format("cannot write {}", tmp));
+  std::filesystem::rename(tmp, path);
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(fmt::format("cannot read {}", path));
+  std::ostringstream buf;
+  buf << in.rdbuf();
+  return buf.str();
+}
+
+void CsvAppender::open(const std::string& path, std::uint64_t keep_bytes, bool resume) {
+  path_ = path;
+  if (resume) {
+    // Drop whatever was appended after the checkpoint: it is rewritten identically.
+    std::filesystem::resize_file(path, keep_bytes);
+    f_ = std::fopen(path.c_str(), "ab");
+    bytes_ = keep_bytes;
+  } else {
+    f_ = std::fopen(path.c_str(), "wb");
+    bytes_ = 0;
+  }
+  if (!f_) throw std::runtime_error(fmt::format("cannot write {}: {}", path, std::strerror(errno)));
+}
+
+CsvAppender::~CsvAppender() {
+  if (f_) std::fclose(f_);
+}
+
+void CsvAppender::append(const std::string& line) {
+  if (std::fwrite(line.data(), 1, line.size(), f_) != line.size() || std::fflush(f_) != 0)
+    throw std::runtime_error(fmt::format("cannot append to {}", path_));
+  bytes_ += line.size();
+}
+
+std::string vtk_polydata(const std::vector<FrameBlock>& blocks) {
+  std::size_t npoints = 0;
+  for (const auto& b : blocks) npoints += b.vertices.size();
+  std::string s;
+  s += "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n";
+  s += fmt::format("<PolyData>\n<Piece NumberOfPoints=\"{}\" NumberOfPolys=\"{}\">\n", npoints, blocks.size());
+  s += "<Points>\n<DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (const auto& b : blocks)
+    for (const auto& v : b.vertices) s += fmt::format("{:.17g} {:.17g} 0\n", v[0], v[1]);
+  s += "</DataArray>\n</Points>\n<PointData Vectors=\"displacement\">\n";
+  s += "<DataArray type=\"Float64\" Name=\"displacement\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (const auto& b : blocks)
+    for (const auto& d : b.displacement) s += fmt::format("{:.17g} {:.17g} 0\n", d[0], d[1]);
+  s += "</DataArray>\n</PointData>\n<CellData>\n";
+  s += "<DataArray type=\"Int32\" Name=\"block\" format=\"ascii\">\n";
+  for (std::size_t i = 0; i < blocks.size(); ++i) s += fmt::format("{}\n", i);
+  s += "</DataArray>\n<DataArray type=\"Int32\" Name=\"material\" format=\"ascii\">\n";
+  for (const auto& b : blocks) s += fmt::format("{}\n", b.material);
+  s += "</DataArray>\n<DataArray type=\"Int32\" Name=\"fixed\" format=\"ascii\">\n";
+  for (const auto& b : blocks) s += fmt::format("{}\n", b.fixed ? 1 : 0);
+  s += "</DataArray>\n<DataArray type=\"Float64\" Name=\"stress\" NumberOfComponents=\"3\" "
+       "ComponentName0=\"sigma_x\" ComponentName1=\"sigma_y\" ComponentName2=\"tau_xy\" format=\"ascii\">\n";
+  for (const auto& b : blocks) s += fmt::format("{:.17g} {:.17g} {:.17g}\n", b.stress[0], b.stress[1], b.stress[2]);
+  s += "</DataArray>\n<DataArray type=\"Float64\" Name=\"velocity\" NumberOfComponents=\"3\" "
+       "ComponentName0=\"vx\" ComponentName1=\"vy\" ComponentName2=\"omega\" format=\"ascii\">\n";
+  for (const auto& b : blocks)
+    s += fmt::format("{:.17g} {:.17g} {:.17g}\n", b.velocity[0], b.velocity[1], b.velocity[2]);
+  s += "</DataArray>\n</CellData>\n<Polys>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+  std::size_t k = 0;
+  for (const auto& b : blocks) {
+    for (std::size_t i = 0; i < b.vertices.size(); ++i) s += fmt::format("{}{}", i ? " " : "", k + i);
+    s += '\n';
+    k += b.vertices.size();
+  }
+  s += "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+  k = 0;
+  for (const auto& b : blocks) {
+    k += b.vertices.size();
+    s += fmt::format("{}\n", k);
+  }
+  s += "</DataArray>\n</Polys>\n</Piece>\n</PolyData>\n</VTKFile>\n";
+  return s;
+}
+
+std::string vtk_collection(const std::vector<std::pair<double, std::string>>& frames) {
+  std::string s = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
+  for (const auto& [t, file] : frames)
+    s += fmt::format("<DataSet timestep=\"{:.17g}\" part=\"0\" file=\"{}\"/>\n", t, file);
+  s += "</Collection>\n</VTKFile>\n";
+  return s;
+}
+
+namespace {
+/// The numbers of the DataArray named `name` in `text`.
+std::vector<double> data_array(const std::string& text, const std::string& name, const std::string& path) {
+  const std::size_t at = text.find("Name=\"" + name + "\"");
+  if (at == std::string::npos) throw std::runtime_error(fmt::format("{}: no DataArray '{}'", path, name));
+  const std::size_t start = text.find('>', at);
+  const std::size_t end = text.find("</DataArray>", start);
+  std::istringstream in(text.substr(start + 1, end - start - 1));
+  std::vector<double> out;
+  double v;
+  while (in >> v) out.push_back(v);
+  return out;
+}
+}  // namespace
+
+std::vector<FrameBlock> read_vtk_polydata(const std::string& path) {
+  const std::string text = read_file(path);
+  const auto pts = data_array(text, "Points", path);
+  const auto disp = data_array(text, "displacement", path);
+  const auto offsets = data_array(text, "offsets", path);
+  const auto conn = data_array(text, "connectivity", path);
+  const auto fixed = data_array(text, "fixed", path);
+  std::vector<FrameBlock> out;
+  std::size_t begin = 0;
+  for (std::size_t b = 0; b < offsets.size(); ++b) {
+    FrameBlock fb;
+    const auto end = static_cast<std::size_t>(offsets[b]);
+    for (std::size_t k = begin; k < end && k < conn.size(); ++k) {
+      const auto p = static_cast<std::size_t>(conn[k]);
+      if (3 * p + 1 >= pts.size() || 3 * p + 1 >= disp.size())
+        throw std::runtime_error(fmt::format("{}: point index out of range", path));
+      fb.vertices.push_back({pts[3 * p], pts[3 * p + 1]});
+      fb.displacement.push_back({disp[3 * p], disp[3 * p + 1]});
+    }
+    fb.fixed = b < fixed.size() && fixed[b] != 0.0;
+    out.push_back(std::move(fb));
+    begin = end;
+  }
+  return out;
+}
+
+std::uint64_t fnv1a(const void* data, std::size_t size, std::uint64_t h) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < size; ++i) {
+    h ^= p[i];
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+}  // namespace rheodda::scene

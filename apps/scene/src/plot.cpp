@@ -1,0 +1,205 @@
+#include "rheodda/scene/plot.hpp"
+
+#include <fmt/format.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <stdexcept>
+
+#include "rheodda/scene/output.hpp"
+
+extern char** environ;
+
+namespace rheodda::scene {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Runs `gnuplot SCRIPT`; throws std::runtime_error if it cannot start or fails.
+void run_gnuplot(const std::string& script) {
+  std::string prog = "gnuplot";
+  std::vector<char*> argv{prog.data(), const_cast<char*>(script.c_str()), nullptr};
+  pid_t pid = 0;
+  if (posix_spawnp(&pid, "gnuplot", nullptr, nullptr, argv.data(), environ) != 0)
+    throw std::runtime_error("cannot start gnuplot (installed by scripts/install-deps.sh)");
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw std::runtime_error(fmt::format("gnuplot failed on {}", script));
+}
+
+std::string quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string terminal(const std::string& format, int w, int h) {
+  return format == "svg" ? fmt::format("set terminal svg size {},{} dynamic background rgb 'white'", w, h)
+                         : fmt::format("set terminal pngcairo size {},{} font 'sans,11'", w, h);
+}
+
+/// 1, 2 or 5 times a power of ten, at least x.
+double nice(double x) {
+  const double p = std::pow(10.0, std::floor(std::log10(x)));
+  for (double m : {1.0, 2.0, 5.0, 10.0})
+    if (m * p >= x) return m * p;
+  return 10.0 * p;
+}
+
+}  // namespace
+
+std::vector<std::string> plot_run(const PlotOptions& o) {
+  const fs::path dir(o.out_dir);
+  if (!fs::exists(dir / "summary.json") || !fs::exists(dir / "blocks.pvd"))
+    throw std::invalid_argument(fmt::format("{} holds no run (no summary.json or blocks.pvd)", o.out_dir));
+  const auto summary = nlohmann::json::parse(read_file((dir / "summary.json").string()));
+  const auto& units = summary.at("units");
+  const std::string L = units.at("length"), T = units.at("time"), F = units.at("force");
+  const std::string title = summary.at("inputs").value("title", "");
+
+  // Frames listed in the collection file.
+  std::vector<std::pair<double, std::string>> frames;
+  const std::string pvd = read_file((dir / "blocks.pvd").string());
+  const std::regex entry("timestep=\"([^\"]+)\" part=\"0\" file=\"([^\"]+)\"");
+  for (auto it = std::sregex_iterator(pvd.begin(), pvd.end(), entry); it != std::sregex_iterator(); ++it)
+    frames.emplace_back(std::stod((*it)[1].str()), (*it)[2].str());
+  if (frames.empty()) throw std::invalid_argument(fmt::format("{}/blocks.pvd lists no frame", o.out_dir));
+
+  std::vector<std::size_t> chosen;
+  if (o.times.empty()) {
+    chosen = {0, frames.size() / 2, frames.size() - 1};
+  } else {
+    for (double t : o.times) {
+      std::size_t best = 0;
+      for (std::size_t k = 1; k < frames.size(); ++k)
+        if (std::abs(frames[k].first - t) < std::abs(frames[best].first - t)) best = k;
+      chosen.push_back(best);
+    }
+  }
+  std::sort(chosen.begin(), chosen.end());
+  chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
+
+  fs::create_directories(dir / "plots");
+  std::vector<std::string> written;
+
+  // Magnification: tiny displacements (creep) are drawn at 5% of the model size.
+  std::vector<std::vector<FrameBlock>> data;
+  double dmax = 0.0, x0 = std::numeric_limits<double>::max(), x1 = -x0, y0 = x0, y1 = -x0;
+  for (std::size_t k : chosen) {
+    data.push_back(read_vtk_polydata((dir / frames[k].second).string()));
+    for (const auto& b : data.back())
+      for (std::size_t v = 0; v < b.vertices.size(); ++v) {
+        dmax = std::max(dmax, std::hypot(b.displacement[v][0], b.displacement[v][1]));
+        x0 = std::min(x0, b.vertices[v][0] - b.displacement[v][0]);
+        x1 = std::max(x1, b.vertices[v][0] - b.displacement[v][0]);
+        y0 = std::min(y0, b.vertices[v][1] - b.displacement[v][1]);
+        y1 = std::max(y1, b.vertices[v][1] - b.displacement[v][1]);
+      }
+  }
+  const double size = std::max(x1 - x0, y1 - y0);
+  double scale = o.scale;
+  if (scale <= 0.0) scale = (dmax > 0.0 && dmax < 0.02 * size) ? nice(0.05 * size / dmax) : 1.0;
+
+  for (std::size_t i = 0; i < chosen.size(); ++i) {
+    const std::size_t k = chosen[i];
+    const std::string stem = fmt::format("blocks_{:06d}", k);
+    std::string initial, deformed;
+    for (const auto& b : data[i]) {
+      for (std::size_t v = 0; v <= b.vertices.size(); ++v) {
+        const std::size_t w = v % b.vertices.size();
+        const double ix = b.vertices[w][0] - b.displacement[w][0], iy = b.vertices[w][1] - b.displacement[w][1];
+        initial += fmt::format("{:.10g} {:.10g}\n", ix, iy);
+        deformed += fmt::format("{:.10g} {:.10g} {}\n", ix + scale * b.displacement[w][0],
+                                iy + scale * b.displacement[w][1], b.fixed ? 1 : 0);
+      }
+      initial += "\n";
+      deformed += "\n";
+    }
+    const fs::path dat_i = dir / "plots" / (stem + "_initial.dat");
+    const fs::path dat_d = dir / "plots" / (stem + "_deformed.dat");
+    write_file_atomic(dat_i.string(), initial);
+    write_file_atomic(dat_d.string(), deformed);
+    const fs::path picture = dir / "plots" / (stem + "." + o.format);
+    const std::string script = fmt::format(
+        "{}\nset output {}\nset title {} noenhanced\nset size ratio -1\nset xlabel 'x [{}]' noenhanced\n"
+        "set ylabel 'y [{}]' noenhanced\nset key outside bottom center horizontal\nset grid lc rgb '#dddddd'\n"
+        "plot {} with lines dt 2 lc rgb '#999999' title 'initial', \\\n"
+        "     {} with lines lw 1.5 lc rgb '#1f4e9a' title {} noenhanced\n",
+        terminal(o.format, 1000, 760), quote(picture.string()),
+        quote(fmt::format("{}: blocks at t = {:g} {}", title, frames[k].first, T)), L, L, quote(dat_i.string()),
+        quote(dat_d.string()),
+        quote(scale == 1.0 ? std::string("deformed") : fmt::format("deformed (displacements x {:g})", scale)));
+    const fs::path gp = dir / "plots" / (stem + ".gp");
+    write_file_atomic(gp.string(), script);
+    run_gnuplot(gp.string());
+    written.push_back(picture.string());
+  }
+
+  // History curves: measurement points (u, v) and recorded joint sets (mean shear displacement, force).
+  std::vector<std::string> header;
+  {
+    std::istringstream in(read_file((dir / "history.csv").string()));
+    std::string line;
+    while (std::getline(in, line))
+      if (!line.empty() && line[0] != '#') break;
+    std::stringstream ss(line);
+    std::string col;
+    while (std::getline(ss, col, ',')) header.push_back(col);
+  }
+  auto column = [&](const std::string& name) {
+    for (std::size_t i = 0; i < header.size(); ++i)
+      if (header[i] == name) return static_cast<int>(i) + 1;
+    return 0;
+  };
+  const std::string csv = quote((dir / "history.csv").string());
+  std::vector<std::string> point_curves, joint_curves, force_curves;
+  for (const auto& mp : summary.at("measurement_points")) {
+    const std::string n = mp.get<std::string>();
+    point_curves.push_back(fmt::format("{} using 1:{} with lines lw 1.5 title {} noenhanced", csv,
+                                       column(n + ".u"), quote(n + ".u")));
+    point_curves.push_back(fmt::format("{} using 1:{} with lines lw 1.5 dt 2 title {} noenhanced", csv,
+                                       column(n + ".v"), quote(n + ".v")));
+  }
+  for (const auto& js : summary.at("recorded_joint_sets")) {
+    const std::string n = js.get<std::string>();
+    joint_curves.push_back(fmt::format("{} using 1:{} with lines lw 1.5 title {} noenhanced", csv,
+                                       column(n + ".shear_displacement"), quote(n + ".shear_displacement")));
+    force_curves.push_back(fmt::format("{} using 1:{} with lines lw 1.5 title {} noenhanced", csv,
+                                       column(n + ".shear_force"), quote(n + ".shear_force")));
+  }
+  const int panels = int(!point_curves.empty()) + int(!joint_curves.empty()) + int(!force_curves.empty());
+  if (panels > 0) {
+    const fs::path picture = dir / "plots" / ("history." + o.format);
+    std::string script = fmt::format(
+        "{}\nset output {}\nset datafile separator ','\nset key top left noenhanced\nset grid lc rgb '#dddddd'\n"
+        "set xlabel 'time [{}]' noenhanced\nset multiplot layout {},1 title {} noenhanced\n",
+        terminal(o.format, 1000, 330 * panels + 40), quote(picture.string()), T, panels,
+        quote(title + ": history"));
+    auto panel = [&](const std::vector<std::string>& curves, const std::string& ylabel) {
+      if (curves.empty()) return;
+      script += fmt::format("set ylabel {} noenhanced\nplot ", quote(ylabel));
+      for (std::size_t i = 0; i < curves.size(); ++i)
+        script += (i ? ", \\\n     " : "") + fmt::format("{} ", curves[i]).replace(0, csv.size(), csv + " skip 2");
+      script += "\n";
+    };
+    panel(point_curves, fmt::format("displacement [{}]", L));
+    panel(joint_curves, fmt::format("mean shear displacement [{}]", L));
+    panel(force_curves, fmt::format("mean shear force [{}/{} thickness]", F, L));
+    script += "unset multiplot\n";
+    const fs::path gp = dir / "plots" / "history.gp";
+    write_file_atomic(gp.string(), script);
+    run_gnuplot(gp.string());
+    written.push_back(picture.string());
+  }
+  return written;
+}
+
+}  // namespace rheodda::scene

@@ -1,0 +1,62 @@
+// The rheodda command on scenes: `check` prints what will be modelled, bad input
+// exits 2 with file:line:column and writes nothing, `plot` draws pictures.
+#include <boost/test/unit_test.hpp>
+
+#include "test_support.hpp"
+
+using namespace rheodda::test;
+namespace fs = std::filesystem;
+
+BOOST_AUTO_TEST_SUITE(scene_commands)
+
+BOOST_AUTO_TEST_CASE(check_accepts_every_shipped_example) {
+  for (const char* name : {"shear-creep-test.yaml", "goodman-toppling.yaml", "sliding-block.yaml"}) {
+    const auto r = run_rheodda("check " + source_path(std::string("examples/") + name));
+    BOOST_TEST(r.exit_code == 0, name << ":\n" << r.output);
+    BOOST_TEST(r.output.find("scene OK") != std::string::npos);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(check_prints_blocks_joint_sets_laws_and_estimated_contacts) {
+  const auto r = run_rheodda("check " + source_path("examples/goodman-toppling.yaml"));
+  BOOST_TEST(r.exit_code == 0);
+  const std::string& o = r.output;
+  BOOST_TEST(o.find("units: length m, force N, time d") != std::string::npos);
+  BOOST_TEST(o.find("blocks (17)") != std::string::npos);
+  BOOST_TEST(o.find("base: friction_angle 50 deg") != std::string::npos);
+  BOOST_TEST(o.find("law burgers: E1=1e+08 E2=2.5e+08 eta1=2e+08 eta2=6.2e+09") != std::string::npos);
+  BOOST_TEST(o.find("anti_toppling: friction_angle 25 deg") != std::string::npos);
+  // 16 columns on the base and 15 column-column joints, each face to face: 2 contacts.
+  BOOST_TEST(o.find("estimated contacts at the start: 62 between 31 block pairs") != std::string::npos, o);
+  BOOST_TEST(o.find("block10_top") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(bad_scene_exits_2_with_file_line_column_and_writes_nothing) {
+  const fs::path dir = fresh_dir("bad");
+  const fs::path file = dir / "bad.yaml";
+  std::ofstream(file) << with("  dt: 0.01", "  dt: -0.01");
+  const auto c = run_rheodda("check " + file.string());
+  BOOST_TEST(c.exit_code == 2);
+  BOOST_TEST(c.output.find(file.string() + ":4:7: analysis.dt: -0.01 is out of range") != std::string::npos, c.output);
+  const auto r = run_rheodda("run " + file.string() + " -o " + (dir / "out").string());
+  BOOST_TEST(r.exit_code == 2);
+  BOOST_TEST(!fs::exists(dir / "out"));
+  BOOST_TEST(run_rheodda("check " + (dir / "missing.yaml").string()).exit_code == 2);
+}
+
+BOOST_AUTO_TEST_CASE(plot_draws_block_pictures_and_history_curves) {
+  const fs::path dir = fresh_dir("plot");
+  const fs::path scene = dir / "short.yaml";
+  std::ofstream(scene) << with("  duration: 1 ", "  duration: 0.1 ",
+                               read_text(source_path("examples/sliding-block.yaml")));
+  BOOST_TEST_REQUIRE(run_rheodda("run " + scene.string() + " -o " + (dir / "out").string()).exit_code == 0);
+  const auto p = run_rheodda("plot " + (dir / "out").string() + " --times 0,0.1");
+  BOOST_TEST_REQUIRE(p.exit_code == 0, p.output);
+  for (const char* f : {"plots/blocks_000000.png", "plots/blocks_000005.png", "plots/history.png"}) {
+    const std::string png = read_text((dir / "out" / f).string());
+    BOOST_TEST(png.substr(0, 4) == "\x89PNG", f);
+  }
+  BOOST_TEST(run_rheodda("plot " + (dir / "nothing").string()).exit_code == 2);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

@@ -1,0 +1,201 @@
+// The scene loader: valid scenes are read with every default filled in; every
+// class of bad input is refused with the file, line, column and key of the fault.
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+
+#include "../test_support.hpp"
+#include "rheodda/scene/geometry.hpp"
+#include "rheodda/scene/loader.hpp"
+
+using namespace rheodda;
+using namespace rheodda::test;
+
+BOOST_AUTO_TEST_SUITE(scene_loader)
+
+BOOST_AUTO_TEST_CASE(base_scene_loads_with_documented_defaults) {
+  const scene::SceneDescription s = scene::parse_scene(kBaseScene, "base.yaml");
+  BOOST_TEST(s.units.length == "m");
+  BOOST_TEST(s.units.stress() == "N/m^2");
+  BOOST_TEST((s.analysis.type == scene::AnalysisType::static_analysis));
+  BOOST_TEST(s.analysis.dynamic_ratio == 0.0);
+  BOOST_TEST((s.analysis.scheme == laws::Scheme::implicit));
+  BOOST_TEST(s.analysis.max_displacement_ratio == 0.01);
+  BOOST_TEST(s.analysis.output_interval == 0.01);     // duration / 100
+  BOOST_TEST(s.analysis.penalty == 40.0 * 1.0e9);      // 40 x largest young_modulus
+  BOOST_TEST(s.analysis.fixed_point_stiffness == 100.0 * 1.0e9);
+  BOOST_TEST(s.analysis.open_close_limit == 8);
+  BOOST_TEST(s.analysis.max_cuts == 30);
+  BOOST_TEST((s.materials[0].plane == scene::PlaneKind::strain));
+  BOOST_TEST(s.joint_sets.size() == 2u);
+  BOOST_TEST(s.joint_sets[0].cohesion == 0.0);
+  BOOST_TEST(!s.joint_sets[0].normal_stiffness.has_value());
+  BOOST_TEST(!s.joint_sets[0].law.has_value());
+  BOOST_TEST(s.joint_sets[1].law->name == "burgers");
+  BOOST_TEST(s.joint_sets[1].law->parameters.at("eta2") == 4.0);
+  BOOST_TEST(s.blocks.size() == 2u);
+  BOOST_TEST(s.blocks[0].fixed);
+  BOOST_TEST((s.blocks[0].edge_joint_set == std::vector<int>{0, 0, 0, 0}));
+  BOOST_TEST((s.blocks[1].edge_joint_set == std::vector<int>{1, 0, 0, 0}));
+  BOOST_TEST(s.measurement_points[0].at.block == 1);  // (1.5, 1.5) lies in `top` only
+}
+
+BOOST_AUTO_TEST_CASE(clockwise_polygon_is_reversed_and_edge_joint_sets_follow_their_edges) {
+  // Clockwise square with the fault on the edge (1,2)->(2,2) (the top edge).
+  const auto text = with("polygon: [[1, 1], [2, 1], [2, 2], [1, 2]], edge_joint_sets: [fault, bedding, bedding, bedding]",
+                         "polygon: [[1, 1], [1, 2], [2, 2], [2, 1]], edge_joint_sets: [bedding, fault, bedding, bedding]");
+  const auto s = scene::parse_scene(text, "cw.yaml");
+  const auto& b = s.blocks[1];
+  BOOST_TEST(scene::signed_area(b.polygon) > 0.0);
+  for (std::size_t k = 0; k < b.polygon.size(); ++k) {
+    const auto& p = b.polygon[k];
+    const auto& q = b.polygon[(k + 1) % b.polygon.size()];
+    const bool top_edge = p[1] == 2.0 && q[1] == 2.0;
+    BOOST_TEST(b.edge_joint_set[k] == (top_edge ? 1 : 0), "edge " << k);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(rectangle_grid_and_angle_shorthands_expand_to_polygons) {
+  const auto text = with("  - {name: top, polygon: [[1, 1], [2, 1], [2, 2], [1, 2]], edge_joint_sets: [fault, bedding, bedding, bedding]}\n",
+                         "  - {name: wall, grid: {x: 0, y: 1, width: 1, height: 0.5, columns: 3, rows: 2}, joint_set: bedding}\n"
+                         "  - {name: tilted, rectangle: {x: 3.5, y: 1, width: 0.5, height: 0.2, angle: 90}, joint_set: fault}\n");
+  const auto s = scene::parse_scene(with("[1.5, 1.5]", "[1.5, 1.25]", text), "grid.yaml");
+  BOOST_TEST(s.blocks.size() == 8u);
+  BOOST_TEST(s.blocks[1].name == "wall.r1.c1");
+  BOOST_TEST(s.blocks[6].name == "wall.r2.c3");
+  BOOST_TEST(s.blocks[6].polygon[0][0] == 2.0);
+  BOOST_TEST(s.blocks[6].polygon[0][1] == 1.5);
+  const auto& t = s.blocks[7];  // rotated 90 deg about (3.5, 1): width along +y
+  BOOST_TEST(t.polygon[1][0] == 3.5, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(t.polygon[1][1] == 1.5, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(scene::signed_area(t.polygon) == 0.1, boost::test_tools::tolerance(1e-12));
+}
+
+BOOST_AUTO_TEST_CASE(unknown_key_names_line_column_and_nearest_valid_key) {
+  expect_error_at(with("  dt: 0.01", "  dtt: 0.01"), 4, "dtt", "analysis.dtt", "did you mean 'dt'?");
+  expect_error_at(with("joint_sets:", "joint_set:"), 8, "joint_set", "joint_set", "did you mean 'joint_sets'?");
+  expect_error_at(with("friction_angle: 30", "friction_angel: 30"), 9, "friction", "joint_sets.bedding.friction_angel",
+                  "did you mean 'friction_angle'?");
+}
+
+BOOST_AUTO_TEST_CASE(law_parameters_use_the_registry_names) {
+  expect_error_at(with("eta1: 3", "eta_1: 3"), 10, "eta_1", "joint_sets.fault.law.eta_1", "did you mean 'eta1'?");
+  expect_error_at(with("name: burgers", "name: burger"), 10, "burger", "law.name", "did you mean 'burgers'?");
+  expect_error_at(with(", eta2: 4}", "}"), 10, "{name", "law.eta2", "needs parameter 'eta2'");
+}
+
+BOOST_AUTO_TEST_CASE(missing_required_key_points_at_its_map) {
+  expect_error(with("  duration: 1\n", ""), 3, 3, "analysis.duration", "missing required key 'duration'");
+  expect_error_at(with("density: 2600, ", ""), 7, "{young", "materials.rock.density", "missing required key 'density'");
+  expect_error(with("units: {length: m, force: N, time: s}\n", ""), 1, 1, "units", "missing required key 'units'");
+}
+
+BOOST_AUTO_TEST_CASE(wrong_type_is_reported_at_the_value) {
+  expect_error_at(with("  dt: 0.01", "  dt: fast"), 4, "fast", "analysis.dt", "'fast' is not a number");
+  expect_error_at(with("gravity: [0, -9.81]", "gravity: 9.81"), 5, "9.81", "analysis.gravity", "list of 2 numbers");
+  expect_error_at(with("fixed: true", "fixed: maybe"), 12, "maybe", "blocks[0].fixed", "not true or false");
+  expect_error_at(with("  duration: 1", "  type: quasi\n  duration: 1"), 3, "quasi",
+                  "analysis.type", "not one of: static, dynamic");
+}
+
+BOOST_AUTO_TEST_CASE(out_of_range_values_are_refused) {
+  expect_error_at(with("eta1: 3", "eta1: -3"), 10, "-3", "law.eta1", "out of range");
+  expect_error_at(with("friction_angle: 30", "friction_angle: 90"), 9, "90", "bedding.friction_angle", "out of range [0, 90)");
+  expect_error_at(with("density: 2600", "density: 0"), 7, "0,", "materials.rock.density", "out of range (0, inf]");
+  expect_error_at(with("poisson_ratio: 0.25", "poisson_ratio: 0.5"), 7, "0.5", "poisson_ratio", "out of range [0, 0.5)");
+  expect_error_at(with("  dt: 0.01", "  dt: 2"), 4, "2", "analysis.dt", "longer than duration");
+}
+
+BOOST_AUTO_TEST_CASE(nan_and_inf_are_refused_anywhere) {
+  expect_error_at(with("  dt: 0.01", "  dt: .nan"), 4, ".nan", "analysis.dt", "not a finite number");
+  expect_error_at(with("[1.5, 1.5]", "[1.5, .inf]"), 15, ".inf", "measurement_points[0].point[1]", "not a finite number");
+  expect_error_at(with("E2: 2", "E2: -.inf"), 10, "-.inf", "law.E2", "not a finite number");
+  expect_error_at(with("[2, 2], [1, 2]]", "[2, .NaN], [1, 2]]"), 13, ".NaN", "blocks[1].polygon[2][1]", "not a finite number");
+}
+
+BOOST_AUTO_TEST_CASE(non_simple_and_degenerate_polygons_are_refused) {
+  expect_error_at(with("[[1, 1], [2, 1], [2, 2], [1, 2]]", "[[1, 1], [2, 2], [2, 1], [1, 1.5]]"), 13, "[[1",
+                  "blocks[1].polygon", "is not simple");
+  expect_error_at(with("[[1, 1], [2, 1], [2, 2], [1, 2]], edge_joint_sets: [fault, bedding, bedding, bedding]",
+                       "[[1, 1], [2, 1], [3, 1]], joint_set: fault"),
+                  13, "[[1", "blocks[1].polygon", "degenerate");
+  expect_error_at(with("[[1, 1], [2, 1], [2, 2], [1, 2]], edge_joint_sets: [fault, bedding, bedding, bedding]",
+                       "[[1, 1], [2, 1], [2, 2], [1, 2], [1, 1]], joint_set: fault"),
+                  13, "[[1", "blocks[1].polygon", "repeats its first vertex");
+  expect_error_at(with("[[1, 1], [2, 1], [2, 2], [1, 2]], edge_joint_sets: [fault, bedding, bedding, bedding]",
+                       "[[1, 1], [2, 1]], joint_set: fault"),
+                  13, "[[1", "blocks[1].polygon", "at least 3");
+}
+
+BOOST_AUTO_TEST_CASE(overlapping_blocks_are_refused_touching_ones_accepted) {
+  expect_error_at(with("[[1, 1], [2, 1], [2, 2], [1, 2]]", "[[1, 0.5], [2, 0.5], [2, 2], [1, 2]]"), 13, "{name: top",
+                  "blocks[1]", "blocks 'base' and 'top' overlap");
+  // The same block twice: every vertex on the other's boundary, interiors equal.
+  expect_error_at(with("[[1, 1], [2, 1], [2, 2], [1, 2]]", "[[0, 0], [4, 0], [4, 1], [0, 1]]"), 13, "{name: top",
+                  "blocks[1]", "overlap");
+  BOOST_CHECK_NO_THROW(scene::parse_scene(kBaseScene, "touching.yaml"));  // top sits on base
+}
+
+BOOST_AUTO_TEST_CASE(edge_naming_an_unknown_joint_set_is_refused_with_a_hint) {
+  expect_error_at(with("[fault, bedding, bedding, bedding]", "[fault, bedings, bedding, bedding]"), 13, "bedings",
+                  "blocks[1].edge_joint_sets[1]", "unknown joint set 'bedings' (did you mean 'bedding'?)");
+  expect_error_at(with("[fault, bedding, bedding, bedding]", "[fault, bedding, bedding]"), 13, "[fault",
+                  "blocks[1].edge_joint_sets", "list of 4 joint set names");
+  expect_error_at(with("joint_set: bedding,", "joint_set: rock,"), 12, "rock,", "blocks[0].joint_set",
+                  "unknown joint set 'rock'");
+}
+
+BOOST_AUTO_TEST_CASE(duplicated_keys_and_names_are_refused) {
+  expect_error_at(with("  dt: 0.01\n", "  dt: 0.01\n  dt: 0.02\n"), 5, "dt", "analysis.dt", "given twice (first at line 4)");
+  expect_error_at(with("{name: top,", "{name: base,"), 13, "{name: base", "blocks[1].name", "'base' is used twice");
+}
+
+BOOST_AUTO_TEST_CASE(points_must_lie_on_a_block) {
+  expect_error_at(with("[1.5, 1.5]", "[9, 9]"), 15, "[9", "measurement_points[0].point", "lies on no block");
+  // On the joint between base and top: ambiguous unless `block:` says which.
+  expect_error_at(with("[1.5, 1.5]}", "[1.5, 1]}"), 15, "[1.5", "measurement_points[0].point",
+                  "boundary of several blocks (base, top)");
+  const auto s = scene::parse_scene(with("[1.5, 1.5]}", "[1.5, 1], block: top}"), "ok.yaml");
+  BOOST_TEST(s.measurement_points[0].at.block == 1);
+  expect_error_at(with("[1.5, 1.5]}", "[3.5, 0.5], block: top}"), 15, "[3.5", "point", "not on block 'top'");
+}
+
+BOOST_AUTO_TEST_CASE(static_analysis_refuses_velocity_inputs) {
+  expect_error_at(with("fixed: true}", "fixed: true, initial_velocity: [1, 0, 0]}"), 12, "[1, 0, 0]",
+                  "blocks[0].initial_velocity", "static analysis carries no velocity");
+  expect_error_at(with("  dt: 0.01\n", "  dt: 0.01\n  dynamic_ratio: 0.5\n"), 5, "0.5", "analysis.dynamic_ratio",
+                  "needs `type: dynamic`");
+}
+
+BOOST_AUTO_TEST_CASE(loads_take_a_force_or_a_strictly_increasing_history) {
+  const std::string loads = "loads:\n  - {point: [1.5, 2], history: [[0, 0, 0], [1, 5, -1], [1, 6, 0]]}\n";
+  expect_error_at(kBaseScene + loads, 17, "[1, 6", "loads[0].history[2]", "times must increase strictly");
+  const auto s = scene::parse_scene(kBaseScene + "loads:\n  - {point: [1.5, 2], force: [3, -4]}\n", "ok.yaml");
+  BOOST_TEST(s.loads.size() == 1u);
+  BOOST_TEST(s.loads[0].history.size() == 1u);
+  BOOST_TEST(s.loads[0].history[0][2] == -4.0);
+  expect_error_at(kBaseScene + "loads:\n  - {point: [1.5, 2]}\n", 17, "{point", "loads[0]", "exactly one of force");
+}
+
+BOOST_AUTO_TEST_CASE(yaml_syntax_errors_carry_line_and_column) {
+  try {
+    (void)scene::parse_scene(with("  dt: 0.01\n", "  dt: [0.01\n"), "syntax.yaml");
+    BOOST_ERROR("no error");
+  } catch (const scene::SceneError& e) {
+    BOOST_TEST(e.line() > 0);
+    BOOST_TEST(e.column() > 0);
+    BOOST_TEST(e.message().find("YAML syntax") != std::string::npos);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(missing_file_is_a_scene_error_naming_it) {
+  try {
+    (void)scene::load_scene("/nonexistent/scene.yaml");
+    BOOST_ERROR("no error");
+  } catch (const scene::SceneError& e) {
+    BOOST_TEST(e.file() == "/nonexistent/scene.yaml");
+    BOOST_TEST(e.message().find("cannot open") != std::string::npos);
+  }
+}
+
+BOOST_AUTO_TEST_SUITE_END()
