@@ -258,12 +258,10 @@ struct CurveFeatures {
   double f_max = 0.0;      // largest |stress| [stress]
 };
 
-CurveFeatures analyse_curve(const CreepData& data, double j0_hint_fraction) {
-  (void)j0_hint_fraction;
+CurveFeatures analyse_curve(const CreepData& data) {
   CurveFeatures c;
   // The first stage that changes the stress and has enough points.
   std::size_t k = 0;
-  double prev = 0.0;
   for (std::size_t i = 0; i < data.stages.size(); ++i) {
     const double df = data.stages[i].stress - (i ? data.stages[i - 1].stress : 0.0);
     c.f_max = std::max(c.f_max, std::abs(data.stages[i].stress));
@@ -281,7 +279,7 @@ CurveFeatures analyse_curve(const CreepData& data, double j0_hint_fraction) {
       }
   }
   const auto& st = data.stages[k];
-  prev = k ? data.displacement[st.first - 1] : 0.0;
+  const double prev = k ? data.displacement[st.first - 1] : 0.0;  // displacement before the step
   std::vector<double> tau, comp;
   for (std::size_t j = st.first; j < st.first + st.count; ++j) {
     tau.push_back(data.t[j] - st.t);
@@ -427,6 +425,15 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
                    fmt::format("{}: too few points for law '{}': {} parameters need at least {} "
                                "points, the data has {}",
                                data.source, info.name, np, np + 1, n));
+  // CreepData built in code (not by parse_creep_csv) must hold the same invariants.
+  std::size_t covered = 0;
+  for (const auto& s : data.stages) {
+    if (s.count == 0 || s.first != covered)
+      throw FitError(info.name, fmt::format("{}: stage at t = {:g} has no data points", data.source, s.t));
+    covered += s.count;
+  }
+  if (covered != n || data.displacement.size() != n || data.stages.empty())
+    throw FitError(info.name, fmt::format("{}: the stages do not cover the {} data points", data.source, n));
   bool loaded = false;
   for (const auto& s : data.stages) loaded = loaded || s.stress != 0.0;
   if (!loaded)
@@ -460,7 +467,7 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
       flow += data.stages[k].stress * (data.stages[k + 1].t - data.stages[k].t);
   }
 
-  const CurveFeatures features = analyse_curve(data, 0.0);
+  const CurveFeatures features = analyse_curve(data);
   const std::vector<double> base = pr.structure ? series_start(*pr.structure, np, features)
                                                 : generic_start(info, features);
 
