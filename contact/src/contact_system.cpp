@@ -237,28 +237,33 @@ void ContactSystem::assemble(std::span<const BlockView>, SystemSink& sink) const
     }
     const Hot& h = hot_[c];
     // Normal spring: energy p_n d_n^2 / 2 (Shi 1988).
-    sink.add_stiffness(i, i, h.pn * h.ni * h.ni.transpose());
-    sink.add_stiffness(j, j, h.pn * h.nj * h.nj.transpose());
-    sink.add_stiffness(i, j, h.pn * h.ni * h.nj.transpose());
-    sink.add_load(i, -h.pn * h.dn0 * h.ni);
-    sink.add_load(j, -h.pn * h.dn0 * h.nj);
+    Mat6 kii = h.pn * h.ni * h.ni.transpose();
+    Mat6 kjj = h.pn * h.nj * h.nj.transpose();
+    Mat6 kij = h.pn * h.ni * h.nj.transpose();
+    Vec6 fi = -h.pn * h.dn0 * h.ni;
+    Vec6 fj = -h.pn * h.dn0 * h.nj;
     if (r.state == ContactState::locked) {
       // Shear spring: the seed's eqs. 28-29, with the locking point shifted by
       // the creep seam (zero without a law).
       const double ps = shear_stiffness(c);
       const double d0 = h.dt0 + seams_[c].locking_shift;
-      sink.add_stiffness(i, i, ps * h.ti * h.ti.transpose());
-      sink.add_stiffness(j, j, ps * h.tj * h.tj.transpose());
-      sink.add_stiffness(i, j, ps * h.ti * h.tj.transpose());
-      sink.add_load(i, -ps * d0 * h.ti);
-      sink.add_load(j, -ps * d0 * h.tj);
+      kii += ps * h.ti * h.ti.transpose();
+      kjj += ps * h.tj * h.tj.transpose();
+      kij += ps * h.ti * h.tj.transpose();
+      fi -= ps * d0 * h.ti;
+      fj -= ps * d0 * h.tj;
     } else {
       // Sliding: Mohr-Coulomb friction F = N tan(phi) + c l against the slip
       // direction, N from the last iterate.
       const double f = std::max(h.normal_force, 0.0) * h.tan_phi + h.cohesion * r.length;
-      sink.add_load(i, -r.slide_direction * f * h.ti);
-      sink.add_load(j, -r.slide_direction * f * h.tj);
+      fi -= r.slide_direction * f * h.ti;
+      fj -= r.slide_direction * f * h.tj;
     }
+    sink.add_stiffness(i, i, kii);
+    sink.add_stiffness(j, j, kjj);
+    sink.add_stiffness(i, j, kij);
+    sink.add_load(i, fi);
+    sink.add_load(j, fj);
   }
 }
 
