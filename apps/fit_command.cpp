@@ -109,12 +109,14 @@ std::string plot_terminal(const std::string& path) {
 std::string g6(double v) { return fmt::format("{:.6g}", v); }
 
 void print_data(const CreepData& d, const Units& u) {
-  fmt::print("data: {} ({} points, {} stage{}, t from {} to {} {}); units: {}\n", d.source,
+  // Unit names after numbers only when the user stated them.
+  auto unit = [&](const std::string& name) { return u.text.empty() ? std::string() : " " + name; };
+  fmt::print("data: {} ({} points, {} stage{}, t from {} to {}{}); units: {}\n", d.source,
              d.t.size(), d.stages.size(), d.stages.size() == 1 ? "" : "s", g6(d.t.front()),
-             g6(d.t.back()), u.time, u.text.empty() ? "not stated (--units)" : u.text);
+             g6(d.t.back()), unit(u.time), u.text.empty() ? "not stated (--units)" : u.text);
   for (std::size_t i = 0; i < d.stages.size(); ++i)
-    fmt::print("  stage {}: stress {} {} from t = {} ({} points)\n", i + 1, g6(d.stages[i].stress),
-               u.stress, g6(d.stages[i].t), d.stages[i].count);
+    fmt::print("  stage {}: stress {}{} from t = {} ({} points)\n", i + 1, g6(d.stages[i].stress),
+               unit(u.stress), g6(d.stages[i].t), d.stages[i].count);
 }
 
 void print_fit(const FitResult& r, const Units& u) {
