@@ -180,7 +180,7 @@ std::vector<std::string> plot_run(const PlotOptions& o) {
     const fs::path picture = dir / "plots" / ("history." + o.format);
     std::string script = fmt::format(
         "{}\nset output {}\nset datafile separator ','\nset key top left noenhanced\nset grid lc rgb '#dddddd'\n"
-        "set xlabel 'time [{}]' noenhanced\nset multiplot layout {},1 title {} noenhanced\n",
+        "set xlabel 'time [{}]' noenhanced\nset offsets 0, 0, graph 0.05, graph 0.05\nset multiplot layout {},1 title {} noenhanced\n",
         terminal(o.format, 1000, 330 * panels + 40), quote(picture.string()), T, panels,
         quote(title + ": history"));
     auto panel = [&](const std::vector<std::string>& curves, const std::string& ylabel) {
@@ -188,7 +188,7 @@ std::vector<std::string> plot_run(const PlotOptions& o) {
       script += fmt::format("set ylabel {} noenhanced\nplot ", quote(ylabel));
       for (std::size_t i = 0; i < curves.size(); ++i)
         script += (i ? ", \\\n     " : "") + fmt::format("{} ", curves[i]).replace(0, csv.size(), csv + " skip 2");
-      script += "\n";
+      script += ", \\\n     0 with lines lc rgb '#bbbbbb' notitle\n";  // keeps zero in view
     };
     panel(point_curves, fmt::format("displacement [{}]", L));
     panel(joint_curves, fmt::format("mean shear displacement [{}]", L));
