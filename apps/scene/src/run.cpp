@@ -120,7 +120,6 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
   RunResult result;
   const Analysis& a = s.analysis;
   const std::string out = opt.out_dir;
-  fs::create_directories(fs::path(out) / "frames");
   const std::string scene_hash = fmt::format("{:016x}", fnv1a(scene_text.data(), scene_text.size()));
 
   BuiltScene built = build_scene(s);
@@ -140,6 +139,8 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     throw SceneError(s.file, where, e.key(), e.what());
   }
   core::Engine& engine = *engine_ptr;
+  // Only now that the model is accepted: a refused scene leaves nothing behind.
+  fs::create_directories(fs::path(out) / "frames");
 
   // Initial vertex positions, for the displacement field of the frames.
   std::vector<std::vector<core::Vec2>> initial;
