@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "rheodda/scene/geometry.hpp"
@@ -96,10 +97,18 @@ std::string describe_scene(const SceneDescription& s) {
   for (const auto& m : s.measurement_points)
     line(fmt::format("  {}: ({:g}, {:g}) on {}", m.name, m.at.point[0], m.at.point[1], s.blocks[m.at.block].name));
 
-  const double d = search_distance(s);
+  // Contacts at the start are the touching vertex-edge pairs: count those within a
+  // twentieth of the median block size (or the search distance, if smaller).
+  std::vector<double> sizes;
+  for (const auto& b : s.blocks) sizes.push_back(std::sqrt(std::abs(signed_area(b.polygon))));
+  std::nth_element(sizes.begin(), sizes.begin() + static_cast<long>(sizes.size() / 2), sizes.end());
+  const double search = search_distance(s);
+  const double d = std::min(search, 0.05 * sizes[sizes.size() / 2]);
   const ContactEstimate est = estimate_contacts(s.blocks, d);
-  line(fmt::format("estimated contacts at the start: {} between {} block pairs (search distance {:g} {})",
+  line(fmt::format("estimated contacts at the start: {} between {} block pairs (vertex-edge pairs closer than {:g} {})",
                    est.vertex_edge, est.block_pairs, d, u.length));
+  line(fmt::format("contact search distance: {:g} {} (search_factor x max_displacement_ratio x half model size)",
+                   search, u.length));
   return out;
 }
 

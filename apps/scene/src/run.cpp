@@ -267,6 +267,8 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     result.frames = frames_done;
     result.wall_seconds = earlier_wall + std::chrono::duration<double>(Clock::now() - wall_start).count();
   };
+  const std::string inputs_text = scene_json(s).dump();
+  const std::string scene_text_json = json(scene_text).dump();
   auto write_summary = [&](const std::string& status, const std::string& error) {
     totals();
     json j;
@@ -290,9 +292,12 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     for (int k : recorded) j["recorded_joint_sets"].push_back(s.joint_sets[k].name);
     j["block_names"] = json::array();
     for (const auto& b : s.blocks) j["block_names"].push_back(b.name);
-    j["inputs"] = scene_json(s);
-    j["scene_text"] = scene_text;
-    write_file_atomic((fs::path(out) / "summary.json").string(), j.dump(2) + "\n");
+    // The inputs are the same at every frame: serialised once, spliced in.
+    std::string text = j.dump(2);
+    text.pop_back();  // the closing brace
+    while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+    text += ",\n  \"inputs\": " + inputs_text + ",\n  \"scene_text\": " + scene_text_json + "\n}\n";
+    write_file_atomic((fs::path(out) / "summary.json").string(), text);
   };
   auto write_checkpoint = [&] {
     json ck;
