@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "rheodda/laws/series_law.hpp"
+
 namespace rheodda::contact {
 
 const char* contact_state_name(ContactState s) {
@@ -49,6 +51,26 @@ void check_joint_set(const JointSet& js, size_t index) {
   if (!(js.tensile_strength >= 0.0)) bad("tensile_strength", js.tensile_strength);
   if (js.normal_stiffness && !(*js.normal_stiffness > 0.0)) bad("normal_stiffness", *js.normal_stiffness);
   if (js.shear_stiffness && !(*js.shear_stiffness > 0.0)) bad("shear_stiffness", *js.shear_stiffness);
+  // One elastic shear stiffness per joint: a law's instantaneous spring E1 is it.
+  if (js.law && js.law->instantaneous_stiffness() && js.shear_stiffness)
+    throw std::invalid_argument("joint set " + std::to_string(index) + " '" + js.name +
+                                "': shear_stiffness and the E1 of law '" +
+                                std::string(js.law->name()) +
+                                "' both set the joint's elastic shear stiffness; give only E1");
+}
+
+/// Scheme of a joint set when the settings leave it open: exponential-linear
+/// (2nd order) while dt (k + E_i) <= 2 eta_i for every creep element i, where it
+/// neither diverges nor rings under the series spring k [stress/length];
+/// implicit (monotone at any dt) otherwise (docs/rheology-in-dda.md, "Schemes").
+laws::Scheme automatic_scheme(const laws::ContactRheology& law, double k, double dt) {
+  const auto* series = dynamic_cast<const laws::SeriesLaw*>(&law);
+  if (!series) return laws::Scheme::implicit;
+  for (const laws::CreepElement& e : series->elements()) {
+    const double E = e.kind == laws::CreepElement::Kind::kelvin ? e.E : 0.0;
+    if (dt * (k + E) > 2.0 * e.eta) return laws::Scheme::implicit;
+  }
+  return laws::Scheme::exponential_linear;
 }
 
 }  // namespace
@@ -98,6 +120,10 @@ void ContactSystem::prepare(std::span<const BlockView> blocks, const Contact& c,
   h.pn = (js.normal_stiffness && c.length > 0.0) ? *js.normal_stiffness * c.length : penalty_;
   h.ps = (js.shear_stiffness && c.length > 0.0) ? *js.shear_stiffness * c.length
                                                 : penalty_ / settings_.shear_normal_ratio;
+  // A creep law's instantaneous spring E1 [stress/length] is the joint's elastic
+  // shear stiffness, so a run reproduces the law's instantaneous response.
+  if (js.law && c.length > 0.0)
+    if (const auto e1 = js.law->instantaneous_stiffness()) h.ps = *e1 * c.length;
   h.tan_phi = std::tan(js.friction_angle * std::numbers::pi / 180.0);
   h.cohesion = c.intact ? js.cohesion : 0.0;
   h.tensile_strength = c.intact ? js.tensile_strength : 0.0;
@@ -109,7 +135,28 @@ double ContactSystem::shear_stiffness(size_t c) const {
   return k / (1.0 + k * seams_[c].compliance);
 }
 
-void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_displacement) {
+std::optional<laws::Scheme> ContactSystem::scheme_used(int js) const {
+  if (js < 0 || js >= static_cast<int>(law_steps_.size()) || !law_steps_[js].active)
+    return std::nullopt;
+  return law_steps_[js].scheme;
+}
+
+const laws::StepConstants& ContactSystem::step_constants_of(size_t c) const {
+  const LawStep& ls = law_steps_[work_[c].joint_set];
+  return hot_[c].creep_from_rest ? ls.from_rest : ls.main;
+}
+
+void ContactSystem::linearize(size_t c, double tau_guess) {
+  // Delta d_c = h + c tau_e (laws/contact_rheology.hpp) with tau = F / l:
+  // locking point shifted by h, compliance c / l in force terms.
+  const Contact& r = work_[c];
+  const laws::Linearization lin = joint_sets_[r.joint_set].law->linearize(
+      step_constants_of(c), work_rheology_[r.rheology], hot_[c].tau_start, tau_guess);
+  seams_[c] = {-lin.h, lin.c / r.length};
+}
+
+void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_displacement,
+                               double dt) {
   const int nb = static_cast<int>(blocks.size());
   // Half model size w0 [length].
   Box model;
@@ -203,7 +250,9 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
       // carry load from the first iterate instead of closing row by row.
       if (h.dn0 > -1e-9 * (b - a).norm()) rec.state = ContactState::locked;
     }
-    // Rheology slot: kept on transfer, created for a new contact on a joint set with a law.
+    // Rheology slot: kept on transfer, created for a new contact on a joint set
+    // with a law. A point contact (l = 0) has no joint area: it keeps its slot,
+    // so the history follows it through a corner, but does not creep.
     if (joint_sets_[js].law) {
       laws::RheologyState st;
       if (old && old->rheology >= 0) st = committed_rheology_[old->rheology];
@@ -213,12 +262,41 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
       rec.rheology = -1;
     }
     h.start_state = rec.state;
+    // Creep from rest: the contact was not locked at the end of the last step
+    // (new, open or sliding), so its force before this step is not defined.
+    h.creep_from_rest = !(old && old->state == ContactState::locked);
+    h.tau_start = (rec.rheology >= 0 && rec.length > 0.0 && !h.creep_from_rest)
+                      ? rec.shear_force / rec.length
+                      : 0.0;
     h.flips = h.refinements = 0;
     h.normal_force = rec.state == ContactState::open ? 0.0 : rec.normal_force;
     work_.push_back(rec);
     hot_.push_back(h);
   }
   seams_.assign(work_.size(), ShearSeam{});
+  work_creep_.assign(work_.size(), 0.0);
+
+  // Law constants, once per joint set and step (never per contact). The
+  // automatic scheme looks at the stiffest spring per unit area of the set.
+  law_steps_.assign(joint_sets_.size(), LawStep{});
+  if (dt > 0.0) {
+    std::vector<double> k_area(joint_sets_.size(), 0.0);
+    for (size_t c = 0; c < work_.size(); ++c)
+      if (work_[c].rheology >= 0 && work_[c].length > 0.0)
+        k_area[work_[c].joint_set] =
+            std::max(k_area[work_[c].joint_set], hot_[c].ps / work_[c].length);
+    for (size_t j = 0; j < joint_sets_.size(); ++j) {
+      const auto& law = joint_sets_[j].law;
+      if (!law) continue;
+      LawStep& ls = law_steps_[j];
+      ls.active = true;
+      ls.scheme = settings_.scheme ? *settings_.scheme : automatic_scheme(*law, k_area[j], dt);
+      ls.main = law->step_constants(dt, ls.scheme);
+      ls.from_rest = law->step_constants(dt, laws::Scheme::implicit);
+    }
+    for (size_t c = 0; c < work_.size(); ++c)
+      if (work_[c].rheology >= 0 && work_[c].length > 0.0) linearize(c, hot_[c].tau_start);
+  }
   step_max_penetration_ = 0.0;
   force_scale_ = 0.0;
   for (const Contact& c : committed_) force_scale_ = std::max(force_scale_, std::abs(c.normal_force));
@@ -368,6 +446,22 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
       res.max_penetration = std::max(res.max_penetration, dn);
       scale = std::max(scale, std::abs(N));
     }
+    // A piecewise-affine law (Nishihara's threshold): take the piece that holds
+    // at this iterate's stress; a change asks for another iteration (bounded
+    // by max_refinements, so the switch cannot chatter).
+    if (r.state == ContactState::locked && r.rheology >= 0 && r.length > 0.0 &&
+        law_steps_[r.joint_set].active &&
+        !joint_sets_[r.joint_set].law->is_linear()) {
+      const ShearSeam before_seam = seams_[c];
+      const double tau = shear_stiffness(c) * (h.dt0 + seams_[c].locking_shift + slip) / r.length;
+      linearize(c, tau);
+      if ((seams_[c].compliance != before_seam.compliance ||
+           seams_[c].locking_shift != before_seam.locking_shift) &&
+          h.refinements < settings_.max_refinements) {
+        ++h.refinements;
+        ++res.state_changes;
+      }
+    }
   }
   force_scale_ = scale;
   step_max_penetration_ = res.max_penetration;
@@ -396,6 +490,20 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
         r.shear_force = shear_stiffness(c) * dt;
         r.shear_displacement += slip;
         max_pen = std::max(max_pen, dn);
+        if (r.rheology >= 0 && r.length > 0.0 && law_steps_[r.joint_set].active) {
+          // Advance the history from the step-start state with the step's end
+          // stress, move the locking point by the creep increment along the
+          // entrance edge (the seed's eqs. 22-29) and take the force from the
+          // spring's remaining stretch.
+          const laws::RheologyState old = work_rheology_[r.rheology];
+          const double creep = joint_sets_[r.joint_set].law->advance(
+              step_constants_of(c), old, h.tau_start, r.shear_force / r.length,
+              work_rheology_[r.rheology]);
+          const BlockView& eb = blocks[r.key.eblock];
+          r.locking_ratio += creep / (edge_end(eb, r.key.edge) - edge_start(eb, r.key.edge)).norm();
+          r.shear_force = h.ps * (h.dt0 + slip - creep);
+          work_creep_[c] = creep;
+        }
         break;
       case ContactState::sliding: {
         r.normal_force = h.pn * dn;
@@ -422,15 +530,22 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
   if (max_pen > allowed_penetration_ &&
       penalty_ * settings_.penalty_raise <= settings_.penalty * settings_.penalty_max_factor)
     penalty_ *= settings_.penalty_raise;
+  // History rules: an open or sliding contact loses its creep history (the
+  // spring relocks unstretched, so the law restarts from rest).
+  for (const Contact& r : work_)
+    if (r.rheology >= 0 && r.state != ContactState::locked) work_rheology_[r.rheology] = {};
   committed_.swap(work_);
   committed_rheology_.swap(work_rheology_);
+  committed_creep_.swap(work_creep_);
   work_.clear();
   work_rheology_.clear();
+  work_creep_.clear();
 }
 
 void ContactSystem::abandon_step() {
   work_.clear();
   work_rheology_.clear();
+  work_creep_.clear();
   hot_.clear();
   seams_.clear();
 }

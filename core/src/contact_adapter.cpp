@@ -13,7 +13,7 @@ contact::ContactSettings contact_settings_for(const Model& model, double penalty
 }
 
 void ContactAdapter::begin_step(std::span<const contact::BlockView> blocks, const StepContext& ctx) {
-  system_.begin_step(blocks, ctx.max_displacement);
+  system_.begin_step(blocks, ctx.max_displacement, ctx.dt);
 }
 
 void ContactAdapter::assemble(std::span<const contact::BlockView> blocks,

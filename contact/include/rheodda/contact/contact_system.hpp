@@ -11,17 +11,23 @@
 // from the working records of the step being solved, so abandon_step restores
 // the step-start states exactly (by discarding the working copy).
 //
-// Rheology. A contact on a joint set with a law owns a slot in a separate array
-// of laws::RheologyState (with its committed copy for rollback); contacts
-// without a law have none (rheology == -1). The creep increment
-// Delta d_c = h + c F (laws/contact_rheology.hpp) enters the shear spring
-// through ShearSeam: `locking_shift` moves the locking point along the
-// entrance edge and `compliance` softens the spring, k_eff = k / (1 + k c)
-// (the seed's eqs. 22-29). Both are zero until a law is coupled; this layer
-// carries the slots through transfer and rollback but does not advance laws.
+// Rheology (docs/rheology-in-dda.md). A contact on a joint set with a law owns
+// a slot in a separate array of laws::RheologyState (with its committed copy
+// for rollback); other contacts have none (rheology == -1). Only edge contacts
+// (l > 0) creep: a point contact's history is carried but frozen. The law works
+// per unit joint area: shear stress tau = F / l (l the contact length, unit
+// thickness). Its creep increment over the step, Delta d_c = h + c tau_e
+// (laws/contact_rheology.hpp), enters the shear spring through ShearSeam: the
+// locking point moves by Delta d_c along the entrance edge (the seed's eqs.
+// 22-29), so F_e = k (d - h - (c/l) F_e), i.e. k_eff = k / (1 + k c/l) and the
+// history term h goes to the load vector. The law's constants are computed
+// once per joint set and step (begin_step); the states are advanced only in
+// end_step from the committed ones, so repeated iterations and step cuts
+// never count creep twice.
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -63,9 +69,11 @@ struct Contact {
 };
 
 /// Hook for the creep increment of the shear spring (zero without a law).
+/// The spring's stretch is d + locking_shift with locking_shift = -h, and its
+/// stiffness k / (1 + k compliance) with compliance = c / l.
 struct ShearSeam {
-  double locking_shift = 0.0;  ///< shift of the locking point along the edge direction [length]
-  double compliance = 0.0;     ///< step creep compliance c [length/(force/length)]
+  double locking_shift = 0.0;  ///< -h: minus the history part of the step's creep [length]
+  double compliance = 0.0;     ///< step creep compliance c / l [length/(force/length)]
 };
 
 /// Result of checking a trial solution.
@@ -91,7 +99,8 @@ class ContactSystem {
 
   /// Detects contacts on the step-start geometry (search distance
   /// search_factor * max_displacement [length]) and carries states over.
-  void begin_step(std::span<const BlockView> blocks, double max_displacement);
+  /// dt is the step size [time] the creep laws integrate over (0: no creep).
+  void begin_step(std::span<const BlockView> blocks, double max_displacement, double dt = 0.0);
   /// Springs and friction loads of the trial states (the seed's eqs. 28-29).
   void assemble(std::span<const BlockView> blocks, SystemSink& sink) const;
   /// Updates the trial states from the trial displacements D (6 per block).
@@ -109,6 +118,13 @@ class ContactSystem {
   std::span<const laws::RheologyState> rheology_states() const { return committed_rheology_; }
   /// Creep seams of the step being solved, parallel to trial_contacts().
   std::span<ShearSeam> shear_seams() { return seams_; }
+
+  /// Scheme used by joint set js in the step being solved (or the last one);
+  /// nullopt when the joint set has no law or the step has no creep (dt = 0).
+  std::optional<laws::Scheme> scheme_used(int js) const;
+  /// Creep increment Delta d_c of each contact in the last accepted step
+  /// (parallel to contacts(); 0 without a law) [length].
+  std::span<const double> creep_increments() const { return committed_creep_; }
 
   const std::vector<JointSet>& joint_sets() const { return joint_sets_; }
   const ContactSettings& settings() const { return settings_; }
@@ -133,11 +149,23 @@ class ContactSystem {
     double tensile_strength = 0.0;  ///< [stress]
     double normal_force = 0.0;      ///< N of the last iterate, drives friction [force/length]
     ContactState start_state = ContactState::open;
+    double tau_start = 0.0;       ///< shear stress driving creep at the step start [stress]
+    bool creep_from_rest = true;  ///< not locked at the step start: the step's creep uses
+                                  ///< the end force for the whole step (implicit constants)
     int flips = 0;        ///< state changes of this contact in this step
     int refinements = 0;  ///< friction refinements of this contact in this step
   };
   void prepare(std::span<const BlockView> blocks, const Contact& c, Hot& h) const;
   double shear_stiffness(size_t c) const;
+  /// Step constants of one joint set: the scheme's and the implicit ones.
+  struct LawStep {
+    bool active = false;  ///< the joint set has a law and dt > 0
+    laws::Scheme scheme = laws::Scheme::implicit;
+    laws::StepConstants main, from_rest;
+  };
+  const laws::StepConstants& step_constants_of(size_t c) const;
+  /// Sets seams_[c] from the law's affine form at a guessed end stress [stress].
+  void linearize(size_t c, double tau_guess);
 
   std::vector<JointSet> joint_sets_;
   ContactSettings settings_;
@@ -150,6 +178,8 @@ class ContactSystem {
 
   std::vector<Contact> committed_, work_;
   std::vector<laws::RheologyState> committed_rheology_, work_rheology_;
+  std::vector<double> committed_creep_, work_creep_;
+  std::vector<LawStep> law_steps_;  ///< per joint set, for the step being solved
   std::vector<ShearSeam> seams_;
   std::vector<Hot> hot_;
   std::vector<ContactKey> previous_keys_;

@@ -34,9 +34,14 @@ struct JointSet {
   /// Joint shear stiffness per unit joint area [stress/length]; unset: the
   /// penalty's shear spring p_n / shear_normal_ratio (the seed's eqs. 17-18).
   std::optional<double> shear_stiffness;
-  /// Creep law of the joint's shear spring, or none. Contacts on a joint set with
-  /// a law get a laws::RheologyState slot that follows the contact (transfer,
-  /// rollback); the creep increment enters through ShearSeam (contact_system.hpp).
+  /// Creep law of the joint's shear spring, or none (docs/rheology-in-dda.md).
+  /// Contacts on a joint set with a law get a laws::RheologyState slot that
+  /// follows the contact (transfer, rollback); the creep increment of edge
+  /// contacts (contact length l > 0) enters through ShearSeam
+  /// (contact_system.hpp). A law with an instantaneous spring E1 (burgers,
+  /// maxwell, nishihara) sets the joint's elastic shear stiffness, k_s = E1 l:
+  /// shear_stiffness must then be unset. Point contacts (l = 0) have no joint
+  /// area: their history is carried but frozen (no creep).
   std::shared_ptr<const laws::ContactRheology> law;
 };
 
@@ -76,6 +81,12 @@ struct ContactSettings {
   double penalty_raise = 2.0;
   /// Upper bound of the penalty as a multiple of the initial one [-].
   double penalty_max_factor = 64.0;
+  /// Scheme of the creep laws (docs/rheology-in-dda.md, "Schemes"). Unset
+  /// (default): per joint set and step, exponential-linear (2nd order) where
+  /// the step is below its no-ringing limit dt (k + E_i) <= 2 eta_i for every
+  /// creep element i (k the joint's elastic shear stiffness per unit area),
+  /// implicit (1st order, monotone at any dt) otherwise.
+  std::optional<laws::Scheme> scheme;
 };
 
 }  // namespace rheodda::contact

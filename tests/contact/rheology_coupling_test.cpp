@@ -1,0 +1,353 @@
+// Creep laws coupled into the contact shear spring, at the contact level:
+// hand-made blocks, displacements prescribed by the test (the host's solve is
+// not needed when the displacement is held). Units MPa, mm, h, unit thickness.
+#include <boost/test/unit_test.hpp>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rheodda/contact/contact_system.hpp"
+#include "rheodda/laws/registry.hpp"
+#include "test_blocks.hpp"
+
+using namespace rheodda;
+using namespace rheodda::contact;
+using rheodda::contact::testing::Scene;
+
+namespace {
+
+std::shared_ptr<const laws::ContactRheology> make_law(const std::string& name,
+                                                      const laws::ParameterValues& p) {
+  return laws::LawRegistry::builtin().create(name, p);
+}
+
+/// The seed's Table 1, row 1 (Burgers) [MPa/mm, MPa h/mm].
+laws::ParameterValues burgers_row1() {
+  return {{"E1", 26.87}, {"E2", 192.43}, {"eta1", 34807.72}, {"eta2", 2141.23}};
+}
+
+JointSet joint(const std::string& name, std::shared_ptr<const laws::ContactRheology> law) {
+  JointSet j;
+  j.name = name;
+  j.friction_angle = 30.0;
+  j.cohesion = 1e6;  // [MPa]: the joints never slide in these tests
+  j.normal_stiffness = 1e4;
+  j.law = std::move(law);
+  return j;
+}
+
+/// Pairs of blocks: a base (fixed: its D is always zero) whose top edge
+/// belongs to a joint set, and a w x w block resting on it with a tiny
+/// penetration (so its contacts start closed and locked).
+struct Rig {
+  static constexpr double w = 100.0;  // [mm]
+  Scene scene;
+  std::vector<int> movers;
+  ContactSystem cs;
+
+  Rig(std::vector<JointSet> sets, std::vector<int> pair_sets, ContactSettings settings = defaults())
+      : cs(std::move(sets), settings) {
+    double x = 0.0;
+    for (int js : pair_sets) {
+      const int base = scene.add_rect(x - w, -w, x + 2 * w, 0.0);
+      scene.block(base).edge_joint_set = {0, 0, js, 0};  // edge 2 = top
+      movers.push_back(scene.add_rect(x, -1e-6, x + w, w - 1e-6));
+      x += 10 * w;
+    }
+    scene.rebuild();
+  }
+  static ContactSettings defaults() {
+    ContactSettings s;
+    s.penalty = 1e6;
+    return s;
+  }
+  /// One step of size dt [h]: every mover moves by `shift` along +x [mm]; the
+  /// open-close check is run `checks` times (with the same D: a repeated
+  /// iteration), or with perturbed trial displacements first when `perturb`.
+  void step(double dt, double shift, int checks = 1, bool perturb = false) {
+    const int n = static_cast<int>(scene.views().size());
+    cs.begin_step(scene.views(), 1.0, dt);
+    Eigen::VectorXd D = Eigen::VectorXd::Zero(6 * n);
+    for (int b : movers) D(6 * b) = shift;
+    for (int k = 0; k < checks; ++k) {
+      Eigen::VectorXd trial = D;
+      if (perturb && k + 1 < checks)
+        for (int b : movers) trial(6 * b) += 0.3 * (k + 1) * (shift + 1e-3);
+      cs.check(scene.views(), trial);
+    }
+    cs.end_step(scene.views(), D);
+    for (int b : movers) scene.translate(b, {shift, 0.0});
+  }
+  /// Total shear force of mover m along +x [N/mm] (B's top edge runs along -x).
+  double shear_force(int m) const {
+    double f = 0.0;
+    for (const Contact& c : cs.contacts())
+      if (c.key.vblock == movers[m]) f -= c.shear_force;
+    return f;
+  }
+};
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(rheology_coupling)
+
+BOOST_AUTO_TEST_CASE(held_displacement_relaxes_as_the_closed_form_for_maxwell_and_burgers) {
+  // A displacement delta imposed at t = 0 and held: F(t) = G(t) delta w
+  // (laws' relaxation_modulus). Within 0.5 % of F(t) at every step to 200 h,
+  // dt = 0.1 h, implicit and exponential-linear schemes.
+  const double delta = 1e-3, dt = 0.1;
+  const std::pair<std::string, laws::ParameterValues> cases[] = {
+      {"maxwell", {{"E1", 26.87}, {"eta1", 2000.0}}}, {"burgers", burgers_row1()}};
+  for (const auto& [name, params] : cases)
+    for (laws::Scheme scheme : {laws::Scheme::implicit, laws::Scheme::exponential_linear}) {
+      BOOST_TEST_CONTEXT(name << " " << laws::scheme_name(scheme)) {
+        auto law = make_law(name, params);
+        ContactSettings s = Rig::defaults();
+        s.scheme = scheme;
+        Rig rig({joint("j", law)}, {0}, s);
+        double worst = 0.0;
+        for (int n = 1; n <= 2000; ++n) {
+          rig.step(dt, n == 1 ? delta : 0.0);
+          const double exact = *law->relaxation_modulus(n * dt) * delta * Rig::w;
+          worst = std::max(worst, std::abs(rig.shear_force(0) - exact) / exact);
+        }
+        BOOST_TEST_MESSAGE(name << " " << laws::scheme_name(scheme) << ": F(200 h) = "
+                                << rig.shear_force(0) << " N/mm, max relative error " << worst);
+        BOOST_TEST(worst < 0.005);
+      }
+    }
+}
+
+BOOST_AUTO_TEST_CASE(lagged_scheme_is_stable_only_below_two_eta_over_k_plus_E) {
+  // Stiff joint: E1 = 1e4 MPa/mm with the Kelvin element of Table 1 row 1.
+  // Lagged limit dt* = min(2 eta2/(E1 + E2), 2 eta1/E1) (rheology.md): at
+  // 0.9 dt* the relaxing force stays bounded by its first value F1 (it rings,
+  // decaying: lagged is explicit); at 1.1 dt* the ringing grows until the
+  // contact fails. The implicit scheme at 1000 dt* decays monotonically to the
+  // closed form's long-time value.
+  const double E1 = 1e4, E2 = 192.43, eta1 = 34807.72, eta2 = 2141.23, delta = 1e-4;
+  auto law = make_law("burgers", {{"E1", E1}, {"E2", E2}, {"eta1", eta1}, {"eta2", eta2}});
+  const double limit = std::min(2 * eta2 / (E1 + E2), 2 * eta1 / E1);
+  const double f0 = E1 * delta * Rig::w;
+  auto run = [&](laws::Scheme scheme, double dt, int steps) {
+    ContactSettings s = Rig::defaults();
+    s.scheme = scheme;
+    Rig rig({joint("j", law)}, {0}, s);
+    std::vector<double> f;
+    for (int n = 1; n <= steps; ++n) {
+      rig.step(dt, n == 1 ? delta : 0.0);
+      f.push_back(rig.shear_force(0));
+    }
+    return f;
+  };
+  auto largest_after_first = [](const std::vector<double>& f) {
+    double m = 0.0;
+    for (size_t n = 1; n < f.size(); ++n) m = std::max(m, std::abs(f[n]));
+    return m;
+  };
+  const auto below = run(laws::Scheme::lagged, 0.9 * limit, 200);
+  const auto above = run(laws::Scheme::lagged, 1.1 * limit, 200);
+  BOOST_TEST_MESSAGE("lagged dt* = " << limit << " h; F1 = " << below[0] << ", at 0.9 dt* max |F| after step 1 = "
+                                     << largest_after_first(below) << ", |F(200)| = " << std::abs(below.back())
+                                     << "; at 1.1 dt* max |F| = " << largest_after_first(above)
+                                     << " (F0 = E1 delta w = " << f0 << ")");
+  BOOST_TEST(largest_after_first(below) < below[0]);
+  const double exact_below = *law->relaxation_modulus(200 * 0.9 * limit) * delta * Rig::w;
+  BOOST_TEST_MESSAGE("closed form at step 200 (0.9 dt*): " << exact_below);
+  BOOST_TEST(std::abs(below.back() - exact_below) < 0.05 * exact_below);
+  BOOST_TEST(largest_after_first(above) > 10 * f0);  // blown up
+  int flips = 0;
+  for (size_t n = 1; n < 30; ++n) flips += above[n] * above[n - 1] < 0.0;
+  BOOST_TEST(flips >= 25);                            // by growing oscillation
+
+  const auto implicit = run(laws::Scheme::implicit, 1000 * limit, 50);
+  bool monotone = true;
+  // (to round-off: 1e-9 F0)
+  for (size_t n = 1; n < implicit.size(); ++n)
+    monotone = monotone && implicit[n] <= implicit[n - 1] + 1e-9 * f0;
+  BOOST_TEST(monotone);
+  BOOST_TEST(implicit.back() >= -1e-9 * f0);
+  // Burgers relaxes to zero: after 50 steps of 1000 dt* the closed form is
+  // below 1e-3 F0, and so must the implicit run be.
+  const double exact_end = *law->relaxation_modulus(50 * 1000 * limit) * delta * Rig::w;
+  BOOST_TEST_MESSAGE("implicit at 1000 dt*: F(end) = " << implicit.back() << ", closed form "
+                                                       << exact_end);
+  BOOST_TEST(exact_end < 1e-3 * f0);
+  BOOST_TEST(implicit.back() < 1e-3 * f0);
+}
+
+BOOST_AUTO_TEST_CASE(default_scheme_is_exponential_linear_below_its_ringing_limit_else_implicit) {
+  // Maxwell joint under held displacement. Exponential-linear rings
+  // (F changes sign) when dt > 2 eta1/E1 and decays monotonically below; the
+  // default scheme takes exponential-linear below that limit and implicit
+  // above, so the relaxing force never changes sign.
+  const double E1 = 26.87, eta1 = 2000.0, delta = 1e-3;
+  auto law = make_law("maxwell", {{"E1", E1}, {"eta1", eta1}});
+  const double limit = 2 * eta1 / E1;
+  auto sign_changes = [&](std::optional<laws::Scheme> scheme, double dt,
+                          std::optional<laws::Scheme>* used = nullptr) {
+    ContactSettings s = Rig::defaults();
+    s.scheme = scheme;
+    Rig rig({joint("j", law)}, {0}, s);
+    int changes = 0;
+    double last = 0.0;
+    for (int n = 1; n <= 20; ++n) {
+      rig.step(dt, n == 1 ? delta : 0.0);
+      const double f = rig.shear_force(0);
+      // Forces below 1e-9 of the first are round-off: their sign means nothing.
+      if (std::abs(f) < 1e-9 * E1 * delta * Rig::w) break;
+      if (n > 1 && f * last < 0.0) ++changes;
+      last = f;
+    }
+    if (used) *used = rig.cs.scheme_used(0);
+    return changes;
+  };
+  BOOST_TEST(sign_changes(laws::Scheme::exponential_linear, 0.9 * limit) == 0);
+  BOOST_TEST(sign_changes(laws::Scheme::exponential_linear, 3.0 * limit) > 5);
+  std::optional<laws::Scheme> used;
+  BOOST_TEST(sign_changes(std::nullopt, 0.9 * limit, &used) == 0);
+  BOOST_TEST((used == laws::Scheme::exponential_linear));
+  BOOST_TEST(sign_changes(std::nullopt, 3.0 * limit, &used) == 0);
+  BOOST_TEST((used == laws::Scheme::implicit));
+}
+
+BOOST_AUTO_TEST_CASE(repeated_iterations_and_step_cuts_never_count_creep_twice) {
+  // The same history of held displacement, once with one check per step and
+  // once with five checks per step (four on perturbed trial displacements)
+  // plus an abandoned attempt before every step: the creep states and forces
+  // agree to round-off.
+  auto law = make_law("burgers", burgers_row1());
+  for (laws::Scheme scheme :
+       {laws::Scheme::lagged, laws::Scheme::implicit, laws::Scheme::exponential_linear}) {
+    ContactSettings s = Rig::defaults();
+    s.scheme = scheme;
+    Rig once({joint("j", law)}, {0}, s), many({joint("j", law)}, {0}, s);
+    for (int n = 1; n <= 30; ++n) {
+      const double shift = n <= 10 ? 1e-4 : 0.0;  // loading ramp, then held
+      once.step(1.0, shift);
+      many.cs.begin_step(many.scene.views(), 1.0, 0.3);  // a cut attempt, abandoned
+      Eigen::VectorXd junk = Eigen::VectorXd::Constant(6 * 2, 5e-4);
+      many.cs.check(many.scene.views(), junk);
+      many.cs.abandon_step();
+      many.step(1.0, shift, 5, true);
+    }
+    BOOST_TEST_CONTEXT(laws::scheme_name(scheme)) {
+      BOOST_REQUIRE(once.cs.rheology_states().size() == many.cs.rheology_states().size());
+      for (size_t k = 0; k < once.cs.rheology_states().size(); ++k) {
+        const double a = once.cs.rheology_states()[k].creep();
+        const double b = many.cs.rheology_states()[k].creep();
+        BOOST_TEST(std::abs(a) > 0.0);
+        BOOST_TEST(std::abs(a - b) <= 1e-12 * std::abs(a));
+      }
+      BOOST_TEST(std::abs(once.shear_force(0) - many.shear_force(0)) <=
+                 1e-10 * std::abs(once.shear_force(0)));
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(mixed_joint_sets_each_contact_follows_its_law_and_only_lawful_contacts_have_state) {
+  // Three pairs: the base tops belong to a burgers set, a maxwell set and a set
+  // without a law; a held displacement relaxes each pair as its own law says
+  // (the lawless pair keeps its elastic force), and only the four edge
+  // contacts on sets with a law own a rheology slot.
+  auto burgers = make_law("burgers", burgers_row1());
+  auto maxwell = make_law("maxwell", {{"E1", 26.87}, {"eta1", 2000.0}});
+  JointSet plain = joint("plain", nullptr);
+  plain.shear_stiffness = 26.87;
+  ContactSettings s = Rig::defaults();
+  s.scheme = laws::Scheme::implicit;
+  Rig rig({joint("b", burgers), joint("m", maxwell), plain}, {0, 1, 2}, s);
+  const double delta = 1e-3, dt = 0.1;
+  for (int n = 1; n <= 500; ++n) rig.step(dt, n == 1 ? delta : 0.0);
+  const double t = 500 * dt;
+  BOOST_TEST(rig.shear_force(0) ==
+                 *burgers->relaxation_modulus(t) * delta * Rig::w,
+             boost::test_tools::tolerance(0.005));
+  BOOST_TEST(rig.shear_force(1) == *maxwell->relaxation_modulus(t) * delta * Rig::w,
+             boost::test_tools::tolerance(0.005));
+  BOOST_TEST(rig.shear_force(2) == 26.87 * delta * Rig::w, boost::test_tools::tolerance(1e-9));
+  int with_slot = 0;
+  for (const Contact& c : rig.cs.contacts()) {
+    BOOST_TEST((c.kind == ContactKind::edge_edge));
+    if (c.joint_set == 2) {
+      BOOST_TEST(c.rheology == -1);
+    } else {
+      ++with_slot;
+      BOOST_TEST(c.rheology >= 0);
+    }
+  }
+  BOOST_TEST(rig.cs.contacts().size() == 6u);
+  BOOST_TEST(with_slot == 4);
+  BOOST_TEST(rig.cs.rheology_states().size() == 4u);
+  BOOST_TEST(rig.cs.creep_increments().size() == rig.cs.contacts().size());
+}
+
+BOOST_AUTO_TEST_CASE(point_contacts_keep_a_frozen_history_and_do_not_creep) {
+  // A square standing on its corner on a burgers joint, loaded over 20 steps:
+  // its vertex-edge contact has zero length, no joint area: it owns a slot
+  // (the history would follow it through a corner) but its creep stays zero.
+  auto law = make_law("burgers", burgers_row1());
+  ContactSystem cs({joint("b", law)}, Rig::defaults());
+  Scene scene;
+  scene.add_rect(-100, -100, 100, 0);
+  scene.block(0).edge_joint_set = {0, 0, 0, 0};
+  scene.add(rheodda::contact::testing::rotated_square({0.0, 50.0 * std::sqrt(2.0) - 1e-6}, 100.0,
+                                                      0.25 * 3.14159265358979323846));
+  scene.rebuild();
+  Eigen::VectorXd D = Eigen::VectorXd::Zero(12);
+  D(7) = -1e-6;  // pressed down, held
+  for (int n = 0; n < 20; ++n) {
+    cs.begin_step(scene.views(), 1.0, 1.0);
+    cs.check(scene.views(), D);
+    cs.end_step(scene.views(), D);
+    D.setZero();
+  }
+  BOOST_REQUIRE(cs.contacts().size() == 1u);
+  BOOST_TEST((cs.contacts()[0].kind == ContactKind::vertex_edge));
+  BOOST_TEST((cs.contacts()[0].state == ContactState::locked));
+  BOOST_TEST(cs.contacts()[0].rheology == 0);
+  BOOST_TEST(cs.rheology_states().size() == 1u);
+  BOOST_TEST(cs.rheology_states()[0].creep() == 0.0);
+  BOOST_TEST(cs.creep_increments()[0] == 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(sliding_or_opening_loses_the_history_and_relocking_restarts_from_rest) {
+  // A burgers contact creeps under a held displacement, then its block is
+  // pulled off (opens): the history is gone. Brought back, it relocks with a
+  // fresh history. A law's E1 is the joint's shear stiffness, k_s = E1 l.
+  auto law = make_law("burgers", burgers_row1());
+  ContactSettings s = Rig::defaults();
+  s.scheme = laws::Scheme::implicit;
+  Rig rig({joint("b", law)}, {0}, s);
+  rig.step(1.0, 1e-3);
+  BOOST_TEST(rig.cs.contacts()[0].rheology >= 0);
+  // First step: F = k_eff delta with k_eff = k/(1 + k c/l), k = E1 l (two contacts of l = w/2).
+  const auto kc = law->step_constants(1.0, laws::Scheme::implicit);
+  const double c = law->linearize(kc, {}, 0.0, 0.0).c;
+  BOOST_TEST(rig.shear_force(0) == 26.87 * Rig::w / (1 + 26.87 * c) * 1e-3,
+             boost::test_tools::tolerance(1e-9));
+  for (int n = 0; n < 10; ++n) rig.step(1.0, 0.0);
+  for (const auto& st : rig.cs.rheology_states()) BOOST_TEST(std::abs(st.creep()) > 0.0);
+  // Lift the block by 0.5 mm (within the search distance): contacts open.
+  const int n = static_cast<int>(rig.scene.views().size());
+  rig.cs.begin_step(rig.scene.views(), 1.0, 1.0);
+  Eigen::VectorXd D = Eigen::VectorXd::Zero(6 * n);
+  D(6 * rig.movers[0] + 1) = 0.5;
+  for (int k = 0; k < 3; ++k) rig.cs.check(rig.scene.views(), D);
+  rig.cs.end_step(rig.scene.views(), D);
+  rig.scene.translate(rig.movers[0], {0.0, 0.5});
+  for (const Contact& ct : rig.cs.contacts()) BOOST_TEST((ct.state == ContactState::open));
+  for (const auto& st : rig.cs.rheology_states()) BOOST_TEST(st.creep() == 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(a_law_with_E1_and_a_shear_stiffness_on_one_joint_set_is_refused) {
+  JointSet j = joint("b", make_law("burgers", burgers_row1()));
+  j.shear_stiffness = 10.0;
+  BOOST_CHECK_EXCEPTION(ContactSystem({j}, Rig::defaults()), std::invalid_argument,
+                        [](const std::invalid_argument& e) {
+                          return std::string(e.what()).find("shear_stiffness") != std::string::npos;
+                        });
+}
+
+BOOST_AUTO_TEST_SUITE_END()
