@@ -57,6 +57,7 @@ BuiltScene build_scene(const SceneDescription& s) {
   cs.search_factor = a.search_factor;
   cs.angle_tolerance = a.angle_tolerance;
   cs.penetration_ratio = a.penetration_ratio;
+  cs.scheme = a.scheme;
 
   const auto& registry = laws::LawRegistry::builtin();
   for (const auto& js : s.joint_sets) {
@@ -67,13 +68,7 @@ BuiltScene build_scene(const SceneDescription& s) {
     j.tensile_strength = js.tensile_strength;
     j.normal_stiffness = js.normal_stiffness;
     j.shear_stiffness = js.shear_stiffness;
-    if (js.law) {
-      j.law = registry.create(js.law->name, js.law->parameters);
-      out.warnings.push_back(fmt::format(
-          "joint set '{}': law '{}' is read and validated, but the contact layer does not "
-          "advance creep laws yet: this run has no creep on these joints",
-          js.name, js.law->name));
-    }
+    if (js.law) j.law = registry.create(js.law->name, js.law->parameters);
     out.joint_sets.push_back(std::move(j));
   }
   return out;

@@ -13,6 +13,10 @@ double search_distance(const SceneDescription& s) {
   return s.analysis.search_factor * s.analysis.max_displacement_ratio * half_model_size(s.blocks);
 }
 
+std::string scheme_text(const Analysis& a) {
+  return a.scheme ? std::string(laws::scheme_name(*a.scheme)) : std::string("automatic");
+}
+
 std::string describe_scene(const SceneDescription& s) {
   const Units& u = s.units;
   const Analysis& a = s.analysis;
@@ -25,7 +29,7 @@ std::string describe_scene(const SceneDescription& s) {
   line(fmt::format("analysis: {}, duration {:g} {}, dt {:g} {} (max_cuts {}), dynamic_ratio {:g}",
                    analysis_type_name(a.type), a.duration, u.time, a.dt, u.time, a.max_cuts, a.dynamic_ratio));
   line(fmt::format("  gravity ({:g}, {:g}) {}/{}^2, scheme {}, solver {}", a.gravity[0], a.gravity[1],
-                   u.length, u.time, laws::scheme_name(a.scheme), solver_name(a.solver)));
+                   u.length, u.time, scheme_text(a), solver_name(a.solver)));
   line(fmt::format("  max_displacement_ratio {:g}, penalty {:g} {}, shear_normal_ratio {:g}, "
                    "fixed_point_stiffness {:g} {}/{}",
                    a.max_displacement_ratio, a.penalty, stress, a.shear_normal_ratio,
@@ -55,8 +59,7 @@ std::string describe_scene(const SceneDescription& s) {
     if (j.law) {
       std::string params;
       for (const auto& [k, v] : j.law->parameters) params += fmt::format(" {}={:g}", k, v);
-      line(fmt::format("    law {}:{} (scheme {})", j.law->name, params, laws::scheme_name(a.scheme)));
-      line("    note: the contact layer does not couple creep laws yet; `rheodda run` warns and runs without creep");
+      line(fmt::format("    law {}:{} (scheme {})", j.law->name, params, scheme_text(a)));
     } else {
       line("    law: none (no creep)");
     }

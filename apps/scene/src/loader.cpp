@@ -291,9 +291,11 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
                "a static analysis carries no velocity; dynamic_ratio needs `type: dynamic`");
     a.dynamic_ratio = number(ctx, v, m.child("dynamic_ratio"), {0.0, false, 1.0, false, ""});
   }
-  if (YAML::Node v = m.find("scheme"); v.IsDefined())
-    a.scheme = laws::parse_scheme(
-        choice(ctx, v, m.child("scheme"), {"lagged", "implicit", "exponential-linear"}));
+  if (YAML::Node v = m.find("scheme"); v.IsDefined()) {
+    const std::string name =
+        choice(ctx, v, m.child("scheme"), {"automatic", "lagged", "implicit", "exponential-linear"});
+    if (name != "automatic") a.scheme = laws::parse_scheme(name);
+  }
   num("penalty", a.penalty, positive("stress"));
   num("shear_normal_ratio", a.shear_normal_ratio, positive(""));
   num("search_factor", a.search_factor, positive(""));
@@ -409,7 +411,15 @@ std::vector<JointSetDescription> read_joint_sets(const Ctx& ctx, const YAML::Nod
       js.normal_stiffness = number(ctx, v, m.child("normal_stiffness"), positive("stress/length"));
     if (YAML::Node v = m.find("shear_stiffness"); v.IsDefined())
       js.shear_stiffness = number(ctx, v, m.child("shear_stiffness"), positive("stress/length"));
-    if (YAML::Node v = m.find("law"); v.IsDefined()) js.law = read_law(ctx, v, m.child("law"));
+    if (YAML::Node v = m.find("law"); v.IsDefined()) {
+      js.law = read_law(ctx, v, m.child("law"));
+      // A law with an instantaneous spring E1 (burgers, maxwell, nishihara) is the
+      // joint's elastic shear spring, k_s = E1 l: one value, given once.
+      if (js.shear_stiffness && js.law->parameters.count("E1"))
+        ctx.fail(m.find("shear_stiffness"), m.child("shear_stiffness"),
+                 fmt::format("law '{}' sets the joint's elastic shear stiffness with its E1; "
+                             "remove shear_stiffness (or use a law without E1)", js.law->name));
+    }
     if (YAML::Node v = m.find("record"); v.IsDefined()) js.record = flag(ctx, v, m.child("record"));
     out.push_back(std::move(js));
   }

@@ -12,6 +12,7 @@
 #include "rheodda/core/contact_adapter.hpp"
 #include "rheodda/core/engine.hpp"
 #include "rheodda/scene/build.hpp"
+#include "rheodda/scene/describe.hpp"
 #include "rheodda/scene/output.hpp"
 
 namespace rheodda::scene {
@@ -40,7 +41,7 @@ json scene_json(const SceneDescription& s) {
                    {"max_cuts", a.max_cuts},
                    {"max_displacement_ratio", a.max_displacement_ratio},
                    {"dynamic_ratio", a.dynamic_ratio},
-                   {"scheme", laws::scheme_name(a.scheme)},
+                   {"scheme", scheme_text(a)},
                    {"penalty", a.penalty},
                    {"shear_normal_ratio", a.shear_normal_ratio},
                    {"search_factor", a.search_factor},
@@ -124,7 +125,22 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
 
   BuiltScene built = build_scene(s);
   result.warnings = built.warnings;
-  contact::ContactSystem contacts(built.joint_sets, built.contact_settings);
+  std::unique_ptr<contact::ContactSystem> contacts_ptr;
+  try {
+    contacts_ptr = std::make_unique<contact::ContactSystem>(built.joint_sets, built.contact_settings);
+  } catch (const std::invalid_argument& e) {
+    // The contact layer names the joint set by index ("joint set 2 ..."): point at it in the scene.
+    SourceLocation where = a.where;
+    std::string key = "analysis";
+    int index = -1;
+    if (std::sscanf(e.what(), "joint set %d", &index) == 1 && index >= 0 &&
+        index < static_cast<int>(s.joint_sets.size())) {
+      where = s.joint_sets[index].where;
+      key = "joint_sets." + s.joint_sets[index].name;
+    }
+    throw SceneError(s.file, where, key, e.what());
+  }
+  contact::ContactSystem& contacts = *contacts_ptr;
   core::ContactAdapter adapter(contacts);
   std::unique_ptr<core::Engine> engine_ptr;
   try {

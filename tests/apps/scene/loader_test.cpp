@@ -19,7 +19,7 @@ BOOST_AUTO_TEST_CASE(base_scene_loads_with_documented_defaults) {
   BOOST_TEST(s.units.stress() == "N/m^2");
   BOOST_TEST((s.analysis.type == scene::AnalysisType::static_analysis));
   BOOST_TEST(s.analysis.dynamic_ratio == 0.0);
-  BOOST_TEST((s.analysis.scheme == laws::Scheme::implicit));
+  BOOST_TEST(!s.analysis.scheme.has_value());  // automatic
   BOOST_TEST(s.analysis.max_displacement_ratio == 0.01);
   BOOST_TEST(s.analysis.output_interval == 0.01);     // duration / 100
   BOOST_TEST(s.analysis.penalty == 40.0 * 1.0e9);      // 40 x largest young_modulus
@@ -82,6 +82,11 @@ BOOST_AUTO_TEST_CASE(law_parameters_use_the_registry_names) {
   expect_error_at(with("eta1: 3", "eta_1: 3"), 10, "eta_1", "joint_sets.fault.law.eta_1", "did you mean 'eta1'?");
   expect_error_at(with("name: burgers", "name: burger"), 10, "burger", "law.name", "did you mean 'burgers'?");
   expect_error_at(with(", eta2: 4}", "}"), 10, "{name", "law.eta2", "needs parameter 'eta2'");
+}
+
+BOOST_AUTO_TEST_CASE(a_law_with_E1_and_a_shear_stiffness_is_refused_as_giving_one_value_twice) {
+  expect_error_at(with("fault: {friction_angle: 20,", "fault: {friction_angle: 20, shear_stiffness: 5,"), 10, "5,",
+                  "joint_sets.fault.shear_stiffness", "sets the joint's elastic shear stiffness with its E1");
 }
 
 BOOST_AUTO_TEST_CASE(missing_required_key_points_at_its_map) {

@@ -11,6 +11,9 @@ namespace rheodda::scene {
 /// Human-readable account of the scene (units spelled out); ends with a newline.
 std::string describe_scene(const SceneDescription& scene);
 
+/// The scheme's name, "automatic" when unset.
+std::string scheme_text(const Analysis& analysis);
+
 /// Contact search distance at the start: search_factor * g2 * w0 [length] (Shi's rule).
 double search_distance(const SceneDescription& scene);
 

@@ -45,7 +45,10 @@ struct Analysis {
   int max_cuts = 30;                   ///< cuts of dt (x 0.3 each) allowed in one step before the run fails [-]
   double max_displacement_ratio = 0.01;  ///< g2: allowed step displacement / half model size [-]
   double dynamic_ratio = 0.0;          ///< share of velocity carried to the next step [-]; default 1 dynamic, 0 static
-  laws::Scheme scheme = laws::Scheme::implicit;  ///< rheology scheme `lagged|implicit|exponential-linear`
+  /// Rheology scheme `lagged|implicit|exponential-linear`; unset (`automatic`, the default):
+  /// per joint set and step, exponential-linear where the step is below its no-ringing
+  /// limit, implicit otherwise (contact::ContactSettings::scheme).
+  std::optional<laws::Scheme> scheme;
   double penalty = 0.0;                ///< normal contact penalty p_n [stress]; default 40 x largest young_modulus (seed eq. 17)
   double shear_normal_ratio = 2.5;     ///< p_n / p_s of penalty shear springs [-]
   double search_factor = 2.5;          ///< contact search distance / (g2 w0) [-]
