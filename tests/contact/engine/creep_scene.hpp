@@ -1,0 +1,78 @@
+// The seed's two-block shear creep test (Section 4, Figure 6): block A on
+// block B, B fixed, normal force F1 and shear force F2 on A below the friction
+// limit. Units MPa, mm, h, unit thickness [mm]: forces per unit thickness are
+// N/mm = MPa mm. Static analysis (dynamic ratio 0), no gravity.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "rheodda/laws/registry.hpp"
+#include "sim.hpp"
+
+namespace rheodda::testing {
+
+/// The seed's Table 1: stress level and Burgers parameters of the four creep tests.
+struct Table1Row {
+  double sigma, tau;       ///< normal and shear stress [MPa]
+  double E1, E2;           ///< [MPa/mm]
+  double eta1, eta2;       ///< [MPa h/mm]
+};
+inline constexpr Table1Row kTable1[] = {
+    {1.408, 0.232, 26.87, 192.43, 34807.72, 2141.23},
+    {1.156, 0.424, 40.13, 249.33, 101760.29, 3236.41},
+    {0.942, 0.439, 29.45, 260.76, 52869.39, 3771.63},
+    {0.751, 0.512, 33.65, 305.53, 23051.02, 5736.91},
+};
+
+inline std::shared_ptr<const laws::ContactRheology> make_law(const std::string& name,
+                                                             const laws::ParameterValues& p) {
+  return laws::LawRegistry::builtin().create(name, p);
+}
+
+inline std::shared_ptr<const laws::ContactRheology> table1_burgers(const Table1Row& r) {
+  return make_law("burgers", {{"E1", r.E1}, {"E2", r.E2}, {"eta1", r.eta1}, {"eta2", r.eta2}});
+}
+
+/// Two-block creep scene: A = [0, w] x [0, w] on B = [-w, 2w] x [-w, 0], w = 100 mm.
+/// Blocks are 1e6 times stiffer than the joint, so block strain does not
+/// pollute the joint displacement (which is read from the contacts anyway).
+struct CreepScene {
+  static constexpr double w = 100.0;  ///< width of A = joint length [mm]
+  core::Model model;
+  contact::JointSet joint;
+
+  CreepScene(std::shared_ptr<const laws::ContactRheology> law, double sigma, double tau, double dt) {
+    core::Model& m = model;
+    m.materials[0].young_modulus = 1e7;  // [MPa]
+    m.materials[0].density = 1e-12;      // [MPa h^2/mm^2]: no inertia at creep time scales
+    m.settings.dt = dt;                  // [h]
+    m.settings.dynamic_ratio = 0.0;      // static analysis
+    m.settings.gravity = {0.0, 0.0};
+    add_fixed(m, rect(-w, -w, 2 * w, 0.0));
+    m.blocks.push_back(block(rect(0.0, 0.0, w, w)));
+    // F1 (normal, down) and F2 (shear, +x) at the joint line, so A takes no moment.
+    core::PointLoad normal{1, {0.5 * w, 0.0}, {{0.0, {0.0, -sigma * w}}}};
+    core::PointLoad shear{1, {0.5 * w, 0.0}, {{0.0, {tau * w, 0.0}}}};
+    m.point_loads = {normal, shear};
+    joint.name = "joint";
+    joint.friction_angle = 60.0;       // tan = 1.73 > tau/sigma of every Table 1 row
+    joint.normal_stiffness = 1e4;      // [MPa/mm]
+    joint.law = std::move(law);
+  }
+};
+
+/// Joint's relative shear displacement [mm], in the direction of F2 (+x): mean
+/// over the contacts of A's base (B's top edge runs in -x).
+inline double joint_shear(const contact::ContactSystem& cs) {
+  double sum = 0.0;
+  int n = 0;
+  for (const contact::Contact& c : cs.contacts())
+    if (c.key.vblock == 1 && c.state != contact::ContactState::open) {
+      sum -= c.shear_displacement;
+      ++n;
+    }
+  return n ? sum / n : 0.0;
+}
+
+}  // namespace rheodda::testing

@@ -1,0 +1,114 @@
+// The seed's shear creep test (Section 4, Figure 6) run by the DDA engine:
+// block A on a fixed block B under a normal force F1 and a shear force F2
+// below the friction limit. The joint's relative shear displacement (read from
+// the contacts) follows each law's closed form. Units MPa, mm, h.
+#include <boost/test/unit_test.hpp>
+#include <cmath>
+#include <string>
+
+#include "creep_scene.hpp"
+
+using namespace rheodda;
+using namespace rheodda::testing;
+
+namespace {
+
+/// Runs the creep scene to t_end and returns the largest relative deviation of
+/// the joint's shear displacement from `exact(t)` over the accepted steps.
+template <class Exact>
+double creep_error(const CreepScene& scene, laws::Scheme scheme, double t_end, Exact exact,
+                   double* last = nullptr) {
+  contact::ContactSettings settings = core::contact_settings_for(scene.model);
+  settings.scheme = scheme;
+  contact::ContactSystem contacts({scene.joint}, settings);
+  core::ContactAdapter adapter(contacts);
+  core::Engine engine(scene.model, adapter);
+  double worst = 0.0;
+  while (engine.time() < t_end - 1e-9) {
+    engine.step();
+    const double d = joint_shear(contacts);
+    const double e = exact(engine.time());
+    worst = std::max(worst, std::abs(d - e) / e);
+    if (last) *last = d;
+  }
+  return worst;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(shear_creep)
+
+BOOST_AUTO_TEST_CASE(table1_burgers_joints_follow_the_closed_form_within_half_a_percent) {
+  // Every row of the seed's Table 1, 0-200 h in steps of 2 h, implicit and
+  // exponential-linear: d(t) = tau/E1 + tau/E2 (1 - exp(-E2 t/eta2)) + tau t/eta1
+  // (the seed's eqs. 20-21) within 0.5 % at every step.
+  for (const Table1Row& row : kTable1)
+    for (laws::Scheme scheme : {laws::Scheme::implicit, laws::Scheme::exponential_linear}) {
+      BOOST_TEST_CONTEXT("tau " << row.tau << " " << laws::scheme_name(scheme)) {
+        auto law = table1_burgers(row);
+        CreepScene scene(law, row.sigma, row.tau, 2.0);
+        double d200 = 0.0;
+        const double worst = creep_error(
+            scene, scheme, 200.0, [&](double t) { return law->displacement_closed_form(row.tau, t); },
+            &d200);
+        BOOST_TEST_MESSAGE("Table 1 tau = " << row.tau << " MPa, " << laws::scheme_name(scheme)
+                                            << ": d(200 h) = " << d200 << " mm (closed form "
+                                            << law->displacement_closed_form(row.tau, 200.0)
+                                            << "), max relative error " << worst);
+        BOOST_TEST(worst < 0.005);
+      }
+    }
+}
+
+BOOST_AUTO_TEST_CASE(maxwell_kelvin_and_nishihara_joints_follow_their_closed_forms) {
+  // Same scene, 0-200 h, dt = 2 h, both accurate schemes. Kelvin has no
+  // instantaneous spring: the joint's shear_stiffness k_s gives tau/k_s.
+  // Nishihara below its threshold (no viscoplastic creep) and above it.
+  struct Case {
+    std::string name, law;
+    laws::ParameterValues p;
+    std::optional<double> shear_stiffness;
+  };
+  const Table1Row& r = kTable1[0];
+  const Case cases[] = {
+      {"maxwell", "maxwell", {{"E1", r.E1}, {"eta1", r.eta1}}, std::nullopt},
+      {"kelvin", "kelvin", {{"E2", r.E2}, {"eta2", r.eta2}}, 30.0},
+      {"nishihara below Fs", "nishihara",
+       {{"E1", r.E1}, {"E2", r.E2}, {"eta2", r.eta2}, {"eta3", 5000.0}, {"Fs", 0.3}}, std::nullopt},
+      {"nishihara above Fs", "nishihara",
+       {{"E1", r.E1}, {"E2", r.E2}, {"eta2", r.eta2}, {"eta3", 5000.0}, {"Fs", 0.15}}, std::nullopt},
+  };
+  for (const Case& c : cases)
+    for (laws::Scheme scheme : {laws::Scheme::implicit, laws::Scheme::exponential_linear}) {
+      BOOST_TEST_CONTEXT(c.name << " " << laws::scheme_name(scheme)) {
+        auto law = make_law(c.law, c.p);
+        CreepScene scene(law, r.sigma, r.tau, 2.0);
+        scene.joint.shear_stiffness = c.shear_stiffness;
+        const double elastic = c.shear_stiffness ? r.tau / *c.shear_stiffness : 0.0;
+        double d200 = 0.0;
+        const double worst = creep_error(
+            scene, scheme, 200.0,
+            [&](double t) { return elastic + law->displacement_closed_form(r.tau, t); }, &d200);
+        BOOST_TEST_MESSAGE(c.name << " " << laws::scheme_name(scheme) << ": d(200 h) = " << d200
+                                  << " mm, max relative error " << worst);
+        BOOST_TEST(worst < 0.005);
+      }
+    }
+}
+
+BOOST_AUTO_TEST_CASE(implicit_creep_stays_accurate_at_a_thousand_times_the_lagged_limit) {
+  // A stiff joint (E1 = 1e4 MPa/mm, Kelvin and dashpot of Table 1 row 1):
+  // lagged limit dt* = 2 eta2/(E1 + E2) = 0.42 h. The implicit scheme at
+  // 1000 dt* = 420 h follows the closed form to 0.5 % over 10 steps.
+  const Table1Row& r = kTable1[0];
+  auto law = make_law("burgers", {{"E1", 1e4}, {"E2", r.E2}, {"eta1", r.eta1}, {"eta2", r.eta2}});
+  const double limit = 2 * r.eta2 / (1e4 + r.E2);
+  CreepScene scene(law, r.sigma, r.tau, 1000 * limit);
+  const double worst =
+      creep_error(scene, laws::Scheme::implicit, 10000 * limit,
+                  [&](double t) { return law->displacement_closed_form(r.tau, t); });
+  BOOST_TEST_MESSAGE("implicit at 1000 dt* = " << 1000 * limit << " h: max relative error " << worst);
+  BOOST_TEST(worst < 0.005);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
