@@ -13,6 +13,17 @@ double search_distance(const SceneDescription& s) {
   return s.analysis.search_factor * s.analysis.max_displacement_ratio * half_model_size(s.blocks);
 }
 
+namespace {
+/// The shortest of 6, 10 or 17 significant digits that reads back exactly.
+std::string number(double v) {
+  for (int digits : {6, 10}) {
+    const std::string t = fmt::format("{:.{}g}", v, digits);
+    if (std::stod(t) == v) return t;
+  }
+  return fmt::format("{:.17g}", v);
+}
+}  // namespace
+
 std::string scheme_text(const Analysis& a) {
   return a.scheme ? std::string(laws::scheme_name(*a.scheme)) : std::string("automatic");
 }
@@ -54,11 +65,13 @@ std::string describe_scene(const SceneDescription& s) {
                      j.friction_angle, j.cohesion, stress, j.tensile_strength, stress));
     line(fmt::format("    normal_stiffness {}, shear_stiffness {}{}",
                      stiff(j.normal_stiffness, "penalty"),
-                     stiff(j.shear_stiffness, "penalty / shear_normal_ratio"),
+                     j.law && j.law->parameters.count("E1")
+                         ? fmt::format("E1 of the law ({} {}/{})", number(j.law->parameters.at("E1")), stress, u.length)
+                         : stiff(j.shear_stiffness, "penalty / shear_normal_ratio"),
                      j.record ? ", recorded in history.csv" : ""));
     if (j.law) {
       std::string params;
-      for (const auto& [k, v] : j.law->parameters) params += fmt::format(" {}={:g}", k, v);
+      for (const auto& [k, v] : j.law->parameters) params += fmt::format(" {}={}", k, number(v));
       line(fmt::format("    law {}:{} (scheme {})", j.law->name, params, scheme_text(a)));
     } else {
       line("    law: none (no creep)");
