@@ -1,0 +1,124 @@
+// The seed's two-block shear creep test (Section 4, Figure 6) run by the DDA
+// engine with the Burgers joints of Table 1: prints, per row and scheme, the
+// largest deviation of the joint's shear displacement from the closed form
+// (the seed's eqs. 20-21) and the time per step; with --csv DIR also writes
+// DIR/row<i>.csv (t [h], DDA d [mm], closed-form d [mm]) and
+// DIR/closed<i>.csv (the closed form every 0.5 h) for scripts/plot-shear-creep.sh. Units MPa, mm, h, unit thickness.
+// Usage: shear_creep_table1 [--csv DIR]
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <string>
+
+#include "rheodda/contact/contact_system.hpp"
+#include "rheodda/core/contact_adapter.hpp"
+#include "rheodda/core/engine.hpp"
+#include "rheodda/laws/registry.hpp"
+
+using namespace rheodda;
+
+namespace {
+
+struct Row {
+  double sigma, tau, E1, E2, eta1, eta2;  // [MPa], [MPa/mm], [MPa h/mm]
+};
+constexpr Row kTable1[] = {{1.408, 0.232, 26.87, 192.43, 34807.72, 2141.23},
+                           {1.156, 0.424, 40.13, 249.33, 101760.29, 3236.41},
+                           {0.942, 0.439, 29.45, 260.76, 52869.39, 3771.63},
+                           {0.751, 0.512, 33.65, 305.53, 23051.02, 5736.91}};
+
+std::vector<core::Vec2> rect(double x0, double y0, double x1, double y1) {
+  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+}
+
+/// Block A (100 x 100 mm) on block B (fixed), F1 and F2 on A at the joint line.
+core::Model scene(const Row& r, double dt) {
+  const double w = 100.0;
+  core::Model m;
+  m.materials[0].young_modulus = 1e7;  // blocks 1e6 x stiffer than the joint [MPa]
+  m.materials[0].density = 1e-12;      // no inertia at creep time scales
+  m.settings.dt = dt;
+  m.settings.dynamic_ratio = 0.0;      // static analysis
+  m.settings.gravity = {0.0, 0.0};
+  core::BlockDef b, a;
+  b.vertices = rect(-w, -w, 2 * w, 0.0);
+  a.vertices = rect(0.0, 0.0, w, w);
+  m.blocks = {b, a};
+  for (int k = 0; k < 3; ++k) m.fixed_points.push_back({0, b.vertices[k]});
+  m.point_loads.push_back({1, {0.5 * w, 0.0}, {{0.0, {0.0, -r.sigma * w}}}});
+  m.point_loads.push_back({1, {0.5 * w, 0.0}, {{0.0, {r.tau * w, 0.0}}}});
+  return m;
+}
+
+/// Joint's relative shear displacement along F2 [mm]: mean over A's base contacts.
+double joint_shear(const contact::ContactSystem& cs) {
+  double sum = 0.0;
+  int n = 0;
+  for (const auto& c : cs.contacts())
+    if (c.key.vblock == 1) sum -= c.shear_displacement, ++n;
+  return n ? sum / n : 0.0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::optional<std::string> csv_dir;
+  if (argc == 3 && std::string(argv[1]) == "--csv") csv_dir = argv[2];
+  const double dt = 2.0, t_end = 200.0;  // [h]
+  std::printf("two-block shear creep, Table 1 Burgers joints, dt = %g h, 0-%g h\n", dt, t_end);
+  std::printf("%-6s %-30s %14s %16s %12s\n", "tau", "scheme", "d(200 h) [mm]", "max rel. error",
+              "us/step");
+  const std::optional<laws::Scheme> schemes[] = {laws::Scheme::lagged, laws::Scheme::implicit,
+                                                 laws::Scheme::exponential_linear, std::nullopt};
+  for (size_t i = 0; i < std::size(kTable1); ++i) {
+    const Row& r = kTable1[i];
+    std::shared_ptr<const laws::ContactRheology> law = laws::LawRegistry::builtin().create(
+        "burgers", {{"E1", r.E1}, {"E2", r.E2}, {"eta1", r.eta1}, {"eta2", r.eta2}});
+    for (const auto& scheme : schemes) {
+      const core::Model m = scene(r, dt);
+      contact::JointSet j;
+      j.name = "joint";
+      j.friction_angle = 60.0;
+      j.normal_stiffness = 1e4;
+      j.law = law;
+      contact::ContactSettings s = core::contact_settings_for(m);
+      s.scheme = scheme;
+      contact::ContactSystem contacts({j}, s);
+      core::ContactAdapter adapter(contacts);
+      core::Engine engine(m, adapter);
+      FILE* out = nullptr;
+      if (csv_dir && !scheme) {
+        out = std::fopen((*csv_dir + "/row" + std::to_string(i) + ".csv").c_str(), "w");
+        if (!out) return 1;
+        std::fprintf(out, "t,dda,closed_form\n");
+        // The closed form from t = 0+ (the instantaneous response tau/E1) on a fine grid.
+        FILE* exact = std::fopen((*csv_dir + "/closed" + std::to_string(i) + ".csv").c_str(), "w");
+        if (!exact) return 1;
+        std::fprintf(exact, "t,closed_form\n");
+        for (int k = 0; k <= 400; ++k)
+          std::fprintf(exact, "%g,%.10g\n", 0.5 * k,
+                       law->displacement_closed_form(r.tau, k == 0 ? 1e-12 : 0.5 * k));
+        std::fclose(exact);
+      }
+      double worst = 0.0;
+      const auto t0 = std::chrono::steady_clock::now();
+      while (engine.time() < t_end - 1e-9) {
+        engine.step();
+        const double d = joint_shear(contacts);
+        const double e = law->displacement_closed_form(r.tau, engine.time());
+        worst = std::max(worst, std::abs(d - e) / e);
+        if (out) std::fprintf(out, "%g,%.10g,%.10g\n", engine.time(), d, e);
+      }
+      const double us = std::chrono::duration<double, std::micro>(
+                            std::chrono::steady_clock::now() - t0).count() / engine.step_count();
+      if (out) std::fclose(out);
+      const std::string name =
+          scheme ? std::string(laws::scheme_name(*scheme))
+                 : "default (" + std::string(laws::scheme_name(*contacts.scheme_used(0))) + ")";
+      std::printf("%-6.3f %-30s %14.7f %16.3e %12.1f\n", r.tau, name.c_str(), joint_shear(contacts),
+                  worst, us);
+    }
+  }
+  return 0;
+}
