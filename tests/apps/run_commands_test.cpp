@@ -44,12 +44,16 @@ BOOST_AUTO_TEST_CASE(bad_scene_exits_2_with_file_line_column_and_writes_nothing)
   BOOST_TEST(run_rheodda("check " + (dir / "missing.yaml").string()).exit_code == 2);
 }
 
-BOOST_AUTO_TEST_CASE(plot_draws_block_pictures_and_history_curves) {
+BOOST_AUTO_TEST_CASE(run_is_quiet_off_a_terminal_and_plot_draws_block_pictures_and_history_curves) {
   const fs::path dir = fresh_dir("plot");
   const fs::path scene = dir / "short.yaml";
   std::ofstream(scene) << with("  duration: 1 ", "  duration: 0.1 ",
                                read_text(source_path("examples/sliding-block.yaml")));
-  BOOST_TEST_REQUIRE(run_rheodda("run " + scene.string() + " -o " + (dir / "out").string()).exit_code == 0);
+  const auto r = run_rheodda("run " + scene.string() + " -o " + (dir / "out").string());
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.output);
+  // Not a terminal: no progress display, only the summary at the end.
+  BOOST_TEST(r.output.find('\r') == std::string::npos);
+  BOOST_TEST(r.output.find("completed at t = 0.1 of 0.1 s: 100 steps") != std::string::npos, r.output);
   const auto p = run_rheodda("plot " + (dir / "out").string() + " --times 0,0.1");
   BOOST_TEST_REQUIRE(p.exit_code == 0, p.output);
   for (const char* f : {"plots/blocks_000000.png", "plots/blocks_000005.png", "plots/history.png"}) {
