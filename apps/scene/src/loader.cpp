@@ -16,6 +16,7 @@
 #include <map>
 #include <numbers>
 #include <sstream>
+#include <unordered_set>
 
 #include "rheodda/laws/registry.hpp"
 #include "rheodda/scene/geometry.hpp"
@@ -636,12 +637,12 @@ void check_geometry(const Ctx& ctx, std::vector<RawBlock>& raw, SceneDescription
   std::vector<BlockDescription> blocks;
   for (const auto& r : raw) blocks.push_back(r.block);
   const double tol = geometry_tolerance(blocks);
+  std::unordered_set<std::string> names;
   for (std::size_t i = 0; i < raw.size(); ++i) {
     BlockDescription& b = raw[i].block;
     if (b.name.empty()) b.name = fmt::format("block{}", i + 1);
-    for (std::size_t j = 0; j < i; ++j)
-      if (raw[j].block.name == b.name)
-        ctx.fail(raw[i].node, raw[i].path + ".name", fmt::format("block name '{}' is used twice", b.name));
+    if (!names.insert(b.name).second)
+      ctx.fail(raw[i].node, raw[i].path + ".name", fmt::format("block name '{}' is used twice", b.name));
     if (auto defect = polygon_defect(b.polygon, tol))
       ctx.fail(raw[i].geometry_node, raw[i].path + ".polygon",
                fmt::format("block '{}' {}", b.name, *defect));
