@@ -279,7 +279,9 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
   // Law constants, once per joint set and step (never per contact). The
   // automatic scheme looks at the stiffest spring per unit area of the set.
   law_steps_.assign(joint_sets_.size(), LawStep{});
-  if (dt > 0.0) {
+  const bool any_law = std::any_of(joint_sets_.begin(), joint_sets_.end(),
+                                   [](const JointSet& j) { return j.law != nullptr; });
+  if (dt > 0.0 && any_law) {
     std::vector<double> k_area(joint_sets_.size(), 0.0);
     for (size_t c = 0; c < work_.size(); ++c)
       if (work_[c].rheology >= 0 && work_[c].length > 0.0)

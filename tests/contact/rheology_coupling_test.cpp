@@ -341,6 +341,57 @@ BOOST_AUTO_TEST_CASE(sliding_or_opening_loses_the_history_and_relocking_restarts
   for (const auto& st : rig.cs.rheology_states()) BOOST_TEST(st.creep() == 0.0);
 }
 
+BOOST_AUTO_TEST_CASE(the_history_follows_a_contact_onto_the_adjacent_edge) {
+  // Base top made of two collinear edges, 3: (200,0)->(100,0) and 2:
+  // (300,0)->(200,0) [mm]; a 50 mm wide block walks right in steps of 0.2 mm
+  // (imposed, so its locked shear springs stretch and creep) until its right
+  // bottom vertex has crossed (200, 0) onto edge 2. That contact keeps its
+  // identity and its rheology slot, and its creep continues across the
+  // transfer (never reset, as it would be by opening or sliding). On edge 2
+  // its contact length (half the overlap) is small, so its spring and force
+  // drop and the Kelvin part recovers: the creep then decreases smoothly.
+  auto law = make_law("burgers", burgers_row1());
+  ContactSettings st = Rig::defaults();
+  st.scheme = laws::Scheme::implicit;
+  ContactSystem cs({joint("b", law)}, st);
+  Scene scene;
+  scene.add({{100, -100}, {300, -100}, {300, 0}, {200, 0}, {100, 0}});
+  scene.add_rect(140, -1e-6, 190, 50 - 1e-6);
+  scene.rebuild();
+  const Eigen::VectorXd D = Eigen::VectorXd::Zero(12);
+  std::uint64_t id = 0;
+  double last_creep = 0.0;
+  bool transferred = false;
+  for (int k = 0; k < 80; ++k) {
+    cs.begin_step(scene.views(), 1.0, 1.0);
+    cs.check(scene.views(), D);
+    cs.end_step(scene.views(), D);
+    const Contact* right = nullptr;
+    for (const Contact& c : cs.contacts())
+      if (c.key.vblock == 1 && c.key.vertex == 1) right = &c;
+    BOOST_TEST_REQUIRE(right != nullptr);
+    BOOST_TEST((right->state == ContactState::locked));
+    BOOST_TEST_REQUIRE(right->rheology >= 0);
+    if (k == 0) id = right->id;
+    BOOST_TEST(right->id == id);
+    const double creep = std::abs(cs.rheology_states()[right->rheology].creep());
+    if (k > 0) BOOST_TEST(creep > 0.0);
+    if (right->key.edge == 2 && !transferred) {
+      // The step of the transfer continues the history: its creep differs from
+      // the last step's by that step's increment only (here < 10 %), where a
+      // reset would have started from zero.
+      BOOST_TEST_MESSAGE("transfer at step " << k << ": creep " << last_creep << " -> " << creep
+                                             << " mm");
+      BOOST_TEST(std::abs(creep - last_creep) < 0.1 * last_creep);
+      transferred = true;
+    }
+    last_creep = creep;
+    scene.translate(1, {0.2, 0.0});
+  }
+  BOOST_TEST(transferred);
+  BOOST_TEST(last_creep > 0.0);
+}
+
 BOOST_AUTO_TEST_CASE(a_law_with_E1_and_a_shear_stiffness_on_one_joint_set_is_refused) {
   JointSet j = joint("b", make_law("burgers", burgers_row1()));
   j.shear_stiffness = 10.0;
