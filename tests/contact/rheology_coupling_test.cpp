@@ -392,6 +392,38 @@ BOOST_AUTO_TEST_CASE(the_history_follows_a_contact_onto_the_adjacent_edge) {
   BOOST_TEST(last_creep > 0.0);
 }
 
+BOOST_AUTO_TEST_CASE(a_kelvin_joint_takes_its_elastic_stiffness_from_the_joint_set_or_the_penalty) {
+  // Kelvin has no instantaneous spring: the elastic shear spring is
+  // shear_stiffness x l, or the penalty's p_n / shear_normal_ratio. Under a
+  // held displacement delta the force relaxes from k delta to the series value
+  // k E2 / (k + E2) delta (per unit area: k_a = k / l), as the standard solid
+  // F(t) = delta l k_a [E2 + k_a exp(-(k_a + E2) t/eta2)] / (k_a + E2) says.
+  auto law = make_law("kelvin", {{"E2", 192.43}, {"eta2", 2141.23}});
+  const double E2 = 192.43, eta2 = 2141.23, delta = 1e-3, dt = 0.05;
+  for (bool from_joint : {true, false}) {
+    BOOST_TEST_CONTEXT((from_joint ? "shear_stiffness" : "penalty")) {
+      JointSet j = joint("k", law);
+      ContactSettings s = Rig::defaults();
+      s.scheme = laws::Scheme::exponential_linear;
+      if (from_joint) j.shear_stiffness = 30.0;
+      else s.penalty = 2.5 * 30.0 * 0.5 * Rig::w;  // p_s = 30 MPa/mm x l, l = w/2
+      Rig rig({j}, {0}, s);
+      const double ka = 30.0;
+      double worst = 0.0;
+      for (int n = 1; n <= 400; ++n) {
+        rig.step(dt, n == 1 ? delta : 0.0);
+        const double t = n * dt;
+        const double exact =
+            delta * Rig::w * ka * (E2 + ka * std::exp(-(ka + E2) * t / eta2)) / (ka + E2);
+        worst = std::max(worst, std::abs(rig.shear_force(0) - exact) / exact);
+      }
+      BOOST_TEST_MESSAGE("kelvin, spring from " << (from_joint ? "shear_stiffness" : "penalty")
+                                                << ": max relative error " << worst);
+      BOOST_TEST(worst < 0.005);
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(a_law_with_E1_and_a_shear_stiffness_on_one_joint_set_is_refused) {
   JointSet j = joint("b", make_law("burgers", burgers_row1()));
   j.shear_stiffness = 10.0;
