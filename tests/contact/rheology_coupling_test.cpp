@@ -424,6 +424,70 @@ BOOST_AUTO_TEST_CASE(a_kelvin_joint_takes_its_elastic_stiffness_from_the_joint_s
   }
 }
 
+BOOST_AUTO_TEST_CASE(nishihara_relaxation_across_its_threshold_matches_rk4) {
+  // Held displacement delta with E1 delta = 2 Fs: the stress relaxes through
+  // the viscoplastic threshold Fs, where the contact switches the law's affine
+  // piece during the open-close iteration. Reference: RK4 with 1e-3 h steps of
+  //   tau = E1 (delta - qK - qB), eta2 qK' = tau - E2 qK, eta3 qB' = <tau - Fs>.
+  // Within 0.5 % of tau at every step (dt = 0.1 h, 0-100 h), both schemes.
+  // E2 small enough that the Kelvin part alone relaxes below Fs:
+  // E1 E2/(E1 + E2) delta = 0.54 Fs.
+  const double E1 = 26.87, E2 = 10.0, eta2 = 500.0, eta3 = 500.0, Fs = 0.1;
+  auto law = make_law("nishihara",
+                      {{"E1", E1}, {"E2", E2}, {"eta2", eta2}, {"eta3", eta3}, {"Fs", Fs}});
+  const double delta = 2 * Fs / E1, dt = 0.1;
+  std::vector<double> reference;  // tau at n dt [MPa]
+  {
+    double qk = 0.0, qb = 0.0;
+    auto rates = [&](double k, double b, double& dk, double& db) {
+      const double tau = E1 * (delta - k - b);
+      dk = (tau - E2 * k) / eta2;
+      db = std::max(tau - Fs, 0.0) / eta3;
+    };
+    const int sub = 100;
+    const double h = dt / sub;
+    for (int n = 1; n <= 1000; ++n) {
+      for (int i = 0; i < sub; ++i) {
+        double k1, b1, k2, b2, k3, b3, k4, b4;
+        rates(qk, qb, k1, b1);
+        rates(qk + 0.5 * h * k1, qb + 0.5 * h * b1, k2, b2);
+        rates(qk + 0.5 * h * k2, qb + 0.5 * h * b2, k3, b3);
+        rates(qk + h * k3, qb + h * b3, k4, b4);
+        qk += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+        qb += h / 6 * (b1 + 2 * b2 + 2 * b3 + b4);
+      }
+      reference.push_back(E1 * (delta - qk - qb));
+    }
+  }
+  BOOST_TEST_REQUIRE(reference.back() < Fs);  // the run does cross the threshold
+  for (laws::Scheme scheme : {laws::Scheme::implicit, laws::Scheme::exponential_linear}) {
+    BOOST_TEST_CONTEXT(laws::scheme_name(scheme)) {
+      ContactSettings s = Rig::defaults();
+      s.scheme = scheme;
+      Rig rig({joint("n", law)}, {0}, s);
+      double worst = 0.0;
+      for (int n = 1; n <= 1000; ++n) {
+        // Open-close iterations as the host runs them: check until no change.
+        const int nb = static_cast<int>(rig.scene.views().size());
+        rig.cs.begin_step(rig.scene.views(), 1.0, dt);
+        Eigen::VectorXd D = Eigen::VectorXd::Zero(6 * nb);
+        if (n == 1) D(6 * rig.movers[0]) = delta;
+        for (int it = 0; it < 8 && rig.cs.check(rig.scene.views(), D).state_changes > 0; ++it) {
+        }
+        rig.cs.end_step(rig.scene.views(), D);
+        if (n == 1) rig.scene.translate(rig.movers[0], {delta, 0.0});
+        const double tau = rig.shear_force(0) / Rig::w;
+        worst = std::max(worst, std::abs(tau - reference[n - 1]) / reference[n - 1]);
+      }
+      BOOST_TEST_MESSAGE("nishihara across Fs, " << laws::scheme_name(scheme)
+                                                 << ": max relative error " << worst
+                                                 << ", tau(100 h) = " << reference.back()
+                                                 << " MPa (Fs = " << Fs << ")");
+      BOOST_TEST(worst < 0.005);
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(a_law_with_E1_and_a_shear_stiffness_on_one_joint_set_is_refused) {
   JointSet j = joint("b", make_law("burgers", burgers_row1()));
   j.shear_stiffness = 10.0;
