@@ -18,4 +18,7 @@ void add_scene_commands(CLI::App& app);
 /// `rheodda fit`: fit laws to laboratory creep curves (apps/fit_command.cpp).
 void add_fit_command(CLI::App& app);
 
+/// `rheodda study`: a base scene's variations run as parallel cases (apps/study_command.cpp).
+void add_study_command(CLI::App& app);
+
 }  // namespace rheodda::apps

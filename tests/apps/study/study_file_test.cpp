@@ -1,0 +1,82 @@
+// Study files: a bad study is refused whole, before anything runs, with the study
+// file, line, column and key; `rheodda study` then exits 2 and runs nothing.
+#include <boost/test/unit_test.hpp>
+
+#include "rheodda/study/study.hpp"
+#include "study_support.hpp"
+
+using namespace rheodda::study_test;
+namespace st = rheodda::study;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A valid study of the sliding block; line numbers (1-based) are relied on below.
+std::string study_text() {
+  return "scene: " + source_path("examples/sliding-block.yaml") + "\n"  // 1
+         "set: {analysis.duration: 0.05}\n"                              // 2
+         "outputs: [centre.u, slope.shear_displacement]\n"               // 3
+         "times: [0.01, 0.05]\n"                                         // 4
+         "cases:\n"                                                      // 5
+         "  - name: phi10\n"                                             // 6
+         "    set: {joint_sets.slope.friction_angle: 10}\n"              // 7
+         "  - {name: phi20}\n";                                          // 8
+}
+
+/// Loading `text` and building its cases must fail at `line` with `key_part` and `message_part`.
+void expect_study_error(const std::string& text, int line, const std::string& key_part, const std::string& message_part) {
+  try {
+    const auto s = st::parse_study(text, "bad-study.yaml");
+    (void)st::prepare_cases(s);
+    BOOST_ERROR("no error for a study expected to fail with '" << message_part << "'");
+  } catch (const st::SceneError& e) {
+    BOOST_TEST_INFO("error: " << e.what());
+    BOOST_TEST(e.file() == "bad-study.yaml");
+    BOOST_TEST(e.line() == line);
+    BOOST_TEST(e.key().find(key_part) != std::string::npos);
+    BOOST_TEST(e.message().find(message_part) != std::string::npos);
+  }
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(study_file)
+
+BOOST_AUTO_TEST_CASE(a_valid_study_builds_one_scene_per_case_with_the_overrides_applied) {
+  const auto s = st::parse_study(study_text(), "ok.yaml");
+  BOOST_TEST(s.cases.size() == 2u);
+  BOOST_TEST(s.plot == "centre.u");  // default: the first output
+  const auto texts = st::prepare_cases(s);
+  BOOST_TEST_REQUIRE(texts.size() == 2u);
+  BOOST_TEST(texts[0].find("friction_angle: 10") != std::string::npos, texts[0]);
+  BOOST_TEST(texts[1].find("friction_angle: 20") != std::string::npos, texts[1]);
+  for (const auto& t : texts) BOOST_TEST(t.find("duration: 0.05") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(bad_study_files_are_refused_with_line_and_key) {
+  const std::string ok = study_text();
+  expect_study_error(with("cases:\n", "case_list: []\ncases:\n", ok), 5, "case_list", "unknown key");
+  expect_study_error(with("slope.friction_angle: 10", "slopes.friction_angle: 10", ok), 7,
+                     "joint_sets.slopes.friction_angle", "no 'joint_sets.slopes'");
+  // A value the scene loader refuses is located at the override that set it.
+  expect_study_error(with("friction_angle: 10", "friction_angle: 95", ok), 7, "joint_sets.slope.friction_angle",
+                     "out of range");
+  expect_study_error(with("centre.u,", "centre.w,", ok), 6, "outputs[0]", "no history column 'centre.w'");
+  expect_study_error(with("times: [0.01, 0.05]", "times: [0.01, 0.5]", ok), 6, "times", "after the end");
+  expect_study_error(with("  - {name: phi20}", "  - {name: phi10}", ok), 8, "cases[1].name", "given twice");
+  expect_study_error(with("name: phi10", "name: ../x", ok), 6, "cases[0].name", "folder name");
+  expect_study_error(with("times: [0.01, 0.05]", "times: [0.01, x]", ok), 4, "times[1]", "not a number");
+}
+
+BOOST_AUTO_TEST_CASE(rheodda_study_exits_2_on_a_bad_study_and_runs_nothing) {
+  const fs::path dir = fresh_dir("bad");
+  const fs::path file = dir / "bad.yaml";
+  std::ofstream(file) << with("friction_angle: 10", "friction_angle: 95", study_text());
+  const auto r = run_rheodda("study " + file.string() + " -o " + (dir / "out").string());
+  BOOST_TEST(r.exit_code == 2, r.output);
+  BOOST_TEST(r.output.find(file.string() + ":7:") != std::string::npos, r.output);
+  BOOST_TEST(!fs::exists(dir / "out" / "cases"));
+  BOOST_TEST(run_rheodda("study " + (dir / "missing.yaml").string()).exit_code == 2);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
