@@ -141,6 +141,13 @@ void write_study_csv(const StudyDescription& study, const std::vector<CaseResult
   }
 }
 
+/// Text inside a gnuplot single-quoted string ('' stands for ').
+std::string gp_text(const std::string& s) {
+  std::string q;
+  for (char ch : s) q += ch == '\'' ? std::string("''") : std::string(1, ch);
+  return q;
+}
+
 void plot_study(const StudyDescription& study, const std::vector<CaseResult>& results, const fs::path& out_dir) {
   const fs::path dat = out_dir / "study_plot.dat";
   std::ofstream d(dat);
@@ -159,13 +166,26 @@ void plot_study(const StudyDescription& study, const std::vector<CaseResult>& re
     titles.push_back(r.status == "completed" ? r.name : r.name + " (failed)");
   }
   d.close();
+  // Axis units from the first line of a case's history.csv ("# units: length=m force=N time=d ...").
+  std::string units, time_unit;
+  for (const auto& r : results) {
+    std::ifstream h(out_dir / "cases" / r.name / "history.csv");
+    std::string first;
+    if (!std::getline(h, first) || first.rfind("# units:", 0) != 0) continue;
+    units = first.substr(2);
+    const auto at = first.find("time=");
+    if (at != std::string::npos) time_unit = first.substr(at + 5, first.find(' ', at) - (at + 5));
+    break;
+  }
   const fs::path gp = out_dir / "study.gp";
   std::ofstream g(gp);
   g << "# Drawn by rheodda study: " << study.plot << " of every case against time.\n"
     << "set terminal pngcairo size 1000,650 noenhanced\n"
     << "set output '" << (out_dir / "study.png").string() << "'\n"
-    << "set title '" << study.title << "'\n"
-    << "set xlabel 'time'\nset ylabel '" << study.plot << "'\nset key outside right\nset grid\n"
+    << "set title '" << gp_text(study.title) << "'\n"
+    << "set xlabel 'time" << (time_unit.empty() ? "" : " [" + time_unit + "]") << "'\n"
+    << "set ylabel '" << study.plot << (units.empty() ? "" : " (" + units + ")") << "'\n"
+    << "set key outside right\nset grid\n"
     << "plot ";
   for (std::size_t i = 0; i < titles.size(); ++i)
     g << (i ? ", \\\n     " : "") << "'" << dat.string() << "' index " << i << " using 1:2 with lines lw 2 title '"
