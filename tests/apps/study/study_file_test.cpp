@@ -2,6 +2,7 @@
 // file, line, column and key; `rheodda study` then exits 2 and runs nothing.
 #include <boost/test/unit_test.hpp>
 
+#include "rheodda/scene/loader.hpp"
 #include "rheodda/study/study.hpp"
 #include "study_support.hpp"
 
@@ -51,6 +52,62 @@ BOOST_AUTO_TEST_CASE(a_valid_study_builds_one_scene_per_case_with_the_overrides_
   BOOST_TEST(texts[0].find("friction_angle: 10") != std::string::npos, texts[0]);
   BOOST_TEST(texts[1].find("friction_angle: 20") != std::string::npos, texts[1]);
   for (const auto& t : texts) BOOST_TEST(t.find("duration: 0.05") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(overrides_select_map_keys_list_elements_by_index_or_name_and_remove_keys) {
+  const std::string base = read_text(source_path("examples/goodman-toppling.yaml"));
+  const auto s = st::parse_study(
+      "scene: " + source_path("examples/goodman-toppling.yaml") + "\n"
+      "outputs: [block1_top.u]\n"
+      "times: [1]\n"
+      "cases:\n"
+      "  - name: edited\n"
+      "    set:\n"
+      "      blocks[2].fixed: true\n"
+      "      blocks[block3].fixed: true\n"
+      "      joint_sets.base.law: ~\n"
+      "      joint_sets.base.shear_stiffness: 2.5e8\n"
+      "      joint_sets.anti_toppling.law: {name: maxwell, E1: 2.0e8, eta1: 3.0e8}\n"
+      "      analysis.scheme: lagged\n",
+      "edit.yaml");
+  const auto c = rheodda::scene::parse_scene(st::case_scene_text(s, base, s.cases[0]), "case");
+  BOOST_TEST_REQUIRE(c.blocks.size() == 17u);
+  BOOST_TEST(c.blocks[2].name == "block2");
+  BOOST_TEST(c.blocks[2].fixed);
+  BOOST_TEST(c.blocks[3].name == "block3");
+  BOOST_TEST(c.blocks[3].fixed);
+  BOOST_TEST(!c.blocks[4].fixed);
+  const auto& jb = c.joint_sets[0];
+  const auto& ja = c.joint_sets[1];
+  BOOST_TEST(jb.name == "base");
+  BOOST_TEST(!jb.law.has_value());
+  BOOST_TEST(jb.shear_stiffness.value_or(0.0) == 2.5e8);
+  BOOST_TEST(jb.friction_angle == 50.0);  // untouched keys keep their base values
+  BOOST_TEST_REQUIRE(ja.law.has_value());
+  BOOST_TEST(ja.law->name == "maxwell");
+  BOOST_TEST(ja.law->parameters.at("E1") == 2.0e8);
+  BOOST_TEST(ja.law->parameters.at("eta1") == 3.0e8);
+  BOOST_TEST((c.analysis.scheme == rheodda::laws::Scheme::lagged));
+
+  const auto fails = [&](const std::string& key, const std::string& message_part) {
+    const auto bad = st::parse_study("scene: " + source_path("examples/goodman-toppling.yaml") +
+                                         "\noutputs: [block1_top.u]\ntimes: [1]\ncases:\n  - name: x\n    set:\n      " +
+                                         key + "\n",
+                                     "bad.yaml");
+    try {
+      (void)st::case_scene_text(bad, base, bad.cases[0]);
+      BOOST_ERROR("no error for " << key);
+    } catch (const st::SceneError& e) {
+      BOOST_TEST_INFO(e.what());
+      BOOST_TEST(e.line() == 7);
+      BOOST_TEST(e.message().find(message_part) != std::string::npos);
+    }
+  };
+  fails("blocks[17].fixed: true", "has 17 elements");
+  fails("blocks[nosuch].fixed: true", "no element named 'nosuch'");
+  fails("joint_sets.base.cohesionx: ~", "no 'joint_sets.base.cohesionx' to remove");
+  fails("joint_sets.nosuch.friction_angle: 30", "no 'joint_sets.nosuch'");
+  fails("analysis.dt.x: 1", "not a map");
 }
 
 BOOST_AUTO_TEST_CASE(bad_study_files_are_refused_with_line_and_key) {
