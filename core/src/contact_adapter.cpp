@@ -1,6 +1,10 @@
 #include "rheodda/core/contact_adapter.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
+#include <unordered_map>
+#include <utility>
 
 namespace rheodda::core {
 
@@ -14,6 +18,8 @@ contact::ContactSettings contact_settings_for(const Model& model, double penalty
 
 void ContactAdapter::begin_step(std::span<const contact::BlockView> blocks, const StepContext& ctx) {
   system_.begin_step(blocks, ctx.max_displacement, ctx.dt);
+  dt_ = ctx.dt;
+  want_error_ = ctx.creep_error_wanted;
 }
 
 void ContactAdapter::assemble(std::span<const contact::BlockView> blocks,
@@ -28,7 +34,76 @@ ContactCheck ContactAdapter::check(std::span<const contact::BlockView> blocks,
 }
 
 void ContactAdapter::end_step(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) {
+  if (!want_error_) {
+    system_.end_step(blocks, D);
+    creep_error_ = 0.0;
+    return;
+  }
+  const auto c0 = system_.contacts();
+  const auto r0 = system_.rheology_states();
+  start_contacts_.assign(c0.begin(), c0.end());
+  start_rheology_.assign(r0.begin(), r0.end());
   system_.end_step(blocks, D);
+  std::unordered_map<std::uint64_t, std::size_t> start_of;
+  start_of.reserve(start_contacts_.size());
+  for (std::size_t k = 0; k < start_contacts_.size(); ++k) start_of[start_contacts_[k].id] = k;
+  // Per joint set: the scheme the step used and the constants to compare with.
+  const auto& sets = system_.joint_sets();
+  struct Pair {
+    laws::Scheme used;
+    laws::StepConstants main, other;  // the used scheme's and exponential-linear's (or implicit's)
+  };
+  std::vector<std::optional<Pair>> ks(sets.size());
+  std::unordered_map<std::uint64_t, double> tau_now;
+  tau_now.reserve(system_.contacts().size());
+  double worst = 0.0;
+  for (const contact::Contact& c : system_.contacts()) {
+    if (c.rheology < 0 || c.length <= 0.0 || c.state != contact::ContactState::locked) continue;
+    const auto it = start_of.find(c.id);
+    if (it == start_of.end()) continue;
+    const contact::Contact& s = start_contacts_[it->second];
+    if (s.rheology < 0 || s.length <= 0.0 || s.state != contact::ContactState::locked) continue;
+    const auto& law = sets[c.joint_set].law;
+    if (!law) continue;
+    auto& k = ks[c.joint_set];
+    if (!k) {
+      const laws::Scheme used = system_.scheme_used(c.joint_set).value_or(laws::Scheme::implicit);
+      const laws::Scheme other = used == laws::Scheme::exponential_linear
+                                     ? laws::Scheme::implicit
+                                     : laws::Scheme::exponential_linear;
+      k = Pair{used, law->step_constants(dt_, used), law->step_constants(dt_, other)};
+    }
+    // Stresses tau = F / l at the step's start and end (docs/rheology-in-dda.md, Units).
+    const double tau_s = s.shear_force / s.length, tau_e = c.shear_force / c.length;
+    tau_now[c.id] = tau_s;
+    const laws::RheologyState& old = start_rheology_[s.rheology];
+    laws::RheologyState next;
+    double err = 0.0;
+    if (k->used != laws::Scheme::exponential_linear) {
+      // First-order scheme: its increment minus the exponential-linear one (the
+      // exact increment for a force linear over the step) is its local error.
+      err = std::abs(law->advance(k->main, old, tau_s, tau_e, next) -
+                     law->advance(k->other, old, tau_s, tau_e, next));
+    } else {
+      // Exponential-linear is exact for a force linear over the step; its local
+      // error is the creep of the force's departure from linear:
+      // |tau''| dt^2 / 12 times the step compliance c (Delta d = h + c tau_e,
+      // laws/contact_rheology.hpp eq. 1), c ~ dt/eta for dt << eta/E (the
+      // trapezoid-rule remainder). tau'' from the stresses at the start of the
+      // last step, at the start and at the end of this one.
+      const auto p = prev_tau_.find(c.id);
+      if (p == prev_tau_.end() || prev_dt_ <= 0.0) continue;
+      const double h1 = prev_dt_, h2 = dt_;
+      const double curvature =
+          2.0 * ((tau_e - tau_s) / h2 - (tau_s - p->second) / h1) / (h1 + h2);
+      const laws::Linearization lin = law->linearize(k->other, old, tau_s, tau_e);
+      err = std::abs(curvature) * h2 * h2 / 12.0 * lin.c;
+    }
+    worst = std::max(worst, err);
+  }
+  prev_tau_.swap(tau_now);
+  prev_dt_ = dt_;
+  creep_error_ = worst;
 }
 
 void ContactAdapter::abandon_step() { system_.abandon_step(); }

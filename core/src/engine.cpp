@@ -234,6 +234,10 @@ void Engine::Impl::validate() {
     throw ModelError("settings.dt_growth", "must be >= 1");
   if (!(s.dt_cut > 0.0 && s.dt_cut < 1.0)) throw ModelError("settings.dt_cut", "must be in (0, 1)");
   if (s.max_cuts < 0) throw ModelError("settings.max_cuts", "must be >= 0");
+  if (!(s.creep_tolerance >= 0.0 && std::isfinite(s.creep_tolerance)))
+    throw ModelError("settings.creep_tolerance", "must be >= 0 (length; 0 = fixed dt)");
+  if (!(s.dt_max >= 0.0 && std::isfinite(s.dt_max)))
+    throw ModelError("settings.dt_max", "must be >= 0 (time; 0 = no limit)");
   if (!(s.g2 > 0.0 && std::isfinite(s.g2))) throw ModelError("settings.g2", "must be > 0");
   if (!(s.dynamic_ratio >= 0.0 && s.dynamic_ratio <= 1.0))
     throw ModelError("settings.dynamic_ratio", "must be in [0, 1]");
@@ -408,13 +412,27 @@ StepReport Engine::Impl::step(double dt_cap) {
   const Settings& s = model.settings;
   StepReport rep;
   rep.step = st.step;
+  const bool adaptive = s.creep_tolerance > 0.0;
+  // Adaptive creep stepping: steps end on the point-load sample times (where
+  // the loads change their course), and the step after one restarts from dt.
+  // Sample times closer than dt/1000 after the step start (a load jump given
+  // as a steep ramp) fall inside the step.
+  double load_break = std::numeric_limits<double>::infinity();
+  if (adaptive) {
+    const double eps = std::max(1e-12 * std::max(1.0, std::abs(st.time)), 1e-3 * s.dt);
+    for (const auto& pl : model.point_loads)
+      for (const auto& ls : pl.history)
+        if (ls.time > st.time + eps) load_break = std::min(load_break, ls.time);
+    dt_cap = std::min(dt_cap, load_break - st.time);
+  }
   const bool capped = dt_cap < st.next_dt;
   double dt = std::min(st.next_dt, dt_cap);
   const double allowed = s.g2 * w0;
   std::vector<Mat6> base_diag;
   Eigen::VectorXd base_rhs;
   for (;;) {
-    const StepContext ctx{st.step, st.time, dt, allowed};
+    StepContext ctx{st.step, st.time, dt, allowed};
+    ctx.creep_error_wanted = adaptive;
     contacts->begin_step(views, ctx);
     auto t0 = Clock::now();
     assemble_blocks(dt, st.time + dt, base_diag, base_rhs);
@@ -452,7 +470,21 @@ StepReport Engine::Impl::step(double dt_cap) {
       rep.max_penetration = check.max_penetration;
       accept(D, dt, st.step, st.time + dt);
       rep.time = st.time;
-      if (rep.cuts > 0 || !capped) st.next_dt = std::min(s.dt, dt * s.dt_growth);
+      if (adaptive) {
+        // Step size from the creep error estimate err of this step (local error
+        // ~ dt^2 for the first-order estimate): dt' = dt min(2, max(dt_cut,
+        // 0.9 sqrt(tol / err))), capped by dt_max; dt again after a load break.
+        const double err = contacts->creep_error_estimate();
+        rep.creep_error = err;
+        const double factor =
+            err > 0.0 ? std::clamp(0.9 * std::sqrt(s.creep_tolerance / err), s.dt_cut, 2.0) : 2.0;
+        double next = dt * factor;
+        if (s.dt_max > 0.0) next = std::min(next, s.dt_max);
+        if (st.time >= load_break - 1e-12 * std::max(1.0, std::abs(load_break))) next = s.dt;
+        st.next_dt = next;
+      } else if (rep.cuts > 0 || !capped) {
+        st.next_dt = std::min(s.dt, dt * s.dt_growth);
+      }
       return rep;
     }
     contacts->abandon_step();

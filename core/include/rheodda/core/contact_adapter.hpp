@@ -15,6 +15,10 @@
 #include "rheodda/core/contact_model.hpp"
 #include "rheodda/core/model.hpp"
 
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
 namespace rheodda::core {
 
 /// Contact settings for a model: the normal penalty is `penalty_factor` times
@@ -32,6 +36,15 @@ class ContactAdapter final : public ContactModel {
   ContactCheck check(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) override;
   void end_step(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) override;
   void abandon_step() override;
+  /// Largest local creep error estimate of the last accepted step over the
+  /// contacts locked with a law at both ends of the step [length]. For a joint
+  /// set stepped with the lagged or implicit scheme: |Delta d_c(scheme) -
+  /// Delta d_c(exponential-linear)| from the same history and start and end
+  /// stresses (exponential-linear is exact for a force linear over the step).
+  /// For exponential-linear: |tau''| dt^2/12 c, tau'' from the stresses at the
+  /// last three step boundaries and c the implicit step compliance (~ dt/eta).
+  /// Zero under a constant force. Computed only when the step context asked for it.
+  double creep_error_estimate() const override { return creep_error_; }
 
   contact::ContactSystem& system() { return system_; }
   const contact::ContactSystem& system() const { return system_; }
@@ -40,6 +53,13 @@ class ContactAdapter final : public ContactModel {
 
  private:
   contact::ContactSystem& system_;
+  double dt_ = 0.0;            ///< step size of the step being solved [time]
+  bool want_error_ = false;
+  double creep_error_ = 0.0;   ///< [length]
+  std::vector<contact::Contact> start_contacts_;           ///< committed records at the step start
+  std::vector<laws::RheologyState> start_rheology_;        ///< and their histories
+  std::unordered_map<std::uint64_t, double> prev_tau_;  ///< stress at the last step's start, by contact id [stress]
+  double prev_dt_ = 0.0;                                ///< last accepted step [time]
 };
 
 }  // namespace rheodda::core

@@ -16,6 +16,7 @@ struct StepContext {
   double time = 0.0;    ///< time at the start of the step [time]
   double dt = 0.0;      ///< step size [time]
   double max_displacement = 0.0;  ///< allowed displacement per step (g2 * half model size) [length]
+  bool creep_error_wanted = false;  ///< the host will ask creep_error_estimate() after end_step
 };
 
 /// Result of checking a trial solution against the contact states.
@@ -41,6 +42,9 @@ class ContactModel {
   virtual void end_step(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) = 0;
   /// Reject the step (it will be redone with a smaller dt): restore the step-start states.
   virtual void abandon_step() = 0;
+  /// Estimate of the creep error of the last accepted step [length] (asked only when
+  /// StepContext::creep_error_wanted was set); 0 without creep.
+  virtual double creep_error_estimate() const { return 0.0; }
 };
 
 /// No contacts: every call does nothing.

@@ -40,6 +40,8 @@ struct StepReport {
   int cuts = 0;               ///< times dt was cut before acceptance [-]
   double max_displacement = 0.0;  ///< largest vertex displacement of the step [length]
   double max_penetration = 0.0;   ///< largest penetration reported by the contacts [length]
+  double creep_error = 0.0;       ///< contacts' creep error estimate of the step, under
+                                  ///< Settings::creep_tolerance only (else 0) [length]
   double assembly_seconds = 0.0;  ///< wall time spent assembling K and F (all attempts) [s]
   double solve_seconds = 0.0;     ///< wall time spent in the linear solver (all attempts) [s]
 };

@@ -105,6 +105,13 @@ struct Settings {
   double dt_growth = 1.5;        ///< after a cut, each accepted step lets dt grow by this factor,
                                  ///< up to dt [-]; >= 1
   double dt_cut = 0.3;           ///< factor applied to dt when a step is cut [-]; in (0, 1)
+  double creep_tolerance = 0.0;  ///< adaptive creep stepping (docs/speed-accuracy.md): largest
+                                 ///< creep error estimate allowed per step [length]; 0 = off
+                                 ///< (fixed dt). When > 0, dt is the first step and the step
+                                 ///< after every point-load sample time; steps end on those
+                                 ///< times; the next step is dt_n min(2, max(dt_cut,
+                                 ///< 0.9 sqrt(tol/err))), err the contacts' estimate; >= 0
+  double dt_max = 0.0;           ///< largest step under creep_tolerance [time]; 0 = no limit; >= 0
   int max_cuts = 30;             ///< cuts allowed in one step before the engine gives up [-]; >= 0
   double g2 = 0.01;              ///< allowed displacement per step as a fraction of the half
                                  ///< model size (Shi's g2) [-]; > 0

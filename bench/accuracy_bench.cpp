@@ -1,0 +1,278 @@
+// Speed-accuracy trade of the creep schemes: error against the closed form vs
+// wall time, per scheme and time step (docs/speed-accuracy.md).
+//
+// Cases (units MPa, mm, h; Burgers joints of the seed's Table 1, all four rows):
+//   creep      the seed's two-block shear creep test (Section 4) run by the DDA
+//              engine: constant tau from t = 0, 0-200 h; reference eqs. 20-21.
+//   staged     the same DDA model under a staged shear load with unloading:
+//              tau from 0 h, ramp to 2 tau over 80-90 h, ramp to 0 over
+//              140-150 h, 0-200 h; reference the Boltzmann superposition of
+//              eqs. 20-21 (staged_exact).
+//   relaxation the law in series with its spring E1 (laws::solve_series_force,
+//              no DDA: the two-block scene cannot hold a displacement), displacement
+//              1e-3 mm held from t = 0, 0-200 h; reference G(t) (laws::exact_force).
+//   adaptive   the staged DDA case with Settings::creep_tolerance instead of a
+//              fixed step (default scheme), for several tolerances.
+// Error: largest |x - x_exact| over all steps and rows divided by the largest
+// |x_exact| of the row (relative to the peak). Wall time: sum over the four rows.
+//
+// Usage: accuracy_bench [--csv FILE]   (prints a Markdown table; FILE gets
+//        case,scheme,dt,tolerance,steps,wall_s,error for scripts/accuracy-report.sh)
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rheodda/contact/contact_system.hpp"
+#include "rheodda/core/contact_adapter.hpp"
+#include "rheodda/core/engine.hpp"
+#include "rheodda/laws/history.hpp"
+#include "rheodda/laws/registry.hpp"
+
+using namespace rheodda;
+
+namespace {
+
+struct Row {
+  double sigma, tau, E1, E2, eta1, eta2;  // [MPa], [MPa/mm], [MPa h/mm]
+};
+constexpr Row kTable1[] = {{1.408, 0.232, 26.87, 192.43, 34807.72, 2141.23},
+                           {1.156, 0.424, 40.13, 249.33, 101760.29, 3236.41},
+                           {0.942, 0.439, 29.45, 260.76, 52869.39, 3771.63},
+                           {0.751, 0.512, 33.65, 305.53, 23051.02, 5736.91}};
+constexpr double kEnd = 200.0;               // [h]
+constexpr double kStage2 = 80.0, kStage3 = 140.0;  // ramp starts [h]
+constexpr double kRamp2 = 90.0, kRamp3 = 150.0;    // ramp ends [h]
+constexpr double kWidth = 100.0;             // block side [mm]
+
+std::shared_ptr<const laws::ContactRheology> burgers(const Row& r) {
+  return laws::LawRegistry::builtin().create(
+      "burgers", {{"E1", r.E1}, {"E2", r.E2}, {"eta1", r.eta1}, {"eta2", r.eta2}});
+}
+
+/// Joint displacement under the staged shear stress with ramps: tau from 0 h,
+/// ramp to 2 tau over 80-90 h, ramp to 0 over 140-150 h [mm]. Boltzmann
+/// superposition of the Burgers creep compliance (the seed's eqs. 20-21)
+/// J(u) = 1/E1 + (1 - exp(-E2 u/eta2))/E2 + u/eta1: the step tau J(t) plus, per
+/// ramp of slope s from a to b, s (I(t - a) - I(t - b)), I(u) = int_0^max(u,0) J.
+double staged_exact(double tau, double E1, double E2, double eta1, double eta2, double t) {
+  auto J = [&](double u) { return 1 / E1 + (1 - std::exp(-E2 * u / eta2)) / E2 + u / eta1; };
+  auto I = [&](double u) {
+    u = std::max(u, 0.0);
+    return u / E1 + u / E2 - eta2 / (E2 * E2) * (1 - std::exp(-E2 * u / eta2)) + u * u / (2 * eta1);
+  };
+  const double s = tau / (kRamp2 - kStage2), s3 = -2 * tau / (kRamp3 - kStage3);
+  return tau * J(t) + s * (I(t - kStage2) - I(t - kRamp2)) + s3 * (I(t - kStage3) - I(t - kRamp3));
+}
+
+std::vector<core::Vec2> rect(double x0, double y0, double x1, double y1) {
+  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+}
+
+/// Block A (100 x 100 mm) on block B (fixed); normal load sigma w and shear load
+/// tau(t) w on A at the joint line (bench/shear_creep_table1.cpp). `staged`:
+/// tau, ramp to 2 tau over kStage2-kRamp2, ramp to 0 over kStage3-kRamp3.
+core::Model scene(const Row& r, double dt, bool staged, double tolerance) {
+  const double w = kWidth;
+  core::Model m;
+  m.materials[0].young_modulus = 1e7;  // blocks 1e6 x stiffer than the joint [MPa]
+  m.materials[0].density = 1e-12;      // no inertia at creep time scales
+  m.settings.dt = dt;
+  m.settings.dynamic_ratio = 0.0;  // static analysis
+  m.settings.gravity = {0.0, 0.0};
+  m.settings.creep_tolerance = tolerance;
+  core::BlockDef b, a;
+  b.vertices = rect(-w, -w, 2 * w, 0.0);
+  a.vertices = rect(0.0, 0.0, w, w);
+  m.blocks = {b, a};
+  for (int k = 0; k < 3; ++k) m.fixed_points.push_back({0, b.vertices[k]});
+  m.point_loads.push_back({1, {0.5 * w, 0.0}, {{0.0, {0.0, -r.sigma * w}}}});
+  std::vector<core::LoadSample> shear{{0.0, {r.tau * w, 0.0}}};
+  if (staged) {
+    shear = {{0.0, {r.tau * w, 0.0}},          {kStage2, {r.tau * w, 0.0}},
+             {kRamp2, {2 * r.tau * w, 0.0}}, {kStage3, {2 * r.tau * w, 0.0}},
+             {kRamp3, {0.0, 0.0}}};
+  }
+  m.point_loads.push_back({1, {0.5 * w, 0.0}, shear});
+  return m;
+}
+
+/// Joint's relative shear displacement along the shear load: mean over A's base contacts [mm].
+double joint_shear(const contact::ContactSystem& cs) {
+  double sum = 0.0;
+  int n = 0;
+  for (const auto& c : cs.contacts())
+    if (c.key.vblock == 1) sum -= c.shear_displacement, ++n;
+  return n ? sum / n : 0.0;
+}
+
+struct Result {
+  long steps = 0;
+  double wall = 0.0;   ///< [s]
+  double error = 0.0;  ///< relative to the peak of the reference [-]
+  bool failed = false;
+};
+
+/// One DDA run of the two-block test over 0-kEnd; stage starts are step boundaries.
+Result run_dda(const Row& r, double dt, bool staged, std::optional<laws::Scheme> scheme,
+               double tolerance) {
+  const auto law = burgers(r);
+  const core::Model m = scene(r, dt, staged, tolerance);
+  contact::JointSet j;
+  j.name = "joint";
+  j.friction_angle = 60.0;
+  j.normal_stiffness = 1e4;
+  j.law = law;
+  contact::ContactSettings s = core::contact_settings_for(m);
+  s.scheme = scheme;
+  contact::ContactSystem contacts({j}, s);
+  core::ContactAdapter adapter(contacts);
+  core::Engine engine(m, adapter);
+  double worst = 0.0, peak = 0.0;
+  engine.add_observer([&](const core::Engine& e, const core::StepReport&) {
+    const double exact = staged ? staged_exact(r.tau, r.E1, r.E2, r.eta1, r.eta2, e.time())
+                                : law->displacement_closed_form(r.tau, e.time());
+    peak = std::max(peak, std::abs(exact));
+    worst = std::max(worst, std::abs(joint_shear(contacts) - exact));
+  });
+  Result res;
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    if (staged && tolerance == 0.0)  // land on the load's sample times
+      for (double t : {kStage2, kRamp2, kStage3, kRamp3}) engine.run_until(t);
+    engine.run_until(kEnd);
+  } catch (const std::exception&) {
+    res.failed = true;
+  }
+  res.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  res.steps = engine.step_count();
+  res.error = res.failed || !std::isfinite(worst) ? INFINITY : worst / peak;
+  return res;
+}
+
+/// Relaxation of the law in series with its spring E1, displacement held from t = 0.
+Result run_relaxation(const Row& r, double dt, laws::Scheme scheme) {
+  const auto law = burgers(r);
+  const double delta = 1e-3;  // [mm]
+  const laws::StagedHistory held({{0.0, delta}});
+  Result res;
+  const auto t0 = std::chrono::steady_clock::now();
+  // The first step starts from rest (load applied at t = 0+): implicit constants,
+  // as the contact layer does for a contact that closes (docs/rheology-in-dda.md).
+  const laws::StepConstants first = law->step_constants(dt, laws::Scheme::implicit);
+  const laws::StepConstants k = law->step_constants(dt, scheme);
+  laws::RheologyState q, next;
+  double force = 0.0, worst = 0.0;
+  const long n = std::lround(kEnd / dt);
+  std::vector<double> forces(n);
+  for (long i = 0; i < n; ++i) {
+    const laws::StepConstants& ks = i == 0 ? first : k;
+    const double f = laws::solve_series_force(*law, ks, q, r.E1, delta, force);
+    law->advance(ks, q, force, f, next);
+    q = next;
+    force = f;
+    forces[i] = f;
+  }
+  res.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  for (long i = 0; i < n; ++i)
+    worst = std::max(worst, std::abs(forces[i] - *laws::exact_force(*law, held, static_cast<double>(i + 1) * dt)));
+  res.steps = n;
+  res.error = std::isfinite(worst) ? worst / (r.E1 * delta) : INFINITY;
+  return res;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  FILE* csv = nullptr;
+  if (argc == 3 && std::string(argv[1]) == "--csv") {
+    csv = std::fopen(argv[2], "w");
+    if (!csv) {
+      std::fprintf(stderr, "accuracy_bench: cannot write %s\n", argv[2]);
+      return 2;
+    }
+    std::fprintf(csv, "case,scheme,dt,tolerance,steps,wall_s,error\n");
+  } else if (argc != 1) {
+    std::fprintf(stderr, "usage: accuracy_bench [--csv FILE]\n");
+    return 2;
+  }
+  const double dts[] = {0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10, 20};  // [h]
+  const std::optional<laws::Scheme> schemes[] = {laws::Scheme::lagged, laws::Scheme::implicit,
+                                                 laws::Scheme::exponential_linear, std::nullopt};
+  auto name = [](const std::optional<laws::Scheme>& s) {
+    return s ? std::string(laws::scheme_name(*s)) : std::string("default");
+  };
+  auto emit = [&](const char* cs, const std::string& scheme, double dt, double tol,
+                  const Result& r) {
+    if (csv)
+      std::fprintf(csv, "%s,%s,%g,%g,%ld,%.6g,%.6g\n", cs, scheme.c_str(), dt, tol, r.steps, r.wall,
+                   r.error);
+  };
+  auto cell = [](const Result& r) {
+    char buf[64];
+    if (r.failed || !std::isfinite(r.error))
+      std::snprintf(buf, sizeof buf, "diverged");
+    else
+      std::snprintf(buf, sizeof buf, "%.1e", r.error);
+    return std::string(buf);
+  };
+  for (const char* cs : {"creep", "staged", "relaxation"}) {
+    std::printf("\n**%s** (Table 1 rows 1-4, 0-200 h; error relative to the peak, worst row; "
+                "wall time summed over the rows, default scheme)\n\n",
+                cs);
+    std::printf("| dt [h] | steps | lagged | implicit | exponential-linear | default | wall [ms] |\n");
+    std::printf("|---:|---:|---:|---:|---:|---:|---:|\n");
+    for (double dt : dts) {
+      std::string cells[4];
+      double wall_default = 0.0;
+      long steps = 0;
+      for (int k = 0; k < 4; ++k) {
+        Result total;
+        for (const Row& r : kTable1) {
+          Result one;
+          if (std::string(cs) == "relaxation")
+            one = run_relaxation(r, dt, schemes[k] ? *schemes[k] : laws::Scheme::implicit);
+          else
+            one = run_dda(r, dt, std::string(cs) == "staged", schemes[k], 0.0);
+          total.steps += one.steps;
+          total.wall += one.wall;
+          total.failed = total.failed || one.failed;
+          total.error = std::max(total.error, one.error);
+        }
+        if (std::string(cs) == "relaxation" && !schemes[k]) {
+          cells[k] = "-";  // the law-alone integrator has no automatic scheme
+          continue;
+        }
+        emit(cs, name(schemes[k]), dt, 0.0, total);
+        cells[k] = cell(total);
+        if (k == 3 || (std::string(cs) == "relaxation" && k == 2)) {
+          wall_default = total.wall;
+          steps = total.steps / 4;
+        }
+      }
+      std::printf("| %g | %ld | %s | %s | %s | %s | %.1f |\n", dt, steps, cells[0].c_str(),
+                  cells[1].c_str(), cells[2].c_str(), cells[3].c_str(), 1e3 * wall_default);
+    }
+  }
+  std::printf("\n**adaptive** (staged case, default scheme, first step 0.01 h, "
+              "settings.creep_tolerance)\n\n");
+  std::printf("| creep_tolerance [mm] | steps (mean per row) | error | wall [ms] |\n");
+  std::printf("|---:|---:|---:|---:|\n");
+  for (double tol : {1e-5, 1e-6, 1e-7, 1e-8, 1e-9}) {
+    Result total;
+    for (const Row& r : kTable1) {
+      const Result one = run_dda(r, 0.01, true, std::nullopt, tol);
+      total.steps += one.steps;
+      total.wall += one.wall;
+      total.failed = total.failed || one.failed;
+      total.error = std::max(total.error, one.error);
+    }
+    emit("adaptive", "default", 0.01, tol, total);
+    std::printf("| %g | %ld | %s | %.1f |\n", tol, total.steps / 4, cell(total).c_str(),
+                1e3 * total.wall);
+  }
+  if (csv) std::fclose(csv);
+  return 0;
+}

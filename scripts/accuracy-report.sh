@@ -1,0 +1,91 @@
+#!/usr/bin/env bash
+# Regenerates the speed-accuracy report: runs bench/accuracy_bench and
+# bench/stability_map, puts their tables into docs/speed-accuracy.md (between
+# the "generated" markers) and draws docs/img/accuracy-error-vs-time.png and
+# docs/img/stability-map.png with gnuplot.
+# Usage: scripts/accuracy-report.sh   (uses $RHEODDA_BUILD_DIR or build/; builds the benches if missing)
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${RHEODDA_BUILD_DIR:-$root/build}"
+if [[ ! -x "$build/bench/accuracy_bench" || ! -x "$build/bench/stability_map" ]]; then
+  cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake --build "$build" -j 2 --target accuracy_bench stability_map
+fi
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+"$build/bench/accuracy_bench" --csv "$work/accuracy.csv" >"$work/accuracy.md"
+"$build/bench/stability_map" --csv "$work/stability.csv" >"$work/stability.md"
+
+# Replace the text between <!-- NAME:begin --> and <!-- NAME:end --> by a file.
+splice() {
+  local name="$1" file="$2" doc="$root/docs/speed-accuracy.md"
+  awk -v b="<!-- $name:begin -->" -v e="<!-- $name:end -->" -v f="$file" '
+    $0 == b { print; while ((getline line < f) > 0) print line; skip = 1; next }
+    $0 == e { skip = 0 }
+    !skip { print }' "$doc" >"$work/doc.md"
+  mv "$work/doc.md" "$doc"
+}
+splice accuracy-table "$work/accuracy.md"
+splice stability-table "$work/stability.md"
+
+# Error vs wall time, one panel per case, one line per scheme (fixed steps).
+for c in creep staged relaxation; do
+  for s in lagged implicit exponential-linear default; do
+    awk -F, -v c="$c" -v s="$s" 'NR > 1 && $1 == c && $2 == s && $7 != "inf" { print $6, $7, $3 }' \
+      "$work/accuracy.csv" | sort -g >"$work/$c-$s.dat"
+  done
+done
+awk -F, 'NR > 1 && $1 == "adaptive" && $7 != "inf" { print $6, $7, $4 }' "$work/accuracy.csv" |
+  sort -g >"$work/adaptive.dat"
+panel() {
+  local c="$1" extra="${2:-}" plot="plot"
+  for s in lagged implicit exponential-linear default; do
+    [[ -s "$work/$c-$s.dat" ]] &&
+      plot+=" '$work/$c-$s.dat' using 1:2 with linespoints lw 2 pt 7 title '$s',"
+  done
+  echo "${plot%,}$extra"
+}
+gnuplot <<GP
+set terminal pngcairo size 1500,520 font 'Sans,11'
+set output '$root/docs/img/accuracy-error-vs-time.png'
+set multiplot layout 1,3 title 'Error against the closed form vs wall time (Table 1 Burgers joints, 4 rows, 0-200 h; dt from 0.002 to 20 h)'
+set logscale xy
+set format x '10^{%L}'
+set format y '10^{%L}'
+set grid
+set xlabel 'wall time, 4 rows [s]'
+set ylabel 'largest error / peak [-]'
+set key bottom left
+set title 'two-block creep test, DDA (constant load)'
+$(panel creep)
+set title 'staged load (tau, 2 tau at 80 h, 0 at 140 h), DDA'
+$(panel staged ", '$work/adaptive.dat' using 1:2 with linespoints lw 2 pt 5 dt 2 lc 'black' title 'adaptive (creep\\\\_tolerance)'")
+set title 'relaxation, law in series with E1'
+$(panel relaxation)
+unset multiplot
+GP
+echo "wrote $root/docs/img/accuracy-error-vs-time.png"
+
+# Stability map: growth factor per scheme over (dt E2/eta2, k/E2).
+gnuplot <<GP
+set terminal pngcairo size 1500,480 font 'Sans,11'
+set output '$root/docs/img/stability-map.png'
+set datafile separator ','
+set multiplot layout 1,3 title 'Stability map: largest |force| after 200 steps / first force (relaxation of a spring k in series with a Kelvin element E2, eta2)'
+set logscale xy
+set format x '10^{%L}'
+set format y '10^{%L}'
+set xlabel 'dt E2 / eta2 [-]'
+set ylabel 'k / E2 [-]'
+set cbrange [0:2]
+set cblabel 'growth (>1 unstable)'
+set palette defined (0 'white', 1 '#4caf50', 1.0001 '#ff9800', 2 '#d32f2f')
+set key off
+do for [s in "lagged implicit exponential-linear"] {
+  set title s
+  plot '$work/stability.csv' using (strcol(1) eq s ? \$2 : NaN):3:(\$4 > 2 ? 2 : \$4) with points pt 5 ps 2.2 palette, \
+       (s eq "lagged" ? 2.0 / (1.0 - exp(-x)) - 1.0 : NaN) with lines lw 2 lc 'black'
+}
+unset multiplot
+GP
+echo "wrote $root/docs/img/stability-map.png"

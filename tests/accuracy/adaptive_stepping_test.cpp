@@ -1,0 +1,173 @@
+// Adaptive creep stepping (Settings::creep_tolerance, docs/speed-accuracy.md)
+// on the seed's two-block shear creep test (Section 4; Burgers joint of
+// Table 1 row 1; MPa, mm, h) under a staged shear load with unloading:
+// tau from 0 h, ramp to 2 tau over 80-85.5 h, ramp to 0 over 140-143.3 h, 0-200 h.
+// Reference: the Boltzmann superposition of the closed form (eqs. 20-21),
+// staged_exact below. Steps are counted, never timed.
+#include <boost/test/unit_test.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "rheodda/contact/contact_system.hpp"
+#include "rheodda/core/contact_adapter.hpp"
+#include "rheodda/core/engine.hpp"
+#include "rheodda/core/model.hpp"
+#include "rheodda/laws/history.hpp"
+#include "rheodda/laws/registry.hpp"
+
+using namespace rheodda;
+
+namespace {
+
+constexpr double kSigma = 1.408, kTau = 0.232;  // [MPa]
+constexpr double kE1 = 26.87, kE2 = 192.43, kEta1 = 34807.72, kEta2 = 2141.23;
+constexpr double kStage2 = 80.0, kStage3 = 140.0, kEnd = 200.0;  // ramp starts, end [h]
+constexpr double kRamp2 = 85.5, kRamp3 = 143.3;                  // ramp ends [h]
+
+/// Joint displacement under the staged shear stress with ramps: tau from 0 h,
+/// ramp to 2 tau over 80-85.5 h, ramp to 0 over 140-143.3 h [mm]. Boltzmann
+/// superposition of the Burgers creep compliance (the seed's eqs. 20-21)
+/// J(u) = 1/E1 + (1 - exp(-E2 u/eta2))/E2 + u/eta1: the step tau J(t) plus, per
+/// ramp of slope s from a to b, s (I(t - a) - I(t - b)), I(u) = int_0^max(u,0) J.
+double staged_exact(double tau, double E1, double E2, double eta1, double eta2, double t) {
+  auto J = [&](double u) { return 1 / E1 + (1 - std::exp(-E2 * u / eta2)) / E2 + u / eta1; };
+  auto I = [&](double u) {
+    u = std::max(u, 0.0);
+    return u / E1 + u / E2 - eta2 / (E2 * E2) * (1 - std::exp(-E2 * u / eta2)) + u * u / (2 * eta1);
+  };
+  const double s = tau / (kRamp2 - kStage2), s3 = -2 * tau / (kRamp3 - kStage3);
+  return tau * J(t) + s * (I(t - kStage2) - I(t - kRamp2)) + s3 * (I(t - kStage3) - I(t - kRamp3));
+}
+
+std::vector<core::Vec2> rect(double x0, double y0, double x1, double y1) {
+  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+}
+
+struct Run {
+  std::vector<core::StepReport> reports;
+  std::vector<double> t, d;  ///< time [h] and joint displacement [mm] after each step
+  double error = 0.0;  ///< largest |d - d_exact| over the steps [mm]
+  int steps = 0;
+};
+
+/// Block A (100 x 100 mm) on fixed block B; normal load sigma w and staged shear
+/// load on A at the joint line.
+Run run(double dt, double tolerance, double t_end = kEnd, double held_by = 0.0) {
+  const double w = 100.0;
+  core::Model m;
+  m.materials[0].young_modulus = 1e7;
+  m.materials[0].density = 1e-12;
+  m.settings.dt = dt;
+  m.settings.dynamic_ratio = 0.0;
+  m.settings.gravity = {0.0, 0.0};
+  m.settings.creep_tolerance = tolerance;
+  core::BlockDef b, a;
+  b.vertices = rect(-w, -w, 2 * w, 0.0);
+  a.vertices = rect(0.0, 0.0, w, w);
+  m.blocks = {b, a};
+  for (int k = 0; k < 3; ++k) m.fixed_points.push_back({0, b.vertices[k]});
+  if (held_by > 0.0) {  // A also held at its top corners by fixed-point springs [N/mm]
+    m.settings.fixed_point_stiffness = held_by;
+    m.fixed_points.push_back({1, a.vertices[2]});
+    m.fixed_points.push_back({1, a.vertices[3]});
+  }
+  m.point_loads.push_back({1, {0.5 * w, 0.0}, {{0.0, {0.0, -kSigma * w}}}});
+  m.point_loads.push_back({1,
+                           {0.5 * w, 0.0},
+                           {{0.0, {kTau * w, 0.0}},
+                            {kStage2, {kTau * w, 0.0}},
+                            {kRamp2, {2 * kTau * w, 0.0}},
+                            {kStage3, {2 * kTau * w, 0.0}},
+                            {kRamp3, {0.0, 0.0}}}});
+  const std::shared_ptr<const laws::ContactRheology> law = laws::LawRegistry::builtin().create(
+      "burgers", {{"E1", kE1}, {"E2", kE2}, {"eta1", kEta1}, {"eta2", kEta2}});
+  contact::JointSet j;
+  j.name = "joint";
+  j.friction_angle = 60.0;
+  j.normal_stiffness = 1e4;
+  j.law = law;
+  contact::ContactSystem contacts({j}, core::contact_settings_for(m));
+  core::ContactAdapter adapter(contacts);
+  core::Engine engine(m, adapter);
+  Run r;
+  engine.add_observer([&](const core::Engine& e, const core::StepReport&) {
+    double sum = 0.0;
+    int n = 0;
+    for (const auto& c : contacts.contacts())
+      if (c.key.vblock == 1) sum -= c.shear_displacement, ++n;
+    const double exact = staged_exact(kTau, kE1, kE2, kEta1, kEta2, e.time());
+    r.error = std::max(r.error, std::abs(sum / n - exact));
+    r.t.push_back(e.time());
+    r.d.push_back(sum / n);
+  });
+  engine.run_until(t_end);
+  r.reports = engine.reports();
+  r.steps = engine.step_count();
+  return r;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(adaptive_stepping)
+
+BOOST_AUTO_TEST_CASE(keeps_the_staged_creep_error_under_the_tolerance_in_fewer_steps_than_a_fixed_step) {
+  const double tol = 1e-7;  // [mm]; the peak displacement is 0.021 mm
+  const Run adaptive = run(0.01, tol);
+  BOOST_TEST(adaptive.error <= tol);
+  // The largest fixed step (default scheme, run as given: its steps do not land
+  // on the ramp ends, adaptive steps do) that is at least as accurate.
+  std::optional<Run> fixed;
+  for (double dt : {20.0, 10.0, 5.0, 2.0, 1.0, 0.5, 0.2, 0.1, 0.05, 0.02, 0.01}) {
+    Run r = run(dt, 0.0);
+    if (r.error <= adaptive.error) {
+      fixed = std::move(r);
+      break;
+    }
+  }
+  BOOST_TEST_REQUIRE(fixed.has_value());
+  BOOST_TEST_MESSAGE("adaptive: " << adaptive.steps << " steps, error " << adaptive.error
+                                  << " mm; fixed: " << fixed->steps << " steps, error "
+                                  << fixed->error << " mm");
+  BOOST_TEST(adaptive.steps < fixed->steps);
+}
+
+BOOST_AUTO_TEST_CASE(the_step_restarts_from_dt_after_a_load_change) {
+  const double dt = 0.01;
+  const Run r = run(dt, 1e-7);
+  // The step ending at the ramp start is long; the step after it is dt again.
+  double before = 0.0, after = 0.0;
+  for (std::size_t k = 0; k + 1 < r.reports.size(); ++k)
+    if (std::abs(r.reports[k].time - kStage2) < 1e-9) {
+      before = r.reports[k].dt;
+      after = r.reports[k + 1].dt;
+    }
+  BOOST_TEST(before > 10 * dt);
+  BOOST_TEST(after == dt);
+}
+
+BOOST_AUTO_TEST_CASE(the_step_doubles_while_the_load_is_constant) {
+  // Constant load up to 80 h: both schemes' increments agree (estimate 0), so
+  // each step doubles (up to the end of the run).
+  const Run r = run(0.01, 1e-7, 79.0);
+  for (std::size_t k = 1; k + 1 < r.reports.size(); ++k)
+    BOOST_TEST(r.reports[k].dt == std::min(2 * r.reports[k - 1].dt, 79.0 - r.reports[k - 1].time),
+               boost::test_tools::tolerance(1e-12));
+}
+
+BOOST_AUTO_TEST_CASE(a_negative_creep_tolerance_is_refused_naming_the_key) {
+  core::Model m;
+  core::BlockDef b;
+  b.vertices = rect(0, 0, 1, 1);
+  m.blocks = {b};
+  m.settings.creep_tolerance = -1.0;
+  try {
+    core::Engine e(m);
+    BOOST_FAIL("no error");
+  } catch (const core::ModelError& e) {
+    BOOST_TEST(std::string(e.what()).find("settings.creep_tolerance") != std::string::npos);
+  }
+}
+
+BOOST_AUTO_TEST_SUITE_END()
