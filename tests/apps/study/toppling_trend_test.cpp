@@ -1,11 +1,12 @@
 // The seed's toppling study (section 5), reduced: the Goodman slope of
 // examples/goodman-toppling.yaml run through `rheodda study` over a few days
 // instead of 100, reproduces the seed's trends (docs/toppling-study.md):
-// without creep, the slope slides far when the base friction angle is low and
-// stays put when it is high; with creep at phi = 50 deg the displacement of
+// without creep, the slope slides far when the base friction angle is low, less
+// as it grows, and only settles elastically when it is high; with creep at phi = 50 deg the displacement of
 // blocks 1 and 10 grows with time.
 #include <boost/test/unit_test.hpp>
 
+#include <cmath>
 #include <string>
 
 #include "study_support.hpp"
@@ -28,25 +29,27 @@ BOOST_AUTO_TEST_CASE(reduced_toppling_study_displacement_falls_with_phi_and_cree
                         "  joint_sets.anti_toppling.law: ~\n"
                         "  joint_sets.anti_toppling.shear_stiffness: 1.0e8\n"
                         "  analysis.duration: 2\n"
-                        "  analysis.max_displacement_ratio: 0.002\n"
+                        "  analysis.max_displacement_ratio: 0.0005\n"
                         "outputs: [block1_top.displacement, block10_top.displacement]\n"
                         "times: [2]\n"
                         "cases:\n"
                         "  - {name: phi33, set: {joint_sets.base.friction_angle: 33}}\n"
+                        "  - {name: phi35, set: {joint_sets.base.friction_angle: 35}}\n"
                         "  - {name: phi45, set: {joint_sets.base.friction_angle: 45}}\n"
                         "  - {name: phi55, set: {joint_sets.base.friction_angle: 55}}\n";
   const auto r = run_rheodda("study " + phi.string() + " -o " + (dir / "phi").string() + " -j 2 --no-plot");
   BOOST_TEST_REQUIRE(r.exit_code == 0, r.output);
   const auto rows = read_study_csv((dir / "phi" / "study.csv").string());
-  BOOST_TEST_REQUIRE(rows.size() == 3u);
+  BOOST_TEST_REQUIRE(rows.size() == 4u);
   const auto d = [&](std::size_t i, const std::string& col) { return std::stod(rows[i].at(col + "@2")); };
   for (const std::string col : {"block1_top.displacement", "block10_top.displacement"}) {
     BOOST_TEST_CONTEXT(col) {
-      // phi = 33 deg is near the base's sliding limit for the toe blocks: metres of sliding;
-      // phi = 45 and 55 deg: the slope settles, ten times less at least.
+      // phi = 33 deg: the slope slides along its base (metres); the displacement falls as
+      // phi grows (35 deg) to the columns' settling alone, the same within 30% at 45 and 55 deg.
       BOOST_TEST(d(0, col) > 2.0);
       BOOST_TEST(d(0, col) > 10.0 * d(1, col));
-      BOOST_TEST(d(0, col) > 10.0 * d(2, col));
+      BOOST_TEST(d(1, col) > d(2, col));
+      BOOST_TEST(std::abs(d(3, col) - d(2, col)) < 0.3 * d(2, col));
     }
   }
 
