@@ -5,9 +5,10 @@
 //   creep      the seed's two-block shear creep test (Section 4) run by the DDA
 //              engine: constant tau from t = 0, 0-200 h; reference eqs. 20-21.
 //   staged     the same DDA model under a staged shear load with unloading:
-//              tau from 0 h, ramp to 2 tau over 80-90 h, ramp to 0 over
-//              140-150 h, 0-200 h; reference the Boltzmann superposition of
-//              eqs. 20-21 (staged_exact).
+//              tau from 0 h, ramp to 2 tau over 80-85.5 h, ramp to 0 over
+//              140-143.3 h, 0-200 h; reference the Boltzmann superposition of
+//              eqs. 20-21 (staged_exact). Fixed steps run as given (they need
+//              not end on the ramp ends; adaptive steps do).
 //   relaxation the law in series with its spring E1 (laws::solve_series_force,
 //              no DDA: the two-block scene cannot hold a displacement), displacement
 //              1e-3 mm held from t = 0, 0-200 h; reference G(t) (laws::exact_force).
@@ -18,6 +19,9 @@
 //
 // Usage: accuracy_bench [--csv FILE]   (prints a Markdown table; FILE gets
 //        case,scheme,dt,tolerance,steps,wall_s,error for scripts/accuracy-report.sh)
+//        accuracy_bench --toppling SCENE [T_END [G2]]   fixed steps vs creep_tolerance on a
+//        scene (examples/goodman-toppling.yaml, T_END in the scene's time unit, default 100;
+//        G2 overrides the scene's max_displacement_ratio)
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -30,6 +34,8 @@
 #include "rheodda/core/engine.hpp"
 #include "rheodda/laws/history.hpp"
 #include "rheodda/laws/registry.hpp"
+#include "rheodda/scene/build.hpp"
+#include "rheodda/scene/loader.hpp"
 
 using namespace rheodda;
 
@@ -44,7 +50,7 @@ constexpr Row kTable1[] = {{1.408, 0.232, 26.87, 192.43, 34807.72, 2141.23},
                            {0.751, 0.512, 33.65, 305.53, 23051.02, 5736.91}};
 constexpr double kEnd = 200.0;               // [h]
 constexpr double kStage2 = 80.0, kStage3 = 140.0;  // ramp starts [h]
-constexpr double kRamp2 = 90.0, kRamp3 = 150.0;    // ramp ends [h]
+constexpr double kRamp2 = 85.5, kRamp3 = 143.3;    // ramp ends [h]
 constexpr double kWidth = 100.0;             // block side [mm]
 
 std::shared_ptr<const laws::ContactRheology> burgers(const Row& r) {
@@ -53,7 +59,7 @@ std::shared_ptr<const laws::ContactRheology> burgers(const Row& r) {
 }
 
 /// Joint displacement under the staged shear stress with ramps: tau from 0 h,
-/// ramp to 2 tau over 80-90 h, ramp to 0 over 140-150 h [mm]. Boltzmann
+/// ramp to 2 tau over 80-85.5 h, ramp to 0 over 140-143.3 h [mm]. Boltzmann
 /// superposition of the Burgers creep compliance (the seed's eqs. 20-21)
 /// J(u) = 1/E1 + (1 - exp(-E2 u/eta2))/E2 + u/eta1: the step tau J(t) plus, per
 /// ramp of slope s from a to b, s (I(t - a) - I(t - b)), I(u) = int_0^max(u,0) J.
@@ -115,7 +121,7 @@ struct Result {
   bool failed = false;
 };
 
-/// One DDA run of the two-block test over 0-kEnd; stage starts are step boundaries.
+/// One DDA run of the two-block test over 0-kEnd.
 Result run_dda(const Row& r, double dt, bool staged, std::optional<laws::Scheme> scheme,
                double tolerance) {
   const auto law = burgers(r);
@@ -140,8 +146,6 @@ Result run_dda(const Row& r, double dt, bool staged, std::optional<laws::Scheme>
   Result res;
   const auto t0 = std::chrono::steady_clock::now();
   try {
-    if (staged && tolerance == 0.0)  // land on the load's sample times
-      for (double t : {kStage2, kRamp2, kStage3, kRamp3}) engine.run_until(t);
     engine.run_until(kEnd);
   } catch (const std::exception&) {
     res.failed = true;
@@ -183,10 +187,77 @@ Result run_relaxation(const Row& r, double dt, laws::Scheme scheme) {
   return res;
 }
 
+std::string fmt_error(double e) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1e", e);
+  return buf;
+}
+
+/// The seed's toppling model (a scene file) run to `t_end` [d] with a fixed step
+/// (tolerance 0) or adaptive stepping; returns the displacement of every
+/// measurement point at the end [m] in `out`.
+Result run_scene(const scene::BuiltScene& built, double dt, double tolerance, double t_end,
+                 std::vector<double>& out, double g2) {
+  core::Model m = built.model;
+  if (g2 > 0.0) m.settings.g2 = g2;
+  m.settings.dt = dt;
+  m.settings.creep_tolerance = tolerance;
+  contact::ContactSystem contacts(built.joint_sets, built.contact_settings);
+  core::ContactAdapter adapter(contacts);
+  core::Engine engine(m, adapter);
+  Result res;
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    engine.run_until(t_end);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "dt %g tolerance %g: %s\n", dt, tolerance, e.what());
+    res.failed = true;
+  }
+  res.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  res.steps = engine.step_count();
+  out.clear();
+  for (const auto& samples : engine.measurements()) out.push_back(samples.back().displacement.norm());
+  return res;
+}
+
+/// Fixed steps vs adaptive stepping on a scene: error of the measurement points'
+/// final displacement against the finest fixed run (relative to the largest).
+int toppling(const std::string& path, double t_end, double g2) {
+  const scene::BuiltScene built = scene::build_scene(scene::load_scene(path));
+  std::vector<double> ref, x;
+  const double fine = 1.0 / 64;  // [d]
+  const Result r0 = run_scene(built, fine, 0.0, t_end, ref, g2);
+  double peak = 0.0;
+  for (double v : ref) peak = std::max(peak, v);
+  auto error = [&] {
+    double e = 0.0;
+    for (std::size_t k = 0; k < x.size(); ++k) e = std::max(e, std::abs(x[k] - ref[k]));
+    return e / peak;
+  };
+  std::printf("%s, 0-%g d; reference: fixed dt = %g d (%ld steps, %.2f s); error = largest "
+              "|u - u_ref| of the measurement points at the end / largest u_ref (%.4g m)\n\n",
+              path.c_str(), t_end, fine, r0.steps, r0.wall, peak);
+  std::printf("| run | steps | error | wall [s] |\n|---|---:|---:|---:|\n");
+  for (double dt : {4.0, 2.0, 1.0, 0.5, 0.25, 0.125, 0.0625}) {
+    const Result r = run_scene(built, dt, 0.0, t_end, x, g2);
+    std::printf("| fixed dt = %g d | %ld | %s | %.3f |\n", dt, r.steps,
+                r.failed ? "failed" : fmt_error(error()).c_str(), r.wall);
+  }
+  for (double tol : {1e-4, 1e-5, 1e-6, 1e-7, 1e-8}) {
+    const Result r = run_scene(built, fine, tol, t_end, x, g2);
+    std::printf("| creep_tolerance = %g m (first step %g d) | %ld | %s | %.3f |\n", tol, fine,
+                r.steps, r.failed ? "failed" : fmt_error(error()).c_str(), r.wall);
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   FILE* csv = nullptr;
+  if (argc >= 3 && std::string(argv[1]) == "--toppling")
+    return toppling(argv[2], argc >= 4 ? std::stod(argv[3]) : 100.0,
+                    argc >= 5 ? std::stod(argv[4]) : 0.0);
   if (argc == 3 && std::string(argv[1]) == "--csv") {
     csv = std::fopen(argv[2], "w");
     if (!csv) {

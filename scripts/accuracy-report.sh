@@ -58,8 +58,10 @@ set ylabel 'largest error / peak [-]'
 set key bottom left
 set title 'two-block creep test, DDA (constant load)'
 $(panel creep)
-set title 'staged load (tau, 2 tau at 80 h, 0 at 140 h), DDA'
-$(panel staged ", '$work/adaptive.dat' using 1:2 with linespoints lw 2 pt 5 dt 2 lc 'black' title 'adaptive (creep\\\\_tolerance)'")
+set title 'staged load (tau; ramp to 2 tau at 80-85.5 h; to 0 at 140-143.3 h), DDA'
+set key top right
+$(panel staged ", '$work/adaptive.dat' using 1:2 with linespoints lw 2 pt 5 dt 2 lc 'black' title 'adaptive, creep tolerance 1e-9..1e-5 mm'")
+set key bottom left
 set title 'relaxation, law in series with E1'
 $(panel relaxation)
 unset multiplot
@@ -78,8 +80,8 @@ set format y '10^{%L}'
 set xlabel 'dt E2 / eta2 [-]'
 set ylabel 'k / E2 [-]'
 set cbrange [0:2]
-set cblabel 'growth (>1 unstable)'
-set palette defined (0 'white', 1 '#4caf50', 1.0001 '#ff9800', 2 '#d32f2f')
+set cblabel 'growth: green <= 1 (stable), red > 1'
+set palette defined (0 '#4caf50', 1 '#4caf50', 1.0001 '#d32f2f', 2 '#d32f2f')
 set key off
 do for [s in "lagged implicit exponential-linear"] {
   set title s
