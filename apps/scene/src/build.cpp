@@ -44,6 +44,8 @@ BuiltScene build_scene(const SceneDescription& s) {
   core::Settings& st = m.settings;
   st.dt = a.dt;
   st.max_cuts = a.max_cuts;
+  st.creep_tolerance = a.creep_tolerance;
+  st.dt_max = a.dt_max;
   st.g2 = a.max_displacement_ratio;
   st.dynamic_ratio = a.dynamic_ratio;
   st.gravity = {a.gravity[0], a.gravity[1]};

@@ -266,7 +266,7 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
               {"type", "duration", "dt", "max_cuts", "max_displacement_ratio", "dynamic_ratio",
                "scheme", "penalty", "shear_normal_ratio", "search_factor", "angle_tolerance",
                "penetration_ratio", "open_close_limit", "fixed_point_stiffness", "solver",
-               "output_interval", "gravity"});
+               "output_interval", "gravity", "creep_tolerance", "dt_max"});
   Analysis a;
   a.where = m.where();
   auto num = [&](const char* key, double& field, const Range& r) {
@@ -297,6 +297,8 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
         choice(ctx, v, m.child("scheme"), {"automatic", "lagged", "implicit", "exponential-linear"});
     if (name != "automatic") a.scheme = laws::parse_scheme(name);
   }
+  num("creep_tolerance", a.creep_tolerance, non_negative("length"));
+  num("dt_max", a.dt_max, non_negative("time"));
   num("penalty", a.penalty, positive("stress"));
   num("shear_normal_ratio", a.shear_normal_ratio, positive(""));
   num("search_factor", a.search_factor, positive(""));

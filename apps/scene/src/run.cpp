@@ -39,6 +39,8 @@ json scene_json(const SceneDescription& s) {
                    {"duration", a.duration},
                    {"dt", a.dt},
                    {"max_cuts", a.max_cuts},
+                   {"creep_tolerance", a.creep_tolerance},
+                   {"dt_max", a.dt_max},
                    {"max_displacement_ratio", a.max_displacement_ratio},
                    {"dynamic_ratio", a.dynamic_ratio},
                    {"scheme", scheme_text(a)},

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "../test_support.hpp"
+#include "rheodda/scene/build.hpp"
 #include "rheodda/scene/geometry.hpp"
 #include "rheodda/scene/loader.hpp"
 
@@ -109,6 +110,20 @@ BOOST_AUTO_TEST_CASE(out_of_range_values_are_refused) {
   expect_error_at(with("density: 2600", "density: 0"), 7, "0,", "materials.rock.density", "out of range (0, inf]");
   expect_error_at(with("poisson_ratio: 0.25", "poisson_ratio: 0.5"), 7, "0.5", "poisson_ratio", "out of range [0, 0.5)");
   expect_error_at(with("  dt: 0.01", "  dt: 2"), 4, "2", "analysis.dt", "longer than duration");
+}
+
+BOOST_AUTO_TEST_CASE(creep_tolerance_and_dt_max_reach_the_engine_settings_and_negative_values_are_refused) {
+  const auto text = with("  dt: 0.01", "  dt: 0.01\n  creep_tolerance: 1.0e-6\n  dt_max: 0.5");
+  const scene::SceneDescription s = scene::parse_scene(text, "adaptive.yaml");
+  BOOST_TEST(s.analysis.creep_tolerance == 1.0e-6);
+  BOOST_TEST(s.analysis.dt_max == 0.5);
+  const scene::BuiltScene built = scene::build_scene(s);
+  BOOST_TEST(built.model.settings.creep_tolerance == 1.0e-6);
+  BOOST_TEST(built.model.settings.dt_max == 0.5);
+  // Off by default: a fixed dt.
+  BOOST_TEST(scene::build_scene(scene::parse_scene(kBaseScene, "base.yaml")).model.settings.creep_tolerance == 0.0);
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  creep_tolerance: -1"), 5, "-1", "analysis.creep_tolerance",
+                  "out of range");
 }
 
 BOOST_AUTO_TEST_CASE(nan_and_inf_are_refused_anywhere) {
