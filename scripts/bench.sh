@@ -10,6 +10,10 @@ BENCHES=(
   contact_bench
   engine_bench
   fit_bench
+  shear_creep_table1
+  shear_creep_wall
+  accuracy_bench
+  stability_map
 )
 "$root/scripts/install-deps.sh"
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRHEODDA_BUILD_BENCH=ON >/dev/null
