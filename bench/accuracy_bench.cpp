@@ -34,6 +34,7 @@
 #include "rheodda/core/engine.hpp"
 #include "rheodda/laws/history.hpp"
 #include "rheodda/laws/registry.hpp"
+#include "rheodda/laws/seed_table1.hpp"
 #include "rheodda/scene/build.hpp"
 #include "rheodda/scene/loader.hpp"
 
@@ -41,13 +42,8 @@ using namespace rheodda;
 
 namespace {
 
-struct Row {
-  double sigma, tau, E1, E2, eta1, eta2;  // [MPa], [MPa/mm], [MPa h/mm]
-};
-constexpr Row kTable1[] = {{1.408, 0.232, 26.87, 192.43, 34807.72, 2141.23},
-                           {1.156, 0.424, 40.13, 249.33, 101760.29, 3236.41},
-                           {0.942, 0.439, 29.45, 260.76, 52869.39, 3771.63},
-                           {0.751, 0.512, 33.65, 305.53, 23051.02, 5736.91}};
+using Row = laws::SeedTable1Row;
+constexpr const auto& kTable1 = laws::kSeedTable1;
 constexpr double kEnd = 200.0;               // [h]
 constexpr double kStage2 = 80.0, kStage3 = 140.0;  // ramp starts [h]
 constexpr double kRamp2 = 85.5, kRamp3 = 143.3;    // ramp ends [h]

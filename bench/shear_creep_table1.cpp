@@ -15,18 +15,14 @@
 #include "rheodda/core/contact_adapter.hpp"
 #include "rheodda/core/engine.hpp"
 #include "rheodda/laws/registry.hpp"
+#include "rheodda/laws/seed_table1.hpp"
 
 using namespace rheodda;
 
 namespace {
 
-struct Row {
-  double sigma, tau, E1, E2, eta1, eta2;  // [MPa], [MPa/mm], [MPa h/mm]
-};
-constexpr Row kTable1[] = {{1.408, 0.232, 26.87, 192.43, 34807.72, 2141.23},
-                           {1.156, 0.424, 40.13, 249.33, 101760.29, 3236.41},
-                           {0.942, 0.439, 29.45, 260.76, 52869.39, 3771.63},
-                           {0.751, 0.512, 33.65, 305.53, 23051.02, 5736.91}};
+using Row = laws::SeedTable1Row;
+constexpr const auto& kTable1 = laws::kSeedTable1;
 
 std::vector<core::Vec2> rect(double x0, double y0, double x1, double y1) {
   return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};

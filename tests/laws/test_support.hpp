@@ -7,21 +7,14 @@
 #include <vector>
 
 #include "rheodda/laws/registry.hpp"
+#include "rheodda/laws/seed_table1.hpp"
 
 namespace rheodda::laws::test {
 
-/// One row of the seed's Table 1 (lab shear creep of a joint, per unit area):
-/// tau [MPa], E1 and E2 [MPa/mm], eta1 and eta2 [MPa h/mm].
-struct Table1Row {
-  double tau, E1, E2, eta1, eta2;
-};
-inline const std::vector<Table1Row>& table1() {
-  static const std::vector<Table1Row> rows = {{0.232, 26.87, 192.43, 34807.72, 2141.23},
-                                              {0.424, 40.13, 249.33, 101760.29, 3236.41},
-                                              {0.439, 29.45, 260.76, 52869.39, 3771.63},
-                                              {0.512, 33.65, 305.53, 23051.02, 5736.91}};
-  return rows;
-}
+/// The seed's Table 1 (laws/seed_table1.hpp): tau [MPa], E1 and E2 [MPa/mm],
+/// eta1 and eta2 [MPa h/mm] of each row.
+using Table1Row = SeedTable1Row;
+inline const auto& table1() { return kSeedTable1; }
 
 inline const std::vector<Scheme>& all_schemes() {
   static const std::vector<Scheme> s = {Scheme::lagged, Scheme::implicit,

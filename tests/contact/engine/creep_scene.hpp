@@ -8,22 +8,14 @@
 #include <string>
 
 #include "rheodda/laws/registry.hpp"
+#include "rheodda/laws/seed_table1.hpp"
 #include "sim.hpp"
 
 namespace rheodda::testing {
 
-/// The seed's Table 1: stress level and Burgers parameters of the four creep tests.
-struct Table1Row {
-  double sigma, tau;       ///< normal and shear stress [MPa]
-  double E1, E2;           ///< [MPa/mm]
-  double eta1, eta2;       ///< [MPa h/mm]
-};
-inline constexpr Table1Row kTable1[] = {
-    {1.408, 0.232, 26.87, 192.43, 34807.72, 2141.23},
-    {1.156, 0.424, 40.13, 249.33, 101760.29, 3236.41},
-    {0.942, 0.439, 29.45, 260.76, 52869.39, 3771.63},
-    {0.751, 0.512, 33.65, 305.53, 23051.02, 5736.91},
-};
+/// The seed's Table 1 (laws/seed_table1.hpp).
+using Table1Row = laws::SeedTable1Row;
+inline constexpr const auto& kTable1 = laws::kSeedTable1;
 
 inline std::shared_ptr<const laws::ContactRheology> make_law(const std::string& name,
                                                              const laws::ParameterValues& p) {
