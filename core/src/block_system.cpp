@@ -18,6 +18,11 @@ void BlockSystem::reset(const std::vector<Mat6>& diagonal, const Eigen::VectorXd
   finalized_ = true;
 }
 
+void BlockSystem::set_centroids(std::span<const contact::BlockView> blocks) {
+  centroids_.resize(blocks.size());
+  for (std::size_t k = 0; k < blocks.size(); ++k) centroids_[k] = blocks[k].centroid;
+}
+
 void BlockSystem::add_stiffness(int i, int j, const contact::Mat6& k) {
   if (i == j) {
     diagonal_[i] += k;

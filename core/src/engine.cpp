@@ -443,6 +443,7 @@ StepReport Engine::Impl::step(double dt_cap) {
     while (iterations < s.max_open_close) {
       t0 = Clock::now();
       system.reset(base_diag, base_rhs);
+      system.set_centroids(views);  // the points the unknowns refer to (the amg solver's coarse spaces)
       contacts->assemble(views, system);
       system.finalize();
       rep.assembly_seconds += seconds_since(t0);

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <span>
 #include <vector>
 
 #include "rheodda/contact/kinematics.hpp"
@@ -30,6 +31,12 @@ class BlockSystem final : public contact::SystemSink {
   /// Starts from the given diagonal blocks and right-hand side, no off-diagonal blocks.
   void reset(const std::vector<Mat6>& diagonal, const Eigen::VectorXd& rhs);
   int block_count() const { return static_cast<int>(diagonal_.size()); }
+  /// Records the centroids (x0, y0) the unknowns of each block refer to
+  /// [length]; solvers that build coarse spaces from the geometry (amg) need
+  /// them. Optional: without them the centroids are taken as all zero.
+  void set_centroids(std::span<const contact::BlockView> blocks);
+  /// Centroids given to set_centroids (empty if none) [length].
+  const std::vector<contact::Vec2>& centroids() const { return centroids_; }
 
   /// K_ij += k (and K_ji += k^T for i != j). Call once per pair.
   void add_stiffness(int i, int j, const contact::Mat6& k) override;
@@ -56,6 +63,7 @@ class BlockSystem final : public contact::SystemSink {
   std::vector<Mat6> diagonal_;
   std::vector<OffDiagonalBlock> off_;
   Eigen::VectorXd rhs_;
+  std::vector<contact::Vec2> centroids_;
   bool finalized_ = true;
 };
 
