@@ -2,6 +2,8 @@
 
 #include <cholmod.h>
 
+#include "block_amg.hpp"
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -91,8 +93,46 @@ LinearSolver::~LinearSolver() = default;
 
 namespace {
 
-Eigen::VectorXd solve_pcg(const BlockSystem& s, double tolerance, int max_iterations,
-                          SolverStats& stats) {
+/// Conjugate gradient on K x = F from the start x (warm start), preconditioned
+/// by z = M^-1 r. Stops when ||F - K x|| <= tolerance ||F||.
+template <class Precondition>
+void pcg(const BlockSystem& s, double tolerance, int max_iterations, SolverStats& stats,
+         Precondition&& precondition, Eigen::VectorXd& x) {
+  const Eigen::VectorXd& f = s.rhs();
+  const double f_norm = f.norm();
+  if (f_norm == 0.0) {
+    x.setZero(f.size());
+    return;
+  }
+  Eigen::VectorXd r = f - s.multiply(x);
+  if (r.norm() > f_norm) {  // a start worse than zero: start from zero
+    x.setZero(f.size());
+    r = f;
+  }
+  Eigen::VectorXd z(f.size());
+  precondition(r, z);
+  Eigen::VectorXd p = z;
+  double rz = r.dot(z);
+  for (int it = 0; it < max_iterations; ++it) {
+    if (r.norm() <= tolerance * f_norm) return;
+    const Eigen::VectorXd q = s.multiply(p);
+    const double alpha = rz / p.dot(q);
+    x += alpha * p;
+    r -= alpha * q;
+    precondition(r, z);
+    const double rz_new = r.dot(z);
+    p = z + (rz_new / rz) * p;
+    rz = rz_new;
+    ++stats.pcg_iterations;
+  }
+  if (r.norm() <= tolerance * f_norm) return;
+  throw std::runtime_error("pcg: no convergence in " + std::to_string(max_iterations) +
+                           " iterations (relative residual " +
+                           std::to_string(r.norm() / f_norm) + ")");
+}
+
+Eigen::VectorXd solve_block_jacobi(const BlockSystem& s, double tolerance, int max_iterations,
+                                   SolverStats& stats) {
   const int n = s.block_count();
   // Block-Jacobi preconditioner: Cholesky of each 6x6 diagonal block.
   std::vector<Eigen::LLT<Mat6>> pre(static_cast<std::size_t>(n));
@@ -102,42 +142,22 @@ Eigen::VectorXd solve_pcg(const BlockSystem& s, double tolerance, int max_iterat
       throw std::runtime_error("pcg: diagonal block " + std::to_string(b) +
                                " is not positive definite");
   }
-  auto precondition = [&](const Eigen::VectorXd& r) {
-    Eigen::VectorXd z(r.size());
+  auto precondition = [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) {
     for (int b = 0; b < n; ++b) z.segment<6>(6 * b) = pre[b].solve(r.segment<6>(6 * b));
-    return z;
   };
-  const Eigen::VectorXd& f = s.rhs();
-  const double f_norm = f.norm();
-  Eigen::VectorXd x = precondition(f);  // exact for a block-diagonal K
-  if (f_norm == 0.0) return Eigen::VectorXd::Zero(f.size());
-  Eigen::VectorXd r = f - s.multiply(x);
-  Eigen::VectorXd z = precondition(r);
-  Eigen::VectorXd p = z;
-  double rz = r.dot(z);
-  for (int it = 0; it < max_iterations; ++it) {
-    if (r.norm() <= tolerance * f_norm) return x;
-    const Eigen::VectorXd q = s.multiply(p);
-    const double alpha = rz / p.dot(q);
-    x += alpha * p;
-    r -= alpha * q;
-    z = precondition(r);
-    const double rz_new = r.dot(z);
-    p = z + (rz_new / rz) * p;
-    rz = rz_new;
-    ++stats.pcg_iterations;
-  }
-  if (r.norm() <= tolerance * f_norm) return x;
-  throw std::runtime_error("pcg: no convergence in " + std::to_string(max_iterations) +
-                           " iterations (relative residual " +
-                           std::to_string(r.norm() / f_norm) + ")");
+  Eigen::VectorXd x(s.rhs().size());
+  precondition(s.rhs(), x);  // exact for a block-diagonal K
+  pcg(s, tolerance, max_iterations, stats, precondition, x);
+  return x;
 }
 
 }  // namespace
 
 Eigen::VectorXd LinearSolver::solve(const BlockSystem& system) {
   ++stats_.solves;
-  if (kind_ == SolverKind::pcg) return solve_pcg(system, tolerance_, max_iterations_, stats_);
+  const SolverKind kind = resolve(kind_, system.block_count());
+  if (kind == SolverKind::pcg) return solve_block_jacobi(system, tolerance_, max_iterations_, stats_);
+  if (kind == SolverKind::amg) return solve_amg(system);
 
   if (!cholmod_) cholmod_ = std::make_unique<Cholmod>();
   Cholmod& c = *cholmod_;
@@ -173,6 +193,28 @@ Eigen::VectorXd LinearSolver::solve(const BlockSystem& system) {
   Eigen::VectorXd out = Eigen::Map<const Eigen::VectorXd>(static_cast<double*>(x->x), f.size());
   cholmod_free_dense(&x, &c.common);
   return out;
+}
+
+SolverKind LinearSolver::resolve(SolverKind kind, int blocks) {
+  if (kind != SolverKind::automatic) return kind;
+  return blocks >= kAmgBlocks ? SolverKind::amg : SolverKind::cholmod;
+}
+
+Eigen::VectorXd LinearSolver::solve_amg(const BlockSystem& system) {
+  if (!amg_) amg_ = std::make_unique<BlockAmg>();
+  if (amg_->same_pattern(system)) {
+    amg_->refresh(system);
+  } else {
+    amg_->setup(system);
+    ++stats_.analyses;
+  }
+  ++stats_.factorizations;
+  // Warm start from the last solution: the previous iterate of the open-close
+  // iteration, or the last step's displacements.
+  if (last_.size() != system.rhs().size()) last_.setZero(system.rhs().size());
+  pcg(system, tolerance_, max_iterations_, stats_,
+      [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { amg_->apply(r, z); }, last_);
+  return last_;
 }
 
 }  // namespace rheodda::core

@@ -51,7 +51,13 @@ BuiltScene build_scene(const SceneDescription& s) {
   st.gravity = {a.gravity[0], a.gravity[1]};
   st.fixed_point_stiffness = a.fixed_point_stiffness;
   st.max_open_close = a.open_close_limit;
-  st.solver = a.solver == SolverKind::cholmod ? core::SolverKind::cholmod : core::SolverKind::pcg;
+  switch (a.solver) {
+    case SolverKind::automatic: st.solver = core::SolverKind::automatic; break;
+    case SolverKind::cholmod: st.solver = core::SolverKind::cholmod; break;
+    case SolverKind::pcg: st.solver = core::SolverKind::pcg; break;
+    case SolverKind::amg: st.solver = core::SolverKind::amg; break;
+  }
+  st.pcg_tolerance = a.solver_tolerance;
 
   contact::ContactSettings& cs = out.contact_settings;
   cs.penalty = a.penalty;

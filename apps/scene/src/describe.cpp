@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "rheodda/core/solver.hpp"
 #include "rheodda/scene/geometry.hpp"
 
 namespace rheodda::scene {
@@ -12,6 +13,28 @@ namespace rheodda::scene {
 double search_distance(const SceneDescription& s) {
   return s.analysis.search_factor * s.analysis.max_displacement_ratio * half_model_size(s.blocks);
 }
+
+namespace {
+
+/// The solver, with what `automatic` picks for this scene's block count and
+/// the stop of the iterative ones.
+std::string solver_text(const SceneDescription& s) {
+  const Analysis& a = s.analysis;
+  const int n = static_cast<int>(s.blocks.size());
+  const core::SolverKind used = core::LinearSolver::resolve(
+      a.solver == SolverKind::automatic ? core::SolverKind::automatic : core::SolverKind::cholmod, n);
+  std::string name(solver_name(a.solver));
+  bool iterative = a.solver == SolverKind::pcg || a.solver == SolverKind::amg;
+  if (a.solver == SolverKind::automatic) {
+    iterative = used == core::SolverKind::amg;
+    name += fmt::format(" ({} for {} blocks; amg from {})", iterative ? "amg" : "cholmod", n,
+                        core::LinearSolver::kAmgBlocks);
+  }
+  if (iterative) name += fmt::format(", solver_tolerance {:g}", a.solver_tolerance);
+  return name;
+}
+
+}  // namespace
 
 namespace {
 /// The shortest of 6, 10 or 17 significant digits that reads back exactly.
@@ -40,7 +63,7 @@ std::string describe_scene(const SceneDescription& s) {
   line(fmt::format("analysis: {}, duration {:g} {}, dt {:g} {} (max_cuts {}), dynamic_ratio {:g}",
                    analysis_type_name(a.type), a.duration, u.time, a.dt, u.time, a.max_cuts, a.dynamic_ratio));
   line(fmt::format("  gravity ({:g}, {:g}) {}/{}^2, scheme {}, solver {}", a.gravity[0], a.gravity[1],
-                   u.length, u.time, scheme_text(a), solver_name(a.solver)));
+                   u.length, u.time, scheme_text(a), solver_text(s)));
   line(fmt::format("  max_displacement_ratio {:g}, penalty {:g} {}, shear_normal_ratio {:g}, "
                    "fixed_point_stiffness {:g} {}/{}",
                    a.max_displacement_ratio, a.penalty, stress, a.shear_normal_ratio,

@@ -27,7 +27,15 @@ std::string_view analysis_type_name(AnalysisType t) {
   return t == AnalysisType::static_analysis ? "static" : "dynamic";
 }
 std::string_view plane_name(PlaneKind p) { return p == PlaneKind::strain ? "strain" : "stress"; }
-std::string_view solver_name(SolverKind s) { return s == SolverKind::cholmod ? "cholmod" : "pcg"; }
+std::string_view solver_name(SolverKind s) {
+  switch (s) {
+    case SolverKind::automatic: return "automatic";
+    case SolverKind::cholmod: return "cholmod";
+    case SolverKind::pcg: return "pcg";
+    case SolverKind::amg: return "amg";
+  }
+  return "?";
+}
 
 SceneError::SceneError(std::string file, SourceLocation where, std::string key, std::string message)
     : std::runtime_error(fmt::format("{}:{}:{}: {}{}", file, where.line, where.column,
@@ -265,7 +273,7 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   MapReader m(ctx, n, "analysis",
               {"type", "duration", "dt", "max_cuts", "max_displacement_ratio", "dynamic_ratio",
                "scheme", "penalty", "shear_normal_ratio", "search_factor", "angle_tolerance",
-               "penetration_ratio", "open_close_limit", "fixed_point_stiffness", "solver",
+               "penetration_ratio", "open_close_limit", "fixed_point_stiffness", "solver", "solver_tolerance",
                "output_interval", "gravity", "creep_tolerance", "dt_max"});
   Analysis a;
   a.where = m.where();
@@ -307,9 +315,12 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   if (YAML::Node v = m.find("open_close_limit"); v.IsDefined())
     a.open_close_limit = integer(ctx, v, m.child("open_close_limit"), 1, 1000);
   num("fixed_point_stiffness", a.fixed_point_stiffness, positive("force/length"));
-  if (YAML::Node v = m.find("solver"); v.IsDefined())
-    a.solver = choice(ctx, v, m.child("solver"), {"cholmod", "pcg"}) == "cholmod" ? SolverKind::cholmod
-                                                                                  : SolverKind::pcg;
+  if (YAML::Node v = m.find("solver"); v.IsDefined()) {
+    const std::string name = choice(ctx, v, m.child("solver"), {"automatic", "cholmod", "pcg", "amg"});
+    for (SolverKind k : {SolverKind::automatic, SolverKind::cholmod, SolverKind::pcg, SolverKind::amg})
+      if (solver_name(k) == name) a.solver = k;
+  }
+  num("solver_tolerance", a.solver_tolerance, {0.0, true, 1.0, true, ""});
   a.output_interval = a.duration / 100.0;
   if (YAML::Node v = m.find("output_interval"); v.IsDefined()) {
     a.output_interval = number(ctx, v, m.child("output_interval"), positive("time"));

@@ -9,6 +9,7 @@
 
 #include <Eigen/Dense>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "rheodda/contact/kinematics.hpp"
@@ -45,11 +46,14 @@ class BlockSystem final : public contact::SystemSink {
 
   Mat6& diagonal(int i) { return diagonal_[i]; }
   const Mat6& diagonal(int i) const { return diagonal_[i]; }
+  const std::vector<Mat6>& diagonals() const { return diagonal_; }
   Eigen::VectorXd& rhs() { return rhs_; }
   const Eigen::VectorXd& rhs() const { return rhs_; }
 
   /// Merges repeated pairs and sorts the off-diagonal blocks by column j,
   /// then row i (the order of a column-major upper triangle). Idempotent.
+  /// When the pairs come in the same sequence as at the last call (the
+  /// iterates of one step), the merge reuses that call's slots: O(pairs), no sort.
   void finalize();
   /// Off-diagonal blocks (upper triangle); sorted after finalize().
   const std::vector<OffDiagonalBlock>& off_diagonal() const { return off_; }
@@ -61,7 +65,13 @@ class BlockSystem final : public contact::SystemSink {
 
  private:
   std::vector<Mat6> diagonal_;
-  std::vector<OffDiagonalBlock> off_;
+  std::vector<OffDiagonalBlock> off_;  // merged and sorted (after finalize)
+  std::vector<OffDiagonalBlock> raw_;  // as added since the last finalize
+  // Merge map of the last finalize: the pair sequence it was built for, the
+  // slot of each raw entry, the merged pairs.
+  std::vector<std::pair<int, int>> merge_keys_;
+  std::vector<int> merge_slot_;
+  std::vector<std::pair<int, int>> merged_pattern_;
   Eigen::VectorXd rhs_;
   std::vector<contact::Vec2> centroids_;
   bool finalized_ = true;

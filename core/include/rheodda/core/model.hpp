@@ -89,8 +89,11 @@ struct MeasurementPoint {
 
 /// Linear solver of the global system K D = F.
 enum class SolverKind {
+  automatic,  ///< cholmod below LinearSolver::kAmgBlocks blocks, amg from there on
   cholmod,  ///< sparse Cholesky LL' (SuiteSparse CHOLMOD), symbolic analysis reused
   pcg,      ///< conjugate gradient with a block-Jacobi (6x6) preconditioner
+  amg,      ///< conjugate gradient preconditioned by an aggregation multigrid V-cycle whose
+            ///< coarse unknowns are the six DDA unknowns of groups of blocks (O(N) per solve)
 };
 
 /// Time integration of the inertia terms (Newmark family; docs/engine.md).
@@ -122,9 +125,10 @@ struct Settings {
   double fixed_point_stiffness = 0.0;  ///< penalty spring of fixed points [force/length];
                                        ///< 0 = automatic: 100 x the largest Young's modulus
   int max_open_close = 8;        ///< open-close iterations before a step is cut [-]; >= 1
-  SolverKind solver = SolverKind::cholmod;  ///< default cholmod
-  double pcg_tolerance = 1.0e-12;  ///< PCG stop: ||r|| <= tol ||F|| [-]; > 0
-  int pcg_max_iterations = 10000;  ///< PCG iteration limit per solve [-]; >= 1
+  SolverKind solver = SolverKind::automatic;  ///< default automatic
+  double pcg_tolerance = 1.0e-12;  ///< stop of the iterative solvers (pcg, amg):
+                                   ///< ||F - K D|| <= tol ||F|| [-]; > 0
+  int pcg_max_iterations = 10000;  ///< iteration limit per solve of pcg and amg [-]; >= 1
 };
 
 /// A complete DDA model.

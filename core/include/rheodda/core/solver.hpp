@@ -6,7 +6,12 @@
 //   is detected by comparing the sorted list of off-diagonal block pairs
 //   (O(pairs), no scalar work). Otherwise only the numeric factorisation runs.
 // pcg: conjugate gradient preconditioned by the inverses of the 6x6 diagonal
-//   blocks (block Jacobi); memory O(blocks + pairs), for large models.
+//   blocks (block Jacobi); memory O(blocks + pairs). Hundreds of iterations on
+//   contact-dominated systems: kept as a reference.
+// amg: conjugate gradient preconditioned by one aggregation-multigrid V-cycle
+//   (block_amg.hpp), warm-started from the last solution; O(blocks) work per
+//   iteration and an iteration count that does not grow with the model.
+// automatic (the default): cholmod for small models, amg for large ones.
 #pragma once
 
 #include <memory>
@@ -16,6 +21,8 @@
 #include "rheodda/core/model.hpp"
 
 namespace rheodda::core {
+
+class BlockAmg;
 
 class LinearSolver {
  public:
@@ -29,15 +36,25 @@ class LinearSolver {
   /// not positive definite (cholmod) or PCG does not converge.
   Eigen::VectorXd solve(const BlockSystem& system);
   SolverKind kind() const { return kind_; }
+  /// The solver `kind` stands for in a model of `blocks` blocks (automatic ->
+  /// cholmod or amg; the others are themselves).
+  static SolverKind resolve(SolverKind kind, int blocks);
+  /// automatic picks amg from this many blocks on: measured crossover of the
+  /// brick-wall benchmark (docs/performance.md), where a Cholesky factor's
+  /// N^1.5 flops overtake the V-cycles' O(N) work.
+  static constexpr int kAmgBlocks = 400;
   const SolverStats& stats() const { return stats_; }
 
  private:
   struct Cholmod;
+  Eigen::VectorXd solve_amg(const BlockSystem& system);
   SolverKind kind_;
   double tolerance_;
   int max_iterations_;
   SolverStats stats_;
   std::unique_ptr<Cholmod> cholmod_;
+  std::unique_ptr<BlockAmg> amg_;
+  Eigen::VectorXd last_;  ///< last solution (amg: the start of the next solve)
 };
 
 }  // namespace rheodda::core

@@ -35,7 +35,7 @@ struct Units {
 
 enum class AnalysisType { static_analysis, dynamic_analysis };
 enum class PlaneKind { strain, stress };
-enum class SolverKind { cholmod, pcg };
+enum class SolverKind { automatic, cholmod, pcg, amg };
 
 /// `analysis:` — time stepping, contact numerics, outputs.
 struct Analysis {
@@ -58,7 +58,8 @@ struct Analysis {
   double penetration_ratio = 1e-4;     ///< allowed penetration / half model size [-]
   int open_close_limit = 8;            ///< open-close iterations before a step is cut [-]
   double fixed_point_stiffness = 0.0;  ///< fixed-point spring [force/length]; default 100 x largest young_modulus
-  SolverKind solver = SolverKind::cholmod;  ///< `solver: cholmod|pcg`
+  SolverKind solver = SolverKind::automatic;  ///< `solver: automatic|cholmod|pcg|amg`
+  double solver_tolerance = 1e-12;     ///< relative residual at which pcg and amg stop [-]
   double output_interval = 0.0;        ///< time between output frames [time]; default duration / 100
   Point gravity{0.0, 0.0};             ///< gravity acceleration (gx, gy) [length/time^2]; required
   SourceLocation where{};

@@ -1,0 +1,321 @@
+#include "block_amg.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+namespace rheodda::core {
+
+namespace {
+
+using contact::Vec2;
+using contact::Vec6;
+
+/// P_i of the header: the block displacement of the aggregate's affine field
+/// at offset (dx, dy) from the aggregate's centre.
+Mat6 transfer_block(const Vec2& d) {
+  Mat6 P = Mat6::Identity();
+  P(0, 2) = -d.y();
+  P(0, 3) = d.x();
+  P(0, 5) = 0.5 * d.y();
+  P(1, 2) = d.x();
+  P(1, 4) = d.y();
+  P(1, 5) = 0.5 * d.x();
+  return P;
+}
+
+Mat6 inverse_spd(const Mat6& a, int block, int level) {
+  Eigen::LLT<Mat6> llt(a);
+  if (llt.info() != Eigen::Success)
+    throw std::runtime_error("amg: diagonal block " + std::to_string(block) + " of level " +
+                             std::to_string(level) + " is not positive definite");
+  return llt.solve(Mat6::Identity());
+}
+
+}  // namespace
+
+bool BlockAmg::same_pattern(const BlockSystem& s) const {
+  if (levels_.empty() || s.block_count() != levels_[0].n || s.off_diagonal().size() != pattern_.size())
+    return false;
+  const auto& off = s.off_diagonal();
+  for (std::size_t k = 0; k < off.size(); ++k)
+    if (off[k].i != pattern_[k].first || off[k].j != pattern_[k].second) return false;
+  return true;
+}
+
+void BlockAmg::build_columns(Level& L) const {
+  L.col_start.assign(static_cast<std::size_t>(L.n) + 1, 0);
+  for (const auto& o : *L.off) ++L.col_start[o.j + 1];
+  std::partial_sum(L.col_start.begin(), L.col_start.end(), L.col_start.begin());
+}
+
+void BlockAmg::invert_diagonal(Level& L) const {
+  L.diag_inv.resize(static_cast<std::size_t>(L.n));
+  const int level = static_cast<int>(&L - levels_.data());
+  for (int i = 0; i < L.n; ++i) L.diag_inv[i] = inverse_spd((*L.diag)[i], i, level);
+}
+
+bool BlockAmg::aggregate(Level& L, Level& C) const {
+  const int n = L.n;
+  const auto& off = *L.off;
+  const auto& diag = *L.diag;
+  // Strong neighbours, both ways (CSR).
+  std::vector<double> dnorm(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) dnorm[i] = diag[i].norm();
+  std::vector<int> start(static_cast<std::size_t>(n) + 1, 0);
+  std::vector<char> strong(off.size(), 0);
+  for (std::size_t k = 0; k < off.size(); ++k) {
+    const auto& o = off[k];
+    const double s = o.k.norm();
+    if (s > kStrength * std::sqrt(dnorm[o.i] * dnorm[o.j])) {
+      strong[k] = 1;
+      ++start[o.i + 1];
+      ++start[o.j + 1];
+    }
+  }
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<int> nbr(static_cast<std::size_t>(start[n]));
+  std::vector<double> weight(nbr.size());
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (std::size_t k = 0; k < off.size(); ++k) {
+      if (!strong[k]) continue;
+      const auto& o = off[k];
+      const double w = o.k.norm() / std::sqrt(dnorm[o.i] * dnorm[o.j]);
+      nbr[fill[o.i]] = o.j;
+      weight[fill[o.i]++] = w;
+      nbr[fill[o.j]] = o.i;
+      weight[fill[o.j]++] = w;
+    }
+  }
+  // Pass 1: a block whose strong neighbours are all free starts an aggregate
+  // with them. Pass 2: a free block joins the aggregate of its strongest
+  // aggregated neighbour. Pass 3: what is left groups with its free strong
+  // neighbours (or stands alone).
+  L.agg.assign(static_cast<std::size_t>(n), -1);
+  int count = 0;
+  for (int i = 0; i < n; ++i) {
+    if (L.agg[i] >= 0 || start[i] == start[i + 1]) continue;
+    bool free = true;
+    for (int q = start[i]; q < start[i + 1] && free; ++q) free = L.agg[nbr[q]] < 0;
+    if (!free) continue;
+    L.agg[i] = count;
+    for (int q = start[i]; q < start[i + 1]; ++q) L.agg[nbr[q]] = count;
+    ++count;
+  }
+  std::vector<int> joined(static_cast<std::size_t>(n), -1);
+  for (int i = 0; i < n; ++i) {
+    if (L.agg[i] >= 0) continue;
+    double best = 0.0;
+    for (int q = start[i]; q < start[i + 1]; ++q)
+      if (L.agg[nbr[q]] >= 0 && weight[q] > best) {
+        best = weight[q];
+        joined[i] = L.agg[nbr[q]];
+      }
+  }
+  for (int i = 0; i < n; ++i)
+    if (joined[i] >= 0) L.agg[i] = joined[i];
+  for (int i = 0; i < n; ++i) {
+    if (L.agg[i] >= 0) continue;
+    L.agg[i] = count;
+    for (int q = start[i]; q < start[i + 1]; ++q)
+      if (L.agg[nbr[q]] < 0) L.agg[nbr[q]] = count;
+    ++count;
+  }
+  if (count > n * 3 / 4) return false;  // too little coarsening to be worth a level
+
+  // Coarse centres and transfer blocks.
+  C.n = count;
+  C.pos.assign(static_cast<std::size_t>(count), Vec2::Zero());
+  std::vector<int> members(static_cast<std::size_t>(count), 0);
+  for (int i = 0; i < n; ++i) {
+    C.pos[L.agg[i]] += L.pos[i];
+    ++members[L.agg[i]];
+  }
+  for (int a = 0; a < count; ++a) C.pos[a] /= members[a];
+  L.P.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) L.P[i] = transfer_block(L.pos[i] - C.pos[L.agg[i]]);
+
+  // Coarse pattern: each fine off block lands on a coarse diagonal block or on
+  // the coarse upper block (min, max) of its two aggregates.
+  struct Key {
+    int i, j;
+    std::size_t fine;
+  };
+  std::vector<Key> keys;
+  keys.reserve(off.size());
+  L.off_target.assign(off.size(), 0);
+  L.off_flip.assign(off.size(), 0);
+  for (std::size_t k = 0; k < off.size(); ++k) {
+    const int a = L.agg[off[k].i], b = L.agg[off[k].j];
+    if (a == b) {
+      L.off_target[k] = -1 - a;
+    } else {
+      L.off_flip[k] = a > b;
+      keys.push_back({std::min(a, b), std::max(a, b), k});
+    }
+  }
+  std::sort(keys.begin(), keys.end(),
+            [](const Key& x, const Key& y) { return x.j != y.j ? x.j < y.j : x.i < y.i; });
+  C.own_off.clear();
+  for (const Key& key : keys) {
+    if (C.own_off.empty() || C.own_off.back().i != key.i || C.own_off.back().j != key.j)
+      C.own_off.push_back({key.i, key.j, Mat6::Zero()});
+    L.off_target[key.fine] = static_cast<int>(C.own_off.size()) - 1;
+  }
+  C.own_diag.assign(static_cast<std::size_t>(count), Mat6::Zero());
+  C.diag = &C.own_diag;
+  C.off = &C.own_off;
+  return true;
+}
+
+void BlockAmg::galerkin(const Level& L, Level& C) const {
+  // A_c = P^T A P, block by block (header).
+  for (auto& d : C.own_diag) d.setZero();
+  for (auto& o : C.own_off) o.k.setZero();
+  const auto& diag = *L.diag;
+  for (int i = 0; i < L.n; ++i)
+    C.own_diag[L.agg[i]].noalias() += L.P[i].transpose() * diag[i] * L.P[i];
+  const auto& off = *L.off;
+  for (std::size_t k = 0; k < off.size(); ++k) {
+    const auto& o = off[k];
+    const Mat6 m = L.P[o.i].transpose() * o.k * L.P[o.j];
+    const int t = L.off_target[k];
+    if (t < 0) {
+      C.own_diag[-1 - t] += m + m.transpose();
+    } else if (L.off_flip[k]) {
+      C.own_off[t].k += m.transpose();
+    } else {
+      C.own_off[t].k += m;
+    }
+  }
+}
+
+void BlockAmg::factor_coarsest() {
+  const Level& L = levels_.back();
+  const int n = L.n;
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(6 * n, 6 * n);
+  for (int b = 0; b < n; ++b) K.block<6, 6>(6 * b, 6 * b) = (*L.diag)[b];
+  for (const auto& o : *L.off) {
+    K.block<6, 6>(6 * o.i, 6 * o.j) += o.k;
+    K.block<6, 6>(6 * o.j, 6 * o.i) += o.k.transpose();
+  }
+  coarse_llt_.compute(K);
+  coarse_definite_ = coarse_llt_.info() == Eigen::Success;
+  // A semi-definite coarse matrix (a static model with a free rigid motion)
+  // still gives a usable correction through LDL'.
+  if (!coarse_definite_) coarse_ldlt_.compute(K);
+}
+
+void BlockAmg::setup(const BlockSystem& s) {
+  levels_.clear();
+  levels_.reserve(16);
+  pattern_.clear();
+  for (const auto& o : s.off_diagonal()) pattern_.emplace_back(o.i, o.j);
+  Level fine;
+  fine.n = s.block_count();
+  fine.diag = &s.diagonals();
+  fine.off = &s.off_diagonal();
+  fine.pos = s.centroids();
+  fine.pos.resize(static_cast<std::size_t>(fine.n), Vec2::Zero());
+  levels_.push_back(std::move(fine));
+  for (;;) {
+    Level& L = levels_.back();
+    build_columns(L);
+    invert_diagonal(L);
+    if (L.n <= kCoarsest) break;
+    Level C;
+    if (!aggregate(L, C)) {
+      L.agg.clear();
+      break;
+    }
+    levels_.push_back(std::move(C));
+    Level& Lf = levels_[levels_.size() - 2];
+    Level& Lc = levels_.back();
+    Lc.diag = &Lc.own_diag;  // the move invalidated the pointers into C
+    Lc.off = &Lc.own_off;
+    galerkin(Lf, Lc);
+  }
+  factor_coarsest();
+}
+
+void BlockAmg::refresh(const BlockSystem& s) {
+  levels_[0].diag = &s.diagonals();
+  levels_[0].off = &s.off_diagonal();
+  levels_[0].pos.resize(static_cast<std::size_t>(levels_[0].n), Vec2::Zero());
+  for (std::size_t l = 0; l < levels_.size(); ++l) {
+    if (l > 0) galerkin(levels_[l - 1], levels_[l]);
+    invert_diagonal(levels_[l]);
+  }
+  factor_coarsest();
+}
+
+void BlockAmg::residual(Level& L) const {
+  L.r = L.b;
+  for (int i = 0; i < L.n; ++i) L.r.segment<6>(6 * i).noalias() -= (*L.diag)[i] * L.x.segment<6>(6 * i);
+  for (const auto& o : *L.off) {
+    L.r.segment<6>(6 * o.i).noalias() -= o.k * L.x.segment<6>(6 * o.j);
+    L.r.segment<6>(6 * o.j).noalias() -= o.k.transpose() * L.x.segment<6>(6 * o.i);
+  }
+}
+
+void BlockAmg::forward_sweep(Level& L) const {
+  // Forward Gauss-Seidel with the upper blocks stored by column: the upper
+  // part of row i uses the old x (t = U x_old, one pass), the lower part of
+  // row j (column j's upper blocks, transposed) the x already updated.
+  const auto& off = *L.off;
+  L.t.setZero(6 * L.n);
+  for (const auto& o : off) L.t.segment<6>(6 * o.i).noalias() += o.k * L.x.segment<6>(6 * o.j);
+  for (int j = 0; j < L.n; ++j) {
+    Vec6 s = L.b.segment<6>(6 * j) - L.t.segment<6>(6 * j);
+    for (int q = L.col_start[j]; q < L.col_start[j + 1]; ++q)
+      s.noalias() -= off[q].k.transpose() * L.x.segment<6>(6 * off[q].i);
+    L.x.segment<6>(6 * j).noalias() = L.diag_inv[j] * s;
+  }
+}
+
+void BlockAmg::backward_sweep(Level& L) const {
+  // Backward Gauss-Seidel: the lower part of row j uses the old x (column j,
+  // computed before x_j changes), the upper part the x already updated
+  // (scattered from column j' > j as soon as x_j' is new).
+  const auto& off = *L.off;
+  L.t.setZero(6 * L.n);
+  for (int j = L.n - 1; j >= 0; --j) {
+    Vec6 s = L.b.segment<6>(6 * j) - L.t.segment<6>(6 * j);
+    for (int q = L.col_start[j]; q < L.col_start[j + 1]; ++q)
+      s.noalias() -= off[q].k.transpose() * L.x.segment<6>(6 * off[q].i);
+    L.x.segment<6>(6 * j).noalias() = L.diag_inv[j] * s;
+    for (int q = L.col_start[j]; q < L.col_start[j + 1]; ++q)
+      L.t.segment<6>(6 * off[q].i).noalias() += off[q].k * L.x.segment<6>(6 * j);
+  }
+}
+
+void BlockAmg::vcycle(std::size_t l) {
+  Level& L = levels_[l];
+  if (l + 1 == levels_.size()) {
+    L.x = coarse_definite_ ? Eigen::VectorXd(coarse_llt_.solve(L.b))
+                           : Eigen::VectorXd(coarse_ldlt_.solve(L.b));
+    return;
+  }
+  L.x.setZero(6 * L.n);
+  forward_sweep(L);
+  residual(L);
+  Level& C = levels_[l + 1];
+  C.b.setZero(6 * C.n);
+  for (int i = 0; i < L.n; ++i)
+    C.b.segment<6>(6 * L.agg[i]).noalias() += L.P[i].transpose() * L.r.segment<6>(6 * i);
+  vcycle(l + 1);
+  for (int i = 0; i < L.n; ++i)
+    L.x.segment<6>(6 * i).noalias() += L.P[i] * C.x.segment<6>(6 * L.agg[i]);
+  backward_sweep(L);
+}
+
+void BlockAmg::apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+  levels_[0].b = r;
+  vcycle(0);
+  z = levels_[0].x;
+}
+
+}  // namespace rheodda::core
