@@ -4,6 +4,9 @@
 //   build/bench/contact_bench                      # N = 1e2, 1e3, 1e4 blocks
 //   build/bench/contact_bench --max-blocks 100000  # adds N = 1e5
 //   build/bench/contact_bench --detect-only --max-blocks 100000  # detection alone
+//   build/bench/contact_bench --solver cholmod     # one solver (default automatic:
+//                                                  # cholmod below 400 blocks, amg above)
+//   build/bench/contact_bench --solver amg --tol 1e-8  # iterative stop ||F - K D|| <= tol ||F||
 //
 // A wall of NX x NY bricks 0.2 m x 0.1 m in running bond (odd rows start and
 // end with a half brick, so the sides are straight) stands on a fixed base
@@ -14,11 +17,13 @@
 // included), block-steps per second, the growth exponent of the step time
 // between successive sizes, and the largest displacement after 50 steps (the
 // wall must stay standing). Asserts nothing.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include "rheodda/contact/contact_system.hpp"
@@ -88,27 +93,45 @@ int main(int argc, char** argv) {
   long max_blocks = 10000;
   int steps = 50;
   bool detect_only = false;
+  double pcg_tol = 0.0;
+  std::string solver = "automatic";
   for (int k = 1; k < argc; ++k) {
     if (!std::strcmp(argv[k], "--max-blocks") && k + 1 < argc) max_blocks = std::atol(argv[++k]);
     else if (!std::strcmp(argv[k], "--steps") && k + 1 < argc) steps = std::atoi(argv[++k]);
     else if (!std::strcmp(argv[k], "--detect-only")) detect_only = true;
+    else if (!std::strcmp(argv[k], "--solver") && k + 1 < argc) solver = argv[++k];
+    else if (!std::strcmp(argv[k], "--tol") && k + 1 < argc) pcg_tol = std::atof(argv[++k]);
     else {
-      std::fprintf(stderr, "usage: contact_bench [--max-blocks N] [--steps S] [--detect-only]\n");
+      std::fprintf(stderr,
+                   "usage: contact_bench [--max-blocks N] [--steps S] [--detect-only] "
+                   "[--solver automatic|cholmod|pcg|amg] [--tol T]\n");
       return 2;
     }
+  }
+  core::SolverKind solver_kind = core::SolverKind::automatic;
+  if (solver == "cholmod") solver_kind = core::SolverKind::cholmod;
+  else if (solver == "pcg") solver_kind = core::SolverKind::pcg;
+  else if (solver == "amg") solver_kind = core::SolverKind::amg;
+  else if (solver != "automatic") {
+    std::fprintf(stderr, "contact_bench: unknown --solver '%s'\n", solver.c_str());
+    return 2;
   }
   contact::JointSet joint;
   joint.name = "mortar";
   joint.friction_angle = 30.0;
 
-  std::printf("# running-bond brick wall, %d steps, dt = 1e-3 s, g2 w0 = 1 mm (one core)\n", steps);
-  std::printf("%8s %6s %6s %8s %10s %10s %10s %10s %14s %8s %6s %5s %8s %12s\n", "blocks", "NX",
+  std::printf("# running-bond brick wall, %d steps, dt = 1e-3 s, g2 w0 = 1 mm (one core), solver %s%s\n",
+              steps, solver.c_str(),
+              pcg_tol > 0.0 ? (", tol " + std::to_string(pcg_tol)).c_str() : "");
+  std::printf("%8s %6s %6s %8s %10s %10s %10s %10s %14s %8s %6s %5s %8s %8s %12s\n", "blocks", "NX",
               "NY", "contacts", "detect_ms", "step_ms", "solve_ms", "assemb_ms", "block-steps/s",
-              "exponent", "iters", "cuts", "analyses", "max_disp_m");
+              "exponent", "iters", "cuts", "analyses", "cg/solve", "max_disp_m");
   double prev_n = 0.0, prev_step = 0.0;
   for (int side : {10, 32, 100, 316}) {
     const int nx = side, ny = side;
     core::Model model = brick_wall(nx, ny);
+    model.settings.solver = solver_kind;
+    if (pcg_tol > 0.0) model.settings.pcg_tolerance = pcg_tol;
     const double n = static_cast<double>(model.blocks.size() - 1);
     if (n > 1.2 * static_cast<double>(max_blocks)) break;
     contact::ContactSystem contacts({joint}, core::contact_settings_for(model));
@@ -148,10 +171,13 @@ int main(int argc, char** argv) {
     }
     const double exponent =
         prev_n > 0.0 ? std::log(step_time / prev_step) / std::log(n / prev_n) : std::nan("");
-    std::printf("%8.0f %6d %6d %8zu %10.3f %10.3f %10.3f %10.3f %14.3g %8.2f %6.2f %5d %8ld %12.3g\n",
+    const auto& ss = engine.solver_stats();
+    const double cg_per_solve =
+        static_cast<double>(ss.pcg_iterations) / static_cast<double>(std::max(1L, ss.solves));
+    std::printf("%8.0f %6d %6d %8zu %10.3f %10.3f %10.3f %10.3f %14.3g %8.2f %6.2f %5d %8ld %8.1f %12.3g\n",
                 n, nx, ny, contacts.contacts().size(), 1e3 * detect, 1e3 * step_time,
                 1e3 * solve / steps, 1e3 * assembly / steps, n / step_time, exponent,
-                iters / steps, cuts, engine.solver_stats().analyses, max_disp);
+                iters / steps, cuts, ss.analyses, cg_per_solve, max_disp);
     std::fflush(stdout);
     prev_n = n;
     prev_step = step_time;

@@ -126,7 +126,7 @@ bool BlockAmg::aggregate(Level& L, Level& C) const {
   }
   if (count > n * 3 / 4) return false;  // too little coarsening to be worth a level
 
-  // Coarse centres and transfer blocks.
+  // Coarse centres and tentative transfer blocks.
   C.n = count;
   C.pos.assign(static_cast<std::size_t>(count), Vec2::Zero());
   std::vector<int> members(static_cast<std::size_t>(count), 0);
@@ -135,62 +135,157 @@ bool BlockAmg::aggregate(Level& L, Level& C) const {
     ++members[L.agg[i]];
   }
   for (int a = 0; a < count; ++a) C.pos[a] /= members[a];
-  L.P.resize(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) L.P[i] = transfer_block(L.pos[i] - C.pos[L.agg[i]]);
-
-  // Coarse pattern: each fine off block lands on a coarse diagonal block or on
-  // the coarse upper block (min, max) of its two aggregates.
-  struct Key {
-    int i, j;
-    std::size_t fine;
-  };
-  std::vector<Key> keys;
-  keys.reserve(off.size());
-  L.off_target.assign(off.size(), 0);
-  L.off_flip.assign(off.size(), 0);
-  for (std::size_t k = 0; k < off.size(); ++k) {
-    const int a = L.agg[off[k].i], b = L.agg[off[k].j];
-    if (a == b) {
-      L.off_target[k] = -1 - a;
-    } else {
-      L.off_flip[k] = a > b;
-      keys.push_back({std::min(a, b), std::max(a, b), k});
-    }
-  }
-  std::sort(keys.begin(), keys.end(),
-            [](const Key& x, const Key& y) { return x.j != y.j ? x.j < y.j : x.i < y.i; });
-  C.own_off.clear();
-  for (const Key& key : keys) {
-    if (C.own_off.empty() || C.own_off.back().i != key.i || C.own_off.back().j != key.j)
-      C.own_off.push_back({key.i, key.j, Mat6::Zero()});
-    L.off_target[key.fine] = static_cast<int>(C.own_off.size()) - 1;
-  }
-  C.own_diag.assign(static_cast<std::size_t>(count), Mat6::Zero());
-  C.diag = &C.own_diag;
-  C.off = &C.own_off;
+  L.P0.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) L.P0[i] = transfer_block(L.pos[i] - C.pos[L.agg[i]]);
+  L.omega = 4.0 / (3.0 * lambda_max(L));
   return true;
 }
 
-void BlockAmg::galerkin(const Level& L, Level& C) const {
-  // A_c = P^T A P, block by block (header).
-  for (auto& d : C.own_diag) d.setZero();
-  for (auto& o : C.own_off) o.k.setZero();
-  const auto& diag = *L.diag;
-  for (int i = 0; i < L.n; ++i)
-    C.own_diag[L.agg[i]].noalias() += L.P[i].transpose() * diag[i] * L.P[i];
+void BlockAmg::build_rows(Level& L) const {
   const auto& off = *L.off;
+  L.row_start.assign(static_cast<std::size_t>(L.n) + 1, 0);
+  for (const auto& o : off) {
+    ++L.row_start[o.i + 1];
+    ++L.row_start[o.j + 1];
+  }
+  std::partial_sum(L.row_start.begin(), L.row_start.end(), L.row_start.begin());
+  const std::size_t m = static_cast<std::size_t>(L.row_start[L.n]);
+  L.row_nbr.resize(m);
+  L.row_off.resize(m);
+  L.row_t.resize(m);
+  std::vector<int> fill(L.row_start.begin(), L.row_start.end() - 1);
   for (std::size_t k = 0; k < off.size(); ++k) {
     const auto& o = off[k];
-    const Mat6 m = L.P[o.i].transpose() * o.k * L.P[o.j];
-    const int t = L.off_target[k];
-    if (t < 0) {
-      C.own_diag[-1 - t] += m + m.transpose();
-    } else if (L.off_flip[k]) {
-      C.own_off[t].k += m.transpose();
-    } else {
-      C.own_off[t].k += m;
+    int q = fill[o.i]++;
+    L.row_nbr[q] = o.j, L.row_off[q] = static_cast<int>(k), L.row_t[q] = 0;  // A_ij = K
+    q = fill[o.j]++;
+    L.row_nbr[q] = o.i, L.row_off[q] = static_cast<int>(k), L.row_t[q] = 1;  // A_ji = K^T
+  }
+}
+
+double BlockAmg::lambda_max(const Level& L) const {
+  // Power iteration on D^-1 A (its eigenvalues are real and positive: it is
+  // similar to D^-1/2 A D^-1/2); a few steps from a rough start, then 10 %
+  // margin, since omega only has to stay below 2 / lambda_max.
+  Eigen::VectorXd v(6 * L.n), w(6 * L.n);
+  for (Eigen::Index k = 0; k < v.size(); ++k) v(k) = 1.0 + 0.37 * static_cast<double>(k % 7);
+  double lambda = 1.0;
+  for (int it = 0; it < 12; ++it) {
+    v /= v.norm();
+    for (int i = 0; i < L.n; ++i) w.segment<6>(6 * i).noalias() = (*L.diag)[i] * v.segment<6>(6 * i);
+    for (const auto& o : *L.off) {
+      w.segment<6>(6 * o.i).noalias() += o.k * v.segment<6>(6 * o.j);
+      w.segment<6>(6 * o.j).noalias() += o.k.transpose() * v.segment<6>(6 * o.i);
+    }
+    for (int i = 0; i < L.n; ++i) v.segment<6>(6 * i) = L.diag_inv[i] * w.segment<6>(6 * i);
+    lambda = v.norm();
+  }
+  return 1.1 * lambda;
+}
+
+namespace {
+
+/// Adds m to the entry of column col in a short list of (column, block).
+void accumulate(std::vector<std::pair<int, Mat6>>& row, int col, const Mat6& m) {
+  for (auto& e : row)
+    if (e.first == col) {
+      e.second += m;
+      return;
+    }
+  row.emplace_back(col, m);
+}
+
+}  // namespace
+
+void BlockAmg::smooth_prolongator(Level& L) const {
+  // P_i* = P0_i (1 - omega) at agg(i) - omega A_ii^-1 sum_j A_ij P0_j at agg(j).
+  const auto& off = *L.off;
+  L.p_start.assign(1, 0);
+  L.p_col.clear();
+  L.p_val.clear();
+  std::vector<std::pair<int, Mat6>> row;
+  for (int i = 0; i < L.n; ++i) {
+    row.clear();
+    row.emplace_back(L.agg[i], (1.0 - L.omega) * L.P0[i]);
+    const Mat6 w = -L.omega * L.diag_inv[i];
+    for (int q = L.row_start[i]; q < L.row_start[i + 1]; ++q) {
+      const int j = L.row_nbr[q];
+      const Mat6& K = off[L.row_off[q]].k;
+      const Mat6 aij_p = L.row_t[q] ? Mat6(K.transpose() * L.P0[j]) : Mat6(K * L.P0[j]);
+      accumulate(row, L.agg[j], w * aij_p);
+    }
+    for (const auto& [col, m] : row) {
+      L.p_col.push_back(col);
+      L.p_val.push_back(m);
+    }
+    L.p_start.push_back(static_cast<int>(L.p_col.size()));
+  }
+}
+
+void BlockAmg::galerkin(Level& L, Level& C, bool build) const {
+  // A_c = P^T A P = sum_i P_i*^T (A P)_i*, upper blocks only (a <= b), with
+  // (A P)_i* = A_ii P_i* + sum_j A_ij P_j*. The sequence of (i, a, b) products
+  // depends only on the pattern, so setup records each one's coarse slot and
+  // a refresh replays them.
+  smooth_prolongator(L);
+  const auto& off = *L.off;
+  std::vector<std::pair<int, Mat6>> ap;
+  std::vector<std::pair<int, int>> keys;  // build: (a, b) of each product
+  if (build) keys.reserve(static_cast<std::size_t>(L.n) * 16);
+  if (!build) {
+    for (auto& d : C.own_diag) d.setZero();
+    for (auto& o : C.own_off) o.k.setZero();
+  }
+  std::size_t t = 0;
+  for (int i = 0; i < L.n; ++i) {
+    ap.clear();
+    for (int q = L.p_start[i]; q < L.p_start[i + 1]; ++q)
+      accumulate(ap, L.p_col[q], (*L.diag)[i] * L.p_val[q]);
+    for (int r = L.row_start[i]; r < L.row_start[i + 1]; ++r) {
+      const int j = L.row_nbr[r];
+      const Mat6& K = off[L.row_off[r]].k;
+      for (int q = L.p_start[j]; q < L.p_start[j + 1]; ++q)
+        accumulate(ap, L.p_col[q],
+                   L.row_t[r] ? Mat6(K.transpose() * L.p_val[q]) : Mat6(K * L.p_val[q]));
+    }
+    for (int q = L.p_start[i]; q < L.p_start[i + 1]; ++q) {
+      const int a = L.p_col[q];
+      for (const auto& [b, m] : ap) {
+        if (a > b) continue;
+        if (build) {
+          keys.emplace_back(a, b);
+          continue;
+        }
+        const int slot = L.g_slot[t++];
+        const Mat6 prod = L.p_val[q].transpose() * m;
+        if (slot < 0)
+          C.own_diag[-1 - slot] += prod;
+        else
+          C.own_off[slot].k += prod;
+      }
     }
   }
+  if (!build) return;
+  // Coarse pattern: distinct (a < b) sorted by column b, then row a.
+  std::vector<std::pair<int, int>> upper;
+  for (const auto& k : keys)
+    if (k.first < k.second) upper.emplace_back(k.second, k.first);
+  std::sort(upper.begin(), upper.end());
+  upper.erase(std::unique(upper.begin(), upper.end()), upper.end());
+  C.own_off.resize(upper.size());
+  for (std::size_t k = 0; k < upper.size(); ++k) C.own_off[k] = {upper[k].second, upper[k].first, Mat6::Zero()};
+  C.own_diag.assign(static_cast<std::size_t>(C.n), Mat6::Zero());
+  L.g_slot.resize(keys.size());
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    const auto [a, b] = keys[k];
+    if (a == b) {
+      L.g_slot[k] = -1 - a;
+    } else {
+      const auto it = std::lower_bound(upper.begin(), upper.end(), std::make_pair(b, a));
+      L.g_slot[k] = static_cast<int>(it - upper.begin());
+    }
+  }
+  galerkin(L, C, false);
 }
 
 void BlockAmg::factor_coarsest() {
@@ -224,6 +319,7 @@ void BlockAmg::setup(const BlockSystem& s) {
   for (;;) {
     Level& L = levels_.back();
     build_columns(L);
+    build_rows(L);
     invert_diagonal(L);
     if (L.n <= kCoarsest) break;
     Level C;
@@ -236,7 +332,7 @@ void BlockAmg::setup(const BlockSystem& s) {
     Level& Lc = levels_.back();
     Lc.diag = &Lc.own_diag;  // the move invalidated the pointers into C
     Lc.off = &Lc.own_off;
-    galerkin(Lf, Lc);
+    galerkin(Lf, Lc, true);
   }
   factor_coarsest();
 }
@@ -246,7 +342,7 @@ void BlockAmg::refresh(const BlockSystem& s) {
   levels_[0].off = &s.off_diagonal();
   levels_[0].pos.resize(static_cast<std::size_t>(levels_[0].n), Vec2::Zero());
   for (std::size_t l = 0; l < levels_.size(); ++l) {
-    if (l > 0) galerkin(levels_[l - 1], levels_[l]);
+    if (l > 0) galerkin(levels_[l - 1], levels_[l], false);
     invert_diagonal(levels_[l]);
   }
   factor_coarsest();
@@ -263,13 +359,12 @@ void BlockAmg::residual(Level& L) const {
 
 void BlockAmg::forward_sweep(Level& L) const {
   // Forward Gauss-Seidel with the upper blocks stored by column: the upper
-  // part of row i uses the old x (t = U x_old, one pass), the lower part of
-  // row j (column j's upper blocks, transposed) the x already updated.
+  // part of row j uses the old x (here zero), the lower part of row j
+  // (column j's upper blocks, transposed) the x already updated.
+  // Called from x = 0 (the pre-smoothing of a V-cycle), so U x_old = 0.
   const auto& off = *L.off;
-  L.t.setZero(6 * L.n);
-  for (const auto& o : off) L.t.segment<6>(6 * o.i).noalias() += o.k * L.x.segment<6>(6 * o.j);
   for (int j = 0; j < L.n; ++j) {
-    Vec6 s = L.b.segment<6>(6 * j) - L.t.segment<6>(6 * j);
+    Vec6 s = L.b.segment<6>(6 * j);
     for (int q = L.col_start[j]; q < L.col_start[j + 1]; ++q)
       s.noalias() -= off[q].k.transpose() * L.x.segment<6>(6 * off[q].i);
     L.x.segment<6>(6 * j).noalias() = L.diag_inv[j] * s;
@@ -305,10 +400,12 @@ void BlockAmg::vcycle(std::size_t l) {
   Level& C = levels_[l + 1];
   C.b.setZero(6 * C.n);
   for (int i = 0; i < L.n; ++i)
-    C.b.segment<6>(6 * L.agg[i]).noalias() += L.P[i].transpose() * L.r.segment<6>(6 * i);
+    for (int q = L.p_start[i]; q < L.p_start[i + 1]; ++q)
+      C.b.segment<6>(6 * L.p_col[q]).noalias() += L.p_val[q].transpose() * L.r.segment<6>(6 * i);
   vcycle(l + 1);
   for (int i = 0; i < L.n; ++i)
-    L.x.segment<6>(6 * i).noalias() += L.P[i] * C.x.segment<6>(6 * L.agg[i]);
+    for (int q = L.p_start[i]; q < L.p_start[i + 1]; ++q)
+      L.x.segment<6>(6 * i).noalias() += L.p_val[q] * C.x.segment<6>(6 * L.p_col[q]);
   backward_sweep(L);
 }
 

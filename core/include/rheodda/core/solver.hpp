@@ -27,7 +27,7 @@ class BlockAmg;
 class LinearSolver {
  public:
   /// tolerance and max_iterations apply to pcg only.
-  explicit LinearSolver(SolverKind kind, double tolerance = 1.0e-12, int max_iterations = 10000);
+  explicit LinearSolver(SolverKind kind, double tolerance = 1.0e-10, int max_iterations = 10000);
   ~LinearSolver();
   LinearSolver(const LinearSolver&) = delete;
   LinearSolver& operator=(const LinearSolver&) = delete;

@@ -59,7 +59,7 @@ struct Analysis {
   int open_close_limit = 8;            ///< open-close iterations before a step is cut [-]
   double fixed_point_stiffness = 0.0;  ///< fixed-point spring [force/length]; default 100 x largest young_modulus
   SolverKind solver = SolverKind::automatic;  ///< `solver: automatic|cholmod|pcg|amg`
-  double solver_tolerance = 1e-12;     ///< relative residual at which pcg and amg stop [-]
+  double solver_tolerance = 1e-10;     ///< relative residual at which pcg and amg stop [-]
   double output_interval = 0.0;        ///< time between output frames [time]; default duration / 100
   Point gravity{0.0, 0.0};             ///< gravity acceleration (gx, gy) [length/time^2]; required
   SourceLocation where{};
