@@ -1,0 +1,66 @@
+// The amg solver inside real DDA runs: a running-bond brick wall (the
+// performance benchmark's scene, bench/contact_bench.cpp) settling under
+// gravity, with many contacts changing state at every step, gives the same
+// open-close iterations, step cuts, contact states and displacements with
+// amg as with CHOLMOD.
+#include <boost/test/unit_test.hpp>
+
+#include "sim.hpp"
+
+using namespace rheodda;
+using namespace rheodda::testing;
+
+namespace {
+
+/// nx x ny running-bond wall of 0.2 m x 0.1 m bricks on a fixed base
+/// (E = 5 GPa, friction 30 deg, dynamic, dt = 1e-3 s, g2 w0 = 1 mm).
+core::Model wall(int nx, int ny, core::SolverKind solver) {
+  core::Model m;
+  m.materials[0].density = 2600.0;
+  m.materials[0].young_modulus = 5e9;
+  m.materials[0].poisson_ratio = 0.2;
+  m.settings.dt = 1e-3;
+  m.settings.solver = solver;
+  const double w = 0.2, h = 0.1, width = nx * w;
+  m.settings.g2 = 1e-3 / (0.5 * std::max(width + 1.0, ny * h + 0.5));
+  add_fixed(m, rect(-0.5, -0.5, width + 0.5, 0.0));
+  for (int j = 0; j < ny; ++j) {
+    const double y0 = j * h, y1 = y0 + h;
+    if (j % 2 == 0) {
+      for (int i = 0; i < nx; ++i) m.blocks.push_back(block(rect(i * w, y0, (i + 1) * w, y1)));
+    } else {
+      m.blocks.push_back(block(rect(0.0, y0, 0.5 * w, y1)));
+      for (int i = 0; i + 1 < nx; ++i)
+        m.blocks.push_back(block(rect((i + 0.5) * w, y0, (i + 1.5) * w, y1)));
+      m.blocks.push_back(block(rect(width - 0.5 * w, y0, width, y1)));
+    }
+  }
+  return m;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(solver_agreement)
+
+BOOST_AUTO_TEST_CASE(amg_runs_the_brick_wall_as_cholmod_does) {
+  Sim a(wall(20, 20, core::SolverKind::cholmod), {joint(30.0)});
+  Sim b(wall(20, 20, core::SolverKind::amg), {joint(30.0)});
+  BOOST_TEST_REQUIRE(a.engine.block_count() == 411);
+  int changes = 0;
+  for (int k = 0; k < 10; ++k) {
+    const core::StepReport ra = a.engine.step(), rb = b.engine.step();
+    BOOST_TEST(ra.iterations == rb.iterations);
+    BOOST_TEST(ra.cuts == rb.cuts);
+    changes += ra.iterations - 1;
+    const Eigen::VectorXd& da = a.engine.last_displacements();
+    BOOST_TEST((da - b.engine.last_displacements()).norm() <= 1e-6 * da.norm());
+  }
+  BOOST_TEST(changes > 10);  // the iteration really changed contact states
+  const auto ca = a.contacts.contacts(), cb = b.contacts.contacts();
+  BOOST_TEST_REQUIRE(ca.size() == cb.size());
+  for (std::size_t k = 0; k < ca.size(); ++k) BOOST_TEST((ca[k].state == cb[k].state));
+  BOOST_TEST(b.engine.solver_stats().pcg_iterations > 0);
+  BOOST_TEST(a.engine.solver_stats().pcg_iterations == 0);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
