@@ -7,6 +7,7 @@
 //   build/bench/contact_bench --solver cholmod     # one solver (default automatic:
 //                                                  # cholmod below 400 blocks, amg above)
 //   build/bench/contact_bench --solver amg --tol 1e-8  # iterative stop ||F - K D|| <= tol ||F||
+//   build/bench/contact_bench --open-close 20      # open-close iterations before a cut (default 8)
 //
 // A wall of NX x NY bricks 0.2 m x 0.1 m in running bond (odd rows start and
 // end with a half brick, so the sides are straight) stands on a fixed base
@@ -95,16 +96,18 @@ int main(int argc, char** argv) {
   bool detect_only = false;
   double pcg_tol = 0.0;
   std::string solver = "automatic";
+  int open_close = 0;
   for (int k = 1; k < argc; ++k) {
     if (!std::strcmp(argv[k], "--max-blocks") && k + 1 < argc) max_blocks = std::atol(argv[++k]);
     else if (!std::strcmp(argv[k], "--steps") && k + 1 < argc) steps = std::atoi(argv[++k]);
     else if (!std::strcmp(argv[k], "--detect-only")) detect_only = true;
     else if (!std::strcmp(argv[k], "--solver") && k + 1 < argc) solver = argv[++k];
     else if (!std::strcmp(argv[k], "--tol") && k + 1 < argc) pcg_tol = std::atof(argv[++k]);
+    else if (!std::strcmp(argv[k], "--open-close") && k + 1 < argc) open_close = std::atoi(argv[++k]);
     else {
       std::fprintf(stderr,
                    "usage: contact_bench [--max-blocks N] [--steps S] [--detect-only] "
-                   "[--solver automatic|cholmod|pcg|amg] [--tol T]\n");
+                   "[--solver automatic|cholmod|pcg|amg] [--tol T] [--open-close N]\n");
       return 2;
     }
   }
@@ -120,9 +123,10 @@ int main(int argc, char** argv) {
   joint.name = "mortar";
   joint.friction_angle = 30.0;
 
-  std::printf("# running-bond brick wall, %d steps, dt = 1e-3 s, g2 w0 = 1 mm (one core), solver %s%s\n",
-              steps, solver.c_str(),
-              pcg_tol > 0.0 ? (", tol " + std::to_string(pcg_tol)).c_str() : "");
+  std::printf("# running-bond brick wall, %d steps, dt = 1e-3 s, g2 w0 = 1 mm (one core), solver %s",
+              steps, solver.c_str());
+  if (pcg_tol > 0.0) std::printf(", tol %g", pcg_tol);
+  std::printf("\n");
   std::printf("%8s %6s %6s %8s %10s %10s %10s %10s %14s %8s %6s %5s %8s %8s %12s\n", "blocks", "NX",
               "NY", "contacts", "detect_ms", "step_ms", "solve_ms", "assemb_ms", "block-steps/s",
               "exponent", "iters", "cuts", "analyses", "cg/solve", "max_disp_m");
@@ -132,6 +136,7 @@ int main(int argc, char** argv) {
     core::Model model = brick_wall(nx, ny);
     model.settings.solver = solver_kind;
     if (pcg_tol > 0.0) model.settings.pcg_tolerance = pcg_tol;
+    if (open_close > 0) model.settings.max_open_close = open_close;
     const double n = static_cast<double>(model.blocks.size() - 1);
     if (n > 1.2 * static_cast<double>(max_blocks)) break;
     contact::ContactSystem contacts({joint}, core::contact_settings_for(model));
