@@ -349,12 +349,10 @@ void BlockAmg::refresh(const BlockSystem& s) {
 }
 
 void BlockAmg::residual(Level& L) const {
-  L.r = L.b;
-  for (int i = 0; i < L.n; ++i) L.r.segment<6>(6 * i).noalias() -= (*L.diag)[i] * L.x.segment<6>(6 * i);
-  for (const auto& o : *L.off) {
-    L.r.segment<6>(6 * o.i).noalias() -= o.k * L.x.segment<6>(6 * o.j);
-    L.r.segment<6>(6 * o.j).noalias() -= o.k.transpose() * L.x.segment<6>(6 * o.i);
-  }
+  // After a forward sweep from x = 0, (D + L) x = b holds row by row, so
+  // r = b - A x = -U x: only the upper blocks, one product each.
+  L.r.setZero(6 * L.n);
+  for (const auto& o : *L.off) L.r.segment<6>(6 * o.i).noalias() -= o.k * L.x.segment<6>(6 * o.j);
 }
 
 void BlockAmg::forward_sweep(Level& L) const {

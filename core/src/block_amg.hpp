@@ -113,7 +113,7 @@ class BlockAmg {
   void vcycle(std::size_t l);
   void forward_sweep(Level& L) const;   // x <- forward Gauss-Seidel on A x = b, from x = 0
   void backward_sweep(Level& L) const;  // x <- backward Gauss-Seidel on A x = b
-  void residual(Level& L) const;        // r = b - A x
+  void residual(Level& L) const;        // r = b - A x, right after forward_sweep
 
   std::vector<Level> levels_;
   std::vector<std::pair<int, int>> pattern_;  // level-0 off pattern the hierarchy was built for
