@@ -126,6 +126,26 @@ BOOST_AUTO_TEST_CASE(creep_tolerance_and_dt_max_reach_the_engine_settings_and_ne
                   "out of range");
 }
 
+BOOST_AUTO_TEST_CASE(solver_and_solver_tolerance_reach_the_engine_settings_and_bad_values_are_refused) {
+  // Default: automatic with the iterative stop 1e-10.
+  const scene::BuiltScene base = scene::build_scene(scene::parse_scene(kBaseScene, "base.yaml"));
+  BOOST_TEST((base.model.settings.solver == core::SolverKind::automatic));
+  BOOST_TEST(base.model.settings.pcg_tolerance == 1e-10);
+  const auto text = with("  dt: 0.01", "  dt: 0.01\n  solver: amg\n  solver_tolerance: 1.0e-8");
+  const scene::BuiltScene built = scene::build_scene(scene::parse_scene(text, "amg.yaml"));
+  BOOST_TEST((built.model.settings.solver == core::SolverKind::amg));
+  BOOST_TEST(built.model.settings.pcg_tolerance == 1e-8);
+  for (auto [name, kind] : {std::pair{"cholmod", core::SolverKind::cholmod}, {"pcg", core::SolverKind::pcg},
+                            {"automatic", core::SolverKind::automatic}}) {
+    const auto t = with("  dt: 0.01", std::string("  dt: 0.01\n  solver: ") + name);
+    BOOST_TEST((scene::build_scene(scene::parse_scene(t, "s.yaml")).model.settings.solver == kind));
+  }
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  solver: lu"), 5, "lu", "analysis.solver",
+                  "not one of: automatic, cholmod, pcg, amg");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  solver_tolerance: 0"), 5, "0", "analysis.solver_tolerance",
+                  "out of range (0, 1)");
+}
+
 BOOST_AUTO_TEST_CASE(nan_and_inf_are_refused_anywhere) {
   expect_error_at(with("  dt: 0.01", "  dt: .nan"), 4, ".nan", "analysis.dt", "not a finite number");
   expect_error_at(with("[1.5, 1.5]", "[1.5, .inf]"), 15, ".inf", "measurement_points[0].point[1]", "not a finite number");
