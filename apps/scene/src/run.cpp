@@ -11,6 +11,7 @@
 #include "rheodda/contact/contact_system.hpp"
 #include "rheodda/core/contact_adapter.hpp"
 #include "rheodda/core/engine.hpp"
+#include "rheodda/core/solver.hpp"
 #include "rheodda/scene/build.hpp"
 #include "rheodda/scene/describe.hpp"
 #include "rheodda/scene/output.hpp"
@@ -304,6 +305,19 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     j["wall_seconds"] = result.wall_seconds;
     j["resumed_from_step"] = result.resumed_from_step;
     j["warnings"] = result.warnings;
+    {
+      // The linear solver actually used (automatic resolved) and its work since
+      // this process started (a resumed run counts from the resume).
+      const core::SolverKind used =
+          core::LinearSolver::resolve(engine.model().settings.solver, engine.block_count());
+      const auto& ss = engine.solver_stats();
+      j["solver"] = {{"used", used == core::SolverKind::amg       ? "amg"
+                              : used == core::SolverKind::pcg     ? "pcg"
+                                                                  : "cholmod"},
+                     {"solves", ss.solves},
+                     {"cg_iterations", ss.pcg_iterations},
+                     {"analyses", ss.analyses}};
+    }
     j["measurement_points"] = json::array();
     for (const auto& mp : s.measurement_points) j["measurement_points"].push_back(mp.name);
     j["recorded_joint_sets"] = json::array();

@@ -114,6 +114,11 @@ BOOST_AUTO_TEST_CASE(shear_creep_example_follows_the_burgers_closed_form_of_tabl
   BOOST_TEST(sum.at("inputs").at("joint_sets").at("plane").at("law").at("E1").get<double>() == 26.87);
   BOOST_TEST(sum.at("scene_text").get<std::string>() == read_text(s.file));
   BOOST_TEST(sum.at("warnings").empty());
+  // Two blocks: automatic solves with CHOLMOD, one analysis, a solve per iterate.
+  BOOST_TEST(sum.at("solver").at("used").get<std::string>() == "cholmod");
+  BOOST_TEST(sum.at("solver").at("solves").get<long>() >= 10);
+  BOOST_TEST(sum.at("solver").at("cg_iterations").get<long>() == 0);
+  BOOST_TEST(sum.at("solver").at("analyses").get<long>() == 1);
   // blocks.pvd lists every frame; each frame holds both blocks.
   const std::string pvd = read_text((out / "blocks.pvd").string());
   for (int k = 0; k < 6; ++k) {
