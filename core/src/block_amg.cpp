@@ -128,15 +128,7 @@ bool BlockAmg::aggregate(Level& L, Level& C) const {
 
   // Coarse centres and tentative transfer blocks.
   C.n = count;
-  C.pos.assign(static_cast<std::size_t>(count), Vec2::Zero());
-  std::vector<int> members(static_cast<std::size_t>(count), 0);
-  for (int i = 0; i < n; ++i) {
-    C.pos[L.agg[i]] += L.pos[i];
-    ++members[L.agg[i]];
-  }
-  for (int a = 0; a < count; ++a) C.pos[a] /= members[a];
-  L.P0.resize(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) L.P0[i] = transfer_block(L.pos[i] - C.pos[L.agg[i]]);
+  place_aggregates(L, C);
   L.omega = 4.0 / (3.0 * lambda_max(L));
   return true;
 }
@@ -340,12 +332,38 @@ void BlockAmg::setup(const BlockSystem& s) {
 void BlockAmg::refresh(const BlockSystem& s) {
   levels_[0].diag = &s.diagonals();
   levels_[0].off = &s.off_diagonal();
-  levels_[0].pos.resize(static_cast<std::size_t>(levels_[0].n), Vec2::Zero());
+  // Blocks that moved since the last setup or refresh (a pattern can hold for
+  // many steps; the iterates of one step share their geometry): the centres,
+  // tentative transfers and smoothing weights follow them.
+  std::vector<Vec2> pos = s.centroids();
+  pos.resize(static_cast<std::size_t>(levels_[0].n), Vec2::Zero());
+  const bool moved = pos != levels_[0].pos;
+  if (moved) levels_[0].pos = std::move(pos);
   for (std::size_t l = 0; l < levels_.size(); ++l) {
-    if (l > 0) galerkin(levels_[l - 1], levels_[l], false);
+    if (l > 0) {
+      Level& F = levels_[l - 1];
+      Level& C = levels_[l];
+      if (moved) {
+        place_aggregates(F, C);
+        F.omega = 4.0 / (3.0 * lambda_max(F));
+      }
+      galerkin(F, C, false);
+    }
     invert_diagonal(levels_[l]);
   }
   factor_coarsest();
+}
+
+void BlockAmg::place_aggregates(Level& L, Level& C) const {
+  C.pos.assign(static_cast<std::size_t>(C.n), Vec2::Zero());
+  std::vector<int> members(static_cast<std::size_t>(C.n), 0);
+  for (int i = 0; i < L.n; ++i) {
+    C.pos[L.agg[i]] += L.pos[i];
+    ++members[L.agg[i]];
+  }
+  for (int a = 0; a < C.n; ++a) C.pos[a] /= members[a];
+  L.P0.resize(static_cast<std::size_t>(L.n));
+  for (int i = 0; i < L.n; ++i) L.P0[i] = transfer_block(L.pos[i] - C.pos[L.agg[i]]);
 }
 
 void BlockAmg::residual(Level& L) const {

@@ -40,8 +40,9 @@
 // The coarsest level (at most kCoarsest blocks) is solved by a dense Cholesky.
 //
 // Reuse: the aggregates and the coarse patterns depend only on the block
-// pattern of A; while it is unchanged (the iterates of one step), refresh()
-// recomputes only the values.
+// pattern of A; while it is unchanged (the iterates of one step, and steps
+// whose contacts join the same block pairs), refresh() recomputes only the
+// values and the transfers from the blocks' current centroids.
 #pragma once
 
 #include <Eigen/Dense>
@@ -104,6 +105,8 @@ class BlockAmg {
   /// Aggregates of L and the pattern of the next level; returns false when
   /// coarsening does not reduce the size enough.
   bool aggregate(Level& L, Level& C) const;
+  /// Centres of the aggregates (mean of their blocks' points) and P0.
+  void place_aggregates(Level& L, Level& C) const;
   void build_rows(Level& L) const;
   double lambda_max(const Level& L) const;
   void smooth_prolongator(Level& L) const;

@@ -30,6 +30,7 @@ struct Grid {
   int nx, ny;
   double k_contact = 4e3, m = 1.0;
   std::vector<Vec2> centroids;
+  double w = 1.0, h = 0.5;  // block size [length]
   int id(int i, int j) const { return j * nx + i; }
 };
 
@@ -56,7 +57,7 @@ void edge(BlockSystem& s, const Grid& g, int a, int b, const Vec2& p0, const Vec
 }
 
 BlockSystem grid_system(Grid& g, double scale = 1.0, bool open_middle_column = false) {
-  const double w = 1.0, h = 0.5;
+  const double w = g.w, h = g.h;
   g.centroids.clear();
   for (int j = 0; j < g.ny; ++j)
     for (int i = 0; i < g.nx; ++i) g.centroids.emplace_back((i + 0.5) * w, (j + 0.5) * h);
@@ -111,7 +112,7 @@ long iterations(SolverKind kind, const BlockSystem& s, double tol, Eigen::Vector
 BOOST_AUTO_TEST_SUITE(amg)
 
 BOOST_AUTO_TEST_CASE(gives_cholmods_solution_on_a_contact_grid) {
-  Grid g{30, 20, 4e3, 1.0, {}};
+  Grid g{30, 20, 4e3, 1.0, {}, 1.0, 0.5};
   const BlockSystem s = grid_system(g);
   LinearSolver chol(SolverKind::cholmod);
   const Eigen::VectorXd ref = chol.solve(s);
@@ -124,7 +125,7 @@ BOOST_AUTO_TEST_CASE(gives_cholmods_solution_on_a_contact_grid) {
 
 BOOST_AUTO_TEST_CASE(iterations_do_not_grow_with_the_model_while_block_jacobi_s_do) {
   // Contacts 4000 times stiffer than the blocks' inertia, as in a DDA wall.
-  Grid small{8, 8, 4e3, 1.0, {}}, large{64, 64, 4e3, 1.0, {}};
+  Grid small{8, 8, 4e3, 1.0, {}, 1.0, 0.5}, large{64, 64, 4e3, 1.0, {}, 1.0, 0.5};
   const BlockSystem s1 = grid_system(small), s2 = grid_system(large);
   const long amg1 = iterations(SolverKind::amg, s1, 1e-8);
   const long amg2 = iterations(SolverKind::amg, s2, 1e-8);
@@ -139,7 +140,7 @@ BOOST_AUTO_TEST_CASE(iterations_do_not_grow_with_the_model_while_block_jacobi_s_
 }
 
 BOOST_AUTO_TEST_CASE(coarsens_geometrically_and_solves_the_coarsest_level_directly) {
-  Grid g{64, 64, 4e3, 1.0, {}};
+  Grid g{64, 64, 4e3, 1.0, {}, 1.0, 0.5};
   const BlockSystem s = grid_system(g);
   BlockAmg amg;
   amg.setup(s);
@@ -158,7 +159,7 @@ BOOST_AUTO_TEST_CASE(coarsens_geometrically_and_solves_the_coarsest_level_direct
 }
 
 BOOST_AUTO_TEST_CASE(reuses_the_hierarchy_while_the_pattern_holds_and_restarts_warm) {
-  Grid g{20, 20, 4e3, 1.0, {}};
+  Grid g{20, 20, 4e3, 1.0, {}, 1.0, 0.5};
   LinearSolver amg(SolverKind::amg, 1e-10, 100000);
   const BlockSystem s1 = grid_system(g, 1.0);
   const Eigen::VectorXd x1 = amg.solve(s1);
@@ -177,10 +178,29 @@ BOOST_AUTO_TEST_CASE(reuses_the_hierarchy_while_the_pattern_holds_and_restarts_w
   BOOST_TEST(rel(x1, x2) > 1e-3);  // a different system indeed
 }
 
+BOOST_AUTO_TEST_CASE(a_refresh_follows_blocks_that_moved_as_a_new_setup_would) {
+  // Same pattern, blocks 1.5 times larger (they moved apart): refreshing the
+  // old hierarchy gives the V-cycle a fresh setup gives (two levels, so the
+  // aggregates are those of the finest level, which the test checks).
+  Grid g1{10, 10, 4e3, 1.0, {}, 1.0, 0.5}, g2{10, 10, 4e3, 1.0, {}, 1.5, 0.75};
+  const BlockSystem s1 = grid_system(g1), s2 = grid_system(g2);
+  BlockAmg refreshed, fresh;
+  refreshed.setup(s1);
+  BOOST_TEST_REQUIRE(refreshed.same_pattern(s2));
+  refreshed.refresh(s2);
+  fresh.setup(s2);
+  BOOST_TEST_REQUIRE(fresh.levels() == 2);
+  BOOST_TEST_REQUIRE((refreshed.aggregates(0) == fresh.aggregates(0)));
+  Eigen::VectorXd z1, z2;
+  refreshed.apply(s2.rhs(), z1);
+  fresh.apply(s2.rhs(), z2);
+  BOOST_TEST(rel(z1, z2) <= 1e-10);
+}
+
 BOOST_AUTO_TEST_CASE(open_contacts_do_not_join_aggregates_and_the_answer_holds) {
   // The middle column of joints is open: its blocks are zero. The two halves
   // are coupled only through the row of ground springs and the blocks above.
-  Grid g{16, 16, 4e3, 1.0, {}};
+  Grid g{16, 16, 4e3, 1.0, {}, 1.0, 0.5};
   const BlockSystem s = grid_system(g, 1.0, true);
   BlockAmg amg;
   amg.setup(s);
@@ -198,7 +218,7 @@ BOOST_AUTO_TEST_CASE(automatic_picks_cholmod_for_small_models_and_amg_for_large_
   BOOST_TEST((LinearSolver::resolve(SolverKind::automatic, 100) == SolverKind::cholmod));
   BOOST_TEST((LinearSolver::resolve(SolverKind::automatic, LinearSolver::kAmgBlocks) == SolverKind::amg));
   BOOST_TEST((LinearSolver::resolve(SolverKind::pcg, 100000) == SolverKind::pcg));
-  Grid g{30, 20, 4e3, 1.0, {}};  // 600 blocks: amg, iterations counted
+  Grid g{30, 20, 4e3, 1.0, {}, 1.0, 0.5};  // 600 blocks: amg, iterations counted
   const BlockSystem s = grid_system(g);
   LinearSolver automatic(SolverKind::automatic, 1e-10, 100000);
   LinearSolver chol(SolverKind::cholmod);
