@@ -40,8 +40,8 @@ class LinearSolver {
   /// cholmod or amg; the others are themselves).
   static SolverKind resolve(SolverKind kind, int blocks);
   /// automatic picks amg from this many blocks on. Below it CHOLMOD is exact
-  /// (no tolerance to choose) and about as fast: on the brick-wall benchmark
-  /// (docs/performance.md) 4 ms against 3 ms per step at 105 blocks, while at
+  /// (no tolerance to choose) and faster: on the brick-wall benchmark
+  /// (docs/performance.md) 2.7 ms against 4.2 ms per step at 105 blocks, while at
   /// 1 040 blocks a Cholesky factor's N^1.5 flops make it 420 ms against 155.
   static constexpr int kAmgBlocks = 400;
   const SolverStats& stats() const { return stats_; }
