@@ -34,19 +34,50 @@ ContactCheck ContactAdapter::check(std::span<const contact::BlockView> blocks,
 }
 
 void ContactAdapter::end_step(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) {
+  can_retract_ = false;
+  creep_changes_ = 0;
   if (!want_error_) {
     system_.end_step(blocks, D);
     creep_error_ = 0.0;
     return;
   }
-  const auto c0 = system_.contacts();
-  const auto r0 = system_.rheology_states();
-  start_contacts_.assign(c0.begin(), c0.end());
-  start_rheology_.assign(r0.begin(), r0.end());
+  // Keep the whole system as it is before the commit, so that the host can
+  // retract the step (copy-assignment reuses the buffers of the last copy).
+  if (saved_)
+    *saved_ = system_;
+  else
+    saved_.emplace(system_);
+  saved_prev_tau_ = prev_tau_;
+  saved_prev_dt_ = prev_dt_;
+  can_retract_ = true;
+  const std::span<const contact::Contact> start_contacts = saved_->contacts();
+  const std::span<const laws::RheologyState> start_rheology = saved_->rheology_states();
   system_.end_step(blocks, D);
   std::unordered_map<std::uint64_t, std::size_t> start_of;
-  start_of.reserve(start_contacts_.size());
-  for (std::size_t k = 0; k < start_contacts_.size(); ++k) start_of[start_contacts_[k].id] = k;
+  start_of.reserve(start_contacts.size());
+  for (std::size_t k = 0; k < start_contacts.size(); ++k) start_of[start_contacts[k].id] = k;
+  // State changes of creeping (edge) contacts on joint sets with a law: a
+  // contact that locks, slides or opens moves load onto its neighbours at once.
+  const auto& law_sets = system_.joint_sets();
+  auto creeps = [&](const contact::Contact& c) {
+    return c.length > 0.0 && c.joint_set >= 0 &&
+           c.joint_set < static_cast<int>(law_sets.size()) && law_sets[c.joint_set].law != nullptr;
+  };
+  std::size_t matched_locked = 0;
+  for (const contact::Contact& c : system_.contacts()) {
+    const auto it = start_of.find(c.id);
+    if (it == start_of.end()) {
+      if (creeps(c) && c.state != contact::ContactState::open) ++creep_changes_;
+      continue;
+    }
+    const contact::Contact& s = start_contacts[it->second];
+    if (s.state == contact::ContactState::locked && creeps(s)) ++matched_locked;
+    if ((creeps(c) || creeps(s)) && s.state != c.state) ++creep_changes_;
+  }
+  std::size_t start_locked = 0;
+  for (const contact::Contact& s : start_contacts)
+    if (s.state == contact::ContactState::locked && creeps(s)) ++start_locked;
+  creep_changes_ += static_cast<int>(start_locked - matched_locked);  // vanished while locked
   // Per joint set: the scheme the step used and the constants to compare with.
   const auto& sets = system_.joint_sets();
   struct Pair {
@@ -61,7 +92,7 @@ void ContactAdapter::end_step(std::span<const contact::BlockView> blocks, const 
     if (c.rheology < 0 || c.length <= 0.0 || c.state != contact::ContactState::locked) continue;
     const auto it = start_of.find(c.id);
     if (it == start_of.end()) continue;
-    const contact::Contact& s = start_contacts_[it->second];
+    const contact::Contact& s = start_contacts[it->second];
     if (s.rheology < 0 || s.length <= 0.0 || s.state != contact::ContactState::locked) continue;
     const auto& law = sets[c.joint_set].law;
     if (!law) continue;
@@ -76,7 +107,7 @@ void ContactAdapter::end_step(std::span<const contact::BlockView> blocks, const 
     // Stresses tau = F / l at the step's start and end (docs/rheology-in-dda.md, Units).
     const double tau_s = s.shear_force / s.length, tau_e = c.shear_force / c.length;
     tau_now[c.id] = tau_s;
-    const laws::RheologyState& old = start_rheology_[s.rheology];
+    const laws::RheologyState& old = start_rheology[s.rheology];
     laws::RheologyState next;
     double err = 0.0;
     if (k->used != laws::Scheme::exponential_linear) {
@@ -107,5 +138,17 @@ void ContactAdapter::end_step(std::span<const contact::BlockView> blocks, const 
 }
 
 void ContactAdapter::abandon_step() { system_.abandon_step(); }
+
+bool ContactAdapter::retract_step() {
+  if (!can_retract_) return false;
+  system_ = *saved_;
+  system_.abandon_step();  // drop the copied trial records: the step-start states remain
+  prev_tau_ = saved_prev_tau_;
+  prev_dt_ = saved_prev_dt_;
+  can_retract_ = false;
+  creep_error_ = 0.0;
+  creep_changes_ = 0;
+  return true;
+}
 
 }  // namespace rheodda::core

@@ -30,6 +30,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+/// Adaptive creep stepping rejects a step whose creep error estimate exceeds
+/// this multiple of Settings::creep_tolerance [-] (docs/speed-accuracy.md).
+constexpr double kRejectFactor = 2.0;
+
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
@@ -236,6 +240,8 @@ void Engine::Impl::validate() {
   if (s.max_cuts < 0) throw ModelError("settings.max_cuts", "must be >= 0");
   if (!(s.creep_tolerance >= 0.0 && std::isfinite(s.creep_tolerance)))
     throw ModelError("settings.creep_tolerance", "must be >= 0 (length; 0 = fixed dt)");
+  if (s.creep_tolerance > 0.0 && s.dt_max > 0.0 && s.dt_max < s.dt)
+    throw ModelError("settings.dt_max", "must be >= dt (the first step) under creep_tolerance");
   if (!(s.dt_max >= 0.0 && std::isfinite(s.dt_max)))
     throw ModelError("settings.dt_max", "must be >= 0 (time; 0 = no limit)");
   if (!(s.g2 > 0.0 && std::isfinite(s.g2))) throw ModelError("settings.g2", "must be > 0");
@@ -465,6 +471,23 @@ StepReport Engine::Impl::step(double dt_cap) {
     const double max_disp = converged ? max_vertex_displacement(D) : 0.0;
     if (converged && max_disp <= allowed) {
       contacts->end_step(views, D);
+      double err = 0.0;
+      if (adaptive) {
+        // Reject and redo a step whose creep error estimate exceeds the
+        // tolerance by more than kRejectFactor (docs/speed-accuracy.md, "Adaptive
+        // creep stepping"), with the step the estimate asks for: dt 0.9
+        // sqrt(tol / err) (local error ~ dt^2), at least dt_cut dt. Never below
+        // the first step dt (the control cannot stall on an estimate that does
+        // not fall with the step, e.g. at a contact state change), nor more than
+        // max_cuts times in one step.
+        err = contacts->creep_error_estimate();
+        if (err > kRejectFactor * s.creep_tolerance && dt > s.dt &&
+            rep.rejections + rep.cuts < s.max_cuts && contacts->retract_step()) {
+          dt = std::max(dt * std::max(s.dt_cut, 0.9 * std::sqrt(s.creep_tolerance / err)), s.dt);
+          ++rep.rejections;
+          continue;
+        }
+      }
       rep.dt = dt;
       rep.iterations = iterations;
       rep.max_displacement = max_disp;
@@ -475,13 +498,17 @@ StepReport Engine::Impl::step(double dt_cap) {
         // Step size from the creep error estimate err of this step (local error
         // ~ dt^2 for the first-order estimate): dt' = dt min(2, max(dt_cut,
         // 0.9 sqrt(tol / err))), capped by dt_max; dt again after a load break.
-        const double err = contacts->creep_error_estimate();
         rep.creep_error = err;
+        rep.creep_state_changes = contacts->creep_state_changes();
         const double factor =
             err > 0.0 ? std::clamp(0.9 * std::sqrt(s.creep_tolerance / err), s.dt_cut, 2.0) : 2.0;
         double next = dt * factor;
         if (s.dt_max > 0.0) next = std::min(next, s.dt_max);
         if (st.time >= load_break - 1e-12 * std::max(1.0, std::abs(load_break))) next = s.dt;
+        // A creeping contact that locked, slid or opened moved load onto its
+        // neighbours at once, as a load change does: restart from dt.
+        if (s.creep_restart_on_contact_change && rep.creep_state_changes > 0)
+          next = std::min(next, s.dt);
         st.next_dt = next;
       } else if (rep.cuts > 0 || !capped) {
         st.next_dt = std::min(s.dt, dt * s.dt_growth);

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <span>
 
 #include "rheodda/contact/contact_system.hpp"
 #include "rheodda/core/contact_adapter.hpp"
@@ -54,7 +55,8 @@ struct Run {
 
 /// Block A (100 x 100 mm) on fixed block B; normal load sigma w and staged shear
 /// load on A at the joint line.
-Run run(double dt, double tolerance, double t_end = kEnd, double held_by = 0.0) {
+Run run(double dt, double tolerance, double t_end = kEnd, double held_by = 0.0,
+        double friction_angle = 60.0, bool restart_on_contact_change = false) {
   const double w = 100.0;
   core::Model m;
   m.materials[0].young_modulus = 1e7;
@@ -63,6 +65,7 @@ Run run(double dt, double tolerance, double t_end = kEnd, double held_by = 0.0) 
   m.settings.dynamic_ratio = 0.0;
   m.settings.gravity = {0.0, 0.0};
   m.settings.creep_tolerance = tolerance;
+  m.settings.creep_restart_on_contact_change = restart_on_contact_change;
   core::BlockDef b, a;
   b.vertices = rect(-w, -w, 2 * w, 0.0);
   a.vertices = rect(0.0, 0.0, w, w);
@@ -85,7 +88,7 @@ Run run(double dt, double tolerance, double t_end = kEnd, double held_by = 0.0) 
       "burgers", {{"E1", kE1}, {"E2", kE2}, {"eta1", kEta1}, {"eta2", kEta2}});
   contact::JointSet j;
   j.name = "joint";
-  j.friction_angle = 60.0;
+  j.friction_angle = friction_angle;
   j.normal_stiffness = 1e4;
   j.law = law;
   contact::ContactSystem contacts({j}, core::contact_settings_for(m));
@@ -183,6 +186,135 @@ BOOST_AUTO_TEST_CASE(the_step_doubles_while_the_load_is_constant) {
   for (std::size_t k = 1; k + 1 < r.reports.size(); ++k)
     BOOST_TEST(r.reports[k].dt == std::min(2 * r.reports[k - 1].dt, 79.0 - r.reports[k - 1].time),
                boost::test_tools::tolerance(1e-12));
+}
+
+/// The contacts of `inner` with a scripted creep error estimate: any attempt
+/// longer than `dt_limit` [h] that starts before `until` [h] reports 100 x the
+/// tolerance, which forces the engine to reject and redo it; everything else,
+/// retract_step included, is the real adapter's.
+class ForcedRejection final : public core::ContactModel {
+ public:
+  ForcedRejection(core::ContactAdapter& inner, double tol, double dt_limit, double until)
+      : inner_(inner), tol_(tol), dt_limit_(dt_limit), until_(until) {}
+  void begin_step(std::span<const contact::BlockView> b, const core::StepContext& ctx) override {
+    force_ = ctx.dt > dt_limit_ && ctx.time < until_;
+    inner_.begin_step(b, ctx);
+  }
+  void assemble(std::span<const contact::BlockView> b, contact::SystemSink& s) override {
+    inner_.assemble(b, s);
+  }
+  core::ContactCheck check(std::span<const contact::BlockView> b, const Eigen::VectorXd& D) override {
+    return inner_.check(b, D);
+  }
+  void end_step(std::span<const contact::BlockView> b, const Eigen::VectorXd& D) override {
+    inner_.end_step(b, D);
+  }
+  void abandon_step() override { inner_.abandon_step(); }
+  double creep_error_estimate() const override {
+    return force_ ? 100.0 * tol_ : inner_.creep_error_estimate();
+  }
+  bool retract_step() override { return inner_.retract_step(); }
+  int creep_state_changes() const override { return inner_.creep_state_changes(); }
+
+ private:
+  core::ContactAdapter& inner_;
+  double tol_, dt_limit_, until_;
+  bool force_ = false;
+};
+
+// A step whose creep error estimate exceeds 2 x the tolerance is redone
+// smaller (Engine::Impl::step), the contacts rolled back exactly by
+// ContactAdapter::retract_step. Under the creep test's constant load every step
+// size integrates the law exactly (docs/speed-accuracy.md), so a rollback that
+// left any trace (creep counted twice, a moved locking point) would show as an
+// error against the closed form (the seed's eqs. 20-21).
+BOOST_AUTO_TEST_CASE(a_step_whose_creep_error_exceeds_twice_the_tolerance_is_redone_smaller) {
+  const double w = 100.0, tol = 1e-7, dt = 0.01, dt_limit = 1.0, until = 50.0;  // mm, h
+  struct Out {
+    std::vector<core::StepReport> reports;
+    double error = 0.0;  ///< largest |d - d_exact| over the steps / peak d_exact [-]
+  };
+  // Constant shear load tau from t = 0; rejections forced before `forced_until` [h].
+  auto creep_run = [&](double forced_until) {
+    core::Model m;
+    m.materials[0].young_modulus = 1e7;
+    m.materials[0].density = 1e-12;
+    m.settings.dt = dt;
+    m.settings.dynamic_ratio = 0.0;
+    m.settings.gravity = {0.0, 0.0};
+    m.settings.creep_tolerance = tol;
+    core::BlockDef b, a;
+    b.vertices = rect(-w, -w, 2 * w, 0.0);
+    a.vertices = rect(0.0, 0.0, w, w);
+    m.blocks = {b, a};
+    for (int k = 0; k < 3; ++k) m.fixed_points.push_back({0, b.vertices[k]});
+    m.point_loads.push_back({1, {0.5 * w, 0.0}, {{0.0, {0.0, -kSigma * w}}}});
+    m.point_loads.push_back({1, {0.5 * w, 0.0}, {{0.0, {kTau * w, 0.0}}}});
+    const std::shared_ptr<const laws::ContactRheology> law = laws::LawRegistry::builtin().create(
+        "burgers", {{"E1", kE1}, {"E2", kE2}, {"eta1", kEta1}, {"eta2", kEta2}});
+    contact::JointSet j;
+    j.name = "joint";
+    j.friction_angle = 60.0;
+    j.normal_stiffness = 1e4;
+    j.law = law;
+    contact::ContactSystem contacts({j}, core::contact_settings_for(m));
+    core::ContactAdapter adapter(contacts);
+    ForcedRejection forced(adapter, tol, dt_limit, forced_until);
+    core::Engine engine(m, forced);
+    double worst = 0.0, peak = 0.0;  // [mm]
+    engine.add_observer([&](const core::Engine& e, const core::StepReport&) {
+      double sum = 0.0;
+      int n = 0;
+      for (const auto& c : contacts.contacts())
+        if (c.key.vblock == 1) sum -= c.shear_displacement, ++n;
+      const double exact = law->displacement_closed_form(kTau, e.time());
+      peak = std::max(peak, exact);
+      worst = std::max(worst, std::abs(sum / n - exact));
+    });
+    engine.run_until(kEnd);
+    return Out{engine.reports(), worst / peak};
+  };
+  const Out plain = creep_run(0.0), forced = creep_run(until);
+  int rejections = 0;
+  for (const auto& r : forced.reports) {
+    rejections += r.rejections;
+    BOOST_TEST_INFO("step " << r.step << " ending at " << r.time << " h, dt " << r.dt << " h");
+    if (r.time - r.dt < until) BOOST_TEST(r.dt <= dt_limit);  // every longer attempt was redone
+  }
+  for (const auto& r : plain.reports) BOOST_TEST(r.rejections == 0);
+  BOOST_TEST(rejections > 10);
+  BOOST_TEST(forced.reports.size() > plain.reports.size());
+  BOOST_TEST(forced.reports.back().dt > dt_limit);  // after `until` the steps grow again
+  // The forced run is as exact as the plain one (round-off: ~6e-8 of the peak
+  // after the small first steps); a rejected attempt that left its creep behind
+  // would add about tau dt / eta1 ~ 1e-5 mm (~1e-3 of the peak) per rejection.
+  BOOST_TEST_MESSAGE("error / peak: plain " << plain.error << " (" << plain.reports.size()
+                     << " steps), forced " << forced.error << " (" << forced.reports.size()
+                     << " steps, " << rejections << " rejections)");
+  BOOST_TEST(forced.error <= 2.0 * plain.error);
+}
+
+// Friction angle 15 deg: under the ramp to 2 tau (80-85.5 h) the joint's shear
+// stress passes sigma tan(15 deg) = 0.377 MPa at about 83.4 h and the contacts
+// slide (block A is held by the springs). With creep_restart_on_contact_change
+// the step after any step in which a creeping contact changed state is dt.
+BOOST_AUTO_TEST_CASE(the_step_restarts_from_dt_after_a_creeping_contact_changes_state) {
+  const double t_end = 100.0, held_by = 2000.0, dt = 0.01, tol = 1e-7;
+  for (bool restart : {true, false}) {
+    const Run r = run(dt, tol, t_end, held_by, 15.0, restart);
+    int changes = 0, longer = 0;
+    for (std::size_t k = 0; k + 1 < r.reports.size(); ++k) {
+      if (r.reports[k].creep_state_changes == 0) continue;
+      ++changes;
+      BOOST_TEST_INFO("restart " << restart << ", step " << k << " at " << r.reports[k].time << " h");
+      if (restart) BOOST_TEST(r.reports[k + 1].dt <= dt * (1 + 1e-12));
+      if (r.reports[k + 1].dt > dt * (1 + 1e-12)) ++longer;
+    }
+    BOOST_TEST_MESSAGE("restart " << restart << ": " << r.steps << " steps, " << changes
+                                  << " steps with contact state changes");
+    BOOST_TEST(changes >= 2);  // the contacts closed at t = 0 and slid during the ramp
+    if (!restart) BOOST_TEST(longer > 0);  // without the option the step does not restart
+  }
 }
 
 BOOST_AUTO_TEST_CASE(a_negative_creep_tolerance_is_refused_naming_the_key) {

@@ -16,6 +16,7 @@
 #include "rheodda/core/model.hpp"
 
 #include <cstdint>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
@@ -45,6 +46,12 @@ class ContactAdapter final : public ContactModel {
   /// last three step boundaries and c the implicit step compliance (~ dt/eta).
   /// Zero under a constant force. Computed only when the step context asked for it.
   double creep_error_estimate() const override { return creep_error_; }
+  /// Restores the contact system and the estimate's history to the start of the
+  /// last accepted step (a copy taken in end_step when the estimate was asked for).
+  bool retract_step() override;
+  /// Edge contacts on joint sets with a law whose state changed in the last
+  /// accepted step (or that appeared closed, or vanished locked).
+  int creep_state_changes() const override { return creep_changes_; }
 
   contact::ContactSystem& system() { return system_; }
   const contact::ContactSystem& system() const { return system_; }
@@ -56,10 +63,16 @@ class ContactAdapter final : public ContactModel {
   double dt_ = 0.0;            ///< step size of the step being solved [time]
   bool want_error_ = false;
   double creep_error_ = 0.0;   ///< [length]
-  std::vector<contact::Contact> start_contacts_;           ///< committed records at the step start
-  std::vector<laws::RheologyState> start_rheology_;        ///< and their histories
+  int creep_changes_ = 0;
+  /// The contact system just before the last end_step (when the estimate was
+  /// asked for): its committed records are the step-start states; retract_step
+  /// copies it back.
+  std::optional<contact::ContactSystem> saved_;
+  bool can_retract_ = false;
   std::unordered_map<std::uint64_t, double> prev_tau_;  ///< stress at the last step's start, by contact id [stress]
   double prev_dt_ = 0.0;                                ///< last accepted step [time]
+  std::unordered_map<std::uint64_t, double> saved_prev_tau_;  ///< prev_tau_ before the last end_step
+  double saved_prev_dt_ = 0.0;                                ///< prev_dt_ before the last end_step [time]
 };
 
 }  // namespace rheodda::core

@@ -45,6 +45,15 @@ class ContactModel {
   /// Estimate of the creep error of the last accepted step [length] (asked only when
   /// StepContext::creep_error_wanted was set); 0 without creep.
   virtual double creep_error_estimate() const { return 0.0; }
+  /// Undo the last end_step (asked only when StepContext::creep_error_wanted was
+  /// set, before any other call): back to the step-start states, as after
+  /// abandon_step; the step will be redone with a smaller dt. Returns false when
+  /// the model cannot, and the step then stands.
+  virtual bool retract_step() { return false; }
+  /// Contacts on joint sets with a creep law whose state changed in the last
+  /// accepted step (locked <-> sliding or open, appeared closed or vanished
+  /// locked) (asked only when StepContext::creep_error_wanted was set) [-].
+  virtual int creep_state_changes() const { return 0; }
 };
 
 /// No contacts: every call does nothing.

@@ -42,6 +42,10 @@ struct StepReport {
   double max_penetration = 0.0;   ///< largest penetration reported by the contacts [length]
   double creep_error = 0.0;       ///< contacts' creep error estimate of the step, under
                                   ///< Settings::creep_tolerance only (else 0) [length]
+  int rejections = 0;             ///< times the step was redone smaller because its creep error
+                                  ///< estimate exceeded 2 x Settings::creep_tolerance [-]
+  int creep_state_changes = 0;    ///< creeping contacts whose state changed in the step, under
+                                  ///< Settings::creep_tolerance only (else 0) [-]
   double assembly_seconds = 0.0;  ///< wall time spent assembling K and F (all attempts) [s]
   double solve_seconds = 0.0;     ///< wall time spent in the linear solver (all attempts) [s]
 };

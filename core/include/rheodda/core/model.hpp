@@ -113,8 +113,13 @@ struct Settings {
                                  ///< (fixed dt). When > 0, dt is the first step and the step
                                  ///< after every point-load sample time; steps end on those
                                  ///< times; the next step is dt_n min(2, max(dt_cut,
-                                 ///< 0.9 sqrt(tol/err))), err the contacts' estimate; >= 0
-  double dt_max = 0.0;           ///< largest step under creep_tolerance [time]; 0 = no limit; >= 0
+                                 ///< 0.9 sqrt(tol/err))), err the contacts' estimate; a step
+                                 ///< with err > 2 tol is redone smaller (not below dt); >= 0
+  double dt_max = 0.0;           ///< largest step under creep_tolerance [time]; 0 = no limit;
+                                 ///< >= 0, and >= dt under creep_tolerance
+  bool creep_restart_on_contact_change = false;  ///< under creep_tolerance: the step after one in
+                                 ///< which a contact on a creeping joint set locked, slid, opened,
+                                 ///< appeared or vanished restarts from dt [-]
   int max_cuts = 30;             ///< cuts allowed in one step before the engine gives up [-]; >= 0
   double g2 = 0.01;              ///< allowed displacement per step as a fraction of the half
                                  ///< model size (Shi's g2) [-]; > 0
