@@ -19,12 +19,13 @@
 //
 // Usage: accuracy_bench [--csv FILE]   (prints a Markdown table; FILE gets
 //        case,scheme,dt,tolerance,steps,wall_s,error for scripts/accuracy-report.sh)
-//        accuracy_bench --toppling SCENE [T_END [G2]]   fixed steps vs creep_tolerance on a
-//        scene (examples/goodman-toppling.yaml, T_END in the scene's time unit, default 100;
-//        G2 overrides the scene's max_displacement_ratio)
+//        accuracy_bench --toppling SCENE [T_END]   fixed steps vs creep_tolerance on a
+//        scene (examples/goodman-toppling-creep.yaml; T_END in the scene's time unit,
+//        default 100), from a settled state shared by all runs (toppling() below)
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -189,71 +190,151 @@ std::string fmt_error(double e) {
   return buf;
 }
 
-/// The seed's toppling model (a scene file) run to `t_end` [d] with a fixed step
-/// (tolerance 0) or adaptive stepping; returns the displacement of every
-/// measurement point at the end [m] in `out`.
-Result run_scene(const scene::BuiltScene& built, double dt, double tolerance, double t_end,
-                 std::vector<double>& out, double g2) {
+// ---- The toppling model (docs/speed-accuracy.md, "The toppling model") ----
+// Every run starts from one settled state: the scene run with fixed steps of
+// kSettleStep up to kSettleEnd with g2 = kSettleG2, the columns' settling
+// under gravity applied at once (a quasi-static collapse whose path, in static
+// DDA, depends on the step: taken once, in small steps, it is the same for all
+// runs). From there each run creeps to T_END with its own fixed step or
+// creep_tolerance, with the scene's g2; error = largest |u - u_ref| of the
+// measurement points at T_END / largest u_ref, u_ref from a fixed step kFine.
+constexpr double kSettleStep = 1e-4, kSettleEnd = 0.01;  // [d]
+constexpr double kSettleG2 = 0.0005;                     // [-] (docs/toppling-study.md)
+constexpr double kFine = 1.0 / 256;                      // reference step [d]
+
+struct Settled {
+  core::EngineState engine;
+  contact::ContactSystem contacts;
+  long steps = 0;
+};
+
+Settled settle(const scene::BuiltScene& built) {
   core::Model m = built.model;
-  if (g2 > 0.0) m.settings.g2 = g2;
-  m.settings.dt = dt;
-  m.settings.creep_tolerance = tolerance;
+  m.settings.g2 = kSettleG2;
+  m.settings.dt = kSettleStep;
+  m.settings.creep_tolerance = 0.0;
   contact::ContactSystem contacts(built.joint_sets, built.contact_settings);
   core::ContactAdapter adapter(contacts);
   core::Engine engine(m, adapter);
-  Result res;
-  const auto t0 = std::chrono::steady_clock::now();
-  try {
-    engine.run_until(t_end);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "dt %g tolerance %g: %s\n", dt, tolerance, e.what());
-    res.failed = true;
-  }
-  res.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  res.steps = engine.step_count();
-  out.clear();
-  for (const auto& samples : engine.measurements()) out.push_back(samples.back().displacement.norm());
-  return res;
+  engine.run_until(kSettleEnd);
+  return Settled{engine.save(), contacts, engine.step_count()};
 }
 
-/// Fixed steps vs adaptive stepping on a scene: error of the measurement points'
-/// final displacement against the finest fixed run (relative to the largest).
-int toppling(const std::string& path, double t_end, double g2) {
+struct CreepRun {
+  Result r;
+  long cuts = 0, rejections = 0;
+  std::vector<double> u;  ///< final |u| of every measurement point [m]
+};
+
+/// Creep from the settled state to t_end [d]: a fixed step dt (tolerance 0) or
+/// adaptive stepping from a first step dt. Wall time: the least of `repeats` runs.
+CreepRun run_creep(const scene::BuiltScene& built, const Settled& from, double dt, double tolerance,
+                   double t_end, bool restart_on_contact_change = false, int repeats = 3) {
+  CreepRun out;
+  out.r.wall = INFINITY;
+  for (int rep = 0; rep < repeats; ++rep) {
+    core::Model m = built.model;
+    m.settings.dt = dt;
+    m.settings.creep_tolerance = tolerance;
+    m.settings.creep_restart_on_contact_change = restart_on_contact_change;
+    contact::ContactSystem contacts = from.contacts;
+    core::ContactAdapter adapter(contacts);
+    core::Engine engine(m, adapter);
+    core::EngineState st = from.engine;
+    st.next_dt = dt;
+    engine.restore(st);
+    const int first = engine.step_count();
+    bool failed = false;
+    const auto t0 = std::chrono::steady_clock::now();
+    try {
+      engine.run_until(t_end);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "dt %g tolerance %g: %s\n", dt, tolerance, e.what());
+      failed = true;
+    }
+    out.r.wall = std::min(
+        out.r.wall, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    out.r.failed = failed;
+    out.r.steps = engine.step_count() - first;
+    out.cuts = out.rejections = 0;
+    for (const auto& r : engine.reports()) out.cuts += r.cuts, out.rejections += r.rejections;
+    out.u.clear();
+    for (const auto& samples : engine.measurements())
+      out.u.push_back(samples.back().displacement.norm());
+  }
+  return out;
+}
+
+/// Fixed steps vs adaptive stepping on the toppling scene, each adaptive run
+/// against the best (largest) fixed step that is at least as accurate.
+int toppling(const std::string& path, double t_end) {
   const scene::BuiltScene built = scene::build_scene(scene::load_scene(path));
-  std::vector<double> ref, x;
-  const double fine = 1.0 / 64;  // [d]
-  const Result r0 = run_scene(built, fine, 0.0, t_end, ref, g2);
+  const Settled settled = settle(built);
+  const CreepRun ref = run_creep(built, settled, kFine, 0.0, t_end, false, 1);
   double peak = 0.0;
-  for (double v : ref) peak = std::max(peak, v);
-  auto error = [&] {
+  for (double v : ref.u) peak = std::max(peak, v);
+  auto error = [&](const CreepRun& c) {
+    if (c.r.failed) return std::numeric_limits<double>::infinity();
     double e = 0.0;
-    for (std::size_t k = 0; k < x.size(); ++k) e = std::max(e, std::abs(x[k] - ref[k]));
+    for (std::size_t k = 0; k < c.u.size(); ++k) e = std::max(e, std::abs(c.u[k] - ref.u[k]));
     return e / peak;
   };
-  std::printf("%s, 0-%g d; reference: fixed dt = %g d (%ld steps, %.2f s); error = largest "
-              "|u - u_ref| of the measurement points at the end / largest u_ref (%.4g m)\n\n",
-              path.c_str(), t_end, fine, r0.steps, r0.wall, peak);
-  std::printf("| run | steps | error | wall [s] |\n|---|---:|---:|---:|\n");
-  for (double dt : {4.0, 2.0, 1.0, 0.5, 0.25, 0.125, 0.0625}) {
-    const Result r = run_scene(built, dt, 0.0, t_end, x, g2);
-    std::printf("| fixed dt = %g d | %ld | %s | %.3f |\n", dt, r.steps,
-                r.failed ? "failed" : fmt_error(error()).c_str(), r.wall);
+  std::printf("`%s`, scheme %s, g2 %g; settled by %ld steps of %g d to %g d (g2 %g); creep to "
+              "%g d. Reference: fixed dt = 1/%g d (%ld steps), u =",
+              path.c_str(),
+              built.contact_settings.scheme
+                  ? std::string(laws::scheme_name(*built.contact_settings.scheme)).c_str()
+                  : "default",
+              built.model.settings.g2, settled.steps, kSettleStep, kSettleEnd, kSettleG2, t_end,
+              1.0 / kFine, ref.r.steps);
+  for (double v : ref.u) std::printf(" %.4f", v);
+  std::printf(" m. Error: largest |u - u_ref| at %g d / %.3g m. Wall: least of 3 runs.\n\n", t_end,
+              peak);
+  std::printf("| run | steps | cuts | redone | error | wall [ms] |\n|---|---:|---:|---:|---:|---:|\n");
+  struct Fixed {
+    double dt;
+    CreepRun c;
+  };
+  std::vector<Fixed> fixed;
+  for (double dt : {4.0, 2.0, 1.0, 0.5, 0.25, 0.125, 0.0625, 1.0 / 32, 1.0 / 64}) {
+    fixed.push_back({dt, run_creep(built, settled, dt, 0.0, t_end)});
+    const CreepRun& c = fixed.back().c;
+    std::printf("| fixed dt = %g d | %ld | %ld | - | %s | %.1f |\n", dt, c.r.steps, c.cuts,
+                fmt_error(error(c)).c_str(), 1e3 * c.r.wall);
   }
-  for (double tol : {1e-4, 1e-5, 1e-6, 1e-7, 1e-8}) {
-    const Result r = run_scene(built, fine, tol, t_end, x, g2);
-    std::printf("| creep_tolerance = %g m (first step %g d) | %ld | %s | %.3f |\n", tol, fine,
-                r.steps, r.failed ? "failed" : fmt_error(error()).c_str(), r.wall);
-  }
+  std::printf("\n| creep_tolerance [m] | restart on contact change | steps | cuts | redone | error "
+              "| wall [ms] | best fixed step as accurate | its steps | its wall [ms] | wall "
+              "ratio |\n|---:|---|---:|---:|---:|---:|---:|---|---:|---:|---:|\n");
+  for (bool restart : {false, true})
+    for (double tol : {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8}) {
+      const CreepRun c = run_creep(built, settled, kFine, tol, t_end, restart);
+      const double e = error(c);
+      const Fixed* best = nullptr;
+      for (const Fixed& f : fixed)
+        if (error(f.c) <= e) {
+          best = &f;
+          break;
+        }
+      char cmp[160];
+      if (best)
+        std::snprintf(cmp, sizeof cmp, "dt = %g d (%s) | %ld | %.1f | %.2f", best->dt,
+                      fmt_error(error(best->c)).c_str(), best->c.r.steps, 1e3 * best->c.r.wall,
+                      c.r.wall / best->c.r.wall);
+      else
+        std::snprintf(cmp, sizeof cmp, "none down to 1/64 d | - | - | -");
+      std::printf("| %g | %s | %ld | %ld | %ld | %s | %.1f | %s |\n", tol, restart ? "yes" : "no",
+                  c.r.steps, c.cuts, c.rejections, fmt_error(e).c_str(), 1e3 * c.r.wall, cmp);
+    }
   return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress of long runs shows at once
   FILE* csv = nullptr;
   if (argc >= 3 && std::string(argv[1]) == "--toppling")
-    return toppling(argv[2], argc >= 4 ? std::stod(argv[3]) : 100.0,
-                    argc >= 5 ? std::stod(argv[4]) : 0.0);
+    return toppling(argv[2], argc >= 4 ? std::stod(argv[3]) : 100.0);
   if (argc == 3 && std::string(argv[1]) == "--csv") {
     csv = std::fopen(argv[2], "w");
     if (!csv) {

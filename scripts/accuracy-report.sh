@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Regenerates the speed-accuracy report: runs bench/accuracy_bench and
+# Regenerates the speed-accuracy report: runs bench/accuracy_bench (also its
+# --toppling comparison on examples/goodman-toppling-creep.yaml) and
 # bench/stability_map, puts their tables into docs/speed-accuracy.md (between
 # the "generated" markers) and draws docs/img/accuracy-error-vs-time.png and
 # docs/img/stability-map.png with gnuplot.
@@ -15,6 +16,8 @@ work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 "$build/bench/accuracy_bench" --csv "$work/accuracy.csv" >"$work/accuracy.md"
 "$build/bench/stability_map" --csv "$work/stability.csv" >"$work/stability.md"
+"$build/bench/accuracy_bench" --toppling "$root/examples/goodman-toppling-creep.yaml" 100 |
+  sed "s|$root/||" >"$work/toppling.md"
 
 # Replace the text between <!-- NAME:begin --> and <!-- NAME:end --> by a file.
 splice() {
@@ -27,6 +30,7 @@ splice() {
 }
 splice accuracy-table "$work/accuracy.md"
 splice stability-table "$work/stability.md"
+splice toppling-table "$work/toppling.md"
 
 # Error vs wall time, one panel per case, one line per scheme (fixed steps).
 for c in creep staged relaxation; do
