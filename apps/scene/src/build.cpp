@@ -46,6 +46,7 @@ BuiltScene build_scene(const SceneDescription& s) {
   st.max_cuts = a.max_cuts;
   st.creep_tolerance = a.creep_tolerance;
   st.dt_max = a.dt_max;
+  st.creep_restart_on_contact_change = a.creep_restart_on_contact_change;
   st.g2 = a.max_displacement_ratio;
   st.dynamic_ratio = a.dynamic_ratio;
   st.gravity = {a.gravity[0], a.gravity[1]};

@@ -274,7 +274,8 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
               {"type", "duration", "dt", "max_cuts", "max_displacement_ratio", "dynamic_ratio",
                "scheme", "penalty", "shear_normal_ratio", "search_factor", "angle_tolerance",
                "penetration_ratio", "open_close_limit", "fixed_point_stiffness", "solver", "solver_tolerance",
-               "output_interval", "gravity", "creep_tolerance", "dt_max"});
+               "output_interval", "gravity", "creep_tolerance", "dt_max",
+               "creep_restart_on_contact_change"});
   Analysis a;
   a.where = m.where();
   auto num = [&](const char* key, double& field, const Range& r) {
@@ -307,6 +308,8 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   }
   num("creep_tolerance", a.creep_tolerance, non_negative("length"));
   num("dt_max", a.dt_max, non_negative("time"));
+  if (YAML::Node v = m.find("creep_restart_on_contact_change"); v.IsDefined())
+    a.creep_restart_on_contact_change = flag(ctx, v, m.child("creep_restart_on_contact_change"));
   num("penalty", a.penalty, positive("stress"));
   num("shear_normal_ratio", a.shear_normal_ratio, positive(""));
   num("search_factor", a.search_factor, positive(""));

@@ -42,6 +42,7 @@ json scene_json(const SceneDescription& s) {
                    {"max_cuts", a.max_cuts},
                    {"creep_tolerance", a.creep_tolerance},
                    {"dt_max", a.dt_max},
+                   {"creep_restart_on_contact_change", a.creep_restart_on_contact_change},
                    {"max_displacement_ratio", a.max_displacement_ratio},
                    {"dynamic_ratio", a.dynamic_ratio},
                    {"scheme", scheme_text(a)},

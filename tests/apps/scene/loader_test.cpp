@@ -113,15 +113,20 @@ BOOST_AUTO_TEST_CASE(out_of_range_values_are_refused) {
 }
 
 BOOST_AUTO_TEST_CASE(creep_tolerance_and_dt_max_reach_the_engine_settings_and_negative_values_are_refused) {
-  const auto text = with("  dt: 0.01", "  dt: 0.01\n  creep_tolerance: 1.0e-6\n  dt_max: 0.5");
+  const auto text = with("  dt: 0.01", "  dt: 0.01\n  creep_tolerance: 1.0e-6\n  dt_max: 0.5\n"
+                                       "  creep_restart_on_contact_change: true");
   const scene::SceneDescription s = scene::parse_scene(text, "adaptive.yaml");
   BOOST_TEST(s.analysis.creep_tolerance == 1.0e-6);
   BOOST_TEST(s.analysis.dt_max == 0.5);
   const scene::BuiltScene built = scene::build_scene(s);
   BOOST_TEST(built.model.settings.creep_tolerance == 1.0e-6);
   BOOST_TEST(built.model.settings.dt_max == 0.5);
+  BOOST_TEST(built.model.settings.creep_restart_on_contact_change);
   // Off by default: a fixed dt.
   BOOST_TEST(scene::build_scene(scene::parse_scene(kBaseScene, "base.yaml")).model.settings.creep_tolerance == 0.0);
+  BOOST_TEST(!scene::build_scene(scene::parse_scene(kBaseScene, "base.yaml")).model.settings.creep_restart_on_contact_change);
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  creep_restart_on_contact_change: maybe"), 5, "maybe",
+                  "analysis.creep_restart_on_contact_change", "is not true or false");
   expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  creep_tolerance: -1"), 5, "-1", "analysis.creep_tolerance",
                   "out of range");
 }

@@ -51,6 +51,8 @@ struct Analysis {
   std::optional<laws::Scheme> scheme;
   double creep_tolerance = 0.0;        ///< adaptive creep stepping: creep error allowed per step [length]; 0 = fixed dt
   double dt_max = 0.0;                 ///< largest step under creep_tolerance [time]; 0 = no limit
+  bool creep_restart_on_contact_change = false;  ///< under creep_tolerance: restart from dt after a step
+                                                ///< in which a creeping contact changed state
   double penalty = 0.0;                ///< normal contact penalty p_n [stress]; default 40 x largest young_modulus (seed eq. 17)
   double shear_normal_ratio = 2.5;     ///< p_n / p_s of penalty shear springs [-]
   double search_factor = 2.5;          ///< contact search distance / (g2 w0) [-]
