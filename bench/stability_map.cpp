@@ -15,14 +15,35 @@
 // stable for dt E2/eta2 < -ln(1 - 2/(k/E2 + 1)) when k > E2, at any dt when
 // k <= E2; for k >> E2 this is dt < 2 eta2 / (k + E2) (docs/rheology-in-dda.md).
 //
+// With --dda: the DDA spot-check of the map instead (docs/speed-accuracy.md,
+// "DDA spot-check"; the same runs as tests/contact/engine/stability_spot_check_test.cpp):
+// the seed's two-block shear creep test (block A on a fixed block B, Table 1
+// row 1's sigma and tau) run by the DDA engine with a kelvin joint (E2, eta2 as
+// above, shear_stiffness k, so the contact is the map's spring k in series with
+// a Kelvin element) at seven points (dt E2/eta2, k/E2), 200 steps, each scheme:
+//  - relaxation: A's joint line held at a shear displacement delta = tau/k (and a
+//    normal closure sigma/k_n) through a fixed point of stiffness K = 1e12 N/mm/mm
+//    loaded by K delta; growth = largest |contact shear force| over steps 101-200
+//    / k delta l (the map's measure);
+//  - creep: the seed's constant loads; growth = largest |contact shear force|
+//    over steps 101-200 / the largest of step 1 (the load fixes the sum of the
+//    contact forces; the map applies to their redistribution).
+// A run whose growth exceeds 1e3 at any step is stopped as diverged.
+//
 // Usage: stability_map [--csv FILE]   (prints a Markdown table; FILE gets
 //        scheme,dt_E2_over_eta2,k_over_E2,growth for scripts/accuracy-report.sh)
+//        stability_map --dda          (prints the DDA spot-check table)
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
+#include "rheodda/contact/contact_system.hpp"
+#include "rheodda/core/contact_adapter.hpp"
+#include "rheodda/core/engine.hpp"
 #include "rheodda/laws/history.hpp"
 #include "rheodda/laws/registry.hpp"
+#include "rheodda/laws/seed_table1.hpp"
 
 using namespace rheodda;
 
@@ -48,9 +69,169 @@ double growth(laws::Scheme scheme, double x, double y, int steps = 200) {
   return worst / (k * delta);
 }
 
+// ---- DDA spot-check (--dda) ----
+
+constexpr int kDdaSteps = 200;              // steps per DDA run [-]
+constexpr double kStop = 1e3;               // growth at which a DDA run is stopped as diverged [-]
+constexpr double kFixedStiffness = 1e12;    // fixed-point penalty spring [N/mm per mm]
+constexpr double kWidth = 100.0;            // width of A = joint length [mm]
+constexpr double kNormalStiffness = 1e4;    // joint normal stiffness [MPa/mm]
+
+/// Lagged limit dt_lim E2/eta2 = -ln(1 - 2 E2/(k + E2)) for k > E2, none for
+/// k <= E2 (docs/speed-accuracy.md, "Stability map").
+double lagged_limit(double y) { return y <= 1.0 ? INFINITY : -std::log(1.0 - 2.0 / (y + 1.0)); }
+
+/// Closed-form relaxation force relative to k delta, standard linear solid:
+/// [E2 + k exp(-(k + E2) t/eta2)]/(k + E2) (docs/rheology-in-dda.md, Validation).
+double relaxation_closed_form(double y, double t) {
+  const double k = y * kE2;
+  return (kE2 + k * std::exp(-(k + kE2) * t / kEta2)) / (k + kE2);
+}
+
+std::vector<core::Vec2> rect(double x0, double y0, double x1, double y1) {
+  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+}
+
+struct DdaRun {
+  double growth = 0.0;     ///< growth measure (see the header) [-]
+  int diverged_at = 0;     ///< step at which growth exceeded kStop, 0 if never [-]
+  double end_error = 0.0;  ///< relaxation: |F(end)/F_closed(end) - 1| [-]
+};
+
+/// The two-block scene (as tests/contact/engine/creep_scene.hpp) with a kelvin
+/// joint of shear stiffness k = y E2 at dt = x eta2/E2, run by the DDA engine.
+DdaRun dda_run(bool relaxation, laws::Scheme scheme, double x, double y) {
+  const laws::SeedTable1Row& row = laws::kSeedTable1[0];
+  const double w = kWidth, dt = x * kEta2 / kE2, k = y * kE2;  // [mm], [h], [MPa/mm]
+  const double delta = row.tau / k, closure = row.sigma / kNormalStiffness;  // [mm]
+  core::Model m;
+  m.materials[0].young_modulus = 1e7;  // blocks 1e6 x stiffer than the joint [MPa]
+  m.materials[0].density = 1e-12;      // no inertia at creep time scales [MPa h^2/mm^2]
+  m.settings.dt = dt;
+  m.settings.dynamic_ratio = 0.0;      // static analysis
+  m.settings.gravity = {0.0, 0.0};
+  core::BlockDef b, a;
+  b.vertices = rect(-w, -w, 2 * w, 0.0);
+  a.vertices = rect(0.0, 0.0, w, w);
+  m.blocks = {b, a};
+  for (int i = 0; i < 3; ++i) m.fixed_points.push_back({0, b.vertices[i]});
+  if (relaxation) {
+    // A fixed point of stiffness K loaded by K u imposes u through K (core/model.hpp):
+    // A's joint line is held at (delta, -closure); K >> k w, so the joint sees k.
+    m.settings.fixed_point_stiffness = kFixedStiffness;
+    m.fixed_points.push_back({1, {0.5 * w, 0.0}});
+    m.point_loads.push_back(
+        {1, {0.5 * w, 0.0}, {{0.0, {0.0, -(kFixedStiffness + kNormalStiffness * w) * closure}}}});
+    m.point_loads.push_back({1, {0.5 * w, 0.0}, {{0.0, {kFixedStiffness * delta, 0.0}}}});
+  } else {  // the seed's F1 = sigma w (down) and F2 = tau w (+x) at the joint line
+    m.point_loads.push_back({1, {0.5 * w, 0.0}, {{0.0, {0.0, -row.sigma * w}}}});
+    m.point_loads.push_back({1, {0.5 * w, 0.0}, {{0.0, {row.tau * w, 0.0}}}});
+  }
+  contact::JointSet joint;
+  joint.name = "joint";
+  joint.friction_angle = 60.0;           // [deg]
+  joint.cohesion = 1e4;                  // [MPa]: the joint cannot fail below kStop tau,
+  joint.tensile_strength = 1e4;          // [MPa]  so a diverging scheme shows its own growth
+  joint.normal_stiffness = kNormalStiffness;
+  joint.shear_stiffness = k;
+  joint.law = laws::LawRegistry::builtin().create("kelvin", {{"E2", kE2}, {"eta2", kEta2}});
+  contact::ContactSettings settings = core::contact_settings_for(m);
+  settings.scheme = scheme;
+  contact::ContactSystem contacts({joint}, settings);
+  core::ContactAdapter adapter(contacts);
+  core::Engine engine(m, adapter);
+  DdaRun run;
+  double scale = relaxation ? k * delta : 0.0;  // stress the growth is relative to [MPa]
+  for (int n = 1; n <= kDdaSteps; ++n) {
+    engine.step();
+    double largest = 0.0, sum = 0.0, length = 0.0;  // [MPa], [N/mm], [mm]
+    for (const contact::Contact& c : contacts.contacts())
+      if (c.key.vblock == 1) {
+        largest = std::max(largest, std::abs(c.shear_force) / c.length);
+        sum -= c.shear_force;  // along +x (B's top edge runs in -x)
+        length += c.length;
+      }
+    if (!relaxation && n == 1) scale = largest;
+    if (relaxation)
+      run.end_error =
+          std::abs(sum / length / (k * delta) / relaxation_closed_form(y, engine.time()) - 1.0);
+    if (largest > kStop * scale) {
+      run.growth = largest / scale;
+      run.diverged_at = n;
+      return run;
+    }
+    if (n > kDdaSteps / 2) run.growth = std::max(run.growth, largest / scale);
+  }
+  return run;
+}
+
+std::string dda_cell(const DdaRun& r) {
+  char buf[64];
+  if (r.diverged_at)
+    std::snprintf(buf, sizeof buf, "> 1e3 (diverged, step %d)", r.diverged_at);
+  else
+    std::snprintf(buf, sizeof buf, "%.6g", r.growth);
+  return buf;
+}
+
+/// The spot-check table (Markdown) for scripts/accuracy-report.sh.
+int print_dda_table() {
+  struct Point {
+    double x, y;
+    const char* what;
+  };
+  const double l10 = lagged_limit(10.0), l100 = lagged_limit(100.0);
+  const Point points[] = {{1e3, 0.1, "k <= E2, huge step"},
+                          {1e3, 1.0, "k = E2, huge step"},
+                          {0.5 * l10, 10.0, "0.5 x lagged limit"},
+                          {2.0 * l10, 10.0, "2 x lagged limit"},
+                          {0.5 * l100, 100.0, "0.5 x lagged limit"},
+                          {2.0 * l100, 100.0, "2 x lagged limit"},
+                          {1e3, 1e3, "corner of the map"}};
+  const laws::Scheme schemes[] = {laws::Scheme::lagged, laws::Scheme::implicit,
+                                  laws::Scheme::exponential_linear};
+  std::printf("DDA spot-check: two-block scene, kelvin joint (E2 = %g MPa/mm, eta2 = %g MPa h/mm, "
+              "shear_stiffness k), %d steps per run; growth > 1 = unstable; a run is stopped when "
+              "its growth exceeds 1e3. Relaxation: A held at tau/k; growth = largest contact shear "
+              "force in steps 101-200 / k delta l. Creep: the seed's constant loads; growth = largest "
+              "contact shear force in steps 101-200 / the largest of step 1. Law-level: the map's "
+              "growth (laws::solve_series_force). End error: relaxation force at the end against the "
+              "closed form.\n\n",
+              kE2, kEta2, kDdaSteps);
+  std::printf("| point | dt E2/eta2 | k/E2 | scheme | DDA growth, relaxation | DDA growth, creep "
+              "| law-level growth | relaxation end error | agree |\n"
+              "|---|---:|---:|---|---:|---:|---:|---:|---|\n");
+  int n = 0, agreeing = 0, total = 0;
+  for (const Point& p : points) {
+    ++n;
+    for (laws::Scheme s : schemes) {
+      const double law = growth(s, p.x, p.y);
+      const DdaRun relax = dda_run(true, s, p.x, p.y), creep = dda_run(false, s, p.x, p.y);
+      const bool law_stable = law <= 1.0 + 1e-12;
+      const bool agree = (relax.growth <= 1.0 + 1e-9) == law_stable &&
+                         (creep.growth <= 1.0 + 1e-9) == law_stable;
+      agreeing += agree;
+      ++total;
+      char end[32];
+      if (relax.diverged_at) std::snprintf(end, sizeof end, "-");
+      else std::snprintf(end, sizeof end, "%.1e", relax.end_error);
+      char lawcell[32];
+      std::snprintf(lawcell, sizeof lawcell, std::isfinite(law) ? "%.6g" : "inf (overflow)", law);
+      std::printf("| P%d (%s) | %.4g | %g | %s | %s | %s | %s | %s | %s |\n", n, p.what, p.x, p.y,
+                  std::string(laws::scheme_name(s)).c_str(), dda_cell(relax).c_str(),
+                  dda_cell(creep).c_str(), lawcell, end, agree ? "yes" : "no");
+    }
+  }
+  std::printf("\nStable/unstable verdicts of DDA (both variants) and the law-level map agree in %d of "
+              "%d runs.\n",
+              agreeing, total);
+  return 0;  // a benchmark prints, never asserts (the test does)
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc == 2 && std::string(argv[1]) == "--dda") return print_dda_table();
   FILE* csv = nullptr;
   if (argc == 3 && std::string(argv[1]) == "--csv") {
     csv = std::fopen(argv[2], "w");
@@ -60,7 +241,7 @@ int main(int argc, char** argv) {
     }
     std::fprintf(csv, "scheme,dt_E2_over_eta2,k_over_E2,growth\n");
   } else if (argc != 1) {
-    std::fprintf(stderr, "usage: stability_map [--csv FILE]\n");
+    std::fprintf(stderr, "usage: stability_map [--csv FILE | --dda]\n");
     return 2;
   }
   const laws::Scheme schemes[] = {laws::Scheme::lagged, laws::Scheme::implicit,

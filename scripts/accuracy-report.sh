@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Regenerates the speed-accuracy report: runs bench/accuracy_bench (also its
 # --toppling comparison on examples/goodman-toppling-creep.yaml) and
-# bench/stability_map, puts their tables into docs/speed-accuracy.md (between
-# the "generated" markers) and draws docs/img/accuracy-error-vs-time.png and
+# bench/stability_map (the law-level map, and with --dda its DDA spot-check),
+# puts their tables into docs/speed-accuracy.md (between the "generated"
+# markers) and draws docs/img/accuracy-error-vs-time.png and
 # docs/img/stability-map.png with gnuplot.
 # Usage: scripts/accuracy-report.sh   (uses $RHEODDA_BUILD_DIR or build/; builds the benches if missing)
 set -euo pipefail
@@ -16,6 +17,7 @@ work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 "$build/bench/accuracy_bench" --csv "$work/accuracy.csv" >"$work/accuracy.md"
 "$build/bench/stability_map" --csv "$work/stability.csv" >"$work/stability.md"
+"$build/bench/stability_map" --dda >"$work/stability-dda.md"
 "$build/bench/accuracy_bench" --toppling "$root/examples/goodman-toppling-creep.yaml" 100 |
   sed "s|$root/||" >"$work/toppling.md"
 
@@ -30,6 +32,7 @@ splice() {
 }
 splice accuracy-table "$work/accuracy.md"
 splice stability-table "$work/stability.md"
+splice stability-dda "$work/stability-dda.md"
 splice toppling-table "$work/toppling.md"
 
 # Error vs wall time, one panel per case, one line per scheme (fixed steps).
