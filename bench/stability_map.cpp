@@ -96,6 +96,7 @@ struct DdaRun {
   double growth = 0.0;     ///< growth measure (see the header) [-]
   int diverged_at = 0;     ///< step at which growth exceeded kStop, 0 if never [-]
   double end_error = 0.0;  ///< relaxation: |F(end)/F_closed(end) - 1| [-]
+  double amplification = 0.0;  ///< diverged: |joint shear force| of the last step / the one before [-]
 };
 
 /// The two-block scene (as tests/contact/engine/creep_scene.hpp) with a kelvin
@@ -142,6 +143,7 @@ DdaRun dda_run(bool relaxation, laws::Scheme scheme, double x, double y) {
   core::Engine engine(m, adapter);
   DdaRun run;
   double scale = relaxation ? k * delta : 0.0;  // stress the growth is relative to [MPa]
+  double previous = 0.0;  // joint shear force of the previous step [N/mm]
   for (int n = 1; n <= kDdaSteps; ++n) {
     engine.step();
     double largest = 0.0, sum = 0.0, length = 0.0;  // [MPa], [N/mm], [mm]
@@ -158,8 +160,10 @@ DdaRun dda_run(bool relaxation, laws::Scheme scheme, double x, double y) {
     if (largest > kStop * scale) {
       run.growth = largest / scale;
       run.diverged_at = n;
+      run.amplification = std::abs(sum / previous);
       return run;
     }
+    previous = sum;
     if (n > kDdaSteps / 2) run.growth = std::max(run.growth, largest / scale);
   }
   return run;
@@ -196,11 +200,12 @@ int print_dda_table() {
               "force in steps 101-200 / k delta l. Creep: the seed's constant loads; growth = largest "
               "contact shear force in steps 101-200 / the largest of step 1. Law-level: the map's "
               "growth (laws::solve_series_force). End error: relaxation force at the end against the "
-              "closed form.\n\n",
+              "closed form. Per step: a diverging relaxation's joint shear force, last step / the one before, against "
+              "the law-level amplification |1 - b (k + E2)/E2|, b = 1 - exp(-dt E2/eta2).\n\n",
               kE2, kEta2, kDdaSteps);
   std::printf("| point | dt E2/eta2 | k/E2 | scheme | DDA growth, relaxation | DDA growth, creep "
-              "| law-level growth | relaxation end error | agree |\n"
-              "|---|---:|---:|---|---:|---:|---:|---:|---|\n");
+              "| law-level growth | relaxation end error | per step, DDA / law | agree |\n"
+              "|---|---:|---:|---|---:|---:|---:|---:|---:|---|\n");
   int n = 0, agreeing = 0, total = 0;
   for (const Point& p : points) {
     ++n;
@@ -215,11 +220,16 @@ int print_dda_table() {
       char end[32];
       if (relax.diverged_at) std::snprintf(end, sizeof end, "-");
       else std::snprintf(end, sizeof end, "%.1e", relax.end_error);
+      char step[48];
+      if (relax.diverged_at)  // lagged amplification (docs/speed-accuracy.md, "Stability map")
+        std::snprintf(step, sizeof step, "%.5g / %.5g", relax.amplification,
+                      std::abs(1.0 + std::expm1(-p.x) * (p.y + 1.0)));
+      else std::snprintf(step, sizeof step, "-");
       char lawcell[32];
       std::snprintf(lawcell, sizeof lawcell, std::isfinite(law) ? "%.6g" : "inf (overflow)", law);
-      std::printf("| P%d (%s) | %.4g | %g | %s | %s | %s | %s | %s | %s |\n", n, p.what, p.x, p.y,
-                  std::string(laws::scheme_name(s)).c_str(), dda_cell(relax).c_str(),
-                  dda_cell(creep).c_str(), lawcell, end, agree ? "yes" : "no");
+      std::printf("| P%d (%s) | %.4g | %g | %s | %s | %s | %s | %s | %s | %s |\n", n, p.what, p.x,
+                  p.y, std::string(laws::scheme_name(s)).c_str(), dda_cell(relax).c_str(),
+                  dda_cell(creep).c_str(), lawcell, end, step, agree ? "yes" : "no");
     }
   }
   std::printf("\nStable/unstable verdicts of DDA (both variants) and the law-level map agree in %d of "
