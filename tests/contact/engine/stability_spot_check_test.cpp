@@ -255,6 +255,9 @@ BOOST_AUTO_TEST_CASE(lagged_is_stable_below_its_limit_and_diverges_above_it_as_t
       BOOST_TEST((relax.growth <= 1.0 + 1e-9) == predicted_stable);
       BOOST_TEST((creep.growth <= 1.0 + 1e-9) == predicted_stable);
       if (predicted_stable) {
+        BOOST_TEST_MESSAGE("  law-level growth with the closing-step rule " << law_growth(s, p, true)
+                                                                           << ", relaxation end error "
+                                                                           << relax.end_error);
         BOOST_TEST(relax.diverged_at == 0);
         BOOST_TEST(creep.diverged_at == 0);
         BOOST_TEST(std::abs(relax.growth / law_growth(s, p, true) - 1.0) < 1e-5);
