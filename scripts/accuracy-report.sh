@@ -4,7 +4,7 @@
 # bench/stability_map (the law-level map, and with --dda its DDA spot-check),
 # puts their tables into docs/speed-accuracy.md (between the "generated"
 # markers) and draws docs/img/accuracy-error-vs-time.png and
-# docs/img/stability-map.png with gnuplot.
+# docs/img/stability-map.png and docs/img/toppling-error-vs-time.png with gnuplot.
 # Usage: scripts/accuracy-report.sh   (uses $RHEODDA_BUILD_DIR or build/; builds the benches if missing)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -98,3 +98,25 @@ do for [s in "lagged implicit exponential-linear"] {
 unset multiplot
 GP
 echo "wrote $root/docs/img/stability-map.png"
+
+# Toppling comparison: error vs wall time, fixed steps (both schemes) and
+# adaptive stepping (creep_tolerance), from the generated table's rows.
+awk -F'|' '/^\| fixed dt = / && !/exponential/ { print $7, $6 }' "$work/toppling.md" >"$work/top-fixed.dat"
+awk -F'|' '/^\| fixed dt = / && /exponential/ { print $7, $6 }' "$work/toppling.md" >"$work/top-el.dat"
+awk -F'|' '/^\| [0-9.e-]+ \| no \|/ { print $8, $7, $2 }' "$work/toppling.md" >"$work/top-adaptive.dat"
+gnuplot <<GP
+set terminal pngcairo size 800,560 font 'Sans,11'
+set output '$root/docs/img/toppling-error-vs-time.png'
+set title 'Toppling slope (base 70 deg, planes 85 deg), creep 0-100 d: error vs wall time'
+set logscale xy
+set format x '10^{%L}'
+set format y '10^{%L}'
+set grid
+set xlabel 'wall time [ms]'
+set ylabel 'largest |u - u_{ref}| / u_{ref} at 100 d [-]'
+set key top right
+plot '$work/top-fixed.dat' using 1:2 with linespoints lw 2 pt 7 title 'fixed dt, 8 d to 1/64 d (implicit)', \
+     '$work/top-el.dat' using 1:2 with points pt 9 ps 1.5 title 'fixed dt, exponential-linear', \
+     '$work/top-adaptive.dat' using 1:2 with linespoints lw 2 pt 5 dt 2 lc 'black' title 'adaptive, creep tolerance 1e-3..1e-8 m'
+GP
+echo "wrote $root/docs/img/toppling-error-vs-time.png"
