@@ -16,6 +16,7 @@
 #include "rheodda/core/engine.hpp"
 #include "rheodda/laws/registry.hpp"
 #include "rheodda/laws/seed_table1.hpp"
+#include "two_block.hpp"
 
 using namespace rheodda;
 
@@ -24,24 +25,10 @@ namespace {
 using Row = laws::SeedTable1Row;
 constexpr const auto& kTable1 = laws::kSeedTable1;
 
-std::vector<core::Vec2> rect(double x0, double y0, double x1, double y1) {
-  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-}
-
 /// Block A (100 x 100 mm) on block B (fixed), F1 and F2 on A at the joint line.
 core::Model scene(const Row& r, double dt) {
   const double w = 100.0;
-  core::Model m;
-  m.materials[0].young_modulus = 1e7;  // blocks 1e6 x stiffer than the joint [MPa]
-  m.materials[0].density = 1e-12;      // no inertia at creep time scales
-  m.settings.dt = dt;
-  m.settings.dynamic_ratio = 0.0;      // static analysis
-  m.settings.gravity = {0.0, 0.0};
-  core::BlockDef b, a;
-  b.vertices = rect(-w, -w, 2 * w, 0.0);
-  a.vertices = rect(0.0, 0.0, w, w);
-  m.blocks = {b, a};
-  for (int k = 0; k < 3; ++k) m.fixed_points.push_back({0, b.vertices[k]});
+  core::Model m = bench::two_block_model(w, dt);
   m.point_loads.push_back({1, {0.5 * w, 0.0}, {{0.0, {0.0, -r.sigma * w}}}});
   m.point_loads.push_back({1, {0.5 * w, 0.0}, {{0.0, {r.tau * w, 0.0}}}});
   return m;

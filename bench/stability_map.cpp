@@ -44,6 +44,7 @@
 #include "rheodda/laws/history.hpp"
 #include "rheodda/laws/registry.hpp"
 #include "rheodda/laws/seed_table1.hpp"
+#include "two_block.hpp"
 
 using namespace rheodda;
 
@@ -88,10 +89,6 @@ double relaxation_closed_form(double y, double t) {
   return (kE2 + k * std::exp(-(k + kE2) * t / kEta2)) / (k + kE2);
 }
 
-std::vector<core::Vec2> rect(double x0, double y0, double x1, double y1) {
-  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-}
-
 struct DdaRun {
   double growth = 0.0;     ///< growth measure (see the header) [-]
   int diverged_at = 0;     ///< step at which growth exceeded kStop, 0 if never [-]
@@ -105,17 +102,7 @@ DdaRun dda_run(bool relaxation, laws::Scheme scheme, double x, double y) {
   const laws::SeedTable1Row& row = laws::kSeedTable1[0];
   const double w = kWidth, dt = x * kEta2 / kE2, k = y * kE2;  // [mm], [h], [MPa/mm]
   const double delta = row.tau / k, closure = row.sigma / kNormalStiffness;  // [mm]
-  core::Model m;
-  m.materials[0].young_modulus = 1e7;  // blocks 1e6 x stiffer than the joint [MPa]
-  m.materials[0].density = 1e-12;      // no inertia at creep time scales [MPa h^2/mm^2]
-  m.settings.dt = dt;
-  m.settings.dynamic_ratio = 0.0;      // static analysis
-  m.settings.gravity = {0.0, 0.0};
-  core::BlockDef b, a;
-  b.vertices = rect(-w, -w, 2 * w, 0.0);
-  a.vertices = rect(0.0, 0.0, w, w);
-  m.blocks = {b, a};
-  for (int i = 0; i < 3; ++i) m.fixed_points.push_back({0, b.vertices[i]});
+  core::Model m = bench::two_block_model(w, dt);
   if (relaxation) {
     // A fixed point of stiffness K loaded by K u imposes u through K (core/model.hpp):
     // A's joint line is held at (delta, -closure); K >> k w, so the joint sees k.
