@@ -46,6 +46,24 @@ std::vector<core::Vec2> rect(double x0, double y0, double x1, double y1) {
   return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
 }
 
+/// Block A (w x w) on block B (3w x w, fixed by three fixed points), static
+/// analysis without gravity at a first step dt, creep tolerance `tolerance`.
+core::Model two_blocks(double w, double dt, double tolerance) {
+  core::Model m;
+  m.materials[0].young_modulus = 1e7;
+  m.materials[0].density = 1e-12;
+  m.settings.dt = dt;
+  m.settings.dynamic_ratio = 0.0;
+  m.settings.gravity = {0.0, 0.0};
+  m.settings.creep_tolerance = tolerance;
+  core::BlockDef b, a;
+  b.vertices = rect(-w, -w, 2 * w, 0.0);
+  a.vertices = rect(0.0, 0.0, w, w);
+  m.blocks = {b, a};
+  for (int k = 0; k < 3; ++k) m.fixed_points.push_back({0, b.vertices[k]});
+  return m;
+}
+
 struct Run {
   std::vector<core::StepReport> reports;
   std::vector<double> t, d;  ///< time [h] and joint displacement [mm] after each step
@@ -58,23 +76,13 @@ struct Run {
 Run run(double dt, double tolerance, double t_end = kEnd, double held_by = 0.0,
         double friction_angle = 60.0, bool restart_on_contact_change = false) {
   const double w = 100.0;
-  core::Model m;
-  m.materials[0].young_modulus = 1e7;
-  m.materials[0].density = 1e-12;
-  m.settings.dt = dt;
-  m.settings.dynamic_ratio = 0.0;
-  m.settings.gravity = {0.0, 0.0};
-  m.settings.creep_tolerance = tolerance;
+  core::Model m = two_blocks(w, dt, tolerance);
   m.settings.creep_restart_on_contact_change = restart_on_contact_change;
-  core::BlockDef b, a;
-  b.vertices = rect(-w, -w, 2 * w, 0.0);
-  a.vertices = rect(0.0, 0.0, w, w);
-  m.blocks = {b, a};
-  for (int k = 0; k < 3; ++k) m.fixed_points.push_back({0, b.vertices[k]});
   if (held_by > 0.0) {  // A also held at its top corners by fixed-point springs [N/mm]
     m.settings.fixed_point_stiffness = held_by;
-    m.fixed_points.push_back({1, a.vertices[2]});
-    m.fixed_points.push_back({1, a.vertices[3]});
+    const auto& top = m.blocks[1].vertices;  // A's corners
+    m.fixed_points.push_back({1, top[2]});
+    m.fixed_points.push_back({1, top[3]});
   }
   m.point_loads.push_back({1, {0.5 * w, 0.0}, {{0.0, {0.0, -kSigma * w}}}});
   m.point_loads.push_back({1,
@@ -236,18 +244,7 @@ BOOST_AUTO_TEST_CASE(a_step_whose_creep_error_exceeds_twice_the_tolerance_is_red
   };
   // Constant shear load tau from t = 0; rejections forced before `forced_until` [h].
   auto creep_run = [&](double forced_until) {
-    core::Model m;
-    m.materials[0].young_modulus = 1e7;
-    m.materials[0].density = 1e-12;
-    m.settings.dt = dt;
-    m.settings.dynamic_ratio = 0.0;
-    m.settings.gravity = {0.0, 0.0};
-    m.settings.creep_tolerance = tol;
-    core::BlockDef b, a;
-    b.vertices = rect(-w, -w, 2 * w, 0.0);
-    a.vertices = rect(0.0, 0.0, w, w);
-    m.blocks = {b, a};
-    for (int k = 0; k < 3; ++k) m.fixed_points.push_back({0, b.vertices[k]});
+    core::Model m = two_blocks(w, dt, tol);
     m.point_loads.push_back({1, {0.5 * w, 0.0}, {{0.0, {0.0, -kSigma * w}}}});
     m.point_loads.push_back({1, {0.5 * w, 0.0}, {{0.0, {kTau * w, 0.0}}}});
     const std::shared_ptr<const laws::ContactRheology> law = laws::LawRegistry::builtin().create(
