@@ -19,7 +19,8 @@
 //
 // Usage: accuracy_bench [--csv FILE]   (prints a Markdown table; FILE gets
 //        case,scheme,dt,tolerance,steps,wall_s,error for scripts/accuracy-report.sh)
-//        accuracy_bench --toppling SCENE [T_END]   fixed steps vs creep_tolerance on a
+//        accuracy_bench --toppling SCENE [T_END]   fixed steps vs creep_tolerance and
+//        step_tolerance (step doubling) on a
 //        scene (examples/goodman-toppling-creep.yaml; T_END in the scene's time unit,
 //        default 100), from a settled state shared by all runs (toppling() below)
 #include <chrono>
@@ -222,26 +223,37 @@ Settled settle(const scene::BuiltScene& built) {
 
 struct CreepRun {
   Result r;
-  long cuts = 0, rejections = 0;
+  long cuts = 0, rejections = 0, extrapolated = 0;
   std::vector<double> u;  ///< final |u| of every measurement point [m]
 };
 
-/// Creep from the settled state to t_end [d]: a fixed step dt (tolerance 0) or
-/// adaptive stepping from a first step dt. Wall time: the least of `repeats` runs.
-CreepRun run_creep(const scene::BuiltScene& built, const Settled& from, double dt, double tolerance,
-                   double t_end, bool restart_on_contact_change = false, int repeats = 3) {
+/// How a creep run steps: a fixed dt (both tolerances 0), adaptive creep
+/// stepping (creep_tolerance) or step doubling (step_tolerance) from a first step dt.
+struct Control {
+  double dt = 1.0;              ///< [d]
+  double creep_tolerance = 0.0; ///< [m]
+  double step_tolerance = 0.0;  ///< [m]
+  bool restart_on_contact_change = false;
+  bool extrapolation = true;    ///< under step_tolerance
+};
+
+/// Creep from the settled state to t_end [d]. Wall time: the least of `repeats` runs.
+CreepRun run_creep(const scene::BuiltScene& built, const Settled& from, const Control& ctl,
+                   double t_end, int repeats = 3) {
   CreepRun out;
   out.r.wall = INFINITY;
   for (int rep = 0; rep < repeats; ++rep) {
     core::Model m = built.model;
-    m.settings.dt = dt;
-    m.settings.creep_tolerance = tolerance;
-    m.settings.creep_restart_on_contact_change = restart_on_contact_change;
+    m.settings.dt = ctl.dt;
+    m.settings.creep_tolerance = ctl.creep_tolerance;
+    m.settings.creep_restart_on_contact_change = ctl.restart_on_contact_change;
+    m.settings.step_tolerance = ctl.step_tolerance;
+    m.settings.step_extrapolation = ctl.extrapolation;
     contact::ContactSystem contacts = from.contacts;
     core::ContactAdapter adapter(contacts);
     core::Engine engine(m, adapter);
     core::EngineState st = from.engine;
-    st.next_dt = dt;
+    st.next_dt = ctl.dt;
     engine.restore(st);
     const int first = engine.step_count();
     bool failed = false;
@@ -249,15 +261,17 @@ CreepRun run_creep(const scene::BuiltScene& built, const Settled& from, double d
     try {
       engine.run_until(t_end);
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "dt %g tolerance %g: %s\n", dt, tolerance, e.what());
+      std::fprintf(stderr, "dt %g tolerances %g %g: %s\n", ctl.dt, ctl.creep_tolerance,
+                   ctl.step_tolerance, e.what());
       failed = true;
     }
     out.r.wall = std::min(
         out.r.wall, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     out.r.failed = failed;
     out.r.steps = engine.step_count() - first;
-    out.cuts = out.rejections = 0;
-    for (const auto& r : engine.reports()) out.cuts += r.cuts, out.rejections += r.rejections;
+    out.cuts = out.rejections = out.extrapolated = 0;
+    for (const auto& r : engine.reports())
+      out.cuts += r.cuts, out.rejections += r.rejections, out.extrapolated += r.extrapolated;
     out.u.clear();
     for (const auto& samples : engine.measurements())
       out.u.push_back(samples.back().displacement.norm());
@@ -266,35 +280,45 @@ CreepRun run_creep(const scene::BuiltScene& built, const Settled& from, double d
 }
 
 /// Fixed steps vs adaptive stepping on the toppling scene, each adaptive run
-/// against the best (largest) fixed step that is at least as accurate. The
-/// reference (fixed kFine) is checked against a run at 2 kFine, and fixed steps
-/// are also run with the exponential-linear scheme: equal errors show that the
-/// error is not the creep integration's (docs/speed-accuracy.md).
+/// against the best (largest) fixed step that is at least as accurate.
+/// Reference: the Richardson extrapolation 2 u(kFine) - u(2 kFine) of the two
+/// finest fixed runs (the fixed steps converge at first order, so this removes
+/// their leading error; |u(kFine) - u(2 kFine)| bounds what is left to well
+/// below it). Fixed steps are also run with the exponential-linear scheme:
+/// equal errors show that the error is not the creep integration's
+/// (docs/speed-accuracy.md).
 int toppling(const std::string& path, double t_end) {
   const scene::BuiltScene built = scene::build_scene(scene::load_scene(path));
   const Settled settled = settle(built);
-  const CreepRun ref = run_creep(built, settled, kFine, 0.0, t_end, false, 1);
-  const CreepRun check = run_creep(built, settled, 2 * kFine, 0.0, t_end, false, 1);
-  double peak = 0.0;
-  for (double v : ref.u) peak = std::max(peak, v);
+  const CreepRun fine = run_creep(built, settled, {kFine}, t_end, 1);
+  const CreepRun fine2 = run_creep(built, settled, {2 * kFine}, t_end, 1);
+  std::vector<double> ref_u(fine.u.size());
+  double peak = 0.0, fine_gap = 0.0;
+  for (std::size_t k = 0; k < ref_u.size(); ++k) {
+    ref_u[k] = 2.0 * fine.u[k] - fine2.u[k];
+    peak = std::max(peak, ref_u[k]);
+    fine_gap = std::max(fine_gap, std::abs(fine.u[k] - fine2.u[k]));
+  }
   auto error = [&](const CreepRun& c) {
     if (c.r.failed) return std::numeric_limits<double>::infinity();
     double e = 0.0;
-    for (std::size_t k = 0; k < c.u.size(); ++k) e = std::max(e, std::abs(c.u[k] - ref.u[k]));
+    for (std::size_t k = 0; k < c.u.size(); ++k) e = std::max(e, std::abs(c.u[k] - ref_u[k]));
     return e / peak;
   };
   std::printf("`%s`, scheme %s, g2 %g; settled by %ld steps of %g d to %g d (g2 %g); creep to "
-              "%g d. Reference: fixed dt = 1/%g d (%ld steps), u =",
+              "%g d. Reference: 2 u(1/%g d) - u(1/%g d) (Richardson; %ld and %ld fixed steps; "
+              "the two differ by %s), u =",
               path.c_str(),
               built.contact_settings.scheme
                   ? std::string(laws::scheme_name(*built.contact_settings.scheme)).c_str()
                   : "default",
               built.model.settings.g2, settled.steps, kSettleStep, kSettleEnd, kSettleG2, t_end,
-              1.0 / kFine, ref.r.steps);
-  for (double v : ref.u) std::printf(" %.6f", v);
-  std::printf(" m; dt = 1/%g d differs from it by %s. Error: largest |u - u_ref| at %g d / %.3g m. "
+              1.0 / kFine, 0.5 / kFine, fine.r.steps, fine2.r.steps,
+              fmt_error(fine_gap / peak).c_str());
+  for (double v : ref_u) std::printf(" %.6f", v);
+  std::printf(" m. Error: largest |u - u_ref| at %g d / %.3g m (fixed 1/%g d: %s). "
               "Wall: least of 3 runs.\n\n",
-              0.5 / kFine, fmt_error(error(check)).c_str(), t_end, peak);
+              t_end, peak, 1.0 / kFine, fmt_error(error(fine)).c_str());
   std::printf("| run | steps | cuts | redone | error | wall [ms] |\n|---|---:|---:|---:|---:|---:|\n");
   struct Fixed {
     double dt;
@@ -302,7 +326,7 @@ int toppling(const std::string& path, double t_end) {
   };
   std::vector<Fixed> fixed;
   for (double dt : {8.0, 4.0, 2.0, 1.0, 0.5, 0.25, 0.125, 0.0625, 1.0 / 32, 1.0 / 64}) {
-    fixed.push_back({dt, run_creep(built, settled, dt, 0.0, t_end)});
+    fixed.push_back({dt, run_creep(built, settled, {dt}, t_end)});
     const CreepRun& c = fixed.back().c;
     std::printf("| fixed dt = %g d | %ld | %ld | - | %s | %.1f |\n", dt, c.r.steps, c.cuts,
                 fmt_error(error(c)).c_str(), 1e3 * c.r.wall);
@@ -313,32 +337,54 @@ int toppling(const std::string& path, double t_end) {
   el.contact_settings.scheme = laws::Scheme::exponential_linear;
   const Settled settled_el = settle(el);
   for (double dt : {4.0, 1.0, 0.25, 0.0625}) {
-    const CreepRun c = run_creep(el, settled_el, dt, 0.0, t_end);
+    const CreepRun c = run_creep(el, settled_el, {dt}, t_end);
     std::printf("| fixed dt = %g d, exponential-linear | %ld | %ld | - | %s | %.1f |\n", dt, c.r.steps,
                 c.cuts, fmt_error(error(c)).c_str(), 1e3 * c.r.wall);
   }
+  // An adaptive run against the largest fixed step at least as accurate.
+  auto compare = [&](const CreepRun& c) {
+    const double e = error(c);
+    const Fixed* best = nullptr;
+    for (const Fixed& f : fixed)
+      if (error(f.c) <= e) {
+        best = &f;
+        break;
+      }
+    char cmp[160];
+    if (best)
+      std::snprintf(cmp, sizeof cmp, "dt = %g d (%s) | %ld | %.1f | %.2f", best->dt,
+                    fmt_error(error(best->c)).c_str(), best->c.r.steps, 1e3 * best->c.r.wall,
+                    c.r.wall / best->c.r.wall);
+    else
+      std::snprintf(cmp, sizeof cmp, "none down to 1/64 d | - | - | -");
+    return std::string(cmp);
+  };
   std::printf("\n| creep_tolerance [m] | restart on contact change | steps | cuts | redone | error "
               "| wall [ms] | best fixed step as accurate | its steps | its wall [ms] | wall "
               "ratio |\n|---:|---|---:|---:|---:|---:|---:|---|---:|---:|---:|\n");
   for (bool restart : {false, true})
     for (double tol : {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8}) {
-      const CreepRun c = run_creep(built, settled, kFine, tol, t_end, restart);
-      const double e = error(c);
-      const Fixed* best = nullptr;
-      for (const Fixed& f : fixed)
-        if (error(f.c) <= e) {
-          best = &f;
-          break;
-        }
-      char cmp[160];
-      if (best)
-        std::snprintf(cmp, sizeof cmp, "dt = %g d (%s) | %ld | %.1f | %.2f", best->dt,
-                      fmt_error(error(best->c)).c_str(), best->c.r.steps, 1e3 * best->c.r.wall,
-                      c.r.wall / best->c.r.wall);
-      else
-        std::snprintf(cmp, sizeof cmp, "none down to 1/64 d | - | - | -");
+      Control ctl{kFine, tol};
+      ctl.restart_on_contact_change = restart;
+      const CreepRun c = run_creep(built, settled, ctl, t_end);
       std::printf("| %g | %s | %ld | %ld | %ld | %s | %.1f | %s |\n", tol, restart ? "yes" : "no",
-                  c.r.steps, c.cuts, c.rejections, fmt_error(e).c_str(), 1e3 * c.r.wall, cmp);
+                  c.r.steps, c.cuts, c.rejections, fmt_error(error(c)).c_str(), 1e3 * c.r.wall,
+                  compare(c).c_str());
+    }
+  // Step doubling (Settings::step_tolerance): with local extrapolation (the
+  // default) and without it.
+  std::printf("\n| step_tolerance [m] | extrapolation | steps | extrapolated | cuts | redone | error "
+              "| wall [ms] | best fixed step as accurate | its steps | its wall [ms] | wall "
+              "ratio |\n|---:|---|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|\n");
+  for (bool extrapolation : {true, false})
+    for (double tol : {1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7}) {
+      Control ctl{kFine};
+      ctl.step_tolerance = tol;
+      ctl.extrapolation = extrapolation;
+      const CreepRun c = run_creep(built, settled, ctl, t_end);
+      std::printf("| %g | %s | %ld | %ld | %ld | %ld | %s | %.1f | %s |\n", tol,
+                  extrapolation ? "yes" : "no", c.r.steps, c.extrapolated, c.cuts, c.rejections,
+                  fmt_error(error(c)).c_str(), 1e3 * c.r.wall, compare(c).c_str());
     }
   return 0;
 }

@@ -139,6 +139,25 @@ void ContactAdapter::end_step(std::span<const contact::BlockView> blocks, const 
 
 void ContactAdapter::abandon_step() { system_.abandon_step(); }
 
+namespace {
+struct SystemSnapshot final : ContactSnapshot {
+  explicit SystemSnapshot(const contact::ContactSystem& s) : system(s) {}
+  contact::ContactSystem system;
+};
+}  // namespace
+
+std::unique_ptr<ContactSnapshot> ContactAdapter::snapshot() const {
+  return std::make_unique<SystemSnapshot>(system_);
+}
+
+void ContactAdapter::restore(const ContactSnapshot& s) {
+  system_ = dynamic_cast<const SystemSnapshot&>(s).system;
+}
+
+bool ContactAdapter::extrapolate(const ContactSnapshot& coarse) {
+  return system_.extrapolate(dynamic_cast<const SystemSnapshot&>(coarse).system);
+}
+
 bool ContactAdapter::retract_step() {
   if (!can_retract_) return false;
   system_ = *saved_;

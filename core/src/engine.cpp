@@ -149,6 +149,8 @@ struct Engine::Impl {
   BlockSystem system;
   std::unique_ptr<LinearSolver> solver;
   Eigen::VectorXd D;
+  std::vector<Mat6> base_diag;  // block terms of the step being solved (scratch)
+  Eigen::VectorXd base_rhs;
   std::vector<StepReport> reports;
   std::vector<StepObserver> observers;
 
@@ -160,6 +162,28 @@ struct Engine::Impl {
   void accept(const Eigen::VectorXd& d, double dt, int step_index, double t_end);
   void record_measurements(int step_index);
   StepReport step(double dt_cap);
+
+  /// One attempt at a step of dt from the current state: begin_step, then the
+  /// open-close iteration up to max_open_close iterates. The contacts are left
+  /// in their trial states: the caller ends or abandons the step.
+  struct Trial {
+    bool converged = false;
+    int iterations = 0;
+    double max_disp = 0.0;  // largest vertex displacement of the converged D [length]
+    ContactCheck check;
+  };
+  Trial solve_trial(double dt, bool creep_error_wanted, StepReport& rep);
+  /// Cuts dt after a failed attempt (dt *= dt_cut), or throws after max_cuts cuts.
+  void cut(double& dt, const Trial& trial, StepReport& rep) const;
+  /// Attempts a step of dt and accepts it (contacts end_step, blocks move) when
+  /// it converges within g2 w0; otherwise abandons it. No creep estimate.
+  bool take(double dt, StepReport& rep, Trial& trial);
+  /// A step under Settings::step_tolerance: step doubling with local extrapolation.
+  StepReport doubling_step(double dt_cap);
+  /// First point-load sample time after the current time (inf if none) [time].
+  double next_load_break() const;
+  /// Next step of an adaptive control from the error estimate err of a step dt [time].
+  double next_adaptive_dt(double dt, double tolerance, double err, double load_break) const;
 };
 
 void Engine::Impl::validate() {
@@ -242,6 +266,13 @@ void Engine::Impl::validate() {
     throw ModelError("settings.creep_tolerance", "must be >= 0 (length; 0 = fixed dt)");
   if (s.creep_tolerance > 0.0 && s.dt_max > 0.0 && s.dt_max < s.dt)
     throw ModelError("settings.dt_max", "must be >= dt (the first step) under creep_tolerance");
+  if (!(s.step_tolerance >= 0.0 && std::isfinite(s.step_tolerance)))
+    throw ModelError("settings.step_tolerance", "must be >= 0 (length; 0 = off)");
+  if (s.step_tolerance > 0.0 && s.creep_tolerance > 0.0)
+    throw ModelError("settings.step_tolerance",
+                     "give step_tolerance or creep_tolerance, not both (two step controls)");
+  if (s.step_tolerance > 0.0 && s.dt_max > 0.0 && s.dt_max < s.dt)
+    throw ModelError("settings.dt_max", "must be >= dt (the first step) under step_tolerance");
   if (!(s.dt_max >= 0.0 && std::isfinite(s.dt_max)))
     throw ModelError("settings.dt_max", "must be >= 0 (time; 0 = no limit)");
   if (!(s.g2 > 0.0 && std::isfinite(s.g2))) throw ModelError("settings.g2", "must be > 0");
@@ -416,60 +447,21 @@ void Engine::Impl::record_measurements(int step_index) {
 
 StepReport Engine::Impl::step(double dt_cap) {
   const Settings& s = model.settings;
+  if (s.step_tolerance > 0.0) return doubling_step(dt_cap);
   StepReport rep;
   rep.step = st.step;
   const bool adaptive = s.creep_tolerance > 0.0;
-  // Adaptive creep stepping: steps end on the point-load sample times (where
-  // the loads change their course), and the step after one restarts from dt.
-  // Sample times closer than dt/1000 after the step start (a load jump given
-  // as a steep ramp) fall inside the step.
   double load_break = std::numeric_limits<double>::infinity();
   if (adaptive) {
-    const double eps = std::max(1e-12 * std::max(1.0, std::abs(st.time)), 1e-3 * s.dt);
-    for (const auto& pl : model.point_loads)
-      for (const auto& ls : pl.history)
-        if (ls.time > st.time + eps) load_break = std::min(load_break, ls.time);
+    load_break = next_load_break();
     dt_cap = std::min(dt_cap, load_break - st.time);
   }
   const bool capped = dt_cap < st.next_dt;
   double dt = std::min(st.next_dt, dt_cap);
   const double allowed = s.g2 * w0;
-  std::vector<Mat6> base_diag;
-  Eigen::VectorXd base_rhs;
   for (;;) {
-    StepContext ctx{st.step, st.time, dt, allowed};
-    ctx.creep_error_wanted = adaptive;
-    contacts->begin_step(views, ctx);
-    auto t0 = Clock::now();
-    assemble_blocks(dt, st.time + dt, base_diag, base_rhs);
-    rep.assembly_seconds += seconds_since(t0);
-    bool converged = false;
-    int iterations = 0;
-    ContactCheck check;
-    while (iterations < s.max_open_close) {
-      t0 = Clock::now();
-      system.reset(base_diag, base_rhs);
-      system.set_centroids(views);  // the points the unknowns refer to (the amg solver's coarse spaces)
-      contacts->assemble(views, system);
-      system.finalize();
-      rep.assembly_seconds += seconds_since(t0);
-      t0 = Clock::now();
-      try {
-        D = solver->solve(system);
-      } catch (...) {
-        contacts->abandon_step();  // leave the contacts at their step-start states
-        throw;
-      }
-      rep.solve_seconds += seconds_since(t0);
-      ++iterations;
-      check = contacts->check(views, D);
-      if (check.state_changes == 0) {
-        converged = true;
-        break;
-      }
-    }
-    const double max_disp = converged ? max_vertex_displacement(D) : 0.0;
-    if (converged && max_disp <= allowed) {
+    const Trial trial = solve_trial(dt, adaptive, rep);
+    if (trial.converged && trial.max_disp <= allowed) {
       contacts->end_step(views, D);
       double err = 0.0;
       if (adaptive) {
@@ -489,22 +481,16 @@ StepReport Engine::Impl::step(double dt_cap) {
         }
       }
       rep.dt = dt;
-      rep.iterations = iterations;
-      rep.max_displacement = max_disp;
-      rep.max_penetration = check.max_penetration;
+      rep.iterations = trial.iterations;
+      rep.max_displacement = trial.max_disp;
+      rep.max_penetration = trial.check.max_penetration;
       accept(D, dt, st.step, st.time + dt);
       rep.time = st.time;
       if (adaptive) {
-        // Step size from the creep error estimate err of this step (local error
-        // ~ dt^2 for the first-order estimate): dt' = dt min(2, max(dt_cut,
-        // 0.9 sqrt(tol / err))), capped by dt_max; dt again after a load break.
+        // Step size from the creep error estimate err of this step.
         rep.creep_error = err;
         rep.creep_state_changes = contacts->creep_state_changes();
-        const double factor =
-            err > 0.0 ? std::clamp(0.9 * std::sqrt(s.creep_tolerance / err), s.dt_cut, 2.0) : 2.0;
-        double next = dt * factor;
-        if (s.dt_max > 0.0) next = std::min(next, s.dt_max);
-        if (st.time >= load_break - 1e-12 * std::max(1.0, std::abs(load_break))) next = s.dt;
+        double next = next_adaptive_dt(dt, s.creep_tolerance, err, load_break);
         // A creeping contact that locked, slid or opened moved load onto its
         // neighbours at once, as a load change does: restart from dt.
         if (s.creep_restart_on_contact_change && rep.creep_state_changes > 0)
@@ -516,16 +502,197 @@ StepReport Engine::Impl::step(double dt_cap) {
       return rep;
     }
     contacts->abandon_step();
-    if (rep.cuts >= s.max_cuts)
-      throw std::runtime_error(
-          "step " + std::to_string(st.step) + " at time " + std::to_string(st.time) + ": " +
-          (converged ? "displacement " + std::to_string(max_disp) + " exceeds g2 * w0 = " +
-                           std::to_string(allowed)
-                     : "open-close iteration did not converge") +
-          " after " + std::to_string(rep.cuts) + " cuts of dt (settings.max_cuts)");
-    dt *= s.dt_cut;
-    ++rep.cuts;
+    cut(dt, trial, rep);
   }
+}
+
+double Engine::Impl::next_load_break() const {
+  // Adaptive stepping (either control): steps end on the point-load sample
+  // times (where the loads change their course), and the step after one
+  // restarts from dt. Sample times closer than dt/1000 after the step start (a
+  // load jump given as a steep ramp) fall inside the step.
+  const double eps = std::max(1e-12 * std::max(1.0, std::abs(st.time)), 1e-3 * model.settings.dt);
+  double t = std::numeric_limits<double>::infinity();
+  for (const auto& pl : model.point_loads)
+    for (const auto& ls : pl.history)
+      if (ls.time > st.time + eps) t = std::min(t, ls.time);
+  return t;
+}
+
+double Engine::Impl::next_adaptive_dt(double dt, double tolerance, double err,
+                                      double load_break) const {
+  // Local error ~ dt^2 for both first-order estimates (the creep estimate and
+  // the step-doubling difference): dt' = dt min(2, max(dt_cut, 0.9 sqrt(tol /
+  // err))), capped by dt_max; dt again after a load break.
+  const Settings& s = model.settings;
+  const double factor =
+      err > 0.0 ? std::clamp(0.9 * std::sqrt(tolerance / err), s.dt_cut, 2.0) : 2.0;
+  double next = dt * factor;
+  if (s.dt_max > 0.0) next = std::min(next, s.dt_max);
+  if (st.time >= load_break - 1e-12 * std::max(1.0, std::abs(load_break))) next = s.dt;
+  return next;
+}
+
+bool Engine::Impl::take(double dt, StepReport& rep, Trial& trial) {
+  trial = solve_trial(dt, false, rep);
+  if (trial.converged && trial.max_disp <= model.settings.g2 * w0) {
+    contacts->end_step(views, D);
+    accept(D, dt, st.step, st.time + dt);
+    return true;
+  }
+  contacts->abandon_step();
+  return false;
+}
+
+StepReport Engine::Impl::doubling_step(double dt_cap) {
+  // Step doubling with local extrapolation (docs/speed-accuracy.md, "Step
+  // doubling"). The step y_c of dt and two steps y_f of dt/2 from the same
+  // state: the DDA step is first order, y_c - y = C dt^2 + O(dt^3) and
+  // y_f - y = C dt^2/2 + O(dt^3), so err = max |y_f - y_c| over the block
+  // vertices estimates the local error of y_f, and 2 y_f - y_c (Richardson)
+  // is the state with local error O(dt^3): a second-order step.
+  const Settings& s = model.settings;
+  StepReport rep;
+  rep.step = st.step;
+  const double load_break = next_load_break();
+  dt_cap = std::min(dt_cap, load_break - st.time);
+  double dt = std::min(st.next_dt, dt_cap);
+  const std::vector<BlockState> start_blocks = st.blocks;
+  const int start_step = st.step;
+  const double start_time = st.time;
+  const std::size_t start_samples =
+      st.measurements.empty() ? 0 : st.measurements.front().size();
+  const std::unique_ptr<ContactSnapshot> start_contacts = contacts->snapshot();
+  if (!start_contacts)
+    throw std::runtime_error(
+        "settings.step_tolerance: the contact model cannot copy its state (step doubling needs "
+        "ContactModel::snapshot)");
+  auto restart = [&] {
+    st.blocks = start_blocks;
+    st.step = start_step;
+    st.time = start_time;
+    for (auto& m : st.measurements) m.resize(start_samples);
+    refresh_geometry();
+    contacts->restore(*start_contacts);
+  };
+  std::vector<BlockState> coarse;
+  for (;;) {
+    Trial trial;
+    bool ok = take(dt, rep, trial);
+    double coarse_disp = trial.max_disp;
+    int iterations = trial.iterations;
+    std::unique_ptr<ContactSnapshot> coarse_contacts;
+    if (ok) {
+      coarse = st.blocks;
+      coarse_contacts = contacts->snapshot();
+      restart();
+      ok = take(0.5 * dt, rep, trial);
+      iterations += trial.iterations;
+      if (ok) {
+        ok = take(0.5 * dt, rep, trial);
+        iterations += trial.iterations;
+      }
+    }
+    if (!ok) {
+      restart();
+      cut(dt, trial, rep);
+      continue;
+    }
+    double err = 0.0;
+    for (std::size_t k = 0; k < st.blocks.size(); ++k)
+      for (std::size_t i = 0; i < st.blocks[k].vertices.size(); ++i)
+        err = std::max(err, (st.blocks[k].vertices[i] - coarse[k].vertices[i]).squaredNorm());
+    err = std::sqrt(err);
+    // Reject and redo a step whose estimate exceeds the tolerance by more than
+    // kRejectFactor, as the creep control does (not below dt, at most max_cuts
+    // times in one step).
+    if (err > kRejectFactor * s.step_tolerance && dt > s.dt &&
+        rep.rejections + rep.cuts < s.max_cuts) {
+      restart();
+      dt = std::max(dt * std::max(s.dt_cut, 0.9 * std::sqrt(s.step_tolerance / err)), s.dt);
+      ++rep.rejections;
+      continue;
+    }
+    // Richardson: 2 y_f - y_c for the blocks and, through the contact model,
+    // for every contact quantity; only when both runs end with the same
+    // contacts in the same states (else y_f stands, first order).
+    rep.extrapolated = s.step_extrapolation && contacts->extrapolate(*coarse_contacts);
+    if (rep.extrapolated) {
+      for (std::size_t k = 0; k < st.blocks.size(); ++k) {
+        BlockState& b = st.blocks[k];
+        const BlockState& c = coarse[k];
+        for (std::size_t i = 0; i < b.vertices.size(); ++i)
+          b.vertices[i] = 2.0 * b.vertices[i] - c.vertices[i];
+        b.map_A = 2.0 * b.map_A - c.map_A;
+        b.map_b = 2.0 * b.map_b - c.map_b;
+        b.stress = 2.0 * b.stress - c.stress;
+        b.velocity = 2.0 * b.velocity - c.velocity;
+        b.acceleration = 2.0 * b.acceleration - c.acceleration;
+      }
+      refresh_geometry();
+    }
+    // One step of dt for the outside: one report, one measurement sample.
+    st.step = start_step + 1;
+    st.time = start_time + dt;
+    for (auto& m : st.measurements) m.resize(start_samples);
+    record_measurements(start_step);
+    rep.dt = dt;
+    rep.time = st.time;
+    rep.iterations = iterations;
+    rep.max_displacement = coarse_disp;
+    rep.max_penetration = trial.check.max_penetration;
+    rep.step_error = err;
+    st.next_dt = next_adaptive_dt(dt, s.step_tolerance, err, load_break);
+    return rep;
+  }
+}
+
+Engine::Impl::Trial Engine::Impl::solve_trial(double dt, bool creep_error_wanted, StepReport& rep) {
+  const Settings& s = model.settings;
+  StepContext ctx{st.step, st.time, dt, s.g2 * w0};
+  ctx.creep_error_wanted = creep_error_wanted;
+  contacts->begin_step(views, ctx);
+  auto t0 = Clock::now();
+  assemble_blocks(dt, st.time + dt, base_diag, base_rhs);
+  rep.assembly_seconds += seconds_since(t0);
+  Trial trial;
+  while (trial.iterations < s.max_open_close) {
+    t0 = Clock::now();
+    system.reset(base_diag, base_rhs);
+    system.set_centroids(views);  // the points the unknowns refer to (the amg solver's coarse spaces)
+    contacts->assemble(views, system);
+    system.finalize();
+    rep.assembly_seconds += seconds_since(t0);
+    t0 = Clock::now();
+    try {
+      D = solver->solve(system);
+    } catch (...) {
+      contacts->abandon_step();  // leave the contacts at their step-start states
+      throw;
+    }
+    rep.solve_seconds += seconds_since(t0);
+    ++trial.iterations;
+    trial.check = contacts->check(views, D);
+    if (trial.check.state_changes == 0) {
+      trial.converged = true;
+      break;
+    }
+  }
+  trial.max_disp = trial.converged ? max_vertex_displacement(D) : 0.0;
+  return trial;
+}
+
+void Engine::Impl::cut(double& dt, const Trial& trial, StepReport& rep) const {
+  const Settings& s = model.settings;
+  if (rep.cuts >= s.max_cuts)
+    throw std::runtime_error(
+        "step " + std::to_string(st.step) + " at time " + std::to_string(st.time) + ": " +
+        (trial.converged ? "displacement " + std::to_string(trial.max_disp) +
+                               " exceeds g2 * w0 = " + std::to_string(s.g2 * w0)
+                         : "open-close iteration did not converge") +
+        " after " + std::to_string(rep.cuts) + " cuts of dt (settings.max_cuts)");
+  dt *= s.dt_cut;
+  ++rep.cuts;
 }
 
 Engine::Engine(Model model) : impl_(std::make_unique<Impl>()) {

@@ -227,6 +227,54 @@ BOOST_AUTO_TEST_CASE(abandon_step_restores_the_step_start_contact_states_exactly
   for (size_t k = 0; k < trial0.size(); ++k) BOOST_TEST(same(cs.trial_contacts()[k], trial0[k]));
 }
 
+BOOST_AUTO_TEST_CASE(extrapolate_combines_matching_records_and_refuses_different_states) {
+  // Step doubling's Richardson step (docs/speed-accuracy.md): from the same
+  // records, a "coarse" and a "fine" continuation; the fine records become
+  // 2 fine - coarse when both hold the same contacts in the same states.
+  Scene s;
+  s.add_rect(0, 0, 4, 1);
+  s.add_rect(1, 1, 2, 1.5);
+  ContactSystem start({joint(30.0)}, settings(1e10));
+  Vec6 load = Vec6::Zero();
+  load(1) = -1e4;
+  solve_step(start, s, 1300.0, 1e-3, load);
+  ContactSystem coarse = start, fine = start;
+  Vec6 push = load;
+  push(0) = -1e3;  // below friction: 1e4 N tan 30 deg = 5.8e3 N
+  solve_step(coarse, s, 1300.0, 1e-3, push);
+  push(0) = -2e3;
+  solve_step(fine, s, 1300.0, 1e-3, push);
+  BOOST_TEST_REQUIRE(fine.contacts().size() == 2u);
+  for (size_t k = 0; k < 2; ++k) {
+    BOOST_TEST_REQUIRE((fine.contacts()[k].state == ContactState::locked));
+    BOOST_TEST_REQUIRE((coarse.contacts()[k].state == ContactState::locked));
+  }
+  const std::vector<Contact> f(fine.contacts().begin(), fine.contacts().end());
+  const std::vector<Contact> c(coarse.contacts().begin(), coarse.contacts().end());
+  BOOST_TEST(fine.extrapolate(coarse));
+  for (size_t k = 0; k < 2; ++k) {
+    const Contact& x = fine.contacts()[k];
+    BOOST_TEST(x.id == f[k].id);
+    BOOST_TEST(x.shear_force == 2 * f[k].shear_force - c[k].shear_force);
+    BOOST_TEST(x.normal_force == 2 * f[k].normal_force - c[k].normal_force);
+    BOOST_TEST(x.shear_displacement == 2 * f[k].shear_displacement - c[k].shear_displacement);
+    BOOST_TEST(x.locking_ratio == 2 * f[k].locking_ratio - c[k].locking_ratio);
+    BOOST_TEST(x.penetration == 2 * f[k].penetration - c[k].penetration);
+    BOOST_TEST(f[k].shear_force != c[k].shear_force);  // the two continuations differ
+  }
+  // A push beyond friction slides: the states differ, nothing is combined.
+  ContactSystem sliding = start;
+  push(0) = -8e3;
+  solve_step(sliding, s, 1300.0, 1e-3, push);
+  for (const Contact& x : sliding.contacts()) BOOST_TEST_REQUIRE((x.state == ContactState::sliding));
+  const std::vector<Contact> before(sliding.contacts().begin(), sliding.contacts().end());
+  BOOST_TEST(!sliding.extrapolate(coarse));
+  for (size_t k = 0; k < before.size(); ++k) {
+    BOOST_TEST(sliding.contacts()[k].shear_force == before[k].shear_force);
+    BOOST_TEST(sliding.contacts()[k].shear_displacement == before[k].shear_displacement);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(slide_to_lock_counts_as_a_state_change) {
   Scene s;
   s.add_rect(0, 0, 4, 1);

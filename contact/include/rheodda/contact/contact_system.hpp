@@ -109,6 +109,15 @@ class ContactSystem {
   void end_step(std::span<const BlockView> blocks, const Eigen::VectorXd& D);
   /// Rejects the step: the records of the last accepted step stay as they were.
   void abandon_step();
+  /// Richardson extrapolation for step doubling (docs/speed-accuracy.md, "Step
+  /// doubling"): this system holds the records after two steps of dt/2 and
+  /// `coarse` those after one step of dt from the same records. Every
+  /// continuous quantity x of the committed records (locking point, forces,
+  /// accumulated shear, penetration, rheology histories) becomes 2 x - x_coarse,
+  /// and the creep increment that of the extrapolated history. Returns false
+  /// and changes nothing unless both hold the same contacts (keys, joint sets)
+  /// in the same states (sliding direction, intact) under the same penalty.
+  bool extrapolate(const ContactSystem& coarse);
 
   /// Records of the last accepted step, sorted by key.
   std::span<const Contact> contacts() const { return committed_; }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <memory>
 #include <span>
 
 #include "rheodda/contact/kinematics.hpp"
@@ -23,6 +24,13 @@ struct StepContext {
 struct ContactCheck {
   int state_changes = 0;         ///< open<->closed and slide<->lock changes this iteration
   double max_penetration = 0.0;  ///< largest normal penetration [length]
+};
+
+/// An opaque copy of a contact model's state after an accepted step, taken by
+/// ContactModel::snapshot for step doubling (Settings::step_tolerance).
+class ContactSnapshot {
+ public:
+  virtual ~ContactSnapshot() = default;
 };
 
 /// How the host drives contacts through a step:
@@ -54,6 +62,17 @@ class ContactModel {
   /// accepted step (locked <-> sliding or open, appeared closed or vanished
   /// locked) (asked only when StepContext::creep_error_wanted was set) [-].
   virtual int creep_state_changes() const { return 0; }
+  /// Step doubling (Settings::step_tolerance; asked between steps only): a copy of
+  /// the state after the last accepted step, or nullptr when the model cannot copy it.
+  virtual std::unique_ptr<ContactSnapshot> snapshot() const { return nullptr; }
+  /// Back to the state of a snapshot this model took.
+  virtual void restore(const ContactSnapshot&) {}
+  /// Richardson extrapolation: this model holds the state after two steps of
+  /// dt/2 and `coarse` the state after one step of dt from the same start;
+  /// replace every continuous quantity x by 2 x - x_coarse. Returns false, and
+  /// changes nothing, when the two differ in their discrete parts (which
+  /// contacts exist, their states).
+  virtual bool extrapolate(const ContactSnapshot& /*coarse*/) { return false; }
 };
 
 /// No contacts: every call does nothing.
@@ -66,6 +85,10 @@ class NullContactModel final : public ContactModel {
   }
   void end_step(std::span<const contact::BlockView>, const Eigen::VectorXd&) override {}
   void abandon_step() override {}
+  std::unique_ptr<ContactSnapshot> snapshot() const override {
+    return std::make_unique<ContactSnapshot>();
+  }
+  bool extrapolate(const ContactSnapshot&) override { return true; }
 };
 
 }  // namespace rheodda::core

@@ -36,16 +36,22 @@ struct StepReport {
   int step = 0;               ///< index of the step (0-based)
   double time = 0.0;          ///< time at the end of the step [time]
   double dt = 0.0;            ///< step size used [time]
-  int iterations = 0;         ///< open-close iterations of the accepted attempt [-]
+  int iterations = 0;         ///< open-close iterations of the accepted attempt (under
+                              ///< Settings::step_tolerance: of its three solves) [-]
   int cuts = 0;               ///< times dt was cut before acceptance [-]
   double max_displacement = 0.0;  ///< largest vertex displacement of the step [length]
   double max_penetration = 0.0;   ///< largest penetration reported by the contacts [length]
   double creep_error = 0.0;       ///< contacts' creep error estimate of the step, under
                                   ///< Settings::creep_tolerance only (else 0) [length]
-  int rejections = 0;             ///< times the step was redone smaller because its creep error
-                                  ///< estimate exceeded 2 x Settings::creep_tolerance [-]
+  int rejections = 0;             ///< times the step was redone smaller because its error
+                                  ///< estimate exceeded 2 x Settings::creep_tolerance (or
+                                  ///< step_tolerance) [-]
   int creep_state_changes = 0;    ///< creeping contacts whose state changed in the step, under
                                   ///< Settings::creep_tolerance only (else 0) [-]
+  double step_error = 0.0;         ///< step-doubling error estimate max |y(dt/2, twice) - y(dt)| over
+                                  ///< the block vertices, under Settings::step_tolerance only [length]
+  bool extrapolated = false;      ///< under Settings::step_tolerance: the step was extrapolated
+                                  ///< (2 y(dt/2) - y(dt)); false: y(dt/2) stands
   double assembly_seconds = 0.0;  ///< wall time spent assembling K and F (all attempts) [s]
   double solve_seconds = 0.0;     ///< wall time spent in the linear solver (all attempts) [s]
 };

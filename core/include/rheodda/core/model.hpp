@@ -115,8 +115,19 @@ struct Settings {
                                  ///< times; the next step is dt_n min(2, max(dt_cut,
                                  ///< 0.9 sqrt(tol/err))), err the contacts' estimate; a step
                                  ///< with err > 2 tol is redone smaller (not below dt); >= 0
-  double dt_max = 0.0;           ///< largest step under creep_tolerance [time]; 0 = no limit;
-                                 ///< >= 0, and >= dt under creep_tolerance
+  double step_tolerance = 0.0;   ///< adaptive stepping by step doubling (docs/speed-accuracy.md,
+                                 ///< "Step doubling"): largest difference allowed between one
+                                 ///< step of dt and two of dt/2, over every block vertex
+                                 ///< [length]; 0 = off. When > 0, dt is the first step and the
+                                 ///< step after every point-load sample time, steps end on those
+                                 ///< times, the next step is dt_n min(2, max(dt_cut,
+                                 ///< 0.9 sqrt(tol/err))), a step with err > 2 tol is redone
+                                 ///< smaller (not below dt); not with creep_tolerance; >= 0
+  bool step_extrapolation = true;  ///< under step_tolerance: accept 2 y(dt/2) - y(dt)
+                                 ///< (Richardson, second order) when both runs end with the
+                                 ///< same contacts in the same states; false: accept y(dt/2)
+  double dt_max = 0.0;           ///< largest step under creep_tolerance or step_tolerance [time];
+                                 ///< 0 = no limit; >= 0, and >= dt under either
   bool creep_restart_on_contact_change = false;  ///< under creep_tolerance: the step after one in
                                  ///< which a contact on a creeping joint set locked, slid, opened,
                                  ///< appeared or vanished restarts from dt [-]
