@@ -642,7 +642,11 @@ StepReport Engine::Impl::doubling_step(double dt_cap) {
     rep.max_displacement = coarse_disp;
     rep.max_penetration = trial.check.max_penetration;
     rep.step_error = err;
-    st.next_dt = next_adaptive_dt(dt, s.step_tolerance, err, load_break);
+    // Not below dt (the first step): where the estimate does not fall with the
+    // step - e.g. the quasi-static settling of a static analysis under gravity
+    // applied at once, whose per-step motion is g dt^2 whatever the creep - the
+    // control would follow that path in ever smaller steps.
+    st.next_dt = std::max(next_adaptive_dt(dt, s.step_tolerance, err, load_break), s.dt);
     return rep;
   }
 }

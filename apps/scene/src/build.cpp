@@ -46,6 +46,8 @@ BuiltScene build_scene(const SceneDescription& s) {
   st.max_cuts = a.max_cuts;
   st.creep_tolerance = a.creep_tolerance;
   st.dt_max = a.dt_max;
+  st.step_tolerance = a.step_tolerance;
+  st.step_extrapolation = a.step_extrapolation;
   st.creep_restart_on_contact_change = a.creep_restart_on_contact_change;
   st.g2 = a.max_displacement_ratio;
   st.dynamic_ratio = a.dynamic_ratio;

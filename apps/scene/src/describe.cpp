@@ -70,6 +70,18 @@ std::string describe_scene(const SceneDescription& s) {
                    a.fixed_point_stiffness, u.force, u.length));
   line(fmt::format("  open_close_limit {}, penetration_ratio {:g}, angle_tolerance {:g} deg, search_factor {:g}",
                    a.open_close_limit, a.penetration_ratio, a.angle_tolerance, a.search_factor));
+  if (a.step_tolerance > 0.0)
+    line(fmt::format("  time step: step doubling, step_tolerance {:g} {} ({}), dt_max {}", a.step_tolerance,
+                     u.length,
+                     a.step_extrapolation ? "extrapolated: second order" : "not extrapolated: first order",
+                     a.dt_max > 0.0 ? fmt::format("{:g} {}", a.dt_max, u.time) : std::string("none")));
+  else if (a.creep_tolerance > 0.0)
+    line(fmt::format("  time step: adaptive creep stepping, creep_tolerance {:g} {}, dt_max {}{}",
+                     a.creep_tolerance, u.length,
+                     a.dt_max > 0.0 ? fmt::format("{:g} {}", a.dt_max, u.time) : std::string("none"),
+                     a.creep_restart_on_contact_change ? ", restart on contact change" : ""));
+  else
+    line(fmt::format("  time step: fixed dt {:g} {} (cut by 0.3 when a step fails)", a.dt, u.time));
   line(fmt::format("  output every {:g} {}: {} frames", a.output_interval, u.time,
                    static_cast<long long>(std::ceil(a.duration / a.output_interval - 1e-9)) + 1));
 

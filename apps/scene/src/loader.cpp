@@ -275,7 +275,7 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
                "scheme", "penalty", "shear_normal_ratio", "search_factor", "angle_tolerance",
                "penetration_ratio", "open_close_limit", "fixed_point_stiffness", "solver", "solver_tolerance",
                "output_interval", "gravity", "creep_tolerance", "dt_max",
-               "creep_restart_on_contact_change"});
+               "creep_restart_on_contact_change", "step_tolerance", "step_extrapolation"});
   Analysis a;
   a.where = m.where();
   auto num = [&](const char* key, double& field, const Range& r) {
@@ -307,7 +307,29 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
     if (name != "automatic") a.scheme = laws::parse_scheme(name);
   }
   num("creep_tolerance", a.creep_tolerance, non_negative("length"));
-  num("dt_max", a.dt_max, non_negative("time"));
+  if (YAML::Node v = m.find("step_tolerance"); v.IsDefined()) {
+    a.step_tolerance = number(ctx, v, m.child("step_tolerance"), non_negative("length"));
+    if (a.step_tolerance > 0.0 && a.creep_tolerance > 0.0)
+      ctx.fail(v, m.child("step_tolerance"),
+               "give step_tolerance (step doubling) or creep_tolerance (creep error estimate), "
+               "not both: they are two step controls");
+  }
+  if (YAML::Node v = m.find("step_extrapolation"); v.IsDefined()) {
+    a.step_extrapolation = flag(ctx, v, m.child("step_extrapolation"));
+    if (!(a.step_tolerance > 0.0))
+      ctx.fail(v, m.child("step_extrapolation"),
+               "step_extrapolation applies under step_tolerance only (give step_tolerance > 0)");
+  }
+  if (YAML::Node v = m.find("dt_max"); v.IsDefined()) {
+    a.dt_max = number(ctx, v, m.child("dt_max"), non_negative("time"));
+    if (a.dt_max > 0.0 && !(a.creep_tolerance > 0.0 || a.step_tolerance > 0.0))
+      ctx.fail(v, m.child("dt_max"),
+               "dt_max applies under creep_tolerance or step_tolerance only (a fixed-step run "
+               "takes dt)");
+    if (a.dt_max > 0.0 && a.dt_max < a.dt)
+      ctx.fail(v, m.child("dt_max"),
+               fmt::format("dt_max = {:g} is shorter than dt = {:g} (the first step)", a.dt_max, a.dt));
+  }
   if (YAML::Node v = m.find("creep_restart_on_contact_change"); v.IsDefined())
     a.creep_restart_on_contact_change = flag(ctx, v, m.child("creep_restart_on_contact_change"));
   num("penalty", a.penalty, positive("stress"));

@@ -41,6 +41,8 @@ json scene_json(const SceneDescription& s) {
                    {"dt", a.dt},
                    {"max_cuts", a.max_cuts},
                    {"creep_tolerance", a.creep_tolerance},
+                   {"step_tolerance", a.step_tolerance},
+                   {"step_extrapolation", a.step_extrapolation},
                    {"dt_max", a.dt_max},
                    {"creep_restart_on_contact_change", a.creep_restart_on_contact_change},
                    {"max_displacement_ratio", a.max_displacement_ratio},
@@ -278,10 +280,12 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
   auto totals = [&] {
     result.steps = engine.step_count();
     result.time = engine.time();
-    result.cuts = 0;
+    result.cuts = result.redone = result.extrapolated = 0;
     result.max_penetration = 0.0;
     for (const auto& r : engine.reports()) {
       result.cuts += r.cuts;
+      result.redone += r.rejections;
+      result.extrapolated += r.extrapolated ? 1 : 0;
       result.max_penetration = std::max(result.max_penetration, r.max_penetration);
     }
     result.frames = frames_done;
@@ -301,6 +305,8 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     j["duration"] = a.duration;
     j["steps"] = result.steps;
     j["cuts"] = result.cuts;
+    j["redone"] = result.redone;
+    j["extrapolated_steps"] = result.extrapolated;
     j["max_penetration"] = result.max_penetration;
     j["frames"] = result.frames;
     j["wall_seconds"] = result.wall_seconds;

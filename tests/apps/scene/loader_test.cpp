@@ -131,6 +131,37 @@ BOOST_AUTO_TEST_CASE(creep_tolerance_and_dt_max_reach_the_engine_settings_and_ne
                   "out of range");
 }
 
+BOOST_AUTO_TEST_CASE(step_tolerance_and_step_extrapolation_reach_the_engine_settings_and_bad_values_are_refused) {
+  const auto text = with("  dt: 0.01", "  dt: 0.01\n  step_tolerance: 1.0e-4\n  step_extrapolation: false\n"
+                                       "  dt_max: 0.5");
+  const scene::SceneDescription s = scene::parse_scene(text, "doubling.yaml");
+  BOOST_TEST(s.analysis.step_tolerance == 1.0e-4);
+  BOOST_TEST(!s.analysis.step_extrapolation);
+  const scene::BuiltScene built = scene::build_scene(s);
+  BOOST_TEST(built.model.settings.step_tolerance == 1.0e-4);
+  BOOST_TEST(!built.model.settings.step_extrapolation);
+  BOOST_TEST(built.model.settings.dt_max == 0.5);
+  BOOST_TEST(built.model.settings.creep_tolerance == 0.0);
+  // Off by default; extrapolation on by default under a tolerance.
+  const scene::BuiltScene base = scene::build_scene(scene::parse_scene(kBaseScene, "base.yaml"));
+  BOOST_TEST(base.model.settings.step_tolerance == 0.0);
+  BOOST_TEST(scene::parse_scene(with("  dt: 0.01", "  dt: 0.01\n  step_tolerance: 1.0e-4"), "d.yaml")
+                 .analysis.step_extrapolation);
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  step_tolerance: -1"), 5, "-1", "analysis.step_tolerance",
+                  "out of range");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  creep_tolerance: 1e-6\n  step_tolerance: 1e-4"), 6, "1e-4",
+                  "analysis.step_tolerance", "not both");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  step_extrapolation: true"), 5, "true",
+                  "analysis.step_extrapolation", "under step_tolerance only");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  step_tolerance: 1e-4\n  step_extrapolation: often"), 6,
+                  "often", "analysis.step_extrapolation", "is not true or false");
+  // dt_max: only with an adaptive control, and not below dt.
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  dt_max: 0.5"), 5, "0.5", "analysis.dt_max",
+                  "under creep_tolerance or step_tolerance only");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  step_tolerance: 1e-4\n  dt_max: 0.001"), 6, "0.001",
+                  "analysis.dt_max", "shorter than dt");
+}
+
 BOOST_AUTO_TEST_CASE(solver_and_solver_tolerance_reach_the_engine_settings_and_bad_values_are_refused) {
   // Default: automatic with the iterative stop 1e-10.
   const scene::BuiltScene base = scene::build_scene(scene::parse_scene(kBaseScene, "base.yaml"));

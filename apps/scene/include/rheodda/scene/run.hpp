@@ -39,6 +39,9 @@ struct RunResult {
   RunStatus status = RunStatus::completed;
   int steps = 0;                 ///< accepted steps (all, including replayed ones)
   int cuts = 0;                  ///< dt cuts over all steps
+  int redone = 0;                ///< steps redone smaller by an adaptive control (creep_tolerance,
+                                 ///< step_tolerance) over all steps
+  int extrapolated = 0;          ///< steps accepted extrapolated under step_tolerance
   double max_penetration = 0.0;  ///< largest contact penetration of any step [length]
   double time = 0.0;             ///< simulated time reached [time]
   int frames = 0;                ///< output frames written

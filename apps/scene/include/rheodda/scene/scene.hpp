@@ -50,7 +50,11 @@ struct Analysis {
   /// limit, implicit otherwise (contact::ContactSettings::scheme).
   std::optional<laws::Scheme> scheme;
   double creep_tolerance = 0.0;        ///< adaptive creep stepping: creep error allowed per step [length]; 0 = fixed dt
-  double dt_max = 0.0;                 ///< largest step under creep_tolerance [time]; 0 = no limit
+  double step_tolerance = 0.0;         ///< step doubling: vertex difference allowed between one step of dt
+                                       ///< and two of dt/2 [length]; 0 = off; not with creep_tolerance
+  bool step_extrapolation = true;      ///< under step_tolerance: accept 2 y(dt/2) - y(dt) (second order)
+  double dt_max = 0.0;                 ///< largest step under creep_tolerance or step_tolerance [time];
+                                       ///< 0 = no limit
   bool creep_restart_on_contact_change = false;  ///< under creep_tolerance: restart from dt after a step
                                                 ///< in which a creeping contact changed state
   double penalty = 0.0;                ///< normal contact penalty p_n [stress]; default 40 x largest young_modulus (seed eq. 17)
