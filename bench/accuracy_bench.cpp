@@ -325,7 +325,8 @@ int toppling(const std::string& path, double t_end) {
     CreepRun c;
   };
   std::vector<Fixed> fixed;
-  for (double dt : {8.0, 4.0, 2.0, 1.0, 0.5, 0.25, 0.125, 0.0625, 1.0 / 32, 1.0 / 64}) {
+  for (double dt : {8.0, 4.0, 2.0, 1.0, 0.5, 0.25, 0.125, 0.0625, 1.0 / 32, 1.0 / 64, 1.0 / 128,
+                    1.0 / 256}) {
     fixed.push_back({dt, run_creep(built, settled, {dt}, t_end)});
     const CreepRun& c = fixed.back().c;
     std::printf("| fixed dt = %g d | %ld | %ld | - | %s | %.1f |\n", dt, c.r.steps, c.cuts,
@@ -356,7 +357,7 @@ int toppling(const std::string& path, double t_end) {
                     fmt_error(error(best->c)).c_str(), best->c.r.steps, 1e3 * best->c.r.wall,
                     c.r.wall / best->c.r.wall);
     else
-      std::snprintf(cmp, sizeof cmp, "none down to 1/64 d | - | - | -");
+      std::snprintf(cmp, sizeof cmp, "none down to 1/256 d | - | - | -");
     return std::string(cmp);
   };
   std::printf("\n| creep_tolerance [m] | restart on contact change | steps | cuts | redone | error "
@@ -383,7 +384,7 @@ int toppling(const std::string& path, double t_end) {
       ctl.extrapolation = extrapolation;
       const CreepRun c = run_creep(built, settled, ctl, t_end);
       std::printf("| %g | %s | %ld | %ld | %ld | %ld | %s | %.1f | %s |\n", tol,
-                  extrapolation ? "yes" : "no", c.r.steps, c.extrapolated, c.cuts, c.rejections,
+                  extrapolation ? "on" : "off", c.r.steps, c.extrapolated, c.cuts, c.rejections,
                   fmt_error(error(c)).c_str(), 1e3 * c.r.wall, compare(c).c_str());
     }
   return 0;

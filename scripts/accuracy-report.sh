@@ -100,10 +100,13 @@ GP
 echo "wrote $root/docs/img/stability-map.png"
 
 # Toppling comparison: error vs wall time, fixed steps (both schemes) and
-# adaptive stepping (creep_tolerance), from the generated table's rows.
+# adaptive stepping (creep_tolerance) and step doubling (step_tolerance), from
+# the generated table's rows.
 awk -F'|' '/^\| fixed dt = / && !/exponential/ { print $7, $6 }' "$work/toppling.md" >"$work/top-fixed.dat"
 awk -F'|' '/^\| fixed dt = / && /exponential/ { print $7, $6 }' "$work/toppling.md" >"$work/top-el.dat"
 awk -F'|' '/^\| [0-9.e-]+ \| no \|/ { print $8, $7, $2 }' "$work/toppling.md" >"$work/top-adaptive.dat"
+awk -F'|' '/^\| [0-9.e-]+ \| on \|/ { print $9, $8, $2 }' "$work/toppling.md" >"$work/top-doubling.dat"
+awk -F'|' '/^\| [0-9.e-]+ \| off \|/ { print $9, $8, $2 }' "$work/toppling.md" >"$work/top-doubling-off.dat"
 gnuplot <<GP
 set terminal pngcairo size 800,560 font 'Sans,11'
 set output '$root/docs/img/toppling-error-vs-time.png'
@@ -114,9 +117,11 @@ set format y '10^{%L}'
 set grid
 set xlabel 'wall time [ms]'
 set ylabel 'largest |u - u_{ref}| / u_{ref} at 100 d [-]'
-set key top right
-plot '$work/top-fixed.dat' using 1:2 with linespoints lw 2 pt 7 title 'fixed dt, 8 d to 1/64 d (implicit)', \
+set key bottom left
+plot '$work/top-fixed.dat' using 1:2 with linespoints lw 2 pt 7 title 'fixed dt, 8 d to 1/256 d (implicit)', \
      '$work/top-el.dat' using 1:2 with points pt 9 ps 1.5 title 'fixed dt, exponential-linear', \
-     '$work/top-adaptive.dat' using 1:2 with linespoints lw 2 pt 5 dt 2 lc 'black' title 'adaptive, creep tolerance 1e-3..1e-8 m'
+     '$work/top-adaptive.dat' using 1:2 with linespoints lw 2 pt 5 dt 2 lc 'black' title 'adaptive, creep tolerance 1e-3..1e-8 m', \
+     '$work/top-doubling.dat' using 1:2 with linespoints lw 2 pt 13 ps 1.4 lc 'red' title 'step doubling, extrapolated, step tolerance 1e-2..1e-7 m', \
+     '$work/top-doubling-off.dat' using 1:2 with linespoints lw 1 pt 12 ps 1.2 dt 3 lc 'red' title 'step doubling, not extrapolated'
 GP
 echo "wrote $root/docs/img/toppling-error-vs-time.png"

@@ -217,6 +217,26 @@ BOOST_AUTO_TEST_CASE(steps_end_on_the_load_sample_times_and_restart_from_dt_afte
   BOOST_TEST(at80->dt > 10 * dt);
 }
 
+BOOST_AUTO_TEST_CASE(no_step_is_shorter_than_dt_unless_it_ends_on_a_load_sample_time) {
+  // A tolerance no step of 0.5 h meets: the control would shrink the step
+  // without end; dt (the first step) is its floor, and only steps cut short
+  // to land on a load sample time or the end are shorter.
+  const double dt = 0.5;
+  const double tol = 1e-20;  // [mm]: below round-off
+  const Run a = run({dt, tol});
+  BOOST_TEST_REQUIRE(a.reports.size() > 10u);
+  std::size_t missed = 0;  // steps whose estimate asked for a smaller step
+  for (const auto& r : a.reports) {
+    if (r.step_error > 2 * tol) ++missed;
+    const bool lands = std::abs(r.time - kStage2) < 1e-9 || std::abs(r.time - kRamp2) < 1e-9 ||
+                       std::abs(r.time - kStage3) < 1e-9 || std::abs(r.time - kRamp3) < 1e-9 ||
+                       std::abs(r.time - kEnd) < 1e-9;
+    BOOST_TEST_INFO("step ending at " << r.time << " h, dt " << r.dt << " h");
+    BOOST_TEST((r.dt >= dt * (1 - 1e-12) || lands));
+  }
+  BOOST_TEST(missed > a.reports.size() / 2);
+}
+
 BOOST_AUTO_TEST_CASE(bad_step_doubling_settings_are_refused_naming_the_key) {
   auto refused = [](core::Settings s, const std::string& key) {
     core::Model m;
