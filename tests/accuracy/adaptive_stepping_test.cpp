@@ -3,7 +3,7 @@
 // Table 1 row 1; MPa, mm, h) under a staged shear load with unloading:
 // tau from 0 h, ramp to 2 tau over 80-85.5 h, ramp to 0 over 140-143.3 h, 0-200 h.
 // Reference: the Boltzmann superposition of the closed form (eqs. 20-21),
-// staged_exact below. Steps are counted, never timed.
+// staged_two_block.hpp. Steps are counted, never timed.
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>
@@ -17,50 +17,19 @@
 #include "rheodda/core/model.hpp"
 #include "rheodda/laws/history.hpp"
 #include "rheodda/laws/registry.hpp"
+#include "staged_two_block.hpp"
 
 using namespace rheodda;
 
 namespace {
 
-constexpr double kSigma = 1.408, kTau = 0.232;  // [MPa]
-constexpr double kE1 = 26.87, kE2 = 192.43, kEta1 = 34807.72, kEta2 = 2141.23;
-constexpr double kStage2 = 80.0, kStage3 = 140.0, kEnd = 200.0;  // ramp starts, end [h]
-constexpr double kRamp2 = 85.5, kRamp3 = 143.3;                  // ramp ends [h]
-
-/// Joint displacement under the staged shear stress with ramps: tau from 0 h,
-/// ramp to 2 tau over 80-85.5 h, ramp to 0 over 140-143.3 h [mm]. Boltzmann
-/// superposition of the Burgers creep compliance (the seed's eqs. 20-21)
-/// J(u) = 1/E1 + (1 - exp(-E2 u/eta2))/E2 + u/eta1: the step tau J(t) plus, per
-/// ramp of slope s from a to b, s (I(t - a) - I(t - b)), I(u) = int_0^max(u,0) J.
-double staged_exact(double tau, double E1, double E2, double eta1, double eta2, double t) {
-  auto J = [&](double u) { return 1 / E1 + (1 - std::exp(-E2 * u / eta2)) / E2 + u / eta1; };
-  auto I = [&](double u) {
-    u = std::max(u, 0.0);
-    return u / E1 + u / E2 - eta2 / (E2 * E2) * (1 - std::exp(-E2 * u / eta2)) + u * u / (2 * eta1);
-  };
-  const double s = tau / (kRamp2 - kStage2), s3 = -2 * tau / (kRamp3 - kStage3);
-  return tau * J(t) + s * (I(t - kStage2) - I(t - kRamp2)) + s3 * (I(t - kStage3) - I(t - kRamp3));
-}
-
-std::vector<core::Vec2> rect(double x0, double y0, double x1, double y1) {
-  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-}
+using namespace rheodda::test::staged;
 
 /// Block A (w x w) on block B (3w x w, fixed by three fixed points), static
 /// analysis without gravity at a first step dt, creep tolerance `tolerance`.
 core::Model two_blocks(double w, double dt, double tolerance) {
-  core::Model m;
-  m.materials[0].young_modulus = 1e7;
-  m.materials[0].density = 1e-12;
-  m.settings.dt = dt;
-  m.settings.dynamic_ratio = 0.0;
-  m.settings.gravity = {0.0, 0.0};
+  core::Model m = test::staged::two_blocks(w, dt);
   m.settings.creep_tolerance = tolerance;
-  core::BlockDef b, a;
-  b.vertices = rect(-w, -w, 2 * w, 0.0);
-  a.vertices = rect(0.0, 0.0, w, w);
-  m.blocks = {b, a};
-  for (int k = 0; k < 3; ++k) m.fixed_points.push_back({0, b.vertices[k]});
   return m;
 }
 
@@ -84,16 +53,8 @@ Run run(double dt, double tolerance, double t_end = kEnd, double held_by = 0.0,
     m.fixed_points.push_back({1, top[2]});
     m.fixed_points.push_back({1, top[3]});
   }
-  m.point_loads.push_back({1, {0.5 * w, 0.0}, {{0.0, {0.0, -kSigma * w}}}});
-  m.point_loads.push_back({1,
-                           {0.5 * w, 0.0},
-                           {{0.0, {kTau * w, 0.0}},
-                            {kStage2, {kTau * w, 0.0}},
-                            {kRamp2, {2 * kTau * w, 0.0}},
-                            {kStage3, {2 * kTau * w, 0.0}},
-                            {kRamp3, {0.0, 0.0}}}});
-  const std::shared_ptr<const laws::ContactRheology> law = laws::LawRegistry::builtin().create(
-      "burgers", {{"E1", kE1}, {"E2", kE2}, {"eta1", kEta1}, {"eta2", kEta2}});
+  add_staged_loads(m, w);
+  const std::shared_ptr<const laws::ContactRheology> law = burgers_row1();
   contact::JointSet j;
   j.name = "joint";
   j.friction_angle = friction_angle;
@@ -108,7 +69,7 @@ Run run(double dt, double tolerance, double t_end = kEnd, double held_by = 0.0,
     int n = 0;
     for (const auto& c : contacts.contacts())
       if (c.key.vblock == 1) sum -= c.shear_displacement, ++n;
-    const double exact = staged_exact(kTau, kE1, kE2, kEta1, kEta2, e.time());
+    const double exact = test::staged::exact(e.time());
     r.error = std::max(r.error, std::abs(sum / n - exact));
     r.t.push_back(e.time());
     r.d.push_back(sum / n);

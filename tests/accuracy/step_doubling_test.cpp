@@ -17,34 +17,14 @@
 #include "rheodda/core/engine.hpp"
 #include "rheodda/core/model.hpp"
 #include "rheodda/laws/registry.hpp"
+#include "staged_two_block.hpp"
 
 using namespace rheodda;
 
 namespace {
 
-constexpr double kSigma = 1.408, kTau = 0.232;  // [MPa]
-constexpr double kE1 = 26.87, kE2 = 192.43, kEta1 = 34807.72, kEta2 = 2141.23;
-constexpr double kStage2 = 80.0, kStage3 = 140.0, kEnd = 200.0;  // ramp starts, end [h]
-constexpr double kRamp2 = 85.5, kRamp3 = 143.3;                  // ramp ends [h]
-constexpr double kWidth = 100.0;                                 // block side [mm]
-
-/// Joint displacement under the staged load [mm]: tau J(t) plus, per ramp of
-/// slope s from a to b, s (I(t - a) - I(t - b)), J the Burgers creep compliance
-/// (the seed's eqs. 20-21) and I(u) = int_0^max(u,0) J (Boltzmann superposition).
-double staged_exact(double t) {
-  auto J = [](double u) { return 1 / kE1 + (1 - std::exp(-kE2 * u / kEta2)) / kE2 + u / kEta1; };
-  auto I = [](double u) {
-    u = std::max(u, 0.0);
-    return u / kE1 + u / kE2 - kEta2 / (kE2 * kE2) * (1 - std::exp(-kE2 * u / kEta2)) +
-           u * u / (2 * kEta1);
-  };
-  const double s2 = kTau / (kRamp2 - kStage2), s3 = -2 * kTau / (kRamp3 - kStage3);
-  return kTau * J(t) + s2 * (I(t - kStage2) - I(t - kRamp2)) + s3 * (I(t - kStage3) - I(t - kRamp3));
-}
-
-std::vector<core::Vec2> rect(double x0, double y0, double x1, double y1) {
-  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-}
+using namespace rheodda::test::staged;
+constexpr double kWidth = 100.0;  // block side [mm]
 
 struct Control {
   double dt = 1.0;              ///< first (or fixed) step [h]
@@ -66,35 +46,17 @@ struct Run {
 /// staged shear load on A at the joint line.
 Run run(const Control& c) {
   const double w = kWidth;
-  core::Model m;
-  m.materials[0].young_modulus = 1e7;
-  m.materials[0].density = 1e-12;
-  m.settings.dt = c.dt;
-  m.settings.dynamic_ratio = 0.0;
-  m.settings.gravity = {0.0, 0.0};
+  core::Model m = two_blocks(w, c.dt);
   m.settings.step_tolerance = c.step_tolerance;
   m.settings.step_extrapolation = c.extrapolation;
   m.settings.dt_max = c.dt_max;
-  core::BlockDef b, a;
-  b.vertices = rect(-w, -w, 2 * w, 0.0);
-  a.vertices = rect(0.0, 0.0, w, w);
-  m.blocks = {b, a};
-  for (int k = 0; k < 3; ++k) m.fixed_points.push_back({0, b.vertices[k]});
   m.measurement_points.push_back({1, {w, w}});
-  m.point_loads.push_back({1, {0.5 * w, 0.0}, {{0.0, {0.0, -kSigma * w}}}});
-  m.point_loads.push_back({1,
-                           {0.5 * w, 0.0},
-                           {{0.0, {kTau * w, 0.0}},
-                            {kStage2, {kTau * w, 0.0}},
-                            {kRamp2, {2 * kTau * w, 0.0}},
-                            {kStage3, {2 * kTau * w, 0.0}},
-                            {kRamp3, {0.0, 0.0}}}});
+  add_staged_loads(m, w);
   contact::JointSet j;
   j.name = "joint";
   j.friction_angle = 60.0;
   j.normal_stiffness = 1e4;
-  j.law = laws::LawRegistry::builtin().create(
-      "burgers", {{"E1", kE1}, {"E2", kE2}, {"eta1", kEta1}, {"eta2", kEta2}});
+  j.law = burgers_row1();
   contact::ContactSettings cs = core::contact_settings_for(m);
   cs.scheme = laws::Scheme::implicit;
   contact::ContactSystem contacts({j}, cs);
@@ -106,7 +68,7 @@ Run run(const Control& c) {
     int n = 0;
     for (const auto& ct : contacts.contacts())
       if (ct.key.vblock == 1) sum -= ct.shear_displacement, ++n;
-    r.error = std::max(r.error, std::abs(sum / n - staged_exact(e.time())));
+    r.error = std::max(r.error, std::abs(sum / n - exact(e.time())));
     r.t.push_back(e.time());
     r.d.push_back(sum / n);
     r.solves += rep.iterations;
