@@ -8,6 +8,13 @@
 //                                                  # cholmod below 400 blocks, amg above)
 //   build/bench/contact_bench --solver amg --tol 1e-8  # iterative stop ||F - K D|| <= tol ||F||
 //   build/bench/contact_bench --open-close 20      # open-close iterations before a cut (default 8)
+//   build/bench/contact_bench --penalty 10         # contact penalty in units of E (default 40)
+//   build/bench/contact_bench --glued              # cohesion and tensile strength so high that every
+//                                                  # contact stays locked: one iterate per step, the
+//                                                  # linear solver alone
+//   build/bench/contact_bench --trace --sizes 32 --steps 5
+//                                                  # per iterate: changes by kind and CG iterations
+//   build/bench/contact_bench --sizes 32,100       # wall sides to run (default 10,32,100,316)
 //
 // A wall of NX x NY bricks 0.2 m x 0.1 m in running bond (odd rows start and
 // end with a half brick, so the sides are straight) stands on a fixed base
@@ -30,6 +37,7 @@
 #include "rheodda/contact/contact_system.hpp"
 #include "rheodda/core/contact_adapter.hpp"
 #include "rheodda/core/engine.hpp"
+#include "rheodda/core/solver.hpp"
 
 using namespace rheodda;
 using core::Vec2;
@@ -88,6 +96,58 @@ double seconds(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
 }
 
+/// The contact adapter with a trace: per step attempt one line, per open-close
+/// iterate the CG iterations of its solve and what the check changed, e.g.
+///   step 4 dt 0.001: {68} [c43 o175 s135 l30 r126] {78} [...] ... cut
+/// (c closed, o opened, s slipped, l stuck (locked), r friction refinements).
+class TracingContacts final : public core::ContactModel {
+ public:
+  explicit TracingContacts(core::ContactAdapter& inner) : inner_(inner) {}
+  const core::Engine* engine = nullptr;  // for the solver's CG count
+
+  void begin_step(std::span<const contact::BlockView> b, const core::StepContext& ctx) override {
+    std::printf("step %d dt %.3g:", ctx.step, ctx.dt);
+    inner_.begin_step(b, ctx);
+  }
+  void assemble(std::span<const contact::BlockView> b, contact::SystemSink& sink) override {
+    inner_.assemble(b, sink);
+  }
+  core::ContactCheck check(std::span<const contact::BlockView> b, const Eigen::VectorXd& D) override {
+    const core::ContactCheck r = inner_.check(b, D);
+    const long cg = engine ? engine->solver_stats().pcg_iterations : 0;
+    const auto& k = r.changes;
+    std::printf(" {%ld} [c%d o%d s%d l%d r%d]", cg - last_cg_, k.closed, k.opened, k.slipped, k.stuck,
+                k.refinements);
+    last_cg_ = cg;
+    return r;
+  }
+  void end_step(std::span<const contact::BlockView> b, const Eigen::VectorXd& D) override {
+    std::printf(" ok\n");
+    inner_.end_step(b, D);
+  }
+  void abandon_step() override {
+    std::printf(" cut\n");
+    inner_.abandon_step();
+  }
+
+ private:
+  core::ContactAdapter& inner_;
+  long last_cg_ = 0;
+};
+
+std::vector<int> parse_sizes(const char* text) {
+  std::vector<int> sizes;
+  for (const char* p = text; *p;) {
+    char* end = nullptr;
+    const long v = std::strtol(p, &end, 10);
+    if (end == p || v < 1) return {};
+    sizes.push_back(static_cast<int>(v));
+    p = *end == ',' ? end + 1 : end;
+    if (*end && *end != ',') return {};
+  }
+  return sizes;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -97,6 +157,9 @@ int main(int argc, char** argv) {
   double pcg_tol = 0.0;
   std::string solver = "automatic";
   int open_close = 0;
+  double penalty = 40.0;  // [E]
+  bool glued = false, trace = false;
+  std::vector<int> sizes{10, 32, 100, 316};
   for (int k = 1; k < argc; ++k) {
     if (!std::strcmp(argv[k], "--max-blocks") && k + 1 < argc) max_blocks = std::atol(argv[++k]);
     else if (!std::strcmp(argv[k], "--steps") && k + 1 < argc) steps = std::atoi(argv[++k]);
@@ -104,12 +167,21 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[k], "--solver") && k + 1 < argc) solver = argv[++k];
     else if (!std::strcmp(argv[k], "--tol") && k + 1 < argc) pcg_tol = std::atof(argv[++k]);
     else if (!std::strcmp(argv[k], "--open-close") && k + 1 < argc) open_close = std::atoi(argv[++k]);
+    else if (!std::strcmp(argv[k], "--penalty") && k + 1 < argc) penalty = std::atof(argv[++k]);
+    else if (!std::strcmp(argv[k], "--glued")) glued = true;
+    else if (!std::strcmp(argv[k], "--trace")) trace = true;
+    else if (!std::strcmp(argv[k], "--sizes") && k + 1 < argc && !(sizes = parse_sizes(argv[++k])).empty()) {}
     else {
       std::fprintf(stderr,
                    "usage: contact_bench [--max-blocks N] [--steps S] [--detect-only] "
-                   "[--solver automatic|cholmod|pcg|amg] [--tol T] [--open-close N]\n");
+                   "[--solver automatic|cholmod|pcg|amg] [--tol T] [--open-close N] [--penalty F] "
+                   "[--glued] [--trace] [--sizes A,B,...]\n");
       return 2;
     }
+  }
+  if (!(penalty > 0.0)) {
+    std::fprintf(stderr, "contact_bench: --penalty must be > 0 (in units of E)\n");
+    return 2;
   }
   core::SolverKind solver_kind = core::SolverKind::automatic;
   if (solver == "cholmod") solver_kind = core::SolverKind::cholmod;
@@ -122,16 +194,17 @@ int main(int argc, char** argv) {
   contact::JointSet joint;
   joint.name = "mortar";
   joint.friction_angle = 30.0;
+  if (glued) joint.cohesion = joint.tensile_strength = 1e12;  // [Pa]: nothing slides or opens
 
   std::printf("# running-bond brick wall, %d steps, dt = 1e-3 s, g2 w0 = 1 mm (one core), solver %s",
               steps, solver.c_str());
   if (pcg_tol > 0.0) std::printf(", tol %g", pcg_tol);
-  std::printf("\n");
+  std::printf(", penalty %g E%s\n", penalty, glued ? ", glued joints" : "");
   std::printf("%8s %6s %6s %8s %10s %10s %10s %10s %14s %8s %6s %5s %8s %8s %12s\n", "blocks", "NX",
               "NY", "contacts", "detect_ms", "step_ms", "solve_ms", "assemb_ms", "block-steps/s",
               "exponent", "iters", "cuts", "analyses", "cg/solve", "max_disp_m");
   double prev_n = 0.0, prev_step = 0.0;
-  for (int side : {10, 32, 100, 316}) {
+  for (int side : sizes) {
     const int nx = side, ny = side;
     core::Model model = brick_wall(nx, ny);
     model.settings.solver = solver_kind;
@@ -139,9 +212,12 @@ int main(int argc, char** argv) {
     if (open_close > 0) model.settings.max_open_close = open_close;
     const double n = static_cast<double>(model.blocks.size() - 1);
     if (n > 1.2 * static_cast<double>(max_blocks)) break;
-    contact::ContactSystem contacts({joint}, core::contact_settings_for(model));
+    contact::ContactSystem contacts({joint}, core::contact_settings_for(model, penalty));
     core::ContactAdapter adapter(contacts);
-    core::Engine engine(model, adapter);
+    TracingContacts tracing(adapter);
+    core::Engine engine(model, trace ? static_cast<core::ContactModel&>(tracing)
+                                     : static_cast<core::ContactModel&>(adapter));
+    tracing.engine = &engine;
 
     // Detection alone, on the initial geometry (begin_step then abandon_step).
     const int reps = n < 5000 ? 20 : 3;
@@ -183,6 +259,13 @@ int main(int argc, char** argv) {
                 n, nx, ny, contacts.contacts().size(), 1e3 * detect, 1e3 * step_time,
                 1e3 * solve / steps, 1e3 * assembly / steps, n / step_time, exponent,
                 iters / steps, cuts, ss.analyses, cg_per_solve, max_disp);
+    core::ContactChanges changes;
+    for (const auto& r : engine.reports()) changes += r.changes;
+    std::printf("#   changes per step (all iterates and attempts): closed %.1f opened %.1f slipped %.1f "
+                "stuck %.1f refinements %.1f\n",
+                double(changes.closed) / steps, double(changes.opened) / steps,
+                double(changes.slipped) / steps, double(changes.stuck) / steps,
+                double(changes.refinements) / steps);
     std::fflush(stdout);
     prev_n = n;
     prev_step = step_time;

@@ -434,10 +434,15 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
       if (r.state != before) {
         ++h.flips;
         ++res.state_changes;
+        if (before == ContactState::open) ++res.closed;
+        else if (r.state == ContactState::open) ++res.opened;
+        else if (r.state == ContactState::sliding) ++res.slipped;
+        else ++res.stuck;
       }
     } else if (refine && h.refinements < settings_.max_refinements) {
       ++h.refinements;
       ++res.state_changes;
+      ++res.refinements;
     }
     // The normal force that drives friction in the next iterate. A contact that
     // just closed has N from a trial without its spring (the whole free
@@ -462,6 +467,7 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
           h.refinements < settings_.max_refinements) {
         ++h.refinements;
         ++res.state_changes;
+        ++res.refinements;
       }
     }
   }

@@ -30,7 +30,8 @@ void ContactAdapter::assemble(std::span<const contact::BlockView> blocks,
 ContactCheck ContactAdapter::check(std::span<const contact::BlockView> blocks,
                                    const Eigen::VectorXd& D) {
   const contact::CheckResult r = system_.check(blocks, D);
-  return {r.state_changes, r.max_penetration};
+  return {r.state_changes, r.max_penetration,
+          ContactChanges{r.closed, r.opened, r.slipped, r.stuck, r.refinements}};
 }
 
 void ContactAdapter::end_step(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) {

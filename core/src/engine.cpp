@@ -19,6 +19,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "rheodda/core/block_system.hpp"
 #include "rheodda/core/polygon.hpp"
@@ -112,6 +113,23 @@ bool inside_or_near(std::span<const Vec2> v, const Vec2& p, double tol) {
     if ((a + s * e - p).norm() <= tol) return true;
   }
   return inside;
+}
+
+/// " (the last iterate still changed 2 contacts: 1 slipped, 1 stuck)": why an
+/// open-close iteration was cut, for the error message.
+std::string last_changes(const ContactCheck& c) {
+  const ContactChanges& k = c.changes;
+  if (k.total() == 0) return {};
+  std::string s = " (the last of its iterates still changed " + std::to_string(k.total()) + ":";
+  const std::pair<int, const char*> kinds[] = {{k.closed, "closed"},
+                                               {k.opened, "opened"},
+                                               {k.slipped, "slipped"},
+                                               {k.stuck, "stuck"},
+                                               {k.refinements, "friction refinements"}};
+  const char* sep = " ";
+  for (const auto& [n, word] : kinds)
+    if (n > 0) s += sep + std::to_string(n) + " " + word, sep = ", ";
+  return s + ")";
 }
 
 }  // namespace
@@ -677,6 +695,7 @@ Engine::Impl::Trial Engine::Impl::solve_trial(double dt, bool creep_error_wanted
     rep.solve_seconds += seconds_since(t0);
     ++trial.iterations;
     trial.check = contacts->check(views, D);
+    rep.changes += trial.check.changes;
     if (trial.check.state_changes == 0) {
       trial.converged = true;
       break;
@@ -693,7 +712,7 @@ void Engine::Impl::cut(double& dt, const Trial& trial, StepReport& rep) const {
         "step " + std::to_string(st.step) + " at time " + std::to_string(st.time) + ": " +
         (trial.converged ? "displacement " + std::to_string(trial.max_disp) +
                                " exceeds g2 * w0 = " + std::to_string(s.g2 * w0)
-                         : "open-close iteration did not converge") +
+                         : "open-close iteration did not converge" + last_changes(trial.check)) +
         " after " + std::to_string(rep.cuts) + " cuts of dt (settings.max_cuts)");
   dt *= s.dt_cut;
   ++rep.cuts;

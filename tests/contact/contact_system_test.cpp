@@ -288,8 +288,54 @@ BOOST_AUTO_TEST_CASE(slide_to_lock_counts_as_a_state_change) {
   cs.begin_step(s.views(), 1e-4);
   Eigen::VectorXd D = Eigen::VectorXd::Zero(12);
   D(6) = +1e-6;  // the trial moves against the sliding direction
-  BOOST_TEST(cs.check(s.views(), D).state_changes == 2);
+  const CheckResult r = cs.check(s.views(), D);
+  BOOST_TEST(r.state_changes == 2);
+  BOOST_TEST(r.stuck == 2);  // told apart by kind
+  BOOST_TEST(r.closed + r.opened + r.slipped + r.refinements == 0);
   for (const Contact& c : cs.trial_contacts()) BOOST_TEST((c.state == ContactState::locked));
+  cs.abandon_step();
+}
+
+BOOST_AUTO_TEST_CASE(check_tells_closing_opening_and_slipping_apart) {
+  // A block resting on a fixed base (two locked edge-edge contacts) and a
+  // second block 1 mm above the base's right end (two open contacts, within
+  // the search distance); trial displacements that lift the first block, push
+  // the second one down onto the base, then shear the first one.
+  Scene s;
+  s.add_rect(0, 0, 4, 1);
+  s.add_rect(0.5, 1, 1.5, 1.5);
+  s.add_rect(2.5, 1.001, 3.5, 1.5);
+  ContactSystem cs({joint(30.0)}, settings(1e10));
+  cs.begin_step(s.views(), 1e-3);
+  int open = 0, locked = 0;
+  for (const Contact& c : cs.trial_contacts()) {
+    if (c.state == ContactState::open) ++open;
+    if (c.state == ContactState::locked) ++locked;
+  }
+  BOOST_TEST_REQUIRE(open == 2);
+  BOOST_TEST_REQUIRE(locked == 2);
+  Eigen::VectorXd D = Eigen::VectorXd::Zero(18);
+  D(7) = 1e-4;     // block 1 lifts off: its two contacts open
+  D(13) = -2e-3;   // block 2 moves 2 mm down: its two contacts close
+  CheckResult r = cs.check(s.views(), D);
+  BOOST_TEST(r.opened == 2);
+  BOOST_TEST(r.closed == 2);
+  BOOST_TEST(r.slipped + r.stuck + r.refinements == 0);
+  BOOST_TEST(r.state_changes == 4);
+  cs.abandon_step();
+
+  // Block 1 pressed down 1e-6 m (normal force 1e4 N per contact) and moved
+  // 1e-5 m sideways: the shear spring (p / 2.5 x 1e-5 = 4e4 N) exceeds
+  // N tan 30 deg = 5.8e3 N, both contacts slip.
+  cs.begin_step(s.views(), 1e-3);
+  D.setZero();
+  D(7) = -1e-6;
+  D(6) = 1e-5;
+  r = cs.check(s.views(), D);
+  BOOST_TEST(r.slipped == 2);
+  BOOST_TEST(r.closed == 0);  // block 2 stays clear of the base
+  BOOST_TEST(r.opened + r.stuck + r.refinements == 0);
+  BOOST_TEST(r.state_changes == 2);
   cs.abandon_step();
 }
 

@@ -54,6 +54,8 @@ class SpringContacts : public ContactModel {
     log += "C";
     ContactCheck c;
     c.state_changes = (failing_attempts > 0 || iteration_ == 0) ? 1 : 0;
+    // Told apart by kind: a slip on the first iterate of an attempt, a stick after.
+    (iteration_ == 0 ? c.changes.slipped : c.changes.stuck) = c.state_changes;
     ++iteration_;
     return c;
   }
@@ -117,6 +119,43 @@ BOOST_AUTO_TEST_CASE(open_close_failure_abandons_and_cuts_dt) {
   // The next step is allowed to grow back by dt_growth.
   const StepReport r2 = e.step();
   BOOST_TEST(r2.dt == 1.5 * 0.3 * 1e-3, boost::test_tools::tolerance(1e-15));
+}
+
+BOOST_AUTO_TEST_CASE(step_report_sums_the_contact_changes_of_every_iterate_and_attempt) {
+  // Attempt 1 (cut): slip, stick, stick; attempt 2: slip, then converged.
+  SpringContacts c;
+  link_chain(c);
+  c.failing_attempts = 1;
+  Model m = hanging_chain(SolverKind::cholmod);
+  m.settings.max_open_close = 3;
+  Engine e(m, c);
+  const StepReport r = e.step();
+  BOOST_TEST(r.cuts == 1);
+  BOOST_TEST(r.changes.slipped == 2);
+  BOOST_TEST(r.changes.stuck == 2);
+  BOOST_TEST(r.changes.closed + r.changes.opened + r.changes.refinements == 0);
+  BOOST_TEST(r.changes.total() == 4);
+}
+
+BOOST_AUTO_TEST_CASE(an_open_close_iteration_that_never_converges_says_what_still_changed) {
+  SpringContacts c;
+  link_chain(c);
+  c.failing_attempts = 100;
+  Model m = hanging_chain(SolverKind::cholmod);
+  m.settings.max_open_close = 3;
+  m.settings.max_cuts = 2;
+  Engine e(m, c);
+  try {
+    e.step();
+    BOOST_FAIL("the step should have thrown after max_cuts cuts");
+  } catch (const std::runtime_error& err) {
+    const std::string what = err.what();
+    BOOST_TEST(what.find("open-close iteration did not converge (the last of its iterates still "
+                         "changed 1: 1 stuck) after 2 cuts of dt (settings.max_cuts)") !=
+                   std::string::npos,
+               what);
+  }
+  BOOST_TEST(e.step_count() == 0);
 }
 
 BOOST_AUTO_TEST_CASE(cholmod_and_pcg_runs_of_a_coupled_model_agree) {

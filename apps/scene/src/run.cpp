@@ -308,6 +308,15 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     j["redone"] = result.redone;
     j["extrapolated_steps"] = result.extrapolated;
     j["max_penetration"] = result.max_penetration;
+    {
+      // What the open-close checks changed over the run, by kind (every iterate
+      // of every attempt, cut ones included): where the iterations went.
+      core::ContactChanges c;
+      for (const auto& r : engine.reports()) c += r.changes;
+      j["contact_changes"] = {{"closed", c.closed},   {"opened", c.opened},
+                              {"slipped", c.slipped}, {"stuck", c.stuck},
+                              {"refinements", c.refinements}};
+    }
     j["frames"] = result.frames;
     j["wall_seconds"] = result.wall_seconds;
     j["resumed_from_step"] = result.resumed_from_step;

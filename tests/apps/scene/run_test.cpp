@@ -119,6 +119,17 @@ BOOST_AUTO_TEST_CASE(shear_creep_example_follows_the_burgers_closed_form_of_tabl
   BOOST_TEST(sum.at("solver").at("solves").get<long>() >= 10);
   BOOST_TEST(sum.at("solver").at("cg_iterations").get<long>() == 0);
   BOOST_TEST(sum.at("solver").at("analyses").get<long>() == 1);
+  // contact_changes: every iterate but the last of each step changed something
+  // (no cuts here), so the changes are at least the extra solves, and none
+  // without them.
+  const auto& changes = sum.at("contact_changes");
+  long total = 0;
+  for (const char* kind : {"closed", "opened", "slipped", "stuck", "refinements"})
+    total += changes.at(kind).get<long>();
+  BOOST_TEST(sum.at("cuts").get<int>() == 0);
+  const long extra_solves = sum.at("solver").at("solves").get<long>() - 10;
+  BOOST_TEST(total >= extra_solves);
+  BOOST_TEST((total == 0) == (extra_solves == 0));
   // blocks.pvd lists every frame; each frame holds both blocks.
   const std::string pvd = read_text((out / "blocks.pvd").string());
   for (int k = 0; k < 6; ++k) {

@@ -81,6 +81,13 @@ struct CheckResult {
   int state_changes = 0;         ///< open<->closed and slide<->lock changes, plus sliding
                                  ///< contacts whose friction force is not yet settled
   double max_penetration = 0.0;  ///< largest d_n over closed contacts [length]
+  // The changes above by kind (they add up to state_changes) [-]:
+  int closed = 0;       ///< open -> locked or sliding
+  int opened = 0;       ///< locked or sliding -> open
+  int slipped = 0;      ///< locked -> sliding
+  int stuck = 0;        ///< sliding -> locked
+  int refinements = 0;  ///< sliding contacts whose friction force moved, and piecewise laws
+                        ///< that changed piece (one more iterate, no state change)
 };
 
 /// Counters of the last begin_step (for benchmarks and logs).

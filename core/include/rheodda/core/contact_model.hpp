@@ -20,10 +20,29 @@ struct StepContext {
   bool creep_error_wanted = false;  ///< the host will ask creep_error_estimate() after end_step
 };
 
+/// What the open-close iteration changed, by kind (docs/contacts.md, "States and
+/// the open-close iteration") [contacts].
+struct ContactChanges {
+  int closed = 0;       ///< open -> locked or sliding
+  int opened = 0;       ///< locked or sliding -> open
+  int slipped = 0;      ///< locked -> sliding
+  int stuck = 0;        ///< sliding -> locked
+  int refinements = 0;  ///< no state change, but one more iterate asked for (a sliding
+                        ///< contact's friction force moved, a piecewise law changed piece)
+  int total() const { return closed + opened + slipped + stuck + refinements; }
+  ContactChanges& operator+=(const ContactChanges& o) {
+    closed += o.closed, opened += o.opened, slipped += o.slipped, stuck += o.stuck;
+    refinements += o.refinements;
+    return *this;
+  }
+};
+
 /// Result of checking a trial solution against the contact states.
 struct ContactCheck {
-  int state_changes = 0;         ///< open<->closed and slide<->lock changes this iteration
+  int state_changes = 0;         ///< changes that ask for another iterate (0: converged)
   double max_penetration = 0.0;  ///< largest normal penetration [length]
+  ContactChanges changes;        ///< state_changes by kind (left zero by models that do not
+                                 ///< tell the kinds apart)
 };
 
 /// An opaque copy of a contact model's state after an accepted step, taken by

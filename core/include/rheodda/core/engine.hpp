@@ -52,6 +52,8 @@ struct StepReport {
                                   ///< the block vertices, under Settings::step_tolerance only [length]
   bool extrapolated = false;      ///< under Settings::step_tolerance: the step was extrapolated
                                   ///< (2 y(dt/2) - y(dt)); false: y(dt/2) stands
+  ContactChanges changes;         ///< what the contact checks changed, summed over every
+                                  ///< open-close iterate of every attempt of the step [-]
   double assembly_seconds = 0.0;  ///< wall time spent assembling K and F (all attempts) [s]
   double solve_seconds = 0.0;     ///< wall time spent in the linear solver (all attempts) [s]
 };
