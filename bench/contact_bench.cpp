@@ -14,7 +14,8 @@
 //                                                  # linear solver alone
 //   build/bench/contact_bench --trace --sizes 32 --steps 5
 //                                                  # per iterate: changes by kind and CG iterations
-//   build/bench/contact_bench --sizes 32,100       # wall sides to run (default 10,32,100,316)
+//   build/bench/contact_bench --sizes 32,100x20    # walls to run: N (N x N bricks) or NXxNY
+//                                                  # (default 10,32,100,316)
 //
 // A wall of NX x NY bricks 0.2 m x 0.1 m in running bond (odd rows start and
 // end with a half brick, so the sides are straight) stands on a fixed base
@@ -32,6 +33,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rheodda/contact/contact_system.hpp"
@@ -135,15 +137,23 @@ class TracingContacts final : public core::ContactModel {
   long last_cg_ = 0;
 };
 
-std::vector<int> parse_sizes(const char* text) {
-  std::vector<int> sizes;
-  for (const char* p = text; *p;) {
+/// "10,32,100x20" -> {10, 10}, {32, 32}, {100, 20} (NX, NY); empty on bad input.
+std::vector<std::pair<int, int>> parse_sizes(const char* text) {
+  std::vector<std::pair<int, int>> sizes;
+  auto number = [](const char*& p) -> long {
     char* end = nullptr;
     const long v = std::strtol(p, &end, 10);
-    if (end == p || v < 1) return {};
-    sizes.push_back(static_cast<int>(v));
-    p = *end == ',' ? end + 1 : end;
-    if (*end && *end != ',') return {};
+    if (end == p || v < 1 || v > 100000) return -1;
+    p = end;
+    return v;
+  };
+  for (const char* p = text; *p;) {
+    const long nx = number(p);
+    long ny = nx;
+    if (nx > 0 && *p == 'x') ny = number(++p);
+    if (nx < 1 || ny < 1 || (*p && *p != ',')) return {};
+    sizes.emplace_back(static_cast<int>(nx), static_cast<int>(ny));
+    if (*p == ',') ++p;
   }
   return sizes;
 }
@@ -159,7 +169,7 @@ int main(int argc, char** argv) {
   int open_close = 0;
   double penalty = 40.0;  // [E]
   bool glued = false, trace = false;
-  std::vector<int> sizes{10, 32, 100, 316};
+  std::vector<std::pair<int, int>> sizes{{10, 10}, {32, 32}, {100, 100}, {316, 316}};
   for (int k = 1; k < argc; ++k) {
     if (!std::strcmp(argv[k], "--max-blocks") && k + 1 < argc) max_blocks = std::atol(argv[++k]);
     else if (!std::strcmp(argv[k], "--steps") && k + 1 < argc) steps = std::atoi(argv[++k]);
@@ -175,7 +185,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr,
                    "usage: contact_bench [--max-blocks N] [--steps S] [--detect-only] "
                    "[--solver automatic|cholmod|pcg|amg] [--tol T] [--open-close N] [--penalty F] "
-                   "[--glued] [--trace] [--sizes A,B,...]\n");
+                   "[--glued] [--trace] [--sizes N|NXxNY,...]\n");
       return 2;
     }
   }
@@ -204,8 +214,7 @@ int main(int argc, char** argv) {
               "NY", "contacts", "detect_ms", "step_ms", "solve_ms", "assemb_ms", "block-steps/s",
               "exponent", "iters", "cuts", "analyses", "cg/solve", "max_disp_m");
   double prev_n = 0.0, prev_step = 0.0;
-  for (int side : sizes) {
-    const int nx = side, ny = side;
+  for (const auto& [nx, ny] : sizes) {
     core::Model model = brick_wall(nx, ny);
     model.settings.solver = solver_kind;
     if (pcg_tol > 0.0) model.settings.pcg_tolerance = pcg_tol;
