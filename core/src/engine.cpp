@@ -115,8 +115,9 @@ bool inside_or_near(std::span<const Vec2> v, const Vec2& p, double tol) {
   return inside;
 }
 
-/// " (the last iterate still changed 2 contacts: 1 slipped, 1 stuck)": why an
-/// open-close iteration was cut, for the error message.
+/// " (the last of its iterates still changed 2: 1 slipped, 1 stuck)": why an
+/// open-close iteration was cut, for the error message (empty when the contact
+/// model does not tell the kinds apart).
 std::string last_changes(const ContactCheck& c) {
   const ContactChanges& k = c.changes;
   if (k.total() == 0) return {};
