@@ -89,6 +89,16 @@ void link_chain(SpringContacts& c) {
   }
 }
 
+/// The linked chain whose contacts fail to converge in their first `attempts`
+/// attempts, with an open-close limit of 3 iterates.
+Model failing_chain(SpringContacts& c, int attempts) {
+  link_chain(c);
+  c.failing_attempts = attempts;
+  Model m = hanging_chain(SolverKind::cholmod);
+  m.settings.max_open_close = 3;
+  return m;
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(step_control)
@@ -105,10 +115,7 @@ BOOST_AUTO_TEST_CASE(contacts_are_driven_through_the_step_protocol) {
 
 BOOST_AUTO_TEST_CASE(open_close_failure_abandons_and_cuts_dt) {
   SpringContacts c;
-  link_chain(c);
-  c.failing_attempts = 1;
-  Model m = hanging_chain(SolverKind::cholmod);
-  m.settings.max_open_close = 3;
+  const Model m = failing_chain(c, 1);
   Engine e(m, c);
   const StepReport r = e.step();
   BOOST_TEST(c.log == "BACACACX" "BACACE");
@@ -128,10 +135,7 @@ BOOST_AUTO_TEST_CASE(open_close_failure_abandons_and_cuts_dt) {
 
 BOOST_AUTO_TEST_CASE(an_open_close_iteration_that_never_converges_says_what_still_changed) {
   SpringContacts c;
-  link_chain(c);
-  c.failing_attempts = 100;
-  Model m = hanging_chain(SolverKind::cholmod);
-  m.settings.max_open_close = 3;
+  Model m = failing_chain(c, 100);
   m.settings.max_cuts = 2;
   Engine e(m, c);
   try {
