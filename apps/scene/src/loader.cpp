@@ -47,6 +47,35 @@ SceneError::SceneError(std::string file, SourceLocation where, std::string key, 
 
 namespace {
 
+// The valid keys of every map of a scene file, each list defined once: the
+// MapReader of that map reads it through the list, and scene_schema() publishes
+// the same lists, so what the loader accepts and what the schema (and the test of
+// docs/scene-format.md against it) says cannot diverge. Order: that of the docs.
+namespace keys {
+const std::vector<std::string> top{"title", "units", "analysis", "materials", "joint_sets",
+                                   "blocks", "fixed_points", "loads", "measurement_points"};
+const std::vector<std::string> units{"length", "force", "time"};
+const std::vector<std::string> analysis{
+    "type", "duration", "dt", "max_cuts", "max_displacement_ratio", "dynamic_ratio", "scheme",
+    "creep_tolerance", "step_tolerance", "step_extrapolation", "dt_max",
+    "creep_restart_on_contact_change", "penalty", "shear_normal_ratio", "search_factor",
+    "angle_tolerance", "penetration_ratio", "open_close_limit", "fixed_point_stiffness", "solver",
+    "solver_tolerance", "output_interval", "gravity"};
+const std::vector<std::string> material{"density", "young_modulus", "poisson_ratio", "plane"};
+const std::vector<std::string> joint_set{"friction_angle", "cohesion", "tensile_strength",
+                                         "normal_stiffness", "shear_stiffness", "law", "record"};
+/// And the parameters of the law named, which only the registry knows.
+const std::vector<std::string> law{"name"};
+const std::vector<std::string> block{"name", "material", "polygon", "rectangle", "grid",
+                                     "joint_set", "edge_joint_sets", "fixed", "initial_stress",
+                                     "initial_velocity"};
+const std::vector<std::string> rectangle{"x", "y", "width", "height", "angle"};
+const std::vector<std::string> grid{"x", "y", "width", "height", "columns", "rows", "angle"};
+const std::vector<std::string> fixed_point{"point", "block"};
+const std::vector<std::string> load{"point", "block", "force", "history"};
+const std::vector<std::string> measurement_point{"name", "point", "block"};
+}  // namespace keys
+
 // Guards against absurd sizes (a typo such as `columns: 1e9`): generous for real scenes.
 constexpr std::size_t kMaxBlocks = 200000;
 constexpr std::size_t kMaxVertices = 10000;
@@ -261,7 +290,7 @@ int resolve(const Ctx& ctx, const YAML::Node& n, const std::string& key, const s
 }
 
 Units read_units(const Ctx& ctx, const YAML::Node& n) {
-  MapReader m(ctx, n, "units", {"length", "force", "time"});
+  MapReader m(ctx, n, "units", keys::units);
   Units u;
   u.length = text(ctx, m.required("length", "label of the length unit, e.g. m"), m.child("length"));
   u.force = text(ctx, m.required("force", "label of the force unit, e.g. N"), m.child("force"));
@@ -270,12 +299,7 @@ Units read_units(const Ctx& ctx, const YAML::Node& n) {
 }
 
 Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
-  MapReader m(ctx, n, "analysis",
-              {"type", "duration", "dt", "max_cuts", "max_displacement_ratio", "dynamic_ratio",
-               "scheme", "penalty", "shear_normal_ratio", "search_factor", "angle_tolerance",
-               "penetration_ratio", "open_close_limit", "fixed_point_stiffness", "solver", "solver_tolerance",
-               "output_interval", "gravity", "creep_tolerance", "dt_max",
-               "creep_restart_on_contact_change", "step_tolerance", "step_extrapolation"});
+  MapReader m(ctx, n, "analysis", keys::analysis);
   Analysis a;
   a.where = m.where();
   auto num = [&](const char* key, double& field, const Range& r) {
@@ -363,14 +387,14 @@ std::vector<Material> read_materials(const Ctx& ctx, const YAML::Node& n) {
   if (!n.IsMap() || n.size() == 0)
     ctx.fail(n, "materials", "expected a map of named materials, e.g. `rock: {density: ..., ...}`");
   std::vector<Material> out;
-  std::vector<std::string> keys;
-  for (auto it = n.begin(); it != n.end(); ++it) keys.push_back(it->first.IsScalar() ? it->first.Scalar() : "");
-  MapReader all(ctx, n, "materials", keys);
+  std::vector<std::string> names;  // every name is a valid key of this map
+  for (auto it = n.begin(); it != n.end(); ++it) names.push_back(it->first.IsScalar() ? it->first.Scalar() : "");
+  MapReader all(ctx, n, "materials", names);
   for (const auto& e : all.entries()) {
     Material mat;
     mat.name = name_text(ctx, e.key_node, "materials");
     const std::string path = all.child(e.key);
-    MapReader m(ctx, e.value, path, {"density", "young_modulus", "poisson_ratio", "plane"});
+    MapReader m(ctx, e.value, path, keys::material);
     mat.where = location(e.key_node);
     mat.density = number(ctx, m.required("density", "[mass/length^3]"), m.child("density"),
                          positive("mass/length^3"));
@@ -402,7 +426,7 @@ LawChoice read_law(const Ctx& ctx, const YAML::Node& n, const std::string& path)
              fmt::format("unknown law '{}'{}; known laws: {}", name,
                          hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint), join(names)));
   }
-  std::vector<std::string> allowed{"name"};
+  std::vector<std::string> allowed = keys::law;
   for (const auto& p : info->parameters) allowed.push_back(p.name);
   MapReader m(ctx, n, path, allowed);
   LawChoice law;
@@ -429,17 +453,15 @@ LawChoice read_law(const Ctx& ctx, const YAML::Node& n, const std::string& path)
 std::vector<JointSetDescription> read_joint_sets(const Ctx& ctx, const YAML::Node& n) {
   if (!n.IsMap() || n.size() == 0)
     ctx.fail(n, "joint_sets", "expected a map of named joint sets, e.g. `bedding: {friction_angle: 30}`");
-  std::vector<std::string> keys;
-  for (auto it = n.begin(); it != n.end(); ++it) keys.push_back(it->first.IsScalar() ? it->first.Scalar() : "");
-  MapReader all(ctx, n, "joint_sets", keys);
+  std::vector<std::string> names;  // every name is a valid key of this map
+  for (auto it = n.begin(); it != n.end(); ++it) names.push_back(it->first.IsScalar() ? it->first.Scalar() : "");
+  MapReader all(ctx, n, "joint_sets", names);
   std::vector<JointSetDescription> out;
   for (const auto& e : all.entries()) {
     JointSetDescription js;
     js.name = name_text(ctx, e.key_node, "joint_sets");
     js.where = location(e.key_node);
-    MapReader m(ctx, e.value, all.child(e.key),
-                {"friction_angle", "cohesion", "tensile_strength", "normal_stiffness",
-                 "shear_stiffness", "law", "record"});
+    MapReader m(ctx, e.value, all.child(e.key), keys::joint_set);
     js.friction_angle = number(ctx, m.required("friction_angle", "phi [deg], 0 <= phi < 90"),
                                m.child("friction_angle"), {0.0, false, 90.0, true, "deg"});
     if (YAML::Node v = m.find("cohesion"); v.IsDefined())
@@ -503,9 +525,7 @@ void read_blocks(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, std::
     ctx.fail(n, "blocks", "expected a list of blocks, e.g. `- {rectangle: {x: 0, y: 0, width: 1, height: 1}}`");
   for (std::size_t i = 0; i < n.size(); ++i) {
     const std::string path = fmt::format("blocks[{}]", i);
-    MapReader m(ctx, n[i], path,
-                {"name", "material", "polygon", "rectangle", "grid", "joint_set", "edge_joint_sets",
-                 "fixed", "initial_stress", "initial_velocity"});
+    MapReader m(ctx, n[i], path, keys::block);
     BlockDescription b;
     b.where = m.where();
     if (YAML::Node v = m.find("material"); v.IsDefined())
@@ -548,12 +568,7 @@ void read_blocks(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, std::
     const bool grid = m.has("grid");
     const std::string key = grid ? "grid" : "rectangle";
     YAML::Node g = m.find(key);
-    std::vector<std::string> gkeys{"x", "y", "width", "height", "angle"};
-    if (grid) {
-      gkeys.push_back("columns");
-      gkeys.push_back("rows");
-    }
-    MapReader r(ctx, g, m.child(key), gkeys);
+    MapReader r(ctx, g, m.child(key), grid ? keys::grid : keys::rectangle);
     const double x = number(ctx, r.required("x", "x of the lower-left corner [length]"), r.child("x"), any("length"));
     const double y = number(ctx, r.required("y", "y of the lower-left corner [length]"), r.child("y"), any("length"));
     const double w = number(ctx, r.required("width", "[length]"), r.child("width"), positive("length"));
@@ -627,12 +642,12 @@ void read_points(const Ctx& ctx, const MapReader& top, SceneDescription& s) {
   };
   if (YAML::Node n = list("fixed_points"); n.IsSequence())
     for (std::size_t i = 0; i < n.size(); ++i) {
-      MapReader m(ctx, n[i], fmt::format("fixed_points[{}]", i), {"point", "block"});
+      MapReader m(ctx, n[i], fmt::format("fixed_points[{}]", i), keys::fixed_point);
       s.fixed_points.push_back(read_block_point(ctx, m, s, tol));
     }
   if (YAML::Node n = list("loads"); n.IsSequence())
     for (std::size_t i = 0; i < n.size(); ++i) {
-      MapReader m(ctx, n[i], fmt::format("loads[{}]", i), {"point", "block", "force", "history"});
+      MapReader m(ctx, n[i], fmt::format("loads[{}]", i), keys::load);
       LoadDescription load;
       load.at = read_block_point(ctx, m, s, tol);
       YAML::Node f = m.find("force"), h = m.find("history");
@@ -659,7 +674,7 @@ void read_points(const Ctx& ctx, const MapReader& top, SceneDescription& s) {
     }
   if (YAML::Node n = list("measurement_points"); n.IsSequence())
     for (std::size_t i = 0; i < n.size(); ++i) {
-      MapReader m(ctx, n[i], fmt::format("measurement_points[{}]", i), {"name", "point", "block"});
+      MapReader m(ctx, n[i], fmt::format("measurement_points[{}]", i), keys::measurement_point);
       MeasurementPoint mp;
       YAML::Node name = m.required("name", "column prefix in history.csv");
       mp.name = name_text(ctx, name, m.child("name"));
@@ -722,9 +737,7 @@ SceneDescription parse_scene(const std::string& text_in, const std::string& file
   try {
     SceneDescription s;
     s.file = file;
-    MapReader top(ctx, root, "",
-                  {"title", "units", "analysis", "materials", "joint_sets", "blocks",
-                   "fixed_points", "loads", "measurement_points"});
+    MapReader top(ctx, root, "", keys::top);
     s.title = file.substr(file.find_last_of('/') == std::string::npos ? 0 : file.find_last_of('/') + 1);
     if (YAML::Node v = top.find("title"); v.IsDefined()) s.title = text(ctx, v, "title");
     s.units = read_units(ctx, top.required("units", "labels {length, force, time}"));
@@ -760,5 +773,23 @@ std::string read_scene_text(const std::string& path) {
 }
 
 SceneDescription load_scene(const std::string& path) { return parse_scene(read_scene_text(path), path); }
+
+const std::vector<SceneMapKeys>& scene_schema() {
+  static const std::vector<SceneMapKeys> schema{
+      {"", keys::top},
+      {"units", keys::units},
+      {"analysis", keys::analysis},
+      {"materials.*", keys::material},
+      {"joint_sets.*", keys::joint_set},
+      {"joint_sets.*.law", keys::law},
+      {"blocks[*]", keys::block},
+      {"blocks[*].rectangle", keys::rectangle},
+      {"blocks[*].grid", keys::grid},
+      {"fixed_points[*]", keys::fixed_point},
+      {"loads[*]", keys::load},
+      {"measurement_points[*]", keys::measurement_point},
+  };
+  return schema;
+}
 
 }  // namespace rheodda::scene

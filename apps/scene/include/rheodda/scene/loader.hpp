@@ -9,6 +9,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "rheodda/scene/error.hpp"
 #include "rheodda/scene/scene.hpp"
@@ -23,5 +24,20 @@ SceneDescription load_scene(const std::string& path);
 
 /// Parses and validates scene text; `file` names the source in error messages.
 SceneDescription parse_scene(const std::string& text, const std::string& file);
+
+/// One map of a scene file and the keys it may hold.
+struct SceneMapKeys {
+  /// Dotted path as in error keys, `*` standing for a user's name or a list index:
+  /// "" (the top level), "analysis", "materials.*", "joint_sets.*.law", "blocks[*].grid", ...
+  std::string path;
+  std::vector<std::string> keys;  ///< every valid key, in the order of docs/scene-format.md
+};
+
+/// The scene file's schema: every map with its valid keys. These are the very lists
+/// the loader reads each map through (an unknown key is refused with them), so the
+/// schema cannot drift from what is read; tests check docs/scene-format.md against it.
+/// A law map (`joint_sets.*.law`) also takes the parameters of its law, by the names
+/// of laws::LawRegistry (`rheodda law list`); they are not listed here.
+const std::vector<SceneMapKeys>& scene_schema();
 
 }  // namespace rheodda::scene

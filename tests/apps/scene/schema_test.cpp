@@ -1,0 +1,221 @@
+// docs/scene-format.md against the loader's schema, both ways: every key the
+// loader reads is in a key table of the docs, every key a table documents is
+// read. And the schema against the loader itself: each map's "valid keys here"
+// (the list its MapReader refuses unknown keys with) is the schema's list.
+//
+// Why. A setting the engine has but a scene cannot reach, or a key the docs
+// promise and the loader refuses (analysis.time_integration was both, issue 16),
+// is only caught by reading the two side by side; this test does it on every build.
+//
+// How the docs are read: in each section named in kSectionPath, every table whose
+// first header is `key` is a key table; each row's first cell holds the key(s) in
+// backticks (`units.length` counts as `length`). A row whose meaning starts with
+// `{a, b, ...}` (blocks' `rectangle` and `grid`) also documents the keys of that
+// sub-map. The points section's table (first header `list`) gives per list the
+// backticked keys of its second cell (`force: [fx, fy]` counts as `force`).
+#include <boost/test/unit_test.hpp>
+
+#include <algorithm>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "../test_support.hpp"
+#include "rheodda/laws/registry.hpp"
+#include "rheodda/scene/loader.hpp"
+
+using namespace rheodda;
+using namespace rheodda::test;
+
+namespace {
+
+using KeyTables = std::map<std::string, std::set<std::string>>;  ///< map path -> keys
+
+/// Schema path of the key table of each section of docs/scene-format.md.
+const std::map<std::string, std::string> kSectionPath{
+    {"Top level", ""},           {"Units", "units"},           {"analysis", "analysis"},
+    {"materials", "materials.*"}, {"joint_sets", "joint_sets.*"}, {"law", "joint_sets.*.law"},
+    {"blocks", "blocks[*]"},
+};
+/// The section whose `list` table documents the keys of each point list.
+const std::string kPointsSection = "fixed_points, loads, measurement_points";
+
+std::string trim(const std::string& s) {
+  const auto a = s.find_first_not_of(" \t");
+  if (a == std::string::npos) return "";
+  return s.substr(a, s.find_last_not_of(" \t") - a + 1);
+}
+
+/// Cells of a table row `| a | b |` (no escaped bars in this file).
+std::vector<std::string> cells(const std::string& row) {
+  std::vector<std::string> out;
+  std::stringstream in(row.substr(1));
+  std::string c;
+  while (std::getline(in, c, '|')) out.push_back(trim(c));
+  if (!out.empty() && out.back().empty()) out.pop_back();
+  return out;
+}
+
+/// The backticked spans of a cell, in order.
+std::vector<std::string> code_spans(const std::string& cell) {
+  std::vector<std::string> out;
+  static const std::regex code("`([^`]*)`");
+  for (std::sregex_iterator it(cell.begin(), cell.end(), code), end; it != end; ++it) out.push_back((*it)[1]);
+  return out;
+}
+
+/// The key tables of the document, by schema path.
+KeyTables documented_keys(const std::string& text) {
+  KeyTables doc;
+  std::istringstream in(text);
+  std::string line, section;
+  std::vector<std::string> header;  // of the table being read; empty outside tables
+  bool in_code_block = false;
+  while (std::getline(in, line)) {
+    if (line.rfind("```", 0) == 0) in_code_block = !in_code_block;
+    if (in_code_block) continue;
+    if (line.rfind("#", 0) == 0) {
+      section = trim(line.substr(line.find_first_not_of('#')));
+      continue;
+    }
+    if (line.rfind("|", 0) != 0) {
+      header.clear();
+      continue;
+    }
+    const std::vector<std::string> row = cells(line);
+    if (header.empty()) {
+      header = row;
+      continue;
+    }
+    if (!row.empty() && row[0].find_first_not_of("-: ") == std::string::npos) continue;  // |---|---|
+    BOOST_TEST_INFO("docs/scene-format.md, section '" << section << "', row: " << line);
+    if (header[0] == "key") {
+      const auto path = kSectionPath.find(section);
+      BOOST_TEST_REQUIRE((path != kSectionPath.end()), "a key table in a section the test does not know");
+      const std::vector<std::string> keys = code_spans(row[0]);
+      BOOST_TEST_REQUIRE(!keys.empty(), "a key table row without a `key`");
+      const auto meaning = std::find(header.begin(), header.end(), "meaning") - header.begin();
+      BOOST_TEST_REQUIRE(static_cast<std::size_t>(meaning) < row.size(), "a key table without a meaning column");
+      for (std::string key : keys) {
+        key = key.substr(key.find_last_of('.') + 1);  // `units.length` -> length
+        doc[path->second].insert(key);
+        // `{x, y, width, ...}`: the keys of the sub-map this key holds.
+        const std::string& m = row[static_cast<std::size_t>(meaning)];
+        if (m.rfind("`{", 0) == 0) {
+          const std::string inner = m.substr(2, m.find('}') - 2);
+          std::stringstream words(inner);
+          std::string w;
+          const std::string sub = path->second + "." + key;
+          doc[sub];  // a sub-map with no keys documented still shows up
+          while (std::getline(words, w, ',')) doc[sub].insert(trim(w));
+        }
+      }
+    } else if (header[0] == "list") {
+      BOOST_TEST_REQUIRE(section == kPointsSection);
+      const std::vector<std::string> list = code_spans(row[0]);
+      BOOST_TEST_REQUIRE(list.size() == 1u);
+      BOOST_TEST_REQUIRE(row.size() >= 2u);
+      static const std::regex word("^[a-z_]+");
+      auto& keys = doc[list[0] + "[*]"];
+      for (const std::string& span : code_spans(row[1])) {
+        std::smatch m;
+        BOOST_TEST_REQUIRE(std::regex_search(span, m, word), "`" << span << "` does not start with a key");
+        keys.insert(m.str());
+      }
+    }
+  }
+  return doc;
+}
+
+KeyTables schema_keys() {
+  KeyTables out;
+  for (const auto& m : scene::scene_schema()) {
+    BOOST_TEST(!out.count(m.path), "schema path '" << m.path << "' listed twice");
+    out[m.path].insert(m.keys.begin(), m.keys.end());
+    BOOST_TEST(out[m.path].size() == m.keys.size(), "schema path '" << m.path << "' lists a key twice");
+  }
+  return out;
+}
+
+std::string dotted(const std::string& path, const std::string& key) {
+  return path.empty() ? key : path + "." + key;
+}
+
+/// The keys listed after "valid keys here: " in an unknown-key error of `text`.
+std::vector<std::string> valid_keys_reported(const std::string& text) {
+  try {
+    (void)scene::parse_scene(text, "probe.yaml");
+  } catch (const scene::SceneError& e) {
+    const std::string m = e.message();
+    const std::string tag = "valid keys here: ";
+    BOOST_TEST_REQUIRE(m.find("unknown key 'bogus_key'") != std::string::npos, "error: " << e.what());
+    std::vector<std::string> keys;
+    std::stringstream in(m.substr(m.find(tag) + tag.size()));
+    std::string k;
+    while (std::getline(in, k, ',')) keys.push_back(trim(k));
+    return keys;
+  }
+  BOOST_ERROR("the unknown key 'bogus_key' was accepted");
+  return {};
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(scene_schema)
+
+BOOST_AUTO_TEST_CASE(every_key_the_loader_reads_is_documented_and_every_documented_key_is_read) {
+  const KeyTables doc = documented_keys(read_text(source_path("docs/scene-format.md")));
+  const KeyTables schema = schema_keys();
+  BOOST_TEST_REQUIRE(doc.size() >= 10u, "docs/scene-format.md: key tables not found");
+  for (const auto& [path, keys] : schema) {
+    const auto d = doc.find(path);
+    BOOST_TEST((d != doc.end()), "the loader reads the map '" << path
+                                   << "' but docs/scene-format.md has no key table for it");
+    if (d == doc.end()) continue;
+    for (const auto& k : keys)
+      BOOST_TEST(d->second.count(k) == 1u,
+                 "the loader reads '" << dotted(path, k) << "' but docs/scene-format.md does not document it");
+  }
+  for (const auto& [path, keys] : doc) {
+    const auto s = schema.find(path);
+    BOOST_TEST((s != schema.end()), "docs/scene-format.md documents a map '" << path << "' the loader does not read");
+    if (s == schema.end()) continue;
+    for (const auto& k : keys)
+      BOOST_TEST(s->second.count(k) == 1u,
+                 "docs/scene-format.md documents '" << dotted(path, k) << "' but the loader refuses it");
+  }
+}
+
+BOOST_AUTO_TEST_CASE(the_schema_is_the_list_each_map_refuses_unknown_keys_with) {
+  // Per schema path: kBaseScene with an unknown key `bogus_key` put into one map
+  // of that path. Every path of the schema must have one here.
+  const std::map<std::string, std::string> probes{
+      {"", "bogus_key: 1\n" + kBaseScene},
+      {"units", with("units: {length: m,", "units: {bogus_key: 1, length: m,")},
+      {"analysis", with("  duration: 1\n", "  bogus_key: 1\n  duration: 1\n")},
+      {"materials.*", with("rock: {density", "rock: {bogus_key: 1, density")},
+      {"joint_sets.*", with("bedding: {friction_angle: 30}", "bedding: {bogus_key: 1, friction_angle: 30}")},
+      {"joint_sets.*.law", with("{name: burgers,", "{name: burgers, bogus_key: 1,")},
+      {"blocks[*]", with("{name: base,", "{bogus_key: 1, name: base,")},
+      {"blocks[*].rectangle", with("rectangle: {x: 0,", "rectangle: {bogus_key: 1, x: 0,")},
+      {"blocks[*].grid", with("rectangle: {x: 0, y: 0, width: 4, height: 1}",
+                              "grid: {bogus_key: 1, x: 0, y: 0, width: 4, height: 1, columns: 1, rows: 1}")},
+      {"fixed_points[*]", kBaseScene + "fixed_points:\n  - {bogus_key: 1, point: [0, 0]}\n"},
+      {"loads[*]", kBaseScene + "loads:\n  - {bogus_key: 1, point: [1.5, 2], force: [0, 0]}\n"},
+      {"measurement_points[*]", with("{name: p,", "{bogus_key: 1, name: p,")},
+  };
+  for (const auto& m : scene::scene_schema()) {
+    BOOST_TEST_CONTEXT("schema path '" << m.path << "'") {
+      const auto probe = probes.find(m.path);
+      BOOST_TEST_REQUIRE((probe != probes.end()), "no probe scene for this map: add one above");
+      std::vector<std::string> expected = m.keys;
+      if (m.path == "joint_sets.*.law")  // the law map also takes the law's parameters
+        for (const auto& p : laws::LawRegistry::builtin().find("burgers")->parameters) expected.push_back(p.name);
+      BOOST_TEST(valid_keys_reported(probe->second) == expected, boost::test_tools::per_element());
+    }
+  }
+  BOOST_TEST(probes.size() == scene::scene_schema().size(), "a probe for a map the schema does not have");
+}
+
+BOOST_AUTO_TEST_SUITE_END()
