@@ -43,6 +43,8 @@ BuiltScene build_scene(const SceneDescription& s) {
 
   core::Settings& st = m.settings;
   st.dt = a.dt;
+  st.dt_growth = a.dt_growth;
+  st.dt_cut = a.dt_cut;
   st.max_cuts = a.max_cuts;
   st.creep_tolerance = a.creep_tolerance;
   st.dt_max = a.dt_max;
@@ -51,6 +53,8 @@ BuiltScene build_scene(const SceneDescription& s) {
   st.creep_restart_on_contact_change = a.creep_restart_on_contact_change;
   st.g2 = a.max_displacement_ratio;
   st.dynamic_ratio = a.dynamic_ratio;
+  st.time_integration = a.time_integration == TimeIntegration::trapezoidal ? core::TimeIntegration::trapezoidal
+                                                                          : core::TimeIntegration::shi;
   st.gravity = {a.gravity[0], a.gravity[1]};
   st.fixed_point_stiffness = a.fixed_point_stiffness;
   st.max_open_close = a.open_close_limit;
@@ -61,6 +65,7 @@ BuiltScene build_scene(const SceneDescription& s) {
     case SolverKind::amg: st.solver = core::SolverKind::amg; break;
   }
   st.pcg_tolerance = a.solver_tolerance;
+  st.pcg_max_iterations = a.solver_max_iterations;
 
   contact::ContactSettings& cs = out.contact_settings;
   cs.penalty = a.penalty;

@@ -30,7 +30,9 @@ std::string solver_text(const SceneDescription& s) {
     name += fmt::format(" ({} for {} blocks; amg from {})", iterative ? "amg" : "cholmod", n,
                         core::LinearSolver::kAmgBlocks);
   }
-  if (iterative) name += fmt::format(", solver_tolerance {:g}", a.solver_tolerance);
+  if (iterative)
+    name += fmt::format(", solver_tolerance {:g}, solver_max_iterations {}", a.solver_tolerance,
+                        a.solver_max_iterations);
   return name;
 }
 
@@ -60,8 +62,10 @@ std::string describe_scene(const SceneDescription& s) {
 
   line(fmt::format("scene: {} ({})", s.title, s.file));
   line(fmt::format("units: length {}, force {}, time {}; stress {}", u.length, u.force, u.time, stress));
-  line(fmt::format("analysis: {}, duration {:g} {}, dt {:g} {} (max_cuts {}), dynamic_ratio {:g}",
-                   analysis_type_name(a.type), a.duration, u.time, a.dt, u.time, a.max_cuts, a.dynamic_ratio));
+  line(fmt::format("analysis: {}, duration {:g} {}, dt {:g} {} (max_cuts {}, dt_cut {:g}), dynamic_ratio {:g}, "
+                   "time_integration {}",
+                   analysis_type_name(a.type), a.duration, u.time, a.dt, u.time, a.max_cuts, a.dt_cut,
+                   a.dynamic_ratio, time_integration_name(a.time_integration)));
   line(fmt::format("  gravity ({:g}, {:g}) {}/{}^2, scheme {}, solver {}", a.gravity[0], a.gravity[1],
                    u.length, u.time, scheme_text(a), solver_text(s)));
   line(fmt::format("  max_displacement_ratio {:g}, penalty {:g} {}, shear_normal_ratio {:g}, "
@@ -81,7 +85,9 @@ std::string describe_scene(const SceneDescription& s) {
                      a.dt_max > 0.0 ? fmt::format("{:g} {}", a.dt_max, u.time) : std::string("none"),
                      a.creep_restart_on_contact_change ? ", restart on contact change" : ""));
   else
-    line(fmt::format("  time step: fixed dt {:g} {} (cut by 0.3 when a step fails)", a.dt, u.time));
+    line(fmt::format("  time step: fixed dt {:g} {} (cut by dt_cut {:g} when a step fails, then grown back by "
+                     "dt_growth {:g} per step)",
+                     a.dt, u.time, a.dt_cut, a.dt_growth));
   line(fmt::format("  output every {:g} {}: {} frames", a.output_interval, u.time,
                    static_cast<long long>(std::ceil(a.duration / a.output_interval - 1e-9)) + 1));
 

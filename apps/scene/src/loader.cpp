@@ -27,6 +27,9 @@ std::string_view analysis_type_name(AnalysisType t) {
   return t == AnalysisType::static_analysis ? "static" : "dynamic";
 }
 std::string_view plane_name(PlaneKind p) { return p == PlaneKind::strain ? "strain" : "stress"; }
+std::string_view time_integration_name(TimeIntegration t) {
+  return t == TimeIntegration::trapezoidal ? "trapezoidal" : "shi";
+}
 std::string_view solver_name(SolverKind s) {
   switch (s) {
     case SolverKind::automatic: return "automatic";
@@ -56,11 +59,12 @@ const std::vector<std::string> top{"title", "units", "analysis", "materials", "j
                                    "blocks", "fixed_points", "loads", "measurement_points"};
 const std::vector<std::string> units{"length", "force", "time"};
 const std::vector<std::string> analysis{
-    "type", "duration", "dt", "max_cuts", "max_displacement_ratio", "dynamic_ratio", "scheme",
-    "creep_tolerance", "step_tolerance", "step_extrapolation", "dt_max",
-    "creep_restart_on_contact_change", "penalty", "shear_normal_ratio", "search_factor",
-    "angle_tolerance", "penetration_ratio", "open_close_limit", "fixed_point_stiffness", "solver",
-    "solver_tolerance", "output_interval", "gravity"};
+    "type", "duration", "dt", "dt_growth", "dt_cut", "max_cuts", "max_displacement_ratio",
+    "dynamic_ratio", "time_integration", "scheme", "creep_tolerance", "step_tolerance",
+    "step_extrapolation", "dt_max", "creep_restart_on_contact_change", "penalty",
+    "shear_normal_ratio", "search_factor", "angle_tolerance", "penetration_ratio",
+    "open_close_limit", "fixed_point_stiffness", "solver", "solver_tolerance",
+    "solver_max_iterations", "output_interval", "gravity"};
 const std::vector<std::string> material{"density", "young_modulus", "poisson_ratio", "plane"};
 const std::vector<std::string> joint_set{"friction_angle", "cohesion", "tensile_strength",
                                          "normal_stiffness", "shear_stiffness", "law", "record"};
@@ -317,6 +321,7 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
     ctx.fail(dt, m.child("dt"), fmt::format("dt = {:g} is longer than duration = {:g}", a.dt, a.duration));
   if (YAML::Node v = m.find("max_cuts"); v.IsDefined())
     a.max_cuts = integer(ctx, v, m.child("max_cuts"), 0, 200);
+  num("dt_cut", a.dt_cut, {0.0, true, 1.0, true, ""});
   num("max_displacement_ratio", a.max_displacement_ratio, {0.0, true, 1.0, false, ""});
   a.dynamic_ratio = a.type == AnalysisType::dynamic_analysis ? 1.0 : 0.0;
   if (YAML::Node v = m.find("dynamic_ratio"); v.IsDefined()) {
@@ -324,6 +329,20 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
       ctx.fail(v, m.child("dynamic_ratio"),
                "a static analysis carries no velocity; dynamic_ratio needs `type: dynamic`");
     a.dynamic_ratio = number(ctx, v, m.child("dynamic_ratio"), {0.0, false, 1.0, false, ""});
+  }
+  if (YAML::Node v = m.find("time_integration"); v.IsDefined()) {
+    a.time_integration = choice(ctx, v, m.child("time_integration"), {"shi", "trapezoidal"}) == "trapezoidal"
+                             ? TimeIntegration::trapezoidal
+                             : TimeIntegration::shi;
+    // The trapezoidal rule carries velocity and acceleration from step to step;
+    // a static analysis (or dynamic_ratio 0) carries neither. The engine refuses
+    // it too (settings.time_integration), but only at `run` and at the analysis map.
+    if (a.time_integration == TimeIntegration::trapezoidal && a.type == AnalysisType::static_analysis)
+      ctx.fail(v, m.child("time_integration"),
+               "a static analysis carries no velocity; time_integration: trapezoidal needs `type: dynamic`");
+    if (a.time_integration == TimeIntegration::trapezoidal && a.dynamic_ratio == 0.0)
+      ctx.fail(v, m.child("time_integration"),
+               "dynamic_ratio = 0 carries no velocity; time_integration: trapezoidal needs dynamic_ratio > 0");
   }
   if (YAML::Node v = m.find("scheme"); v.IsDefined()) {
     const std::string name =
@@ -354,6 +373,15 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
       ctx.fail(v, m.child("dt_max"),
                fmt::format("dt_max = {:g} is shorter than dt = {:g} (the first step)", a.dt_max, a.dt));
   }
+  if (YAML::Node v = m.find("dt_growth"); v.IsDefined()) {
+    a.dt_growth = number(ctx, v, m.child("dt_growth"), {1.0, false, std::numeric_limits<double>::max(), false, ""});
+    // Only a fixed-step run grows its step back by dt_growth after a cut; an
+    // adaptive control sizes every step itself, so the value would be ignored.
+    if (a.creep_tolerance > 0.0 || a.step_tolerance > 0.0)
+      ctx.fail(v, m.child("dt_growth"),
+               "dt_growth applies to a fixed-step run only (under creep_tolerance or step_tolerance "
+               "the control sizes the steps)");
+  }
   if (YAML::Node v = m.find("creep_restart_on_contact_change"); v.IsDefined())
     a.creep_restart_on_contact_change = flag(ctx, v, m.child("creep_restart_on_contact_change"));
   num("penalty", a.penalty, positive("stress"));
@@ -370,6 +398,8 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
       if (solver_name(k) == name) a.solver = k;
   }
   num("solver_tolerance", a.solver_tolerance, {0.0, true, 1.0, true, ""});
+  if (YAML::Node v = m.find("solver_max_iterations"); v.IsDefined())
+    a.solver_max_iterations = integer(ctx, v, m.child("solver_max_iterations"), 1, 1000000000);
   a.output_interval = a.duration / 100.0;
   if (YAML::Node v = m.find("output_interval"); v.IsDefined()) {
     a.output_interval = number(ctx, v, m.child("output_interval"), positive("time"));

@@ -39,6 +39,8 @@ json scene_json(const SceneDescription& s) {
   j["analysis"] = {{"type", analysis_type_name(a.type)},
                    {"duration", a.duration},
                    {"dt", a.dt},
+                   {"dt_growth", a.dt_growth},
+                   {"dt_cut", a.dt_cut},
                    {"max_cuts", a.max_cuts},
                    {"creep_tolerance", a.creep_tolerance},
                    {"step_tolerance", a.step_tolerance},
@@ -47,6 +49,7 @@ json scene_json(const SceneDescription& s) {
                    {"creep_restart_on_contact_change", a.creep_restart_on_contact_change},
                    {"max_displacement_ratio", a.max_displacement_ratio},
                    {"dynamic_ratio", a.dynamic_ratio},
+                   {"time_integration", time_integration_name(a.time_integration)},
                    {"scheme", scheme_text(a)},
                    {"penalty", a.penalty},
                    {"shear_normal_ratio", a.shear_normal_ratio},
@@ -56,6 +59,8 @@ json scene_json(const SceneDescription& s) {
                    {"open_close_limit", a.open_close_limit},
                    {"fixed_point_stiffness", a.fixed_point_stiffness},
                    {"solver", solver_name(a.solver)},
+                   {"solver_tolerance", a.solver_tolerance},
+                   {"solver_max_iterations", a.solver_max_iterations},
                    {"output_interval", a.output_interval},
                    {"gravity", a.gravity}};
   for (const auto& m : s.materials)

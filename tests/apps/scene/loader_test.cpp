@@ -182,6 +182,60 @@ BOOST_AUTO_TEST_CASE(solver_and_solver_tolerance_reach_the_engine_settings_and_b
                   "out of range (0, 1)");
 }
 
+BOOST_AUTO_TEST_CASE(time_integration_reaches_the_engine_settings_and_needs_a_dynamic_analysis) {
+  // Default: Shi's scheme.
+  const scene::SceneDescription base = scene::parse_scene(kBaseScene, "base.yaml");
+  BOOST_TEST((base.analysis.time_integration == scene::TimeIntegration::shi));
+  BOOST_TEST((scene::build_scene(base).model.settings.time_integration == core::TimeIntegration::shi));
+  const auto dynamic = with("  dt: 0.01", "  dt: 0.01\n  type: dynamic\n  time_integration: trapezoidal");
+  const scene::SceneDescription s = scene::parse_scene(dynamic, "trapezoidal.yaml");
+  BOOST_TEST((s.analysis.time_integration == scene::TimeIntegration::trapezoidal));
+  BOOST_TEST((scene::build_scene(s).model.settings.time_integration == core::TimeIntegration::trapezoidal));
+  const auto shi = with("  dt: 0.01", "  dt: 0.01\n  type: dynamic\n  time_integration: shi");
+  BOOST_TEST((scene::build_scene(scene::parse_scene(shi, "shi.yaml")).model.settings.time_integration ==
+              core::TimeIntegration::shi));
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  time_integration: newmark"), 5, "newmark",
+                  "analysis.time_integration", "'newmark' is not one of: shi, trapezoidal");
+  // The engine would refuse these too (settings.time_integration), but only at
+  // `run` and pointing at the analysis map: the loader names the key's line.
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  time_integration: trapezoidal"), 5, "trapezoidal",
+                  "analysis.time_integration", "a static analysis carries no velocity");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  type: dynamic\n  dynamic_ratio: 0\n  time_integration: trapezoidal"),
+                  7, "trapezoidal", "analysis.time_integration", "dynamic_ratio = 0 carries no velocity");
+}
+
+BOOST_AUTO_TEST_CASE(dt_growth_dt_cut_and_solver_max_iterations_reach_the_engine_settings_and_bad_values_are_refused) {
+  // Defaults: the engine's (core::Settings).
+  const core::Settings defaults;
+  const core::Settings base = scene::build_scene(scene::parse_scene(kBaseScene, "base.yaml")).model.settings;
+  BOOST_TEST(base.dt_growth == defaults.dt_growth);
+  BOOST_TEST(base.dt_cut == defaults.dt_cut);
+  BOOST_TEST(base.pcg_max_iterations == defaults.pcg_max_iterations);
+  const auto text = with("  dt: 0.01", "  dt: 0.01\n  dt_growth: 1.2\n  dt_cut: 0.5\n  solver_max_iterations: 250");
+  const scene::SceneDescription s = scene::parse_scene(text, "steps.yaml");
+  BOOST_TEST(s.analysis.dt_growth == 1.2);
+  BOOST_TEST(s.analysis.dt_cut == 0.5);
+  BOOST_TEST(s.analysis.solver_max_iterations == 250);
+  const core::Settings built = scene::build_scene(s).model.settings;
+  BOOST_TEST(built.dt_growth == 1.2);
+  BOOST_TEST(built.dt_cut == 0.5);
+  BOOST_TEST(built.pcg_max_iterations == 250);
+  // dt_growth = 1 (the step stays cut) is allowed; below 1 it would shrink steps.
+  BOOST_CHECK_NO_THROW(scene::parse_scene(with("  dt: 0.01", "  dt: 0.01\n  dt_growth: 1"), "g.yaml"));
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  dt_growth: 0.9"), 5, "0.9", "analysis.dt_growth",
+                  "out of range [1, inf]");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  creep_tolerance: 1e-6\n  dt_growth: 2"), 6, "2",
+                  "analysis.dt_growth", "fixed-step run only");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  step_tolerance: 1e-4\n  dt_growth: 2"), 6, "2",
+                  "analysis.dt_growth", "fixed-step run only");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  dt_cut: 1"), 5, "1", "analysis.dt_cut", "out of range (0, 1)");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  dt_cut: 0"), 5, "0", "analysis.dt_cut", "out of range (0, 1)");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  solver_max_iterations: 0"), 5, "0",
+                  "analysis.solver_max_iterations", "out of range [1, 1e+09]");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  solver_max_iterations: 2.5"), 5, "2.5",
+                  "analysis.solver_max_iterations", "not a whole number");
+}
+
 BOOST_AUTO_TEST_CASE(nan_and_inf_are_refused_anywhere) {
   expect_error_at(with("  dt: 0.01", "  dt: .nan"), 4, ".nan", "analysis.dt", "not a finite number");
   expect_error_at(with("[1.5, 1.5]", "[1.5, .inf]"), 15, ".inf", "measurement_points[0].point[1]", "not a finite number");

@@ -112,6 +112,12 @@ BOOST_AUTO_TEST_CASE(shear_creep_example_follows_the_burgers_closed_form_of_tabl
   BOOST_TEST(sum.at("steps").get<int>() == 10);
   BOOST_TEST(sum.at("frames").get<int>() == 6);
   BOOST_TEST(sum.at("inputs").at("joint_sets").at("plane").at("law").at("E1").get<double>() == 26.87);
+  // inputs.analysis echoes every analysis key of the scene format, defaults filled in.
+  for (const auto& m : scene::scene_schema())
+    if (m.path == "analysis")
+      for (const auto& key : m.keys)
+        BOOST_TEST(sum.at("inputs").at("analysis").contains(key), "summary.json inputs.analysis lacks " << key);
+  BOOST_TEST(sum.at("inputs").at("analysis").at("time_integration").get<std::string>() == "shi");
   BOOST_TEST(sum.at("scene_text").get<std::string>() == read_text(s.file));
   BOOST_TEST(sum.at("warnings").empty());
   // Two blocks: automatic solves with CHOLMOD, one analysis, a solve per iterate.

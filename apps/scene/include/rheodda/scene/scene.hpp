@@ -36,15 +36,22 @@ struct Units {
 enum class AnalysisType { static_analysis, dynamic_analysis };
 enum class PlaneKind { strain, stress };
 enum class SolverKind { automatic, cholmod, pcg, amg };
+enum class TimeIntegration { shi, trapezoidal };
 
 /// `analysis:` — time stepping, contact numerics, outputs.
 struct Analysis {
   AnalysisType type = AnalysisType::static_analysis;  ///< `type: static|dynamic`
   double duration = 0.0;               ///< simulated time [time]; required, > 0
   double dt = 0.0;                     ///< first and largest time step [time]; required, > 0
-  int max_cuts = 30;                   ///< cuts of dt (x 0.3 each) allowed in one step before the run fails [-]
+  double dt_growth = 1.5;              ///< fixed dt: after a cut, each accepted step grows by this factor,
+                                       ///< up to dt [-]; >= 1; not under creep_tolerance or step_tolerance
+  double dt_cut = 0.3;                 ///< factor on the step when a step is cut [-]; in (0, 1)
+  int max_cuts = 30;                   ///< cuts of dt (x dt_cut each) allowed in one step before the run fails [-]
   double max_displacement_ratio = 0.01;  ///< g2: allowed step displacement / half model size [-]
   double dynamic_ratio = 0.0;          ///< share of velocity carried to the next step [-]; default 1 dynamic, 0 static
+  /// Inertia terms `time_integration: shi|trapezoidal` (docs/engine.md); trapezoidal needs
+  /// a dynamic analysis with dynamic_ratio > 0.
+  TimeIntegration time_integration = TimeIntegration::shi;
   /// Rheology scheme `lagged|implicit|exponential-linear`; unset (`automatic`, the default):
   /// per joint set and step, exponential-linear where the step is below its no-ringing
   /// limit, implicit otherwise (contact::ContactSettings::scheme).
@@ -66,6 +73,7 @@ struct Analysis {
   double fixed_point_stiffness = 0.0;  ///< fixed-point spring [force/length]; default 100 x largest young_modulus
   SolverKind solver = SolverKind::automatic;  ///< `solver: automatic|cholmod|pcg|amg`
   double solver_tolerance = 1e-10;     ///< relative residual at which pcg and amg stop [-]
+  int solver_max_iterations = 10000;   ///< CG iteration limit per solve of pcg and amg [-]; >= 1
   double output_interval = 0.0;        ///< time between output frames [time]; default duration / 100
   Point gravity{0.0, 0.0};             ///< gravity acceleration (gx, gy) [length/time^2]; required
   SourceLocation where{};
@@ -149,5 +157,6 @@ struct SceneDescription {
 std::string_view analysis_type_name(AnalysisType t);
 std::string_view plane_name(PlaneKind p);
 std::string_view solver_name(SolverKind s);
+std::string_view time_integration_name(TimeIntegration t);
 
 }  // namespace rheodda::scene
