@@ -358,6 +358,7 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
   for (size_t c = 0; c < work_.size(); ++c) {
     Contact& r = work_[c];
     Hot& h = hot_[c];
+    h.assembled_normal_force = h.normal_force;  // energy balance: the friction just solved with
     const auto Di = D.segment<6>(6 * r.key.vblock);
     const auto Dj = D.segment<6>(6 * r.key.eblock);
     const double dn = h.dn0 + h.ni.dot(Di) + h.nj.dot(Dj);
@@ -479,6 +480,8 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
 void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::VectorXd& D) {
   assert(D.size() == 6 * static_cast<Eigen::Index>(blocks.size()));
   double max_pen = 0.0;
+  stored_before_ = stored_energy(committed_, committed_work_);  // energy balance
+  step_work_.resize(work_.size());                              // energy balance
   for (size_t c = 0; c < work_.size(); ++c) {
     Contact& r = work_[c];
     const Hot& h = hot_[c];
@@ -488,6 +491,9 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
     const double slip = h.ti.dot(Di) + h.tj.dot(Dj);
     const double dt = h.dt0 + seams_[c].locking_shift + slip;
     r.penetration = dn;
+    step_work_[c] = {h.pn, h.ps, h.dn0, dn, h.dt0, slip, h.start_state,  // energy balance
+                     r.slide_direction * (std::max(h.assembled_normal_force, 0.0) * h.tan_phi +
+                                          h.cohesion * r.length)};
     switch (r.state) {
       case ContactState::open:
         r.normal_force = r.shear_force = 0.0;
@@ -545,6 +551,7 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
   committed_.swap(work_);
   committed_rheology_.swap(work_rheology_);
   committed_creep_.swap(work_creep_);
+  committed_work_.swap(step_work_);  // energy balance
   work_.clear();
   work_rheology_.clear();
   work_creep_.clear();

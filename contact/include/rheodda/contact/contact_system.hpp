@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "rheodda/contact/broad_phase.hpp"
+#include "rheodda/contact/contact_energy.hpp"
 #include "rheodda/contact/detection.hpp"
 #include "rheodda/contact/joint_set.hpp"
 #include "rheodda/contact/kinematics.hpp"
@@ -141,6 +142,10 @@ class ContactSystem {
   /// Creep increment Delta d_c of each contact in the last accepted step
   /// (parallel to contacts(); 0 without a law) [length].
   std::span<const double> creep_increments() const { return committed_creep_; }
+  /// The contacts' terms of the energy balance: stored energies of the records
+  /// of the last accepted step and the flows of that step (contact_energy.cpp;
+  /// docs/engine.md, "Energy balance").
+  ContactEnergy energy() const;
 
   const std::vector<JointSet>& joint_sets() const { return joint_sets_; }
   const ContactSettings& settings() const { return settings_; }
@@ -170,7 +175,22 @@ class ContactSystem {
                                   ///< the end force for the whole step (implicit constants)
     int flips = 0;        ///< state changes of this contact in this step
     int refinements = 0;  ///< friction refinements of this contact in this step
+    double assembled_normal_force = 0.0;  ///< normal_force as the last solve's assembly used it
+                                          ///< (set by check; energy balance) [force/length]
   };
+  /// What the energy balance needs of one contact's last accepted step,
+  /// recorded by end_step (parallel to committed_; contact_energy.cpp).
+  struct StepWork {
+    double pn = 0.0, ps = 0.0;   ///< normal and elastic shear springs of the step [stress]
+    double dn0 = 0.0, dn = 0.0;  ///< penetration on the step-start geometry and at the end [length]
+    double st0 = 0.0;            ///< stretch of the shear spring at the step start (dt0) [length]
+    double slip = 0.0;           ///< tangential relative motion of the step [length]
+    ContactState start_state = ContactState::open;
+    double friction = 0.0;       ///< friction force of the final solve, signed along the edge
+                                 ///< (sliding; from the N that solve assembled) [force/length]
+  };
+  /// Sum of p_n d_n^2/2 + F^2/(2 k_s) over records with their springs [force x length].
+  static double stored_energy(std::span<const Contact> records, std::span<const StepWork> work);
   void prepare(std::span<const BlockView> blocks, const Contact& c, Hot& h) const;
   double shear_stiffness(size_t c) const;
   /// Step constants of one joint set: the scheme's and the implicit ones.
@@ -195,6 +215,8 @@ class ContactSystem {
   std::vector<Contact> committed_, work_;
   std::vector<laws::RheologyState> committed_rheology_, work_rheology_;
   std::vector<double> committed_creep_, work_creep_;
+  std::vector<StepWork> committed_work_, step_work_;  ///< energy balance (contact_energy.cpp)
+  double stored_before_ = 0.0;  ///< stored energy before the last accepted step [force x length]
   std::vector<LawStep> law_steps_;  ///< per joint set, for the step being solved
   std::vector<ShearSeam> seams_;
   std::vector<Hot> hot_;

@@ -1,0 +1,90 @@
+// The contacts' terms of the energy balance (contact_energy.hpp; docs/engine.md,
+// "Energy balance"), from the records of the last accepted step and what
+// end_step recorded of it (StepWork: springs, start and end stretches, slip,
+// state at the step start).
+//
+// Springs (Shi 1988; the seed's eqs. 17-18, 23-29), per contact:
+//   normal  p_n, stretch d_n (penetration): d_n0 on the step-start geometry,
+//           d_n = d_n0 + n_i.D_i + n_j.D_j at the end, force N = p_n d_n (plus
+//           whatever else the contact adds to it, e.g. a dashpot: `damping`);
+//   shear   k_s (elastic: p_s, or the joint's k l, or the law's E1 l), stretch
+//           s0 = dt0 from the locking point at the step start and
+//           s1 = dt0 + slip - Delta d_c at the end, force F = k_s s1 (end_step).
+// The end forces act on the blocks over the whole step (implicit assembly), so
+// the work the blocks do on a spring attached through the step is
+//   F1 (s1 - s0) + F1 Delta d_c = [k s1^2/2 - k s0^2/2] + k (s1 - s0)^2/2 + F1 Delta d_c
+//   (stored)                       (integration)          (creep, dashpots)
+// and on a sliding contact's friction force F (signed along the slide
+// direction; the one the final solve assembled, from the N of the iterate
+// before it) F slip. A spring attached during the step has no start energy:
+// its k (s1 - s0)^2/2 - k s0^2/2 is `closing`; a spring detached during the
+// step does no work and loses k s0^2/2: `release`.
+#include <span>
+
+#include "rheodda/contact/contact_system.hpp"
+
+namespace rheodda::contact {
+
+double ContactSystem::stored_energy(std::span<const Contact> records,
+                                    std::span<const StepWork> work) {
+  double e = 0.0;
+  for (size_t c = 0; c < records.size() && c < work.size(); ++c) {
+    const Contact& r = records[c];
+    if (r.state != ContactState::open) e += 0.5 * work[c].pn * r.penetration * r.penetration;
+    if (r.state == ContactState::locked) e += 0.5 * r.shear_force * r.shear_force / work[c].ps;
+  }
+  return e;
+}
+
+ContactEnergy ContactSystem::energy() const {
+  ContactEnergy e;
+  double start = 0.0;  // springs attached at the step start: sum of k s0^2/2
+  for (size_t c = 0; c < committed_.size() && c < committed_work_.size(); ++c) {
+    const Contact& r = committed_[c];
+    const StepWork& w = committed_work_[c];
+    // Normal spring: attached while the contact is closed.
+    const bool n_start = w.start_state != ContactState::open;
+    const bool n_end = r.state != ContactState::open;
+    const double un0 = 0.5 * w.pn * w.dn0 * w.dn0;
+    if (n_start) start += un0;
+    if (n_end) {
+      const double d = w.dn - w.dn0;
+      e.normal += 0.5 * w.pn * r.penetration * r.penetration;
+      // Any normal force beyond the spring's p_n d_n (a dashpot) takes its end
+      // value times the approach of the step.
+      e.damping += (r.normal_force - w.pn * w.dn) * d;
+      if (n_start)
+        e.integration += 0.5 * w.pn * d * d;
+      else
+        e.closing += 0.5 * w.pn * d * d - un0;
+    } else if (n_start) {
+      e.release += un0;
+    }
+    // Shear spring: attached while the contact is locked.
+    const bool s_start = w.start_state == ContactState::locked;
+    const bool s_end = r.state == ContactState::locked;
+    const double us0 = 0.5 * w.ps * w.st0 * w.st0;
+    if (s_start) start += us0;
+    if (s_end) {
+      const double s1 = r.shear_force / w.ps;
+      const double d = s1 - w.st0;  // slip - Delta d_c
+      e.shear += 0.5 * r.shear_force * s1;
+      e.creep += r.shear_force * (c < committed_creep_.size() ? committed_creep_[c] : 0.0);
+      if (s_start)
+        e.integration += 0.5 * w.ps * d * d;
+      else
+        e.closing += 0.5 * w.ps * d * d - us0;
+    } else if (s_start) {
+      e.release += us0;
+    }
+    // Friction: the force the final solve assembled (from the N of the iterate
+    // before it; the record's shear_force takes the final N) times the slip,
+    // both signed along the edge: > 0 when the vertex slides the way friction
+    // resists.
+    if (r.state == ContactState::sliding) e.friction += w.friction * w.slip;
+  }
+  e.restart = start - stored_before_;
+  return e;
+}
+
+}  // namespace rheodda::contact
