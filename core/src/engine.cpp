@@ -21,6 +21,7 @@
 #include <string>
 #include <utility>
 
+#include "block_terms.hpp"
 #include "rheodda/core/block_system.hpp"
 #include "rheodda/core/polygon.hpp"
 #include "rheodda/core/solver.hpp"
@@ -42,61 +43,6 @@ double seconds_since(Clock::time_point t0) {
 bool finite(const Vec2& v) { return std::isfinite(v.x()) && std::isfinite(v.y()); }
 
 std::string at(const char* list, std::size_t k) { return std::string(list) + "[" + std::to_string(k) + "]"; }
-
-/// Elastic matrix E_e relating (sigma_x, sigma_y, tau_xy) to (ex, ey, gxy) [stress]
-/// (Shi 1988, elastic stress submatrix):
-///   plane stress: E/(1-nu^2)        | 1   nu  0         |
-///                                   | nu  1   0         |
-///                                   | 0   0   (1-nu)/2  |
-///   plane strain: E/((1+nu)(1-2nu)) | 1-nu nu   0        |
-///                                   | nu   1-nu 0        |
-///                                   | 0    0    (1-2nu)/2|
-Eigen::Matrix3d elastic_matrix(const Material& m) {
-  const double E = m.young_modulus, nu = m.poisson_ratio;
-  Eigen::Matrix3d e;
-  if (m.plane == PlaneMode::plane_stress) {
-    e << 1.0, nu, 0.0, nu, 1.0, 0.0, 0.0, 0.0, 0.5 * (1.0 - nu);
-    e *= E / (1.0 - nu * nu);
-  } else {
-    e << 1.0 - nu, nu, 0.0, nu, 1.0 - nu, 0.0, 0.0, 0.0, 0.5 * (1.0 - 2.0 * nu);
-    e *= E / ((1.0 + nu) * (1.0 - 2.0 * nu));
-  }
-  return e;
-}
-
-/// int T^T T dA over a block with central moments (S, a = int dx^2,
-/// b = int dy^2, c = int dx dy), dx = x - x0, dy = y - y0 (the first moments
-/// vanish about the centroid). Shi 1988, mass (inertia) submatrix / rho.
-Mat6 unit_mass_matrix(const PolygonIntegrals& m) {
-  const double S = m.S, a = m.Sxx, b = m.Syy, c = m.Sxy;
-  Mat6 M = Mat6::Zero();
-  M(0, 0) = S;
-  M(1, 1) = S;
-  M(2, 2) = a + b;
-  M(2, 3) = -c;
-  M(2, 4) = c;
-  M(2, 5) = 0.5 * (a - b);
-  M(3, 3) = a;
-  M(3, 5) = 0.5 * c;
-  M(4, 4) = b;
-  M(4, 5) = 0.5 * c;
-  M(5, 5) = 0.25 * (a + b);
-  for (int i = 0; i < 6; ++i)
-    for (int j = 0; j < i; ++j) M(i, j) = M(j, i);
-  return M;
-}
-
-/// Piecewise-linear value of a load history at time t (held beyond the ends).
-Vec2 load_at(const std::vector<LoadSample>& h, double t) {
-  if (t <= h.front().time) return h.front().force;
-  if (t >= h.back().time) return h.back().force;
-  const auto it = std::upper_bound(h.begin(), h.end(), t,
-                                   [](double v, const LoadSample& s) { return v < s.time; });
-  const LoadSample& b = *it;
-  const LoadSample& a = *(it - 1);
-  const double w = (t - a.time) / (b.time - a.time);
-  return (1.0 - w) * a.force + w * b.force;
-}
 
 /// Is p inside the polygon or within tol of its boundary?
 bool inside_or_near(std::span<const Vec2> v, const Vec2& p, double tol) {
@@ -172,6 +118,8 @@ struct Engine::Impl {
   Eigen::VectorXd base_rhs;
   std::vector<StepReport> reports;
   std::vector<StepObserver> observers;
+  EnergyAccount energy;  // the balance itself is st.energy (energy.hpp)
+  EnergyInputs energy_inputs() const { return {model, st.blocks, moments, elastic, fixed_k}; }
 
   void validate();
   void initialise();
@@ -342,6 +290,7 @@ void Engine::Impl::initialise() {
   solver = std::make_unique<LinearSolver>(s.solver, s.pcg_tolerance, s.pcg_max_iterations);
   D = Eigen::VectorXd::Zero(6 * static_cast<Eigen::Index>(st.blocks.size()));
   refresh_geometry();
+  st.energy = EnergyAccount::start(energy_inputs());
   st.measurements.assign(model.measurement_points.size(), {});
   record_measurements(-1);
 }
@@ -421,6 +370,7 @@ void Engine::Impl::accept(const Eigen::VectorXd& d, double dt, int step_index, d
   const double ratio = model.settings.dynamic_ratio;
   const bool keep_acceleration = model.settings.time_integration == TimeIntegration::trapezoidal;
   const Newmark nm = newmark();
+  energy.begin(energy_inputs(), d, dt, nm.beta, nm.gamma);
   for (std::size_t k = 0; k < st.blocks.size(); ++k) {
     BlockState& b = st.blocks[k];
     const Vec6 Dk = d.segment<6>(6 * static_cast<Eigen::Index>(k));
@@ -452,6 +402,7 @@ void Engine::Impl::accept(const Eigen::VectorXd& d, double dt, int step_index, d
   st.step = step_index + 1;
   st.time = t_end;
   refresh_geometry();
+  energy.end(energy_inputs(), t_end, contacts->energy(), st.energy);
   record_measurements(step_index);
 }
 
@@ -582,6 +533,7 @@ StepReport Engine::Impl::doubling_step(double dt_cap) {
   const std::size_t start_samples =
       st.measurements.empty() ? 0 : st.measurements.front().size();
   const std::unique_ptr<ContactSnapshot> start_contacts = contacts->snapshot();
+  const EnergyBalance start_energy = st.energy;
   if (!start_contacts)
     throw std::runtime_error(
         "settings.step_tolerance: the contact model cannot copy its state (step doubling needs "
@@ -593,8 +545,10 @@ StepReport Engine::Impl::doubling_step(double dt_cap) {
     for (auto& m : st.measurements) m.resize(start_samples);
     refresh_geometry();
     contacts->restore(*start_contacts);
+    st.energy = start_energy;
   };
   std::vector<BlockState> coarse;
+  EnergyFlows coarse_energy;
   for (;;) {
     Trial trial;
     bool ok = take(dt, rep, trial);
@@ -603,6 +557,7 @@ StepReport Engine::Impl::doubling_step(double dt_cap) {
     std::unique_ptr<ContactSnapshot> coarse_contacts;
     if (ok) {
       coarse = st.blocks;
+      coarse_energy = st.energy.step;
       coarse_contacts = contacts->snapshot();
       restart();
       ok = take(0.5 * dt, rep, trial);
@@ -650,6 +605,8 @@ StepReport Engine::Impl::doubling_step(double dt_cap) {
       }
       refresh_geometry();
     }
+    EnergyAccount::finish_doubling(energy_inputs(), start_energy, coarse_energy, rep.extrapolated,
+                                   contacts->energy(), st.energy);
     // One step of dt for the outside: one report, one measurement sample.
     st.step = start_step + 1;
     st.time = start_time + dt;
@@ -737,6 +694,7 @@ Engine::~Engine() = default;
 
 StepReport Engine::step() {
   StepReport r = impl_->step(std::numeric_limits<double>::infinity());
+  r.energy = impl_->st.energy.step;
   impl_->reports.push_back(r);
   for (const auto& o : impl_->observers) o(*this, r);
   return r;
@@ -752,6 +710,7 @@ void Engine::run_until(double end_time) {
     // A sliver below round-off of the end time is not worth a step.
     if (remaining <= 1e-12 * std::max(1.0, std::abs(end_time))) break;
     StepReport r = impl_->step(remaining);
+    r.energy = impl_->st.energy.step;
     impl_->reports.push_back(r);
     for (const auto& o : impl_->observers) o(*this, r);
   }
@@ -783,6 +742,7 @@ const std::vector<std::vector<MeasurementSample>>& Engine::measurements() const 
   return impl_->st.measurements;
 }
 const SolverStats& Engine::solver_stats() const { return impl_->solver->stats(); }
+const EnergyBalance& Engine::energy() const { return impl_->st.energy; }
 
 EngineState Engine::save() const { return impl_->st; }
 

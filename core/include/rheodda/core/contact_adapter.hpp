@@ -57,6 +57,8 @@ class ContactAdapter final : public ContactModel {
   void restore(const ContactSnapshot& s) override;
   /// contact::ContactSystem::extrapolate with the snapshot's system.
   bool extrapolate(const ContactSnapshot& coarse) override;
+  /// contact::ContactSystem::energy.
+  ContactEnergy energy() const override { return system_.energy(); }
 
   contact::ContactSystem& system() { return system_; }
   const contact::ContactSystem& system() const { return system_; }

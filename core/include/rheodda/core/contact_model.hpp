@@ -7,9 +7,14 @@
 #include <memory>
 #include <span>
 
+#include "rheodda/contact/contact_energy.hpp"
 #include "rheodda/contact/kinematics.hpp"
 
 namespace rheodda::core {
+
+/// The contacts' terms of the energy balance (stored energies after the last
+/// accepted step and its flows; docs/engine.md, "Energy balance").
+using ContactEnergy = contact::ContactEnergy;
 
 /// Facts of the step being solved.
 struct StepContext {
@@ -92,6 +97,11 @@ class ContactModel {
   /// changes nothing, when the two differ in their discrete parts (which
   /// contacts exist, their states).
   virtual bool extrapolate(const ContactSnapshot& /*coarse*/) { return false; }
+  /// Energy balance (docs/engine.md, "Energy balance"; asked after end_step and
+  /// after extrapolate): the energy the contact springs store after the last
+  /// accepted step and the work the blocks did on them in it [force x length];
+  /// all zero for a model that does not account for it.
+  virtual ContactEnergy energy() const { return {}; }
 };
 
 /// No contacts: every call does nothing.

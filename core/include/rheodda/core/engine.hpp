@@ -25,6 +25,7 @@
 
 #include "rheodda/contact/kinematics.hpp"
 #include "rheodda/core/contact_model.hpp"
+#include "rheodda/core/energy.hpp"
 #include "rheodda/core/model.hpp"
 
 namespace rheodda::core {
@@ -54,6 +55,7 @@ struct StepReport {
                                   ///< (2 y(dt/2) - y(dt)); false: y(dt/2) stands
   ContactChanges changes;         ///< what the contact checks changed, summed over every
                                   ///< open-close iterate of every attempt of the step [-]
+  EnergyFlows energy;             ///< the step's energy flows and residual (energy.hpp) [force x length]
   double assembly_seconds = 0.0;  ///< wall time spent assembling K and F (all attempts) [s]
   double solve_seconds = 0.0;     ///< wall time spent in the linear solver (all attempts) [s]
 };
@@ -99,6 +101,7 @@ struct EngineState {
   double next_dt = 0.0;      ///< size of the next trial step [time]
   std::vector<BlockState> blocks;
   std::vector<std::vector<MeasurementSample>> measurements;  ///< per measurement point
+  EnergyBalance energy;      ///< energy balance since t = 0 (energy.hpp)
 };
 
 /// Called after every accepted step.
@@ -152,6 +155,9 @@ class Engine {
   /// Samples per measurement point (first sample = initial state, step -1).
   const std::vector<std::vector<MeasurementSample>>& measurements() const;
   const SolverStats& solver_stats() const;
+  /// Energy balance: stored energies, the last step's flows and the sums since
+  /// t = 0 (docs/engine.md, "Energy balance").
+  const EnergyBalance& energy() const;
 
   /// Copy of everything that evolves.
   EngineState save() const;

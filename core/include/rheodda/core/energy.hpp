@@ -1,0 +1,131 @@
+// The energy balance of a run (docs/engine.md, "Energy balance"): after every
+// accepted step, the energy stored in the blocks (kinetic, elastic), the fixed
+// points and the contact springs, the work of gravity and of the point loads,
+// the energy dissipated by friction, by the creep dashpots, by the time
+// integration and by contact springs attached or detached within a step, the
+// energy the contact springs gain between steps, and the residual of the
+// balance - per step and summed since t = 0.
+//
+// Every term has its own formula (energy.cpp, contact_energy.cpp); none is
+// defined as "what is left", so the residual measures what the terms do not
+// account for (docs/engine.md lists the mechanisms).
+//
+// Energies are per unit thickness: [force x length], "force" per unit
+// thickness as everywhere (J/m in SI).
+//
+// Usage:
+//   rheodda::core::Engine engine(model, contacts);
+//   engine.run(100);
+//   const auto& e = engine.energy();
+//   e.stored.kinetic, e.total.work_gravity, e.total.residual, e.relative_residual()
+#pragma once
+
+#include <Eigen/Dense>
+#include <vector>
+
+#include "rheodda/core/contact_model.hpp"
+#include "rheodda/core/model.hpp"
+#include "rheodda/core/polygon.hpp"
+
+namespace rheodda::core {
+
+struct BlockState;
+
+/// Energies stored in a state [force x length].
+struct StoredEnergy {
+  double kinetic = 0.0;         ///< sum over blocks of v^T M v / 2, M = rho int T^T T dA
+  double strain = 0.0;          ///< sum over blocks of S sigma^T E_e^-1 sigma / 2 (initial
+                                ///< stresses included)
+  double fixed = 0.0;           ///< sum over fixed points of p |x - x0|^2 / 2
+  double contact_normal = 0.0;  ///< sum over closed contacts of p_n d_n^2 / 2
+  double contact_shear = 0.0;   ///< sum over locked contacts of F^2 / (2 k_s), k_s elastic
+  double total() const { return kinetic + strain + fixed + contact_normal + contact_shear; }
+};
+
+/// Energy flows of one step, or their sums over steps [force x length].
+/// Works are energy put into the model (> 0), dissipations energy taken out (> 0).
+struct EnergyFlows {
+  double work_gravity = 0.0;          ///< sum of rho S g . (centroid displacement)
+  double work_loads = 0.0;            ///< sum of f(t_end) . (displacement of the load point)
+  double work_contact_restart = 0.0;  ///< energy the contact springs gained between steps
+                                      ///< without work (ContactEnergy::restart)
+  double dissipation_friction = 0.0;  ///< friction force x slip of sliding contacts (signed)
+  double dissipation_creep = 0.0;     ///< end shear force x creep increment of locked contacts
+  double dissipation_integration = 0.0;  ///< time integration: the end forces' work beyond
+                                         ///< the stored energy change, k Delta^2 / 2 per linear
+                                         ///< spring (blocks, fixed points, contacts), plus
+                                         ///< integration_inertia
+  double integration_inertia = 0.0;   ///< of dissipation_integration, the inertia term's share:
+                                      ///< shi (1 - r^2) KE, trapezoidal (1 - r^2) KE +
+                                      ///< D^T M (a' - r a) / 2, static D^T M D / (beta dt^2)
+  double dissipation_contact_damping = 0.0;  ///< normal force beyond the contact springs
+                                             ///< (ContactEnergy::damping)
+  double dissipation_contact_closing = 0.0;  ///< contact springs attached during the step
+                                             ///< (ContactEnergy::closing)
+  double dissipation_contact_release = 0.0;  ///< contact springs detached during the step
+                                             ///< (ContactEnergy::release)
+  double residual = 0.0;  ///< (change of the stored energy) - works + dissipations: > 0 is
+                          ///< energy the terms do not account for that the model gained
+  double scale = 0.0;     ///< |work_gravity| + |work_loads| (summed: of every step)
+
+  /// works - dissipations: what the stored energy should have gained.
+  double net_input() const;
+  EnergyFlows& operator+=(const EnergyFlows& o);
+};
+
+/// The energy balance of a run.
+struct EnergyBalance {
+  StoredEnergy initial;  ///< at t = 0 (the contacts store nothing before the first step)
+  StoredEnergy stored;   ///< after the last accepted step
+  EnergyFlows step;      ///< of the last accepted step
+  EnergyFlows total;     ///< since t = 0
+  double max_relative_residual = 0.0;  ///< largest relative_residual() after any step [-]
+
+  /// |total.residual| / (initial.total() + total.scale): the residual relative to
+  /// the energy put into play (initial energy plus the work of gravity and loads,
+  /// step by step in absolute value) [-]; 0 while that is 0.
+  double relative_residual() const;
+};
+
+/// The engine's data the account reads (references valid during the call).
+struct EnergyInputs {
+  const Model& model;
+  const std::vector<BlockState>& blocks;         ///< current block states
+  const std::vector<PolygonIntegrals>& moments;  ///< central integrals of their geometry
+  const std::vector<Eigen::Matrix3d>& elastic;   ///< E_e per material [stress]
+  double fixed_k = 0.0;                          ///< fixed-point spring [force/length]
+};
+
+/// Computes the balance of each accepted step (called by the engine from
+/// Engine::Impl::accept and, for step doubling, Engine::Impl::doubling_step).
+class EnergyAccount {
+ public:
+  /// The balance at t = 0: the stored energies of the initial state.
+  static EnergyBalance start(const EnergyInputs& in);
+  /// Energies stored in the blocks and fixed points of the current state.
+  static StoredEnergy stored_in_blocks(const EnergyInputs& in);
+
+  /// Before the blocks move by D (step-start geometry and velocities): the
+  /// flows that need them. beta, gamma: the Newmark parameters of the step.
+  void begin(const EnergyInputs& in, const Eigen::VectorXd& D, double dt, double beta,
+             double gamma);
+  /// After the blocks moved and the geometry was refreshed, and after the
+  /// contacts' end_step: the stored energies, the load work, the contact terms
+  /// and the residual; adds the step to `balance`.
+  void end(const EnergyInputs& in, double t_end, const ContactEnergy& contacts,
+           EnergyBalance& balance);
+  /// Step doubling (docs/speed-accuracy.md, "Step doubling"): `balance` went from
+  /// `start` through the two half steps. Makes it one step: the flows of the two
+  /// halves summed or, when the step was extrapolated, every flow extrapolated as
+  /// the states are, 2 (sum of the halves) - (the single step's `coarse`), and the
+  /// stored energies those of the extrapolated state.
+  static void finish_doubling(const EnergyInputs& in, const EnergyBalance& start,
+                              const EnergyFlows& coarse, bool extrapolated,
+                              const ContactEnergy& contacts, EnergyBalance& balance);
+
+ private:
+  EnergyFlows flows_;             ///< of the step in progress
+  std::vector<Vec2> load_start_;  ///< load points at the step start [length]
+};
+
+}  // namespace rheodda::core

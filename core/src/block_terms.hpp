@@ -1,0 +1,71 @@
+// Block sub-matrix formulas shared by the engine (engine.cpp) and its energy
+// balance (energy.cpp): the elastic matrix, the unit mass matrix and the value
+// of a point-load history (Shi 1988; docs/engine.md, "Sub-matrices").
+#pragma once
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <vector>
+
+#include "rheodda/core/block_system.hpp"
+#include "rheodda/core/model.hpp"
+#include "rheodda/core/polygon.hpp"
+
+namespace rheodda::core {
+
+/// Elastic matrix E_e relating (sigma_x, sigma_y, tau_xy) to (ex, ey, gxy) [stress]
+/// (Shi 1988, elastic stress submatrix):
+///   plane stress: E/(1-nu^2)        | 1   nu  0         |
+///                                   | nu  1   0         |
+///                                   | 0   0   (1-nu)/2  |
+///   plane strain: E/((1+nu)(1-2nu)) | 1-nu nu   0        |
+///                                   | nu   1-nu 0        |
+///                                   | 0    0    (1-2nu)/2|
+inline Eigen::Matrix3d elastic_matrix(const Material& m) {
+  const double E = m.young_modulus, nu = m.poisson_ratio;
+  Eigen::Matrix3d e;
+  if (m.plane == PlaneMode::plane_stress) {
+    e << 1.0, nu, 0.0, nu, 1.0, 0.0, 0.0, 0.0, 0.5 * (1.0 - nu);
+    e *= E / (1.0 - nu * nu);
+  } else {
+    e << 1.0 - nu, nu, 0.0, nu, 1.0 - nu, 0.0, 0.0, 0.0, 0.5 * (1.0 - 2.0 * nu);
+    e *= E / ((1.0 + nu) * (1.0 - 2.0 * nu));
+  }
+  return e;
+}
+
+/// int T^T T dA over a block with central moments (S, a = int dx^2,
+/// b = int dy^2, c = int dx dy), dx = x - x0, dy = y - y0 (the first moments
+/// vanish about the centroid). Shi 1988, mass (inertia) submatrix / rho.
+inline Mat6 unit_mass_matrix(const PolygonIntegrals& m) {
+  const double S = m.S, a = m.Sxx, b = m.Syy, c = m.Sxy;
+  Mat6 M = Mat6::Zero();
+  M(0, 0) = S;
+  M(1, 1) = S;
+  M(2, 2) = a + b;
+  M(2, 3) = -c;
+  M(2, 4) = c;
+  M(2, 5) = 0.5 * (a - b);
+  M(3, 3) = a;
+  M(3, 5) = 0.5 * c;
+  M(4, 4) = b;
+  M(4, 5) = 0.5 * c;
+  M(5, 5) = 0.25 * (a + b);
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < i; ++j) M(i, j) = M(j, i);
+  return M;
+}
+
+/// Piecewise-linear value of a load history at time t (held beyond the ends).
+inline Vec2 load_at(const std::vector<LoadSample>& h, double t) {
+  if (t <= h.front().time) return h.front().force;
+  if (t >= h.back().time) return h.back().force;
+  const auto it = std::upper_bound(h.begin(), h.end(), t,
+                                   [](double v, const LoadSample& s) { return v < s.time; });
+  const LoadSample& b = *it;
+  const LoadSample& a = *(it - 1);
+  const double w = (t - a.time) / (b.time - a.time);
+  return (1.0 - w) * a.force + w * b.force;
+}
+
+}  // namespace rheodda::core
