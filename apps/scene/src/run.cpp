@@ -203,13 +203,27 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
         }
       row += n ? fmt::format(",{},{:.10g},{:.10g}", n, shear / n, force / n) : fmt::format(",0,,");
     }
+    // Energy balance (docs/engine.md, "Energy balance"): stored energies now, flows since t = 0.
+    const core::EnergyBalance& en = engine.energy();
+    const core::StoredEnergy& st = en.stored;
+    const core::EnergyFlows& fl = en.total;
+    for (const double v : {st.kinetic, st.strain, st.fixed, st.contact_normal, st.contact_shear,
+                           fl.work_gravity, fl.work_loads, fl.work_contact_restart,
+                           fl.dissipation_friction, fl.dissipation_creep, fl.dissipation_integration,
+                           fl.dissipation_contact_damping, fl.dissipation_contact_closing,
+                           fl.dissipation_contact_release, fl.residual, en.relative_residual()})
+      row += fmt::format(",{:.10g}", v);
     return row + '\n';
   };
   std::string history_header = "time,step,dt,cuts,iterations";
   for (const auto& mp : s.measurement_points) history_header += fmt::format(",{0}.u,{0}.v", mp.name);
   for (int j : recorded)
     history_header += fmt::format(",{0}.contacts,{0}.shear_displacement,{0}.shear_force", s.joint_sets[j].name);
-  history_header += '\n';
+  history_header +=
+      ",energy_kinetic,energy_strain,energy_fixed,energy_contact_normal,energy_contact_shear,"
+      "work_gravity,work_loads,work_contact_restart,dissipation_friction,dissipation_creep,"
+      "dissipation_integration,dissipation_contact_damping,dissipation_contact_closing,"
+      "dissipation_contact_release,energy_residual,energy_residual_relative\n";
 
   CsvAppender history, contacts_csv;
   std::vector<std::pair<double, std::string>> pvd;
@@ -321,6 +335,32 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
       j["contact_changes"] = {{"closed", c.closed},   {"opened", c.opened},
                               {"slipped", c.slipped}, {"stuck", c.stuck},
                               {"refinements", c.refinements}};
+    }
+    {
+      // The energy balance since t = 0 (docs/engine.md, "Energy balance").
+      const core::EnergyBalance& en = engine.energy();
+      auto stored = [](const core::StoredEnergy& e) {
+        return json{{"kinetic", e.kinetic},       {"strain", e.strain},
+                    {"fixed", e.fixed},           {"contact_normal", e.contact_normal},
+                    {"contact_shear", e.contact_shear}, {"total", e.total()}};
+      };
+      const core::EnergyFlows& t = en.total;
+      j["energy"] = {{"initial", stored(en.initial)},
+                     {"final", stored(en.stored)},
+                     {"work_gravity", t.work_gravity},
+                     {"work_loads", t.work_loads},
+                     {"work_contact_restart", t.work_contact_restart},
+                     {"dissipation_friction", t.dissipation_friction},
+                     {"dissipation_creep", t.dissipation_creep},
+                     {"dissipation_integration", t.dissipation_integration},
+                     {"integration_inertia", t.integration_inertia},
+                     {"dissipation_contact_damping", t.dissipation_contact_damping},
+                     {"dissipation_contact_closing", t.dissipation_contact_closing},
+                     {"dissipation_contact_release", t.dissipation_contact_release},
+                     {"residual", t.residual},
+                     {"scale", en.initial.total() + t.scale},
+                     {"relative_residual", en.relative_residual()},
+                     {"max_relative_residual", en.max_relative_residual}};
     }
     j["frames"] = result.frames;
     j["wall_seconds"] = result.wall_seconds;
