@@ -16,10 +16,18 @@
 //                                                  # per iterate: changes by kind and CG iterations
 //   build/bench/contact_bench --sizes 32,100x20    # walls to run: N (N x N bricks) or NXxNY
 //                                                  # (default 10,32,100,316)
+//   build/bench/contact_bench --sizes 20,40 --duration 0.05 --penalty 50 --poisson 0.25
+//                                                  # a fixed simulated time (50 ms) instead of a
+//                                                  # step count, at the peer's settings (penalty
+//                                                  # 50 E, nu 0.25): simulated time, CPU s per
+//                                                  # simulated ms, solves per step, cuts
+//   build/bench/contact_bench --friction-tolerance 0.1 --force-resolution 1e-2 --max-flips 2
+//                                                  # --max-refinements 3: the open-close settings
+//                                                  # of contact::ContactSettings (defaults there)
 //
 // A wall of NX x NY bricks 0.2 m x 0.1 m in running bond (odd rows start and
 // end with a half brick, so the sides are straight) stands on a fixed base
-// block; gravity, friction 30 deg on every joint, E = 5 GPa, nu = 0.2,
+// block; gravity, friction 30 deg on every joint, E = 5 GPa, nu = 0.2 (--poisson),
 // density 2600 kg/m^3, dynamic analysis, dt = 1e-3 s, g2 w0 = 1 mm, 50 steps,
 // default open-close limit (8) and contact settings. Prints the
 // time of contact detection and of a full step (open-close iteration
@@ -30,6 +38,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -60,12 +69,12 @@ core::BlockDef brick(std::vector<Vec2> vertices) {
 }
 
 /// NX x NY running-bond wall on a fixed base (block 0).
-core::Model brick_wall(int nx, int ny) {
+core::Model brick_wall(int nx, int ny, double poisson) {
   core::Model m;
   core::Material rock;
   rock.density = 2600.0;     // [kg/m^3]
   rock.young_modulus = 5e9;  // [Pa]
-  rock.poisson_ratio = 0.2;
+  rock.poisson_ratio = poisson;
   m.materials = {rock};
   m.settings.dt = 1e-3;
   m.settings.dynamic_ratio = 1.0;
@@ -169,6 +178,9 @@ int main(int argc, char** argv) {
   int open_close = 0;
   double penalty = 40.0;  // [E]
   bool glued = false, trace = false;
+  double poisson = 0.2, duration = 0.0;
+  contact::ContactSettings tuned;  // contact iteration settings given on the command line
+  bool tuned_any = false;
   std::vector<std::pair<int, int>> sizes{{10, 10}, {32, 32}, {100, 100}, {316, 316}};
   for (int k = 1; k < argc; ++k) {
     if (!std::strcmp(argv[k], "--max-blocks") && k + 1 < argc) max_blocks = std::atol(argv[++k]);
@@ -180,12 +192,23 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[k], "--penalty") && k + 1 < argc) penalty = std::atof(argv[++k]);
     else if (!std::strcmp(argv[k], "--glued")) glued = true;
     else if (!std::strcmp(argv[k], "--trace")) trace = true;
+    else if (!std::strcmp(argv[k], "--poisson") && k + 1 < argc) poisson = std::atof(argv[++k]);
+    else if (!std::strcmp(argv[k], "--duration") && k + 1 < argc) duration = std::atof(argv[++k]);
+    else if (!std::strcmp(argv[k], "--friction-tolerance") && k + 1 < argc)
+      tuned.friction_tolerance = std::atof(argv[++k]), tuned_any = true;
+    else if (!std::strcmp(argv[k], "--force-resolution") && k + 1 < argc)
+      tuned.force_resolution = std::atof(argv[++k]), tuned_any = true;
+    else if (!std::strcmp(argv[k], "--max-flips") && k + 1 < argc)
+      tuned.max_flips = std::atoi(argv[++k]), tuned_any = true;
+    else if (!std::strcmp(argv[k], "--max-refinements") && k + 1 < argc)
+      tuned.max_refinements = std::atoi(argv[++k]), tuned_any = true;
     else if (!std::strcmp(argv[k], "--sizes") && k + 1 < argc && !(sizes = parse_sizes(argv[++k])).empty()) {}
     else {
       std::fprintf(stderr,
                    "usage: contact_bench [--max-blocks N] [--steps S] [--detect-only] "
                    "[--solver automatic|cholmod|pcg|amg] [--tol T] [--open-close N] [--penalty F] "
-                   "[--glued] [--trace] [--sizes N|NXxNY,...]\n");
+                   "[--glued] [--trace] [--sizes N|NXxNY,...] [--poisson NU] [--duration T] "
+                   "[--friction-tolerance F] [--force-resolution F] [--max-flips N] [--max-refinements N]\n");
       return 2;
     }
   }
@@ -215,13 +238,20 @@ int main(int argc, char** argv) {
               "exponent", "iters", "cuts", "analyses", "cg/solve", "max_disp_m");
   double prev_n = 0.0, prev_step = 0.0;
   for (const auto& [nx, ny] : sizes) {
-    core::Model model = brick_wall(nx, ny);
+    core::Model model = brick_wall(nx, ny, poisson);
     model.settings.solver = solver_kind;
     if (pcg_tol > 0.0) model.settings.pcg_tolerance = pcg_tol;
     if (open_close > 0) model.settings.max_open_close = open_close;
     const double n = static_cast<double>(model.blocks.size() - 1);
     if (n > 1.2 * static_cast<double>(max_blocks)) break;
-    contact::ContactSystem contacts({joint}, core::contact_settings_for(model, penalty));
+    contact::ContactSettings cs = core::contact_settings_for(model, penalty);
+    if (tuned_any) {
+      cs.friction_tolerance = tuned.friction_tolerance;
+      cs.force_resolution = tuned.force_resolution;
+      cs.max_flips = tuned.max_flips;
+      cs.max_refinements = tuned.max_refinements;
+    }
+    contact::ContactSystem contacts({joint}, cs);
     core::ContactAdapter adapter(contacts);
     TracingContacts tracing(adapter);
     core::Engine engine(model, trace ? static_cast<core::ContactModel&>(tracing)
@@ -247,7 +277,18 @@ int main(int argc, char** argv) {
     std::vector<Vec2> c0;
     for (int b = 0; b < engine.block_count(); ++b) c0.push_back(engine.centroid(b));
     const auto s0 = Clock::now();
-    engine.run(steps);
+    const std::clock_t cpu0 = std::clock();
+    if (duration > 0.0) {
+      // A fixed simulated time: as many steps as the step control takes, up to
+      // 20x the nominal count (a wall that cuts dt to nothing stops there).
+      const int limit = 20 * static_cast<int>(std::ceil(duration / model.settings.dt));
+      while (engine.time() < duration * (1.0 - 1e-12) && engine.step_count() < limit)
+        engine.run_until(std::min(duration, engine.time() + model.settings.dt));
+      steps = engine.step_count();
+    } else {
+      engine.run(steps);
+    }
+    const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
     const double step_time = seconds(s0, Clock::now()) / steps;
     double max_disp = 0.0, iters = 0.0, solve = 0.0, assembly = 0.0;
     int cuts = 0;
@@ -270,6 +311,10 @@ int main(int argc, char** argv) {
                 iters / steps, cuts, ss.analyses, cg_per_solve, max_disp);
     core::ContactChanges changes;
     for (const auto& r : engine.reports()) changes += r.changes;
+    std::printf("#   simulated %.4g s in %d steps, %.3f CPU s: %.4g CPU s per simulated ms, %.2f solves "
+                "per step, %d cuts\n",
+                engine.time(), steps, cpu, cpu / (1e3 * engine.time()),
+                static_cast<double>(ss.solves) / steps, cuts);
     std::printf("#   changes per step (all iterates and attempts): closed %.1f opened %.1f slipped %.1f "
                 "stuck %.1f refinements %.1f\n",
                 double(changes.closed) / steps, double(changes.opened) / steps,
