@@ -5,8 +5,16 @@
 # seven levels. Prints a Markdown table (displacement [m] and steps per level)
 # and puts it into docs/contacts.md ("Why the iteration does not settle",
 # between the refinement-goodman markers). About 5 s.
-# Usage: scripts/refinement-goodman.sh   (uses $RHEODDA_BUILD_DIR or build/)
+# Usage: scripts/refinement-goodman.sh [--stick-keeps-force]   (uses $RHEODDA_BUILD_DIR or build/)
+#   --stick-keeps-force: the same with analysis.stick_keeps_force: true, into the
+#   refinement-goodman-stick markers.
 set -euo pipefail
+marker=refinement-goodman
+extra=""
+if [[ "${1:-}" == "--stick-keeps-force" ]]; then
+  marker=refinement-goodman-stick
+  extra="  analysis.stick_keeps_force: true"
+fi
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${RHEODDA_BUILD_DIR:-$root/build}"
 work="$(mktemp -d)"
@@ -21,6 +29,7 @@ phis=(35 45 60)
   echo "  joint_sets.anti_toppling.law: ~"
   echo "  joint_sets.anti_toppling.shear_stiffness: 1.0e8"
   echo "  analysis.duration: 2"
+  [[ -n "$extra" ]] && echo "$extra"
   echo "outputs: [block10_top.displacement]"
   echo "times: [2]"
   echo "cases:"
@@ -50,7 +59,7 @@ awk -F, -v levels=$levels '
   }' "$work/out/study.csv" >"$work/table.md"
 cat "$work/table.md"
 doc="$root/docs/contacts.md"
-awk -v b="<!-- refinement-goodman:begin -->" -v e="<!-- refinement-goodman:end -->" -v f="$work/table.md" '
+awk -v b="<!-- $marker:begin -->" -v e="<!-- $marker:end -->" -v f="$work/table.md" '
   $0 == b { print; while ((getline line < f) > 0) print line; skip = 1; next }
   $0 == e { skip = 0 }
   !skip { print }' "$doc" >"$work/doc.md"

@@ -129,21 +129,24 @@ void ContactSystem::prepare(std::span<const BlockView> blocks, const Contact& c,
   h.tensile_strength = c.intact ? js.tensile_strength : 0.0;
 }
 
-void ContactSystem::stick_in_place(std::span<const BlockView> blocks, size_t c) {
-  // A sliding contact that sticks keeps its shear force: the locking point P0
-  // goes behind the vertex's step-start position p by the stretch that carries
-  // the friction force F it slid against, P0 = p - s t with s = d F / k_s
-  // (d the slide direction, t the edge direction). Restarting the spring
-  // unstretched instead drops the force from F to zero at every stick, so a
-  // contact at the friction limit loses its resistance for a step each time it
-  // sticks, and then slides again as soon as its spring has stretched back to
-  // the limit (docs/contacts.md, "Why the iteration did not settle").
+void ContactSystem::stick(std::span<const BlockView> blocks, size_t c) {
+  // Sliding -> locked where the vertex stood at the step start p. By default
+  // (Shi's rule) the shear spring restarts unstretched there. With
+  // ContactSettings::stick_keeps_force it keeps the friction force F the
+  // contact slid against, as an elastic-plastic joint keeps its elastic shear
+  // displacement: the locking point P0 goes behind p by the stretch that
+  // carries F, P0 = p - s t with s = d F / k_s (d the slide direction, t the
+  // edge direction). Measured trade (docs/contacts.md, "Why the iteration does
+  // not settle"): far fewer iterates and cuts on walls and slopes at the
+  // friction limit; a creeping slope at its limit takes other, step-dependent
+  // paths.
   Contact& r = work_[c];
   Hot& h = hot_[c];
   const BlockView& eb = blocks[r.key.eblock];
   const Vec2 a = edge_start(eb, r.key.edge), b = edge_end(eb, r.key.edge);
   const double friction = std::max(h.normal_force, 0.0) * h.tan_phi + h.cohesion * r.length;
-  const double stretch = r.slide_direction * friction / shear_stiffness(c);
+  const double stretch =
+      settings_.stick_keeps_force ? r.slide_direction * friction / shear_stiffness(c) : 0.0;
   r.locking_ratio = projection_ratio(a, b, blocks[r.key.vblock].vertices[r.key.vertex]) -
                     stretch / (b - a).norm();
   r.state = ContactState::locked;
@@ -416,19 +419,9 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
             r.slide_direction = dt >= 0.0 ? 1 : -1;
           }
         } else if (shear_stiffness(c) * slip * r.slide_direction < -f_res) {
-          if (std::max(N, 0.0) * h.tan_phi + h.cohesion * r.length <= f_res) {
-            // A contact whose friction is below the force resolution carries
-            // no force that matters stuck or sliding: it slides the other way,
-            // without asking for another iterate (the head joints of a wall,
-            // which carry almost nothing, would otherwise stick and slip in
-            // turn in every iterate).
-            r.slide_direction = -r.slide_direction;
-          } else {
-            // The vertex moves against the friction direction assumed: it sticks
-            // where it stood at the start of the step, its shear spring carrying
-            // the friction force it slid against (stick_in_place).
-            stick_in_place(blocks, c);
-          }
+          // The vertex moves against the friction direction assumed: it sticks
+          // where it stood at the start of the step (stick).
+          stick(blocks, c);
         } else {
           // The friction force N tan(phi) came from the last iterate's N.
           refine = std::abs(N - h.normal_force) >
@@ -448,8 +441,7 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
         if (before == ContactState::locked) {
           r.state = before;
         } else {
-          if (before == ContactState::sliding)
-            stick_in_place(blocks, c);
+          if (before == ContactState::sliding) stick(blocks, c);
           r.state = ContactState::locked;
         }
       }

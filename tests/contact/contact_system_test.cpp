@@ -298,17 +298,21 @@ BOOST_AUTO_TEST_CASE(slide_to_lock_counts_as_a_state_change) {
   cs.abandon_step();
 }
 
-BOOST_AUTO_TEST_CASE(a_sliding_contact_that_sticks_keeps_the_friction_force_it_slid_against) {
+BOOST_AUTO_TEST_CASE(stick_keeps_force_keeps_the_friction_force_through_a_stick_and_shi_restarts_the_spring) {
   // The block slides in -x on the base's top edge (edge direction -x, so the
   // slip and the friction force are positive along the edge). A trial that
-  // moves it back by 1e-8 m sticks it; its shear spring then carries the
-  // friction force F = N tan(phi) it slid against, less k_s x 1e-8: the force
-  // is continuous through the stick. (A spring restarted unstretched would
-  // carry -k_s x 1e-8 alone, 40 N/m against F of about 880 N/m.)
+  // moves it back by 1e-8 m sticks it. With stick_keeps_force its shear spring
+  // then carries the friction force F = N tan(phi) it slid against, less
+  // k_s x 1e-8: the force is continuous through the stick. By default (Shi's
+  // rule) the spring restarts unstretched: -k_s x 1e-8 alone.
+  for (const bool keep : {true, false}) {
+  BOOST_TEST_CONTEXT("stick_keeps_force " << keep) {
   Scene s;
   s.add_rect(0, 0, 4, 1);
   s.add_rect(1, 1, 2, 1.5);
-  ContactSystem cs({joint(10.0)}, settings(1e10));
+  ContactSettings st = settings(1e10);
+  st.stick_keeps_force = keep;
+  ContactSystem cs({joint(10.0)}, st);
   Vec6 load = Vec6::Zero();
   load(0) = -5e3;
   load(1) = -1e4;
@@ -333,36 +337,11 @@ BOOST_AUTO_TEST_CASE(a_sliding_contact_that_sticks_keeps_the_friction_force_it_s
     BOOST_TEST((c.state == ContactState::locked));
     // To 1e-8: the locking point is kept as a fraction of the 4 m edge, so it
     // is known to eps x 4 m = 9e-16 m, i.e. k_s x 9e-16 = 4e-6 N/m of 740 N/m.
-    BOOST_TEST(c.shear_force == friction[k] - ks * 1e-8, boost::test_tools::tolerance(1e-8));
+    const double expected = (keep ? friction[k] : 0.0) - ks * 1e-8;
+    BOOST_TEST(c.shear_force == expected, boost::test_tools::tolerance(1e-8));
   }
-}
-
-BOOST_AUTO_TEST_CASE(a_sliding_contact_without_friction_reverses_without_asking_for_an_iterate) {
-  // The same sliding block, with a trial that moves it back and lifts the
-  // normal force to zero: friction N tan(phi) is below the force resolution,
-  // so stuck or sliding it carries nothing that matters. It keeps sliding, the
-  // other way, and the iteration is not asked for another iterate.
-  Scene s;
-  s.add_rect(0, 0, 4, 1);
-  s.add_rect(1, 1, 2, 1.5);
-  ContactSystem cs({joint(10.0)}, settings(1e10));
-  Vec6 load = Vec6::Zero();
-  load(0) = -5e3;
-  load(1) = -1e4;
-  solve_step(cs, s, 1300.0, 1e-3, load);
-  std::vector<int> direction;
-  for (const Contact& c : cs.contacts()) direction.push_back(c.slide_direction);
-  cs.begin_step(s.views(), 1e-4);
-  Eigen::VectorXd D = Eigen::VectorXd::Zero(12);
-  D(6) = +1e-6;  // back against the slip, touching the base with no penetration: N = 0
-  const CheckResult r = cs.check(s.views(), D);
-  BOOST_TEST(r.state_changes == 0);
-  for (size_t k = 0; k < direction.size(); ++k) {
-    const Contact& c = cs.trial_contacts()[k];
-    BOOST_TEST((c.state == ContactState::sliding));
-    BOOST_TEST(c.slide_direction == -direction[k]);
   }
-  cs.abandon_step();
+  }
 }
 
 BOOST_AUTO_TEST_CASE(check_tells_closing_opening_and_slipping_apart) {

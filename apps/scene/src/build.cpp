@@ -73,6 +73,7 @@ BuiltScene build_scene(const SceneDescription& s) {
   cs.search_factor = a.search_factor;
   cs.angle_tolerance = a.angle_tolerance;
   cs.penetration_ratio = a.penetration_ratio;
+  cs.stick_keeps_force = a.stick_keeps_force;
   cs.scheme = a.scheme;
 
   const auto& registry = laws::LawRegistry::builtin();

@@ -74,6 +74,8 @@ std::string describe_scene(const SceneDescription& s) {
                    a.fixed_point_stiffness, u.force, u.length));
   line(fmt::format("  open_close_limit {}, penetration_ratio {:g}, angle_tolerance {:g} deg, search_factor {:g}",
                    a.open_close_limit, a.penetration_ratio, a.angle_tolerance, a.search_factor));
+  if (a.stick_keeps_force)
+    line("  stick_keeps_force: a sliding contact that sticks keeps its friction force");
   if (a.step_tolerance > 0.0)
     line(fmt::format("  time step: step doubling, step_tolerance {:g} {} ({}), dt_max {}", a.step_tolerance,
                      u.length,

@@ -63,7 +63,7 @@ const std::vector<std::string> analysis{
     "dynamic_ratio", "time_integration", "scheme", "creep_tolerance", "step_tolerance",
     "step_extrapolation", "dt_max", "creep_restart_on_contact_change", "penalty",
     "shear_normal_ratio", "search_factor", "angle_tolerance", "penetration_ratio",
-    "open_close_limit", "fixed_point_stiffness", "solver", "solver_tolerance",
+    "stick_keeps_force", "open_close_limit", "fixed_point_stiffness", "solver", "solver_tolerance",
     "solver_max_iterations", "output_interval", "gravity"};
 const std::vector<std::string> material{"density", "young_modulus", "poisson_ratio", "plane"};
 const std::vector<std::string> joint_set{"friction_angle", "cohesion", "tensile_strength",
@@ -389,6 +389,8 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   num("search_factor", a.search_factor, positive(""));
   num("angle_tolerance", a.angle_tolerance, {0.0, true, 45.0, false, "deg"});
   num("penetration_ratio", a.penetration_ratio, {0.0, true, 1.0, false, ""});
+  if (YAML::Node v = m.find("stick_keeps_force"); v.IsDefined())
+    a.stick_keeps_force = flag(ctx, v, m.child("stick_keeps_force"));
   if (YAML::Node v = m.find("open_close_limit"); v.IsDefined())
     a.open_close_limit = integer(ctx, v, m.child("open_close_limit"), 1, 1000);
   num("fixed_point_stiffness", a.fixed_point_stiffness, positive("force/length"));

@@ -56,6 +56,7 @@ json scene_json(const SceneDescription& s) {
                    {"search_factor", a.search_factor},
                    {"angle_tolerance", a.angle_tolerance},
                    {"penetration_ratio", a.penetration_ratio},
+                   {"stick_keeps_force", a.stick_keeps_force},
                    {"open_close_limit", a.open_close_limit},
                    {"fixed_point_stiffness", a.fixed_point_stiffness},
                    {"solver", solver_name(a.solver)},

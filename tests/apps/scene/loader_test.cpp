@@ -204,6 +204,14 @@ BOOST_AUTO_TEST_CASE(time_integration_reaches_the_engine_settings_and_needs_a_dy
                   7, "trapezoidal", "analysis.time_integration", "dynamic_ratio = 0 carries no velocity");
 }
 
+BOOST_AUTO_TEST_CASE(stick_keeps_force_reaches_the_contact_settings_default_off) {
+  BOOST_TEST(!scene::build_scene(scene::parse_scene(kBaseScene, "base.yaml")).contact_settings.stick_keeps_force);
+  const auto on = with("  dt: 0.01", "  dt: 0.01\n  stick_keeps_force: true");
+  BOOST_TEST(scene::build_scene(scene::parse_scene(on, "on.yaml")).contact_settings.stick_keeps_force);
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  stick_keeps_force: sometimes"), 5, "sometimes",
+                  "analysis.stick_keeps_force", "is not true or false");
+}
+
 BOOST_AUTO_TEST_CASE(dt_growth_dt_cut_and_solver_max_iterations_reach_the_engine_settings_and_bad_values_are_refused) {
   // Defaults: the engine's (core::Settings).
   const core::Settings defaults;

@@ -193,9 +193,10 @@ class ContactSystem {
   static double stored_energy(std::span<const Contact> records, std::span<const StepWork> work);
   void prepare(std::span<const BlockView> blocks, const Contact& c, Hot& h) const;
   double shear_stiffness(size_t c) const;
-  /// Sliding -> locked with the shear force kept (the locking point behind the
-  /// vertex by the stretch that carries the friction force).
-  void stick_in_place(std::span<const BlockView> blocks, size_t c);
+  /// Sliding -> locked where the vertex stood at the step start: the shear
+  /// spring unstretched, or carrying the friction force under
+  /// ContactSettings::stick_keeps_force.
+  void stick(std::span<const BlockView> blocks, size_t c);
   /// Step constants of one joint set: the scheme's and the implicit ones.
   struct LawStep {
     bool active = false;  ///< the joint set has a law and dt > 0

@@ -77,6 +77,12 @@ struct ContactSettings {
   int max_flips = 2;
   /// Friction refinements (see friction_tolerance) a contact may ask for in one step [-].
   int max_refinements = 3;
+  /// A sliding contact that sticks keeps the friction force it slid against
+  /// in its shear spring (elastic-plastic joint) instead of restarting the
+  /// spring unstretched (Shi's rule) [-]. Off by default: on a creeping slope
+  /// at its friction limit it changes which way the slope goes, with the step
+  /// (docs/contacts.md, "Why the iteration does not settle").
+  bool stick_keeps_force = false;
   /// Factor by which the penalty is raised [-].
   double penalty_raise = 2.0;
   /// Upper bound of the penalty as a multiple of the initial one [-].

@@ -69,6 +69,8 @@ struct Analysis {
   double search_factor = 2.5;          ///< contact search distance / (g2 w0) [-]
   double angle_tolerance = 3.0;        ///< angle rule tolerance [deg]
   double penetration_ratio = 1e-4;     ///< allowed penetration / half model size [-]
+  bool stick_keeps_force = false;      ///< a sliding contact that sticks keeps its friction force
+                                       ///< (contact::ContactSettings::stick_keeps_force) [-]
   int open_close_limit = 8;            ///< open-close iterations before a step is cut [-]
   double fixed_point_stiffness = 0.0;  ///< fixed-point spring [force/length]; default 100 x largest young_modulus
   SolverKind solver = SolverKind::automatic;  ///< `solver: automatic|cholmod|pcg|amg`
