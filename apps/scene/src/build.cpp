@@ -74,6 +74,12 @@ BuiltScene build_scene(const SceneDescription& s) {
   cs.angle_tolerance = a.angle_tolerance;
   cs.penetration_ratio = a.penetration_ratio;
   cs.stick_keeps_force = a.stick_keeps_force;
+  cs.friction_tolerance = a.friction_tolerance;
+  cs.force_resolution = a.force_resolution;
+  cs.max_flips = a.max_flips;
+  cs.max_refinements = a.max_refinements;
+  cs.penalty_raise = a.penalty_raise;
+  cs.penalty_max_factor = a.penalty_max_factor;
   cs.scheme = a.scheme;
 
   const auto& registry = laws::LawRegistry::builtin();

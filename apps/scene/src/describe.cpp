@@ -74,6 +74,10 @@ std::string describe_scene(const SceneDescription& s) {
                    a.fixed_point_stiffness, u.force, u.length));
   line(fmt::format("  open_close_limit {}, penetration_ratio {:g}, angle_tolerance {:g} deg, search_factor {:g}",
                    a.open_close_limit, a.penetration_ratio, a.angle_tolerance, a.search_factor));
+  line(fmt::format("  friction_tolerance {:g}, force_resolution {:g}, max_flips {}, max_refinements {}, "
+                   "penalty_raise {:g}, penalty_max_factor {:g}",
+                   a.friction_tolerance, a.force_resolution, a.max_flips, a.max_refinements,
+                   a.penalty_raise, a.penalty_max_factor));
   if (a.stick_keeps_force)
     line("  stick_keeps_force: a sliding contact that sticks keeps its friction force");
   if (a.step_tolerance > 0.0)

@@ -63,7 +63,8 @@ const std::vector<std::string> analysis{
     "dynamic_ratio", "time_integration", "scheme", "creep_tolerance", "step_tolerance",
     "step_extrapolation", "dt_max", "creep_restart_on_contact_change", "penalty",
     "shear_normal_ratio", "search_factor", "angle_tolerance", "penetration_ratio",
-    "stick_keeps_force", "open_close_limit", "fixed_point_stiffness", "solver", "solver_tolerance",
+    "stick_keeps_force", "friction_tolerance", "force_resolution", "max_flips", "max_refinements",
+    "penalty_raise", "penalty_max_factor", "open_close_limit", "fixed_point_stiffness", "solver", "solver_tolerance",
     "solver_max_iterations", "output_interval", "gravity"};
 const std::vector<std::string> material{"density", "young_modulus", "poisson_ratio", "plane"};
 const std::vector<std::string> joint_set{"friction_angle", "cohesion", "tensile_strength",
@@ -391,6 +392,15 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   num("penetration_ratio", a.penetration_ratio, {0.0, true, 1.0, false, ""});
   if (YAML::Node v = m.find("stick_keeps_force"); v.IsDefined())
     a.stick_keeps_force = flag(ctx, v, m.child("stick_keeps_force"));
+  // The open-close iteration's settings (contact::ContactSettings; docs/contacts.md).
+  num("friction_tolerance", a.friction_tolerance, positive(""));
+  num("force_resolution", a.force_resolution, {0.0, false, 1.0, true, ""});
+  if (YAML::Node v = m.find("max_flips"); v.IsDefined())
+    a.max_flips = integer(ctx, v, m.child("max_flips"), 1, 1000);
+  if (YAML::Node v = m.find("max_refinements"); v.IsDefined())
+    a.max_refinements = integer(ctx, v, m.child("max_refinements"), 0, 1000);
+  num("penalty_raise", a.penalty_raise, {1.0, false, std::numeric_limits<double>::max(), false, ""});
+  num("penalty_max_factor", a.penalty_max_factor, {1.0, false, std::numeric_limits<double>::max(), false, ""});
   if (YAML::Node v = m.find("open_close_limit"); v.IsDefined())
     a.open_close_limit = integer(ctx, v, m.child("open_close_limit"), 1, 1000);
   num("fixed_point_stiffness", a.fixed_point_stiffness, positive("force/length"));

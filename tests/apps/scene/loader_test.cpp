@@ -212,6 +212,35 @@ BOOST_AUTO_TEST_CASE(stick_keeps_force_reaches_the_contact_settings_default_off)
                   "analysis.stick_keeps_force", "is not true or false");
 }
 
+BOOST_AUTO_TEST_CASE(open_close_settings_reach_the_contact_settings_and_bad_values_are_refused) {
+  // Defaults: the contact layer's (contact::ContactSettings).
+  const contact::ContactSettings defaults;
+  const contact::ContactSettings base =
+      scene::build_scene(scene::parse_scene(kBaseScene, "base.yaml")).contact_settings;
+  BOOST_TEST(base.friction_tolerance == defaults.friction_tolerance);
+  BOOST_TEST(base.force_resolution == defaults.force_resolution);
+  BOOST_TEST(base.max_flips == defaults.max_flips);
+  BOOST_TEST(base.max_refinements == defaults.max_refinements);
+  BOOST_TEST(base.penalty_raise == defaults.penalty_raise);
+  BOOST_TEST(base.penalty_max_factor == defaults.penalty_max_factor);
+  const auto set = with("  dt: 0.01", "  dt: 0.01\n  friction_tolerance: 0.05\n  force_resolution: 0.01\n"
+                                      "  max_flips: 4\n  max_refinements: 0\n  penalty_raise: 1.5\n"
+                                      "  penalty_max_factor: 8");
+  const contact::ContactSettings cs = scene::build_scene(scene::parse_scene(set, "set.yaml")).contact_settings;
+  BOOST_TEST(cs.friction_tolerance == 0.05);
+  BOOST_TEST(cs.force_resolution == 0.01);
+  BOOST_TEST(cs.max_flips == 4);
+  BOOST_TEST(cs.max_refinements == 0);
+  BOOST_TEST(cs.penalty_raise == 1.5);
+  BOOST_TEST(cs.penalty_max_factor == 8.0);
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  force_resolution: 1"), 5, "1",
+                  "analysis.force_resolution", "out of range [0, 1)");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  max_flips: 0"), 5, "0", "analysis.max_flips", "out of range [1, 1000]");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  friction_tolerance: 0"), 5, "0",
+                  "analysis.friction_tolerance", "out of range");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  penalty_raise: 0.5"), 5, "0.5", "analysis.penalty_raise", "out of range");
+}
+
 BOOST_AUTO_TEST_CASE(dt_growth_dt_cut_and_solver_max_iterations_reach_the_engine_settings_and_bad_values_are_refused) {
   // Defaults: the engine's (core::Settings).
   const core::Settings defaults;

@@ -71,6 +71,13 @@ struct Analysis {
   double penetration_ratio = 1e-4;     ///< allowed penetration / half model size [-]
   bool stick_keeps_force = false;      ///< a sliding contact that sticks keeps its friction force
                                        ///< (contact::ContactSettings::stick_keeps_force) [-]
+  // The open-close iteration (contact::ContactSettings fields of the same names):
+  double friction_tolerance = 0.01;    ///< relative change of N that asks for one more iterate [-]
+  double force_resolution = 1e-3;      ///< force resolution / largest normal force [-]
+  int max_flips = 2;                   ///< state changes per contact and step before only locking [-]
+  int max_refinements = 3;             ///< friction refinements per contact and step [-]
+  double penalty_raise = 2.0;          ///< factor on the penalty when penetration exceeds its limit [-]
+  double penalty_max_factor = 64.0;    ///< largest penalty / initial penalty [-]
   int open_close_limit = 8;            ///< open-close iterations before a step is cut [-]
   double fixed_point_stiffness = 0.0;  ///< fixed-point spring [force/length]; default 100 x largest young_modulus
   SolverKind solver = SolverKind::automatic;  ///< `solver: automatic|cholmod|pcg|amg`
