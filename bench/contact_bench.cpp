@@ -24,6 +24,7 @@
 //   build/bench/contact_bench --friction-tolerance 0.1 --force-resolution 1e-2 --max-flips 2
 //                                                  # --max-refinements 3: the open-close settings
 //                                                  # of contact::ContactSettings (defaults there)
+//   build/bench/contact_bench --stick-keeps-force  # ContactSettings::stick_keeps_force
 //
 // A wall of NX x NY bricks 0.2 m x 0.1 m in running bond (odd rows start and
 // end with a half brick, so the sides are straight) stands on a fixed base
@@ -179,6 +180,7 @@ int main(int argc, char** argv) {
   double penalty = 40.0;  // [E]
   bool glued = false, trace = false;
   double poisson = 0.2, duration = 0.0;
+  bool stick_keeps_force = false;
   contact::ContactSettings tuned;  // contact iteration settings given on the command line
   bool tuned_any = false;
   std::vector<std::pair<int, int>> sizes{{10, 10}, {32, 32}, {100, 100}, {316, 316}};
@@ -202,13 +204,15 @@ int main(int argc, char** argv) {
       tuned.max_flips = std::atoi(argv[++k]), tuned_any = true;
     else if (!std::strcmp(argv[k], "--max-refinements") && k + 1 < argc)
       tuned.max_refinements = std::atoi(argv[++k]), tuned_any = true;
+    else if (!std::strcmp(argv[k], "--stick-keeps-force")) stick_keeps_force = true;
     else if (!std::strcmp(argv[k], "--sizes") && k + 1 < argc && !(sizes = parse_sizes(argv[++k])).empty()) {}
     else {
       std::fprintf(stderr,
                    "usage: contact_bench [--max-blocks N] [--steps S] [--detect-only] "
                    "[--solver automatic|cholmod|pcg|amg] [--tol T] [--open-close N] [--penalty F] "
                    "[--glued] [--trace] [--sizes N|NXxNY,...] [--poisson NU] [--duration T] "
-                   "[--friction-tolerance F] [--force-resolution F] [--max-flips N] [--max-refinements N]\n");
+                   "[--friction-tolerance F] [--force-resolution F] [--max-flips N] [--max-refinements N] "
+                   "[--stick-keeps-force]\n");
       return 2;
     }
   }
@@ -251,6 +255,7 @@ int main(int argc, char** argv) {
       cs.max_flips = tuned.max_flips;
       cs.max_refinements = tuned.max_refinements;
     }
+    cs.stick_keeps_force = stick_keeps_force;
     contact::ContactSystem contacts({joint}, cs);
     core::ContactAdapter adapter(contacts);
     TracingContacts tracing(adapter);
