@@ -21,15 +21,8 @@ trap 'rm -rf "$work"' EXIT
 "$build/bench/accuracy_bench" --toppling "$root/examples/goodman-toppling-creep.yaml" 100 |
   sed "s|$root/||" >"$work/toppling.md"
 
-# Replace the text between <!-- NAME:begin --> and <!-- NAME:end --> by a file.
-splice() {
-  local name="$1" file="$2" doc="$root/docs/speed-accuracy.md"
-  awk -v b="<!-- $name:begin -->" -v e="<!-- $name:end -->" -v f="$file" '
-    $0 == b { print; while ((getline line < f) > 0) print line; skip = 1; next }
-    $0 == e { skip = 0 }
-    !skip { print }' "$doc" >"$work/doc.md"
-  mv "$work/doc.md" "$doc"
-}
+# Tables between the <!-- NAME:begin/end --> markers of docs/speed-accuracy.md.
+splice() { "$root/scripts/splice-doc.sh" "$root/docs/speed-accuracy.md" "$1" "$2"; }
 splice accuracy-table "$work/accuracy.md"
 splice stability-table "$work/stability.md"
 splice stability-dda "$work/stability-dda.md"

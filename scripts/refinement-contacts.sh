@@ -82,14 +82,7 @@ wall() {
   done
 } >"$work/walls.md"
 
-splice() {
-  local name="$1" file="$2" doc="$root/docs/contacts.md"
-  awk -v b="<!-- $name:begin -->" -v e="<!-- $name:end -->" -v f="$file" '
-    $0 == b { print; while ((getline line < f) > 0) print line; skip = 1; next }
-    $0 == e { skip = 0 }
-    !skip { print }' "$doc" >"$work/doc.md"
-  cp "$work/doc.md" "$doc"
-}
+splice() { "$root/scripts/splice-doc.sh" "$root/docs/contacts.md" "$1" "$2"; }
 splice incline-drop "$work/drop.md"
 splice walls "$work/walls.md"
 cat "$work/drop.md" "$work/walls.md"

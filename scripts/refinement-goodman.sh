@@ -58,9 +58,4 @@ awk -F, -v levels=$levels '
     }
   }' "$work/out/study.csv" >"$work/table.md"
 cat "$work/table.md"
-doc="$root/docs/contacts.md"
-awk -v b="<!-- $marker:begin -->" -v e="<!-- $marker:end -->" -v f="$work/table.md" '
-  $0 == b { print; while ((getline line < f) > 0) print line; skip = 1; next }
-  $0 == e { skip = 0 }
-  !skip { print }' "$doc" >"$work/doc.md"
-cp "$work/doc.md" "$doc"
+"$root/scripts/splice-doc.sh" "$root/docs/contacts.md" "$marker" "$work/table.md"
