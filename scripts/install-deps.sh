@@ -15,6 +15,12 @@ packages=(
   libfmt-dev             # formatting
   nlohmann-json3-dev     # summary.json, fit reports
   gnuplot-nox            # rheodda plot: PNG/SVG pictures
+  pybind11-dev           # the Python module (python/)
+  python3-dev            # Python headers for the module
+  python3-numpy          # arrays in and out of the Python module
+  python3-pytest         # the Python tests
+  python3-pandas         # histories as DataFrames (optional at run time, tested)
+  python3-matplotlib     # examples/python pictures
 )
 
 missing=()
