@@ -1,0 +1,98 @@
+// C++ errors -> Python exceptions carrying the message the command line prints
+// after "rheodda: error: " (apps/main.cpp prints e.what()).
+//
+//   rheodda.Error (ValueError)      bad input of any kind; subclasses:
+//     rheodda.SceneError            scene::SceneError: .file .line .column .key .message
+//     rheodda.LawError              laws::LawError: .key
+//     rheodda.DataError             fit::DataError: .file .line .column
+//     rheodda.FitError              fit::FitError: .law
+//     rheodda.ModelError            core::ModelError: .key
+//   rheodda.RunError (RuntimeError) a run that failed (no convergence after max_cuts ...)
+#include <rheodda/core/model.hpp>
+#include <rheodda/fit/creep_data.hpp>
+#include <rheodda/fit/fit.hpp>
+#include <rheodda/laws/parameters.hpp>
+#include <rheodda/scene/error.hpp>
+
+#include "common.hpp"
+
+namespace rheodda::python {
+namespace {
+
+// The exception types live as long as the module (pybind11 keeps the module alive).
+PyObject* error_type = nullptr;
+PyObject* scene_error_type = nullptr;
+PyObject* law_error_type = nullptr;
+PyObject* data_error_type = nullptr;
+PyObject* fit_error_type = nullptr;
+PyObject* model_error_type = nullptr;
+
+PyObject* new_type(py::module_& m, const char* name, PyObject* base, const char* doc) {
+  const std::string qualified = std::string("rheodda.") + name;
+  PyObject* t = PyErr_NewExceptionWithDoc(qualified.c_str(), doc, base, nullptr);
+  if (!t) throw py::error_already_set();
+  m.attr(name) = py::reinterpret_borrow<py::object>(t);
+  return t;
+}
+
+/// Raises `type(message)` with the given attributes set on the instance.
+void raise(PyObject* type, const char* message, const py::dict& attributes) {
+  py::object instance = py::reinterpret_borrow<py::object>(type)(message);
+  for (auto item : attributes) py::setattr(instance, item.first, item.second);
+  PyErr_SetObject(type, instance.ptr());
+}
+
+}  // namespace
+
+void bind_errors(py::module_& m) {
+  error_type = new_type(m, "Error", PyExc_ValueError,
+                        "Bad input (scene, law parameters, data, model); the message is the one "
+                        "`rheodda` prints after 'rheodda: error: '.");
+  scene_error_type = new_type(m, "SceneError", error_type,
+                              "A scene (or study) the loader refuses: .file .line .column .key .message");
+  law_error_type = new_type(m, "LawError", error_type, "Bad law name or parameters: .key");
+  data_error_type = new_type(m, "DataError", error_type, "Bad creep data (CSV): .file .line .column");
+  fit_error_type = new_type(m, "FitError", error_type, "A law the data cannot constrain: .law");
+  model_error_type = new_type(m, "ModelError", error_type, "A model the engine refuses: .key");
+  PyObject* run_error = new_type(m, "RunError", PyExc_RuntimeError,
+                                 "A run that failed (e.g. a step that does not converge after max_cuts cuts)");
+
+  static PyObject* run_error_type = run_error;
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      raise(error_type, e.what(), py::dict());
+    } catch (const RunFailure& e) {
+      raise(run_error_type, e.what(), py::dict());
+    } catch (const scene::SceneError& e) {
+      py::dict a;
+      a["file"] = e.file();
+      a["line"] = e.line();
+      a["column"] = e.column();
+      a["key"] = e.key();
+      a["message"] = e.message();
+      raise(scene_error_type, e.what(), a);
+    } catch (const laws::LawError& e) {
+      py::dict a;
+      a["key"] = e.key();
+      raise(law_error_type, e.what(), a);
+    } catch (const fit::DataError& e) {
+      py::dict a;
+      a["file"] = e.file();
+      a["line"] = e.line();
+      a["column"] = e.column();
+      raise(data_error_type, e.what(), a);
+    } catch (const fit::FitError& e) {
+      py::dict a;
+      a["law"] = e.law();
+      raise(fit_error_type, e.what(), a);
+    } catch (const core::ModelError& e) {
+      py::dict a;
+      a["key"] = e.key();
+      raise(model_error_type, e.what(), a);
+    }
+  });
+}
+
+}  // namespace rheodda::python

@@ -1,0 +1,408 @@
+// Laws from Python: the registry (names, parameters with units), building a law
+// from a dict, its closed forms, single steps and the law-alone curves of
+// `rheodda law curve` (laws::integrate_curve), and PythonLaw, the base class of
+// laws written in Python.
+#include "laws.hpp"
+
+#include <rheodda/laws/registry.hpp>
+
+#include <cmath>
+
+namespace rheodda::python {
+
+PythonLaw::PythonLaw(std::string name, laws::ParameterValues parameters, int internal_count,
+                     std::optional<double> instantaneous_stiffness, bool linear)
+    : name_(std::move(name)),
+      parameters_(std::move(parameters)),
+      internal_count_(internal_count),
+      e1_(instantaneous_stiffness),
+      linear_(linear) {
+  if (internal_count_ < 1 || internal_count_ > laws::kMaxInternal)
+    throw laws::LawError("internal_count", "PythonLaw '" + name_ + "': internal_count must be in 1.." +
+                                               std::to_string(laws::kMaxInternal));
+  if (e1_ && !(*e1_ > 0.0 && std::isfinite(*e1_)))
+    throw laws::LawError("instantaneous_stiffness",
+                         "PythonLaw '" + name_ + "': instantaneous_stiffness must be > 0 (force/length) or None");
+}
+
+laws::StepConstants PythonLaw::step_constants(double dt, laws::Scheme scheme) const {
+  laws::StepConstants k;
+  k.dt = dt;
+  k.scheme = scheme;
+  return k;
+}
+
+laws::Linearization PythonLaw::linearize(const laws::StepConstants&, const laws::RheologyState&, double,
+                                         double) const {
+  throw std::logic_error("PythonLaw '" + name_ + "': linearize(k, q, force_start, force_end_guess) is not defined");
+}
+
+double PythonLaw::advance(const laws::StepConstants&, const laws::RheologyState&, double, double,
+                          laws::RheologyState&) const {
+  throw std::logic_error("PythonLaw '" + name_ + "': advance(k, q, force_start, force_end) is not defined");
+}
+
+double PythonLaw::creep_closed_form(double, double) const { return std::numeric_limits<double>::quiet_NaN(); }
+
+namespace {
+
+py::tuple state_tuple(const laws::RheologyState& s) { return py::make_tuple(s.q[0], s.q[1], s.q[2], s.q[3]); }
+
+laws::RheologyState state_from(const py::object& q, const char* what) {
+  laws::RheologyState s;
+  const auto v = q.cast<std::vector<double>>();
+  if (v.size() > static_cast<std::size_t>(laws::kMaxInternal))
+    throw laws::LawError(what, std::string(what) + ": at most " + std::to_string(laws::kMaxInternal) +
+                                   " internal displacements, got " + std::to_string(v.size()));
+  for (std::size_t i = 0; i < v.size(); ++i) s.q[i] = v[i];
+  return s;
+}
+
+/// The trampoline: each virtual step function goes to the Python override.
+class PyPythonLaw : public PythonLaw {
+ public:
+  using PythonLaw::PythonLaw;
+
+  laws::StepConstants step_constants(double dt, laws::Scheme scheme) const override {
+    py::gil_scoped_acquire gil;
+    if (py::function f = py::get_override(static_cast<const PythonLaw*>(this), "step_constants"))
+      return f(dt, std::string(laws::scheme_name(scheme))).cast<laws::StepConstants>();
+    return PythonLaw::step_constants(dt, scheme);
+  }
+  laws::Linearization linearize(const laws::StepConstants& k, const laws::RheologyState& old, double fs,
+                                double fe) const override {
+    py::gil_scoped_acquire gil;
+    if (py::function f = py::get_override(static_cast<const PythonLaw*>(this), "linearize")) {
+      const auto hc = f(k, state_tuple(old), fs, fe).cast<std::pair<double, double>>();
+      return {hc.first, hc.second};
+    }
+    return PythonLaw::linearize(k, old, fs, fe);
+  }
+  double advance(const laws::StepConstants& k, const laws::RheologyState& old, double fs, double fe,
+                 laws::RheologyState& next) const override {
+    py::gil_scoped_acquire gil;
+    if (py::function f = py::get_override(static_cast<const PythonLaw*>(this), "advance")) {
+      const py::tuple r = f(k, state_tuple(old), fs, fe);
+      if (r.size() != 2)
+        throw std::runtime_error("PythonLaw '" + std::string(name()) +
+                                 "': advance must return (delta_creep, q_new)");
+      next = state_from(r[0 + 1], "advance: q_new");
+      return r[0].cast<double>();
+    }
+    return PythonLaw::advance(k, old, fs, fe, next);
+  }
+  double creep_closed_form(double force, double t) const override {
+    py::gil_scoped_acquire gil;
+    if (py::function f = py::get_override(static_cast<const PythonLaw*>(this), "creep_closed_form"))
+      return f(force, t).cast<double>();
+    return PythonLaw::creep_closed_form(force, t);
+  }
+  std::optional<double> relaxation_modulus(double t) const override {
+    py::gil_scoped_acquire gil;
+    if (py::function f = py::get_override(static_cast<const PythonLaw*>(this), "relaxation_modulus"))
+      return f(t).cast<std::optional<double>>();
+    return PythonLaw::relaxation_modulus(t);
+  }
+};
+
+laws::ParameterValues parameter_values(const py::dict& d) {
+  laws::ParameterValues v;
+  for (auto item : d) {
+    const auto key = item.first.cast<std::string>();
+    try {
+      v[key] = item.second.cast<double>();
+    } catch (const py::cast_error&) {
+      throw laws::LawError(key, key + ": '" + py::str(item.second).cast<std::string>() + "' is not a number");
+    }
+  }
+  return v;
+}
+
+py::dict law_info(const laws::LawInfo& info) {
+  py::dict d;
+  d["name"] = info.name;
+  d["summary"] = info.summary;
+  d["equation"] = info.equation;
+  py::list ps;
+  for (const auto& p : info.parameters) {
+    py::dict e;
+    e["name"] = p.name;
+    e["unit"] = p.unit;
+    e["meaning"] = p.meaning;
+    e["min"] = p.min;
+    e["min_exclusive"] = p.min_exclusive;
+    e["max"] = p.max;
+    e["default"] = p.default_value ? py::cast(*p.default_value) : py::none();
+    e["range"] = p.range_text();
+    ps.append(e);
+  }
+  d["parameters"] = ps;
+  return d;
+}
+
+/// f applied to every element of t (any shape), as a new array of that shape.
+template <class F>
+py::array_t<double> map_array(const py::array_t<double, py::array::c_style | py::array::forcecast>& t, F f) {
+  py::array_t<double> r(t.request().shape);
+  const double* in = t.data();
+  double* out = r.mutable_data();
+  for (py::ssize_t i = 0; i < t.size(); ++i) out[i] = f(in[i]);
+  return r;
+}
+
+/// f of a number as a float, or of every element of an array-like as an array.
+template <class F>
+py::object map_object(const py::object& t, F f) {
+  if (py::isinstance<py::float_>(t) || py::isinstance<py::int_>(t)) return py::float_(f(t.cast<double>()));
+  return map_array(t.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(), f);
+}
+
+py::dict curve_dict(const std::vector<laws::CurveSample>& samples, const char* exact_name) {
+  std::vector<double> t, f, d, x;
+  for (const auto& s : samples) {
+    t.push_back(s.t);
+    f.push_back(s.force);
+    d.push_back(s.displacement);
+    x.push_back(s.exact ? *s.exact : std::numeric_limits<double>::quiet_NaN());
+  }
+  py::dict r;
+  r["t"] = to_numpy(t);
+  r["force"] = to_numpy(f);
+  r["displacement"] = to_numpy(d);
+  r[exact_name] = to_numpy(x);
+  return r;
+}
+
+}  // namespace
+
+laws::StagedHistory staged_history(const py::object& value, const char* what) {
+  if (py::isinstance<py::str>(value)) return laws::StagedHistory::parse(value.cast<std::string>(), what);
+  if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value))
+    return laws::StagedHistory({{0.0, value.cast<double>()}});
+  std::vector<laws::StagedHistory::Stage> stages;
+  try {
+    for (const auto& p : value.cast<std::vector<std::pair<double, double>>>()) stages.push_back({p.first, p.second});
+  } catch (const py::cast_error&) {
+    throw laws::LawError(what, std::string(what) +
+                                   ": expected a number, a text 'T:V[,T:V...]' or a list of (t, value) pairs");
+  }
+  return laws::StagedHistory(std::move(stages));
+}
+
+laws::Scheme scheme_from(const std::string& name) { return laws::parse_scheme(name); }
+
+void bind_laws(py::module_& m) {
+  using laws::ContactRheology;
+
+  py::class_<laws::UnitStepConstants>(m, "UnitStepConstants",
+                                      "Constants of one creep element for one step (laws/contact_rheology.hpp, eq. 2)")
+      .def(py::init<>())
+      .def_readwrite("b", &laws::UnitStepConstants::b)
+      .def_readwrite("phi", &laws::UnitStepConstants::phi)
+      .def_readwrite("dt_over_eta", &laws::UnitStepConstants::dt_over_eta)
+      .def_readwrite("per_q", &laws::UnitStepConstants::per_q)
+      .def_readwrite("per_start", &laws::UnitStepConstants::per_start)
+      .def_readwrite("per_end", &laws::UnitStepConstants::per_end)
+      .def_readwrite("threshold", &laws::UnitStepConstants::threshold)
+      .def_readwrite("bingham", &laws::UnitStepConstants::bingham);
+
+  py::class_<laws::StepConstants>(m, "StepConstants",
+                                  "What a law computes once per step size and scheme: dt [time], scheme, and "
+                                  "up to 4 element constants (unit)")
+      .def(py::init([](double dt, const std::string& scheme) {
+             laws::StepConstants k;
+             k.dt = dt;
+             k.scheme = scheme_from(scheme);
+             return k;
+           }),
+           py::arg("dt") = 0.0, py::arg("scheme") = "implicit")
+      .def_readwrite("dt", &laws::StepConstants::dt)
+      .def_property(
+          "scheme", [](const laws::StepConstants& k) { return std::string(laws::scheme_name(k.scheme)); },
+          [](laws::StepConstants& k, const std::string& s) { k.scheme = scheme_from(s); })
+      .def_readwrite("count", &laws::StepConstants::count)
+      .def_property(
+          "unit",
+          [](const laws::StepConstants& k) {
+            return std::vector<laws::UnitStepConstants>(k.unit.begin(), k.unit.end());
+          },
+          [](laws::StepConstants& k, const std::vector<laws::UnitStepConstants>& u) {
+            if (u.size() > k.unit.size())
+              throw laws::LawError("unit", "StepConstants.unit: at most " + std::to_string(k.unit.size()) +
+                                               " elements");
+            k.unit = {};
+            std::copy(u.begin(), u.end(), k.unit.begin());
+            k.count = static_cast<int>(u.size());
+          });
+
+  py::class_<ContactRheology, std::shared_ptr<ContactRheology>>(
+      m, "Law",
+      "A contact rheology law (laws/contact_rheology.hpp): parameters per unit joint area; force = shear "
+      "stress, displacement = shear displacement. Build one with rheodda.law(name, {param: value}).")
+      .def_property_readonly("name", [](const ContactRheology& l) { return std::string(l.name()); })
+      .def_property_readonly("parameters", [](const ContactRheology& l) {
+        return std::map<std::string, double>(l.parameters().begin(), l.parameters().end());
+      })
+      .def_property_readonly("internal_count", &ContactRheology::internal_count)
+      .def_property_readonly("instantaneous_stiffness", &ContactRheology::instantaneous_stiffness)
+      .def_property_readonly("is_linear", &ContactRheology::is_linear)
+      .def_property_readonly("linear_limit", &ContactRheology::linear_limit)
+      .def("creep_closed_form",
+           [](const ContactRheology& l, double force, const py::object& t) {
+             return map_object(t, [&](double x) { return l.creep_closed_form(force, x); });
+           },
+           py::arg("force"), py::arg("t"),
+           "Closed-form creep displacement (without the instantaneous spring) at t under a constant force "
+           "from t = 0 [length]")
+      .def("displacement_closed_form",
+           [](const ContactRheology& l, double force, const py::object& t) {
+             return map_object(t, [&](double x) { return l.displacement_closed_form(force, x); });
+           },
+           py::arg("force"), py::arg("t"), "F/E1 + creep_closed_form(F, t) [length]")
+      .def("relaxation_modulus",
+           [](const ContactRheology& l, const py::object& t) {
+             return map_object(t, [&](double x) {
+               const auto g = l.relaxation_modulus(x);
+               return g ? *g : std::numeric_limits<double>::quiet_NaN();
+             });
+           },
+           py::arg("t"), "Relaxation modulus G(t) [force/length]; NaN where the law has no closed form")
+      .def(
+          "step_constants",
+          [](const ContactRheology& l, double dt, const std::string& scheme) {
+            return l.step_constants(dt, scheme_from(scheme));
+          },
+          py::arg("dt"), py::arg("scheme") = "implicit")
+      .def(
+          "linearize",
+          [](const ContactRheology& l, const laws::StepConstants& k, const py::object& q, double fs, double fe) {
+            const laws::Linearization lin = l.linearize(k, state_from(q, "q"), fs, fe);
+            return py::make_tuple(lin.h, lin.c);
+          },
+          py::arg("k"), py::arg("q"), py::arg("force_start"), py::arg("force_end_guess"),
+          "Affine form of the step's creep increment: (h [length], c [length/force]), Delta d_c = h + c F_e")
+      .def(
+          "advance",
+          [](const ContactRheology& l, const laws::StepConstants& k, const py::object& q, double fs, double fe) {
+            laws::RheologyState next;
+            const double dd = l.advance(k, state_from(q, "q"), fs, fe, next);
+            py::array_t<double> qn(laws::kMaxInternal);
+            std::copy(next.q.begin(), next.q.end(), qn.mutable_data());
+            return py::make_tuple(dd, qn);
+          },
+          py::arg("k"), py::arg("q"), py::arg("force_start"), py::arg("force_end"),
+          "One step from state q (internal displacements [length]): (Delta d_c [length], q_new as a numpy array)")
+      .def("__repr__", [](const ContactRheology& l) {
+        std::string s = "rheodda.law('" + std::string(l.name()) + "', {";
+        bool first = true;
+        for (const auto& [k, v] : l.parameters()) {
+          s += (first ? "'" : ", '") + k + "': " + py::repr(py::float_(v)).cast<std::string>();
+          first = false;
+        }
+        return s + "})";
+      });
+
+  py::class_<PythonLaw, ContactRheology, PyPythonLaw, std::shared_ptr<PythonLaw>>(
+      m, "PythonLaw",
+      "Base class of a law written in Python. Subclass it, call PythonLaw.__init__(self, name, parameters, "
+      "internal_count, instantaneous_stiffness, linear) and define linearize(k, q, force_start, "
+      "force_end_guess) -> (h, c) and advance(k, q, force_start, force_end) -> (delta_creep, q_new); "
+      "optionally step_constants(dt, scheme) -> StepConstants, creep_closed_form(force, t), "
+      "relaxation_modulus(t).")
+      .def(py::init([](std::string name, const py::dict& parameters, int internal_count,
+                       std::optional<double> e1, bool linear) {
+             return std::make_shared<PyPythonLaw>(std::move(name), parameter_values(parameters), internal_count, e1,
+                                                  linear);
+           }),
+           py::arg("name"), py::arg("parameters") = py::dict(), py::arg("internal_count") = 1,
+           py::arg("instantaneous_stiffness") = py::none(), py::arg("linear") = true);
+
+  m.def(
+      "laws",
+      [] {
+        py::list r;
+        for (const auto& info : laws::LawRegistry::builtin().laws()) r.append(law_info(info));
+        return r;
+      },
+      "The built-in laws (`rheodda law list`): name, summary, equation, parameters (name, unit, meaning, "
+      "range, default)");
+  m.def(
+      "law",
+      [](const std::string& name, const py::object& parameters, const py::kwargs& kw) {
+        py::dict d;
+        if (!parameters.is_none()) d = py::dict(parameters);
+        for (auto item : kw) d[item.first] = item.second;
+        return std::shared_ptr<ContactRheology>(laws::LawRegistry::builtin().create(name, parameter_values(d)));
+      },
+      py::arg("name"), py::arg("parameters") = py::none(),
+      "Builds a registered law from its parameters (a dict and/or keywords), validated as in a scene; "
+      "raises rheodda.LawError with the message of `rheodda law curve`");
+  m.def(
+      "creep_curve",
+      [](const ContactRheology& law, const py::object& force, double t_end, double dt, const std::string& scheme) {
+        const auto h = staged_history(force, "force");
+        std::vector<laws::CurveSample> s;
+        {
+          py::gil_scoped_release release;
+          s = laws::integrate_curve(law, laws::Control::force, h, t_end, dt, scheme_from(scheme));
+        }
+        return curve_dict(s, "exact");
+      },
+      py::arg("law"), py::arg("force"), py::arg("t_end"), py::arg("dt"), py::arg("scheme") = "implicit",
+      "The law alone under a staged force (shear stress) from t = 0 to t_end with step dt "
+      "(`rheodda law curve --force`): dict of numpy arrays t, force, displacement (total: F/E1 + creep) and "
+      "exact (the closed form; NaN where the law has none)");
+  m.def(
+      "relaxation_curve",
+      [](const ContactRheology& law, const py::object& displacement, double t_end, double dt,
+         const std::string& scheme) {
+        const auto h = staged_history(displacement, "displacement");
+        std::vector<laws::CurveSample> s;
+        {
+          py::gil_scoped_release release;
+          s = laws::integrate_curve(law, laws::Control::displacement, h, t_end, dt, scheme_from(scheme));
+        }
+        return curve_dict(s, "exact");
+      },
+      py::arg("law"), py::arg("displacement"), py::arg("t_end"), py::arg("dt"), py::arg("scheme") = "implicit",
+      "The law alone under a staged displacement (`rheodda law curve --displacement`): dict of numpy arrays "
+      "t, force, displacement and exact (the closed-form force; NaN where none)");
+  m.def(
+      "exact_displacement",
+      [](const ContactRheology& law, const py::object& force, const py::array_t<double, py::array::c_style | py::array::forcecast>& t) {
+        const auto h = staged_history(force, "force");
+        return map_array(t, [&](double time) {
+          const auto d = laws::exact_displacement(law, h, time);
+          return d ? *d : std::numeric_limits<double>::quiet_NaN();
+        });
+      },
+      py::arg("law"), py::arg("force"), py::arg("t"),
+      "Exact total displacement at times t under a staged force (Boltzmann superposition); NaN where none");
+  m.def(
+      "exact_force",
+      [](const ContactRheology& law, const py::object& displacement, const py::array_t<double, py::array::c_style | py::array::forcecast>& t) {
+        const auto h = staged_history(displacement, "displacement");
+        return map_array(t, [&](double time) {
+          const auto f = laws::exact_force(law, h, time);
+          return f ? *f : std::numeric_limits<double>::quiet_NaN();
+        });
+      },
+      py::arg("law"), py::arg("displacement"), py::arg("t"),
+      "Exact force at times t under a staged displacement; NaN where the law has no closed form");
+  m.def(
+      "law_step",
+      [](const ContactRheology& law, const py::object& q, double dt, double force_start, double force_end,
+         const std::string& scheme) {
+        const laws::StepConstants k = law.step_constants(dt, scheme_from(scheme));
+        laws::RheologyState next;
+        const double dd = law.advance(k, state_from(q, "q"), force_start, force_end, next);
+        py::array_t<double> qn(laws::kMaxInternal);
+        std::copy(next.q.begin(), next.q.end(), qn.mutable_data());
+        return py::make_tuple(dd, qn);
+      },
+      py::arg("law"), py::arg("q"), py::arg("dt"), py::arg("force_start"), py::arg("force_end"),
+      py::arg("scheme") = "implicit",
+      "One step of the law alone from internal displacements q: (Delta d_c [length], q_new)");
+}
+
+}  // namespace rheodda::python
