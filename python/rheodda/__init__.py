@@ -238,6 +238,8 @@ class Simulation:
     time = property(lambda self: self._sim.time, doc="simulated time [scene time]")
     step_count = property(lambda self: self._sim.step_count, doc="accepted steps")
     duration = property(lambda self: self._sim.duration, doc="the scene's analysis.duration [time]")
+    failed = property(lambda self: self._sim.failed,
+                      doc="True after a step failed (no convergence, a Python law raised): build a new one")
     block_positions = property(lambda self: self._sim.block_positions,
                                doc="block centroids, shape (blocks, 2) [length]")
     block_velocities = property(lambda self: self._sim.block_velocities,

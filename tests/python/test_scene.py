@@ -1,0 +1,201 @@
+"""Scenes from Python: a dict scene equals the YAML one, the per-step callback
+changes loads, law parameters and step settings, the state as numpy arrays,
+run() equals `rheodda run`, errors carry the command's messages, Ctrl-C."""
+import copy
+import os
+import signal
+import subprocess
+
+import numpy as np
+import pytest
+
+import rheodda
+from conftest import TABLE1
+
+# examples/shear-creep-test.yaml as a dict (the seed's Table 1 row 1 shear creep test).
+SHEAR_TEST = {
+    "title": "Shear creep test, Table 1 row 1 (sigma = 1.408 MPa, tau = 0.232 MPa)",
+    "units": {"length": "mm", "force": "N", "time": "h"},
+    "analysis": {"type": "static", "duration": 200, "dt": 1, "output_interval": 2, "scheme": "implicit",
+                 "gravity": [0, 0]},
+    "materials": {"rock": {"density": 2.08e-16, "young_modulus": 20000, "poisson_ratio": 0.25}},
+    "joint_sets": {"plane": {"friction_angle": 40, "law": dict(name="burgers", **TABLE1), "record": True}},
+    "blocks": [
+        {"name": "B", "rectangle": {"x": 0, "y": 0, "width": 100, "height": 50}, "fixed": True},
+        {"name": "A", "rectangle": {"x": 20, "y": 50, "width": 60, "height": 30}},
+    ],
+    "loads": [
+        {"point": [50, 80], "block": "A", "force": [0, -84.48]},
+        {"point": [20, 65], "block": "A", "force": [13.92, 0]},
+    ],
+    "measurement_points": [{"name": "A_joint", "point": [50, 50], "block": "A"}],
+}
+
+
+def same(a, b):
+    """Equal to the last digit, NaN where the other has NaN (rows without a closed contact)."""
+    return set(a) == set(b) and all(np.array_equal(a[k], b[k], equal_nan=True) for k in a)
+
+
+@pytest.fixture
+def yaml_scene(root):
+    return rheodda.load_scene(str(root / "examples" / "shear-creep-test.yaml"))
+
+
+def test_dict_scene_gives_the_yaml_scene_history_to_the_last_digit(yaml_scene):
+    from_yaml = rheodda.Simulation(yaml_scene).run().history()
+    from_dict = rheodda.Simulation(SHEAR_TEST).run().history()
+    assert len(from_yaml["time"]) == 201 and from_yaml["time"][-1] == 200.0
+    assert same(from_yaml, from_dict)
+    # the seed's result: the joint follows the Burgers closed form (docs/outputs.md: 1.1e-5 relative)
+    law = rheodda.law("burgers", TABLE1)
+    d = -from_dict["plane.shear_displacement"][1:]
+    exact = law.displacement_closed_form(0.232, from_dict["time"][1:])
+    assert np.max(np.abs(d - exact) / exact) < 2e-5
+
+
+def test_history_equals_rheodda_run(yaml_scene, tmp_path):
+    result = rheodda.run(yaml_scene, str(tmp_path / "out"))
+    assert result["status"] == "completed" and result["steps"] == 200
+    csv = np.genfromtxt(tmp_path / "out" / "history.csv", delimiter=",", names=True, comments="#")
+    h = rheodda.Simulation(yaml_scene).run().history()
+    for name in ("time", "A_joint.u", "A_joint.v", "plane.shear_displacement", "plane.shear_force",
+                 "work_loads", "dissipation_creep"):
+        column = csv[name.replace(".", "")] if name.replace(".", "") in csv.dtype.names else csv[name]
+        # history.csv prints 10 significant digits
+        np.testing.assert_allclose(h[name][1:], column[1:], rtol=1e-9, atol=0, err_msg=name)
+    assert list(h) == list(rheodda.Simulation(yaml_scene).columns)
+
+
+def test_callback_changing_a_load_mid_run_equals_the_load_history_from_the_start(yaml_scene):
+    # F2 = 0.232 MPa x 60 mm until 100 h, then 0.424 MPa x 60 mm.
+    def raise_load(sim, report):
+        if report.time == 100.0:
+            sim.set_load(1, (0.424 * 60, 0.0))
+
+    changed = rheodda.Simulation(yaml_scene, callback=raise_load).run().history()
+    staged = copy.deepcopy(SHEAR_TEST)
+    # The engine takes a load's value at the end of each step: the step 100 -> 101 h gets the new one.
+    staged["loads"][1] = {"point": [20, 65], "block": "A",
+                          "history": [[0, 13.92, 0], [100, 13.92, 0], [101, 0.424 * 60, 0]]}
+    reference = rheodda.Simulation(staged).run().history()
+    for k in ("A_joint.u", "A_joint.v", "plane.shear_displacement", "plane.shear_force", "work_loads"):
+        np.testing.assert_allclose(changed[k], reference[k], rtol=1e-12, atol=0, err_msg=k)
+    # and the joint follows the staged closed form (Boltzmann superposition) as the constant load does
+    # (but at t = 100 h itself, where the closed form has jumped and the engine applies the
+    # new load over the step that ends at 101 h)
+    law = rheodda.law("burgers", TABLE1)
+    t = changed["time"][1:]
+    exact = rheodda.exact_displacement(law, "0:0.232,100:0.424", t)
+    d = -changed["plane.shear_displacement"][1:]
+    assert np.max(np.abs(d - exact)[t != 100.0] / exact[t != 100.0]) < 2e-5
+    assert d[-1] > 1.5 * law.displacement_closed_form(0.232, 200.0)  # the load did change
+
+
+def test_callback_changing_law_parameters_and_dt(yaml_scene):
+    slower = copy.deepcopy(SHEAR_TEST)
+    slower["joint_sets"]["plane"]["law"]["eta1"] = 2 * TABLE1["eta1"]
+    reference = rheodda.Simulation(slower).run().history()
+    # before any step: the same as the scene with the parameter in it, to the last digit
+    sim = rheodda.Simulation(yaml_scene)
+    sim.set_law_parameters("plane", eta1=2 * TABLE1["eta1"])
+    assert sim.law_parameters("plane")["eta1"] == 2 * TABLE1["eta1"]
+    assert same(sim.run().history(), reference)
+
+    # mid-run: the Maxwell dashpot creeps at tau/eta1, so doubling eta1 at 100 h takes
+    # tau 100 h / (2 eta1) = 3.33e-4 mm off the displacement at 200 h
+    def slow_down(sim, report):
+        if report.time == 100.0:
+            sim.set_law_parameters("plane", {"eta1": 2 * TABLE1["eta1"]})
+            sim.set_settings(dt=0.5)
+
+    base = rheodda.Simulation(yaml_scene).run().history()
+    h = rheodda.Simulation(yaml_scene, callback=slow_down).run().history()
+    assert np.array_equal(h["plane.shear_displacement"][:101], base["plane.shear_displacement"][:101],
+                          equal_nan=True)
+    assert np.all(h["dt"][1:101] == 1.0) and np.all(h["dt"][101:] == 0.5) and h["time"][-1] == 200.0
+    change = base["plane.shear_displacement"][-1] - h["plane.shear_displacement"][-1]
+    assert -change == pytest.approx(0.232 * 100 / (2 * TABLE1["eta1"]), rel=1e-3)
+
+
+def test_state_as_numpy_arrays(yaml_scene):
+    seen = []
+
+    def look(sim, report):
+        c = sim.contacts()
+        seen.append((report.step, report.time, sim.time, len(c["id"])))
+
+    sim = rheodda.Simulation(yaml_scene, callback=look)
+    sim.step(5)
+    assert [s[0] for s in seen] == [0, 1, 2, 3, 4] and sim.step_count == 5 and sim.time == 5.0
+    assert all(s[1] == s[2] for s in seen)
+    assert sim.block_positions.shape == (2, 2) and sim.block_stresses.shape == (2, 3)
+    assert sim.block_velocities.shape == (2, 6) and not sim.block_velocities.any()  # static
+    assert sim.block_vertices("A").shape == (4, 2)
+    c = sim.contacts()
+    assert len(c["id"]) == 2 and c["state"] == ["locked", "locked"]
+    assert sim.joint_sets[c["joint_set"][0]] == "plane"
+    # the joint's mean shear displacement in the history is the contacts' mean
+    assert sim.history()["plane.shear_displacement"][-1] == pytest.approx(c["shear_displacement"].mean(), rel=1e-14)
+    # each contact's creep displacement is the sum of its law's internal displacements
+    np.testing.assert_allclose(c["creep_displacement"], c["q"].sum(axis=1), rtol=1e-14)
+    # the measurement point's displacement, read from the block
+    np.testing.assert_allclose(sim.point_displacement("A", 50, 50),
+                               [sim.history()["A_joint.u"][-1], sim.history()["A_joint.v"][-1]], rtol=1e-14)
+    frame = sim.history_frame()
+    assert list(frame.columns) == sim.columns and len(frame) == 6
+
+
+def test_errors_carry_the_command_line_messages(root, rheodda_binary, tmp_path):
+    bad = copy.deepcopy(SHEAR_TEST)
+    bad["joint_sets"]["plane"]["friction_angel"] = 40
+    with pytest.raises(rheodda.SceneError) as e:
+        rheodda.scene_from_dict(bad, file="bad-scene")
+    assert e.value.key == "joint_sets.plane.friction_angel"
+    assert "did you mean 'friction_angle'" in str(e.value)
+    assert isinstance(e.value, rheodda.Error) and isinstance(e.value, ValueError)
+    # the same text from a file: the message `rheodda check` prints, exit code 2
+    path = tmp_path / "bad.yaml"
+    path.write_text(rheodda.scene_from_dict.__globals__["_json"].dumps(bad, indent=1))
+    with pytest.raises(rheodda.SceneError) as from_file:
+        rheodda.load_scene(str(path))
+    cli = subprocess.run([rheodda_binary, "check", str(path)], capture_output=True, text=True)
+    assert cli.returncode == 2
+    assert cli.stderr.strip() == "rheodda: error: " + str(from_file.value)
+    assert str(from_file.value).startswith(str(path) + ":")
+    with pytest.raises(rheodda.Error, match="joint set 'plain' is not in the scene \\(did you mean 'plane'\\?\\)"):
+        rheodda.Simulation(SHEAR_TEST).set_law_parameters("plain", eta1=1.0)
+    with pytest.raises(rheodda.LawError, match="eta1"):
+        rheodda.Simulation(SHEAR_TEST).set_law_parameters("plane", eta1=-1.0)
+    with pytest.raises(rheodda.ModelError, match="settings.dt"):
+        rheodda.Simulation(SHEAR_TEST).set_settings(dt=-1.0)
+    with pytest.raises(rheodda.Error, match="unknown setting 'dtt'"):
+        rheodda.Simulation(SHEAR_TEST).set_settings(dtt=1.0)
+    with pytest.raises(rheodda.Error, match="load 5 does not exist"):
+        rheodda.Simulation(SHEAR_TEST).set_load(5, (0.0, 0.0))
+
+
+def test_an_exception_in_the_callback_stops_between_steps_and_the_run_can_go_on(yaml_scene):
+    def fail_at_3(sim, report):
+        if report.step == 2:
+            raise ZeroDivisionError("stop here")
+
+    sim = rheodda.Simulation(yaml_scene, callback=fail_at_3)
+    with pytest.raises(ZeroDivisionError, match="stop here"):
+        sim.run()
+    assert sim.step_count == 3 and not sim.failed
+    sim.callback = None
+    assert same(sim.run().history(), rheodda.Simulation(yaml_scene).run().history())
+
+
+def test_ctrl_c_interrupts_between_steps(yaml_scene):
+    def interrupt_at_10(sim, report):
+        if report.step == 9:
+            os.kill(os.getpid(), signal.SIGINT)
+
+    sim = rheodda.Simulation(yaml_scene, callback=interrupt_at_10)
+    with pytest.raises(KeyboardInterrupt):
+        sim.run()
+    assert sim.step_count == 10 and sim.time == 10.0
+    sim.callback = None
+    assert same(sim.run().history(), rheodda.Simulation(yaml_scene).run().history())
