@@ -129,10 +129,17 @@ void print_fit(const FitResult& r, const Units& u) {
                p.identifiable ? fmt::format("{:.3g}", p.std_error) : "-",
                p.identifiable ? fmt::format("{:.3g}%", 100.0 * p.std_error / p.value) : "-",
                u.of(p.unit));
-  fmt::print("  R^2 {:.8f}   RMSE {:.4g} {}   AIC {:.2f}   BIC {:.2f}   (n = {}, k = {})\n", r.r2,
+  for (const auto& c : r.combinations)
+    fmt::print("  fixed by the data: {} = {:.7g} +- {:.3g} ({:.3g}%)  {}\n", c.expression, c.value,
+               c.std_error, 100.0 * c.std_error / c.value, u.of(c.unit));
+  fmt::print("  R^2 {}   RMSE {:.4g} {}   AIC {:.2f}   BIC {:.2f}   (n = {}, k = {})\n",
+             r.r2_defined() ? fmt::format("{:.8f}", r.r2) : "undefined (the data have no spread)",
              r.rmse, u.length, r.aic, r.bic, r.points, r.parameters.size());
-  fmt::print("  best of {} starts ({} reached it), {} iterations, {}\n", r.starts, r.starts_agreeing,
-             r.iterations, r.converged ? "converged" : "NOT converged");
+  fmt::print("  best of {} starts ({} from the variable-projection search; {} reached it), {} "
+             "iterations, {}{}\n",
+             r.starts, r.structured_starts, r.starts_agreeing, r.iterations,
+             r.converged ? "converged" : "NOT converged",
+             r.minimum_certain ? "" : ", minimum NOT certain");
   for (const auto& w : r.warnings) fmt::print("  warning: {}\n", w);
 }
 
@@ -156,8 +163,9 @@ void print_ranking(const std::vector<FitResult>& ranked, bool bic, const Units& 
              "k", fmt::format("RMSE [{}]", u.length), "R^2", "AIC", "dAIC", "BIC", "dBIC", "weight");
   for (std::size_t i = 0; i < ranked.size(); ++i) {
     const auto& r = ranked[i];
-    fmt::print("  {:>4}  {:<20} {:>2} {:>12.4g} {:>12.8f} {:>12.2f} {:>10.2f} {:>12.2f} {:>10.2f} {:>8.4f}\n",
-               i + 1, r.law, r.parameters.size(), r.rmse, r.r2, r.aic, r.aic - ranked.front().aic,
+    fmt::print("  {:>4}  {:<20} {:>2} {:>12.4g} {:>12} {:>12.2f} {:>10.2f} {:>12.2f} {:>10.2f} {:>8.4f}\n",
+               i + 1, r.law, r.parameters.size(), r.rmse,
+               r.r2_defined() ? fmt::format("{:.8f}", r.r2) : "undefined", r.aic, r.aic - ranked.front().aic,
                r.bic, r.bic - ranked.front().bic, w[i]);
   }
 }
@@ -191,11 +199,20 @@ void write_json(const std::string& path, const CreepData& d, const Units& u,
                         {"value", p.value},
                         {"std_error", p.identifiable ? json(p.std_error) : json(nullptr)},
                         {"unit", u.of(p.unit)},
-                        {"identifiable", p.identifiable}});
+                        {"identifiable", p.identifiable},
+                        {"reason", p.reason}});
+    json combos = json::array();
+    for (const auto& c : r.combinations)
+      combos.push_back({{"expression", c.expression},
+                        {"value", c.value},
+                        {"std_error", c.std_error},
+                        {"unit", u.of(c.unit)},
+                        {"parameters", c.parameters}});
+    auto finite_or_null = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
     json corr = json::array();
     for (std::size_t i = 0; i < r.parameters.size(); ++i) {
       json row = json::array();
-      for (std::size_t j = 0; j < r.parameters.size(); ++j) row.push_back(r.correlation_at(i, j));
+      for (std::size_t j = 0; j < r.parameters.size(); ++j) row.push_back(finite_or_null(r.correlation_at(i, j)));
       corr.push_back(row);
     }
     arr.push_back({{"law", r.law},
@@ -203,13 +220,17 @@ void write_json(const std::string& path, const CreepData& d, const Units& u,
                    {"correlation", corr},
                    {"points", r.points},
                    {"rss", r.rss},
-                   {"r2", r.r2},
+                   {"r2", finite_or_null(r.r2)},
                    {"rmse", r.rmse},
                    {"aic", r.aic},
                    {"bic", r.bic},
                    {"iterations", r.iterations},
                    {"starts", r.starts},
                    {"starts_agreeing", r.starts_agreeing},
+                   {"structured_starts", r.structured_starts},
+                   {"minimum_certain", r.minimum_certain},
+                   {"minimum_note", r.minimum_note},
+                   {"combinations", combos},
                    {"converged", r.converged},
                    {"warnings", r.warnings}});
   }
@@ -223,9 +244,14 @@ void write_json(const std::string& path, const CreepData& d, const Units& u,
 
 void write_yaml(const std::string& path, const CreepData& d, const Units& u, const FitResult& r) {
   auto f = open_output(path, "--yaml");
-  f << fmt::format("# rheodda fit: law {} fitted to {} ({} points, R^2 {:.6f}){}\n", r.law, d.source,
-                   r.points, r.r2, u.text.empty() ? "" : fmt::format("; units {}", u.text));
+  f << fmt::format("# rheodda fit: law {} fitted to {} ({} points, R^2 {}){}\n", r.law, d.source,
+                   r.points, r.r2_defined() ? fmt::format("{:.6f}", r.r2) : "undefined",
+                   u.text.empty() ? "" : fmt::format("; units {}", u.text));
   f << "# paste under a joint set of a scene; the comments give the standard errors\n";
+  if (!r.minimum_certain) f << fmt::format("# warning: the minimum is not certain: {}\n", r.minimum_note);
+  for (const auto& c : r.combinations)
+    f << fmt::format("# fixed by the data: {} = {:.7g} +- {:.3g} {}\n", c.expression, c.value,
+                     c.std_error, u.of(c.unit));
   f << "law:\n";
   f << fmt::format("  name: {}\n", r.law);
   for (const auto& p : r.parameters)
@@ -324,10 +350,14 @@ void write_plot(const std::string& path, const std::string& terminal, const Cree
 }
 
 void run_fit(const FitArgs& a) {
-  if (a.stress.empty() == a.stress_column.empty())
+  if (a.stress.empty() && a.stress_column.empty())
     throw std::invalid_argument(
-        "give the applied shear stress either for the whole file (--stress VALUE or "
-        "--stress T:V,...) or per row (--stress-column NAME), not both");
+        "no applied stress: give one stress for the file (--stress VALUE or --stress T:V,...) or "
+        "a stress column (--stress-column NAME)");
+  if (!a.stress.empty() && !a.stress_column.empty())  // CLI11 refuses this first (excludes)
+    throw std::invalid_argument(
+        "--stress and --stress-column both given: give one stress for the file or a stress "
+        "column, not both");
   const Units units = parse_units(a.units);
   const std::string terminal = a.plot.empty() ? "" : plot_terminal(a.plot);
   if (a.restarts < 0 || a.restarts > 100)

@@ -2,6 +2,7 @@
 
 #include <gsl/gsl_blas.h>
 #include <gsl/gsl_errno.h>
+#include <gsl/gsl_linalg.h>
 #include <gsl/gsl_multifit_nlinear.h>
 
 #include <algorithm>
@@ -13,6 +14,8 @@
 #include <optional>
 
 #include "rheodda/laws/series_law.hpp"
+#include "series_structure.hpp"
+#include "varpro.hpp"
 
 namespace rheodda::fit {
 
@@ -39,18 +42,11 @@ std::vector<double> predict(const laws::ContactRheology& law, const laws::Staged
 
 namespace {
 
-using Kind = laws::CreepElement::Kind;
+using detail::Element;
+using detail::Kind;
+using detail::SeriesStructure;
 
 // ---- The law as a spring plus creep elements, in terms of its parameters ----
-struct Element {
-  Kind kind = Kind::dashpot;
-  int E = -1, eta = -1, threshold = -1;  // parameter indices
-};
-
-struct SeriesStructure {
-  int spring = -1;  // parameter index of E1, -1 without instantaneous spring
-  std::vector<Element> elements;
-};
 
 // Builds the law once with distinct probe values and matches each constant of
 // its spring and elements to the parameter that carries it; this gives the
@@ -410,6 +406,235 @@ struct GslFree {
 
 std::string fmt_g(double v) { return fmt::format("{:.4g}", v); }
 
+// ---- Identifiability: what the data fix and what they do not ----------------
+// A combination of parameters whose value the data may fix when its parts are
+// not identifiable: value q and gradient dq/dln p.
+struct Candidate {
+  std::string expression, unit;
+  double value = 0.0;
+  std::vector<double> grad;
+};
+
+// The combinations that a series law's curve can depend on when single
+// parameters drop out (docs/fitting.md, "Identifiability"):
+//   (L - Fs)/eta3 for each stress level L > Fs [length/time]: the Bingham rate under L
+//     (d/dln eta3 = -q, d/dln Fs = -Fs/eta3);
+//   1/E1 + 1/E (spring and a fast Kelvin element merge into one jump), 1/E2 + 1/E3
+//     (two Kelvin elements with close retardation times) [length/stress] (d/dln E = -1/E);
+//   1/eta1 + 1/eta (a slow Kelvin element acting as a dashpot) [length/(stress*time)];
+//   eta/E, the retardation time [time] (d/dln eta = q, d/dln E = -q).
+std::vector<Candidate> combination_candidates(const SeriesStructure& s,
+                                              const std::vector<ParameterEstimate>& p,
+                                              const CreepData& data) {
+  const std::size_t np = p.size();
+  std::vector<Candidate> out;
+  std::vector<const Element*> kelvins;
+  const Element* dashpot = nullptr;
+  for (const auto& el : s.elements) {
+    if (el.kind == Kind::kelvin) kelvins.push_back(&el);
+    if (el.kind == Kind::dashpot) dashpot = &el;
+    if (el.kind == Kind::bingham) {
+      const double eta = p[el.eta].value, fs = p[el.threshold].value;
+      std::vector<double> levels;
+      for (const auto& st : data.stages)
+        if (std::abs(st.stress) > fs) levels.push_back(std::abs(st.stress));
+      std::sort(levels.begin(), levels.end());
+      levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
+      for (double level : levels) {
+        Candidate c;
+        c.expression = fmt::format("({:g} - {})/{}", level, p[el.threshold].name, p[el.eta].name);
+        c.unit = "length/time";
+        c.value = (level - fs) / eta;
+        c.grad.assign(np, 0.0);
+        c.grad[el.eta] = -c.value;
+        c.grad[el.threshold] = -fs / eta;
+        out.push_back(std::move(c));
+      }
+    }
+  }
+  auto inverse_sum = [&](const std::vector<int>& idx, const char* unit) {
+    Candidate c;
+    c.unit = unit;
+    c.grad.assign(np, 0.0);
+    for (int k : idx) {
+      c.expression += (c.expression.empty() ? "1/" : " + 1/") + p[k].name;
+      c.value += 1.0 / p[k].value;
+      c.grad[k] = -1.0 / p[k].value;
+    }
+    out.push_back(std::move(c));
+  };
+  for (const auto* el : kelvins) {
+    if (s.spring >= 0) inverse_sum({s.spring, el->E}, "length/stress");
+    if (dashpot) inverse_sum({dashpot->eta, el->eta}, "length/(stress*time)");
+  }
+  if (kelvins.size() == 2) {
+    inverse_sum({kelvins[0]->E, kelvins[1]->E}, "length/stress");
+    if (s.spring >= 0) inverse_sum({s.spring, kelvins[0]->E, kelvins[1]->E}, "length/stress");
+  }
+  for (const auto* el : kelvins) {
+    Candidate c;
+    c.expression = p[el->eta].name + "/" + p[el->E].name;
+    c.unit = "time";
+    c.value = p[el->eta].value / p[el->E].value;
+    c.grad.assign(np, 0.0);
+    c.grad[el->eta] = c.value;
+    c.grad[el->E] = -c.value;
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+std::string join_names(const std::vector<std::string>& names) {
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == names.size() ? " and " : ", ") + names[i];
+  return out;
+}
+
+// Singular value decomposition of the Jacobian J of the scaled residuals with
+// respect to the log parameters (GSL, one-sided Jacobi after QR for n >> p):
+// J = U S V^T. With s the residual standard deviation, the standard error of
+// ln p along direction v_i is s/S_i. A direction with S_i below
+// null_tolerance * S_max is one the curve does not depend on: every parameter
+// with a weight |v_ki| >= 1e-3 in it is not identifiable. A direction with
+// s/S_i > relative_error_limit (ln p free by more than that) flags every
+// parameter with a weight >= 0.1. The covariance of ln p is
+// C = sum over the other directions of v_i v_i^T (s/S_i)^2: the pseudo-inverse
+// of J^T J / s^2 (Golub & Van Loan, Matrix Computations, 4th ed., sec. 5.5),
+// so no standard error is conditioned on a dropped partner. J is overwritten.
+void identify(FitResult& res, gsl_matrix* jac, double s, const std::vector<Candidate>& candidates,
+              const FitOptions& options, std::vector<double>& cov) {
+  const std::size_t np = res.parameters.size();
+  std::unique_ptr<gsl_matrix, GslFree> V(gsl_matrix_alloc(np, np)), X(gsl_matrix_alloc(np, np));
+  std::unique_ptr<gsl_vector, GslFree> S(gsl_vector_alloc(np)), work(gsl_vector_alloc(np));
+  for (std::size_t i = 0; i < jac->size1 * jac->tda; ++i)
+    if (!std::isfinite(jac->data[i])) jac->data[i] = 0.0;
+  gsl_linalg_SV_decomp_mod(jac, X.get(), V.get(), S.get(), work.get());
+  double smax = 0.0;
+  for (std::size_t i = 0; i < np; ++i) smax = std::max(smax, gsl_vector_get(S.get(), i));
+  std::vector<char> null(np), weak(np);
+  for (std::size_t i = 0; i < np; ++i) {
+    const double si = gsl_vector_get(S.get(), i);
+    null[i] = !(si > options.null_tolerance * smax);
+    weak[i] = !null[i] && s > 0 && s / si > options.relative_error_limit;
+    res.singular_values.push_back(s > 0 ? si / s : std::numeric_limits<double>::infinity());
+  }
+  cov.assign(np * np, 0.0);
+  for (std::size_t i = 0; i < np; ++i) {
+    if (null[i]) continue;
+    const double w = s / gsl_vector_get(S.get(), i);
+    for (std::size_t a = 0; a < np; ++a)
+      for (std::size_t b = 0; b < np; ++b)
+        cov[a * np + b] += gsl_matrix_get(V.get(), a, i) * gsl_matrix_get(V.get(), b, i) * w * w;
+  }
+  // Groups of flagged parameters: those sharing a direction the data do not fix.
+  std::vector<int> group(np, -1);
+  struct Group {
+    std::vector<std::size_t> params;
+    bool null = false;
+    double worst = 0.0;  // largest s/S_i among its weak directions
+  };
+  std::vector<Group> groups;
+  for (std::size_t i = 0; i < np; ++i) {
+    if (!null[i] && !weak[i]) continue;
+    std::vector<std::size_t> members;
+    for (std::size_t k = 0; k < np; ++k)
+      if (std::abs(gsl_matrix_get(V.get(), k, i)) >= (null[i] ? 1e-3 : 0.1)) members.push_back(k);
+    int g = -1;
+    for (std::size_t k : members)
+      if (group[k] >= 0) g = group[k];
+    if (g < 0) {
+      g = static_cast<int>(groups.size());
+      groups.emplace_back();
+    }
+    for (std::size_t k : members) {
+      if (group[k] >= 0 && group[k] != g) {  // merge the other group into g
+        const int other = group[k];
+        for (std::size_t m : groups[other].params) {
+          group[m] = g;
+          groups[g].params.push_back(m);
+        }
+        groups[g].null = groups[g].null || groups[other].null;
+        groups[g].worst = std::max(groups[g].worst, groups[other].worst);
+        groups[other].params.clear();
+      } else if (group[k] < 0) {
+        group[k] = g;
+        groups[g].params.push_back(k);
+      }
+    }
+    groups[g].null = groups[g].null || null[i];
+    if (weak[i]) groups[g].worst = std::max(groups[g].worst, s / gsl_vector_get(S.get(), i));
+  }
+  for (std::size_t k = 0; k < np; ++k) {
+    auto& e = res.parameters[k];
+    e.identifiable = group[k] < 0;
+    const double var = cov[k * np + k];
+    e.std_error = e.identifiable ? e.value * std::sqrt(var) : 0.0;  // delta method: dp = p dln p
+  }
+  // Combinations the data fix: no component along a direction the curve does
+  // not depend on, relative standard error within the limit, and a part that
+  // is not identifiable on its own.
+  for (const auto& c : candidates) {
+    double norm = 0.0;
+    for (double g : c.grad) norm += g * g;
+    norm = std::sqrt(norm);
+    if (!(norm > 0) || !(c.value > 0)) continue;
+    bool involves = false;
+    for (std::size_t k = 0; k < np; ++k)
+      involves = involves || (group[k] >= 0 && std::abs(c.grad[k]) >= 0.01 * norm);
+    if (!involves) continue;
+    bool fixed = true;
+    for (std::size_t i = 0; i < np && fixed; ++i) {
+      if (!null[i]) continue;
+      double along = 0.0;
+      for (std::size_t k = 0; k < np; ++k) along += gsl_matrix_get(V.get(), k, i) * c.grad[k];
+      fixed = std::abs(along) <= 1e-4 * norm;
+    }
+    double var = 0.0;
+    for (std::size_t a = 0; a < np; ++a)
+      for (std::size_t b = 0; b < np; ++b) var += c.grad[a] * cov[a * np + b] * c.grad[b];
+    const double se = std::sqrt(std::max(var, 0.0));
+    if (!fixed || !(se <= options.relative_error_limit * c.value)) continue;
+    FixedCombination f;
+    f.expression = c.expression;
+    f.unit = c.unit;
+    f.value = c.value;
+    f.std_error = se;
+    for (std::size_t k = 0; k < np; ++k)
+      if (c.grad[k] != 0.0) f.parameters.push_back(res.parameters[k].name);
+    res.combinations.push_back(std::move(f));
+  }
+  for (const auto& g : groups) {
+    if (g.params.empty()) continue;
+    std::vector<std::string> names;
+    for (std::size_t k : g.params) names.push_back(res.parameters[k].name);
+    const bool one = names.size() == 1;
+    std::string reason;
+    if (g.null && one)
+      reason = "the curve does not depend on it at the fitted values (its element adds nothing "
+               "measurable, or acts as part of another)";
+    else if (g.null)
+      reason = fmt::format("the curve depends on {} only through a combination of them", join_names(names));
+    else
+      reason = fmt::format("the data leave {} free by more than a factor e (standard error of the "
+                           "log {:.3g} along a direction of the parameters)",
+                           one ? "it" : "them together", g.worst);
+    for (std::size_t k : g.params) res.parameters[k].reason = reason;
+    std::string fixed;
+    for (const auto& f : res.combinations) {
+      bool shares = false;
+      for (const auto& n : f.parameters)
+        shares = shares || std::find(names.begin(), names.end(), n) != names.end();
+      if (shares)
+        fixed += fmt::format("{}{} = {:.4g} +- {:.2g}", fixed.empty() ? "; the data fix " : ", ",
+                             f.expression, f.value, f.std_error);
+    }
+    res.warnings.push_back(fmt::format("{} {} not identifiable: {}{}; no standard error is given for {}",
+                                       join_names(names), one ? "is" : "are", reason, fixed,
+                                       one ? "it" : "them"));
+  }
+}
+
 }  // namespace
 
 FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOptions& options) {
@@ -482,23 +707,42 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
   params.trs = gsl_multifit_nlinear_trs_lm;
   // Modified Cholesky on the normal equations: a quarter faster than QR here,
   // and robust when a parameter is unidentifiable (J^T J near singular). The
-  // covariance below still comes from a QR of J.
+  // covariance below comes from an SVD of J.
   params.solver = gsl_multifit_nlinear_solver_mcholesky;
   std::unique_ptr<gsl_multifit_nlinear_workspace, GslFree> w(
       gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &params, n, np));
   std::unique_ptr<gsl_vector, GslFree> x(gsl_vector_alloc(np));
 
-  const int starts = 1 + std::max(options.restarts, 0);
+  // The starts: first those of the variable-projection search (varpro.hpp),
+  // then the classic ones (the curve-derived start and `restarts` variations
+  // of it), which serve as a reference: if they find a lower minimum than the
+  // structured search, the minimum is reported as not certain.
+  struct Start {
+    std::vector<double> values;
+    bool structured = false;
+  };
+  std::vector<Start> starts;
+  if (pr.structure && options.structured_search) {
+    detail::VarProSettings vs;
+    vs.per_decade = std::max(options.grid_per_decade, 1);
+    for (auto& v : detail::varpro_starts(*pr.structure, np, data, pr.inv_scale, vs))
+      starts.push_back({std::move(v.values), true});
+  }
+  const int classic = 1 + std::max(options.restarts, 0);
+  for (int r = 0; r < classic; ++r)
+    starts.push_back({r == 0 ? base : restart_start(base, pr.structure, r, features.f_max), false});
+
   std::vector<double> best_x(np), rss_of_start;
   double best_rss = std::numeric_limits<double>::infinity();
-  int best_iter = 0, best_status = GSL_FAILURE;
-  for (int r = 0; r < starts; ++r) {
-    const std::vector<double> start = r == 0 ? base : restart_start(base, pr.structure, r, features.f_max);
+  double structured_rss = std::numeric_limits<double>::infinity();
+  int best_iter = 0, best_status = GSL_FAILURE, structured = 0;
+  for (std::size_t r = 0; r < starts.size(); ++r) {
+    const auto& start = starts[r].values;
     for (std::size_t k = 0; k < np; ++k) gsl_vector_set(x.get(), k, std::log(start[k]));
     gsl_multifit_nlinear_init(x.get(), &fdf, w.get());
     // The loop of gsl_multifit_nlinear_driver (step tolerance 1e-10 on the log
-    // parameters), except that a restart stops as soon as it reaches the best
-    // sum of squares found so far: it has found the same minimum.
+    // parameters), except that a later start stops as soon as it reaches the
+    // best sum of squares found so far: it has found the same minimum.
     auto rss_now = [&] {
       double c = 0.0;
       gsl_blas_ddot(gsl_multifit_nlinear_residual(w.get()), gsl_multifit_nlinear_residual(w.get()), &c);
@@ -517,7 +761,11 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
     if (status == GSL_CONTINUE) status = GSL_EMAXITER;
     const double chisq = rss_now();
     rss_of_start.push_back(chisq);
-    if (std::isfinite(chisq) && (r == 0 || chisq < best_rss * (1.0 - 1e-9))) {  // a restart must improve
+    if (starts[r].structured) {
+      ++structured;
+      if (std::isfinite(chisq)) structured_rss = std::min(structured_rss, chisq);
+    }
+    if (std::isfinite(chisq) && (r == 0 || chisq < best_rss * (1.0 - 1e-9))) {  // a later start must improve
       best_rss = chisq;
       best_iter = static_cast<int>(gsl_multifit_nlinear_niter(w.get()));
       best_status = status;
@@ -546,19 +794,17 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
     }
   }
 
-  // Jacobian at the best point, then the covariance of the log parameters:
-  // C = s^2 (J^T J)^-1 with s^2 = RSS/(n - p).
+  // Residuals and Jacobian at the best point.
   for (std::size_t k = 0; k < np; ++k) gsl_vector_set(x.get(), k, best_x[k]);
   gsl_multifit_nlinear_init(x.get(), &fdf, w.get());
-  std::unique_ptr<gsl_matrix, GslFree> covar(gsl_matrix_alloc(np, np));
-  gsl_multifit_nlinear_covar(gsl_multifit_nlinear_jac(w.get()), 1e-12, covar.get());
   std::vector<double> fitted_scaled(gsl_multifit_nlinear_residual(w.get())->data,
                                     gsl_multifit_nlinear_residual(w.get())->data + n);
 
   FitResult res;
   res.law = info.name;
   res.points = n;
-  res.starts = starts;
+  res.starts = static_cast<int>(starts.size());
+  res.structured_starts = structured;
   res.iterations = best_iter;
   res.converged = best_status == GSL_SUCCESS || best_status == GSL_ENOPROG;
   const double scale = dmax;
@@ -568,44 +814,65 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
     res.fitted.push_back(data.displacement[j] + fitted_scaled[j] * scale);
     tss += (data.displacement[j] - mean) * (data.displacement[j] - mean);
   }
-  res.r2 = tss > 0 ? 1.0 - res.rss / tss : 1.0;
-  res.rmse = std::sqrt(res.rss / static_cast<double>(n));
+  // R^2 = 1 - RSS/TSS is undefined when the data have no spread: TSS at the
+  // level of rounding (rms spread below 1e-10 of the largest displacement).
   const double nd = static_cast<double>(n), k = static_cast<double>(np);
+  res.r2 = tss > nd * (1e-10 * dmax) * (1e-10 * dmax) ? 1.0 - res.rss / tss
+                                                      : std::numeric_limits<double>::quiet_NaN();
+  res.rmse = std::sqrt(res.rss / nd);
   const double log_mse = std::log(std::max(res.rss / nd, std::numeric_limits<double>::min()));
   res.aic = nd * log_mse + 2.0 * k;
   res.bic = nd * log_mse + k * std::log(nd);
   for (double rs : rss_of_start)
     res.starts_agreeing += std::abs(rs - best_rss) <= 1e-6 * best_rss + 1e-24;
 
-  const double s2 = best_rss / (nd - k);  // scaled residual variance
+  // Is the minimum certain? (docs/fitting.md, "When the minimum is not certain")
+  if (structured > 0 && best_rss < structured_rss * (1.0 - 1e-6)) {
+    res.minimum_certain = false;
+    res.minimum_note = fmt::format(
+        "the multi-start reference found a lower sum of squares than the variable-projection "
+        "search (RSS {:.6g} < {:.6g}): other minima may exist",
+        res.rss, structured_rss * scale * scale);
+  } else if (res.starts_agreeing < 2) {
+    res.minimum_certain = false;
+    res.minimum_note = res.starts > 1 ? fmt::format("it was reached from one start only (of {})", res.starts)
+                                      : std::string("only one start was tried");
+  }
+
+  auto& warn = res.warnings;
+  if (!res.converged)
+    warn.push_back(fmt::format("the fit stopped before converging ({}, {} iterations)",
+                               gsl_strerror(best_status), best_iter));
+  if (!res.minimum_certain)
+    warn.push_back(fmt::format("the minimum is not certain: {}; try --restarts 20", res.minimum_note));
+
   for (std::size_t i = 0; i < np; ++i) {
     ParameterEstimate e;
     e.name = info.parameters[i].name;
     e.unit = info.parameters[i].unit;
     e.value = std::exp(best_x[i]);
-    const double var = gsl_matrix_get(covar.get(), i, i);
-    e.identifiable = var > 0.0 && std::isfinite(var);
-    e.std_error = e.identifiable ? e.value * std::sqrt(var * s2) : 0.0;  // delta method: dp = p dln p
     res.parameters.push_back(e);
   }
-  res.correlation.assign(np * np, 0.0);
+  // Identifiability and standard errors from the SVD of the Jacobian (identify()).
+  std::vector<double> cov;
+  {
+    const gsl_matrix* J = gsl_multifit_nlinear_jac(w.get());
+    std::unique_ptr<gsl_matrix, GslFree> jc(gsl_matrix_alloc(n, np));
+    gsl_matrix_memcpy(jc.get(), J);
+    const double s = std::sqrt(best_rss / (nd - k));  // residual standard deviation (scaled)
+    const auto candidates = pr.structure ? combination_candidates(*pr.structure, res.parameters, data)
+                                         : std::vector<Candidate>{};
+    identify(res, jc.get(), s, candidates, options, cov);
+  }
+  res.correlation.assign(np * np, std::numeric_limits<double>::quiet_NaN());
   for (std::size_t i = 0; i < np; ++i)
     for (std::size_t j = 0; j < np; ++j) {
-      const double d = gsl_matrix_get(covar.get(), i, i) * gsl_matrix_get(covar.get(), j, j);
-      res.correlation[i * np + j] =
-          i == j ? 1.0 : (d > 0 ? gsl_matrix_get(covar.get(), i, j) / std::sqrt(d) : 0.0);
+      if (!res.parameters[i].identifiable || !res.parameters[j].identifiable) continue;
+      const double d = cov[i * np + i] * cov[j * np + j];
+      res.correlation[i * np + j] = i == j ? 1.0 : (d > 0 ? cov[i * np + j] / std::sqrt(d) : 0.0);
     }
 
   // ---- Warnings: what the data cannot tell ----
-  auto& warn = res.warnings;
-  if (!res.converged)
-    warn.push_back(fmt::format("the fit stopped before converging ({}, {} iterations)",
-                               gsl_strerror(best_status), best_iter));
-  for (const auto& e : res.parameters)
-    if (!e.identifiable)
-      warn.push_back(fmt::format("{} is not identifiable: the data do not depend on it independently "
-                                 "of the other parameters",
-                                 e.name));
   for (std::size_t i = 0; i < np; ++i)
     for (std::size_t j = i + 1; j < np; ++j)
       if (res.parameters[i].identifiable && res.parameters[j].identifiable &&
