@@ -96,6 +96,10 @@ std::string describe_scene(const SceneDescription& s) {
                      a.dt, u.time, a.dt_cut, a.dt_growth));
   line(fmt::format("  output every {:g} {}: {} frames", a.output_interval, u.time,
                    static_cast<long long>(std::ceil(a.duration / a.output_interval - 1e-9)) + 1));
+  line(fmt::format("  run guards: stop when a block moves more than {} or the outputs exceed {}",
+                   a.max_travel_ratio > 0.0 ? fmt::format("{:g} x the model size", a.max_travel_ratio)
+                                            : std::string("(no limit)"),
+                   a.max_output_size > 0.0 ? fmt::format("{:g} MB", a.max_output_size) : std::string("(no limit)")));
 
   line(fmt::format("materials ({}):", s.materials.size()));
   for (const auto& m : s.materials)

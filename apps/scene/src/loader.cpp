@@ -65,7 +65,7 @@ const std::vector<std::string> analysis{
     "shear_normal_ratio", "search_factor", "angle_tolerance", "penetration_ratio",
     "stick_keeps_force", "friction_tolerance", "force_resolution", "max_flips", "max_refinements",
     "penalty_raise", "penalty_max_factor", "open_close_limit", "fixed_point_stiffness", "solver", "solver_tolerance",
-    "solver_max_iterations", "output_interval", "gravity"};
+    "solver_max_iterations", "output_interval", "max_travel_ratio", "max_output_size", "gravity"};
 const std::vector<std::string> material{"density", "young_modulus", "poisson_ratio", "plane"};
 const std::vector<std::string> joint_set{"friction_angle", "cohesion", "tensile_strength",
                                          "normal_stiffness", "shear_stiffness", "law", "record"};
@@ -419,6 +419,8 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
       ctx.fail(v, m.child("output_interval"),
                fmt::format("output_interval = {:g} is longer than duration = {:g}", a.output_interval, a.duration));
   }
+  num("max_travel_ratio", a.max_travel_ratio, non_negative(""));
+  num("max_output_size", a.max_output_size, non_negative("MB"));
   const auto g = numbers(ctx, m.required("gravity", "gravity acceleration [gx, gy] [length/time^2]"),
                          m.child("gravity"), 2, any("length/time^2"));
   a.gravity = {g[0], g[1]};

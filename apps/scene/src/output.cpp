@@ -1,7 +1,11 @@
 #include "rheodda/scene/output.hpp"
 
 #include <fmt/format.h>
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
+
+#include <algorithm>
 
 #include <cerrno>
 #include <cstring>
@@ -12,37 +16,122 @@
 
 namespace rheodda::scene {
 
+std::string write_error(const std::string& path, int error_number) {
+  std::string msg = fmt::format("cannot write {}: {}", path, std::strerror(error_number));
+  if (error_number == ENOSPC || error_number == EDQUOT)
+    msg += fmt::format(" (free space in {} and run again; the outputs so far are kept)",
+                       std::filesystem::path(path).parent_path().string());
+  return msg;
+}
+
+void sync_directory(const std::string& path) {
+  const int fd = ::open(path.empty() ? "." : path.c_str(), O_RDONLY | O_DIRECTORY);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+
 void write_file_atomic(const std::string& path, const std::string& content) {
   const std::string tmp = path + ".tmp";
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) throw std::runtime_error(fmt::format("cannot write {}: {}", tmp, std::strerror(errno)));
-  const bool ok = std::fwrite(content.data(), 1, content.size(), f) == content.size() &&
-                  std::fflush(f) == 0;
-  std::fclose(f);
-  if (!ok) throw std::runtime_error(fmt::format("cannot write {}", tmp));
-  std::filesystem::rename(tmp, path);
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw std::runtime_error(write_error(path, errno));
+  int error = 0;
+  for (std::size_t done = 0; done < content.size() && !error;) {
+    const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
+    if (n < 0 && errno != EINTR) error = errno;
+    if (n > 0) done += static_cast<std::size_t>(n);
+  }
+  if (!error && ::fsync(fd) != 0) error = errno;
+  if (::close(fd) != 0 && !error) error = errno;
+  std::error_code ec;
+  if (!error) {
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) error = ec.value();
+  }
+  if (error) {
+    std::filesystem::remove(tmp, ec);  // never leave a .tmp behind
+    throw std::runtime_error(write_error(path, error));
+  }
+  sync_directory(std::filesystem::path(path).parent_path().string());
 }
 
 std::string read_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(fmt::format("cannot read {}", path));
+  if (!in) throw std::runtime_error(fmt::format("cannot read {}: {}", path, std::strerror(errno)));
   std::ostringstream buf;
   buf << in.rdbuf();
   return buf.str();
 }
 
-void CsvAppender::open(const std::string& path, std::uint64_t keep_bytes, bool resume) {
-  path_ = path;
-  if (resume) {
-    // Drop whatever was appended after the checkpoint: it is rewritten identically.
-    std::filesystem::resize_file(path, keep_bytes);
-    f_ = std::fopen(path.c_str(), "ab");
-    bytes_ = keep_bytes;
-  } else {
-    f_ = std::fopen(path.c_str(), "wb");
-    bytes_ = 0;
+FolderLock::FolderLock(const std::string& dir) {
+  const std::string path = (std::filesystem::path(dir) / ".rheodda.lock").string();
+  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw std::runtime_error(write_error(path, errno));
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    char buf[32] = {};
+    const ssize_t n = ::pread(fd_, buf, sizeof buf - 1, 0);
+    ::close(fd_);
+    fd_ = -1;
+    std::string owner = n > 0 ? std::string(buf, static_cast<std::size_t>(n)) : std::string();
+    while (!owner.empty() && (owner.back() == '\n' || owner.back() == ' ')) owner.pop_back();
+    throw std::runtime_error(fmt::format(
+        "{} is in use by another rheodda run{}: wait for it to end, or give this run another folder (-o)", dir,
+        owner.empty() ? "" : " (process " + owner + ")"));
   }
-  if (!f_) throw std::runtime_error(fmt::format("cannot write {}: {}", path, std::strerror(errno)));
+  const std::string pid = std::to_string(::getpid()) + "\n";
+  if (::ftruncate(fd_, 0) == 0 && ::pwrite(fd_, pid.data(), pid.size(), 0) < 0) {
+    // The pid is for the message of a second run only.
+  }
+}
+
+FolderLock::~FolderLock() {
+  if (fd_ >= 0) ::close(fd_);  // releases the flock
+}
+
+void CsvAppender::create(const std::string& path) {
+  path_ = path;
+  f_ = std::fopen(path.c_str(), "wb");
+  if (!f_) throw std::runtime_error(write_error(path, errno));
+  bytes_ = 0;
+  hash_ = fnv1a(nullptr, 0);
+}
+
+void CsvAppender::resume(const std::string& path, std::uint64_t keep_bytes, std::uint64_t keep_hash) {
+  path_ = path;
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec)
+    throw std::runtime_error(fmt::format("--resume: cannot continue {}: {}", path, ec.message()));
+  if (size < keep_bytes)
+    throw std::invalid_argument(fmt::format(
+        "--resume: {} has {} bytes but the checkpoint counts {} (the file was cut or replaced after the "
+        "checkpoint); nothing was changed: run again without --resume, or into a new folder",
+        path, size, keep_bytes));
+  // Hash the kept bytes, reading them in blocks.
+  std::FILE* in = std::fopen(path.c_str(), "rb");
+  if (!in) throw std::runtime_error(fmt::format("--resume: cannot read {}: {}", path, std::strerror(errno)));
+  std::uint64_t h = fnv1a(nullptr, 0), left = keep_bytes;
+  std::vector<char> buf(1 << 20);
+  while (left > 0) {
+    const std::size_t want = static_cast<std::size_t>(std::min<std::uint64_t>(left, buf.size()));
+    const std::size_t got = std::fread(buf.data(), 1, want, in);
+    if (got == 0) break;
+    h = fnv1a(buf.data(), got, h);
+    left -= got;
+  }
+  std::fclose(in);
+  if (left != 0 || h != keep_hash)
+    throw std::invalid_argument(fmt::format(
+        "--resume: the first {} bytes of {} differ from those the checkpoint recorded (the file was "
+        "changed after the checkpoint); nothing was changed: run again without --resume, or into a new folder",
+        keep_bytes, path));
+  // Drop whatever was appended after the checkpoint: it is rewritten identically.
+  std::filesystem::resize_file(path, keep_bytes, ec);
+  if (ec) throw std::runtime_error(write_error(path, ec.value()));
+  f_ = std::fopen(path.c_str(), "ab");
+  if (!f_) throw std::runtime_error(write_error(path, errno));
+  bytes_ = keep_bytes;
+  hash_ = h;
 }
 
 CsvAppender::~CsvAppender() {
@@ -50,9 +139,16 @@ CsvAppender::~CsvAppender() {
 }
 
 void CsvAppender::append(const std::string& line) {
+  errno = 0;
   if (std::fwrite(line.data(), 1, line.size(), f_) != line.size() || std::fflush(f_) != 0)
-    throw std::runtime_error(fmt::format("cannot append to {}", path_));
+    throw std::runtime_error(write_error(path_, errno ? errno : EIO));
   bytes_ += line.size();
+  hash_ = fnv1a(line.data(), line.size(), hash_);
+}
+
+void CsvAppender::sync() {
+  if (!f_) return;
+  if (std::fflush(f_) != 0 || ::fsync(::fileno(f_)) != 0) throw std::runtime_error(write_error(path_, errno));
 }
 
 std::string vtk_polydata(const std::vector<FrameBlock>& blocks) {

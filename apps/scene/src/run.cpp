@@ -69,6 +69,8 @@ json scene_json(const SceneDescription& s) {
                    {"solver_tolerance", a.solver_tolerance},
                    {"solver_max_iterations", a.solver_max_iterations},
                    {"output_interval", a.output_interval},
+                   {"max_travel_ratio", a.max_travel_ratio},
+                   {"max_output_size", a.max_output_size},
                    {"gravity", a.gravity}};
   for (const auto& m : s.materials)
     j["materials"][m.name] = {{"density", m.density},
@@ -127,6 +129,52 @@ std::uint64_t state_digest(const core::Engine& e) {
   return h;
 }
 
+/// Thrown by the step observer when the state or an output row is no longer finite:
+/// nothing of that step is written, and the last checkpoint stays the one to resume from.
+struct NonFinite : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Thrown by the step observer when a run guard (max_travel_ratio, max_output_size) trips.
+struct GuardTripped : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// The first non-finite quantity of the engine's state ("velocity of block 'b3'"), or "".
+std::string nonfinite_state(const core::Engine& e, const SceneDescription& s) {
+  auto finite = [](const auto& v) {
+    for (int i = 0; i < v.size(); ++i)
+      if (!std::isfinite(v[i])) return false;
+    return true;
+  };
+  if (!std::isfinite(e.time())) return "the time";
+  for (int b = 0; b < e.block_count(); ++b) {
+    const core::BlockState& st = e.block(b);
+    for (const auto& v : st.vertices)
+      if (!finite(v)) return fmt::format("a vertex position of block '{}'", s.blocks[b].name);
+    if (!finite(st.velocity)) return fmt::format("the velocity of block '{}'", s.blocks[b].name);
+    if (!finite(st.stress)) return fmt::format("the stress of block '{}'", s.blocks[b].name);
+  }
+  return "";
+}
+
+/// The name of the first column of a CSV row holding nan or inf, or "" (a number
+/// written with {:g} contains neither 'n' nor 'i' unless it is not finite).
+std::string nonfinite_column(const std::string& header, const std::string& row) {
+  if (row.find_first_of("ni") == std::string::npos) return "";
+  std::size_t h = 0, r = 0;
+  while (r < row.size()) {
+    const std::size_t re = std::min(row.find(',', r), row.find('\n', r));
+    const std::size_t he = std::min(header.find(',', h), header.find('\n', h));
+    const std::string cell = row.substr(r, re - r);
+    if (cell.find_first_of("ni") != std::string::npos) return header.substr(h, he - h);
+    if (re == std::string::npos || row[re] == '\n') break;
+    r = re + 1;
+    h = he == std::string::npos ? header.size() : he + 1;
+  }
+  return "a column";
+}
+
 std::string units_comment(const Units& u) {
   return fmt::format("# units: length={} force={} time={} stress={}\n", u.length, u.force, u.time, u.stress());
 }
@@ -173,8 +221,30 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     throw SceneError(s.file, where, e.key(), e.what());
   }
   core::Engine& engine = *engine_ptr;
+  const std::string checkpoint_path = (fs::path(out) / "checkpoint.json").string();
+  if (opt.resume) {
+    // Refuse before anything is created or changed.
+    std::error_code ec;
+    if (!fs::exists(checkpoint_path, ec))
+      throw std::invalid_argument(fmt::format(
+          "--resume: {} has no checkpoint.json{}: there is no run to continue; run without --resume", out,
+          fs::exists(out, ec) ? "" : " (the folder does not exist)"));
+  }
   // Only now that the model is accepted: a refused scene leaves nothing behind.
-  fs::create_directories(fs::path(out) / "frames");
+  {
+    std::error_code ec;
+    fs::create_directories(fs::path(out) / "frames", ec);
+    if (ec) throw std::runtime_error(write_error((fs::path(out) / "frames").string(), ec.value()));
+  }
+  // One run per folder at a time (held until this function returns).
+  const FolderLock lock(out);
+  if (!opt.resume) {
+    // A new run invalidates an earlier run's checkpoint before it touches any
+    // output: a later --resume must never continue files this run has emptied.
+    std::error_code ec;
+    if (fs::remove(checkpoint_path, ec)) sync_directory(out);
+    if (ec) throw std::runtime_error(write_error(checkpoint_path, ec.value()));
+  }
 
   // Initial vertex positions, for the displacement field of the frames.
   std::vector<std::vector<core::Vec2>> initial;
@@ -232,11 +302,55 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
       "dissipation_integration,dissipation_contact_damping,dissipation_contact_closing,"
       "dissipation_contact_release,energy_residual,energy_residual_relative\n";
 
+  const std::string contacts_header =
+      "time,step,id,joint_set,state,kind,vertex_block,vertex,edge_block,edge,x,y,"
+      "normal_force,shear_force,shear_displacement,penetration,length\n";
+
   CsvAppender history, contacts_csv;
   std::vector<std::pair<double, std::string>> pvd;
+  std::vector<std::uint64_t> frame_hash;  ///< FNV-1a of each frame file, in pvd order
+  std::uint64_t frames_bytes = 0;         ///< total size of the frames written by this process [byte]
   int frames_done = 0;
   double earlier_wall = 0.0;
-  const std::string checkpoint_path = (fs::path(out) / "checkpoint.json").string();
+
+  // Run guards (analysis.max_travel_ratio, max_output_size): unbounded motion
+  // stops the run instead of filling the disk.
+  double model_size = 0.0;
+  {
+    double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+    for (const auto& b : initial)
+      for (const auto& v : b) {
+        x0 = std::min(x0, v.x()), x1 = std::max(x1, v.x());
+        y0 = std::min(y0, v.y()), y1 = std::max(y1, v.y());
+      }
+    model_size = std::max(x1 - x0, y1 - y0);
+  }
+  auto check_guards = [&](const core::Engine& e) {
+    if (a.max_travel_ratio > 0.0) {
+      const double limit = a.max_travel_ratio * model_size;
+      for (int b = 0; b < e.block_count(); ++b) {
+        const auto v = e.vertices(b);
+        for (std::size_t k = 0; k < v.size(); ++k) {
+          const double d = (v[k] - initial[b][k]).norm();
+          if (d > limit)
+            throw GuardTripped(fmt::format(
+                "block '{}' has moved {:g} {}, more than max_travel_ratio ({:g}) x the model size ({:g} {}): the "
+                "motion looks unbounded (no friction, a near-zero viscosity, an unsupported block?); check the "
+                "scene, or raise analysis.max_travel_ratio (0 = no limit) to let it go on",
+                s.blocks[b].name, d, s.units.length, a.max_travel_ratio, model_size, s.units.length,
+                s.units.length));
+        }
+      }
+    }
+    if (a.max_output_size > 0.0) {
+      const double mb = double(history.bytes() + contacts_csv.bytes() + frames_bytes) / 1e6;
+      if (mb > a.max_output_size)
+        throw GuardTripped(fmt::format(
+            "the outputs have grown to {:.0f} MB, more than max_output_size ({:g} MB); raise "
+            "analysis.max_output_size (0 = no limit) or output_interval",
+            mb, a.max_output_size));
+    }
+  };
 
   // Replay to the checkpoint (resume) without writing anything.
   enum class Mode { replay, record } mode = Mode::record;
@@ -247,7 +361,15 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
       if (e.step_count() >= replay_target) throw StopAfterStep{};
       return;
     }
-    history.append(history_row(&r));
+    if (const std::string what = nonfinite_state(e, s); !what.empty())
+      throw NonFinite(fmt::format("{} is not finite after step {} (t = {:g} {})", what, e.step_count(), e.time(),
+                                  s.units.time));
+    const std::string row = history_row(&r);
+    if (const std::string col = nonfinite_column(history_header, row); !col.empty())
+      throw NonFinite(fmt::format("history.csv column '{}' is not finite after step {} (t = {:g} {})", col,
+                                  e.step_count(), e.time(), s.units.time));
+    history.append(row);
+    check_guards(e);
     if (opt.progress) {
       const auto now = Clock::now();
       if (now - last_progress > std::chrono::milliseconds(200)) {
@@ -262,44 +384,117 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
       throw StopAfterStep{};
   });
 
+  // A frame's file: the blocks at the engine's current state.
+  auto frame_text = [&] {
+    std::vector<FrameBlock> blocks;
+    for (int b = 0; b < engine.block_count(); ++b) {
+      const core::BlockState& st = engine.block(b);
+      FrameBlock fb;
+      for (std::size_t v = 0; v < st.vertices.size(); ++v) {
+        fb.vertices.push_back({st.vertices[v].x(), st.vertices[v].y()});
+        const core::Vec2 d = st.vertices[v] - initial[b][v];
+        fb.displacement.push_back({d.x(), d.y()});
+      }
+      fb.stress = {st.stress[0], st.stress[1], st.stress[2]};
+      fb.velocity = {st.velocity[0], st.velocity[1], st.velocity[2]};
+      fb.material = st.material;
+      fb.fixed = s.blocks[b].fixed;
+      blocks.push_back(std::move(fb));
+    }
+    return vtk_polydata(blocks);
+  };
+
   if (opt.resume) {
     json ck;
     try {
       ck = json::parse(read_file(checkpoint_path));
     } catch (const std::exception& e) {
-      throw std::invalid_argument(fmt::format("--resume: cannot read {}: {}", checkpoint_path, e.what()));
+      throw std::invalid_argument(fmt::format("--resume: {} is not a readable checkpoint ({}); run without "
+                                              "--resume, or into a new folder",
+                                              checkpoint_path, e.what()));
     }
-    if (ck.value("scene_hash", "") != scene_hash)
+    if (ck.value("scene_hash", "") != scene_hash) {
+      const std::string other = ck.contains("scene_file")
+                                    ? fmt::format(" of {} ('{}')", ck.value("scene_file", ""), ck.value("title", ""))
+                                    : std::string();
       throw std::invalid_argument(fmt::format(
-          "--resume: {} belongs to another scene text (the scene file changed since); run without --resume",
-          checkpoint_path));
-    frames_done = ck.at("frames").get<int>();
-    const int step = ck.at("step").get<int>();
-    earlier_wall = ck.at("wall_seconds").get<double>();
-    for (const auto& f : ck.at("pvd")) pvd.emplace_back(unhex(f.at(0).get<std::string>()), f.at(1).get<std::string>());
-    history.open((fs::path(out) / "history.csv").string(), ck.at("history_bytes").get<std::uint64_t>(), true);
-    contacts_csv.open((fs::path(out) / "contacts.csv").string(), ck.at("contacts_bytes").get<std::uint64_t>(), true);
+          "--resume: {} holds a run{} whose scene text differs from {} (another scene, or the file changed "
+          "since): nothing was changed; to keep those results run into a new folder (-o NEW_FOLDER), to "
+          "replace them run without --resume",
+          out, other, s.file));
+    }
+    std::vector<bool> frame_ok;  // false: missing or changed, recreated during the replay
+    int step = 0;
+    std::uint64_t history_bytes = 0, contacts_bytes = 0, history_hash = 0, contacts_hash = 0;
+    try {
+      frames_done = ck.at("frames").get<int>();
+      step = ck.at("step").get<int>();
+      earlier_wall = ck.at("wall_seconds").get<double>();
+      history_bytes = ck.at("history_bytes").get<std::uint64_t>();
+      contacts_bytes = ck.at("contacts_bytes").get<std::uint64_t>();
+      history_hash = std::stoull(ck.at("history_hash").get<std::string>(), nullptr, 16);
+      contacts_hash = std::stoull(ck.at("contacts_hash").get<std::string>(), nullptr, 16);
+      for (const auto& f : ck.at("pvd")) {
+        pvd.emplace_back(unhex(f.at(0).get<std::string>()), f.at(1).get<std::string>());
+        frame_hash.push_back(std::stoull(f.at(2).get<std::string>(), nullptr, 16));
+      }
+    } catch (const std::exception& e) {
+      throw std::invalid_argument(fmt::format("--resume: {} lacks what a resume needs ({}); run without --resume, "
+                                              "or into a new folder",
+                                              checkpoint_path, e.what()));
+    }
+    if (frames_done < 1 || static_cast<int>(pvd.size()) != frames_done || frames_done > int(frame_times.size()))
+      throw std::invalid_argument(
+          fmt::format("--resume: {} is inconsistent (frames {}, listed {}); run without --resume, or into a new folder",
+                      checkpoint_path, frames_done, pvd.size()));
+    // Every file the run continues must be what the checkpoint recorded; a frame
+    // that is missing or changed is written again from the replayed state.
+    history.resume((fs::path(out) / "history.csv").string(), history_bytes, history_hash);
+    contacts_csv.resume((fs::path(out) / "contacts.csv").string(), contacts_bytes, contacts_hash);
+    for (int k = 0; k < frames_done; ++k) {
+      std::string text;
+      try {
+        text = read_file((fs::path(out) / pvd[k].second).string());
+      } catch (const std::exception&) {
+      }
+      frame_ok.push_back(!text.empty() && fnv1a(text.data(), text.size()) == frame_hash[k]);
+    }
+    auto restore_frame = [&](int k) {
+      if (k >= frames_done || frame_ok[k] || hex(engine.time()) != hex(pvd[k].first)) return;
+      const std::string text = frame_text();
+      if (fnv1a(text.data(), text.size()) != frame_hash[k])
+        throw std::runtime_error(fmt::format("--resume: replaying did not reproduce frame {} ({})", k, pvd[k].second));
+      write_file_atomic((fs::path(out) / pvd[k].second).string(), text);
+      frame_ok[k] = true;
+    };
     mode = Mode::replay;
     replay_target = step;
+    restore_frame(0);
+    int k = 1;
     try {
-      for (int k = 1; k <= frames_done && k < static_cast<int>(frame_times.size()) && engine.step_count() < step; ++k)
+      for (; k <= frames_done && k < static_cast<int>(frame_times.size()) && engine.step_count() < step; ++k) {
         engine.run_until(frame_times[k]);
+        restore_frame(k);
+      }
     } catch (const StopAfterStep&) {
+      if (k < static_cast<int>(frame_times.size())) restore_frame(k);
     }
     if (engine.step_count() != step || hex(engine.time()) != ck.at("time").get<std::string>() ||
         fmt::format("{:016x}", state_digest(engine)) != ck.at("digest").get<std::string>())
       throw std::runtime_error(fmt::format(
           "--resume: replaying {} steps did not reproduce the checkpoint (step {}, time {:g})", step,
           engine.step_count(), engine.time()));
+    for (int j = 0; j < frames_done; ++j)
+      if (!frame_ok[j])
+        throw std::runtime_error(fmt::format("--resume: frame {} ({}) could not be written again", j, pvd[j].second));
+    write_file_atomic((fs::path(out) / "blocks.pvd").string(), vtk_collection(pvd));
     mode = Mode::record;
     result.resumed_from_step = step;
   } else {
-    history.open((fs::path(out) / "history.csv").string(), 0, false);
-    contacts_csv.open((fs::path(out) / "contacts.csv").string(), 0, false);
+    history.create((fs::path(out) / "history.csv").string());
+    contacts_csv.create((fs::path(out) / "contacts.csv").string());
     history.append(units_comment(s.units) + history_header);
-    contacts_csv.append(units_comment(s.units) +
-                        "time,step,id,joint_set,state,kind,vertex_block,vertex,edge_block,edge,x,y,"
-                        "normal_force,shear_force,shear_displacement,penetration,length\n");
+    contacts_csv.append(units_comment(s.units) + contacts_header);
     history.append(history_row(nullptr));
   }
 
@@ -400,17 +595,25 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     write_file_atomic((fs::path(out) / "summary.json").string(), text);
   };
   auto write_checkpoint = [&] {
+    // What the checkpoint counts must be on disk before the checkpoint is.
+    history.sync();
+    contacts_csv.sync();
     json ck;
     ck["scene_hash"] = scene_hash;
+    ck["scene_file"] = s.file;
+    ck["title"] = s.title;
     ck["step"] = engine.step_count();
     ck["time"] = hex(engine.time());
     ck["digest"] = fmt::format("{:016x}", state_digest(engine));
     ck["frames"] = frames_done;
     ck["history_bytes"] = history.bytes();
+    ck["history_hash"] = fmt::format("{:016x}", history.hash());
     ck["contacts_bytes"] = contacts_csv.bytes();
+    ck["contacts_hash"] = fmt::format("{:016x}", contacts_csv.hash());
     ck["wall_seconds"] = earlier_wall + std::chrono::duration<double>(Clock::now() - wall_start).count();
     json frames = json::array();
-    for (const auto& [t, f] : pvd) frames.push_back({hex(t), f});
+    for (std::size_t k = 0; k < pvd.size(); ++k)
+      frames.push_back({hex(pvd[k].first), pvd[k].second, fmt::format("{:016x}", frame_hash[k])});
     ck["pvd"] = frames;
     write_file_atomic(checkpoint_path, ck.dump(1) + "\n");
   };
@@ -426,25 +629,22 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
                           p.x(), p.y(), c.normal_force, c.shear_force, c.shear_displacement, c.penetration,
                           c.length);
     }
+    for (const auto& c : contacts.contacts())
+      for (const auto& [name, v] : {std::pair<const char*, double>{"normal_force", c.normal_force},
+                                    {"shear_force", c.shear_force},
+                                    {"shear_displacement", c.shear_displacement},
+                                    {"penetration", c.penetration},
+                                    {"length", c.length}})
+        if (!std::isfinite(v))
+          throw NonFinite(fmt::format("contacts.csv column '{}' of contact {} is not finite at step {} (t = {:g} {})",
+                                      name, c.id, engine.step_count(), engine.time(), s.units.time));
     if (!rows.empty()) contacts_csv.append(rows);
-    std::vector<FrameBlock> blocks;
-    for (int b = 0; b < engine.block_count(); ++b) {
-      const core::BlockState& st = engine.block(b);
-      FrameBlock fb;
-      for (std::size_t v = 0; v < st.vertices.size(); ++v) {
-        fb.vertices.push_back({st.vertices[v].x(), st.vertices[v].y()});
-        const core::Vec2 d = st.vertices[v] - initial[b][v];
-        fb.displacement.push_back({d.x(), d.y()});
-      }
-      fb.stress = {st.stress[0], st.stress[1], st.stress[2]};
-      fb.velocity = {st.velocity[0], st.velocity[1], st.velocity[2]};
-      fb.material = st.material;
-      fb.fixed = s.blocks[b].fixed;
-      blocks.push_back(std::move(fb));
-    }
     const std::string file = fmt::format("frames/blocks_{:06d}.vtp", k);
-    write_file_atomic((fs::path(out) / file).string(), vtk_polydata(blocks));
+    const std::string text = frame_text();
+    write_file_atomic((fs::path(out) / file).string(), text);
+    frames_bytes += text.size();
     pvd.emplace_back(engine.time(), file);
+    frame_hash.push_back(fnv1a(text.data(), text.size()));
     write_file_atomic((fs::path(out) / "blocks.pvd").string(), vtk_collection(pvd));
     ++frames_done;
     write_checkpoint();
@@ -462,11 +662,33 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     write_summary("interrupted", "");
     result.status = RunStatus::interrupted;
     return result;
+  } catch (const NonFinite& e) {
+    // Nothing of the bad step was written; the last checkpoint (at the last frame)
+    // stays the one to resume from.
+    const std::string msg = fmt::format(
+        "{}: the run stops with the outputs of the steps before it kept (a step, penalty or parameter at the "
+        "limit of double precision? see docs/outputs.md, \"Runs that stop\")",
+        e.what());
+    try {
+      write_summary("failed", msg);
+    } catch (const std::exception&) {
+    }
+    throw std::runtime_error(msg);
   } catch (const std::exception& e) {
-    write_checkpoint();
-    write_summary("failed", e.what());
-    throw std::runtime_error(fmt::format("run failed at t = {:g} {} (step {}): {}", engine.time(), s.units.time,
-                                         engine.step_count(), e.what()));
+    // Keep what can be kept; a second failure (e.g. a full disk) must not hide the first.
+    std::string error = e.what();
+    try {
+      write_checkpoint();
+    } catch (const std::exception&) {
+    }
+    try {
+      write_summary("failed", error);
+    } catch (const std::exception& e2) {
+      error += fmt::format(" (summary.json could not be updated either: {})", e2.what());
+    }
+    throw std::runtime_error(fmt::format("run {} at t = {:g} {} (step {}): {}",
+                                         dynamic_cast<const GuardTripped*>(&e) ? "stopped" : "failed",
+                                         engine.time(), s.units.time, engine.step_count(), error));
   }
   if (opt.progress) std::fprintf(opt.progress_stream, "\n");
   write_summary("completed", "");

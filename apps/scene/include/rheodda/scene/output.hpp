@@ -12,29 +12,65 @@
 
 namespace rheodda::scene {
 
-/// Writes `content` to `path` through `path + ".tmp"` and a rename; throws std::runtime_error.
+/// Writes `content` to `path` through `path + ".tmp"`, flushed to disk (fsync) and
+/// renamed over `path`, the rename itself made durable (fsync of the folder), so that
+/// after a crash `path` holds either the old or the new content. On failure the
+/// `.tmp` file is removed and std::runtime_error names the file and the system's
+/// reason (e.g. "no space left on device").
 void write_file_atomic(const std::string& path, const std::string& content);
+
+/// Flushes a folder's entries (renames, removals) to disk; best effort.
+void sync_directory(const std::string& path);
+
+/// "cannot write PATH: REASON" from errno, with the advice a full disk needs.
+std::string write_error(const std::string& path, int error_number);
 
 /// Reads a whole file; throws std::runtime_error.
 std::string read_file(const std::string& path);
 
-/// A CSV file appended line by line; each line is flushed whole.
+/// Exclusive use of an output folder by one run: an advisory lock (flock) on
+/// DIR/.rheodda.lock holding the owner's process id, released when the object is
+/// destroyed or the process ends (also on kill -9). Throws std::runtime_error
+/// naming the folder and the process that holds it.
+class FolderLock {
+ public:
+  explicit FolderLock(const std::string& dir);
+  ~FolderLock();
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
+/// A CSV file appended line by line; each line is flushed whole. It keeps the
+/// FNV-1a hash of everything it holds, so that a checkpoint can record what a
+/// resume must find.
 class CsvAppender {
  public:
   CsvAppender() = default;
-  /// Opens `path`: truncated to `keep_bytes` bytes (resume) or created empty.
-  void open(const std::string& path, std::uint64_t keep_bytes, bool resume);
+  /// Creates `path` empty.
+  void create(const std::string& path);
+  /// Continues `path` from a checkpoint: the file must hold at least `keep_bytes`
+  /// bytes whose hash is `keep_hash`; what follows them is dropped (the run writes
+  /// it again identically). Throws std::invalid_argument naming the file and what
+  /// differs when it is shorter or its kept bytes differ: nothing is changed then.
+  void resume(const std::string& path, std::uint64_t keep_bytes, std::uint64_t keep_hash);
   ~CsvAppender();
   CsvAppender(const CsvAppender&) = delete;
   CsvAppender& operator=(const CsvAppender&) = delete;
-  /// Appends `line` (which must end in '\n') and flushes.
+  /// Appends `line` (which must end in '\n') and flushes it to the system.
   void append(const std::string& line);
+  /// Flushes the file to disk (fsync): before a checkpoint that counts its bytes.
+  void sync();
   std::uint64_t bytes() const { return bytes_; }
+  std::uint64_t hash() const { return hash_; }
 
  private:
   std::FILE* f_ = nullptr;
   std::string path_;
   std::uint64_t bytes_ = 0;
+  std::uint64_t hash_ = 1469598103934665603ull;  ///< FNV-1a of the bytes_ bytes held
 };
 
 /// One polygon of a VTK frame with its fields.

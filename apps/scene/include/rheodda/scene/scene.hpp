@@ -84,6 +84,11 @@ struct Analysis {
   double solver_tolerance = 1e-10;     ///< relative residual at which pcg and amg stop [-]
   int solver_max_iterations = 10000;   ///< CG iteration limit per solve of pcg and amg [-]; >= 1
   double output_interval = 0.0;        ///< time between output frames [time]; default duration / 100
+  /// Run guard: the run stops when a block vertex has moved more than this times the
+  /// model size (largest extent of the initial blocks) [-]; 0 = no limit.
+  double max_travel_ratio = 10.0;
+  /// Run guard: the run stops when its outputs (CSV files and frames) exceed this size [MB]; 0 = no limit.
+  double max_output_size = 10000.0;
   Point gravity{0.0, 0.0};             ///< gravity acceleration (gx, gy) [length/time^2]; required
   SourceLocation where{};
 };

@@ -1,0 +1,286 @@
+// A run's outputs under faults: a rerun killed before its first checkpoint, files
+// cut or changed after a checkpoint, a deleted frame, two runs in one folder,
+// values that are no longer finite, unbounded motion (docs/outputs.md,
+// "Interrupting and resuming" and "Runs that stop").
+#include <boost/test/unit_test.hpp>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "../test_support.hpp"
+#include "rheodda/scene/loader.hpp"
+#include "rheodda/scene/output.hpp"
+#include "rheodda/scene/run.hpp"
+
+extern char** environ;
+
+using namespace rheodda;
+using namespace rheodda::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+scene::SceneDescription sliding(double duration, double interval) {
+  auto s = scene::load_scene(source_path("examples/sliding-block.yaml"));
+  s.analysis.duration = duration;
+  s.analysis.output_interval = interval;
+  return s;
+}
+
+scene::RunResult run(const scene::SceneDescription& s, const fs::path& out, int stop_after = -1,
+                     bool resume = false) {
+  scene::RunOptions o;
+  o.out_dir = out.string();
+  o.stop_after_step = stop_after;
+  o.resume = resume;
+  return scene::run_scene(s, read_text(s.file), o);
+}
+
+std::string status_of(const fs::path& out) {
+  return nlohmann::json::parse(read_text((out / "summary.json").string())).at("status").get<std::string>();
+}
+
+/// The message of the exception `f` throws as E (fails the test if none is thrown).
+template <class E, class F>
+std::string message_of(F&& f) {
+  try {
+    f();
+  } catch (const E& e) {
+    return e.what();
+  }
+  BOOST_ERROR("no exception of the expected type");
+  return "";
+}
+
+bool has_nonfinite_text(const std::string& csv) {
+  return csv.find("nan") != std::string::npos || csv.find("inf") != std::string::npos;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(run_reliability)
+
+BOOST_AUTO_TEST_CASE(a_rerun_killed_before_its_first_checkpoint_is_never_resumed_onto_emptied_files) {
+  // The full sliding-block example: run it, then run it again into the same
+  // folder and kill -9 the second run as soon as it has emptied history.csv
+  // (its first moments), at several moments. --resume must then either refuse
+  // (nothing to continue) or produce exactly the uninterrupted files; never pad
+  // the CSVs with NUL bytes or report success on a corrupt history.
+  const std::string scene = source_path("examples/sliding-block.yaml");
+  const fs::path whole = fresh_dir("rerun-whole");
+  BOOST_TEST_REQUIRE(run_rheodda("run " + scene + " -o " + whole.string()).exit_code == 0);
+  const std::string whole_history = read_text((whole / "history.csv").string());
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    const fs::path out = fresh_dir("rerun-" + std::to_string(attempt));
+    BOOST_TEST_REQUIRE(run_rheodda("run " + scene + " -o " + out.string()).exit_code == 0);
+    std::string bin = RHEODDA_BINARY, cmd = "run", flag = "-o", dir = out.string();
+    std::vector<char*> argv{bin.data(), cmd.data(), const_cast<char*>(scene.c_str()), flag.data(), dir.data(),
+                            nullptr};
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
+    pid_t pid = 0;
+    BOOST_TEST_REQUIRE(posix_spawn(&pid, bin.c_str(), &fa, nullptr, argv.data(), environ) == 0);
+    posix_spawn_file_actions_destroy(&fa);
+    // Wait until the new run has emptied the history (by watching the file), then
+    // a little longer on each attempt, then kill it without warning.
+    int status = 0;
+    for (;;) {
+      std::error_code ec;
+      const auto size = fs::file_size(out / "history.csv", ec);
+      if (ec || size < whole_history.size()) break;
+      if (::waitpid(pid, &status, WNOHANG) == pid) break;
+      std::this_thread::yield();
+    }
+    std::this_thread::sleep_for(std::chrono::microseconds(300 * attempt));
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+
+    const auto resumed = run_rheodda("run " + scene + " -o " + out.string() + " --resume");
+    const std::string history = read_text((out / "history.csv").string());
+    BOOST_TEST(history.find('\0') == std::string::npos, "NUL bytes in history.csv after attempt " << attempt);
+    if (resumed.exit_code == 0) {
+      BOOST_TEST(history == whole_history, "attempt " << attempt);
+      BOOST_TEST(read_text((out / "contacts.csv").string()) == read_text((whole / "contacts.csv").string()));
+      BOOST_TEST(read_text((out / "blocks.pvd").string()) == read_text((whole / "blocks.pvd").string()));
+    } else {
+      BOOST_TEST(resumed.exit_code == 2, resumed.output);
+      BOOST_TEST(resumed.output.find("no checkpoint.json") != std::string::npos, resumed.output);
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(resume_refuses_files_cut_or_changed_after_the_checkpoint_and_changes_nothing) {
+  const auto s = sliding(0.05, 0.01);
+  const fs::path base = fresh_dir("cut-base");
+  BOOST_TEST_REQUIRE((run(s, base, 20).status == scene::RunStatus::interrupted));
+  const auto history_size = fs::file_size(base / "history.csv");
+
+  // A history.csv shorter than the checkpoint says (a crash without fsync, a copy).
+  const fs::path cut = fresh_dir("cut-short");
+  fs::copy(base, cut, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+  fs::resize_file(cut / "history.csv", 500);
+  const std::string m1 = message_of<std::invalid_argument>([&] { run(s, cut, -1, true); });
+  BOOST_TEST(m1.find("history.csv has 500 bytes") != std::string::npos, m1);
+  BOOST_TEST(fs::file_size(cut / "history.csv") == 500u);  // nothing padded
+
+  // A checkpoint claiming far more than the file holds (1 TB).
+  const fs::path big = fresh_dir("cut-big");
+  fs::copy(base, big, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+  auto ck = nlohmann::json::parse(read_text((big / "checkpoint.json").string()));
+  ck["history_bytes"] = 1000000000000ull;
+  { std::ofstream(big / "checkpoint.json") << ck.dump(1); }
+  const std::string m2 = message_of<std::invalid_argument>([&] { run(s, big, -1, true); });
+  BOOST_TEST(m2.find("checkpoint counts 1000000000000") != std::string::npos, m2);
+  BOOST_TEST(fs::file_size(big / "history.csv") == history_size);
+
+  // Same length, one byte changed within what the checkpoint keeps.
+  const fs::path edited = fresh_dir("cut-edited");
+  fs::copy(base, edited, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+  std::string text = read_text((edited / "contacts.csv").string());
+  text[text.size() / 2] = text[text.size() / 2] == '1' ? '2' : '1';
+  { std::ofstream(edited / "contacts.csv", std::ios::binary) << text; }
+  const std::string m3 = message_of<std::invalid_argument>([&] { run(s, edited, -1, true); });
+  BOOST_TEST(m3.find("contacts.csv differ from those the checkpoint recorded") != std::string::npos, m3);
+  BOOST_TEST(read_text((edited / "contacts.csv").string()) == text);
+}
+
+BOOST_AUTO_TEST_CASE(resume_writes_a_deleted_or_changed_frame_again) {
+  const auto s = sliding(0.05, 0.01);
+  const fs::path whole = fresh_dir("frames-whole"), out = fresh_dir("frames-cut");
+  BOOST_TEST_REQUIRE((run(s, whole).status == scene::RunStatus::completed));
+  BOOST_TEST_REQUIRE((run(s, out, 30).status == scene::RunStatus::interrupted));  // frames 0..3 written
+  fs::remove(out / "frames/blocks_000001.vtp");
+  fs::remove(out / "frames/blocks_000003.vtp");  // the frame of the checkpoint's segment
+  { std::ofstream(out / "frames/blocks_000002.vtp") << "changed"; }
+  fs::remove(out / "blocks.pvd");
+  const auto r = run(s, out, -1, true);
+  BOOST_TEST((r.status == scene::RunStatus::completed));
+  for (const char* f : {"frames/blocks_000001.vtp", "frames/blocks_000002.vtp", "frames/blocks_000003.vtp",
+                        "frames/blocks_000005.vtp", "blocks.pvd", "history.csv", "contacts.csv"})
+    BOOST_TEST(read_text((out / f).string()) == read_text((whole / f).string()), f);
+}
+
+BOOST_AUTO_TEST_CASE(a_second_run_into_a_folder_in_use_is_refused_with_the_first_runs_process) {
+  const auto s = sliding(0.01, 0.01);
+  const fs::path out = fresh_dir("locked");
+  const scene::FolderLock held(out.string());  // as a run in progress holds it
+  const std::string m = message_of<std::runtime_error>([&] { run(s, out); });
+  BOOST_TEST(m.find("in use by another rheodda run (process " + std::to_string(::getpid()) + ")") !=
+                 std::string::npos,
+             m);
+  BOOST_TEST(!fs::exists(out / "history.csv"));  // nothing written
+}
+
+BOOST_AUTO_TEST_CASE(resume_into_a_missing_folder_or_another_scenes_folder_is_refused_without_writing) {
+  const auto s = sliding(0.02, 0.01);
+  const fs::path missing = fs::temp_directory_path() / ("rheodda-apps-test-missing-" + std::to_string(::getpid()));
+  fs::remove_all(missing);
+  const std::string m1 = message_of<std::invalid_argument>([&] { run(s, missing, -1, true); });
+  BOOST_TEST(m1.find("no checkpoint.json (the folder does not exist)") != std::string::npos, m1);
+  BOOST_TEST(!fs::exists(missing));
+
+  const fs::path other = fresh_dir("other-scene");
+  auto creep = scene::load_scene(source_path("examples/shear-creep-test.yaml"));
+  creep.analysis.duration = 2.0;
+  creep.analysis.output_interval = 1.0;
+  BOOST_TEST_REQUIRE((run(creep, other, 1).status == scene::RunStatus::interrupted));
+  const std::string before = read_text((other / "history.csv").string());
+  const std::string m2 = message_of<std::invalid_argument>([&] { run(s, other, -1, true); });
+  BOOST_TEST(m2.find("shear-creep-test.yaml") != std::string::npos, m2);  // the folder's scene
+  BOOST_TEST(m2.find(creep.title) != std::string::npos, m2);
+  BOOST_TEST(m2.find("new folder") != std::string::npos, m2);
+  BOOST_TEST(read_text((other / "history.csv").string()) == before);
+}
+
+BOOST_AUTO_TEST_CASE(values_at_the_limits_of_double_precision_stop_the_run_before_a_nan_is_written) {
+  // Each value passes its range check; each makes the state non-finite.
+  struct Case {
+    const char* what;
+    std::function<void(scene::SceneDescription&)> change;
+  };
+  const std::vector<Case> cases{
+      {"dt 1e-300", [](scene::SceneDescription& s) { s.analysis.dt = 1e-300; }},
+      {"penalty 1e308", [](scene::SceneDescription& s) { s.analysis.penalty = 1e308; }},
+      {"dt 1e-16, density 1e300",
+       [](scene::SceneDescription& s) {
+         s.analysis.dt = 1e-16;
+         s.materials[0].density = 1e300;
+       }},
+  };
+  for (const auto& c : cases) {
+    BOOST_TEST_CONTEXT(c.what) {
+      auto s = sliding(0.01, 0.005);
+      c.change(s);
+      const fs::path out = fresh_dir("nonfinite");
+      const std::string m = message_of<std::runtime_error>([&] { run(s, out); });
+      BOOST_TEST(m.find("is not finite after step") != std::string::npos, m);
+      BOOST_TEST(!has_nonfinite_text(read_text((out / "history.csv").string())));
+      BOOST_TEST(!has_nonfinite_text(read_text((out / "contacts.csv").string())));
+      BOOST_TEST(status_of(out) == "failed");
+    }
+  }
+  // A viscosity of 5e-324 (the smallest double) on the shear creep test.
+  auto creep = scene::load_scene(source_path("examples/shear-creep-test.yaml"));
+  creep.joint_sets[0].law->parameters["eta1"] = 5e-324;
+  creep.analysis.duration = 2.0;
+  creep.analysis.output_interval = 1.0;
+  const fs::path out = fresh_dir("nonfinite-eta");
+  const std::string m = message_of<std::runtime_error>([&] { run(creep, out); });
+  BOOST_TEST(m.find("not finite") != std::string::npos, m);
+  BOOST_TEST(!has_nonfinite_text(read_text((out / "history.csv").string())));
+  BOOST_TEST(status_of(out) == "failed");
+}
+
+BOOST_AUTO_TEST_CASE(unbounded_motion_and_runaway_output_stop_at_the_guards_with_outputs_kept) {
+  // No friction: the block slides off its base and falls without end.
+  auto s = sliding(1e6, 1e3);
+  s.joint_sets[0].friction_angle = 0.0;
+  const fs::path out = fresh_dir("runaway");
+  const std::string m = message_of<std::runtime_error>([&] { run(s, out); });
+  BOOST_TEST(m.find("max_travel_ratio (10)") != std::string::npos, m);
+  BOOST_TEST(m.find("run stopped") == 0u, m);
+  BOOST_TEST(status_of(out) == "failed");
+  // The history is kept, whole rows, up to the step that tripped the guard.
+  const std::string h = read_text((out / "history.csv").string());
+  BOOST_TEST(h.back() == '\n');
+  BOOST_TEST(std::count(h.begin(), h.end(), '\n') > 100);
+
+  // The output guard: 0.05 MB of outputs allowed.
+  auto t = sliding(1.0, 0.001);
+  t.analysis.max_output_size = 0.05;  // [MB]
+  const fs::path out2 = fresh_dir("runaway-output");
+  const std::string m2 = message_of<std::runtime_error>([&] { run(t, out2); });
+  BOOST_TEST(m2.find("max_output_size (0.05 MB)") != std::string::npos, m2);
+  const double bytes = double(fs::file_size(out2 / "history.csv") + fs::file_size(out2 / "contacts.csv"));
+  BOOST_TEST(bytes < 0.05e6 + 2e4);  // stopped within a step's output of the limit (frames aside)
+
+  // 0 = no limit: the same scene runs to its end.
+  auto u = sliding(0.02, 0.01);
+  u.analysis.max_output_size = 0.0;
+  u.analysis.max_travel_ratio = 0.0;
+  BOOST_TEST((run(u, fresh_dir("no-guard")).status == scene::RunStatus::completed));
+}
+
+BOOST_AUTO_TEST_CASE(a_write_that_fails_names_the_file_and_the_reason_and_leaves_no_tmp_file) {
+  BOOST_TEST(scene::write_error("/x/out/summary.json", ENOSPC).find("No space left on device") != std::string::npos);
+  BOOST_TEST(scene::write_error("/x/out/summary.json", ENOSPC).find("free space in /x/out") != std::string::npos);
+  // A target that cannot be renamed over (a non-empty folder): the .tmp goes.
+  const fs::path d = fresh_dir("atomic");
+  fs::create_directories(d / "target" / "inside");
+  const std::string m = message_of<std::runtime_error>(
+      [&] { scene::write_file_atomic((d / "target").string(), "text"); });
+  BOOST_TEST(m.find("cannot write " + (d / "target").string()) == 0u, m);
+  BOOST_TEST(!fs::exists(d / "target.tmp"));
+}
+
+BOOST_AUTO_TEST_SUITE_END()
