@@ -54,17 +54,22 @@ def test_dict_scene_gives_the_yaml_scene_history_to_the_last_digit(yaml_scene):
     assert np.max(np.abs(d - exact) / exact) < 2e-5
 
 
-def test_history_equals_rheodda_run(yaml_scene, tmp_path):
+def test_history_equals_rheodda_run(tmp_path):
+    few_frames = copy.deepcopy(SHEAR_TEST)
+    few_frames["analysis"]["output_interval"] = 50  # each frame is written and synced: keep the test fast
+    yaml_scene = rheodda.scene_from_dict(few_frames)
     result = rheodda.run(yaml_scene, str(tmp_path / "out"))
     assert result["status"] == "completed" and result["steps"] == 200
-    csv = np.genfromtxt(tmp_path / "out" / "history.csv", delimiter=",", names=True, comments="#")
+    lines = [l for l in (tmp_path / "out" / "history.csv").read_text().splitlines() if not l.startswith("#")]
+    header = lines[0].split(",")
+    rows = [l.split(",") for l in lines[1:]]
     h = rheodda.Simulation(yaml_scene).run().history()
+    assert list(h) == header and len(rows) == len(h["time"])
     for name in ("time", "A_joint.u", "A_joint.v", "plane.shear_displacement", "plane.shear_force",
                  "work_loads", "dissipation_creep"):
-        column = csv[name.replace(".", "")] if name.replace(".", "") in csv.dtype.names else csv[name]
+        column = np.array([float(r[header.index(name)] or "nan") for r in rows])
         # history.csv prints 10 significant digits
         np.testing.assert_allclose(h[name][1:], column[1:], rtol=1e-9, atol=0, err_msg=name)
-    assert list(h) == list(rheodda.Simulation(yaml_scene).columns)
 
 
 def test_callback_changing_a_load_mid_run_equals_the_load_history_from_the_start(yaml_scene):
@@ -199,3 +204,22 @@ def test_ctrl_c_interrupts_between_steps(yaml_scene):
     assert sim.step_count == 10 and sim.time == 10.0
     sim.callback = None
     assert same(sim.run().history(), rheodda.Simulation(yaml_scene).run().history())
+
+
+def test_run_stops_on_ctrl_c_with_a_checkpoint(tmp_path):
+    import json
+    import threading
+    # 40 000 steps of the shear test: seconds of work, interrupted after 0.3 s
+    long = copy.deepcopy(SHEAR_TEST)
+    long["analysis"].update(dt=0.005, output_interval=20)
+    scene = rheodda.scene_from_dict(long)
+    timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            rheodda.run(scene, str(tmp_path / "out"))
+    finally:
+        timer.cancel()
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert summary["status"] == "interrupted" and 0 < summary["steps"] < 40000
+    assert (tmp_path / "out" / "checkpoint.json").exists()
