@@ -12,3 +12,18 @@ cmake -S "$root" -B "$asan" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRHEODDA
   -DRHEODDA_BUILD_BENCH=OFF >/dev/null
 cmake --build "$asan" -j "$(nproc)" --target scene_fuzz_test
 "$asan/tests/apps/scene_fuzz_test" --report_level=short
+# The Python module's tests (pytest, tests/python) against the module of the same build, with
+# Debian's interpreter (the one python3-numpy, -pandas and -pytest are installed for).
+if [ ! -f "$build/python/rheodda/__init__.py" ]; then
+  echo "test.sh: the Python module was not built in $build/python (python3-dev and pybind11-dev missing? see the cmake output)" >&2
+  exit 1
+fi
+set +e
+(cd "$root" && PYTHONPATH="$build/python" RHEODDA_BUILD_DIR="$build" /usr/bin/python3 -m pytest -q -p no:cacheprovider tests/python)
+status=$?
+set -e
+if [ "$status" -eq 5 ]; then
+  echo "test.sh: pytest collected no tests in tests/python" >&2
+  exit 1
+fi
+exit "$status"
