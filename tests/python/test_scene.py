@@ -223,3 +223,29 @@ def test_run_stops_on_ctrl_c_with_a_checkpoint(tmp_path):
     summary = json.loads((tmp_path / "out" / "summary.json").read_text())
     assert summary["status"] == "interrupted" and 0 < summary["steps"] < 40000
     assert (tmp_path / "out" / "checkpoint.json").exists()
+
+
+def test_long_calls_release_the_gil(yaml_scene, tmp_path):
+    import threading
+    import time
+    # Another Python thread runs while the engine steps (it could not if the GIL were held).
+    count = {"n": 0}
+    stop = threading.Event()
+
+    def spin():
+        while not stop.is_set():
+            count["n"] += 1
+            time.sleep(0)
+
+    fine = copy.deepcopy(SHEAR_TEST)
+    fine["analysis"].update(dt=0.02, output_interval=200)   # 10 000 steps
+    sim = rheodda.Simulation(fine)
+    thread = threading.Thread(target=spin)
+    thread.start()
+    try:
+        sim.run()
+    finally:
+        stop.set()
+        thread.join()
+    assert sim.step_count == 10000
+    assert count["n"] > 100
