@@ -732,7 +732,11 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
   for (int r = 0; r < classic; ++r)
     starts.push_back({r == 0 ? base : restart_start(base, pr.structure, r, features.f_max), false});
 
-  std::vector<double> best_x(np), rss_of_start;
+  // Sums of squares closer than `floor` are the same: a scaled residual of
+  // 1e-10 rms (1e-10 of the largest displacement) is rounding, not fit.
+  const double floor = static_cast<double>(n) * 1e-20;
+  std::vector<double> best_x(np), pos(np), rss_of_start;
+  std::unique_ptr<gsl_vector, GslFree> fv(gsl_vector_alloc(n));
   double best_rss = std::numeric_limits<double>::infinity();
   double structured_rss = std::numeric_limits<double>::infinity();
   int best_iter = 0, best_status = GSL_FAILURE, structured = 0;
@@ -756,21 +760,40 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
         break;
       }
       status = gsl_multifit_nlinear_test(1e-10, 1e-15, 0.0, &info_code, w.get());
-      if (status == GSL_CONTINUE && r > 0 && rss_now() <= best_rss * (1.0 + 1e-12)) status = GSL_SUCCESS;
+      if (status == GSL_CONTINUE && r > 0 && rss_now() <= best_rss * (1.0 + 1e-12) + floor)
+        status = GSL_SUCCESS;
     }
     if (status == GSL_CONTINUE) status = GSL_EMAXITER;
-    const double chisq = rss_now();
+    double chisq = rss_now();
+    const gsl_vector* xs = gsl_multifit_nlinear_position(w.get());
+    for (std::size_t k = 0; k < np; ++k) pos[k] = gsl_vector_get(xs, k);
+    // The linear part re-solved exactly at the polished retardation times
+    // (varpro_refine): GSL stops near, not on, a threshold equal to a stress level.
+    if (pr.structure && options.structured_search) {
+      std::vector<double> v(np);
+      for (std::size_t k = 0; k < np; ++k) v[k] = std::exp(pos[k]);
+      if (detail::varpro_refine(*pr.structure, data, pr.inv_scale, v)) {
+        for (std::size_t k = 0; k < np; ++k) gsl_vector_set(x.get(), k, std::log(v[k]));
+        residual_cb(x.get(), &pr, fv.get());
+        double c = 0.0;
+        gsl_blas_ddot(fv.get(), fv.get(), &c);
+        if (c < chisq) {
+          chisq = c;
+          for (std::size_t k = 0; k < np; ++k) pos[k] = std::log(v[k]);
+        }
+      }
+    }
     rss_of_start.push_back(chisq);
     if (starts[r].structured) {
       ++structured;
       if (std::isfinite(chisq)) structured_rss = std::min(structured_rss, chisq);
     }
-    if (std::isfinite(chisq) && (r == 0 || chisq < best_rss * (1.0 - 1e-9))) {  // a later start must improve
+    // A later start must improve by more than rounding.
+    if (std::isfinite(chisq) && (r == 0 || chisq < best_rss * (1.0 - 1e-9) - floor)) {
       best_rss = chisq;
       best_iter = static_cast<int>(gsl_multifit_nlinear_niter(w.get()));
       best_status = status;
-      const gsl_vector* xs = gsl_multifit_nlinear_position(w.get());
-      for (std::size_t k = 0; k < np; ++k) best_x[k] = gsl_vector_get(xs, k);
+      best_x = pos;
     }
   }
   if (!std::isfinite(best_rss))
@@ -824,10 +847,10 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
   res.aic = nd * log_mse + 2.0 * k;
   res.bic = nd * log_mse + k * std::log(nd);
   for (double rs : rss_of_start)
-    res.starts_agreeing += std::abs(rs - best_rss) <= 1e-6 * best_rss + 1e-24;
+    res.starts_agreeing += std::abs(rs - best_rss) <= 1e-6 * best_rss + floor;
 
   // Is the minimum certain? (docs/fitting.md, "When the minimum is not certain")
-  if (structured > 0 && best_rss < structured_rss * (1.0 - 1e-6)) {
+  if (structured > 0 && best_rss < structured_rss * (1.0 - 1e-6) - floor) {
     res.minimum_certain = false;
     res.minimum_note = fmt::format(
         "the multi-start reference found a lower sum of squares than the variable-projection "

@@ -245,7 +245,8 @@ std::vector<double> kelvin_column(const Sample& s, const std::vector<double>& st
     for (std::size_t i = 0; i <= s.stage[j]; ++i) {
       const double df = sf[i] - prev;
       prev = sf[i];
-      if (df != 0.0) v += df * laws::kelvin_b((s.t[j] - st[i]) / tau);
+      // 1 - e^-r directly: its rounding (eps/r relative) does not matter to the search.
+      if (df != 0.0) v += df * (1.0 - std::exp(-(s.t[j] - st[i]) / tau));
     }
     col[j] = v;
   }
@@ -254,9 +255,13 @@ std::vector<double> kelvin_column(const Sample& s, const std::vector<double>& st
 
 }  // namespace
 
-std::vector<VarProStart> varpro_starts(const SeriesStructure& s, std::size_t np,
-                                       const CreepData& data, double inv_scale,
-                                       const VarProSettings& settings, VarProStats* stats) {
+namespace {
+
+// The search itself: over the grid of retardation times, or at the given ones
+// (`fixed_taus`, one per Kelvin element: a single node).
+std::vector<VarProStart> search(const SeriesStructure& s, std::size_t np, const CreepData& data,
+                                double inv_scale, const VarProSettings& settings, VarProStats* stats,
+                                const std::vector<double>* fixed_taus) {
   std::vector<const Element*> kelvins;
   const Element* dashpot = nullptr;
   const Element* bingham = nullptr;
@@ -307,7 +312,15 @@ std::vector<VarProStart> varpro_starts(const SeriesStructure& s, std::size_t np,
   // ten times the test duration, per_decade nodes per decade (at most 120).
   std::vector<double> taus;
   std::vector<int> kcol;
-  if (!kelvins.empty()) {
+  if (fixed_taus) {
+    if (fixed_taus->size() != kelvins.size()) return {};
+    taus = *fixed_taus;
+    std::sort(taus.begin(), taus.end());
+    for (double tau : taus) {
+      if (!(tau > 0) || !std::isfinite(tau)) return {};
+      kcol.push_back(C.add(kelvin_column(smp, st, sf, tau)));
+    }
+  } else if (!kelvins.empty()) {
     double gap = kInf;
     for (std::size_t j = 1; j < ns; ++j)
       if (smp.t[j] > smp.t[j - 1]) gap = std::min(gap, smp.t[j] - smp.t[j - 1]);
@@ -475,6 +488,28 @@ std::vector<VarProStart> varpro_starts(const SeriesStructure& s, std::size_t np,
     out.push_back(std::move(v));
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<VarProStart> varpro_starts(const SeriesStructure& s, std::size_t np,
+                                       const CreepData& data, double inv_scale,
+                                       const VarProSettings& settings, VarProStats* stats) {
+  return search(s, np, data, inv_scale, settings, stats, nullptr);
+}
+
+bool varpro_refine(const SeriesStructure& s, const CreepData& data, double inv_scale,
+                   std::vector<double>& values) {
+  std::vector<double> taus;
+  for (const auto& el : s.elements)
+    if (el.kind == Kind::kelvin) taus.push_back(values[el.eta] / values[el.E]);
+  VarProSettings all;
+  all.max_points = data.t.size();
+  all.max_starts = 1;
+  auto out = search(s, values.size(), data, inv_scale, all, nullptr, &taus);
+  if (out.empty()) return false;
+  values = std::move(out.front().values);
+  return true;
 }
 
 }  // namespace rheodda::fit::detail

@@ -33,7 +33,9 @@ struct VarProStart {
 
 struct VarProSettings {
   int per_decade = 10;            ///< grid nodes of tau per decade
-  std::size_t max_points = 20000;  ///< the search uses at most about this many points (even subsample)
+  /// The search uses at most about this many points (every stride-th point of
+  /// each stage); the polish uses them all.
+  std::size_t max_points = 400;
   int max_starts = 3;             ///< local minima of the grid returned, best first
 };
 
@@ -49,5 +51,14 @@ struct VarProStats {
 std::vector<VarProStart> varpro_starts(const SeriesStructure& s, std::size_t np,
                                        const CreepData& data, double inv_scale,
                                        const VarProSettings& settings, VarProStats* stats = nullptr);
+
+/// The linear part re-solved exactly, on every data point, at the
+/// retardation times of `values` (parameters in registry order): the
+/// compliances and the Nishihara threshold of `values` are replaced by the
+/// exact solution of the linear subproblem there. Used after GSL's polish,
+/// which cannot settle exactly on a threshold equal to a stress level (the
+/// curve has a kink in Fs there). false when it does not apply.
+bool varpro_refine(const SeriesStructure& s, const CreepData& data, double inv_scale,
+                   std::vector<double>& values);
 
 }  // namespace rheodda::fit::detail
