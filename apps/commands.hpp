@@ -4,10 +4,37 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+
 namespace rheodda::apps {
 
-/// Exit codes: 0 success, 1 run-time failure, 2 bad input (arguments, files, parameters).
+/// Exit codes: 0 success, 1 run-time failure, 2 bad input (arguments, files, parameters),
+/// 128 + N a run stopped by signal N. `rheodda --help` lists them (kExitCodesHelp).
+inline constexpr int kExitFailure = 1;
 inline constexpr int kExitBadInput = 2;
+
+/// The exit codes as `rheodda --help` prints them; each line says where the code comes from.
+inline constexpr const char* kExitCodesHelp =
+    "Exit codes:\n"
+    "  0      success\n"
+    "  1      the command failed while working: a run stopped by an engine or output error,\n"
+    "         a study with a failed case, gnuplot missing or failing (plot, fit --plot)\n"
+    "  2      bad input: command-line arguments, a file that cannot be opened, a scene, study\n"
+    "         or data file refused (file:line:column: key: message), law parameters,\n"
+    "         a directory that holds no run (plot), --resume on another scene\n"
+    "  128+N  a run stopped by signal N between two steps (130: Ctrl-C, 143: kill);\n"
+    "         continue it with `rheodda run SCENE -o OUTDIR --resume`";
+
+/// Throws std::invalid_argument("cannot open PATH: <reason>") unless the file at `path`
+/// can be opened for reading (so that a missing file is reported by name, without a location).
+inline void require_readable(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::invalid_argument("cannot open " + path + ": " + std::strerror(errno));
+}
 
 /// `rheodda law list`, `rheodda law curve`.
 void add_law_commands(CLI::App& app);

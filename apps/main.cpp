@@ -1,5 +1,6 @@
 // rheodda: contact rheology in Discontinuous Deformation Analysis.
 // Sample runs:
+//   rheodda --version
 //   rheodda law list
 //   rheodda law curve burgers --param E1=26.87 --param E2=192.43 --param eta1=34807.72
 //       --param eta2=2141.23 --force 0:0.232 --t-end 200 --dt 1
@@ -8,10 +9,15 @@
 #include <exception>
 
 #include "commands.hpp"
+#include "rheodda/scene/error.hpp"
+#include "rheodda/version.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"rheodda: creep of jointed rock with contact rheology laws in DDA"};
   app.require_subcommand(1);
+  // The same string as summary.json's "program" (rheodda/version.hpp, from CMake's project()).
+  app.set_version_flag("--version", rheodda::kProgramVersion, "Print the version (rheodda X.Y.Z) and exit");
+  app.footer(rheodda::apps::kExitCodesHelp);
   rheodda::apps::add_law_commands(app);
   rheodda::apps::add_scene_commands(app);
   rheodda::apps::add_fit_command(app);
@@ -23,6 +29,13 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : rheodda::apps::kExitBadInput;
+  } catch (const rheodda::scene::SceneError& e) {
+    // A fault with no place in the file (line 0) is reported by file name alone, not as FILE:0:0.
+    if (e.line() > 0)
+      fmt::print(stderr, "rheodda: error: {}\n", e.what());
+    else
+      fmt::print(stderr, "rheodda: error: {}: {}{}\n", e.file(), e.key().empty() ? "" : e.key() + ": ", e.message());
+    return rheodda::apps::kExitBadInput;
   } catch (const std::exception& e) {
     fmt::print(stderr, "rheodda: error: {}\n", e.what());
     return rheodda::apps::kExitBadInput;
