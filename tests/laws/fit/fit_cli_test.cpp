@@ -169,4 +169,55 @@ BOOST_AUTO_TEST_CASE(bad_input_exits_2_naming_file_line_and_column) {
   BOOST_TEST(r.err.find("cannot open") != std::string::npos, r.err);
 }
 
+BOOST_AUTO_TEST_CASE(no_stress_option_says_no_applied_stress_as_the_docs_do) {
+  TempDir dir;
+  const Run r = run_rheodda("fit '" + kExample + "' --law burgers", dir);
+  BOOST_TEST(r.code == 2);
+  BOOST_TEST(r.err.find("no applied stress: give one stress for the file (--stress VALUE or --stress "
+                        "T:V,...) or a stress column (--stress-column NAME)") != std::string::npos,
+             r.err);
+}
+
+BOOST_AUTO_TEST_CASE(report_and_json_give_no_error_bar_the_data_cannot_support) {
+  // Single-stage Nishihara on the example: eta3 and Fs without standard error,
+  // (0.232 - Fs)/eta3 with one; the minimum's certainty in the JSON.
+  TempDir dir;
+  const std::string json = (dir / "fit.json").string();
+  const Run r = run_rheodda("fit '" + kExample + "' --law nishihara --stress 0.232 --units 'MPa, mm, h' --json '" +
+                                json + "'",
+                            dir);
+  BOOST_TEST_REQUIRE(r.code == 0, r.err);
+  BOOST_TEST(r.out.find("fixed by the data: (0.232 - Fs)/eta3 = ") != std::string::npos, r.out);
+  BOOST_TEST(r.out.find("mm/h") != std::string::npos, r.out);
+  BOOST_TEST(r.out.find("eta3 and Fs are not identifiable") != std::string::npos, r.out);
+  const auto j = nlohmann::json::parse(slurp(json));
+  const auto& fit = j["fits"][0];
+  for (const auto& p : fit["parameters"]) {
+    const bool dropped = p["name"] == "eta3" || p["name"] == "Fs";
+    BOOST_TEST(p["identifiable"].get<bool>() == !dropped, p["name"]);
+    BOOST_TEST(p["std_error"].is_null() == dropped, p["name"]);
+    BOOST_TEST(p["reason"].get<std::string>().empty() == !dropped, p["name"]);
+  }
+  BOOST_TEST_REQUIRE(fit["combinations"].size() == 1u);
+  BOOST_TEST(fit["combinations"][0]["expression"] == "(0.232 - Fs)/eta3");
+  BOOST_TEST(fit["combinations"][0]["unit"] == "mm/h");
+  BOOST_TEST(fit["combinations"][0]["std_error"].get<double>() > 0.0);
+  BOOST_TEST(fit["minimum_certain"].get<bool>());
+  BOOST_TEST(fit["structured_starts"].get<int>() >= 1);
+}
+
+BOOST_AUTO_TEST_CASE(flat_curve_reports_r2_undefined) {
+  TempDir dir;
+  const std::string flat = (dir / "flat.csv").string(), json = (dir / "flat.json").string();
+  std::string text = "t,displacement\n";
+  for (int i = 0; i <= 50; ++i) text += fmt::format("{},0.01\n", i);
+  write(flat, text);
+  const Run r = run_rheodda("fit '" + flat + "' --law maxwell --stress 0.3 --json '" + json + "'", dir);
+  BOOST_TEST_REQUIRE(r.code == 0, r.err);
+  BOOST_TEST(r.out.find("R^2 undefined (the data have no spread)") != std::string::npos, r.out);
+  const auto j = nlohmann::json::parse(slurp(json));
+  BOOST_TEST(j["fits"][0]["r2"].is_null());
+  BOOST_TEST(j["fits"][0]["parameters"][1]["identifiable"].get<bool>() == false);  // eta1
+}
+
 BOOST_AUTO_TEST_SUITE_END()
