@@ -32,6 +32,7 @@ struct RunArgs {
 };
 
 void run_command(const RunArgs& args) {
+  require_readable(args.scene);
   const std::string text = scene::read_scene_text(args.scene);
   const scene::SceneDescription s = scene::parse_scene(text, args.scene);
   scene::RunOptions opt;
@@ -80,6 +81,7 @@ void add_scene_commands(CLI::App& app) {
       "check", "Validate a scene file and print what will be modelled, without running it");
   check->add_option("SCENE", *file, "Scene file (YAML, docs/scene-format.md)")->required();
   check->callback([file] {
+    require_readable(*file);
     const scene::SceneDescription s = scene::load_scene(*file);
     fmt::print("{}", scene::describe_scene(s));
     fmt::print("scene OK\n");
@@ -100,8 +102,18 @@ void add_scene_commands(CLI::App& app) {
   p->add_option("--format", plot->format, "png or svg")->check(CLI::IsMember({"png", "svg"}))->capture_default_str();
   p->add_option("--scale", plot->scale,
                 "Displacement magnification of the block pictures (default: automatic, shown in the title)");
+  plot->warn = [](const std::string& w) { fmt::print(stderr, "rheodda: warning: {}\n", w); };
   p->callback([plot] {
-    for (const auto& f : scene::plot_run(*plot)) fmt::print("{}\n", f);
+    std::vector<std::string> pictures;
+    try {
+      pictures = scene::plot_run(*plot);
+    } catch (const std::invalid_argument&) {
+      throw;  // not a run directory: exit 2
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "rheodda: error: {}\n", e.what());  // gnuplot missing or failing, a file unreadable
+      throw CLI::RuntimeError(kExitFailure);
+    }
+    for (const auto& f : pictures) fmt::print("{}\n", f);
   });
 }
 

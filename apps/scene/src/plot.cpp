@@ -77,11 +77,24 @@ std::vector<std::string> plot_run(const PlotOptions& o) {
   if (o.times.empty()) {
     chosen = {0, frames.size() / 2, frames.size() - 1};
   } else {
+    const double first = frames.front().first, last = frames.back().first;
+    // Times closer than this to a frame's time are that frame (the .pvd holds %g-printed times).
+    const double same = 1e-9 * std::max({std::abs(first), std::abs(last), 1e-300});
     for (double t : o.times) {
       std::size_t best = 0;
       for (std::size_t k = 1; k < frames.size(); ++k)
         if (std::abs(frames[k].first - t) < std::abs(frames[best].first - t)) best = k;
       chosen.push_back(best);
+      if (!o.warn || std::abs(frames[best].first - t) <= same) continue;
+      if (t > last)
+        o.warn(fmt::format("--times {:g}: the run's frames end at t = {:g} {}; drawing the last frame (t = {:g} {})",
+                           t, last, T, last, T));
+      else if (t < first)
+        o.warn(fmt::format("--times {:g}: the run's frames start at t = {:g} {}; drawing the first frame", t,
+                           first, T));
+      else
+        o.warn(fmt::format("--times {:g}: no frame at that time; drawing the nearest, t = {:g} {}", t,
+                           frames[best].first, T));
     }
   }
   std::sort(chosen.begin(), chosen.end());

@@ -4,6 +4,7 @@
 // too small to see) and the history curves of history.csv.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,9 @@ struct PlotOptions {
   std::vector<double> times;   ///< draw the frames nearest these times [time]; empty: first, middle, last
   std::string format = "png";  ///< "png" or "svg"
   double scale = 0.0;          ///< displacement magnification; 0: automatic (1 unless displacements are tiny)
+  /// Receives each warning, e.g. a requested time after the run's last frame (the last frame
+  /// is drawn instead); `rheodda plot` prints them. Empty: warnings are not reported.
+  std::function<void(const std::string&)> warn;
 };
 
 /// Writes OUTDIR/plots/blocks_<frame>.<format> and OUTDIR/plots/history.<format>
