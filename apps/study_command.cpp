@@ -21,6 +21,7 @@ struct StudyArgs {
 };
 
 void study_command(const StudyArgs& args) {
+  require_readable(args.file);
   const study::StudyDescription s = study::load_study(args.file);
   study::StudyOptions opt;
   opt.out_dir = args.out.empty() ? "out/" + std::filesystem::path(args.file).stem().string() : args.out;

@@ -2,7 +2,10 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -192,10 +195,12 @@ StudyDescription parse_study(const std::string& text, const std::string& file) {
   s.title = root["title"] ? scalar_string(file, root["title"], "title") : fs::path(file).filename().string();
   if (!root["scene"]) fail(file, root, "scene", "missing key 'scene' (the base scene file)");
   s.scene = scalar_string(file, root["scene"], "scene");
+  s.scene_where = where_of(root["scene"]);
   if (fs::path(s.scene).is_relative()) s.scene = (fs::path(file).parent_path() / s.scene).lexically_normal().string();
 
   std::vector<Override> common;
   if (root["set"]) common = read_set(file, root["set"], "set");
+  s.common_count = common.size();
 
   const YAML::Node outs = root["outputs"];
   if (!outs) fail(file, root, "outputs", "missing key 'outputs' (history.csv columns, e.g. [block1_top.u])");
@@ -248,15 +253,40 @@ StudyDescription parse_study(const std::string& text, const std::string& file) {
 
 StudyDescription load_study(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneError(path, {}, "", "cannot read the study file");
+  if (!in) throw SceneError(path, {}, "", fmt::format("cannot open {}: {}", path, std::strerror(errno)));
   std::ostringstream b;
   b << in.rdbuf();
   return parse_study(b.str(), path);
 }
 
+std::string case_title(const std::string& base_title, const StudyCase& c, std::size_t common_count) {
+  std::vector<std::string> changes;
+  const std::size_t common = std::min(common_count, c.set.size());
+  auto describe = [&](const Override& o) {
+    bool removed = false;
+    try {
+      removed = YAML::Load(o.value_yaml).IsNull();
+    } catch (const YAML::Exception&) {
+    }
+    changes.push_back(removed ? o.key + " removed" : o.key + " = " + o.value_yaml);
+  };
+  for (std::size_t i = common; i < c.set.size(); ++i) describe(c.set[i]);
+  for (std::size_t i = 0; i < common; ++i) describe(c.set[i]);
+  if (changes.empty()) return fmt::format("{} [case {}]", base_title, c.name);
+  return fmt::format("{} [case {}: {}]", base_title, c.name, fmt::join(changes, ", "));
+}
+
 std::string case_scene_text(const StudyDescription& study, const std::string& base_text, const StudyCase& c) {
   YAML::Node root = YAML::Load(base_text);
   for (const auto& o : c.set) apply(root, o, study.file, fmt::format("cases[{}].set", c.name));
+  // A case scene is not the base scene: its title (run summary, summary.json, plots) says what changed.
+  bool own_title = false;
+  for (const auto& o : c.set) own_title = own_title || o.key == "title";
+  if (!own_title) {
+    const YAML::Node t = YAML::Load(base_text)["title"];
+    const std::string base = t && t.IsScalar() ? t.as<std::string>() : fs::path(study.scene).filename().string();
+    root["title"] = case_title(base, c, study.common_count);
+  }
   YAML::Emitter e;
   e << root;
   std::string head = fmt::format("# Case '{}' of the study {}: the scene {}", c.name, study.file, study.scene);
@@ -266,6 +296,12 @@ std::string case_scene_text(const StudyDescription& study, const std::string& ba
 
 std::vector<std::string> prepare_cases(const StudyDescription& study) {
   std::string base_text;
+  {
+    std::ifstream in(study.scene, std::ios::binary);
+    if (!in)
+      throw SceneError(study.file, study.scene_where, "scene",
+                       fmt::format("cannot open {}: {}", study.scene, std::strerror(errno)));
+  }
   try {
     base_text = scene::read_scene_text(study.scene);
     (void)scene::parse_scene(base_text, study.scene);  // the base scene's own faults are reported in its own file

@@ -136,4 +136,52 @@ BOOST_AUTO_TEST_CASE(rheodda_study_exits_2_on_a_bad_study_and_runs_nothing) {
   BOOST_TEST(run_rheodda("study " + (dir / "missing.yaml").string()).exit_code == 2);
 }
 
+BOOST_AUTO_TEST_CASE(a_case_scene_is_titled_by_the_base_title_and_the_case_changes) {
+  // The shipped phi sweep: every case removes the base's Burgers laws, so its title must not
+  // be the base scene's "...with Burgers creep on its joints (phi = 50 deg)" alone.
+  const auto s = st::load_study(source_path("examples/studies/toppling-phi.yaml"));
+  const auto texts = st::prepare_cases(s);
+  BOOST_TEST_REQUIRE(texts.size() == s.cases.size());
+  const auto phi33 = rheodda::scene::parse_scene(texts[0], "case phi33");
+  const std::string base = "Goodman toppling slope with Burgers creep on its joints (phi = 50 deg)";
+  BOOST_TEST(phi33.title ==
+             base + " [case phi33: joint_sets.base.friction_angle = 33, joint_sets.base.law removed, "
+                    "joint_sets.base.shear_stiffness = 1.0e8, joint_sets.anti_toppling.law removed, "
+                    "joint_sets.anti_toppling.shear_stiffness = 1.0e8, analysis.duration = 10, "
+                    "analysis.output_interval = 1, analysis.max_displacement_ratio = 0.0005]");
+  // Each case's title differs by its own change, listed first.
+  const auto phi55 = rheodda::scene::parse_scene(texts.back(), "case phi55");
+  BOOST_TEST(phi55.title.find(base + " [case phi55: joint_sets.base.friction_angle = 55, ") == 0u, phi55.title);
+
+  // A case without changes names itself; a case that sets `title` keeps its own.
+  const auto own = st::parse_study("scene: " + source_path("examples/sliding-block.yaml") +
+                                       "\noutputs: [centre.u]\ntimes: [0.01]\ncases:\n  - {name: plain}\n"
+                                       "  - {name: named, set: {title: My own title}}\n",
+                                   "own.yaml");
+  const std::string base_text = read_text(source_path("examples/sliding-block.yaml"));
+  const std::string sliding_title = rheodda::scene::parse_scene(base_text, "base").title;
+  BOOST_TEST(rheodda::scene::parse_scene(st::case_scene_text(own, base_text, own.cases[0]), "c").title ==
+             sliding_title + " [case plain]");
+  BOOST_TEST(rheodda::scene::parse_scene(st::case_scene_text(own, base_text, own.cases[1]), "c").title ==
+             "My own title");
+}
+
+BOOST_AUTO_TEST_CASE(a_missing_study_or_base_scene_is_named_with_the_reason_and_no_bogus_location) {
+  const fs::path dir = fresh_dir("missing");
+  const std::string missing = (dir / "missing.yaml").string();
+  const auto r = run_rheodda("study " + missing);
+  BOOST_TEST(r.exit_code == 2);
+  BOOST_TEST(r.output.find("rheodda: error: cannot open " + missing + ": No such file or directory") !=
+                 std::string::npos, r.output);
+  BOOST_TEST(r.output.find(":0:0") == std::string::npos, r.output);
+  // A base scene that cannot be opened: located at the study's `scene:` value (line 1, column 8).
+  const fs::path file = dir / "study.yaml";
+  std::ofstream(file) << "scene: nosuch.yaml\noutputs: [centre.u]\ntimes: [0.01]\ncases:\n  - {name: a}\n";
+  const auto b = run_rheodda("study " + file.string() + " -o " + (dir / "out").string());
+  BOOST_TEST(b.exit_code == 2);
+  BOOST_TEST(b.output.find(file.string() + ":1:8: scene: cannot open " + (dir / "nosuch.yaml").string() +
+                           ": No such file or directory") != std::string::npos, b.output);
+  BOOST_TEST(b.output.find(":0:0") == std::string::npos, b.output);
+}
+
 BOOST_AUTO_TEST_SUITE_END()

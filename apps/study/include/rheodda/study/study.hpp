@@ -40,10 +40,12 @@ struct StudyDescription {
   std::string file;                ///< the study file's path as given
   std::string title;               ///< `title:`; default: the file name
   std::string scene;               ///< base scene path (relative ones resolved against the study file's folder)
+  SourceLocation scene_where{};    ///< of the `scene:` value in the study file
   std::vector<std::string> outputs;  ///< history.csv columns, or `POINT.displacement` = hypot(POINT.u, POINT.v)
   std::vector<double> times;       ///< times the outputs are read at [scene time unit]; linear interpolation
   std::string plot;                ///< the output overlaid across cases in study.png; default: outputs[0]
   std::vector<StudyCase> cases;
+  std::size_t common_count = 0;    ///< the first common_count overrides of each case's `set` are the study's `set`
 };
 
 /// Reads and checks the study file (keys, types, names); throws SceneError with
@@ -53,12 +55,19 @@ StudyDescription parse_study(const std::string& text, const std::string& file);
 
 /// The base scene text with the case's overrides applied (YAML). Throws SceneError
 /// located at the override in the study file when a path does not resolve.
+/// Unless the case sets `title` itself, the case scene's title is the base scene's
+/// title (or file name) followed by the case's name and changes, case_title().
+/// The case's own changes come first, then the study's common `set`.
 std::string case_scene_text(const StudyDescription& study, const std::string& base_text, const StudyCase& c);
 
 /// Builds every case scene and validates it with the scene loader, and checks that
 /// every output names a column the case's history.csv will have. Returns the case
 /// scene texts in case order. Throws SceneError located in the study file.
 std::vector<std::string> prepare_cases(const StudyDescription& study);
+
+/// The title of a case scene: "BASE [case NAME: key = value, key removed, ...]", listing
+/// the case's own overrides first, then the study's common ones (docs/studies.md).
+std::string case_title(const std::string& base_title, const StudyCase& c, std::size_t common_count);
 
 struct StudyOptions {
   std::string out_dir;         ///< created if missing; cases go to out_dir/cases/NAME/
