@@ -9,11 +9,15 @@
 //
 // Run: build-*/bench/engine_bench            (about a minute in Release)
 //      build-*/bench/engine_bench 1000 10000 (chosen N only)
+//      build-*/bench/engine_bench --help      (options: --solver, --steps)
+#include <CLI/CLI.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 #include "rheodda/core/engine.hpp"
@@ -83,19 +87,36 @@ double slope(const std::vector<double>& x, const std::vector<double>& y) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  CLI::App app{
+      "engine_bench: DDA engine assembly and solve time per step of a brick wall without contacts, "
+      "against the number of blocks (docs/performance.md)"};
   std::vector<int> sizes{100, 1000, 10000, 100000};
-  if (argc > 1) {
-    sizes.clear();
-    for (int k = 1; k < argc; ++k) sizes.push_back(std::atoi(argv[k]));
+  std::string solver_name = "both";
+  int steps_given = 0;
+  app.add_option("BLOCKS", sizes, "Numbers of blocks N of the walls (default: 100 1000 10000 100000)")
+      ->check(CLI::Range(2, 10000000));
+  app.add_option("--solver", solver_name, "Solver to time")
+      ->check(CLI::IsMember({"cholmod", "pcg", "both"}))
+      ->capture_default_str();
+  app.add_option("--steps", steps_given, "Timed steps per wall after the first (default: 2e6/N within 5..2000)")
+      ->check(CLI::Range(1, 1000000));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;  // 2: bad arguments, as the rheodda command
   }
-  for (SolverKind solver : {SolverKind::cholmod, SolverKind::pcg}) {
+  std::vector<SolverKind> solvers;
+  if (solver_name != "pcg") solvers.push_back(SolverKind::cholmod);
+  if (solver_name != "cholmod") solvers.push_back(SolverKind::pcg);
+  for (SolverKind solver : solvers) {
     const char* name = solver == SolverKind::cholmod ? "cholmod" : "pcg";
     std::printf("solver %s\n", name);
     std::printf("%8s %10s %14s %14s %16s %16s\n", "blocks", "build_s", "assembly_ms", "solve_ms",
                 "first_assembly_ms", "first_solve_ms");
     std::vector<double> ns, assembly, solve;
     for (int n : sizes) {
-      const int steps = std::clamp(2000000 / n, 5, 2000);
+      const int steps = steps_given > 0 ? steps_given : std::clamp(2000000 / n, 5, 2000);
       const Timing t = measure(n, solver, steps);
       std::printf("%8d %10.3f %14.4f %14.4f %16.4f %16.4f\n", n, t.build, 1e3 * t.assembly,
                   1e3 * t.solve, 1e3 * t.first_assembly, 1e3 * t.first_solve);
