@@ -35,6 +35,7 @@ from ._rheodda import (  # noqa: F401  (re-exported API)
     StepReport,
     CreepData,
     ParameterEstimate,
+    FixedCombination,
     laws,
     law,
     creep_curve,
@@ -54,7 +55,7 @@ __all__ = [
     "Error", "SceneError", "LawError", "DataError", "FitError", "ModelError", "RunError",
     "Law", "PythonLaw", "StepConstants", "UnitStepConstants", "laws", "law", "law_info",
     "creep_curve", "relaxation_curve", "exact_displacement", "exact_force", "law_step",
-    "CreepData", "read_creep_csv", "creep_data", "FitResult", "fit", "fit_all",
+    "CreepData", "read_creep_csv", "creep_data", "FitResult", "FixedCombination", "fit", "fit_all",
     "Scene", "load_scene", "parse_scene", "scene_from_dict", "Simulation", "StepReport",
     "run", "run_study", "to_dataframe",
 ]
@@ -89,9 +90,13 @@ class FitResult:
     values, errors: dicts by parameter name (registry units); covariance: the
     covariance of the values by the delta method from the fit's log-parameter
     covariance, cov_ij = corr_ij * err_i * err_j (``errors`` are the
-    delta-method standard errors v_i * sd(ln v_i)); identifiable: dict of
-    bools; aic, bic, rss, r2, rmse, points; warnings; fitted (model at the data
-    points); yaml: the law block `rheodda fit --yaml` writes.
+    delta-method standard errors v_i * sd(ln v_i); NaN in the rows and columns
+    of parameters that are not identifiable); identifiable: dict of bools,
+    reasons: why not; combinations: the combinations the data fix although
+    their parts are not identifiable; aic, bic, rss, r2 (NaN without spread),
+    rmse, points; minimum_certain, minimum_note, singular_values; warnings;
+    fitted (model at the data points); yaml: the law block `rheodda fit
+    --yaml` writes.
     """
 
     def __init__(self, raw, data):
@@ -104,13 +109,17 @@ class FitResult:
         self.errors = {p.name: p.std_error for p in self.parameters}
         self.units = {p.name: p.unit for p in self.parameters}
         self.identifiable = {p.name: p.identifiable for p in self.parameters}
+        self.reasons = {p.name: p.reason for p in self.parameters if p.reason}
+        self.combinations = list(raw.combinations)
         self.correlation = _np.asarray(raw.correlation)
         err = _np.array([p.std_error for p in self.parameters])
         self.covariance = self.correlation * _np.outer(err, err)
         for attr in ("points", "rss", "r2", "rmse", "aic", "bic", "iterations", "starts",
-                     "starts_agreeing", "converged", "warnings"):
+                     "starts_agreeing", "structured_starts", "converged", "minimum_certain", "minimum_note",
+                     "warnings"):
             setattr(self, attr, getattr(raw, attr))
         self.fitted = _np.asarray(raw.fitted)
+        self.singular_values = _np.asarray(raw.singular_values)
 
     def make_law(self):
         """The fitted law, ready for curves or a scene's joint set."""
@@ -118,28 +127,29 @@ class FitResult:
 
     @property
     def yaml(self):
-        """The YAML law block of `rheodda fit --yaml` (paste under a joint set)."""
+        """The YAML law block of `rheodda fit --yaml` (paste under a joint set); the same
+        text as apps/fit_command.cpp write_yaml (tests/python/test_fit.py compares them)."""
+        r2 = "{:.6f}".format(self.r2) if _math.isfinite(self.r2) else "undefined"
         lines = [
-            "# rheodda fit: law {} fitted to {} ({} points, R^2 {:.6f})".format(
-                self.law, self.data.source, self.points, self.r2),
+            "# rheodda fit: law {} fitted to {} ({} points, R^2 {})".format(
+                self.law, self.data.source, self.points, r2),
             "# paste under a joint set of a scene; the comments give the standard errors",
-            "law:",
-            "  name: {}".format(self.law),
         ]
+        if not self.minimum_certain:
+            lines.append("# warning: the minimum is not certain: {}".format(self.minimum_note))
+        for c in self.combinations:
+            lines.append("# fixed by the data: {} = {:.7g} +- {:.3g} {}".format(
+                c.expression, c.value, c.std_error, c.unit))
+        lines += ["law:", "  name: {}".format(self.law)]
         for p in self.parameters:
             err = "{:.3g}".format(p.std_error) if p.identifiable else "(not identifiable)"
-            lines.append("  {}: {}   # +- {} {}".format(p.name, _fmt_g(p.value, 7), err, p.unit))
+            lines.append("  {}: {:.7g}   # +- {} {}".format(p.name, p.value, err, p.unit))
         return "\n".join(lines) + "\n"
 
     def __repr__(self):
         return "<FitResult {}: {} R^2 {:.6f} AIC {:.4g} BIC {:.4g}>".format(
             self.law, ", ".join("{}={:.6g}".format(k, v) for k, v in self.values.items()),
             self.r2, self.aic, self.bic)
-
-
-def _fmt_g(value, digits):
-    text = "{:.{}g}".format(value, digits)
-    return text
 
 
 def _creep_data(data, t, stress, time_column, displacement_column, stress_column):

@@ -64,10 +64,24 @@ void bind_fit(py::module_& m) {
       .def_readonly("value", &fit::ParameterEstimate::value)
       .def_readonly("std_error", &fit::ParameterEstimate::std_error)
       .def_readonly("identifiable", &fit::ParameterEstimate::identifiable)
+      .def_readonly("reason", &fit::ParameterEstimate::reason)
       .def("__repr__", [](const fit::ParameterEstimate& p) {
         return "<" + p.name + " = " + py::repr(py::float_(p.value)).cast<std::string>() + " +- " +
                py::repr(py::float_(p.std_error)).cast<std::string>() + " " + p.unit +
                (p.identifiable ? "" : " (not identifiable)") + ">";
+      });
+
+  py::class_<fit::FixedCombination>(m, "FixedCombination",
+                                    "A combination of parameters the data fix although some of its parts are "
+                                    "not identifiable (docs/fitting.md, \"Identifiability\")")
+      .def_readonly("expression", &fit::FixedCombination::expression)
+      .def_readonly("unit", &fit::FixedCombination::unit)
+      .def_readonly("value", &fit::FixedCombination::value)
+      .def_readonly("std_error", &fit::FixedCombination::std_error)
+      .def_readonly("parameters", &fit::FixedCombination::parameters)
+      .def("__repr__", [](const fit::FixedCombination& c) {
+        return "<" + c.expression + " = " + py::repr(py::float_(c.value)).cast<std::string>() + " +- " +
+               py::repr(py::float_(c.std_error)).cast<std::string>() + " " + c.unit + ">";
       });
 
   py::class_<fit::FitResult>(m, "_FitResult")
@@ -90,6 +104,11 @@ void bind_fit(py::module_& m) {
       .def_readonly("starts", &fit::FitResult::starts)
       .def_readonly("starts_agreeing", &fit::FitResult::starts_agreeing)
       .def_readonly("converged", &fit::FitResult::converged)
+      .def_readonly("structured_starts", &fit::FitResult::structured_starts)
+      .def_readonly("minimum_certain", &fit::FitResult::minimum_certain)
+      .def_readonly("minimum_note", &fit::FitResult::minimum_note)
+      .def_property_readonly("singular_values", [](const fit::FitResult& r) { return to_numpy(r.singular_values); })
+      .def_readonly("combinations", &fit::FitResult::combinations)
       .def_readonly("warnings", &fit::FitResult::warnings)
       .def_property_readonly("fitted", [](const fit::FitResult& r) { return to_numpy(r.fitted); });
 

@@ -66,3 +66,23 @@ def test_bad_data_raises_the_command_line_message(root, rheodda_binary, tmp_path
     assert cli.stderr.strip() == "rheodda: error: " + str(e.value)
     with pytest.raises(rheodda.FitError):
         rheodda.fit("burgers", [0.1, 0.2], t=[0.0, 1.0], stress=0.232)  # fewer points than parameters + 1
+
+
+def test_nishihara_under_one_stress_reports_what_the_data_fix(root, rheodda_binary, tmp_path):
+    # One stress level: the Bingham part creeps at (F - Fs)/eta3, so only that combination is fixed.
+    csv_path = str(root / "examples" / "creep-data" / "table1-row1.csv")
+    r = rheodda.fit("nishihara", csv_path, stress=0.232)
+    assert not r.identifiable["eta3"] and not r.identifiable["Fs"]
+    assert r.identifiable["E1"] and r.identifiable["E2"] and r.identifiable["eta2"]
+    assert set(r.reasons) == {"eta3", "Fs"}
+    (c,) = r.combinations
+    assert c.expression == "(0.232 - Fs)/eta3" and set(c.parameters) == {"eta3", "Fs"}
+    assert c.value == pytest.approx((0.232 - r.values["Fs"]) / r.values["eta3"], rel=1e-12)
+    # the seed's Burgers creeps at 0.232/eta1 in the long run: the same rate
+    assert c.value == pytest.approx(0.232 / TABLE1["eta1"], rel=0.01)
+    cov = r.covariance
+    assert np.isnan(cov[3:, :]).all() and np.isfinite(cov[:3, :3]).all()
+    yaml = tmp_path / "law.yaml"
+    subprocess.run([rheodda_binary, "fit", csv_path, "--law", "nishihara", "--stress", "0.232", "--yaml", str(yaml)],
+                   check=True, capture_output=True)
+    assert r.yaml == yaml.read_text()
