@@ -16,6 +16,7 @@
 // the classic default search alone (5 starts, as before the variable
 // projection) ends in a distinct minimum (0.1 % above the best), and the
 // "minimum not certain" warnings. Prints a Markdown table.
+// --points N: the speed table for that size only (for profiling).
 // Sample runs: build-NAME/bench/fit_bench
 //              build-NAME/bench/fit_bench --global --draws 300 --reference-starts 100
 #include <fmt/format.h>
@@ -76,7 +77,7 @@ std::vector<double> even_times(double t_end, std::size_t points) {
   return t;
 }
 
-int speed() {
+int speed(std::size_t only_points) {
   const auto& burgers = laws::LawRegistry::builtin().get("burgers");
   const laws::StagedHistory h({{0.0, 0.232}});
   const laws::ParameterValues truth{{"E1", 26.87}, {"E2", 192.43}, {"eta1", 34807.72}, {"eta2", 2141.23}};
@@ -84,6 +85,7 @@ int speed() {
   fmt::print("{:>8} {:>9} {:>7} {:>11} {:>12} {:>12}\n", "points", "restarts", "starts", "iterations",
              "median [ms]", "min [ms]");
   for (const std::size_t n : {std::size_t{1000}, std::size_t{100000}, std::size_t{1000000}}) {
+    if (only_points && n != only_points) continue;
     const auto data = curve("burgers", truth, h, even_times(200.0, n), 2e-5, 42);
     for (const int restarts : {0, 4}) {
       fit::FitOptions opt;
@@ -182,13 +184,16 @@ int global(int draws, int reference_starts) {
 int main(int argc, char** argv) {
   bool run_global = false;
   int draws = 300, reference_starts = 100;
+  std::size_t only_points = 0;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--global")) run_global = true;
     else if (!std::strcmp(argv[i], "--draws") && i + 1 < argc) draws = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--points") && i + 1 < argc)
+      only_points = static_cast<std::size_t>(std::atol(argv[++i]));
     else if (!std::strcmp(argv[i], "--reference-starts") && i + 1 < argc)
       reference_starts = std::atoi(argv[++i]);
     else {
-      fmt::print(stderr, "usage: fit_bench [--global [--draws N] [--reference-starts M]]\n");
+      fmt::print(stderr, "usage: fit_bench [--points 1000|100000|1000000] | [--global [--draws N] [--reference-starts M]]\n");
       return 2;
     }
   }
@@ -196,5 +201,5 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "fit_bench: --draws and --reference-starts must be >= 1\n");
     return 2;
   }
-  return run_global ? global(draws, reference_starts) : speed();
+  return run_global ? global(draws, reference_starts) : speed(only_points);
 }

@@ -406,6 +406,149 @@ struct GslFree {
 
 std::string fmt_g(double v) { return fmt::format("{:.4g}", v); }
 
+// ---- The nonlinear polish (GSL) on one data set -------------------------------
+// Every stride-th point of each stage (its first and last always), at most
+// about max_points in all: the data the reference starts run on for long records.
+CreepData subsample(const CreepData& d, std::size_t max_points) {
+  const std::size_t n = d.t.size();
+  const std::size_t stride = (n + max_points - 1) / max_points;
+  CreepData s;
+  s.source = d.source;
+  s.history = d.history;
+  s.time_column = d.time_column;
+  s.displacement_column = d.displacement_column;
+  s.stress_column = d.stress_column;
+  for (const auto& st : d.stages) {
+    StageInfo si{st.t, st.stress, s.t.size(), 0};
+    for (std::size_t j = st.first; j < st.first + st.count; ++j)
+      if ((j - st.first) % stride == 0 || j + 1 == st.first + st.count) {
+        s.t.push_back(d.t[j]);
+        s.displacement.push_back(d.displacement[j]);
+        s.line.push_back(j < d.line.size() ? d.line[j] : 0);
+      }
+    si.count = s.t.size() - si.first;
+    s.stages.push_back(si);
+  }
+  return s;
+}
+
+// GSL's trust-region solver (Levenberg-Marquardt steps, modified Cholesky)
+// set up for one data set; not copyable (GSL holds a pointer to the problem).
+class Solver {
+ public:
+  Problem pr;
+
+  Solver(const laws::LawInfo& info, const CreepData& data, const std::optional<SeriesStructure>& structure,
+         double inv_scale) {
+    const std::size_t n = data.t.size(), np = info.parameters.size();
+    pr.info = &info;
+    pr.data = &data;
+    pr.structure = structure;
+    pr.n = n;
+    pr.np = np;
+    pr.inv_scale = inv_scale;
+    pr.values.resize(np);
+    pr.cached_x.assign(np, std::numeric_limits<double>::quiet_NaN());
+    pr.cached_jac.assign(n * np, 0.0);
+    double flow = 0.0;
+    for (std::size_t k = 0; k < data.stages.size(); ++k) {
+      pr.stage_t.push_back(data.stages[k].t);
+      pr.stage_f.push_back(data.stages[k].stress);
+      pr.flow_before.push_back(flow);
+      if (k + 1 < data.stages.size())
+        flow += data.stages[k].stress * (data.stages[k + 1].t - data.stages[k].t);
+    }
+    fdf_.f = residual_cb;
+    fdf_.df = pr.structure ? jacobian_cb : nullptr;  // nullptr: GSL's finite differences
+    fdf_.fvv = nullptr;
+    fdf_.n = n;
+    fdf_.p = np;
+    fdf_.params = &pr;
+    gsl_multifit_nlinear_parameters params = gsl_multifit_nlinear_default_parameters();
+    params.trs = gsl_multifit_nlinear_trs_lm;
+    // Modified Cholesky on the normal equations: a quarter faster than QR here,
+    // and robust when a parameter is unidentifiable (J^T J near singular). The
+    // covariance comes from an SVD of J (identify()).
+    params.solver = gsl_multifit_nlinear_solver_mcholesky;
+    w_.reset(gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &params, n, np));
+    x_.reset(gsl_vector_alloc(np));
+    fv_.reset(gsl_vector_alloc(n));
+  }
+  Solver(const Solver&) = delete;
+  Solver& operator=(const Solver&) = delete;
+
+  struct Outcome {
+    double rss = std::numeric_limits<double>::infinity();  // scaled
+    std::vector<double> position;                           // log parameters
+    int status = GSL_FAILURE;
+    int iterations = 0;
+  };
+
+  // From `start` (log parameters): the loop of gsl_multifit_nlinear_driver
+  // (step tolerance 1e-10 on the log parameters), except that it stops as soon
+  // as the sum of squares reaches stop_at (relative 1e-9; stop_at < 0: never):
+  // the start has found that minimum. With `refine`, the linear part is then
+  // re-solved exactly at the polished retardation times (varpro_refine):
+  // GSL stops near, not on, a threshold equal to a stress level.
+  Outcome polish(const std::vector<double>& start, double stop_at, double floor, const FitOptions& options,
+                 bool refine) {
+    const std::size_t np = pr.np;
+    for (std::size_t k = 0; k < np; ++k) gsl_vector_set(x_.get(), k, start[k]);
+    gsl_multifit_nlinear_init(x_.get(), &fdf_, w_.get());
+    auto rss_now = [&] {
+      double c = 0.0;
+      gsl_blas_ddot(gsl_multifit_nlinear_residual(w_.get()), gsl_multifit_nlinear_residual(w_.get()), &c);
+      return c;
+    };
+    int status = GSL_CONTINUE, info_code = 0;
+    for (int iter = 0; iter < options.max_iterations && status == GSL_CONTINUE; ++iter) {
+      const int step = gsl_multifit_nlinear_iterate(w_.get());
+      if (step == GSL_ENOPROG && iter == 0) {
+        status = GSL_ENOPROG;
+        break;
+      }
+      status = gsl_multifit_nlinear_test(1e-10, 1e-15, 0.0, &info_code, w_.get());
+      if (status == GSL_CONTINUE && stop_at >= 0 && rss_now() <= stop_at * (1.0 + 1e-9) + floor)
+        status = GSL_SUCCESS;
+    }
+    if (status == GSL_CONTINUE) status = GSL_EMAXITER;
+    Outcome o;
+    o.rss = rss_now();
+    o.status = status;
+    o.iterations = static_cast<int>(gsl_multifit_nlinear_niter(w_.get()));
+    const gsl_vector* xs = gsl_multifit_nlinear_position(w_.get());
+    o.position.resize(np);
+    for (std::size_t k = 0; k < np; ++k) o.position[k] = gsl_vector_get(xs, k);
+    if (refine && pr.structure) {
+      std::vector<double> v(np);
+      for (std::size_t k = 0; k < np; ++k) v[k] = std::exp(o.position[k]);
+      if (detail::varpro_refine(*pr.structure, *pr.data, pr.inv_scale, v)) {
+        for (std::size_t k = 0; k < np; ++k) gsl_vector_set(x_.get(), k, std::log(v[k]));
+        residual_cb(x_.get(), &pr, fv_.get());
+        double c = 0.0;
+        gsl_blas_ddot(fv_.get(), fv_.get(), &c);
+        if (c < o.rss) {
+          o.rss = c;
+          for (std::size_t k = 0; k < np; ++k) o.position[k] = std::log(v[k]);
+        }
+      }
+    }
+    return o;
+  }
+
+  // The workspace initialised at `position` (log parameters): residuals and Jacobian there.
+  gsl_multifit_nlinear_workspace* at(const std::vector<double>& position) {
+    for (std::size_t k = 0; k < pr.np; ++k) gsl_vector_set(x_.get(), k, position[k]);
+    gsl_multifit_nlinear_init(x_.get(), &fdf_, w_.get());
+    return w_.get();
+  }
+
+ private:
+  gsl_multifit_nlinear_fdf fdf_{};
+  std::unique_ptr<gsl_multifit_nlinear_workspace, GslFree> w_;
+  std::unique_ptr<gsl_vector, GslFree> x_, fv_;
+};
+
 // ---- Identifiability: what the data fix and what they do not ----------------
 // A combination of parameters whose value the data may fix when its parts are
 // not identifiable: value q and gradient dq/dln p.
@@ -673,127 +816,86 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
     throw FitError(info.name,
                    fmt::format("{}: the displacement is zero everywhere; nothing to fit", data.source));
 
-  Problem pr;
-  pr.info = &info;
-  pr.data = &data;
-  pr.structure = probe_structure(info);
-  pr.n = n;
-  pr.np = np;
-  pr.inv_scale = 1.0 / dmax;
-  pr.values.resize(np);
-  pr.cached_x.assign(np, std::numeric_limits<double>::quiet_NaN());
-  pr.cached_jac.assign(n * np, 0.0);
-  double flow = 0.0;
-  for (std::size_t k = 0; k < data.stages.size(); ++k) {
-    pr.stage_t.push_back(data.stages[k].t);
-    pr.stage_f.push_back(data.stages[k].stress);
-    pr.flow_before.push_back(flow);
-    if (k + 1 < data.stages.size())
-      flow += data.stages[k].stress * (data.stages[k + 1].t - data.stages[k].t);
-  }
+  const std::optional<SeriesStructure> structure = probe_structure(info);
+  Solver full(info, data, structure, 1.0 / dmax);
+  Problem& pr = full.pr;
 
   const CurveFeatures features = analyse_curve(data);
   const std::vector<double> base = pr.structure ? series_start(*pr.structure, np, features)
                                                 : generic_start(info, features);
-
-  gsl_multifit_nlinear_fdf fdf;
-  fdf.f = residual_cb;
-  fdf.df = pr.structure ? jacobian_cb : nullptr;  // nullptr: GSL's finite differences
-  fdf.fvv = nullptr;
-  fdf.n = n;
-  fdf.p = np;
-  fdf.params = &pr;
-  gsl_multifit_nlinear_parameters params = gsl_multifit_nlinear_default_parameters();
-  params.trs = gsl_multifit_nlinear_trs_lm;
-  // Modified Cholesky on the normal equations: a quarter faster than QR here,
-  // and robust when a parameter is unidentifiable (J^T J near singular). The
-  // covariance below comes from an SVD of J.
-  params.solver = gsl_multifit_nlinear_solver_mcholesky;
-  std::unique_ptr<gsl_multifit_nlinear_workspace, GslFree> w(
-      gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &params, n, np));
-  std::unique_ptr<gsl_vector, GslFree> x(gsl_vector_alloc(np));
-
-  // The starts: first those of the variable-projection search (varpro.hpp),
-  // then the classic ones (the curve-derived start and `restarts` variations
-  // of it), which serve as a reference: if they find a lower minimum than the
-  // structured search, the minimum is reported as not certain.
-  struct Start {
-    std::vector<double> values;
-    bool structured = false;
-  };
-  std::vector<Start> starts;
-  if (pr.structure && options.structured_search) {
-    detail::VarProSettings vs;
-    vs.per_decade = std::max(options.grid_per_decade, 1);
-    for (auto& v : detail::varpro_starts(*pr.structure, np, data, pr.inv_scale, vs))
-      starts.push_back({std::move(v.values), true});
-  }
-  const int classic = 1 + std::max(options.restarts, 0);
-  for (int r = 0; r < classic; ++r)
-    starts.push_back({r == 0 ? base : restart_start(base, pr.structure, r, features.f_max), false});
+  const bool refine = pr.structure && options.structured_search;
 
   // Sums of squares closer than `floor` are the same: a scaled residual of
   // 1e-10 rms (1e-10 of the largest displacement) is rounding, not fit.
   const double floor = static_cast<double>(n) * 1e-20;
-  std::vector<double> best_x(np), pos(np), rss_of_start;
-  std::unique_ptr<gsl_vector, GslFree> fv(gsl_vector_alloc(n));
+  std::vector<double> best_x(np);
   double best_rss = std::numeric_limits<double>::infinity();
   double structured_rss = std::numeric_limits<double>::infinity();
-  int best_iter = 0, best_status = GSL_FAILURE, structured = 0;
-  for (std::size_t r = 0; r < starts.size(); ++r) {
-    const auto& start = starts[r].values;
-    for (std::size_t k = 0; k < np; ++k) gsl_vector_set(x.get(), k, std::log(start[k]));
-    gsl_multifit_nlinear_init(x.get(), &fdf, w.get());
-    // The loop of gsl_multifit_nlinear_driver (step tolerance 1e-10 on the log
-    // parameters), except that a later start stops as soon as it reaches the
-    // best sum of squares found so far: it has found the same minimum.
-    auto rss_now = [&] {
-      double c = 0.0;
-      gsl_blas_ddot(gsl_multifit_nlinear_residual(w.get()), gsl_multifit_nlinear_residual(w.get()), &c);
-      return c;
-    };
-    int status = GSL_CONTINUE, info_code = 0;
-    for (int iter = 0; iter < options.max_iterations && status == GSL_CONTINUE; ++iter) {
-      const int step = gsl_multifit_nlinear_iterate(w.get());
-      if (step == GSL_ENOPROG && iter == 0) {
-        status = GSL_ENOPROG;
-        break;
-      }
-      status = gsl_multifit_nlinear_test(1e-10, 1e-15, 0.0, &info_code, w.get());
-      if (status == GSL_CONTINUE && r > 0 && rss_now() <= best_rss * (1.0 + 1e-12) + floor)
-        status = GSL_SUCCESS;
-    }
-    if (status == GSL_CONTINUE) status = GSL_EMAXITER;
-    double chisq = rss_now();
-    const gsl_vector* xs = gsl_multifit_nlinear_position(w.get());
-    for (std::size_t k = 0; k < np; ++k) pos[k] = gsl_vector_get(xs, k);
-    // The linear part re-solved exactly at the polished retardation times
-    // (varpro_refine): GSL stops near, not on, a threshold equal to a stress level.
-    if (pr.structure && options.structured_search) {
-      std::vector<double> v(np);
-      for (std::size_t k = 0; k < np; ++k) v[k] = std::exp(pos[k]);
-      if (detail::varpro_refine(*pr.structure, data, pr.inv_scale, v)) {
-        for (std::size_t k = 0; k < np; ++k) gsl_vector_set(x.get(), k, std::log(v[k]));
-        residual_cb(x.get(), &pr, fv.get());
-        double c = 0.0;
-        gsl_blas_ddot(fv.get(), fv.get(), &c);
-        if (c < chisq) {
-          chisq = c;
-          for (std::size_t k = 0; k < np; ++k) pos[k] = std::log(v[k]);
-        }
-      }
-    }
-    rss_of_start.push_back(chisq);
-    if (starts[r].structured) {
-      ++structured;
-      if (std::isfinite(chisq)) structured_rss = std::min(structured_rss, chisq);
-    }
+  int best_iter = 0, best_status = GSL_FAILURE, structured = 0, starts_total = 0, agreeing_sample = 0;
+  std::vector<double> rss_full;  // final RSS of the starts run on all points
+  bool reference_lower = false;  // a classic start found a lower minimum than the structured search
+  auto consider = [&](const Solver::Outcome& o, bool first) {
     // A later start must improve by more than rounding.
-    if (std::isfinite(chisq) && (r == 0 || chisq < best_rss * (1.0 - 1e-9) - floor)) {
-      best_rss = chisq;
-      best_iter = static_cast<int>(gsl_multifit_nlinear_niter(w.get()));
-      best_status = status;
-      best_x = pos;
+    if (std::isfinite(o.rss) && (first || o.rss < best_rss * (1.0 - 1e-9) - floor)) {
+      best_rss = o.rss;
+      best_iter = o.iterations;
+      best_status = o.status;
+      best_x = o.position;
+      return true;
+    }
+    return false;
+  };
+  auto logs = [](const std::vector<double>& v) {
+    std::vector<double> l(v.size());
+    for (std::size_t k = 0; k < v.size(); ++k) l[k] = std::log(v[k]);
+    return l;
+  };
+
+  // 1. The starts of the variable-projection search (varpro.hpp), polished on all points.
+  if (refine) {
+    detail::VarProSettings vs;
+    vs.per_decade = std::max(options.grid_per_decade, 1);
+    for (auto& v : detail::varpro_starts(*pr.structure, np, data, pr.inv_scale, vs)) {
+      const auto o = full.polish(logs(v.values), starts_total > 0 ? best_rss : -1.0, floor, options, refine);
+      consider(o, starts_total == 0);
+      ++starts_total;
+      ++structured;
+      rss_full.push_back(o.rss);
+      if (std::isfinite(o.rss)) structured_rss = std::min(structured_rss, o.rss);
+    }
+  }
+  // 2. The classic starts (the curve-derived one and `restarts` variations of
+  // it): a reference. On more than kReferencePoints points they run on an even
+  // subsample (every stride-th point of each stage), against the best minimum
+  // polished on that subsample; a start that finds a lower one there is then
+  // polished on all points.
+  const int classic = 1 + std::max(options.restarts, 0);
+  std::vector<std::vector<double>> classic_starts;
+  for (int r = 0; r < classic; ++r)
+    classic_starts.push_back(logs(r == 0 ? base : restart_start(base, pr.structure, r, features.f_max)));
+  constexpr std::size_t kReferencePoints = 2000;
+  if (structured > 0 && std::isfinite(best_rss) && n > kReferencePoints) {
+    const CreepData sub = subsample(data, kReferencePoints);
+    Solver small(info, sub, structure, 1.0 / dmax);
+    const double floor_sub = static_cast<double>(sub.t.size()) * 1e-20;
+    const double level = small.polish(best_x, -1.0, floor_sub, options, refine).rss;
+    for (const auto& start : classic_starts) {
+      const auto o = small.polish(start, level, floor_sub, options, refine);
+      ++starts_total;
+      if (std::abs(o.rss - level) <= 1e-6 * level + floor_sub) ++agreeing_sample;
+      else if (o.rss < level * (1.0 - 1e-6) - floor_sub) {
+        const auto o2 = full.polish(o.position, -1.0, floor, options, refine);
+        rss_full.push_back(o2.rss);
+        reference_lower = consider(o2, false) || reference_lower;
+      }
+    }
+  } else {
+    for (const auto& start : classic_starts) {
+      const auto o = full.polish(start, starts_total > 0 ? best_rss : -1.0, floor, options, refine);
+      rss_full.push_back(o.rss);
+      const bool lower = consider(o, starts_total == 0);
+      reference_lower = reference_lower || (lower && structured > 0);
+      ++starts_total;
     }
   }
   if (!std::isfinite(best_rss))
@@ -818,15 +920,14 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
   }
 
   // Residuals and Jacobian at the best point.
-  for (std::size_t k = 0; k < np; ++k) gsl_vector_set(x.get(), k, best_x[k]);
-  gsl_multifit_nlinear_init(x.get(), &fdf, w.get());
-  std::vector<double> fitted_scaled(gsl_multifit_nlinear_residual(w.get())->data,
-                                    gsl_multifit_nlinear_residual(w.get())->data + n);
+  gsl_multifit_nlinear_workspace* w = full.at(best_x);
+  std::vector<double> fitted_scaled(gsl_multifit_nlinear_residual(w)->data,
+                                    gsl_multifit_nlinear_residual(w)->data + n);
 
   FitResult res;
   res.law = info.name;
   res.points = n;
-  res.starts = static_cast<int>(starts.size());
+  res.starts = starts_total;
   res.structured_starts = structured;
   res.iterations = best_iter;
   res.converged = best_status == GSL_SUCCESS || best_status == GSL_ENOPROG;
@@ -846,11 +947,11 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
   const double log_mse = std::log(std::max(res.rss / nd, std::numeric_limits<double>::min()));
   res.aic = nd * log_mse + 2.0 * k;
   res.bic = nd * log_mse + k * std::log(nd);
-  for (double rs : rss_of_start)
-    res.starts_agreeing += std::abs(rs - best_rss) <= 1e-6 * best_rss + floor;
+  res.starts_agreeing = agreeing_sample;
+  for (double rs : rss_full) res.starts_agreeing += std::abs(rs - best_rss) <= 1e-6 * best_rss + floor;
 
   // Is the minimum certain? (docs/fitting.md, "When the minimum is not certain")
-  if (structured > 0 && best_rss < structured_rss * (1.0 - 1e-6) - floor) {
+  if (structured > 0 && (reference_lower || best_rss < structured_rss * (1.0 - 1e-6) - floor)) {
     res.minimum_certain = false;
     res.minimum_note = fmt::format(
         "the multi-start reference found a lower sum of squares than the variable-projection "
@@ -879,7 +980,7 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
   // Identifiability and standard errors from the SVD of the Jacobian (identify()).
   std::vector<double> cov;
   {
-    const gsl_matrix* J = gsl_multifit_nlinear_jac(w.get());
+    const gsl_matrix* J = gsl_multifit_nlinear_jac(w);
     std::unique_ptr<gsl_matrix, GslFree> jc(gsl_matrix_alloc(n, np));
     gsl_matrix_memcpy(jc.get(), J);
     const double s = std::sqrt(best_rss / (nd - k));  // residual standard deviation (scaled)
