@@ -107,6 +107,7 @@ class Simulation {
   /// Runs until `end_time` or until `max_steps` more steps are accepted, whichever comes first.
   void run(const py::object& self, double end_time, long max_steps) {
     if (failed_) throw RunFailure("the simulation failed earlier (" + failure_ + "); build a new one");
+    if (stepping_) throw InputError("step() and run() cannot be called from the step callback");
     long done = 0;
     std::optional<py::error_already_set> python_error;
     std::string failure;

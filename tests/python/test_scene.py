@@ -209,9 +209,9 @@ def test_ctrl_c_interrupts_between_steps(yaml_scene):
 def test_run_stops_on_ctrl_c_with_a_checkpoint(tmp_path):
     import json
     import threading
-    # 40 000 steps of the shear test: seconds of work, interrupted after 0.3 s
+    # 200 000 steps of the shear test (4.5 s here), interrupted after 0.3 s
     long = copy.deepcopy(SHEAR_TEST)
-    long["analysis"].update(dt=0.005, output_interval=20)
+    long["analysis"].update(dt=0.001, output_interval=20)
     scene = rheodda.scene_from_dict(long)
     timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))
     timer.start()
@@ -221,7 +221,7 @@ def test_run_stops_on_ctrl_c_with_a_checkpoint(tmp_path):
     finally:
         timer.cancel()
     summary = json.loads((tmp_path / "out" / "summary.json").read_text())
-    assert summary["status"] == "interrupted" and 0 < summary["steps"] < 40000
+    assert summary["status"] == "interrupted" and 0 < summary["steps"] < 200000
     assert (tmp_path / "out" / "checkpoint.json").exists()
 
 
@@ -249,3 +249,13 @@ def test_long_calls_release_the_gil(yaml_scene, tmp_path):
         thread.join()
     assert sim.step_count == 10000
     assert count["n"] > 100
+
+
+def test_the_callback_cannot_step_the_simulation(yaml_scene):
+    def nested(sim, report):
+        sim.step()
+
+    sim = rheodda.Simulation(yaml_scene, callback=nested)
+    with pytest.raises(rheodda.Error, match="cannot be called from the step callback"):
+        sim.step(3)
+    assert sim.step_count == 1 and not sim.failed
