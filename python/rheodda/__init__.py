@@ -197,8 +197,22 @@ def scene_from_dict(scene, file="<dict>"):
     file, so every check and every error message is the file's; error lines
     refer to that text (``Scene.text``), one key per line.
     """
-    text = _json.dumps(scene, indent=1, allow_nan=False)
+    text = _json.dumps(_plain(scene), indent=1, allow_nan=False)
     return parse_scene(text, file)
+
+
+def _plain(value):
+    """The scene as JSON values: numpy numbers and arrays as numbers and lists, and NaN and
+    infinities as YAML's .nan and .inf, so that the loader refuses them with their key."""
+    if hasattr(value, "tolist") and not isinstance(value, (str, bytes)):
+        value = value.tolist()
+    if isinstance(value, dict):
+        return {k: _plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    if isinstance(value, float) and not _math.isfinite(value):
+        return ".nan" if _math.isnan(value) else (".inf" if value > 0 else "-.inf")
+    return value
 
 
 class Simulation:

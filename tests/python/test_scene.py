@@ -259,3 +259,18 @@ def test_the_callback_cannot_step_the_simulation(yaml_scene):
     with pytest.raises(rheodda.Error, match="cannot be called from the step callback"):
         sim.step(3)
     assert sim.step_count == 1 and not sim.failed
+
+
+def test_dict_scene_takes_numpy_values():
+    d = copy.deepcopy(SHEAR_TEST)
+    d["analysis"]["duration"] = np.float64(20.0)
+    d["analysis"]["gravity"] = np.zeros(2)
+    d["loads"][1]["force"] = np.array([13.92, 0.0])
+    d["materials"]["rock"]["young_modulus"] = np.int64(20000)
+    short = copy.deepcopy(SHEAR_TEST)
+    short["analysis"]["duration"] = 20
+    assert same(rheodda.Simulation(d).run().history(), rheodda.Simulation(short).run().history())
+    d["analysis"]["dt"] = float("nan")
+    with pytest.raises(rheodda.SceneError) as e:
+        rheodda.scene_from_dict(d)
+    assert e.value.key == "analysis.dt"
