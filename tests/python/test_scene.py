@@ -274,3 +274,24 @@ def test_dict_scene_takes_numpy_values():
     with pytest.raises(rheodda.SceneError) as e:
         rheodda.scene_from_dict(d)
     assert e.value.key == "analysis.dt"
+
+
+def test_a_failing_run_raises_run_error_with_the_command_line_message(rheodda_binary, tmp_path):
+    # g2 w0 ~ 0 and no cuts allowed: the first step cannot be accepted.
+    d = copy.deepcopy(SHEAR_TEST)
+    d["analysis"].update(max_displacement_ratio=1e-9, max_cuts=0)
+    scene = rheodda.scene_from_dict(d)
+    sim = rheodda.Simulation(scene)
+    with pytest.raises(rheodda.RunError) as from_sim:
+        sim.run()
+    assert sim.failed and isinstance(from_sim.value, RuntimeError)
+    assert str(from_sim.value).startswith("run failed at t = 0 h (step 0): ")
+    with pytest.raises(rheodda.RunError) as from_run:
+        rheodda.run(scene, str(tmp_path / "py"))
+    path = tmp_path / "scene.yaml"
+    path.write_text(scene.text)
+    cli = subprocess.run([rheodda_binary, "run", str(path), "-o", str(tmp_path / "cli")],
+                         capture_output=True, text=True)
+    assert cli.returncode == 1
+    assert cli.stderr.strip().endswith("rheodda: error: " + str(from_run.value))
+    assert str(from_run.value) == str(from_sim.value)
