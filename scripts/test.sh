@@ -14,6 +14,8 @@ cmake --build "$asan" -j "$(nproc)" --target scene_fuzz_test
 "$asan/tests/apps/scene_fuzz_test" --report_level=short
 # The Python module's tests (pytest, tests/python) against the module of the same build, with
 # Debian's interpreter (the one python3-numpy, -pandas and -pytest are installed for).
+# (The shell is in the build folder since `cd "$build"` above: a relative RHEODDA_BUILD_DIR is it.)
+build="$(cd "$build" 2>/dev/null && pwd || pwd)"
 if [ ! -f "$build/python/rheodda/__init__.py" ]; then
   echo "test.sh: the Python module was not built in $build/python (python3-dev and pybind11-dev missing? see the cmake output)" >&2
   exit 1
