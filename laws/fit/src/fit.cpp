@@ -969,6 +969,8 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
     }
   }
 
+  // The model saw exp(clamp(x, -700, 700)) (to_values): report that.
+  for (double& v : best_x) v = std::clamp(v, -700.0, 700.0);
   // Residuals and Jacobian at the best point.
   gsl_multifit_nlinear_workspace* w = full.at(best_x);
   std::vector<double> fitted_scaled(gsl_multifit_nlinear_residual(w)->data,
