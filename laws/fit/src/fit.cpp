@@ -513,8 +513,9 @@ class Solver {
 
   // From `start` (log parameters): the loop of gsl_multifit_nlinear_driver
   // (step tolerance 1e-10 on the log parameters), except that it stops as soon
-  // as the sum of squares reaches stop_at (relative 1e-9; stop_at < 0: never):
-  // the start has found that minimum. With `refine`, the linear part is then
+  // as the sum of squares reaches stop_at (relative 1e-7, within the 1e-6 at
+  // which starts count as agreeing; stop_at < 0: never): the start has found
+  // that minimum. With `refine`, the linear part is then
   // re-solved exactly at the polished retardation times (varpro_refine):
   // GSL stops near, not on, a threshold equal to a stress level.
   Outcome polish(const std::vector<double>& start, double stop_at, double floor, const FitOptions& options,
@@ -552,7 +553,7 @@ class Solver {
         break;
       }
       const double rss = rss_now();
-      if (converged(rss) || (stop_at >= 0 && rss <= stop_at * (1.0 + 1e-9) + floor)) status = GSL_SUCCESS;
+      if (converged(rss) || (stop_at >= 0 && rss <= stop_at * (1.0 + 1e-7) + floor)) status = GSL_SUCCESS;
     }
     if (status == GSL_CONTINUE) status = GSL_EMAXITER;
     Outcome o;
