@@ -83,7 +83,7 @@ int speed(std::size_t only_points) {
   const laws::ParameterValues truth{{"E1", 26.87}, {"E2", 192.43}, {"eta1", 34807.72}, {"eta2", 2141.23}};
   fmt::print("Burgers fit of Table 1 row 1 (200 h, noise 2e-5 mm), thread CPU time per fit_law() call\n");
   fmt::print("{:>8} {:>9} {:>7} {:>11} {:>12} {:>12}\n", "points", "restarts", "starts", "iterations",
-             "median [ms]", "min [ms]");
+             "median [ms]", "mean [ms]");
   for (const std::size_t n : {std::size_t{1000}, std::size_t{100000}, std::size_t{1000000}}) {
     if (only_points && n != only_points) continue;
     const auto data = curve("burgers", truth, h, even_times(200.0, n), 2e-5, 42);
@@ -99,8 +99,10 @@ int speed(std::size_t only_points) {
         ms.push_back(thread_ms() - t0);
       }
       std::sort(ms.begin(), ms.end());
+      double mean = 0.0;
+      for (double m : ms) mean += m / static_cast<double>(ms.size());
       fmt::print("{:>8} {:>9} {:>7} {:>11} {:>12.3f} {:>12.3f}\n", n, restarts, res.starts, res.iterations,
-                 ms[ms.size() / 2], ms.front());
+                 ms[ms.size() / 2], mean);
     }
   }
   return 0;

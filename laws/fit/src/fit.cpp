@@ -917,14 +917,14 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
   }
   // 2. The classic starts (the curve-derived one and `restarts` variations of
   // it): a reference. On more than kReferencePoints points they run on an even
-  // subsample (every stride-th point of each stage), against the best minimum
-  // polished on that subsample; a start that finds a lower one there is then
-  // polished on all points.
+  // subsample (every stride-th point of each stage, about kReferencePoints in
+  // all), against the best minimum polished on that subsample; a start that
+  // finds a lower one there is then polished on all points.
   const int classic = 1 + std::max(options.restarts, 0);
   std::vector<std::vector<double>> classic_starts;
   for (int r = 0; r < classic; ++r)
     classic_starts.push_back(logs(r == 0 ? base : restart_start(base, pr.structure, r, features.f_max)));
-  constexpr std::size_t kReferencePoints = 2000;
+  constexpr std::size_t kReferencePoints = 500;
   if (structured > 0 && std::isfinite(best_rss) && n > kReferencePoints) {
     const CreepData sub = subsample(data, kReferencePoints);
     Solver small(info, sub, structure, 1.0 / dmax);
