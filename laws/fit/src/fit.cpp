@@ -128,9 +128,22 @@ void evaluate_series(Problem& pr, double* f, double* jac) {
   const double* p = pr.values.data();
   const std::size_t np = pr.np;
   const double sc = pr.inv_scale;
-  // Per element, once per call: 1/eta, E/eta and 1/E (no division per point).
+  // Per element, once per call: 1/eta, E/eta and 1/E (no division per point),
+  // and the sums over the stages before the current one, carried from stage
+  // to stage so that a point costs O(1) whatever the number of stages:
+  //   Kelvin  S0 = sum_{i<k} dF_i e^-u_i,  S1 = sum_{i<k} dF_i u_i e^-u_i,
+  //           u_i = (E/eta)(t_k - t_i); at t in stage k, with v = (E/eta)(t - t_k),
+  //           r_i = v + u_i: sum_{i<k} dF_i (1 - e^-r_i) = F_{k-1} - e^-v S0 and
+  //           sum_{i<k} dF_i r_i e^-r_i = e^-v (v S0 + S1);
+  //           stage k -> k+1 (d = (E/eta)(t_{k+1} - t_k)):
+  //           S1 <- e^-d (S1 + d (S0 + dF_k)), S0 <- e^-d (S0 + dF_k);
+  //   Bingham G = sum_{i<k} sign(F_i)<|F_i| - Fs> dt_i, D = sum_{i<k, flowing} sign(F_i) dt_i.
+  // F_{k-1} - e^-v S0 cancels when every r_i is small, but only to eps |F|/E
+  // in absolute terms: rounding of the displacement itself.
   struct Consts {
     double inv_eta, rate, inv_e;
+    double s0 = 0.0, s1 = 0.0;  // Kelvin stage sums
+    double g = 0.0, d = 0.0;    // Bingham stage sums
   };
   Consts cs[8];
   const std::size_t ne = std::min<std::size_t>(s.elements.size(), 8);
@@ -144,6 +157,9 @@ void evaluate_series(Problem& pr, double* f, double* jac) {
   for (std::size_t k = 0; k < data.stages.size(); ++k) {
     const auto& stage = data.stages[k];
     const double fk = pr.stage_f[k];
+    const double f_before = k > 0 ? pr.stage_f[k - 1] : 0.0;
+    const double dfk = fk - f_before;
+    const double tk = pr.stage_t[k];
     for (std::size_t j = stage.first; j < stage.first + stage.count; ++j) {
       const double t = data.t[j];
       double model = 0.0;
@@ -158,52 +174,60 @@ void evaluate_series(Problem& pr, double* f, double* jac) {
         const auto& el = s.elements[m];
         const Consts& c = cs[m];
         if (el.kind == Kind::kelvin) {
-          double prev = 0.0, dE = 0.0, deta = 0.0;
-          for (std::size_t i = 0; i <= k; ++i) {
-            const double df = pr.stage_f[i] - prev;
-            prev = pr.stage_f[i];
-            if (df == 0.0) continue;
-            const double r = c.rate * (t - pr.stage_t[i]);
-            // b = 1 - e^-r, through expm1 below r = 0.5 (no cancellation), 1 - exp(-r)
-            // above (relative rounding < 2 eps there, and exp is cheaper).
-            double b, ex;
-            if (r < 0.5) {
-              b = -std::expm1(-r);
-              ex = 1.0 - b;
-            } else {
-              ex = std::exp(-r);
-              b = 1.0 - ex;
-            }
-            const double re = r * ex;  // r e^-r
-            const double a = df * c.inv_e;
-            model += a * b;
-            dE += a * (re - b);
-            deta -= a * re;
+          const double v = c.rate * (t - tk);
+          // b = 1 - e^-v, through expm1 below v = 0.5 (no cancellation), 1 - exp(-v)
+          // above (relative rounding < 2 eps there, and exp is cheaper).
+          double b, ev;
+          if (v < 0.5) {
+            b = -std::expm1(-v);
+            ev = 1.0 - b;
+          } else {
+            ev = std::exp(-v);
+            b = 1.0 - ev;
           }
-          row[el.E] += dE * sc;
-          row[el.eta] += deta * sc;
+          // Current stage: dF_k (1 - e^-v); earlier ones through S0, S1 (above).
+          const double re = dfk * v * ev + ev * (v * c.s0 + c.s1);  // sum dF_i r_i e^-r_i
+          const double bb = dfk * b + (f_before - ev * c.s0);       // sum dF_i (1 - e^-r_i)
+          model += c.inv_e * bb;
+          row[el.E] += c.inv_e * (re - bb) * sc;  // d/dlnE = sum dF_i/E (r_i e^-r_i - b_i)
+          row[el.eta] -= c.inv_e * re * sc;       // d/dln eta = -sum dF_i/E r_i e^-r_i
         } else if (el.kind == Kind::dashpot) {
-          const double g = (pr.flow_before[k] + fk * (t - pr.stage_t[k])) * c.inv_eta;
+          const double g = (pr.flow_before[k] + fk * (t - tk)) * c.inv_eta;
           model += g;
           row[el.eta] -= g * sc;
         } else {  // Bingham
           const double fs = p[el.threshold];
-          double deta = 0.0, dfs = 0.0;
-          for (std::size_t i = 0; i <= k; ++i) {
-            const double fi = pr.stage_f[i];
-            if (std::abs(fi) <= fs) continue;
-            const double dt = (i < k ? pr.stage_t[i + 1] : t) - pr.stage_t[i];
-            const double sign = fi > 0.0 ? 1.0 : -1.0;
-            const double g = (fi - sign * fs) * dt * c.inv_eta;
-            model += g;
-            deta -= g;
-            dfs -= sign * fs * dt * c.inv_eta;
+          double g = c.g, d = c.d;
+          if (std::abs(fk) > fs) {
+            const double sign = fk > 0.0 ? 1.0 : -1.0;
+            g += (fk - sign * fs) * (t - tk);
+            d += sign * (t - tk);
           }
-          row[el.eta] += deta * sc;
-          row[el.threshold] += dfs * sc;
+          model += g * c.inv_eta;
+          row[el.eta] -= g * c.inv_eta * sc;
+          row[el.threshold] -= fs * d * c.inv_eta * sc;
         }
       }
       f[j] = (model - data.displacement[j]) * sc;
+    }
+    if (k + 1 < data.stages.size()) {  // carry the stage sums to stage k+1
+      const double dt = pr.stage_t[k + 1] - tk;
+      for (std::size_t m = 0; m < ne; ++m) {
+        const auto& el = s.elements[m];
+        Consts& c = cs[m];
+        if (el.kind == Kind::kelvin) {
+          const double d = c.rate * dt, e = std::exp(-d);
+          c.s1 = e * (c.s1 + d * (c.s0 + dfk));
+          c.s0 = e * (c.s0 + dfk);
+        } else if (el.kind == Kind::bingham) {
+          const double fs = p[el.threshold];
+          if (std::abs(fk) > fs) {
+            const double sign = fk > 0.0 ? 1.0 : -1.0;
+            c.g += (fk - sign * fs) * dt;
+            c.d += sign * dt;
+          }
+        }
+      }
     }
   }
 }

@@ -236,19 +236,24 @@ Linear solve_node(Columns& C, const std::vector<int>& simple, const std::vector<
   return best;
 }
 
-// Kelvin column: sum_i dF_i (1 - exp(-(t - t_i)/tau)) (the seed's eq. 2 superposed, eqs. 4-6).
+// Kelvin column: sum_i dF_i (1 - exp(-(t - t_i)/tau)) (the seed's eq. 2 superposed, eqs. 4-6),
+// the stages before the current one through S0 = sum_{i<k} dF_i exp(-(t_k - t_i)/tau),
+// carried from stage to stage (as in fit.cpp's evaluate_series): O(1) per point.
+// 1 - e^-r directly: its rounding (eps/r relative) does not matter to the search.
 std::vector<double> kelvin_column(const Sample& s, const std::vector<double>& st,
                                   const std::vector<double>& sf, double tau) {
   std::vector<double> col(s.t.size());
+  double s0 = 0.0;
+  std::size_t cur = 0;  // the stage S0 refers to
   for (std::size_t j = 0; j < s.t.size(); ++j) {
-    double v = 0.0, prev = 0.0;
-    for (std::size_t i = 0; i <= s.stage[j]; ++i) {
-      const double df = sf[i] - prev;
-      prev = sf[i];
-      // 1 - e^-r directly: its rounding (eps/r relative) does not matter to the search.
-      if (df != 0.0) v += df * (1.0 - std::exp(-(s.t[j] - st[i]) / tau));
+    const std::size_t k = s.stage[j];
+    for (; cur < k; ++cur) {
+      const double df = sf[cur] - (cur ? sf[cur - 1] : 0.0);
+      s0 = std::exp(-(st[cur + 1] - st[cur]) / tau) * (s0 + df);
     }
-    col[j] = v;
+    const double before = k ? sf[k - 1] : 0.0;
+    const double ev = std::exp(-(s.t[j] - st[k]) / tau);
+    col[j] = (sf[k] - before) * (1.0 - ev) + (before - ev * s0);
   }
   return col;
 }
@@ -358,16 +363,25 @@ std::vector<VarProStart> search(const SeriesStructure& s, std::size_t np, const 
       iv.lo = edges[e - 1];
       iv.hi = edges[e];
       // Flowing stage i contributes sign(F_i)(|F_i| - Fs) dt_i: A = sum F_i dt_i, B = sum sign(F_i) dt_i.
+      // Sums over the stages before the current one carried from stage to stage.
       std::vector<double> a(ns, 0.0), b(ns, 0.0);
       bool single = true;
+      for (double f : sf)
+        if (std::abs(f) >= iv.hi) single = single && std::abs(f) == iv.hi;
+      double a_before = 0.0, b_before = 0.0;
+      std::size_t cur = 0;
       for (std::size_t j = 0; j < ns; ++j) {
         const std::size_t k = smp.stage[j];
-        for (std::size_t i = 0; i <= k; ++i) {
-          if (std::abs(sf[i]) < iv.hi) continue;
-          single = single && std::abs(sf[i]) == iv.hi;
-          const double dt = (i < k ? st[i + 1] : smp.t[j]) - st[i];
-          a[j] += sf[i] * dt;
-          b[j] += (sf[i] > 0 ? 1.0 : -1.0) * dt;
+        for (; cur < k; ++cur)
+          if (std::abs(sf[cur]) >= iv.hi) {
+            a_before += sf[cur] * (st[cur + 1] - st[cur]);
+            b_before += (sf[cur] > 0 ? 1.0 : -1.0) * (st[cur + 1] - st[cur]);
+          }
+        a[j] = a_before;
+        b[j] = b_before;
+        if (std::abs(sf[k]) >= iv.hi) {
+          a[j] += sf[k] * (smp.t[j] - st[k]);
+          b[j] += (sf[k] > 0 ? 1.0 : -1.0) * (smp.t[j] - st[k]);
         }
       }
       iv.single_level = single;

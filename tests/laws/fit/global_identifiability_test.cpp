@@ -176,4 +176,23 @@ BOOST_AUTO_TEST_CASE(identified_parameters_keep_their_standard_errors_next_to_a_
   }
 }
 
+BOOST_AUTO_TEST_CASE(ramp_of_many_stages_is_fitted_exactly_through_the_stage_sums) {
+  // A loading ramp recorded as 60 stages, then held and unloaded: the model
+  // carries its sums over earlier stages from stage to stage (O(1) per point);
+  // its curve equals laws::exact_displacement and the fit recovers the law.
+  std::vector<laws::StagedHistory::Stage> stages;
+  for (int i = 0; i < 60; ++i) stages.push_back({0.5 * i, 0.005 * (i + 1)});
+  stages.push_back({150.0, 0.0});
+  const laws::StagedHistory h(stages);
+  const auto truth = fit::test::burgers_values(fit::test::kTable1[0]);
+  const auto data = fit::test::synthetic_curve("burgers", truth, h, fit::test::sample_times(250, 0.25, h));
+  const auto r = fit::fit_law(law_info("burgers"), data);
+  for (const auto& p : r.parameters)
+    BOOST_TEST(std::abs(p.value - truth.at(p.name)) <= 1e-6 * truth.at(p.name), p.name);
+  const auto law = laws::LawRegistry::builtin().create("burgers", r.values());
+  const auto expected = fit::predict(*law, h, data.t);
+  for (std::size_t j = 0; j < data.t.size(); ++j)
+    BOOST_TEST(std::abs(r.fitted[j] - expected[j]) <= 1e-12 * std::abs(expected[j]) + 1e-15, "t = " << data.t[j]);
+}
+
 BOOST_AUTO_TEST_SUITE_END()
