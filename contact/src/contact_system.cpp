@@ -20,6 +20,15 @@ const char* contact_state_name(ContactState s) {
   return "?";
 }
 
+const char* creep_state_name(CreepState s) {
+  switch (s) {
+    case CreepState::none: return "none";
+    case CreepState::creeping: return "creeping";
+    case CreepState::idle: return "idle";
+  }
+  return "?";
+}
+
 namespace {
 
 int wrap(int k, int n) { return (k % n + n) % n; }
@@ -88,6 +97,7 @@ ContactSystem::ContactSystem(std::vector<JointSet> joint_sets, ContactSettings s
     joint_sets_.push_back(js);
   }
   for (size_t k = 0; k < joint_sets_.size(); ++k) check_joint_set(joint_sets_[k], k);
+  creep_counters_.assign(joint_sets_.size(), CreepCounters{});
 }
 
 void ContactSystem::prepare(std::span<const BlockView> blocks, const Contact& c, Hot& h) const {
@@ -116,14 +126,17 @@ void ContactSystem::prepare(std::span<const BlockView> blocks, const Contact& c,
 
   // Springs: penalty (eq. 17, one value for every contact point), or the joint
   // stiffness per unit area times the contact length where the contact has one.
+  // On a joint set with a law the shear spring takes the tributary length
+  // (point contacts too), so that the law's per-area response holds there.
   const JointSet& js = joint_sets_[c.joint_set];
+  const double ls = js.law ? c.tributary_length : c.length;  // shear spring's joint length
   h.pn = (js.normal_stiffness && c.length > 0.0) ? *js.normal_stiffness * c.length : penalty_;
-  h.ps = (js.shear_stiffness && c.length > 0.0) ? *js.shear_stiffness * c.length
-                                                : penalty_ / settings_.shear_normal_ratio;
+  h.ps = (js.shear_stiffness && ls > 0.0) ? *js.shear_stiffness * ls
+                                          : penalty_ / settings_.shear_normal_ratio;
   // A creep law's instantaneous spring E1 [stress/length] is the joint's elastic
   // shear stiffness, so a run reproduces the law's instantaneous response.
-  if (js.law && c.length > 0.0)
-    if (const auto e1 = js.law->instantaneous_stiffness()) h.ps = *e1 * c.length;
+  if (js.law && ls > 0.0)
+    if (const auto e1 = js.law->instantaneous_stiffness()) h.ps = *e1 * ls;
   h.tan_phi = std::tan(js.friction_angle * std::numbers::pi / 180.0);
   h.cohesion = c.intact ? js.cohesion : 0.0;
   h.tensile_strength = c.intact ? js.tensile_strength : 0.0;
@@ -171,12 +184,12 @@ const laws::StepConstants& ContactSystem::step_constants_of(size_t c) const {
 }
 
 void ContactSystem::linearize(size_t c, double tau_guess) {
-  // Delta d_c = h + c tau_e (laws/contact_rheology.hpp) with tau = F / l:
-  // locking point shifted by h, compliance c / l in force terms.
+  // Delta d_c = h + c tau_e (laws/contact_rheology.hpp) with tau = F / l_t:
+  // locking point shifted by h, compliance c / l_t in force terms.
   const Contact& r = work_[c];
   const laws::Linearization lin = joint_sets_[r.joint_set].law->linearize(
       step_constants_of(c), work_rheology_[r.rheology], hot_[c].tau_start, tau_guess);
-  seams_[c] = {-lin.h, lin.c / r.length};
+  seams_[c] = {-lin.h, lin.c / r.tributary_length};
 }
 
 void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_displacement,
@@ -252,12 +265,21 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
     } else {
       rec.state = ContactState::open;
     }
+    // Stress at the end of the last step, tau = F / l_t with that step's
+    // tributary length: tau = E1 x the spring's stretch, continuous when the
+    // contact's length changes (change of kind, transfer) [stress].
+    const double tau_old =
+        (old && old->tributary_length > 0.0) ? old->shear_force / old->tributary_length : 0.0;
     rec.key = d.key;
     rec.kind = d.kind;
     rec.length = d.length;
     rec.joint_set = js;
     const Vec2 a = edge_start(eb, d.key.edge), b = edge_end(eb, d.key.edge);
     const Vec2& p = blocks[d.key.vblock].vertices[d.key.vertex];
+    rec.tributary_length = d.length > 0.0
+                               ? d.length
+                               : point_tributary_length(blocks[d.key.vblock], d.key.vertex,
+                                                        (b - a).normalized());
     // An open contact locks where the vertex projects at the start of the step.
     if (rec.state == ContactState::open) rec.locking_ratio = projection_ratio(a, b, p);
     Hot h;
@@ -274,9 +296,8 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
       // carry load from the first iterate instead of closing row by row.
       if (h.dn0 > -1e-9 * (b - a).norm()) rec.state = ContactState::locked;
     }
-    // Rheology slot: kept on transfer, created for a new contact on a joint set
-    // with a law. A point contact (l = 0) has no joint area: it keeps its slot,
-    // so the history follows it through a corner, but does not creep.
+    // Rheology slot: kept on transfer and change of kind, created for a new
+    // contact on a joint set with a law.
     if (joint_sets_[js].law) {
       laws::RheologyState st;
       if (old && old->rheology >= 0) st = committed_rheology_[old->rheology];
@@ -289,8 +310,8 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
     // Creep from rest: the contact was not locked at the end of the last step
     // (new, open or sliding), so its force before this step is not defined.
     h.creep_from_rest = !(old && old->state == ContactState::locked);
-    h.tau_start = (rec.rheology >= 0 && rec.length > 0.0 && !h.creep_from_rest)
-                      ? rec.shear_force / rec.length
+    h.tau_start = (rec.rheology >= 0 && rec.tributary_length > 0.0 && !h.creep_from_rest)
+                      ? tau_old
                       : 0.0;
     h.flips = h.refinements = 0;
     h.normal_force = rec.state == ContactState::open ? 0.0 : rec.normal_force;
@@ -308,9 +329,9 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
   if (dt > 0.0 && any_law) {
     std::vector<double> k_area(joint_sets_.size(), 0.0);
     for (size_t c = 0; c < work_.size(); ++c)
-      if (work_[c].rheology >= 0 && work_[c].length > 0.0)
+      if (work_[c].rheology >= 0 && work_[c].tributary_length > 0.0)
         k_area[work_[c].joint_set] =
-            std::max(k_area[work_[c].joint_set], hot_[c].ps / work_[c].length);
+            std::max(k_area[work_[c].joint_set], hot_[c].ps / work_[c].tributary_length);
     for (size_t j = 0; j < joint_sets_.size(); ++j) {
       const auto& law = joint_sets_[j].law;
       if (!law) continue;
@@ -321,8 +342,10 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
       ls.from_rest = law->step_constants(dt, laws::Scheme::implicit);
     }
     for (size_t c = 0; c < work_.size(); ++c)
-      if (work_[c].rheology >= 0 && work_[c].length > 0.0) linearize(c, hot_[c].tau_start);
+      if (work_[c].rheology >= 0 && work_[c].tributary_length > 0.0)
+        linearize(c, hot_[c].tau_start);
   }
+  step_dt_ = dt;
   step_max_penetration_ = 0.0;
   force_scale_ = 0.0;
   for (const Contact& c : committed_) force_scale_ = std::max(force_scale_, std::abs(c.normal_force));
@@ -470,11 +493,12 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
     // A piecewise-affine law (Nishihara's threshold): take the piece that holds
     // at this iterate's stress; a change asks for another iteration (bounded
     // by max_refinements, so the switch cannot chatter).
-    if (r.state == ContactState::locked && r.rheology >= 0 && r.length > 0.0 &&
+    if (r.state == ContactState::locked && r.rheology >= 0 && r.tributary_length > 0.0 &&
         law_steps_[r.joint_set].active &&
         !joint_sets_[r.joint_set].law->is_linear()) {
       const ShearSeam before_seam = seams_[c];
-      const double tau = shear_stiffness(c) * (h.dt0 + seams_[c].locking_shift + slip) / r.length;
+      const double tau =
+          shear_stiffness(c) * (h.dt0 + seams_[c].locking_shift + slip) / r.tributary_length;
       linearize(c, tau);
       if ((seams_[c].compliance != before_seam.compliance ||
            seams_[c].locking_shift != before_seam.locking_shift) &&
@@ -504,6 +528,7 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
     const double slip = h.ti.dot(Di) + h.tj.dot(Dj);
     const double dt = h.dt0 + seams_[c].locking_shift + slip;
     r.penetration = dn;
+    r.creep_state = r.rheology >= 0 ? CreepState::idle : CreepState::none;
     step_work_[c] = {h.pn, h.ps, h.dn0, dn, h.dt0, slip, h.start_state,  // energy balance
                      r.slide_direction * (std::max(h.assembled_normal_force, 0.0) * h.tan_phi +
                                           h.cohesion * r.length)};
@@ -517,19 +542,25 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
         r.shear_force = shear_stiffness(c) * dt;
         r.shear_displacement += slip;
         max_pen = std::max(max_pen, dn);
-        if (r.rheology >= 0 && r.length > 0.0 && law_steps_[r.joint_set].active) {
+        if (r.rheology >= 0 && r.tributary_length > 0.0 && law_steps_[r.joint_set].active) {
           // Advance the history from the step-start state with the step's end
-          // stress, move the locking point by the creep increment along the
-          // entrance edge (the seed's eqs. 22-29) and take the force from the
-          // spring's remaining stretch.
+          // stress tau = F / l_t, move the locking point by the creep increment
+          // along the entrance edge (the seed's eqs. 22-29) and take the force
+          // from the spring's remaining stretch.
           const laws::RheologyState old = work_rheology_[r.rheology];
           const double creep = joint_sets_[r.joint_set].law->advance(
-              step_constants_of(c), old, h.tau_start, r.shear_force / r.length,
+              step_constants_of(c), old, h.tau_start, r.shear_force / r.tributary_length,
               work_rheology_[r.rheology]);
           const BlockView& eb = blocks[r.key.eblock];
           r.locking_ratio += creep / (edge_end(eb, r.key.edge) - edge_start(eb, r.key.edge)).norm();
           r.shear_force = h.ps * (h.dt0 + slip - creep);
           work_creep_[c] = creep;
+          r.creep_displacement += creep;
+          r.creep_state = CreepState::creeping;
+          CreepCounters& counters = creep_counters_[r.joint_set];
+          counters.contact_time += step_dt_;
+          if (!r.has_crept) ++counters.contacts;
+          r.has_crept = true;
         }
         break;
       case ContactState::sliding: {
@@ -592,6 +623,7 @@ bool ContactSystem::extrapolate(const ContactSystem& coarse) {
     richardson(f.shear_force, c.shear_force);
     richardson(f.shear_displacement, c.shear_displacement);
     richardson(f.penetration, c.penetration);
+    richardson(f.creep_displacement, c.creep_displacement);
     if (f.rheology < 0) continue;
     laws::RheologyState& qf = committed_rheology_[f.rheology];
     const laws::RheologyState& qc = coarse.committed_rheology_[c.rheology];

@@ -111,6 +111,15 @@ void vertex_edge(std::span<const BlockView> blocks, int iv, int ie, double d0, d
 
 }  // namespace
 
+double point_tributary_length(const BlockView& vb, int v, const Vec2& t) {
+  const int nv = static_cast<int>(vb.vertices.size());
+  const Vec2& p = vb.vertices[v];
+  // |(q - p) . t| / 2 = (l_f / 2) |t_f . t| for the edge f from p to its other end q.
+  const double before = std::abs((vb.vertices[wrap(v - 1, nv)] - p).dot(t));
+  const double after = std::abs((vb.vertices[wrap(v + 1, nv)] - p).dot(t));
+  return 0.5 * std::max(before, after);
+}
+
 void detect_pair(std::span<const BlockView> blocks, int ia, int ib, const DetectionParams& params,
                  std::span<const ContactKey> previous, std::vector<DetectedContact>& out) {
   const double d0 = params.search_distance;

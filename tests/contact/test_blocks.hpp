@@ -49,6 +49,13 @@ class Scene {
     blocks_[b].centroid += d;
     rebuild();
   }
+  /// Rigid rotation of block b by theta [rad] (counter-clockwise) about `pivot` [m].
+  void rotate(int b, const Vec2& pivot, double theta) {
+    const Eigen::Rotation2Dd r(theta);
+    for (Vec2& v : blocks_[b].vertices) v = pivot + r * (v - pivot);
+    blocks_[b].centroid = pivot + r * (blocks_[b].centroid - pivot);
+    rebuild();
+  }
   TestBlock& block(int b) { return blocks_[b]; }
   void rebuild() {
     views_.clear();

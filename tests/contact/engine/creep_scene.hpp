@@ -29,12 +29,16 @@ inline std::shared_ptr<const laws::ContactRheology> table1_burgers(const Table1R
 /// Two-block creep scene: A = [0, w] x [0, w] on B = [-w, 2w] x [-w, 0], w = 100 mm.
 /// Blocks are 1e6 times stiffer than the joint, so block strain does not
 /// pollute the joint displacement (which is read from the contacts anyway).
+/// With a tilt [rad], A is rotated counter-clockwise by it about the origin:
+/// it stands on its corner (0, 0), one vertex-edge contact, and both forces
+/// act at that corner.
 struct CreepScene {
   static constexpr double w = 100.0;  ///< width of A = joint length [mm]
   core::Model model;
   contact::JointSet joint;
 
-  CreepScene(std::shared_ptr<const laws::ContactRheology> law, double sigma, double tau, double dt) {
+  CreepScene(std::shared_ptr<const laws::ContactRheology> law, double sigma, double tau, double dt,
+             double tilt = 0.0) {
     core::Model& m = model;
     m.materials[0].young_modulus = 1e7;  // [MPa]
     m.materials[0].density = 1e-12;      // [MPa h^2/mm^2]: no inertia at creep time scales
@@ -42,10 +46,12 @@ struct CreepScene {
     m.settings.dynamic_ratio = 0.0;      // static analysis
     m.settings.gravity = {0.0, 0.0};
     add_fixed(m, rect(-w, -w, 2 * w, 0.0));
-    m.blocks.push_back(block(rect(0.0, 0.0, w, w)));
-    // F1 (normal, down) and F2 (shear, +x) at the joint line, so A takes no moment.
-    core::PointLoad normal{1, {0.5 * w, 0.0}, {{0.0, {0.0, -sigma * w}}}};
-    core::PointLoad shear{1, {0.5 * w, 0.0}, {{0.0, {tau * w, 0.0}}}};
+    m.blocks.push_back(block(rect(0.0, 0.0, w, w, tilt)));
+    // F1 (normal, down) and F2 (shear, +x) at the joint line (at the corner
+    // when tilted), so A takes no moment.
+    const Vec2 at = tilt == 0.0 ? Vec2(0.5 * w, 0.0) : Vec2(0.0, 0.0);
+    core::PointLoad normal{1, at, {{0.0, {0.0, -sigma * w}}}};
+    core::PointLoad shear{1, at, {{0.0, {tau * w, 0.0}}}};
     m.point_loads = {normal, shear};
     joint.name = "joint";
     joint.friction_angle = 60.0;       // tan = 1.73 > tau/sigma of every Table 1 row

@@ -13,9 +13,11 @@
 //
 // Rheology (docs/rheology-in-dda.md). A contact on a joint set with a law owns
 // a slot in a separate array of laws::RheologyState (with its committed copy
-// for rollback); other contacts have none (rheology == -1). Only edge contacts
-// (l > 0) creep: a point contact's history is carried but frozen. The law works
-// per unit joint area: shear stress tau = F / l (l the contact length, unit
+// for rollback); other contacts have none (rheology == -1). Every locked
+// contact on such a joint set creeps, edge-edge and point contacts alike. The
+// law works per unit joint area: shear stress tau = F / l_t with l_t the
+// contact's tributary length (Contact::tributary_length: the contact length of
+// an edge-edge contact, point_tributary_length for a point contact; unit
 // thickness). Its creep increment over the step, Delta d_c = h + c tau_e
 // (laws/contact_rheology.hpp), enters the shear spring through ShearSeam: the
 // locking point moves by Delta d_c along the entrance edge (the seed's eqs.
@@ -50,6 +52,23 @@ enum class ContactState : std::uint8_t {
 /// Name used in outputs: "open", "sliding", "locked".
 const char* contact_state_name(ContactState s);
 
+/// What the joint set's creep law did to a contact in the last accepted step.
+enum class CreepState : std::uint8_t {
+  none,      ///< the joint set has no law
+  creeping,  ///< locked: the law advanced its history and moved its locking point
+  idle       ///< has a law but did not creep: open or sliding (history lost), or a step without creep time (dt = 0)
+};
+
+/// Name used in outputs: "none", "creeping", "idle".
+const char* creep_state_name(CreepState s);
+
+/// Creep counters of one joint set since the ContactSystem was made (restored
+/// with the system on rollback).
+struct CreepCounters {
+  int contacts = 0;            ///< contacts the law advanced in at least one accepted step [-]
+  double contact_time = 0.0;   ///< sum over accepted steps of dt x contacts it advanced [time]
+};
+
 /// Persistent record of one contact (also the per-step output record).
 /// Forces are per unit thickness [force/length]; positive normal force is compression.
 struct Contact {
@@ -59,6 +78,11 @@ struct Contact {
   ContactState state = ContactState::open;
   int joint_set = 0;          ///< joint set of the entrance edge
   double length = 0.0;        ///< contact length [length] (half the shared length for edge_edge)
+  /// Joint length the contact stands for in its joint set's law [length]:
+  /// `length` for edge_edge, point_tributary_length (detection.hpp) for a point
+  /// contact; on a joint set with a law it sets the shear spring (E1 l_t or
+  /// shear_stiffness l_t) and the stress tau = F / l_t. Step-start geometry.
+  double tributary_length = 0.0;
   double locking_ratio = 0.0; ///< locking point P0 on the entrance edge, as a fraction of its length [-]
   int slide_direction = 0;    ///< +1 / -1: the vertex slides along +/- the edge direction
   double normal_force = 0.0;  ///< p_n d_n [force/length]
@@ -67,6 +91,13 @@ struct Contact {
   double penetration = 0.0;   ///< d_n at the end of the step (trial records: of the last iterate), > 0 into the edge's block [length]
   bool intact = true;         ///< cohesion and tensile strength act until the contact first slides or opens
   int rheology = -1;          ///< slot in rheology_states(), or -1 without a law
+  /// Accumulated creep of the contact along the edge direction a->b [length]:
+  /// the sum of its creep increments Delta d_c since it was created. Kept
+  /// through transfer to the adjacent edge and changes of kind; not reset
+  /// when it slides or opens (the law's history is, rheology_states()).
+  double creep_displacement = 0.0;
+  CreepState creep_state = CreepState::none;  ///< in the last accepted step
+  bool has_crept = false;     ///< the law advanced it in at least one accepted step
 };
 
 /// Hook for the creep increment of the shear spring (zero without a law).
@@ -142,6 +173,10 @@ class ContactSystem {
   /// Creep increment Delta d_c of each contact in the last accepted step
   /// (parallel to contacts(); 0 without a law) [length].
   std::span<const double> creep_increments() const { return committed_creep_; }
+  /// Per joint set (indexed like joint_sets()): how many contacts carried creep
+  /// and for how long, over the accepted steps since construction. All zero
+  /// for a joint set without a law.
+  std::span<const CreepCounters> creep_counters() const { return creep_counters_; }
   /// The contacts' terms of the energy balance: stored energies of the records
   /// of the last accepted step and the flows of that step (contact_energy.cpp;
   /// docs/engine.md, "Energy balance").
@@ -219,6 +254,8 @@ class ContactSystem {
   std::vector<Contact> committed_, work_;
   std::vector<laws::RheologyState> committed_rheology_, work_rheology_;
   std::vector<double> committed_creep_, work_creep_;
+  std::vector<CreepCounters> creep_counters_;  ///< per joint set, accepted steps only
+  double step_dt_ = 0.0;  ///< creep time of the step being solved [time]
   std::vector<StepWork> committed_work_, step_work_;  ///< energy balance (contact_energy.cpp)
   double stored_before_ = 0.0;  ///< stored energy before the last accepted step [force x length]
   std::vector<LawStep> law_steps_;  ///< per joint set, for the step being solved

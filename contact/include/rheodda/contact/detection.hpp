@@ -65,6 +65,20 @@ struct DetectedContact {
   double length = 0.0;  ///< contact length [length]: half the shared length (edge-edge), else 0
 };
 
+/// Tributary length of a point contact [length]: the joint length that vertex
+/// v of block `vb` stands for against an entrance edge of unit direction t,
+/// the longer projection on t of the two half edges of `vb` at v,
+///     l_t = max_f (l_f / 2) |t_f . t|      (f the two edges at v, l_f their lengths).
+/// Why: a creep law works per unit joint area (the seed applies it to
+/// angle-line contacts too, its section 3.2), so a point contact needs a
+/// length. This one equals the edge-edge contact length of the same vertex
+/// (half the overlap, the seed's section 3.1) when the edge lies on the
+/// entrance edge over its whole length, so a contact whose block tilts off a
+/// face onto its corner keeps its joint length through the change of kind; it
+/// varies continuously as the block rotates (docs/rheology-in-dda.md, "Point
+/// contacts").
+double point_tributary_length(const BlockView& vb, int v, const Vec2& t);
+
 /// Narrow-phase tolerances.
 struct DetectionParams {
   double search_distance = 0.0;  ///< d0 = 2.5 g2 w0 [length]

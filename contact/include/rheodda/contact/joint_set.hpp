@@ -11,8 +11,10 @@
 // the unit of the penalty (the seed's eqs. 17-18: p_n = k1 E). Joint stiffnesses
 // are given per unit joint area, [stress/length]; a contact with a contact length
 // l (edge-edge contacts, each with half the shared length) gets the spring
-// k_joint * l. Point contacts (vertex-edge, vertex-vertex: l = 0) always use the
-// penalty springs.
+// k_joint * l. Point contacts (vertex-edge, vertex-vertex: l = 0) use the
+// penalty springs, except the shear spring on a joint set with a creep law:
+// every contact there has a tributary length l_t (Contact::tributary_length)
+// and the shear spring E1 l_t or shear_stiffness l_t.
 #pragma once
 
 #include <memory>
@@ -36,12 +38,13 @@ struct JointSet {
   std::optional<double> shear_stiffness;
   /// Creep law of the joint's shear spring, or none (docs/rheology-in-dda.md).
   /// Contacts on a joint set with a law get a laws::RheologyState slot that
-  /// follows the contact (transfer, rollback); the creep increment of edge
-  /// contacts (contact length l > 0) enters through ShearSeam
-  /// (contact_system.hpp). A law with an instantaneous spring E1 (burgers,
-  /// maxwell, nishihara) sets the joint's elastic shear stiffness, k_s = E1 l:
-  /// shear_stiffness must then be unset. Point contacts (l = 0) have no joint
-  /// area: their history is carried but frozen (no creep).
+  /// follows the contact (transfer, change of kind, rollback); the creep
+  /// increment of every locked contact enters through ShearSeam
+  /// (contact_system.hpp), with the stress tau = F / l_t over the contact's
+  /// tributary length l_t (its contact length for edge-edge contacts,
+  /// point_tributary_length for point contacts). A law with an instantaneous
+  /// spring E1 (burgers, maxwell, nishihara) sets the joint's elastic shear
+  /// stiffness, k_s = E1 l_t: shear_stiffness must then be unset.
   std::shared_ptr<const laws::ContactRheology> law;
 };
 
