@@ -1,5 +1,7 @@
 #include "block_amg.hpp"
 
+#include "rheodda/core/solver.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -29,8 +31,9 @@ Mat6 transfer_block(const Vec2& d) {
 Mat6 inverse_spd(const Mat6& a, int block, int level) {
   Eigen::LLT<Mat6> llt(a);
   if (llt.info() != Eigen::Success)
-    throw std::runtime_error("amg: diagonal block " + std::to_string(block) + " of level " +
-                             std::to_string(level) + " is not positive definite");
+    throw SingularSystemError("amg: diagonal block " + std::to_string(block) + " of level " +
+                                  std::to_string(level) + " is not positive definite",
+                              level == 0 ? block : -1, -1);
   return llt.solve(Mat6::Identity());
 }
 

@@ -138,6 +138,11 @@ struct Engine::Impl {
     int iterations = 0;
     double max_disp = 0.0;  // largest vertex displacement of the converged D [length]
     ContactCheck check;
+    /// Set when a solve found the matrix not positive definite (the attempt is
+    /// cut like one that did not converge: a shorter step stiffens the inertia
+    /// terms 2M/dt^2; after max_cuts the error is thrown with this diagnosis).
+    std::string singular;
+    int singular_block = -1, singular_unknown = -1;
   };
   Trial solve_trial(double dt, bool creep_error_wanted, StepReport& rep);
   /// Cuts dt after a failed attempt (dt *= dt_cut), or throws after max_cuts cuts.
@@ -646,6 +651,12 @@ Engine::Impl::Trial Engine::Impl::solve_trial(double dt, bool creep_error_wanted
     t0 = Clock::now();
     try {
       D = solver->solve(system);
+    } catch (const SingularSystemError& e) {
+      contacts->abandon_step();
+      trial.singular = e.what();
+      trial.singular_block = e.block;
+      trial.singular_unknown = e.unknown;
+      return trial;
     } catch (...) {
       contacts->abandon_step();  // leave the contacts at their step-start states
       throw;
@@ -665,6 +676,11 @@ Engine::Impl::Trial Engine::Impl::solve_trial(double dt, bool creep_error_wanted
 
 void Engine::Impl::cut(double& dt, const Trial& trial, StepReport& rep) const {
   const Settings& s = model.settings;
+  if (rep.cuts >= s.max_cuts && !trial.singular.empty())
+    throw SingularSystemError("step " + std::to_string(st.step) + " at time " + std::to_string(st.time) + ": " +
+                                  trial.singular + " after " + std::to_string(rep.cuts) +
+                                  " cuts of dt (settings.max_cuts)",
+                              trial.singular_block, trial.singular_unknown);
   if (rep.cuts >= s.max_cuts)
     throw std::runtime_error(
         "step " + std::to_string(st.step) + " at time " + std::to_string(st.time) + ": " +
@@ -704,12 +720,13 @@ void Engine::run(int steps) {
   for (int k = 0; k < steps; ++k) step();
 }
 
-void Engine::run_until(double end_time) {
+void Engine::run_until(double end_time) { run_until(end_time, end_time); }
+
+void Engine::run_until(double end_time, double horizon) {
   while (impl_->st.time < end_time) {
-    const double remaining = end_time - impl_->st.time;
     // A sliver below round-off of the end time is not worth a step.
-    if (remaining <= 1e-12 * std::max(1.0, std::abs(end_time))) break;
-    StepReport r = impl_->step(remaining);
+    if (end_time - impl_->st.time <= 1e-12 * std::max(1.0, std::abs(end_time))) break;
+    StepReport r = impl_->step(std::max(horizon, end_time) - impl_->st.time);
     r.energy = impl_->st.energy.step;
     impl_->reports.push_back(r);
     for (const auto& o : impl_->observers) o(*this, r);

@@ -22,7 +22,10 @@ struct LinearSolver::Cholmod {
   int blocks = -1;
   std::vector<std::pair<int, int>> pattern;  // off-diagonal (i, j), column-major order
 
-  Cholmod() { cholmod_start(&common); }
+  Cholmod() {
+    cholmod_start(&common);
+    common.print = 0;  // CHOLMOD's own messages went to stdout; the errors below say it all
+  }
   ~Cholmod() {
     if (L) cholmod_free_factor(&L, &common);
     if (A) cholmod_free_sparse(&A, &common);
@@ -149,8 +152,7 @@ Eigen::VectorXd solve_block_jacobi(const BlockSystem& s, double tolerance, int m
   for (int b = 0; b < n; ++b) {
     pre[b].compute(s.diagonal(b));
     if (pre[b].info() != Eigen::Success)
-      throw std::runtime_error("pcg: diagonal block " + std::to_string(b) +
-                               " is not positive definite");
+      throw SingularSystemError("pcg: diagonal block " + std::to_string(b) + " is not positive definite", b, -1);
   }
   auto precondition = [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) {
     for (int b = 0; b < n; ++b) z.segment<6>(6 * b) = pre[b].solve(r.segment<6>(6 * b));
@@ -162,6 +164,12 @@ Eigen::VectorXd solve_block_jacobi(const BlockSystem& s, double tolerance, int m
 }
 
 }  // namespace
+
+const char* unknown_name(int k) {
+  static const char* names[] = {"u0 (translation x)", "v0 (translation y)", "r0 (rotation)",
+                                "ex (strain x)",      "ey (strain y)",      "gxy (shear strain)"};
+  return k >= 0 && k < 6 ? names[k] : "?";
+}
 
 Eigen::VectorXd LinearSolver::solve(const BlockSystem& system) {
   ++stats_.solves;
@@ -182,9 +190,14 @@ Eigen::VectorXd LinearSolver::solve(const BlockSystem& system) {
   }
   cholmod_factorize(c.A, c.L, &c.common);
   ++stats_.factorizations;
-  if (c.common.status == CHOLMOD_NOT_POSDEF || c.L->minor < c.L->n)
-    throw std::runtime_error("cholmod: the system matrix is not positive definite (column " +
-                             std::to_string(c.L->minor) + ")");
+  if (c.common.status == CHOLMOD_NOT_POSDEF || c.L->minor < c.L->n) {
+    // L->minor counts in the fill-reducing order: map it back to the unknown.
+    const std::size_t k = c.L->minor;
+    const int column = c.L->Perm ? static_cast<const int*>(c.L->Perm)[k] : static_cast<int>(k);
+    throw SingularSystemError("cholmod: the system matrix is not positive definite at block " +
+                                  std::to_string(column / 6) + ", unknown " + unknown_name(column % 6),
+                              column / 6, column % 6);
+  }
   if (c.common.status < CHOLMOD_OK)
     throw std::runtime_error("cholmod: factorisation failed (status " +
                              std::to_string(c.common.status) + ")");

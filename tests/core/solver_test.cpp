@@ -123,4 +123,31 @@ BOOST_AUTO_TEST_CASE(engine_without_contacts_analyses_once) {
   BOOST_TEST(e.solver_stats().factorizations == 20);
 }
 
+BOOST_AUTO_TEST_CASE(a_matrix_that_is_not_positive_definite_is_reported_at_its_block_and_unknown) {
+  // Three blocks, block 1's rotation r0 with no stiffness at all:
+  // every solver names block 1 (cholmod also the unknown, through its ordering).
+  BlockSystem s;
+  s.reset(3);
+  for (int b = 0; b < 3; ++b) {
+    s.diagonal(b) = Mat6::Identity();
+    s.rhs().segment<6>(6 * b).setOnes();
+  }
+  s.diagonal(1)(2, 2) = 0.0;  // a rotation nothing holds (an exact zero pivot)
+  s.add_stiffness(0, 2, 0.1 * Mat6::Identity());  // a pattern for the fill-reducing ordering to permute
+  s.finalize();
+  for (SolverKind kind : {SolverKind::cholmod, SolverKind::pcg}) {
+    LinearSolver solver(kind);
+    try {
+      (void)solver.solve(s);
+      BOOST_ERROR("no error for a matrix that is not positive definite");
+    } catch (const SingularSystemError& e) {
+      BOOST_TEST(e.block == 1, e.what());
+      if (kind == SolverKind::cholmod) {
+        BOOST_TEST(e.unknown == 2, e.what());
+        BOOST_TEST(std::string(e.what()).find("r0 (rotation)") != std::string::npos, e.what());
+      }
+    }
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -15,6 +15,8 @@
 #pragma once
 
 #include <memory>
+#include <stdexcept>
+#include <string>
 
 #include "rheodda/core/block_system.hpp"
 #include "rheodda/core/engine.hpp"
@@ -23,6 +25,19 @@
 namespace rheodda::core {
 
 class BlockAmg;
+
+/// The system matrix is not positive definite: the first unknown at which the
+/// factorisation broke down, as a block and one of its six DDA unknowns
+/// (0 u0, 1 v0, 2 r0, 3 εx, 4 εy, 5 γxy; Shi 1988), when the solver can tell.
+struct SingularSystemError : std::runtime_error {
+  SingularSystemError(const std::string& what, int block_, int unknown_)
+      : std::runtime_error(what), block(block_), unknown(unknown_) {}
+  int block = -1;    ///< block index, -1 if unknown
+  int unknown = -1;  ///< 0..5, -1 if unknown
+};
+
+/// "rotation r0" etc.: the name of DDA unknown `k` (0..5) of a block.
+const char* unknown_name(int k);
 
 class LinearSolver {
  public:
