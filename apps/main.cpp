@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <exception>
+#include <new>
 
 #include "commands.hpp"
 #include "rheodda/scene/error.hpp"
@@ -36,6 +37,9 @@ int main(int argc, char** argv) {
     else
       fmt::print(stderr, "rheodda: error: {}: {}{}\n", e.file(), e.key().empty() ? "" : e.key() + ": ", e.message());
     return rheodda::apps::kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    fmt::print(stderr, "rheodda: error: out of memory: the input asks for more memory than is available\n");
+    return rheodda::apps::kExitFailure;
   } catch (const std::exception& e) {
     fmt::print(stderr, "rheodda: error: {}\n", e.what());
     return rheodda::apps::kExitBadInput;

@@ -74,6 +74,23 @@ double SeriesLaw::linear_limit() const {
   return lim;
 }
 
+double SeriesLaw::lagged_step_limit(double k) const {
+  // Lagged Kelvin step (the seed's eqs. 12-16): q' = q + b (F/E - q) with the
+  // start force F = k (delta - q); an error is multiplied by 1 - b (k + E)/E per
+  // step, b = 1 - exp(-dt E/eta): |1 - b (k + E)/E| < 1 <=> b < 2E/(k + E).
+  // Lagged dashpot: q' = q + dt F/eta, error factor 1 - dt k/eta: dt < 2 eta/k.
+  double lim = std::numeric_limits<double>::infinity();
+  if (!(k > 0.0)) return lim;
+  for (const auto& e : elements_) {
+    if (e.kind == CreepElement::Kind::kelvin) {
+      if (k > e.E && e.E > 0.0) lim = std::min(lim, -(e.eta / e.E) * std::log1p(-2.0 * e.E / (k + e.E)));
+    } else {
+      lim = std::min(lim, 2.0 * e.eta / k);
+    }
+  }
+  return lim;
+}
+
 StepConstants SeriesLaw::step_constants(double dt, Scheme scheme) const {
   // The coefficients of (2) in contact_rheology.hpp, per element and scheme
   // (rheology.md, "three schemes"; docs/laws.md, "Schemes"):

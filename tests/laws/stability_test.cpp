@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "rheodda/laws/history.hpp"
+#include "rheodda/laws/series_law.hpp"
 #include "test_support.hpp"
 
 using namespace rheodda::laws;
@@ -92,6 +93,35 @@ BOOST_AUTO_TEST_CASE(lagged_kelvin_with_stiff_spring_diverges_beyond_its_limit_a
       BOOST_TEST(monotone(deviations(*law, Scheme::implicit, factor * dt_star, d0, f_inf)), factor);
       BOOST_TEST(magnitude_shrinks(deviations(*law, Scheme::exponential_linear, factor * dt_star, d0, f_inf)), factor);
     }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(lagged_step_limit_is_the_boundary_the_cases_above_measure) {
+  // SeriesLaw::lagged_step_limit (what `rheodda check` warns with) against the
+  // two boundaries measured above, and stable at any step when k <= E2.
+  for (const auto& r : table1()) {
+    const auto mx = maxwell(r);
+    const auto* m = dynamic_cast<const SeriesLaw*>(mx.get());
+    BOOST_TEST_REQUIRE(m);
+    const double maxwell_limit = m->lagged_step_limit(r.E1);
+    BOOST_TEST(maxwell_limit == 2.0 * r.eta1 / r.E1, boost::test_tools::tolerance(1e-14));
+    BOOST_TEST(magnitude_grows(deviations(*mx, Scheme::lagged, 1.1 * maxwell_limit, r.tau / r.E1, 0.0)));
+    BOOST_TEST(magnitude_shrinks(deviations(*mx, Scheme::lagged, 0.9 * maxwell_limit, r.tau / r.E1, 0.0)));
+
+    const double k = 100.0 * r.E2;
+    const auto ni = make("nishihara", {{"E1", k}, {"E2", r.E2}, {"eta2", r.eta2}, {"eta3", r.eta1}, {"Fs", 1e30}});
+    const auto* n = dynamic_cast<const SeriesLaw*>(ni.get());
+    BOOST_TEST_REQUIRE(n);
+    const double kelvin_limit = n->lagged_step_limit(k);
+    const double d0 = r.tau / k, f_inf = d0 * k * r.E2 / (k + r.E2);
+    BOOST_TEST(kelvin_limit == -std::log1p(-2.0 * r.E2 / (r.E2 + k)) * r.eta2 / r.E2,
+               boost::test_tools::tolerance(1e-14));
+    BOOST_TEST(magnitude_grows(deviations(*ni, Scheme::lagged, 1.1 * kelvin_limit, d0, f_inf)));
+    BOOST_TEST(magnitude_shrinks(deviations(*ni, Scheme::lagged, 0.9 * kelvin_limit, d0, f_inf)));
+
+    const auto kv = make("kelvin", {{"E2", r.E2}, {"eta2", r.eta2}});
+    BOOST_TEST(std::isinf(dynamic_cast<const SeriesLaw&>(*kv).lagged_step_limit(0.5 * r.E2)));
+    BOOST_TEST(std::isinf(dynamic_cast<const SeriesLaw&>(*kv).lagged_step_limit(r.E2)));
   }
 }
 

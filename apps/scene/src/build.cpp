@@ -2,9 +2,72 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <limits>
+
 #include "rheodda/laws/registry.hpp"
+#include "rheodda/laws/series_law.hpp"
+#include "rheodda/scene/geometry.hpp"
 
 namespace rheodda::scene {
+
+std::vector<std::string> scene_warnings(const SceneDescription& s) {
+  std::vector<std::string> out;
+  const Analysis& a = s.analysis;
+  // The lagged scheme's stability limit (only when the scene asks for lagged:
+  // the automatic choice and the other schemes are stable at any step). The
+  // series stiffness per unit area is the joint set's shear_stiffness or the
+  // law's E1; with a penalty shear spring it depends on each contact's length
+  // and is not known here.
+  if (a.scheme && *a.scheme == laws::Scheme::lagged) {
+    const auto& registry = laws::LawRegistry::builtin();
+    const bool adaptive = a.creep_tolerance > 0.0 || a.step_tolerance > 0.0;
+    const double largest = adaptive ? (a.dt_max > 0.0 ? a.dt_max : std::numeric_limits<double>::infinity()) : a.dt;
+    for (const auto& js : s.joint_sets) {
+      if (!js.law) continue;
+      std::optional<double> k = js.shear_stiffness;
+      if (!k) {
+        const auto e1 = js.law->parameters.find("E1");
+        if (e1 != js.law->parameters.end()) k = e1->second;
+      }
+      if (!k) continue;
+      const auto law = registry.create(js.law->name, js.law->parameters);
+      const auto* series = dynamic_cast<const laws::SeriesLaw*>(law.get());
+      if (!series) continue;
+      const double limit = series->lagged_step_limit(*k);
+      if (largest > limit)
+        out.push_back(fmt::format(
+            "joint set '{}': the lagged scheme is unstable for steps above {:g} {} with this law and a shear "
+            "stiffness of {:g} (docs/speed-accuracy.md, \"Stability\"), and {} {:g} {}: give "
+            "analysis.scheme implicit or exponential-linear (or leave it automatic), or {} below the limit",
+            js.name, limit, s.units.time, *k, adaptive ? "steps may grow to" : "dt is", largest, s.units.time,
+            adaptive ? "dt_max" : "dt"));
+    }
+  }
+  // Slivers and needles: a block whose mean thickness 2A/P is a tiny share of the
+  // model, or far below its own length, makes an ill-conditioned system.
+  const double w0 = half_model_size(s.blocks);
+  for (const auto& b : s.blocks) {
+    double area = 0.0, perimeter = 0.0;
+    const std::size_t n = b.polygon.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto& p = b.polygon[i];
+      const auto& q = b.polygon[(i + 1) % n];
+      area += 0.5 * (p[0] * q[1] - q[0] * p[1]);
+      perimeter += std::hypot(q[0] - p[0], q[1] - p[1]);
+    }
+    const double thickness = 2.0 * std::abs(area) / perimeter;  // 2A/P: half the width of a long strip
+    if (thickness < 1e-6 * w0)
+      out.push_back(fmt::format("block '{}' is a sliver: its mean thickness 2A/P = {:g} {} is below 1e-6 of the "
+                                "half model size ({:g} {}); merge it with a neighbour or remove it",
+                                b.name, thickness, s.units.length, w0, s.units.length));
+    else if (perimeter / thickness > 1e4)
+      out.push_back(fmt::format("block '{}' has an extreme aspect ratio (perimeter / mean thickness = {:.3g}); "
+                                "its stiffness matrix is ill-conditioned: split it or thicken it",
+                                b.name, perimeter / thickness));
+  }
+  return out;
+}
 
 BuiltScene build_scene(const SceneDescription& s) {
   BuiltScene out;
@@ -94,6 +157,7 @@ BuiltScene build_scene(const SceneDescription& s) {
     if (js.law) j.law = registry.create(js.law->name, js.law->parameters);
     out.joint_sets.push_back(std::move(j));
   }
+  out.warnings = scene_warnings(s);
   return out;
 }
 

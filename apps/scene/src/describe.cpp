@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "rheodda/core/solver.hpp"
+#include "rheodda/scene/build.hpp"
 #include "rheodda/scene/geometry.hpp"
 
 namespace rheodda::scene {
@@ -43,7 +45,7 @@ namespace {
 std::string number(double v) {
   for (int digits : {6, 10}) {
     const std::string t = fmt::format("{:.{}g}", v, digits);
-    if (std::stod(t) == v) return t;
+    if (std::strtod(t.c_str(), nullptr) == v) return t;  // (std::stod throws on denormals)
   }
   return fmt::format("{:.17g}", v);
 }
@@ -176,6 +178,11 @@ std::string describe_scene(const SceneDescription& s) {
                    est.vertex_edge, est.block_pairs, d, u.length));
   line(fmt::format("contact search distance: {:g} {} (search_factor x max_displacement_ratio x half model size)",
                    search, u.length));
+  const auto warnings = scene_warnings(s);
+  if (!warnings.empty()) {
+    line(fmt::format("warnings ({}):", warnings.size()));
+    for (const auto& w : warnings) line("  " + w);
+  }
   return out;
 }
 

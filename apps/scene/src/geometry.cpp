@@ -145,19 +145,47 @@ double signed_area(const std::vector<Point>& polygon) {
   return 0.5 * a;
 }
 
+std::optional<std::string> coordinate_defect(const std::vector<Point>& polygon) {
+  // Coordinates whose products (areas, cross products) would overflow a double.
+  for (std::size_t i = 0; i < polygon.size(); ++i)
+    if (!(std::abs(polygon[i][0]) < 1e150 && std::abs(polygon[i][1]) < 1e150))
+      return fmt::format("has vertex {} at ({:g}, {:g}): coordinates beyond 1e150 overflow double-precision "
+                         "areas (change the length unit)",
+                         i, polygon[i][0], polygon[i][1]);
+  return std::nullopt;
+}
+
 std::optional<std::string> polygon_defect(const std::vector<Point>& polygon, double tol) {
   const std::size_t n = polygon.size();
   if (n < 3) return fmt::format("has {} vertices; a polygon needs at least 3", n);
+  if (auto c = coordinate_defect(polygon)) return c;
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n; ++j)
-      if (dist(polygon[i], polygon[j]) <= tol)
-        return j == n - 1 && i == 0
-                   ? std::string("repeats its first vertex at the end (list each vertex once)")
-                   : fmt::format("has vertices {} and {} at the same place", i, j);
+      if (const double d = dist(polygon[i], polygon[j]); d <= tol) {
+        if (d == 0.0)
+          return j == n - 1 && i == 0
+                     ? std::string("repeats its first vertex at the end (list each vertex once)")
+                     : fmt::format("has vertices {} and {} at the same place", i, j);
+        return fmt::format("has vertices {} and {} only {:g} apart, within the geometric tolerance {:g} "
+                           "(1e-9 of the model size): a sliver or a needle that thin cannot be modelled",
+                           i, j, d, tol);
+      }
+  auto crossing = [&]() -> std::optional<std::string> {
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i + 2; j < n; ++j) {
+        if (i == 0 && j == n - 1) continue;  // adjacent through the closing edge
+        if (segment_distance(polygon[i], polygon[(i + 1) % n], polygon[j], polygon[(j + 1) % n]) <= tol)
+          return fmt::format("is not simple: edges {} and {} cross or touch", i, j);
+      }
+    return std::nullopt;
+  };
   const Box box = bounding_box(polygon);
   const double size = std::hypot(box.x1 - box.x0, box.y1 - box.y0);
-  if (std::abs(signed_area(polygon)) <= tol * size)
+  if (std::abs(signed_area(polygon)) <= tol * size) {
+    // Zero area: a bow-tie's two halves cancel; say that its edges cross.
+    if (auto c = crossing()) return c;
     return std::string("is degenerate: its area is zero");
+  }
   for (std::size_t i = 0; i < n; ++i) {
     // Adjacent edges folding back onto each other (a spike of zero width).
     const Point& a = polygon[(i + n - 1) % n];
@@ -168,13 +196,39 @@ std::optional<std::string> polygon_defect(const std::vector<Point>& polygon, dou
     if (std::abs(cross(a, b, c)) <= tol * std::max(ab, bc) && dot < 0.0)
       return fmt::format("folds back on itself at vertex {}", i);
   }
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i + 2; j < n; ++j) {
-      if (i == 0 && j == n - 1) continue;  // adjacent through the closing edge
-      if (segment_distance(polygon[i], polygon[(i + 1) % n], polygon[j], polygon[(j + 1) % n]) <=
-          tol)
-        return fmt::format("is not simple: edges {} and {} cross or touch", i, j);
-    }
+  return crossing();
+}
+
+std::optional<std::pair<int, double>> stray_block(const std::vector<BlockDescription>& blocks, double ratio) {
+  const std::size_t n = blocks.size();
+  if (n < 2) return std::nullopt;
+  std::vector<Box> box(n);
+  std::vector<double> size(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    box[i] = bounding_box(blocks[i].polygon);
+    size[i] = std::hypot(box[i].x1 - box[i].x0, box[i].y1 - box[i].y0);
+  }
+  std::vector<double> sorted = size;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(n / 2), sorted.end());
+  const double median = sorted[n / 2];
+  // Union of the boxes of all blocks but i, from prefix and suffix unions: O(n).
+  auto unite = [](Box a, const Box& b) {
+    a.x0 = std::min(a.x0, b.x0), a.y0 = std::min(a.y0, b.y0);
+    a.x1 = std::max(a.x1, b.x1), a.y1 = std::max(a.y1, b.y1);
+    return a;
+  };
+  const Box empty{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+                  std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest()};
+  std::vector<Box> pre(n + 1, empty), suf(n + 1, empty);
+  for (std::size_t i = 0; i < n; ++i) pre[i + 1] = unite(pre[i], box[i]);
+  for (std::size_t i = n; i-- > 0;) suf[i] = unite(suf[i + 1], box[i]);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Box rest = unite(pre[i], suf[i + 1]);
+    const double dx = std::max({0.0, rest.x0 - box[i].x1, box[i].x0 - rest.x1});
+    const double dy = std::max({0.0, rest.y0 - box[i].y1, box[i].y0 - rest.y1});
+    const double gap = std::hypot(dx, dy);
+    if (gap > ratio * median) return std::make_pair(static_cast<int>(i), gap);
+  }
   return std::nullopt;
 }
 

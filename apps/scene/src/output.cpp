@@ -31,7 +31,7 @@ void sync_directory(const std::string& path) {
   ::close(fd);
 }
 
-void write_file_atomic(const std::string& path, const std::string& content) {
+void write_file_atomic(const std::string& path, const std::string& content, bool durable) {
   const std::string tmp = path + ".tmp";
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) throw std::runtime_error(write_error(path, errno));
@@ -41,7 +41,7 @@ void write_file_atomic(const std::string& path, const std::string& content) {
     if (n < 0 && errno != EINTR) error = errno;
     if (n > 0) done += static_cast<std::size_t>(n);
   }
-  if (!error && ::fsync(fd) != 0) error = errno;
+  if (!error && durable && ::fsync(fd) != 0) error = errno;
   if (::close(fd) != 0 && !error) error = errno;
   std::error_code ec;
   if (!error) {
@@ -52,7 +52,7 @@ void write_file_atomic(const std::string& path, const std::string& content) {
     std::filesystem::remove(tmp, ec);  // never leave a .tmp behind
     throw std::runtime_error(write_error(path, error));
   }
-  sync_directory(std::filesystem::path(path).parent_path().string());
+  if (durable) sync_directory(std::filesystem::path(path).parent_path().string());
 }
 
 std::string read_file(const std::string& path) {

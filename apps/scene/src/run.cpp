@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <new>
 #include <nlohmann/json.hpp>
 
 #include "rheodda/contact/contact_system.hpp"
@@ -15,6 +16,7 @@
 #include "rheodda/scene/build.hpp"
 #include "rheodda/scene/describe.hpp"
 #include "rheodda/scene/output.hpp"
+#include "rheodda/version.hpp"
 
 namespace rheodda::scene {
 namespace {
@@ -232,9 +234,10 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
   }
   // Only now that the model is accepted: a refused scene leaves nothing behind.
   {
+    // An output folder that cannot be made is bad input (exit 2), as for `fit`.
     std::error_code ec;
     fs::create_directories(fs::path(out) / "frames", ec);
-    if (ec) throw std::runtime_error(write_error((fs::path(out) / "frames").string(), ec.value()));
+    if (ec) throw std::invalid_argument(write_error((fs::path(out) / "frames").string(), ec.value()));
   }
   // One run per folder at a time (held until this function returns).
   const FolderLock lock(out);
@@ -257,6 +260,15 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
   std::vector<double> frame_times;
   const long long nframes = static_cast<long long>(std::ceil(a.duration / a.output_interval - 1e-9));
   for (long long k = 0; k <= nframes; ++k) frame_times.push_back(std::min(double(k) * a.output_interval, a.duration));
+  // A frame is written at the end of the first step that reaches its output time:
+  // steps are never shortened to land on output times (only on the end of the run),
+  // so output_interval cannot change the steps taken (docs/outputs.md). The next
+  // output time after t, the engine's round-off sliver counting as reached:
+  auto next_output = [&](double t) {
+    std::size_t k = 0;
+    while (k < frame_times.size() && frame_times[k] <= t + 1e-12 * std::max(1.0, std::abs(frame_times[k]))) ++k;
+    return k;
+  };
 
   // Per-step rows of history.csv.
   std::vector<int> recorded;
@@ -470,15 +482,18 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     mode = Mode::replay;
     replay_target = step;
     restore_frame(0);
-    int k = 1;
+    int f = 1;  // the frame the replay reaches next
     try {
-      for (; k <= frames_done && k < static_cast<int>(frame_times.size()) && engine.step_count() < step; ++k) {
-        engine.run_until(frame_times[k]);
-        restore_frame(k);
+      for (std::size_t k = next_output(engine.time());
+           k < frame_times.size() && f < frames_done && engine.step_count() < step; k = next_output(engine.time())) {
+        engine.run_until(frame_times[k], a.duration);
+        restore_frame(f++);
       }
+      // The checkpoint's own segment, stopped at its step.
+      if (engine.step_count() < step) engine.run_until(a.duration, a.duration);
     } catch (const StopAfterStep&) {
-      if (k < static_cast<int>(frame_times.size())) restore_frame(k);
     }
+    if (f < frames_done) restore_frame(f);
     if (engine.step_count() != step || hex(engine.time()) != ck.at("time").get<std::string>() ||
         fmt::format("{:016x}", state_digest(engine)) != ck.at("digest").get<std::string>())
       throw std::runtime_error(fmt::format(
@@ -517,7 +532,7 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
   auto write_summary = [&](const std::string& status, const std::string& error) {
     totals();
     json j;
-    j["program"] = "rheodda 0.1.0";
+    j["program"] = kProgramVersion;
     j["status"] = status;
     if (!error.empty()) j["error"] = error;
     j["units"] = {{"length", s.units.length}, {"force", s.units.force}, {"time", s.units.time},
@@ -594,8 +609,10 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     text += ",\n  \"inputs\": " + inputs_text + ",\n  \"scene_text\": " + scene_text_json + "\n}\n";
     write_file_atomic((fs::path(out) / "summary.json").string(), text);
   };
+  Clock::time_point last_checkpoint{};
   auto write_checkpoint = [&] {
-    // What the checkpoint counts must be on disk before the checkpoint is.
+    // What the checkpoint counts must be on disk before the checkpoint is (the
+    // frames and blocks.pvd need not: resume writes them again when they are lost).
     history.sync();
     contacts_csv.sync();
     json ck;
@@ -615,7 +632,8 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     for (std::size_t k = 0; k < pvd.size(); ++k)
       frames.push_back({hex(pvd[k].first), pvd[k].second, fmt::format("{:016x}", frame_hash[k])});
     ck["pvd"] = frames;
-    write_file_atomic(checkpoint_path, ck.dump(1) + "\n");
+    write_file_atomic(checkpoint_path, ck.dump(1) + "\n", true);
+    last_checkpoint = Clock::now();
   };
   auto write_frame = [&] {
     const int k = frames_done;
@@ -647,14 +665,19 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     frame_hash.push_back(fnv1a(text.data(), text.size()));
     write_file_atomic((fs::path(out) / "blocks.pvd").string(), vtk_collection(pvd));
     ++frames_done;
-    write_checkpoint();
+    // A checkpoint costs a few fsyncs (~10 ms here): at most one per second of wall
+    // time at frames; always on a stop, a failure and at the end. A resume after a
+    // crash replays from the last one (and writes the later frames again).
+    if (frames_done == 1 || Clock::now() - last_checkpoint > std::chrono::seconds(1)) write_checkpoint();
     write_summary("running", "");
   };
 
   try {
     if (frames_done == 0) write_frame();
-    for (int k = frames_done; k < static_cast<int>(frame_times.size()); ++k) {
-      engine.run_until(frame_times[k]);
+    // The next output time after the last frame written: a run resumed at an output
+    // time that its frame was not written for (stopped on that very step) writes it now.
+    for (std::size_t k = next_output(pvd.back().first); k < frame_times.size(); k = next_output(pvd.back().first)) {
+      engine.run_until(frame_times[k], a.duration);  // returns at once if the time is reached
       write_frame();
     }
   } catch (const StopAfterStep&) {
@@ -677,6 +700,28 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
   } catch (const std::exception& e) {
     // Keep what can be kept; a second failure (e.g. a full disk) must not hide the first.
     std::string error = e.what();
+    if (dynamic_cast<const std::bad_alloc*>(&e))
+      error = fmt::format("out of memory (a model of {} blocks needs more memory than is available to this "
+                          "process; docs/performance.md gives the memory a run needs per block)",
+                          engine.block_count());
+    if (const auto* se = dynamic_cast<const core::SingularSystemError*>(&e);
+        se && se->block >= 0 && se->block < static_cast<int>(s.blocks.size())) {
+      // Say which block, and what held it: its contacts at the start of the failed step.
+      int closed = 0, total = 0;
+      for (const auto& c : contacts.contacts())
+        if (c.key.vblock == se->block || c.key.eblock == se->block) {
+          ++total;
+          if (c.state != contact::ContactState::open) ++closed;
+        }
+      error += fmt::format(
+          ". That is block '{}'{}: {} of its {} contacts were closed at the start of the step{}. The matrix "
+          "stays positive definite while every block is held (a closed contact, a fixed point, or the inertia "
+          "of the step): look at that block's support and contacts in the last frame (rheodda plot), or try a "
+          "smaller dt",
+          s.blocks[se->block].name,
+          se->unknown >= 0 ? fmt::format(" (its unknown {})", core::unknown_name(se->unknown)) : std::string(),
+          closed, total, s.blocks[se->block].fixed ? " (it is fixed)" : "");
+    }
     try {
       write_checkpoint();
     } catch (const std::exception&) {
@@ -691,6 +736,7 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
                                          engine.time(), s.units.time, engine.step_count(), error));
   }
   if (opt.progress) std::fprintf(opt.progress_stream, "\n");
+  write_checkpoint();
   write_summary("completed", "");
   return result;
 }

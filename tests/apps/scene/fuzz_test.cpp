@@ -33,7 +33,8 @@ std::string join(const std::vector<std::string>& lines) {
 }
 
 const char* kNumbers[] = {"0", "-1", "1e308", "-1e308", "1e-308", "nan", ".nan", ".inf", "-.inf", "3.5", "90",
-                          "0.5", "-0", "1e9", "2147483648", "99999999999", "1x", "[]", "{}", "~", "true", "\"7\""};
+                          "0.5", "-0", "1e9", "2147483648", "99999999999", "1x", "[]", "{}", "~", "true", "\"7\"",
+                          "5e-324", "1e-310", "2.2e-308", "1e200"};
 
 std::string mutate(const std::string& text, std::mt19937_64& rng) {
   auto pick = [&rng](std::size_t n) { return static_cast<std::size_t>(rng() % std::max<std::size_t>(n, 1)); };
@@ -116,6 +117,54 @@ BOOST_AUTO_TEST_CASE(mutated_examples_load_or_fail_with_a_located_scene_error) {
     }
   }
   BOOST_TEST_MESSAGE("fuzz: " << loaded << " mutants loaded, " << refused << " refused cleanly");
+  BOOST_TEST(refused > 0);
+  BOOST_TEST(loaded > 0);
+}
+
+// The classes a file adds to a text: bytes of other encodings, NUL bytes, tabs in
+// the indentation, byte-order marks; and paths that are not scene files. Loaded
+// through load_scene (the command's path: read_scene_text, then the parser).
+BOOST_AUTO_TEST_CASE(scene_files_in_other_encodings_with_tabs_or_from_devices_fail_with_a_scene_error) {
+  const auto dir = fresh_dir("fuzz-files");
+  int refused = 0, loaded = 0;
+  auto load = [&](const std::string& path, const std::string& what) {
+    try {
+      (void)scene::describe_scene(scene::load_scene(path));
+      ++loaded;
+    } catch (const scene::SceneError& e) {
+      ++refused;
+      BOOST_TEST(!e.message().empty(), what);
+      BOOST_TEST(std::string(e.what()).find(":0:0") == std::string::npos, what << ": " << e.what());
+    } catch (const std::exception& e) {
+      BOOST_ERROR(what << ": escaped " << typeid(e).name() << ": " << e.what());
+    }
+  };
+  for (const char* device : {"/dev/zero", "/dev/null", "/dev/urandom", "/", "/proc/self/fd/0"}) load(device, device);
+  const std::string original = read_text(source_path("examples/sliding-block.yaml"));
+  std::mt19937_64 rng(0xE7C0DEULL);
+  const char* inserts[] = {"\xE9", "\xFF\xFE", "\xC3", "\xED\xA0\x80", "\xF8\x88\x80\x80\x80"};
+  for (int i = 0; i < 300; ++i) {
+    std::string text = mutate(original, rng);
+    const int kind = static_cast<int>(rng() % 4);
+    if (kind == 0) {  // a foreign byte sequence somewhere
+      const std::string ins = i % 7 == 5 ? std::string("\0", 1) : std::string(inserts[rng() % 5]);
+      text.insert(rng() % (text.size() + 1), ins);
+    } else if (kind == 1) {  // a line indented by a tab
+      auto lines = lines_of(text);
+      if (!lines.empty()) lines[rng() % lines.size()].insert(0, "\t");
+      text = join(lines);
+    } else if (kind == 2) {  // UTF-16 (little endian, with its mark)
+      std::string w = "\xFF\xFE";
+      for (char c : text) w += std::string{c, '\0'};
+      text = w;
+    } else {  // a UTF-8 byte-order mark
+      text = "\xEF\xBB\xBF" + text;
+    }
+    const auto path = dir / ("m" + std::to_string(i) + ".yaml");
+    std::ofstream(path, std::ios::binary) << text;
+    load(path.string(), "mutant " + std::to_string(i));
+  }
+  BOOST_TEST_MESSAGE("fuzz files: " << loaded << " loaded, " << refused << " refused cleanly");
   BOOST_TEST(refused > 0);
   BOOST_TEST(loaded > 0);
 }

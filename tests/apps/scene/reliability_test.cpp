@@ -12,10 +12,13 @@
 
 #include <cerrno>
 #include <chrono>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <thread>
 
 #include "../test_support.hpp"
+#include "rheodda/scene/build.hpp"
+#include "rheodda/scene/describe.hpp"
 #include "rheodda/scene/loader.hpp"
 #include "rheodda/scene/output.hpp"
 #include "rheodda/scene/run.hpp"
@@ -281,6 +284,144 @@ BOOST_AUTO_TEST_CASE(a_write_that_fails_names_the_file_and_the_reason_and_leaves
       [&] { scene::write_file_atomic((d / "target").string(), "text"); });
   BOOST_TEST(m.find("cannot write " + (d / "target").string()) == 0u, m);
   BOOST_TEST(!fs::exists(d / "target.tmp"));
+}
+
+BOOST_AUTO_TEST_CASE(the_output_interval_never_changes_the_steps_taken) {
+  // The seed's slope over 60 days: its cuts take the time off the grid k dt, and
+  // output times used to split steps differently for each output_interval (with
+  // 10 d the run failed at 7.88 d on a matrix that was not positive definite).
+  // Now every interval that is a multiple of dt gives the same steps, bit for bit.
+  auto read_rows = [](const fs::path& p) {
+    std::map<std::string, std::string> rows;  // time -> row
+    std::istringstream in(read_text(p.string()));
+    std::string line;
+    while (std::getline(in, line))
+      if (!line.empty() && line[0] != '#' && line.rfind("time,", 0) != 0) rows[line.substr(0, line.find(','))] = line;
+    return rows;
+  };
+  std::map<std::string, std::string> reference;
+  for (const double interval : {1.0, 10.0, 20.0, 30.0, 60.0}) {
+    BOOST_TEST_CONTEXT("output_interval " << interval << " d") {
+      auto s = scene::load_scene(source_path("examples/goodman-toppling.yaml"));
+      s.analysis.output_interval = interval;
+      const fs::path out = fresh_dir("interval");
+      const auto r = run(s, out);
+      BOOST_TEST_REQUIRE((r.status == scene::RunStatus::completed));
+      BOOST_TEST(r.cuts > 0);  // the case this is about
+      const auto rows = read_rows(out / "history.csv");
+      if (reference.empty()) {
+        reference = rows;
+        continue;
+      }
+      BOOST_TEST(rows.size() == reference.size());
+      for (const auto& [t, row] : reference) {
+        const auto it = rows.find(t);
+        BOOST_TEST_REQUIRE((it != rows.end()), "no step ends at t = " << t);
+        BOOST_TEST(it->second == row);
+      }
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(check_and_run_warn_of_a_step_beyond_the_lagged_limit_and_of_slivers) {
+  // The shear creep test's Burgers joint (k = E1 = 26.87 MPa/mm): its dashpot's
+  // lagged limit is 2 eta1/E1 = 2 x 34807.72/26.87 = 2590.8 h.
+  auto s = scene::load_scene(source_path("examples/shear-creep-test.yaml"));
+  s.analysis.scheme = laws::Scheme::lagged;
+  s.analysis.duration = 6000.0;
+  s.analysis.output_interval = 3000.0;
+  s.analysis.dt = 2000.0;
+  BOOST_TEST(scene::scene_warnings(s).empty());
+  s.analysis.dt = 3000.0;
+  const auto w = scene::scene_warnings(s);
+  BOOST_TEST_REQUIRE(w.size() == 1u);
+  BOOST_TEST(w[0].find("joint set 'plane': the lagged scheme is unstable for steps above 2590.82 h") == 0u, w[0]);
+  BOOST_TEST(scene::describe_scene(s).find(w[0]) != std::string::npos);
+  s.analysis.scheme = laws::Scheme::implicit;  // stable at any step: no warning
+  BOOST_TEST(scene::scene_warnings(s).empty());
+  // The run lists the warning in summary.json.
+  s.analysis.scheme = laws::Scheme::lagged;
+  const fs::path out = fresh_dir("lagged-warning");
+  const auto r = run(s, out);
+  BOOST_TEST(r.warnings == w);
+  const auto sum = nlohmann::json::parse(read_text((out / "summary.json").string()));
+  BOOST_TEST(sum.at("warnings").at(0).get<std::string>() == w[0]);
+
+  // A sliver block (1e-7 m thick on a 10 m model).
+  auto t = scene::parse_scene(
+      with("[[1, 1], [2, 1], [2, 2], [1, 2]]", "[[1, 1.5], [2, 1.5], [2, 1.5000001], [1, 1.5000001]]"), "sliver.yaml");
+  const auto ws = scene::scene_warnings(t);
+  BOOST_TEST_REQUIRE(ws.size() == 1u);
+  BOOST_TEST(ws[0].find("block 'top' is a sliver") == 0u, ws[0]);
+}
+
+BOOST_AUTO_TEST_CASE(files_that_are_not_scenes_are_refused_with_what_they_are) {
+  const fs::path d = fresh_dir("inputs");
+  auto error_of = [](const std::string& path) {
+    try {
+      (void)scene::load_scene(path);
+    } catch (const scene::SceneError& e) {
+      return std::string(e.what());
+    }
+    BOOST_ERROR("no SceneError for " << path);
+    return std::string();
+  };
+  auto write = [&](const std::string& name, const std::string& text) {
+    std::ofstream(d / name, std::ios::binary) << text;
+    return (d / name).string();
+  };
+  // No ":0:0" where no line is known.
+  BOOST_TEST(error_of((d / "missing.yaml").string()) ==
+             (d / "missing.yaml").string() + ": cannot open the scene file: No such file or directory");
+  BOOST_TEST(error_of(d.string()) == d.string() + ": is a folder, not a scene file");
+  BOOST_TEST(error_of("/dev/zero").find("/dev/zero: is not a regular file") == 0u);
+  BOOST_TEST(error_of(write("empty.yaml", "\n  \n")).find(": the scene file is empty") != std::string::npos);
+  // Encodings: Latin-1 and UTF-16 are refused where the first foreign byte is;
+  // a UTF-8 byte-order mark is accepted.
+  const std::string latin1 = "title: \"Caf\xE9\"\n" + kBaseScene;
+  BOOST_TEST(error_of(write("latin1.yaml", latin1)).find("latin1.yaml:1:12: byte 0xE9 is not UTF-8") !=
+                 std::string::npos,
+             error_of(write("latin1.yaml", latin1)));
+  BOOST_TEST(error_of(write("utf16.yaml", "\xFF\xFEt\0i\0")).find("UTF-16") != std::string::npos);
+  BOOST_TEST(scene::load_scene(write("bom.yaml", "\xEF\xBB\xBF" + kBaseScene)).blocks.size() == 2u);
+  // A tab in the indentation (yaml-cpp would say "illegal map value").
+  const std::string tabbed = with("  duration: 1\n", "\tduration: 1\n");
+  BOOST_TEST(error_of(write("tab.yaml", tabbed)).find("tab.yaml:3:1: a tab in the indentation") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(geometry_messages_say_what_is_wrong_with_the_block_that_is_wrong) {
+  // A symmetric bow-tie: zero area because its edges cross.
+  expect_error(with("[[1, 1], [2, 1], [2, 2], [1, 2]]", "[[1, 1], [2, 2], [2, 1], [1, 2]]"), 13, 0, "blocks[1]",
+               "edges 0 and 2 cross");
+  // A sliver thinner than the tolerance: not "repeats its first vertex".
+  expect_error(with("[[1, 1], [2, 1], [2, 2], [1, 2]]", "[[1, 1], [2, 1], [2, 1.000000000001], [1, 1.000000000001]]"),
+               13, 0, "blocks[1]", "has vertices 0 and 3 only 1.0000");
+  // A block 1e9 m away is named itself, not the blocks its size would make degenerate.
+  expect_error(with("measurement_points:\n",
+                    "  - {name: far, polygon: [[1e9, 0], [1.000000001e9, 0], [1.000000001e9, 1], [1e9, 1]], joint_set: bedding}\n"
+                    "measurement_points:\n"),
+               14, 0, "blocks[2]", "block 'far' lies 1e+09 m from all the other blocks");
+  // With two blocks both are named.
+  expect_error(with("[[1, 1], [2, 1], [2, 2], [1, 2]]", "[[1e9, 1], [1.000000001e9, 1], [1.000000001e9, 2], [1e9, 2]]"),
+               12, 0, "blocks[0]", "blocks 'base' and 'top' lie 1e+09 m apart");
+  // Coordinates whose areas overflow.
+  expect_error(with("[[1, 1], [2, 1], [2, 2], [1, 2]]", "[[1, 1], [1e200, 1], [1e200, 1e200], [1, 1e200]]"), 13, 0,
+               "blocks[1]", "beyond 1e150");
+}
+
+BOOST_AUTO_TEST_CASE(a_denormal_law_parameter_is_described_not_a_stod_error) {
+  auto s = scene::parse_scene(with("E1: 1", "E1: 1e-310"), "denormal.yaml");
+  BOOST_TEST(scene::describe_scene(s).find("E1=1e-310") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(an_output_folder_that_cannot_be_made_is_bad_input) {
+  const fs::path d = fresh_dir("unusable");
+  { std::ofstream(d / "file") << "x"; }
+  const auto s = sliding(0.01, 0.01);
+  const std::string m = message_of<std::invalid_argument>([&] { run(s, d / "file" / "out"); });
+  BOOST_TEST(m.find("cannot write " + (d / "file" / "out" / "frames").string()) == 0u, m);
+  const auto r = run_rheodda("run " + source_path("examples/sliding-block.yaml") + " -o " + (d / "file" / "out").string());
+  BOOST_TEST(r.exit_code == 2, r.output);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -47,6 +47,15 @@ class SeriesLaw : public ContactRheology {
 
   const std::vector<CreepElement>& elements() const { return elements_; }
 
+  /// Largest step [time] at which the lagged scheme stays stable when the law acts
+  /// in series with a shear spring of stiffness k (same unit as E): the smallest of
+  /// its elements' limits (docs/speed-accuracy.md, "Stability"): a Kelvin element
+  /// (E, eta) is stable at any step when k <= E, otherwise for
+  ///   dt < -(eta/E) ln(1 - 2E/(k + E));
+  /// a dashpot or a Bingham element above its threshold for dt < 2 eta/k.
+  /// Infinity when no element limits the step.
+  double lagged_step_limit(double k) const;
+
  private:
   std::string name_;
   ParameterValues parameters_;

@@ -22,6 +22,13 @@ struct BuiltScene {
   std::vector<std::string> warnings;
 };
 
+/// What is legal in a scene but suspect, one sentence each with the way out:
+/// a fixed step beyond the lagged scheme's stability limit of a joint set's law
+/// (docs/speed-accuracy.md, "Stability"), a block that is a sliver or has an
+/// extreme aspect ratio. `check` prints them, `run` prints them and summary.json
+/// lists them.
+std::vector<std::string> scene_warnings(const SceneDescription& scene);
+
 /// Builds the model; throws SceneError if the engine refuses it (its ModelError key is reported).
 BuiltScene build_scene(const SceneDescription& scene);
 

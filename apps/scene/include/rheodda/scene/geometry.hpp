@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rheodda/scene/scene.hpp"
@@ -14,9 +15,19 @@ namespace rheodda::scene {
 /// Signed area (shoelace formula): > 0 counter-clockwise [length^2].
 double signed_area(const std::vector<Point>& polygon);
 
+/// Why the polygon's coordinates cannot be computed with (beyond 1e150: areas
+/// overflow), or nullopt.
+std::optional<std::string> coordinate_defect(const std::vector<Point>& polygon);
+
 /// Why the polygon is not a simple polygon with positive area, or nullopt if it is.
 /// `tol` is a length below which points count as coincident.
 std::optional<std::string> polygon_defect(const std::vector<Point>& polygon, double tol);
+
+/// A block lying more than `ratio` times the median block size (bounding-box
+/// diagonal) away from all the others, with that gap [length], or nullopt: a typo
+/// in its coordinates, which would also inflate the model size and with it the
+/// geometric tolerance applied to every other block.
+std::optional<std::pair<int, double>> stray_block(const std::vector<BlockDescription>& blocks, double ratio);
 
 /// Distance from p to the polygon's boundary [length].
 double boundary_distance(const std::vector<Point>& polygon, const Point& p);
