@@ -3,6 +3,7 @@
 //   rheodda study examples/studies/toppling-phi.yaml -o out/toppling-phi -j 2
 #include <fmt/format.h>
 
+#include <csignal>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -13,11 +14,15 @@
 namespace rheodda::apps {
 namespace {
 
+volatile std::sig_atomic_t g_study_stop = 0;
+extern "C" void on_study_stop(int signo) { g_study_stop = signo; }
+
 struct StudyArgs {
   std::string file;
   std::string out;
   int jobs = 0;
   bool no_plot = false;
+  bool resume = false;
 };
 
 void study_command(const StudyArgs& args) {
@@ -28,6 +33,15 @@ void study_command(const StudyArgs& args) {
   opt.jobs = args.jobs;
   opt.progress = true;
   opt.plot = !args.no_plot;
+  opt.resume = args.resume;
+  opt.stop = &g_study_stop;
+  // Ctrl-C or kill: the running cases stop after their step (with a checkpoint),
+  // study.csv says where each case is, and --resume continues.
+  struct sigaction sa {};
+  sa.sa_handler = on_study_stop;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
   std::vector<study::CaseResult> results;
   try {
     results = study::run_study(s, opt);
@@ -36,6 +50,14 @@ void study_command(const StudyArgs& args) {
   } catch (const std::exception& e) {
     fmt::print(stderr, "rheodda: error: {}\n", e.what());
     throw CLI::RuntimeError(1);
+  }
+  if (g_study_stop) {
+    int completed = 0;
+    for (const auto& r : results) completed += r.status == "completed";
+    fmt::print("{}: stopped with {} of {} cases completed; study.csv says where each case is\n"
+               "  resume with: rheodda study {} -o {} --resume\n",
+               s.title, completed, results.size(), args.file, opt.out_dir);
+    throw CLI::RuntimeError(128 + static_cast<int>(g_study_stop));
   }
   int failed = 0;
   for (const auto& r : results) failed += r.status != "completed";
@@ -54,6 +76,8 @@ void add_study_command(CLI::App& app) {
   st->add_option("-j,--jobs", args->jobs, "Cases run at once (default: the machine's hardware threads)")
       ->check(CLI::NonNegativeNumber);
   st->add_flag("--no-plot", args->no_plot, "Do not draw study.png");
+  st->add_flag("--resume", args->resume,
+               "Continue a stopped study in OUTDIR: completed cases are kept, interrupted ones resumed");
   st->callback([args] { study_command(*args); });
 }
 

@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <spawn.h>
+#include <csignal>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -71,16 +72,18 @@ struct Running {
   std::chrono::steady_clock::time_point start;
 };
 
-pid_t spawn_case(const std::string& binary, const fs::path& dir) {
+pid_t spawn_case(const std::string& binary, const fs::path& dir, bool resume) {
   const std::string scene = (dir / "scene.yaml").string();
   const std::string out = dir.string();
   const std::string log = (dir / "log.txt").string();
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log.c_str(),
+                                   O_WRONLY | O_CREAT | (resume ? O_APPEND : O_TRUNC), 0644);
   posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
   posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
   std::vector<std::string> args{binary, "run", scene, "-o", out};
+  if (resume) args.emplace_back("--resume");
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -106,7 +109,11 @@ void collect(const StudyDescription& study, const fs::path& dir, CaseResult& r) 
   }
   const bool ok = r.exit_code == 0 && summary_status == "completed";
   r.status = ok ? "completed" : "failed";
-  if (!ok && r.message.empty()) {
+  if (summary_status == "interrupted") {
+    r.status = "interrupted";
+    r.message = "stopped with the study; `rheodda study ... --resume` continues it";
+  }
+  if (!ok && r.message.empty() && r.status != "interrupted") {
     const std::string l = last_line(read_text(dir / "log.txt"));
     r.message = r.exit_code < 0 ? fmt::format("killed by a signal; {}", l)
                                 : (l.empty() ? fmt::format("exit code {}", r.exit_code) : l);
@@ -267,21 +274,55 @@ std::vector<CaseResult> run_study(const StudyDescription& study, const StudyOpti
   int jobs = options.jobs > 0 ? options.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 
   std::vector<CaseResult> results(study.cases.size());
+  // What each case needs: run, resume (an interrupted run of the same scene), or
+  // nothing (a completed run of the same scene, under options.resume).
+  enum class Todo { run, resume, keep };
+  std::vector<Todo> todo(study.cases.size(), Todo::run);
   for (std::size_t i = 0; i < study.cases.size(); ++i) {
     const fs::path dir = out_dir / "cases" / study.cases[i].name;
+    results[i].name = study.cases[i].name;
+    if (options.resume && fs::exists(dir / "scene.yaml") && read_text(dir / "scene.yaml") == texts[i]) {
+      std::string status;
+      try {
+        status = nlohmann::json::parse(read_text(dir / "summary.json")).value("status", "");
+      } catch (const std::exception&) {
+      }
+      if (status == "completed") todo[i] = Todo::keep;
+      else if (fs::exists(dir / "checkpoint.json")) todo[i] = Todo::resume;
+    }
+    if (todo[i] != Todo::run) continue;
     fs::remove_all(dir);  // a case folder holds one run only
     fs::create_directories(dir);
     std::ofstream(dir / "scene.yaml", std::ios::binary) << texts[i];
-    results[i].name = study.cases[i].name;
   }
 
   std::map<pid_t, Running> running;
   std::size_t next = 0, done = 0;
+  bool stopping = false;
+  auto stop_requested = [&] { return options.stop && *options.stop != 0; };
   while (done < results.size()) {
-    while (next < results.size() && static_cast<int>(running.size()) < jobs) {
+    if (stop_requested() && !stopping) {
+      // Stop the running cases (each stops after its step, keeping a checkpoint);
+      // start no more.
+      stopping = true;
+      for (const auto& [p, _] : running) ::kill(p, SIGTERM);
+    }
+    while (!stopping && next < results.size() && static_cast<int>(running.size()) < jobs) {
       const fs::path dir = out_dir / "cases" / results[next].name;
+      if (todo[next] == Todo::keep) {
+        results[next].exit_code = 0;
+        collect(study, dir, results[next]);
+        try {
+          results[next].wall_seconds =
+              nlohmann::json::parse(read_text(dir / "summary.json")).value("wall_seconds", 0.0);
+        } catch (const std::exception&) {
+        }
+        ++done;
+        ++next;
+        continue;
+      }
       try {
-        const pid_t pid = spawn_case(binary, dir);
+        const pid_t pid = spawn_case(binary, dir, todo[next] == Todo::resume);
         running[pid] = {next, std::chrono::steady_clock::now()};
       } catch (const std::exception& e) {
         results[next].status = "failed";
@@ -292,7 +333,10 @@ std::vector<CaseResult> run_study(const StudyDescription& study, const StudyOpti
       }
       ++next;
     }
-    if (running.empty()) continue;
+    if (running.empty()) {
+      if (stopping) break;
+      continue;
+    }
     int status = 0;
     pid_t pid = 0;
     // Wait for one of this study's children (not for any other child of the process).
@@ -307,8 +351,10 @@ std::vector<CaseResult> run_study(const StudyDescription& study, const StudyOpti
         }
       }
       if (any) break;
+      if (stop_requested() && !stopping) break;
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
+    if (pid == 0) continue;  // a stop request: handled at the top of the loop
     const Running r = running.at(pid);
     running.erase(pid);
     CaseResult& res = results[r.index];
@@ -319,6 +365,15 @@ std::vector<CaseResult> run_study(const StudyDescription& study, const StudyOpti
     if (options.progress)
       fmt::print(stderr, "[{}/{}] {}: {} ({:.1f} s, {} steps){}\n", done, results.size(), res.name, res.status,
                  res.wall_seconds, res.steps, res.message.empty() ? "" : ": " + res.message);
+  }
+  for (std::size_t i = next; i < results.size(); ++i) {
+    results[i].status = "not started";
+    results[i].message = "the study was stopped before this case started; `rheodda study ... --resume` runs it";
+    results[i].values.assign(study.outputs.size() * study.times.size(), std::nullopt);
+  }
+  if (stopping) {
+    write_study_csv(study, results, out_dir / "study.csv");
+    return results;
   }
   write_study_csv(study, results, out_dir / "study.csv");
   if (options.plot) plot_study(study, results, out_dir);

@@ -2,7 +2,16 @@
 // failing case is reported without losing the others.
 #include <boost/test/unit_test.hpp>
 
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/file.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "rheodda/study/study.hpp"
 #include "study_support.hpp"
@@ -10,6 +19,8 @@
 using namespace rheodda::study_test;
 namespace st = rheodda::study;
 namespace fs = std::filesystem;
+
+extern char** environ;
 
 BOOST_AUTO_TEST_SUITE(study_runner)
 
@@ -101,6 +112,70 @@ BOOST_AUTO_TEST_CASE(a_failing_case_is_reported_and_does_not_lose_the_others) {
   BOOST_TEST(rows[1].at("centre.u@0.05").empty());
   BOOST_TEST(rows[1].at("message").find("exceeds g2") != std::string::npos, "the failure says why: " << rows[1].at("message"));
   BOOST_TEST(fs::exists(dir / "out" / "cases" / "broken" / "log.txt"));
+}
+
+BOOST_AUTO_TEST_CASE(a_study_stopped_by_sigterm_stops_its_cases_writes_study_csv_and_resumes) {
+  const fs::path dir = fresh_dir("stopped");
+  const fs::path study = dir / "stopped.yaml";
+  std::ofstream(study) << "scene: " << source_path("examples/sliding-block.yaml") << "\n"
+                       << "set: {analysis.duration: 0.5}\n"
+                          "outputs: [centre.u]\n"
+                          "times: [0.5]\n"
+                          "cases:\n"
+                          "  - {name: a, set: {joint_sets.slope.friction_angle: 10}}\n"
+                          "  - {name: b, set: {joint_sets.slope.friction_angle: 15}}\n"
+                          "  - {name: c, set: {joint_sets.slope.friction_angle: 25}}\n";
+  const fs::path whole = dir / "whole", cut = dir / "cut";
+  BOOST_TEST_REQUIRE(run_rheodda("study " + study.string() + " -o " + whole.string() + " -j 1 --no-plot").exit_code == 0);
+
+  std::string bin = RHEODDA_BINARY, cmd = "study", file = study.string(), o = "-o", out = cut.string(), j = "-j",
+              one = "1", np = "--no-plot";
+  std::vector<char*> argv{bin.data(), cmd.data(), file.data(), o.data(), out.data(), j.data(), one.data(), np.data(),
+                          nullptr};
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
+  pid_t pid = 0;
+  BOOST_TEST_REQUIRE(posix_spawn(&pid, bin.c_str(), &fa, nullptr, argv.data(), environ) == 0);
+  posix_spawn_file_actions_destroy(&fa);
+  // Wait (by watching the file) until the first case has written some steps, then stop the study.
+  int status = 0;
+  for (;;) {
+    std::error_code ec;
+    const fs::path h = cut / "cases" / "a" / "history.csv";
+    if (fs::exists(h, ec) && fs::file_size(h, ec) > 3000) break;
+    BOOST_TEST_REQUIRE(::waitpid(pid, &status, WNOHANG) == 0, "the study ended before it could be stopped");
+    std::this_thread::yield();
+  }
+  ::kill(pid, SIGTERM);
+  ::waitpid(pid, &status, 0);
+  BOOST_TEST_REQUIRE(WIFEXITED(status));
+  BOOST_TEST(WEXITSTATUS(status) == 128 + SIGTERM);
+  // study.csv says where each case is; the running case stopped with a checkpoint.
+  const auto rows = read_study_csv((cut / "study.csv").string());
+  BOOST_TEST_REQUIRE(rows.size() == 3u);
+  BOOST_TEST((rows[0].at("status") == "interrupted" || rows[0].at("status") == "completed"), rows[0].at("status"));
+  BOOST_TEST(rows[2].at("status") == "not started");
+  if (rows[0].at("status") == "interrupted") BOOST_TEST(fs::exists(cut / "cases" / "a" / "checkpoint.json"));
+  // No case process is left running: each case folder's lock is free.
+  for (const char* c : {"a", "b"})
+    if (fs::exists(cut / "cases" / c / ".rheodda.lock")) {
+      const int fd = ::open((cut / "cases" / c / ".rheodda.lock").c_str(), O_RDWR);
+      BOOST_TEST(::flock(fd, LOCK_EX | LOCK_NB) == 0, "case " << c << " still running");
+      ::close(fd);
+    }
+
+  const auto resumed = run_rheodda("study " + study.string() + " -o " + cut.string() + " -j 1 --no-plot --resume");
+  BOOST_TEST_REQUIRE(resumed.exit_code == 0, resumed.output);
+  BOOST_TEST(resumed.output.find("3 cases, 3 completed, 0 failed") != std::string::npos, resumed.output);
+  for (const char* c : {"a", "b", "c"})
+    BOOST_TEST(read_text((cut / "cases" / c / "history.csv").string()) ==
+                   read_text((whole / "cases" / c / "history.csv").string()),
+               c);
+  const auto again = read_study_csv((cut / "study.csv").string());
+  const auto ref = read_study_csv((whole / "study.csv").string());
+  for (std::size_t i = 0; i < 3; ++i) BOOST_TEST(again[i].at("centre.u@0.5") == ref[i].at("centre.u@0.5"));
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -10,6 +10,7 @@
 // fails or crashes is reported in study.csv and does not affect the others.
 #pragma once
 
+#include <csignal>
 #include <optional>
 #include <string>
 #include <vector>
@@ -75,11 +76,20 @@ struct StudyOptions {
   std::string rheodda_binary;  ///< the program run per case (`rheodda run`); empty: this process's executable
   bool progress = false;       ///< one line on stderr per finished case
   bool plot = true;            ///< draw study.png with gnuplot
+  /// When non-null and set non-zero (e.g. by a SIGINT/SIGTERM handler): the running
+  /// cases are stopped (SIGTERM: each stops after its step and keeps a checkpoint),
+  /// no further case starts, study.csv is written with each case's state, and
+  /// run_study returns; `resume` continues it.
+  const volatile std::sig_atomic_t* stop = nullptr;
+  /// Continue a study in out_dir: a case whose folder holds a completed run of the
+  /// same scene text is kept, an interrupted one is resumed (`rheodda run --resume`),
+  /// the others run from the start.
+  bool resume = false;
 };
 
 struct CaseResult {
   std::string name;
-  std::string status;    ///< "completed" or "failed"
+  std::string status;    ///< "completed", "failed", "interrupted" (stopped, resumable) or "not started"
   std::string message;   ///< why it failed (empty when completed)
   int exit_code = 0;     ///< of the child `rheodda run` (-1: killed by a signal)
   int steps = 0;         ///< accepted steps (summary.json)
