@@ -274,11 +274,26 @@ BOOST_AUTO_TEST_CASE(mixed_joint_sets_each_contact_follows_its_law_and_only_lawf
     BOOST_TEST((c.kind == ContactKind::edge_edge));
     if (c.joint_set == 2) {
       BOOST_TEST(c.rheology == -1);
+      BOOST_TEST((c.creep_state == CreepState::none));
+      BOOST_TEST(c.creep_displacement == 0.0);
     } else {
       ++with_slot;
       BOOST_TEST(c.rheology >= 0);
+      BOOST_TEST((c.creep_state == CreepState::creeping));
+      BOOST_TEST(c.creep_displacement == rig.cs.rheology_states()[c.rheology].creep(),
+                 boost::test_tools::tolerance(1e-12));
     }
   }
+  // Counters per joint set: two contacts each on the sets with a law, locked
+  // through all 500 steps of 0.1 h; nothing on the lawless set.
+  BOOST_REQUIRE(rig.cs.creep_counters().size() == 3u);
+  for (int js : {0, 1}) {
+    BOOST_TEST(rig.cs.creep_counters()[js].contacts == 2);
+    BOOST_TEST(rig.cs.creep_counters()[js].contact_time == 2 * 500 * dt,
+               boost::test_tools::tolerance(1e-12));
+  }
+  BOOST_TEST(rig.cs.creep_counters()[2].contacts == 0);
+  BOOST_TEST(rig.cs.creep_counters()[2].contact_time == 0.0);
   BOOST_TEST(rig.cs.contacts().size() == 6u);
   BOOST_TEST(with_slot == 4);
   BOOST_TEST(rig.cs.rheology_states().size() == 4u);
@@ -440,6 +455,8 @@ BOOST_AUTO_TEST_CASE(sliding_or_opening_loses_the_history_and_relocking_restarts
              boost::test_tools::tolerance(1e-9));
   for (int n = 0; n < 10; ++n) rig.step(1.0, 0.0);
   for (const auto& st : rig.cs.rheology_states()) BOOST_TEST(std::abs(st.creep()) > 0.0);
+  std::vector<double> crept;  // creep displacement of each contact before it opens [mm]
+  for (const Contact& ct : rig.cs.contacts()) crept.push_back(ct.creep_displacement);
   // Lift the block by 0.5 mm (within the search distance): contacts open.
   const int n = static_cast<int>(rig.scene.views().size());
   rig.cs.begin_step(rig.scene.views(), 1.0, 1.0);
@@ -450,6 +467,17 @@ BOOST_AUTO_TEST_CASE(sliding_or_opening_loses_the_history_and_relocking_restarts
   rig.scene.translate(rig.movers[0], {0.0, 0.5});
   for (const Contact& ct : rig.cs.contacts()) BOOST_TEST((ct.state == ContactState::open));
   for (const auto& st : rig.cs.rheology_states()) BOOST_TEST(st.creep() == 0.0);
+  // The record of what crept stays (only the law's history is lost); the
+  // contacts no longer creep.
+  BOOST_REQUIRE(rig.cs.contacts().size() == crept.size());
+  for (size_t k = 0; k < crept.size(); ++k) {
+    BOOST_TEST(rig.cs.contacts()[k].creep_displacement == crept[k]);
+    BOOST_TEST(std::abs(crept[k]) > 0.0);
+    BOOST_TEST((rig.cs.contacts()[k].creep_state == CreepState::idle));
+  }
+  BOOST_TEST(rig.cs.creep_counters()[0].contacts == 2);
+  BOOST_TEST(rig.cs.creep_counters()[0].contact_time == 2 * 11 * 1.0,
+             boost::test_tools::tolerance(1e-12));
 }
 
 BOOST_AUTO_TEST_CASE(the_history_follows_a_contact_onto_the_adjacent_edge) {
