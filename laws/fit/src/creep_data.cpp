@@ -105,6 +105,13 @@ CreepData parse_creep_csv(std::istream& in, const std::string& source, const Csv
       if (!std::isfinite(v))
         throw DataError(source, line_no, header[col],
                         fmt::format("'{}' is not a finite number", cell));
+      // A least-squares fit squares and sums the values: beyond 1e150 (or below
+      // 1e-150 but not 0) its sums overflow (or underflow) a double.
+      if (v != 0.0 && !(std::abs(v) < 1e150 && std::abs(v) > 1e-150))
+        throw DataError(source, line_no, header[col],
+                        fmt::format("{:g} is out of the range a fit can square and sum (1e-150 to 1e150 in "
+                                    "magnitude): change the unit of this column",
+                                    v));
       return v;
     };
     const double t = number(col_t);

@@ -96,6 +96,11 @@ BOOST_AUTO_TEST_CASE(bad_rows_are_rejected_with_file_line_and_column) {
   expect_error("time,displacement\n0,1\n", o, 1, "t", "--time-column");
   expect_error("t,displacement,tau\n0,1,x\n", with_column("tau"), 2, "tau", "not a number");
   expect_error("t,displacement\n0,1\n", with_column("tau"), 1, "tau", "--stress-column");
+  // Values whose squares and sums overflow (or underflow) a double: the fit would
+  // report inf or 0 parameters and an R^2 of nan.
+  expect_error("t,displacement\n0,1\n1,1e300\n", o, 3, "displacement", "change the unit of this column");
+  expect_error("t,displacement\n0,1\n1e-200,1\n", o, 3, "t", "1e-150 to 1e150");
+  BOOST_TEST(parse("t,displacement\n0,0\n1,1e149\n", o).t.size() == 2u);  // 0 and large-but-safe values pass
 }
 
 BOOST_AUTO_TEST_CASE(empty_files_and_stages_without_points_are_rejected) {
