@@ -6,6 +6,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "creep_scene.hpp"
 
@@ -115,6 +116,79 @@ BOOST_AUTO_TEST_CASE(a_block_tilted_onto_its_corner_follows_the_closed_form_over
                    boost::test_tools::tolerance(1e-9));
       }
     }
+}
+
+BOOST_AUTO_TEST_CASE(a_block_rocking_from_its_keel_onto_either_face_keeps_a_continuous_creep_history) {
+  // The engine's version of the rocking test (tests/contact/rheology_coupling_test.cpp):
+  // A is a pentagon with a shallow keel, K = (50, 0), faces K-R to R = (100, 5)
+  // and L-K from L = (0, 5) (5.7 deg, beyond the 3 deg angle tolerance), on
+  // the fixed B; F1 and F2 of Table 1 row 1 act at K. It stands on K
+  // (vertex_edge) until a clockwise couple (vertical loads -/+P at the top
+  // corners, P = F1/10) tips it onto its right face over 20-22 h (K becomes
+  // edge_edge, R carries 2P), then the reversed couple over 60-62 h tips it
+  // back over K onto its left face (K: vertex_edge, then edge_edge again).
+  // K's contact stays the same contact, locked, creeping in every step; its
+  // creep displacement is the law's history (never reset) and grows in every
+  // step (no jump back, no freeze).
+  const Table1Row& row = kTable1[0];
+  auto law = table1_burgers(row);
+  CreepScene scene(law, row.sigma, row.tau, 2.0);
+  core::Model& m = scene.model;
+  const double w = CreepScene::w, F1 = row.sigma * w, P = 0.1 * F1;
+  m.blocks[1] = block({{50.0, 0.0}, {100.0, 5.0}, {100.0, 105.0}, {0.0, 105.0}, {0.0, 5.0}});
+  m.point_loads[0].point = m.point_loads[1].point = {50.0, 0.0};
+  const std::vector<core::LoadSample> up = {{0.0, {0.0, 0.0}},  {20.0, {0.0, 0.0}}, {22.0, {0.0, P}},
+                                            {60.0, {0.0, P}},   {62.0, {0.0, -P}},  {100.0, {0.0, -P}}};
+  std::vector<core::LoadSample> down = up;
+  for (auto& sample : down) sample.force = -sample.force;
+  m.point_loads.push_back({1, {0.0, 105.0}, up});
+  m.point_loads.push_back({1, {100.0, 105.0}, down});
+  contact::ContactSettings settings = core::contact_settings_for(m);
+  settings.scheme = laws::Scheme::implicit;
+  contact::ContactSystem contacts({scene.joint}, settings);
+  core::ContactAdapter adapter(contacts);
+  core::Engine engine(m, adapter);
+  const contact::ContactKey keel{1, 0, 0, 2};
+  std::uint64_t id = 0;
+  double last = 0.0;
+  std::vector<contact::ContactKind> kinds;
+  auto rotation = [&] {  // of A since the start, counter-clockwise [rad]
+    const auto& A = engine.block(1).map_A;
+    return std::atan2(A(1, 0) - A(0, 1), A(0, 0) + A(1, 1));
+  };
+  const double face = std::atan(5.0 / 50.0);  // a face lands after turning by this [rad]
+  double on_right = 0.0;
+  while (engine.time() < 100.0 - 1e-9) {
+    engine.step();
+    if (engine.time() <= 60.0) on_right = rotation();
+    const contact::Contact* k = nullptr;
+    for (const contact::Contact& c : contacts.contacts())
+      if (c.key == keel) k = &c;
+    BOOST_TEST_REQUIRE(k != nullptr);
+    BOOST_TEST_CONTEXT("t = " << engine.time() << " h, " << contact::contact_kind_name(k->kind)) {
+      if (id == 0) id = k->id;
+      BOOST_TEST(k->id == id);
+      BOOST_TEST_REQUIRE((k->state == contact::ContactState::locked));
+      BOOST_TEST_REQUIRE(k->rheology >= 0);
+      BOOST_TEST((k->creep_state == contact::CreepState::creeping));
+      const double creep = -k->creep_displacement;  // along +x (B's top edge runs along -x)
+      BOOST_TEST(k->creep_displacement == contacts.rheology_states()[k->rheology].creep(),
+                 boost::test_tools::tolerance(1e-12));
+      BOOST_TEST(creep > last);
+      if (kinds.empty() || kinds.back() != k->kind) {
+        BOOST_TEST_MESSAGE("t = " << engine.time() << " h: keel contact " << contact::contact_kind_name(k->kind)
+                                  << ", l_t = " << k->tributary_length << " mm, creep " << creep << " mm");
+        kinds.push_back(k->kind);
+      }
+      last = creep;
+    }
+  }
+  using K = contact::ContactKind;
+  BOOST_TEST((kinds == std::vector<K>{K::vertex_edge, K::edge_edge, K::vertex_edge, K::edge_edge}));
+  BOOST_TEST_MESSAGE("A turned by " << on_right << " rad at 60 h and " << rotation()
+                                    << " rad at 100 h (faces at -/+" << face << ")");
+  BOOST_TEST(std::abs(on_right + face) < 0.01 * face);    // on its right face
+  BOOST_TEST(std::abs(rotation() - face) < 0.01 * face);  // on its left face
 }
 
 BOOST_AUTO_TEST_CASE(maxwell_kelvin_and_nishihara_joints_follow_their_closed_forms) {
