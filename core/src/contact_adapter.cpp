@@ -57,11 +57,11 @@ void ContactAdapter::end_step(std::span<const contact::BlockView> blocks, const 
   std::unordered_map<std::uint64_t, std::size_t> start_of;
   start_of.reserve(start_contacts.size());
   for (std::size_t k = 0; k < start_contacts.size(); ++k) start_of[start_contacts[k].id] = k;
-  // State changes of creeping (edge) contacts on joint sets with a law: a
+  // State changes of creeping contacts on joint sets with a law: a
   // contact that locks, slides or opens moves load onto its neighbours at once.
   const auto& law_sets = system_.joint_sets();
   auto creeps = [&](const contact::Contact& c) {
-    return c.length > 0.0 && c.joint_set >= 0 &&
+    return c.tributary_length > 0.0 && c.joint_set >= 0 &&
            c.joint_set < static_cast<int>(law_sets.size()) && law_sets[c.joint_set].law != nullptr;
   };
   std::size_t matched_locked = 0;
@@ -90,11 +90,11 @@ void ContactAdapter::end_step(std::span<const contact::BlockView> blocks, const 
   tau_now.reserve(system_.contacts().size());
   double worst = 0.0;
   for (const contact::Contact& c : system_.contacts()) {
-    if (c.rheology < 0 || c.length <= 0.0 || c.state != contact::ContactState::locked) continue;
+    if (c.rheology < 0 || c.tributary_length <= 0.0 || c.state != contact::ContactState::locked) continue;
     const auto it = start_of.find(c.id);
     if (it == start_of.end()) continue;
     const contact::Contact& s = start_contacts[it->second];
-    if (s.rheology < 0 || s.length <= 0.0 || s.state != contact::ContactState::locked) continue;
+    if (s.rheology < 0 || s.tributary_length <= 0.0 || s.state != contact::ContactState::locked) continue;
     const auto& law = sets[c.joint_set].law;
     if (!law) continue;
     auto& k = ks[c.joint_set];
@@ -106,7 +106,7 @@ void ContactAdapter::end_step(std::span<const contact::BlockView> blocks, const 
       k = Pair{used, law->step_constants(dt_, used), law->step_constants(dt_, other)};
     }
     // Stresses tau = F / l at the step's start and end (docs/rheology-in-dda.md, Units).
-    const double tau_s = s.shear_force / s.length, tau_e = c.shear_force / c.length;
+    const double tau_s = s.shear_force / s.tributary_length, tau_e = c.shear_force / c.tributary_length;
     tau_now[c.id] = tau_s;
     const laws::RheologyState& old = start_rheology[s.rheology];
     laws::RheologyState next;

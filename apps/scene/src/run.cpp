@@ -316,7 +316,7 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
 
   const std::string contacts_header =
       "time,step,id,joint_set,state,kind,vertex_block,vertex,edge_block,edge,x,y,"
-      "normal_force,shear_force,shear_displacement,penetration,length\n";
+      "normal_force,shear_force,shear_displacement,penetration,length,creep_displacement,creep_state\n";
 
   CsvAppender history, contacts_csv;
   std::vector<std::pair<double, std::string>> pvd;
@@ -514,6 +514,12 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
   }
 
   auto totals = [&] {
+    result.creep.clear();
+    for (std::size_t j = 0; j < s.joint_sets.size(); ++j)
+      if (contacts.joint_sets()[j].law) {
+        const contact::CreepCounters& k = contacts.creep_counters()[j];
+        result.creep.push_back({s.joint_sets[j].name, k.contacts, k.contact_time});
+      }
     result.steps = engine.step_count();
     result.time = engine.time();
     result.cuts = result.redone = result.extrapolated = 0;
@@ -583,6 +589,10 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     j["wall_seconds"] = result.wall_seconds;
     j["resumed_from_step"] = result.resumed_from_step;
     j["warnings"] = result.warnings;
+    // Where each joint set's law acted (docs/outputs.md, "summary.json").
+    j["creep"] = json::object();
+    for (const auto& c : result.creep)
+      j["creep"][c.joint_set] = {{"contacts", c.contacts}, {"contact_time", c.contact_time}};
     {
       // The linear solver actually used (automatic resolved) and its work since
       // this process started (a resumed run counts from the resume).
@@ -640,19 +650,21 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     std::string rows;
     for (const auto& c : contacts.contacts()) {
       const core::Vec2 p = engine.vertices(c.key.vblock)[c.key.vertex];
-      rows += fmt::format("{:.10g},{},{},{},{},{},{},{},{},{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g}\n",
+      rows += fmt::format("{:.10g},{},{},{},{},{},{},{},{},{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},"
+                          "{:.10g},{}\n",
                           engine.time(), engine.step_count(), c.id, s.joint_sets[c.joint_set].name,
                           contact::contact_state_name(c.state), contact::contact_kind_name(c.kind),
                           s.blocks[c.key.vblock].name, c.key.vertex, s.blocks[c.key.eblock].name, c.key.edge,
                           p.x(), p.y(), c.normal_force, c.shear_force, c.shear_displacement, c.penetration,
-                          c.length);
+                          c.length, c.creep_displacement, contact::creep_state_name(c.creep_state));
     }
     for (const auto& c : contacts.contacts())
       for (const auto& [name, v] : {std::pair<const char*, double>{"normal_force", c.normal_force},
                                     {"shear_force", c.shear_force},
                                     {"shear_displacement", c.shear_displacement},
                                     {"penetration", c.penetration},
-                                    {"length", c.length}})
+                                    {"length", c.length},
+                                    {"creep_displacement", c.creep_displacement}})
         if (!std::isfinite(v))
           throw NonFinite(fmt::format("contacts.csv column '{}' of contact {} is not finite at step {} (t = {:g} {})",
                                       name, c.id, engine.step_count(), engine.time(), s.units.time));
@@ -737,6 +749,12 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
   }
   if (opt.progress) std::fprintf(opt.progress_stream, "\n");
   write_checkpoint();
+  totals();
+  for (const auto& c : result.creep)
+    if (c.contacts == 0)
+      result.warnings.push_back(fmt::format(
+          "joint set '{}' has a creep law but none of its contacts crept (none stayed locked through a step)",
+          c.joint_set));
   write_summary("completed", "");
   return result;
 }

@@ -155,12 +155,18 @@ BOOST_AUTO_TEST_CASE(scene_files_in_other_encodings_with_tabs_or_from_devices_fa
       text = join(lines);
     } else if (kind == 2) {  // UTF-16 (little endian, with its mark)
       std::string w = "\xFF\xFE";
-      for (char c : text) w += std::string{c, '\0'};
+      for (char c : text) {
+        w.push_back(c);
+        w.push_back('\0');
+      }
       text = w;
     } else {  // a UTF-8 byte-order mark
-      text = "\xEF\xBB\xBF" + text;
+      text.insert(0, "\xEF\xBB\xBF");
     }
-    const auto path = dir / ("m" + std::to_string(i) + ".yaml");
+    std::string name = "m";  // (not "m" + ...: GCC 12 warns wrongly of -Wrestrict there)
+    name += std::to_string(i);
+    name += ".yaml";
+    const auto path = dir / name;
     std::ofstream(path, std::ios::binary) << text;
     load(path.string(), "mutant " + std::to_string(i));
   }

@@ -48,6 +48,14 @@ struct RunResult {
   double wall_seconds = 0.0;     ///< wall time of this and earlier (resumed) sessions [s]
   int resumed_from_step = -1;    ///< -1: not resumed
   std::vector<std::string> warnings;
+  /// Per joint set with a creep law: the contacts the law advanced and their
+  /// contact-time [time] (contact::ContactSystem::creep_counters).
+  struct JointCreep {
+    std::string joint_set;
+    int contacts = 0;
+    double contact_time = 0.0;
+  };
+  std::vector<JointCreep> creep;
 };
 
 /// Runs the scene; `scene_text` is the file's text (echoed in summary.json, hashed in
