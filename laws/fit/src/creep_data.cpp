@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <fmt/format.h>
 
@@ -167,6 +168,20 @@ CreepData parse_creep_csv(std::istream& in, const std::string& source, const Csv
 }
 
 CreepData read_creep_csv(const std::filesystem::path& path, const CsvOptions& options) {
+  // A folder, a device (/dev/zero would be read forever) or a pipe is not a data
+  // file; nor is a file larger than any creep record (1 GB: 3e7 rows).
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (!ec && std::filesystem::exists(status)) {
+    if (std::filesystem::is_directory(status))
+      throw DataError(path.string(), 0, "", "is a folder, not a CSV file");
+    if (!std::filesystem::is_regular_file(status))
+      throw DataError(path.string(), 0, "", "is not a regular file (a device or a pipe?): give a CSV file");
+    constexpr std::uintmax_t kMaxBytes = 1ull << 30;
+    if (const auto size = std::filesystem::file_size(path, ec); !ec && size > kMaxBytes)
+      throw DataError(path.string(), 0, "",
+                      fmt::format("is {} MB; creep data files above {} MB are refused", size >> 20, kMaxBytes >> 20));
+  }
   std::ifstream in(path);
   if (!in) throw DataError(path.string(), 0, "", "cannot open the file for reading");
   return parse_creep_csv(in, path.string(), options);

@@ -3,6 +3,8 @@
 #include <boost/test/unit_test.hpp>
 
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "rheodda/fit/creep_data.hpp"
 
@@ -115,6 +117,19 @@ BOOST_AUTO_TEST_CASE(empty_files_and_stages_without_points_are_rejected) {
 
 BOOST_AUTO_TEST_CASE(missing_stress_is_rejected) {
   expect_error("t,displacement\n0,1\n", fit::CsvOptions{}, 0, "", "no applied stress");
+}
+
+BOOST_AUTO_TEST_CASE(folders_and_devices_are_not_data_files) {
+  const auto o = with_stress(0.2);
+  for (const auto& [path, words] : std::vector<std::pair<std::string, std::string>>{
+           {"/dev/zero", "is not a regular file"}, {"/", "is a folder"}}) {
+    try {
+      (void)fit::read_creep_csv(path, o);
+      BOOST_ERROR("no error for " << path);
+    } catch (const fit::DataError& e) {
+      BOOST_TEST(std::string(e.what()).find(words) != std::string::npos, e.what());
+    }
+  }
 }
 
 BOOST_AUTO_TEST_SUITE_END()
