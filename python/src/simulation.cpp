@@ -84,7 +84,7 @@ class Simulation {
       columns_.push_back(mp.name + ".v");
     }
     for (int j : recorded_)
-      for (const char* c : {".contacts", ".shear_displacement", ".shear_force"})
+      for (const char* c : {".contacts", ".shear_displacement", ".shear_force", ".shear_displacement_magnitude"})
         columns_.push_back(scene_.joint_sets[j].name + c);
     for (const char* c :
          {"energy_kinetic", "energy_strain", "energy_fixed", "energy_contact_normal", "energy_contact_shear",
@@ -447,16 +447,18 @@ class Simulation {
     }
     for (int j : recorded_) {
       int n = 0;
-      double shear = 0.0, force = 0.0;
+      double shear = 0.0, force = 0.0, magnitude = 0.0;
       for (const auto& c : contacts_->contacts())
         if (c.joint_set == j && c.state != contact::ContactState::open) {
           ++n;
           shear += c.shear_displacement;
           force += c.shear_force;
+          magnitude += std::abs(c.shear_displacement);
         }
       put(n);
       put(n ? shear / n : std::nan(""));
       put(n ? force / n : std::nan(""));
+      put(n ? magnitude / n : std::nan(""));
     }
     const core::EnergyBalance& en = engine_->energy();
     const core::StoredEnergy& st = en.stored;

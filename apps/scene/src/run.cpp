@@ -283,14 +283,16 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     }
     for (int j : recorded) {
       int n = 0;
-      double shear = 0.0, force = 0.0;
+      double shear = 0.0, force = 0.0, magnitude = 0.0;
       for (const auto& c : contacts.contacts())
         if (c.joint_set == j && c.state != contact::ContactState::open) {
           ++n;
           shear += c.shear_displacement;
           force += c.shear_force;
+          magnitude += std::abs(c.shear_displacement);
         }
-      row += n ? fmt::format(",{},{:.10g},{:.10g}", n, shear / n, force / n) : fmt::format(",0,,");
+      row += n ? fmt::format(",{},{:.10g},{:.10g},{:.10g}", n, shear / n, force / n, magnitude / n)
+               : fmt::format(",0,,,");
     }
     // Energy balance (docs/engine.md, "Energy balance"): stored energies now, flows since t = 0.
     const core::EnergyBalance& en = engine.energy();
@@ -307,7 +309,8 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
   std::string history_header = "time,step,dt,cuts,iterations";
   for (const auto& mp : s.measurement_points) history_header += fmt::format(",{0}.u,{0}.v", mp.name);
   for (int j : recorded)
-    history_header += fmt::format(",{0}.contacts,{0}.shear_displacement,{0}.shear_force", s.joint_sets[j].name);
+    history_header += fmt::format(",{0}.contacts,{0}.shear_displacement,{0}.shear_force,{0}.shear_displacement_magnitude",
+                                  s.joint_sets[j].name);
   history_header +=
       ",energy_kinetic,energy_strain,energy_fixed,energy_contact_normal,energy_contact_shear,"
       "work_gravity,work_loads,work_contact_restart,dissipation_friction,dissipation_creep,"

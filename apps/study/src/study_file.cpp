@@ -175,7 +175,8 @@ std::set<std::string> history_columns(const scene::SceneDescription& s) {
     for (const char* f : {".u", ".v", ".displacement"}) c.insert(m.name + f);
   for (const auto& j : s.joint_sets)
     if (j.record)
-      for (const char* f : {".contacts", ".shear_displacement", ".shear_force"}) c.insert(j.name + f);
+      for (const char* f : {".contacts", ".shear_displacement", ".shear_force", ".shear_displacement_magnitude"})
+        c.insert(j.name + f);
   return c;
 }
 

@@ -440,6 +440,27 @@ BOOST_AUTO_TEST_CASE(the_run_says_where_each_joint_sets_law_acted) {
   const auto sum = nlohmann::json::parse(read_text((out / "summary.json").string()));
   BOOST_TEST(sum.at("creep").at("plane").at("contacts").get<int>() == r.creep[0].contacts);
   BOOST_TEST(r.warnings.empty());
+  // history.csv: the mean magnitude of the joint's shear displacement beside the
+  // signed mean; every contact of this joint slips the same way, so they agree.
+  {
+    std::istringstream in(read_text((out / "history.csv").string()));
+    std::string line, header;
+    std::getline(in, line);  // units
+    std::getline(in, header);
+    std::vector<std::string> names, last;
+    for (std::istringstream h(header); std::getline(h, line, ',');) names.push_back(line);
+    std::string row, final_row;
+    while (std::getline(in, row)) final_row = row;
+    for (std::istringstream cells(final_row); std::getline(cells, line, ',');) last.push_back(line);
+    auto at = [&](const std::string& col) {
+      const auto it = std::find(names.begin(), names.end(), col);
+      BOOST_TEST_REQUIRE((it != names.end()), col);
+      return std::stod(last.at(static_cast<std::size_t>(it - names.begin())));
+    };
+    BOOST_TEST(at("plane.shear_displacement_magnitude") > 0.0);
+    BOOST_TEST(at("plane.shear_displacement_magnitude") == std::abs(at("plane.shear_displacement")),
+               boost::test_tools::tolerance(1e-9));
+  }
   const std::string csv = read_text((out / "contacts.csv").string());
   BOOST_TEST(csv.find(",creep_displacement,creep_state\n") != std::string::npos);
   BOOST_TEST(csv.find(",creeping\n") != std::string::npos);
