@@ -5,12 +5,23 @@
 #include <CLI/CLI.hpp>
 
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
 #include <string>
 
 namespace rheodda::apps {
+
+/// SIGINT and SIGTERM call `handler` (which records the signal for the command to
+/// stop between two steps) instead of ending the process.
+inline void on_stop_signals(void (*handler)(int)) {
+  struct sigaction sa {};
+  sa.sa_handler = handler;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
 
 /// Exit codes: 0 success, 1 run-time failure, 2 bad input (arguments, files, parameters),
 /// 128 + N a run stopped by signal N. `rheodda --help` lists them (kExitCodesHelp).

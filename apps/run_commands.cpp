@@ -43,11 +43,7 @@ void run_command(const RunArgs& args) {
   opt.progress = ::isatty(STDERR_FILENO) != 0;
   opt.stop = &g_stop;
   // Stop between two steps on Ctrl-C or kill: files stay consistent, the run can be resumed.
-  struct sigaction sa {};
-  sa.sa_handler = on_stop_signal;
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
+  on_stop_signals(on_stop_signal);
 
   scene::RunResult r;
   try {

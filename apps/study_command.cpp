@@ -37,11 +37,7 @@ void study_command(const StudyArgs& args) {
   opt.stop = &g_study_stop;
   // Ctrl-C or kill: the running cases stop after their step (with a checkpoint),
   // study.csv says where each case is, and --resume continues.
-  struct sigaction sa {};
-  sa.sa_handler = on_study_stop;
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
+  on_stop_signals(on_study_stop);
   std::vector<study::CaseResult> results;
   try {
     results = study::run_study(s, opt);

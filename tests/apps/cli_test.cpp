@@ -58,7 +58,7 @@ BOOST_AUTO_TEST_CASE(help_lists_the_exit_codes_the_commands_return) {
 BOOST_AUTO_TEST_CASE(a_missing_scene_file_is_named_with_the_reason_without_a_location) {
   const fs::path dir = fresh_dir("missing");
   const std::string missing = (dir / "missing.yaml").string();
-  for (const std::string args : {"check " + missing, "run " + missing + " -o " + (dir / "out").string()}) {
+  for (const std::string& args : {"check " + missing, "run " + missing + " -o " + (dir / "out").string()}) {
     const auto r = run_rheodda(args);
     BOOST_TEST(r.exit_code == 2);
     BOOST_TEST(r.output == "rheodda: error: cannot open " + missing + ": No such file or directory\n", r.output);

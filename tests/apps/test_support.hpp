@@ -9,10 +9,15 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/wait.h>
+#include <vector>
 
 #include "rheodda/scene/error.hpp"
 #include "rheodda/scene/loader.hpp"
+
+extern char** environ;  // the process environment, passed to spawned runs
 
 namespace rheodda::test {
 
@@ -100,6 +105,24 @@ inline CommandResult run_rheodda(const std::string& args) {
   const int status = ::pclose(p);
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+/// Starts the rheodda binary with `args` in the background, its output discarded;
+/// returns its process id (for tests that signal or kill a run mid-way).
+inline pid_t spawn_rheodda(std::vector<std::string> args) {
+  std::string bin = RHEODDA_BINARY;
+  std::vector<char*> argv{bin.data()};
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, bin.c_str(), &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  BOOST_TEST_REQUIRE(rc == 0, "cannot start " << bin);
+  return pid;
 }
 
 /// A fresh empty directory under the system temp dir.

@@ -6,7 +6,6 @@
 
 #include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -23,7 +22,6 @@
 #include "rheodda/scene/output.hpp"
 #include "rheodda/scene/run.hpp"
 
-extern char** environ;
 
 using namespace rheodda;
 using namespace rheodda::test;
@@ -84,16 +82,7 @@ BOOST_AUTO_TEST_CASE(a_rerun_killed_before_its_first_checkpoint_is_never_resumed
   for (int attempt = 0; attempt < 4; ++attempt) {
     const fs::path out = fresh_dir("rerun-" + std::to_string(attempt));
     BOOST_TEST_REQUIRE(run_rheodda("run " + scene + " -o " + out.string()).exit_code == 0);
-    std::string bin = RHEODDA_BINARY, cmd = "run", flag = "-o", dir = out.string();
-    std::vector<char*> argv{bin.data(), cmd.data(), const_cast<char*>(scene.c_str()), flag.data(), dir.data(),
-                            nullptr};
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
-    pid_t pid = 0;
-    BOOST_TEST_REQUIRE(posix_spawn(&pid, bin.c_str(), &fa, nullptr, argv.data(), environ) == 0);
-    posix_spawn_file_actions_destroy(&fa);
+    const pid_t pid = spawn_rheodda({"run", scene, "-o", out.string()});
     // Wait until the new run has emptied the history (by watching the file), then
     // a little longer on each attempt, then kill it without warning.
     int status = 0;

@@ -8,7 +8,6 @@
 #include <nlohmann/json.hpp>
 #include <fcntl.h>
 #include <fmt/format.h>
-#include <spawn.h>
 #include <thread>
 #include <unistd.h>
 
@@ -17,7 +16,6 @@
 #include "rheodda/scene/output.hpp"
 #include "rheodda/scene/run.hpp"
 
-extern char** environ;
 
 using namespace rheodda;
 using namespace rheodda::test;
@@ -286,15 +284,7 @@ BOOST_AUTO_TEST_CASE(sigterm_stops_the_command_between_steps_and_resume_complete
   const std::string scene = source_path("examples/sliding-block.yaml");
   BOOST_TEST_REQUIRE(run_rheodda("run " + scene + " -o " + whole.string()).exit_code == 0);
 
-  std::string bin = RHEODDA_BINARY, cmd = "run", out_flag = "-o", out = cut.string();
-  std::vector<char*> argv{bin.data(), cmd.data(), const_cast<char*>(scene.c_str()), out_flag.data(), out.data(), nullptr};
-  pid_t pid = 0;
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
-  BOOST_TEST_REQUIRE(posix_spawn(&pid, bin.c_str(), &fa, nullptr, argv.data(), environ) == 0);
-  posix_spawn_file_actions_destroy(&fa);
+  const pid_t pid = spawn_rheodda({"run", scene, "-o", cut.string()});
   // Wait (by watching the file, not the clock) until some steps are written, then signal.
   int status = 0;
   for (;;) {

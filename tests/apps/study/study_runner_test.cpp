@@ -4,7 +4,6 @@
 
 #include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -20,7 +19,6 @@ using namespace rheodda::study_test;
 namespace st = rheodda::study;
 namespace fs = std::filesystem;
 
-extern char** environ;
 
 BOOST_AUTO_TEST_SUITE(study_runner)
 
@@ -128,17 +126,7 @@ BOOST_AUTO_TEST_CASE(a_study_stopped_by_sigterm_stops_its_cases_writes_study_csv
   const fs::path whole = dir / "whole", cut = dir / "cut";
   BOOST_TEST_REQUIRE(run_rheodda("study " + study.string() + " -o " + whole.string() + " -j 1 --no-plot").exit_code == 0);
 
-  std::string bin = RHEODDA_BINARY, cmd = "study", file = study.string(), o = "-o", out = cut.string(), j = "-j",
-              one = "1", np = "--no-plot";
-  std::vector<char*> argv{bin.data(), cmd.data(), file.data(), o.data(), out.data(), j.data(), one.data(), np.data(),
-                          nullptr};
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
-  pid_t pid = 0;
-  BOOST_TEST_REQUIRE(posix_spawn(&pid, bin.c_str(), &fa, nullptr, argv.data(), environ) == 0);
-  posix_spawn_file_actions_destroy(&fa);
+  const pid_t pid = spawn_rheodda({"study", study.string(), "-o", cut.string(), "-j", "1", "--no-plot"});
   // Wait (by watching the file) until the first case has written some steps, then stop the study.
   int status = 0;
   for (;;) {

@@ -22,6 +22,7 @@ using test::CommandResult;
 using test::fresh_dir;
 using test::read_text;
 using test::run_rheodda;
+using test::spawn_rheodda;
 using test::source_path;
 using test::with;
 
