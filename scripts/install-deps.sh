@@ -21,6 +21,9 @@ packages=(
   python3-pytest         # the Python tests
   python3-pandas         # histories as DataFrames (optional at run time, tested)
   python3-matplotlib     # examples/python pictures
+  libcgal-dev            # exact 2D arrangements: cutting rock masses from joint sets
+  libopenmpi-dev         # studies across machines (mpirun rheodda study)
+  openmpi-bin            # mpirun, used by the MPI study tests
 )
 
 missing=()
