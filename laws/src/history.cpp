@@ -82,7 +82,12 @@ std::optional<double> exact_displacement(const ContactRheology& law, const Stage
   // A series law with a threshold: spring and Kelvin parts superpose, the
   // Bingham part integrates <|F| - Fs> exactly over each constant stage.
   const auto* series = dynamic_cast<const SeriesLaw*>(&law);
-  if (!series) return std::nullopt;
+  if (!series) {
+    // Other nonlinear laws: the closed form under a force held from t = 0.
+    const auto& st = force.stages();
+    if (st.size() == 1 && st[0].t == 0.0) return law.displacement_closed_form(st[0].value, t);
+    return std::nullopt;
+  }
   const auto& stages = force.stages();
   const auto e1 = law.instantaneous_stiffness();
   double d = e1 ? force.at(t) / *e1 : 0.0;
@@ -148,6 +153,20 @@ double solve_series_force(const ContactRheology& law, const StepConstants& k_ste
   const double base = d_end - old.creep();
   double guess = force_start;
   double f = guess;
+  if (law.linearity() == Linearity::nonlinear) {
+    // Newton on R(F) = F - k (base - Delta d_c(F)) with the law's tangent (1')
+    // (contact_rheology.hpp): F_{j+1} = k (base - h_j)/(1 + k c_j), the update
+    // the contact layer makes (docs/rheology-in-dda.md, "Nonlinear laws").
+    // Converged when the step changes F by <= 1e-14 of |F| (a few ulps), or
+    // after 100 iterations (the tangent is monotone, so Newton converges).
+    for (int it = 0; it < 100; ++it) {
+      const Linearization l = law.linearize(k_step, old, force_start, guess);
+      f = stiffness * (base - l.h) / (1.0 + stiffness * l.c);
+      if (std::abs(f - guess) <= 1e-14 * std::abs(f) || f == guess) return f;
+      guess = f;
+    }
+    return f;
+  }
   for (int attempt = 0; attempt < 4; ++attempt) {
     const Linearization l = law.linearize(k_step, old, force_start, guess);
     f = stiffness * (base - l.h) / (1.0 + stiffness * l.c);

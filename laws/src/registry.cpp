@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "rheodda/laws/builtin_laws.hpp"
+#include "rheodda/laws/power_law.hpp"
 
 namespace rheodda::laws {
 
@@ -13,6 +14,9 @@ void register_builtin_laws(LawRegistry& registry) {
   registry.add(Kelvin::info());
   registry.add(Nishihara::info());
   registry.add(GeneralizedKelvin::info());
+  registry.add(PowerLaw::info());
+  registry.add(PowerLawBurgers::info());
+  registry.add(DamageBurgers::info());
 }
 
 const LawRegistry& LawRegistry::builtin() {

@@ -34,6 +34,17 @@ std::optional<double> ContactRheology::relaxation_modulus(double) const { return
 
 double ContactRheology::linear_limit() const { return std::numeric_limits<double>::infinity(); }
 
+std::optional<double> ContactRheology::failure_time(double) const { return std::nullopt; }
+
+double ContactRheology::time_to_failure(const RheologyState&, double) const {
+  return std::numeric_limits<double>::infinity();
+}
+
+std::optional<double> ContactRheology::failure_in_step(const StepConstants&, const RheologyState&,
+                                                       double, double) const {
+  return std::nullopt;
+}
+
 double kelvin_b(double r) { return -std::expm1(-r); }
 
 double kelvin_phi(double r) {

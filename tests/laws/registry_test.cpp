@@ -44,7 +44,7 @@ ParameterValues without(ParameterValues p, const std::string& key) {
 
 BOOST_AUTO_TEST_SUITE(registry)
 
-BOOST_AUTO_TEST_CASE(registry_lists_the_five_laws_with_units_and_meanings) {
+BOOST_AUTO_TEST_CASE(registry_lists_the_eight_laws_with_units_and_meanings) {
   std::set<std::string> names;
   for (const auto& law : LawRegistry::builtin().laws()) {
     names.insert(law.name);
@@ -60,13 +60,30 @@ BOOST_AUTO_TEST_CASE(registry_lists_the_five_laws_with_units_and_meanings) {
     BOOST_TEST(LawRegistry::builtin().create(law.name, p)->name() == law.name);
   }
   BOOST_TEST((names == std::set<std::string>{"burgers", "maxwell", "kelvin", "nishihara",
-                                             "generalized-kelvin"}));
+                                             "generalized-kelvin", "power-law",
+                                             "power-law-burgers", "damage-burgers"}));
 }
 
 BOOST_AUTO_TEST_CASE(duplicate_registration_is_refused) {
   LawRegistry r;
   register_builtin_laws(r);
   BOOST_CHECK_THROW(r.add(Burgers::info()), std::logic_error);
+}
+
+BOOST_AUTO_TEST_CASE(power_law_exponents_outside_their_range_name_the_key) {
+  const ParameterValues pl{{"E1", 26.87}, {"A", 1e-5}, {"tau_ref", 0.2}, {"n", 3.0}};
+  expect_error("power-law", with(pl, "n", 0.5), "n", "out of range");    // n >= 1
+  expect_error("power-law", with(pl, "n", 101.0), "n", "out of range");  // n <= 100
+  expect_error("power-law", with(pl, "A", 0.0), "A", "out of range");
+  expect_error("power-law", with(pl, "tau_ref", -1.0), "tau_ref", "out of range");
+  ParameterValues db = pl;
+  db["E2"] = 192.43;
+  db["eta2"] = 2141.23;
+  db["t_r"] = 1000.0;
+  db["r"] = 3.0;
+  expect_error("damage-burgers", with(db, "t_r", 0.0), "t_r", "out of range");
+  expect_error("damage-burgers", with(db, "r", 0.0), "r", "out of range");  // r > 0
+  expect_error("damage-burgers", without(db, "t_r"), "t_r", "needs");
 }
 
 BOOST_AUTO_TEST_CASE(non_positive_stiffness_or_viscosity_names_the_key) {

@@ -19,6 +19,16 @@
 // the shear spring: k_eff = k / (1 + k c), and h is the history term that goes
 // to the load vector. Laws with a threshold (Nishihara) are piecewise affine:
 // linearize() returns the piece that holds at a guessed F_e.
+//
+// Nonlinear laws (power-law creep, damage; Linearity::nonlinear). The increment
+// Delta d_c(F_e) is a smooth nonlinear function of F_e, and linearize() returns
+// its tangent at the guess F_g:
+//     c = dDelta d_c/dF_e (F_g),   h = Delta d_c(F_g) - c F_g          (1')
+// so that (1) is the Newton model of the increment. The host re-linearizes at
+// every open-close iterate and stops when the model's error at the iterate is
+// below its tolerance (docs/rheology-in-dda.md, "Nonlinear laws: Newton in the
+// open-close iteration"); an affine law's (1) is exact, so the host never
+// re-linearizes it and affine laws cost what they did.
 #pragma once
 
 #include <array>
@@ -52,7 +62,19 @@ inline constexpr int kMaxInternal = 4;
 /// The total creep displacement d_c is the sum of the used slots.
 struct RheologyState {
   std::array<double, kMaxInternal> q{};
+  /// Damage D of a damage-coupled law (docs/laws.md, "damage-burgers") [-]:
+  /// 0 intact, 1 failed; always 0 for laws without damage.
+  double damage = 0.0;
   double creep() const { return q[0] + q[1] + q[2] + q[3]; }
+  /// True once the law reached failure (damage 1): the contact's creep strength is gone.
+  bool failed() const { return damage >= 1.0; }
+};
+
+/// How the creep increment of a step depends on the end-of-step force F_e.
+enum class Linearity {
+  affine,            ///< (1) holds exactly for every F_e (Maxwell, Kelvin, Burgers, ...)
+  piecewise_affine,  ///< (1) holds on pieces; linearize() picks the piece of the guess (Nishihara)
+  nonlinear          ///< smooth in F_e; linearize() returns the tangent (1') (power-law laws)
 };
 
 /// Per-element constants for one step size, computed once per law and step
@@ -104,12 +126,18 @@ class ContactRheology {
   virtual std::optional<double> instantaneous_stiffness() const = 0;
   /// True when creep is linear in force (Boltzmann superposition holds).
   virtual bool is_linear() const = 0;
+  /// How the step's creep increment depends on F_e; by default affine for a
+  /// linear law and piecewise affine otherwise (the built-in SeriesLaw laws).
+  virtual Linearity linearity() const {
+    return is_linear() ? Linearity::affine : Linearity::piecewise_affine;
+  }
 
   /// Constants of a step of size dt [time] for a scheme.
   virtual StepConstants step_constants(double dt, Scheme scheme) const = 0;
   /// Affine form (1) of the creep increment over the step, given the old state,
   /// the force at the start of the step and a guess of the force at its end
-  /// (the guess only selects the piece of a piecewise-affine law).
+  /// (the guess selects the piece of a piecewise-affine law, and is the point of
+  /// the tangent (1') of a nonlinear law).
   virtual Linearization linearize(const StepConstants& k, const RheologyState& old,
                                   double force_start, double force_end_guess) const = 0;
   /// Advances the state over the step; returns Delta d_c [length].
@@ -128,6 +156,20 @@ class ContactRheology {
   virtual std::optional<double> relaxation_modulus(double t) const;
   /// Force below which the law is linear (infinity for linear laws) [force].
   virtual double linear_limit() const;
+
+  /// Failure time [time] under a constant force applied at t = 0 to an intact
+  /// law (closed form): when its damage reaches 1. nullopt for laws that never
+  /// fail or at a force that does not damage.
+  virtual std::optional<double> failure_time(double force) const;
+  /// Time [time] left before failure from state `s` if the force stays at
+  /// `force` (infinity for laws without damage or at zero damage rate).
+  virtual double time_to_failure(const RheologyState& s, double force) const;
+  /// Time from the start of a step [time] at which the law fails within it,
+  /// under the scheme's force (the force linear from force_start to force_end
+  /// over the step where the scheme uses both); nullopt if it does not fail
+  /// within the step (always for laws without damage).
+  virtual std::optional<double> failure_in_step(const StepConstants& k, const RheologyState& old,
+                                                double force_start, double force_end) const;
 };
 
 }  // namespace rheodda::laws

@@ -1,7 +1,7 @@
 // A law built from creep elements in series with an optional instantaneous
 // spring: the shape of all five built-in laws (Burgers = spring + Kelvin +
 // dashpot, and so on). Each element's step math lives here once; a law is a
-// configuration of elements (docs/laws.md, "Adding a fifth law").
+// configuration of elements (docs/laws.md, "Adding a law").
 #pragma once
 
 #include <optional>
