@@ -500,9 +500,25 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
       const double tau =
           shear_stiffness(c) * (h.dt0 + seams_[c].locking_shift + slip) / r.tributary_length;
       linearize(c, tau);
-      if ((seams_[c].compliance != before_seam.compliance ||
-           seams_[c].locking_shift != before_seam.locking_shift) &&
-          h.refinements < settings_.max_refinements) {
+      if (joint_sets_[r.joint_set].law->linearity() == laws::Linearity::nonlinear) {
+        // Newton (docs/rheology-in-dda.md, "Nonlinear laws"): the iterate was
+        // solved with the tangent at the last stress; the law's increment at
+        // this stress, Delta d_c(tau) = h + c tau of the new tangent, differs
+        // from that model by e [length], which moves the stress by about
+        // k_eff e / l_t. Another iterate while that exceeds the tolerance.
+        const double lt = r.tributary_length;
+        const double model = -before_seam.locking_shift + before_seam.compliance * lt * tau;
+        const double law = -seams_[c].locking_shift + seams_[c].compliance * lt * tau;
+        const double stress_error = shear_stiffness(c) * std::abs(law - model) / lt;
+        if (stress_error > settings_.creep_newton_tolerance * std::max(std::abs(tau), f_res / lt) &&
+            h.newton < settings_.max_creep_newton) {
+          ++h.newton;
+          ++res.state_changes;
+          ++res.refinements;
+        }
+      } else if ((seams_[c].compliance != before_seam.compliance ||
+                  seams_[c].locking_shift != before_seam.locking_shift) &&
+                 h.refinements < settings_.max_refinements) {
         ++h.refinements;
         ++res.state_changes;
         ++res.refinements;
@@ -551,16 +567,30 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
           const double creep = joint_sets_[r.joint_set].law->advance(
               step_constants_of(c), old, h.tau_start, r.shear_force / r.tributary_length,
               work_rheology_[r.rheology]);
+          CreepCounters& counters = creep_counters_[r.joint_set];
+          counters.contact_time += step_dt_;
+          if (!r.has_crept) ++counters.contacts;
+          r.has_crept = true;
+          r.creep_state = CreepState::creeping;
+          if (work_rheology_[r.rheology].failed()) {
+            // The law failed within the step (damage 1, docs/rheology-in-dda.md,
+            // "Failure"): the joint's creep strength is gone. The contact goes
+            // to sliding on its residual friction (no cohesion), like a locked
+            // contact past Mohr-Coulomb; the history rule below clears its
+            // state, so a contact that relocks restarts from an intact law.
+            ++counters.failures;
+            work_creep_[c] = 0.0;
+            r.state = ContactState::sliding;
+            r.intact = false;
+            r.slide_direction = r.shear_force >= 0.0 ? 1 : -1;
+            r.shear_force = r.slide_direction * std::max(r.normal_force, 0.0) * h.tan_phi;
+            break;
+          }
           const BlockView& eb = blocks[r.key.eblock];
           r.locking_ratio += creep / (edge_end(eb, r.key.edge) - edge_start(eb, r.key.edge)).norm();
           r.shear_force = h.ps * (h.dt0 + slip - creep);
           work_creep_[c] = creep;
           r.creep_displacement += creep;
-          r.creep_state = CreepState::creeping;
-          CreepCounters& counters = creep_counters_[r.joint_set];
-          counters.contact_time += step_dt_;
-          if (!r.has_crept) ++counters.contacts;
-          r.has_crept = true;
         }
         break;
       case ContactState::sliding: {
@@ -632,6 +662,9 @@ bool ContactSystem::extrapolate(const ContactSystem& coarse) {
     // increment is 2 (that) - coarse's.
     const double creep_fine_minus_coarse = qf.creep() - qc.creep();
     for (size_t i = 0; i < qf.q.size(); ++i) richardson(qf.q[i], qc.q[i]);
+    // Damage of a damage law: extrapolated like the displacements, but never
+    // to failure or below 0 by extrapolation (the fine value is kept then).
+    if (const double d = 2.0 * qf.damage - qc.damage; d >= 0.0 && d < 1.0) qf.damage = d;
     committed_creep_[k] = coarse.committed_creep_[k] + 2.0 * creep_fine_minus_coarse;
   }
   return true;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "rheodda/contact/contact_system.hpp"
+#include "rheodda/laws/history.hpp"
 #include "rheodda/laws/registry.hpp"
 #include "test_blocks.hpp"
 
@@ -624,6 +625,183 @@ BOOST_AUTO_TEST_CASE(nishihara_relaxation_across_its_threshold_matches_rk4) {
                                                  << " MPa (Fs = " << Fs << ")");
       BOOST_TEST(worst < 0.005);
     }
+  }
+}
+
+namespace {
+/// A held-displacement step run as the host runs it: check until no change
+/// (at most `max_checks`), then end_step. Returns the checks it took.
+int held_step(Rig& rig, double dt, double shift, int max_checks = 40) {
+  const int nb = static_cast<int>(rig.scene.views().size());
+  rig.cs.begin_step(rig.scene.views(), 1.0, dt);
+  Eigen::VectorXd D = Eigen::VectorXd::Zero(6 * nb);
+  D(6 * rig.movers[0]) = shift;
+  int checks = 0;
+  while (checks < max_checks) {
+    ++checks;
+    if (rig.cs.check(rig.scene.views(), D).state_changes == 0) break;
+  }
+  rig.cs.end_step(rig.scene.views(), D);
+  rig.scene.translate(rig.movers[0], {shift, 0.0});
+  return checks;
+}
+laws::ParameterValues norton_params(double n) {
+  return {{"E1", 26.87}, {"A", 0.2 / 34807.72}, {"tau_ref", 0.2}, {"n", n}};
+}
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(a_power_law_joint_relaxes_as_the_law_alone_solved_by_newton) {
+  // Held displacement delta (tau(0+) = 2 tau_ref): the contact layer's Newton
+  // in the open-close iteration must give the stress of the law alone in
+  // series with E1 (laws::solve_series_force, Newton to round-off) at every
+  // step, to 1e-9, in a few iterates per step; and both approach Norton's
+  // closed-form relaxation tau^(1-n) = tau0^(1-n) + (n-1) E1 A t / tau_ref^n
+  // at first order in dt (dt = 0.5 h and 0.125 h).
+  const double E1 = 26.87, A = 0.2 / 34807.72, tref = 0.2;
+  for (double n : {3.0, 8.0}) {
+   std::vector<double> closed_error;
+   for (double dt : {0.5, 0.125}) {
+    BOOST_TEST_CONTEXT("n " << n << ", dt " << dt) {
+      auto law = make_law("power-law", norton_params(n));
+      ContactSettings s = Rig::defaults();
+      s.scheme = laws::Scheme::implicit;
+      Rig rig({joint("p", law)}, {0}, s);
+      const double tau0 = 2 * tref, delta = tau0 / E1;
+      const laws::StepConstants k = law->step_constants(dt, laws::Scheme::implicit);
+      laws::RheologyState q, next;
+      double tau_alone = tau0, worst = 0.0, worst_closed = 0.0;
+      int most_checks = 0;
+      const int steps = static_cast<int>(200.0 / dt + 0.5);
+      for (int step = 1; step <= steps; ++step) {
+        const int checks = held_step(rig, dt, step == 1 ? delta : 0.0);
+        most_checks = std::max(most_checks, checks);
+        // Law alone: the first step starts from rest (implicit, as the contact's creep from rest).
+        const double f = laws::solve_series_force(*law, k, q, E1, delta, step == 1 ? tau0 : tau_alone);
+        law->advance(k, q, step == 1 ? f : tau_alone, f, next);
+        q = next;
+        tau_alone = f;
+        const double tau = rig.shear_force(0) / Rig::w;
+        worst = std::max(worst, std::abs(tau - tau_alone) / tau_alone);
+        const double closed = std::pow(std::pow(tau0, 1 - n) + (n - 1) * E1 * A * step * dt / std::pow(tref, n),
+                                       1 / (1 - n));
+        worst_closed = std::max(worst_closed, std::abs(tau - closed) / closed);
+      }
+      BOOST_TEST_MESSAGE("power-law n " << n << ", dt " << dt << " h: tau(200 h) = " << rig.shear_force(0) / Rig::w
+                                        << " MPa; vs law alone " << worst << ", vs closed form "
+                                        << worst_closed << ", most checks per step " << most_checks);
+      BOOST_TEST(worst < 1e-9);
+      BOOST_TEST(most_checks <= 8);  // the engine's default open_close_limit
+      closed_error.push_back(worst_closed);
+    }
+   }
+   // First order in dt: a quarter of the step, about a quarter of the error.
+   const double ratio = closed_error[0] / closed_error[1];
+   BOOST_TEST_MESSAGE("power-law n " << n << ": closed-form error ratio dt/(dt/4) = " << ratio);
+   BOOST_TEST(ratio > 3.5);
+   BOOST_TEST(ratio < 4.5);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(the_contact_newton_iterates_converge_quadratically) {
+  // The stress of each open-close iterate of one step (from the shear seam the
+  // next iterate is solved with: tau_k = k_eff (stretch - h_k)/l) against the
+  // converged one: e_{k+1}/e_k^2 bounded, until round-off. A hard step: n = 10,
+  // tau(0+) = 3 tau_ref, 50 h = about 60 relaxation times at tau(0+), from rest
+  // (the first tangent, at tau = 0, is flat: the first iterate is elastic).
+  const double E1 = 26.87, tref = 0.2;
+  auto law = make_law("power-law", norton_params(10.0));
+  ContactSettings s = Rig::defaults();
+  s.scheme = laws::Scheme::implicit;
+  Rig rig({joint("p", law)}, {0}, s);
+  const double delta = 3 * tref / E1, dt = 50.0;
+  const int nb = static_cast<int>(rig.scene.views().size());
+  rig.cs.begin_step(rig.scene.views(), 1.0, dt);
+  Eigen::VectorXd D = Eigen::VectorXd::Zero(6 * nb);
+  D(6 * rig.movers[0]) = delta;
+  // The stress the next solve gives with the seam of the last check: the
+  // spring's stretch along the edge is s = -delta (the base's top edge runs
+  // along -x), so tau = E1 (s - h)/(1 + E1 c) (eq. 2 of docs/rheology-in-dda.md).
+  const double stretch = -delta;
+  auto seam_tau = [&] {
+    const ShearSeam& z = rig.cs.shear_seams()[0];
+    const double lt = rig.cs.trial_contacts()[0].tributary_length;
+    return E1 * (stretch + z.locking_shift) / (1.0 + E1 * z.compliance * lt);
+  };
+  std::vector<double> taus{seam_tau()};
+  for (int k = 0; k < 30; ++k) {
+    const bool more = rig.cs.check(rig.scene.views(), D).state_changes > 0;
+    taus.push_back(seam_tau());
+    if (!more) break;
+  }
+  const double tau_star = taus.back();
+  std::vector<double> e;
+  for (double t : taus)
+    if (std::abs(t - tau_star) > 1e-13 * std::abs(tau_star))
+      e.push_back(std::abs(t - tau_star) / std::abs(tau_star));
+  BOOST_TEST_REQUIRE(e.size() >= 3u);
+  std::string msg;
+  for (size_t j = 0; j + 1 < e.size(); ++j) msg += " " + std::to_string(e[j + 1] / (e[j] * e[j]));
+  BOOST_TEST_MESSAGE("contact Newton, n = 10: " << taus.size() - 1 << " checks, errors " << e.front()
+                                                << " ... " << e.back() << ", e_{k+1}/e_k^2:" << msg);
+  for (size_t j = e.size() - 3; j + 1 < e.size(); ++j) {
+    BOOST_TEST(e[j + 1] < e[j]);
+    BOOST_TEST(e[j + 1] / (e[j] * e[j]) < 100.0);
+  }
+  // The converged stress is the law's: tau = E1 (delta - Delta d_c(tau)).
+  laws::RheologyState q, next;
+  const double inc = law->advance(law->step_constants(dt, laws::Scheme::implicit), q, tau_star, tau_star, next);
+  BOOST_TEST(std::abs(tau_star - E1 * (stretch - inc)) <= 1e-12 * std::abs(tau_star));
+  rig.cs.end_step(rig.scene.views(), D);
+}
+
+BOOST_AUTO_TEST_CASE(a_damage_law_joint_fails_at_the_law_alone_step_and_slides) {
+  // damage-burgers at tau(0+) = 2 tau_ref, held: Kachanov's t_f at that stress is
+  // t_r (tau_ref/tau)^r = 1000/8 = 125 h; the stress relaxes a little, so the
+  // joint fails a little later. The contact fails in the same step as the law
+  // alone in series with E1 (Newton to round-off), goes to sliding, loses its
+  // cohesion (intact = false) and is counted once in creep_counters().failures.
+  const double E1 = 26.87, tref = 0.2, dt = 1.0;
+  laws::ParameterValues p = norton_params(1.0);
+  p["E2"] = 192.43;
+  p["eta2"] = 2141.23;
+  p["t_r"] = 1000.0;
+  p["r"] = 3.0;
+  auto law = make_law("damage-burgers", p);
+  JointSet j = joint("d", law);
+  j.friction_angle = 89.9;  // residual friction (no cohesion once failed) holds the block
+  ContactSettings s = Rig::defaults();
+  s.scheme = laws::Scheme::implicit;
+  Rig rig({j}, {0}, s);
+  const double delta = 2 * tref / E1;
+  // Law alone.
+  const laws::StepConstants k = law->step_constants(dt, laws::Scheme::implicit);
+  laws::RheologyState q, next;
+  double tau = 2 * tref;
+  int fail_alone = -1;
+  for (int step = 1; step <= 400 && fail_alone < 0; ++step) {
+    const double f = laws::solve_series_force(*law, k, q, E1, delta, tau);
+    law->advance(k, q, tau, f, next);
+    if (next.failed()) fail_alone = step;
+    q = next;
+    tau = f;
+  }
+  BOOST_TEST_REQUIRE(fail_alone > 0);
+  int fail_contact = -1;
+  for (int step = 1; step <= 400 && fail_contact < 0; ++step) {
+    held_step(rig, dt, step == 1 ? delta : 0.0);
+    if (rig.cs.creep_counters()[0].failures > 0) fail_contact = step;
+  }
+  BOOST_TEST_MESSAGE("damage-burgers held at 2 tau_ref: fails at " << fail_alone * dt
+                                                                   << " h alone, " << fail_contact * dt
+                                                                   << " h on the contact (t_f at 2 tau_ref: 125 h)");
+  BOOST_TEST(fail_contact == fail_alone);
+  BOOST_TEST(fail_alone * dt > 125.0);
+  // Both contacts of the block carry the same stress and fail together.
+  BOOST_TEST(rig.cs.creep_counters()[0].failures == 2);
+  for (const Contact& c : rig.cs.contacts()) {
+    BOOST_TEST((c.state == ContactState::sliding));
+    BOOST_TEST(!c.intact);
+    BOOST_TEST(rig.cs.rheology_states()[c.rheology].damage == 0.0);  // history cleared
   }
 }
 

@@ -67,6 +67,7 @@ const char* creep_state_name(CreepState s);
 struct CreepCounters {
   int contacts = 0;            ///< contacts the law advanced in at least one accepted step [-]
   double contact_time = 0.0;   ///< sum over accepted steps of dt x contacts it advanced [time]
+  int failures = 0;            ///< contacts whose law reached failure (damage 1) [-]
 };
 
 /// Persistent record of one contact (also the per-step output record).
@@ -210,6 +211,7 @@ class ContactSystem {
                                   ///< the end force for the whole step (implicit constants)
     int flips = 0;        ///< state changes of this contact in this step
     int refinements = 0;  ///< friction refinements of this contact in this step
+    int newton = 0;       ///< Newton iterates a nonlinear law asked for in this step
     double assembled_normal_force = 0.0;  ///< normal_force as the last solve's assembly used it
                                           ///< (set by check; energy balance) [force/length]
   };

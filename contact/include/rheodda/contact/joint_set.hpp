@@ -96,6 +96,15 @@ struct ContactSettings {
   /// creep element i (k the joint's elastic shear stiffness per unit area),
   /// implicit (1st order, monotone at any dt) otherwise.
   std::optional<laws::Scheme> scheme;
+  /// Newton on a nonlinear law's force (docs/rheology-in-dda.md, "Nonlinear laws:
+  /// Newton in the open-close iteration"): a locked contact asks for another
+  /// iterate while its law's creep increment at the iterate's stress differs
+  /// from the tangent model the iterate was solved with by more than this
+  /// fraction of the stress it carries (measured as the stress that error
+  /// moves through the spring) [-].
+  double creep_newton_tolerance = 1e-10;
+  /// Newton iterates a contact may ask for in one step [-].
+  int max_creep_newton = 25;
 };
 
 }  // namespace rheodda::contact
