@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -73,6 +74,7 @@ struct Running {
 };
 
 pid_t spawn_case(const std::string& binary, const fs::path& dir, bool resume) {
+  // The case program is called as `PROGRAM run SCENE -o DIR [--resume]` (rheodda itself, or --case-program).
   const std::string scene = (dir / "scene.yaml").string();
   const std::string out = dir.string();
   const std::string log = (dir / "log.txt").string();
@@ -138,11 +140,15 @@ std::string format_value(double v) { return fmt::format("{}", v); }
 void write_study_csv(const StudyDescription& study, const std::vector<CaseResult>& results, const fs::path& path) {
   std::ofstream out(path, std::ios::binary);
   out << "case,status";
+  for (const auto& p : study.parameters) out << "," << p.name << " [" << p.unit << "]";
   for (const auto& o : study.outputs)
     for (double t : study.times) out << "," << csv_quote(fmt::format("{}@{:g}", o, t));
   out << ",wall_seconds,steps,message\n";
-  for (const auto& r : results) {
+  for (std::size_t c = 0; c < results.size(); ++c) {
+    const auto& r = results[c];
     out << csv_quote(r.name) << "," << r.status;
+    const auto& pv = study.cases[c].parameter_values;
+    for (std::size_t i = 0; i < study.parameters.size(); ++i) out << "," << (i < pv.size() ? format_value(pv[i]) : "");
     for (const auto& v : r.values) out << "," << (v ? format_value(*v) : "");
     out << "," << fmt::format("{:.3f}", r.wall_seconds) << "," << r.steps << "," << csv_quote(r.message) << "\n";
   }
@@ -155,7 +161,20 @@ std::string gp_text(const std::string& s) {
   return q;
 }
 
-void plot_study(const StudyDescription& study, const std::vector<CaseResult>& results, const fs::path& out_dir) {
+void run_gnuplot(const fs::path& gp) {
+  const std::string prog = "gnuplot";
+  std::string gps = gp.string();
+  char* argv[] = {const_cast<char*>(prog.c_str()), gps.data(), nullptr};
+  pid_t pid = 0;
+  if (posix_spawnp(&pid, "gnuplot", nullptr, nullptr, argv, environ) != 0)
+    throw std::runtime_error("cannot start gnuplot (installed by scripts/install-deps.sh)");
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw std::runtime_error(fmt::format("gnuplot failed on {}", gps));
+}
+
+/// study.png: the `plot` output of every case against time.
+void plot_histories(const StudyDescription& study, const std::vector<CaseResult>& results, const fs::path& out_dir) {
   const fs::path dat = out_dir / "study_plot.dat";
   std::ofstream d(dat);
   std::vector<std::string> titles;
@@ -170,7 +189,7 @@ void plot_study(const StudyDescription& study, const std::vector<CaseResult>& re
     for (const auto& [t, v] : series) d << format_value(t) << " " << format_value(v) << "\n";
     if (series.empty()) d << "nan nan\n";
     d << "\n\n";
-    titles.push_back(r.status == "completed" ? r.name : r.name + " (failed)");
+    titles.push_back(r.status == "completed" ? r.name : r.name + " (" + r.status + ")");
   }
   d.close();
   // Axis units from the first line of a case's history.csv ("# units: length=m force=N time=d ...").
@@ -192,22 +211,178 @@ void plot_study(const StudyDescription& study, const std::vector<CaseResult>& re
     << "set title '" << gp_text(study.title) << "'\n"
     << "set xlabel 'time" << (time_unit.empty() ? "" : " [" + time_unit + "]") << "'\n"
     << "set ylabel '" << study.plot << (units.empty() ? "" : " (" + units + ")") << "'\n"
-    << "set key outside right\nset grid\n"
-    << "plot ";
+    << "set grid\n";
+  // Many cases (a sweep): no key (the lines would hide the plot); the sweep pictures name them.
+  g << (titles.size() > 12 ? "set key off\n" : "set key outside right\n") << "plot ";
   for (std::size_t i = 0; i < titles.size(); ++i)
     g << (i ? ", \\\n     " : "") << "'" << dat.string() << "' index " << i << " using 1:2 with lines lw 2 title '"
-      << titles[i] << "'";
+      << gp_text(titles[i]) << "'";
   g << "\n";
   g.close();
-  const std::string prog = "gnuplot";
-  std::string gps = gp.string();
-  char* argv[] = {const_cast<char*>(prog.c_str()), gps.data(), nullptr};
-  pid_t pid = 0;
-  if (posix_spawnp(&pid, "gnuplot", nullptr, nullptr, argv, environ) != 0)
-    throw std::runtime_error("cannot start gnuplot (installed by scripts/install-deps.sh)");
-  int status = 0;
-  waitpid(pid, &status, 0);
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw std::runtime_error(fmt::format("gnuplot failed on {}", gps));
+  run_gnuplot(gp);
+}
+
+std::string param_label(const SweepParameter& p) {
+  return p.unit == "-" ? p.name : fmt::format("{} [{}]", p.name, p.unit);
+}
+
+/// study_sweep.png: every output against the first swept parameter, and, for a grid of
+/// two parameters, study_map.png: the `plot` output at the last time over both.
+/// Grid of one parameter: one curve per time; grid of more: at the last time, one curve
+/// per combination of the other parameters; random and Latin-hypercube draws: one
+/// panel per output and parameter, the output at the last time as points.
+std::vector<std::string> plot_sweep(const StudyDescription& study, const std::vector<CaseResult>& results,
+                                    const fs::path& out_dir) {
+  std::vector<std::string> files;
+  const auto& ps = study.parameters;
+  if (ps.empty()) return files;
+  const std::size_t nt = study.times.size();
+  const bool grid = study.method == SweepMethod::grid;
+  struct Curve {
+    std::string title;
+    std::vector<std::pair<double, double>> points;  // (parameter, output); failed cases left out
+  };
+  struct Panel {
+    std::string xlabel, ylabel;
+    bool logx = false;
+    std::vector<Curve> curves;
+  };
+  std::vector<Panel> panels;
+  const auto value = [&](std::size_t c, std::size_t output, std::size_t time) -> std::optional<double> {
+    const auto& v = results[c].values;
+    const std::size_t k = output * nt + time;
+    if (results[c].status != "completed" || k >= v.size()) return std::nullopt;
+    return v[k];
+  };
+  const auto swept = [&](std::size_t c) { return study.cases[c].parameter_values.size() == ps.size(); };
+  const std::string last_time = fmt::format("{:g}", study.times.back());
+  const std::size_t columns = grid ? 1 : ps.size();
+  for (std::size_t o = 0; o < study.outputs.size(); ++o) {
+    if (grid && ps.size() == 1) {
+      Panel pn{param_label(ps[0]), study.outputs[o], ps[0].log_scale, {}};
+      for (std::size_t t = 0; t < nt; ++t) {
+        Curve cv{fmt::format("t = {:g}", study.times[t]), {}};
+        for (std::size_t c = 0; c < results.size(); ++c)
+          if (swept(c))
+            if (auto v = value(c, o, t)) cv.points.emplace_back(study.cases[c].parameter_values[0], *v);
+        pn.curves.push_back(std::move(cv));
+      }
+      panels.push_back(std::move(pn));
+    } else if (grid) {
+      Panel pn{param_label(ps[0]), study.outputs[o] + " at t = " + last_time, ps[0].log_scale, {}};
+      std::map<std::vector<double>, std::size_t> curve_of;  // the other parameters' values -> curve
+      for (std::size_t c = 0; c < results.size(); ++c) {
+        if (!swept(c)) continue;
+        const auto& pv = study.cases[c].parameter_values;
+        const std::vector<double> rest(pv.begin() + 1, pv.end());
+        if (!curve_of.count(rest)) {
+          std::vector<std::string> label;
+          for (std::size_t i = 1; i < ps.size(); ++i)
+            label.push_back(fmt::format("{} = {:.4g}{}", ps[i].name, pv[i], ps[i].unit == "-" ? "" : " " + ps[i].unit));
+          curve_of[rest] = pn.curves.size();
+          pn.curves.push_back({fmt::format("{}", fmt::join(label, ", ")), {}});
+        }
+        if (auto v = value(c, o, nt - 1)) pn.curves[curve_of[rest]].points.emplace_back(pv[0], *v);
+      }
+      panels.push_back(std::move(pn));
+    } else {
+      for (std::size_t i = 0; i < ps.size(); ++i) {
+        Panel pn{param_label(ps[i]), study.outputs[o] + " at t = " + last_time, ps[i].log_scale, {}};
+        Curve cv{"", {}};
+        for (std::size_t c = 0; c < results.size(); ++c)
+          if (swept(c))
+            if (auto v = value(c, o, nt - 1)) cv.points.emplace_back(study.cases[c].parameter_values[i], *v);
+        pn.curves.push_back(std::move(cv));
+        panels.push_back(std::move(pn));
+      }
+    }
+  }
+  const fs::path dat = out_dir / "study_sweep.dat";
+  {
+    std::ofstream d(dat);
+    for (auto& pn : panels)
+      for (auto& cv : pn.curves) {
+        std::sort(cv.points.begin(), cv.points.end());
+        d << "# " << pn.ylabel << " against " << pn.xlabel << (cv.title.empty() ? "" : ": " + cv.title) << "\n";
+        for (const auto& [x, y] : cv.points) d << format_value(x) << " " << format_value(y) << "\n";
+        if (cv.points.empty()) d << "nan nan\n";
+        d << "\n\n";
+      }
+  }
+  const std::size_t rows = (panels.size() + columns - 1) / columns;
+  const fs::path gp = out_dir / "study_sweep.gp";
+  {
+    std::ofstream g(gp);
+    g << "# Drawn by rheodda study: the outputs against the swept parameters (docs/studies.md).\n"
+      << "set terminal pngcairo size " << 560 * columns + 240 << "," << 380 * rows + 60 << " noenhanced\n"
+      << "set output '" << (out_dir / "study_sweep.png").string() << "'\n"
+      << "set grid\nset key outside right\n"
+      << "set multiplot layout " << rows << "," << columns << " title '" << gp_text(study.title) << "'\n";
+    std::size_t block = 0;
+    for (const auto& pn : panels) {
+      g << (pn.logx ? "set logscale x\n" : "unset logscale x\n") << "set xlabel '" << gp_text(pn.xlabel) << "'\n"
+        << "set ylabel '" << gp_text(pn.ylabel) << "'\n"
+        << (pn.curves.size() > 10 ? "set key off\n" : "set key outside right\n") << "plot ";
+      for (std::size_t i = 0; i < pn.curves.size(); ++i, ++block)
+        g << (i ? ", \\\n     " : "") << "'" << dat.string() << "' index " << block << " using 1:2 with "
+          << (grid ? "linespoints lw 2 pt 7" : "points pt 7") << " title '" << gp_text(pn.curves[i].title) << "'";
+      g << "\n";
+    }
+    g << "unset multiplot\n";
+  }
+  run_gnuplot(gp);
+  files.push_back((out_dir / "study_sweep.png").string());
+  if (!(grid && ps.size() == 2)) return files;
+  // The map: rows of constant first parameter, separated by blank lines (gnuplot's grid format).
+  const std::size_t o = static_cast<std::size_t>(
+      std::find(study.outputs.begin(), study.outputs.end(), study.plot) - study.outputs.begin());
+  const fs::path mdat = out_dir / "study_map.dat";
+  {
+    std::ofstream d(mdat);
+    d << "# " << ps[0].name << " " << ps[1].name << " " << study.plot << "@" << last_time << "\n";
+    std::size_t k = 0;
+    for (std::size_t c = 0; c < results.size(); ++c) {
+      if (!swept(c)) continue;
+      const auto& pv = study.cases[c].parameter_values;
+      const auto v = value(c, o, nt - 1);
+      d << format_value(pv[0]) << " " << format_value(pv[1]) << " " << (v ? format_value(*v) : "nan") << "\n";
+      if (++k % ps[1].values.size() == 0) d << "\n";  // the last parameter varies fastest
+    }
+  }
+  const fs::path mgp = out_dir / "study_map.gp";
+  {
+    std::ofstream g(mgp);
+    g << "# Drawn by rheodda study: " << study.plot << " at t = " << last_time << " over the two swept parameters.\n"
+      << "set terminal pngcairo size 900,700 noenhanced\n"
+      << "set output '" << (out_dir / "study_map.png").string() << "'\n"
+      << "set title '" << gp_text(study.title) << "'\n"
+      << "set view map\nset pm3d corners2color mean interpolate 8,8\nset autoscale fix\n"
+      << (ps[0].log_scale ? "set logscale x\n" : "") << (ps[1].log_scale ? "set logscale y\n" : "")
+      << "set xlabel '" << gp_text(param_label(ps[0])) << "'\n"
+      << "set ylabel '" << gp_text(param_label(ps[1])) << "'\n"
+      << "set cblabel '" << gp_text(study.plot + " at t = " + last_time) << "'\n"
+      << "splot '" << mdat.string() << "' using 1:2:3 with pm3d notitle, '' using 1:2:3 with points pt 7 lc rgb 'black' notitle\n";
+  }
+  run_gnuplot(mgp);
+  files.push_back((out_dir / "study_map.png").string());
+  return files;
+}
+
+/// study.json: what `rheodda plot OUTDIR` needs besides study.csv to redraw a study.
+void write_study_json(const StudyDescription& study, const fs::path& path) {
+  using nlohmann::json;
+  json ps = json::array();
+  for (const auto& p : study.parameters)
+    ps.push_back({{"name", p.name}, {"key", p.key}, {"unit", p.unit}, {"scale", p.log_scale ? "log" : "linear"},
+                  {"values", p.values}});
+  json cases = json::array();
+  for (const auto& c : study.cases) cases.push_back({{"name", c.name}, {"parameter_values", c.parameter_values}});
+  const char* method = study.method == SweepMethod::grid ? "grid"
+                       : study.method == SweepMethod::random ? "random" : "latin_hypercube";
+  const json j{{"study", study.file}, {"title", study.title}, {"scene", study.scene}, {"outputs", study.outputs},
+               {"times", study.times}, {"plot", study.plot}, {"method", method}, {"samples", study.samples},
+               {"seed", study.seed}, {"parameters", ps}, {"cases", cases}};
+  std::ofstream(path, std::ios::binary) << j.dump(2) << "\n";
 }
 
 }  // namespace
@@ -266,12 +441,71 @@ std::optional<double> value_at(const std::vector<std::pair<double, double>>& s, 
   return s.back().second;
 }
 
+namespace {
+
+/// Cases as child processes of this one (`rheodda run`), at most `jobs` at once.
+class LocalExecutor final : public CaseExecutor {
+ public:
+  LocalExecutor(std::string binary, std::size_t jobs) : binary_(std::move(binary)), jobs_(jobs) {}
+  ~LocalExecutor() override {
+    for (const auto& [pid, _] : running_) {  // an exception on the way: leave no case process behind
+      ::kill(pid, SIGTERM);
+      int status = 0;
+      waitpid(pid, &status, 0);
+    }
+  }
+  std::size_t capacity() const override { return jobs_; }
+  void start(const CaseTask& task) override {
+    const pid_t pid = spawn_case(binary_, task.dir, task.resume);
+    running_[pid] = {task.index, std::chrono::steady_clock::now()};
+  }
+  std::optional<CaseOutcome> poll() override {
+    for (const auto& [p, r] : running_) {
+      int status = 0;
+      if (waitpid(p, &status, WNOHANG) != p) continue;
+      // Wait for one of this study's children only (not for any other child of the process).
+      CaseOutcome o;
+      o.index = r.index;
+      o.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - r.start).count();
+      o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+      if (WIFSIGNALED(status)) o.signal = WTERMSIG(status);
+      running_.erase(p);
+      return o;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    return std::nullopt;
+  }
+  void stop_all() override {
+    for (const auto& [p, _] : running_) ::kill(p, SIGTERM);
+  }
+  std::size_t running() const override { return running_.size(); }
+
+ private:
+  std::string binary_;
+  std::size_t jobs_;
+  std::map<pid_t, Running> running_;
+};
+
+}  // namespace
+
+std::unique_ptr<CaseExecutor> local_executor(const std::string& binary, std::size_t jobs) {
+  return std::make_unique<LocalExecutor>(binary, std::max<std::size_t>(1, jobs));
+}
+
+std::string case_binary(const StudyOptions& options) {
+  return options.rheodda_binary.empty() ? fs::read_symlink("/proc/self/exe").string() : options.rheodda_binary;
+}
+
 std::vector<CaseResult> run_study(const StudyDescription& study, const StudyOptions& options) {
   const std::vector<std::string> texts = prepare_cases(study);  // a bad study throws before anything runs
   const fs::path out_dir = options.out_dir;
-  std::string binary = options.rheodda_binary;
-  if (binary.empty()) binary = fs::read_symlink("/proc/self/exe").string();
-  int jobs = options.jobs > 0 ? options.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  std::unique_ptr<CaseExecutor> own;
+  CaseExecutor* exec = options.executor;
+  if (exec == nullptr) {
+    const int jobs = options.jobs > 0 ? options.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    own = local_executor(case_binary(options), static_cast<std::size_t>(jobs));
+    exec = own.get();
+  }
 
   std::vector<CaseResult> results(study.cases.size());
   // What each case needs: run, resume (an interrupted run of the same scene), or
@@ -296,7 +530,6 @@ std::vector<CaseResult> run_study(const StudyDescription& study, const StudyOpti
     std::ofstream(dir / "scene.yaml", std::ios::binary) << texts[i];
   }
 
-  std::map<pid_t, Running> running;
   std::size_t next = 0, done = 0;
   bool stopping = false;
   auto stop_requested = [&] { return options.stop && *options.stop != 0; };
@@ -305,9 +538,9 @@ std::vector<CaseResult> run_study(const StudyDescription& study, const StudyOpti
       // Stop the running cases (each stops after its step, keeping a checkpoint);
       // start no more.
       stopping = true;
-      for (const auto& [p, _] : running) ::kill(p, SIGTERM);
+      exec->stop_all();
     }
-    while (!stopping && next < results.size() && static_cast<int>(running.size()) < jobs) {
+    while (!stopping && next < results.size() && exec->running() < exec->capacity()) {
       const fs::path dir = out_dir / "cases" / results[next].name;
       if (todo[next] == Todo::keep) {
         results[next].exit_code = 0;
@@ -322,8 +555,7 @@ std::vector<CaseResult> run_study(const StudyDescription& study, const StudyOpti
         continue;
       }
       try {
-        const pid_t pid = spawn_case(binary, dir, todo[next] == Todo::resume);
-        running[pid] = {next, std::chrono::steady_clock::now()};
+        exec->start({next, dir.string(), todo[next] == Todo::resume});
       } catch (const std::exception& e) {
         results[next].status = "failed";
         results[next].exit_code = -1;
@@ -333,34 +565,20 @@ std::vector<CaseResult> run_study(const StudyDescription& study, const StudyOpti
       }
       ++next;
     }
-    if (running.empty()) {
-      if (stopping) break;
+    if (exec->running() == 0) {
+      if (stopping || done == results.size()) break;
       continue;
     }
-    int status = 0;
-    pid_t pid = 0;
-    // Wait for one of this study's children (not for any other child of the process).
-    for (;;) {
-      bool any = false;
-      for (const auto& [p, _] : running) {
-        const pid_t w = waitpid(p, &status, WNOHANG);
-        if (w == p) {
-          pid = p;
-          any = true;
-          break;
-        }
-      }
-      if (any) break;
-      if (stop_requested() && !stopping) break;
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    if (pid == 0) continue;  // a stop request: handled at the top of the loop
-    const Running r = running.at(pid);
-    running.erase(pid);
-    CaseResult& res = results[r.index];
-    res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - r.start).count();
-    res.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    const std::optional<CaseOutcome> o = exec->poll();
+    if (!o) continue;  // nothing finished yet (a stop request is handled at the top of the loop)
+    CaseResult& res = results[o->index];
+    res.wall_seconds = o->wall_seconds;
+    res.exit_code = o->exit_code;
     collect(study, out_dir / "cases" / res.name, res);
+    const std::string killed = "killed by a signal";
+    if (o->signal != 0 && res.message.rfind(killed, 0) == 0)
+      res.message = fmt::format("killed by signal {} ({}){}", o->signal, strsignal(o->signal), res.message.substr(killed.size()));
+    if (!o->error.empty()) res.message = o->error;
     ++done;
     if (options.progress)
       fmt::print(stderr, "[{}/{}] {}: {} ({:.1f} s, {} steps){}\n", done, results.size(), res.name, res.status,
@@ -371,13 +589,82 @@ std::vector<CaseResult> run_study(const StudyDescription& study, const StudyOpti
     results[i].message = "the study was stopped before this case started; `rheodda study ... --resume` runs it";
     results[i].values.assign(study.outputs.size() * study.times.size(), std::nullopt);
   }
-  if (stopping) {
-    write_study_csv(study, results, out_dir / "study.csv");
-    return results;
-  }
   write_study_csv(study, results, out_dir / "study.csv");
-  if (options.plot) plot_study(study, results, out_dir);
+  write_study_json(study, out_dir / "study.json");
+  if (stopping) return results;
+  if (options.plot) (void)plot_study_dir(out_dir.string());
   return results;
+}
+
+bool is_study_dir(const std::string& dir) {
+  return fs::exists(fs::path(dir) / "study.json") && fs::exists(fs::path(dir) / "study.csv");
+}
+
+std::vector<std::string> plot_study_dir(const std::string& dir) {
+  const fs::path out_dir = dir;
+  StudyDescription study;
+  std::vector<CaseResult> results;
+  try {
+    const auto j = nlohmann::json::parse(read_text(out_dir / "study.json"));
+    study.file = j.at("study").get<std::string>();
+    study.title = j.at("title").get<std::string>();
+    study.outputs = j.at("outputs").get<std::vector<std::string>>();
+    study.times = j.at("times").get<std::vector<double>>();
+    study.plot = j.at("plot").get<std::string>();
+    const std::string method = j.at("method").get<std::string>();
+    study.method = method == "random" ? SweepMethod::random
+                   : method == "latin_hypercube" ? SweepMethod::latin_hypercube : SweepMethod::grid;
+    for (const auto& p : j.at("parameters")) {
+      SweepParameter sp;
+      sp.name = p.at("name").get<std::string>();
+      sp.key = p.at("key").get<std::string>();
+      sp.unit = p.at("unit").get<std::string>();
+      sp.log_scale = p.at("scale").get<std::string>() == "log";
+      sp.values = p.at("values").get<std::vector<double>>();
+      study.parameters.push_back(std::move(sp));
+    }
+    for (const auto& c : j.at("cases")) {
+      StudyCase sc;
+      sc.name = c.at("name").get<std::string>();
+      sc.parameter_values = c.at("parameter_values").get<std::vector<double>>();
+      study.cases.push_back(std::move(sc));
+    }
+  } catch (const std::exception& e) {
+    throw std::invalid_argument(fmt::format("{}/study.json: not a study's record: {}", dir, e.what()));
+  }
+  // The results: study.csv, the status and OUTPUT@TIME columns of each case.
+  std::ifstream in(out_dir / "study.csv");
+  std::string line;
+  std::getline(in, line);
+  const auto header = split_csv_line(line);
+  const auto column = [&](const std::string& name) -> std::size_t {
+    for (std::size_t i = 0; i < header.size(); ++i)
+      if (header[i] == name) return i;
+    throw std::invalid_argument(fmt::format("{}/study.csv has no column '{}'", dir, name));
+  };
+  const std::size_t status = column("status");
+  std::vector<std::size_t> cols;
+  for (const auto& o : study.outputs)
+    for (double t : study.times) cols.push_back(column(fmt::format("{}@{:g}", o, t)));
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    // Only the message (last column) may be quoted: the fields before it split at commas.
+    const auto f = split_csv_line(line);
+    CaseResult r;
+    r.name = f.at(0);
+    r.status = status < f.size() ? f[status] : "";
+    for (std::size_t k : cols) {
+      if (k < f.size() && !f[k].empty()) r.values.push_back(std::stod(f[k]));
+      else r.values.push_back(std::nullopt);
+    }
+    results.push_back(std::move(r));
+  }
+  if (results.size() != study.cases.size())
+    throw std::invalid_argument(fmt::format("{}/study.csv has {} cases, study.json {}", dir, results.size(), study.cases.size()));
+  plot_histories(study, results, out_dir);
+  std::vector<std::string> files{(out_dir / "study.png").string()};
+  for (auto& f : plot_sweep(study, results, out_dir)) files.push_back(std::move(f));
+  return files;
 }
 
 }  // namespace rheodda::study

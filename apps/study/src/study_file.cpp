@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <set>
 #include <sstream>
 
@@ -180,7 +181,172 @@ std::set<std::string> history_columns(const scene::SceneDescription& s) {
   return c;
 }
 
+
+bool valid_parameter_name(const std::string& s) {
+  if (s.empty()) return false;
+  for (char ch : s)
+    if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_')) return false;
+  return true;
+}
+
+/// A whole number >= lo (samples, count, seed).
+std::uint64_t whole_number(const std::string& file, const YAML::Node& n, const std::string& key, std::uint64_t lo) {
+  const double v = number(file, n, key);
+  if (v != std::floor(v) || v < static_cast<double>(lo) || v > 9.0e15)
+    fail(file, n, key, fmt::format("{} is not a whole number >= {}", n.as<std::string>(), lo));
+  return static_cast<std::uint64_t>(v);
+}
+
+/// `sweep:` (docs/studies.md, "Sweeps"): the method, its draws, and each parameter.
+void read_sweep(const std::string& file, const YAML::Node& sw, StudyDescription& s) {
+  if (!sw.IsMap()) fail(file, sw, "sweep", "expected a map with keys method, parameters (samples, seed)");
+  check_keys(file, sw, "sweep", {"method", "parameters", "samples", "seed"});
+  const std::string method = sw["method"] ? scalar_string(file, sw["method"], "sweep.method") : "grid";
+  if (method == "grid") s.method = SweepMethod::grid;
+  else if (method == "random") s.method = SweepMethod::random;
+  else if (method == "latin_hypercube") s.method = SweepMethod::latin_hypercube;
+  else fail(file, sw["method"], "sweep.method", fmt::format("unknown method '{}'; valid: grid, random, latin_hypercube", method));
+  const bool drawn = s.method != SweepMethod::grid;
+  if (drawn) {
+    if (!sw["samples"]) fail(file, sw, "sweep.samples", fmt::format("missing key 'samples' (how many cases the {} method draws)", method));
+    s.samples = whole_number(file, sw["samples"], "sweep.samples", 1);
+    if (s.samples > 100000) fail(file, sw["samples"], "sweep.samples", "more than 100000 cases");
+    s.seed = sw["seed"] ? whole_number(file, sw["seed"], "sweep.seed", 0) : 1;
+  } else {
+    for (const char* k : {"samples", "seed"})
+      if (sw[k]) fail(file, sw[k], fmt::format("sweep.{}", k), fmt::format("'{}' is for the random and latin_hypercube methods; a grid takes every combination", k));
+  }
+  const YAML::Node ps = sw["parameters"];
+  if (!ps) fail(file, sw, "sweep.parameters", "missing key 'parameters' (the swept scene keys)");
+  if (!ps.IsSequence() || ps.size() == 0) fail(file, ps, "sweep.parameters", "expected a non-empty list of {name, key, unit, values or range}");
+  std::set<std::string> names, keys;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const YAML::Node p = ps[i];
+    const std::string at = fmt::format("sweep.parameters[{}]", i);
+    if (!p.IsMap()) fail(file, p, at, "expected a map {name, key, unit, values or range}");
+    check_keys(file, p, at, {"name", "key", "unit", "values", "range", "count", "scale"});
+    SweepParameter sp;
+    sp.where = where_of(p);
+    if (!p["key"]) fail(file, p, at + ".key", "missing key 'key' (the dotted scene key, e.g. joint_sets.base.friction_angle)");
+    sp.key = scalar_string(file, p["key"], at + ".key");
+    if (split_key(sp.key).empty()) fail(file, p["key"], at + ".key", "malformed scene key (expected e.g. joint_sets.base.friction_angle)");
+    if (!keys.insert(sp.key).second) fail(file, p["key"], at + ".key", fmt::format("'{}' is swept twice", sp.key));
+    if (p["name"]) {
+      sp.name = scalar_string(file, p["name"], at + ".name");
+    } else {
+      const auto parts = split_key(sp.key);
+      sp.name = parts.back();
+    }
+    if (!valid_parameter_name(sp.name))
+      fail(file, p["name"] ? p["name"] : p["key"], at + ".name",
+           fmt::format("'{}': a parameter name is letters, digits and '_' (it names cases and a study.csv column)", sp.name));
+    if (!names.insert(sp.name).second) fail(file, p, at + ".name", fmt::format("parameter name '{}' given twice", sp.name));
+    if (!p["unit"]) fail(file, p, at + ".unit", "missing key 'unit' (written in study.csv and on the plots; '-' for none)");
+    sp.unit = scalar_string(file, p["unit"], at + ".unit");
+    if (sp.unit.empty() || sp.unit.find_first_of(",\"[]\n") != std::string::npos)
+      fail(file, p["unit"], at + ".unit", "a unit is non-empty text without ',', '\"', '[' or ']' (e.g. deg, Pa/m, -)");
+    if (p["scale"]) {
+      const std::string sc = scalar_string(file, p["scale"], at + ".scale");
+      if (sc != "linear" && sc != "log") fail(file, p["scale"], at + ".scale", fmt::format("unknown scale '{}'; valid: linear, log", sc));
+      sp.log_scale = sc == "log";
+    }
+    if (p["values"] && p["range"]) fail(file, p["range"], at, "give either 'values' or 'range', not both");
+    if (p["values"]) {
+      if (drawn) fail(file, p["values"], at + ".values", fmt::format("the {} method draws from a 'range: [from, to]'", method));
+      if (p["count"]) fail(file, p["count"], at + ".count", "'count' spaces a 'range'; 'values' lists them");
+      const YAML::Node v = p["values"];
+      if (!v.IsSequence() || v.size() == 0) fail(file, v, at + ".values", "expected a non-empty list of numbers");
+      for (std::size_t k = 0; k < v.size(); ++k) sp.values.push_back(number(file, v[k], fmt::format("{}.values[{}]", at, k)));
+      if (sp.log_scale)
+        for (std::size_t k = 0; k < v.size(); ++k)
+          if (sp.values[k] <= 0) fail(file, v[k], fmt::format("{}.values[{}]", at, k), "a log scale needs values > 0");
+    } else if (p["range"]) {
+      const YAML::Node r = p["range"];
+      if (!r.IsSequence() || r.size() != 2) fail(file, r, at + ".range", "expected [from, to]");
+      sp.from = number(file, r[0], at + ".range[0]");
+      sp.to = number(file, r[1], at + ".range[1]");
+      if (!(sp.from < sp.to)) fail(file, r, at + ".range", fmt::format("from {:g} is not below to {:g}", sp.from, sp.to));
+      if (sp.log_scale && sp.from <= 0) fail(file, r, at + ".range", "a log scale needs a range above 0");
+      if (!drawn) {
+        if (!p["count"]) fail(file, p, at + ".count", "missing key 'count' (how many values a grid takes in the range, >= 2)");
+        const auto n = whole_number(file, p["count"], at + ".count", 2);
+        if (n > 100000) fail(file, p["count"], at + ".count", "more than 100000 values");
+        for (std::uint64_t k = 0; k < n; ++k) {
+          const double f = static_cast<double>(k) / static_cast<double>(n - 1);
+          // Evenly spaced in the value, or in its logarithm; the ends exactly.
+          double v = sp.log_scale ? std::exp(std::log(sp.from) + f * (std::log(sp.to) - std::log(sp.from)))
+                                  : sp.from + f * (sp.to - sp.from);
+          if (k == 0) v = sp.from;
+          if (k + 1 == n) v = sp.to;
+          sp.values.push_back(v);
+        }
+      } else if (p["count"]) {
+        fail(file, p["count"], at + ".count", fmt::format("the {} method draws 'sweep.samples' values; 'count' is for a grid", method));
+      }
+    } else {
+      fail(file, p, at, drawn ? "missing key 'range' ([from, to] to draw from)" : "missing key 'values' or 'range'");
+    }
+    s.parameters.push_back(std::move(sp));
+  }
+}
+
+/// Short text of a value for case names: 6 significant digits, no '+' ("1e+08" -> "1e08").
+std::string name_value(double v) {
+  std::string t = fmt::format("{:.6g}", v);
+  t.erase(std::remove(t.begin(), t.end(), '+'), t.end());
+  return t;
+}
+
 }  // namespace
+
+std::vector<std::vector<double>> sweep_values(const std::vector<SweepParameter>& ps, SweepMethod method,
+                                              std::size_t samples, std::uint64_t seed) {
+  std::vector<std::vector<double>> rows;
+  if (ps.empty()) return rows;
+  if (method == SweepMethod::grid) {
+    std::size_t total = 1;
+    for (const auto& p : ps) total *= p.values.size();
+    for (std::size_t k = 0; k < total; ++k) {
+      std::vector<double> row(ps.size());
+      std::size_t rest = k;
+      for (std::size_t i = ps.size(); i-- > 0;) {  // the last parameter varies fastest
+        row[i] = ps[i].values[rest % ps[i].values.size()];
+        rest /= ps[i].values.size();
+      }
+      rows.push_back(std::move(row));
+    }
+    return rows;
+  }
+  std::mt19937_64 gen(seed);
+  // A uniform draw in [0, 1) from the top 53 bits (the same on every platform, unlike std::uniform_real_distribution).
+  const auto uniform = [&] { return static_cast<double>(gen() >> 11) * 0x1.0p-53; };
+  std::vector<std::vector<double>> u(samples, std::vector<double>(ps.size()));
+  if (method == SweepMethod::random) {
+    for (std::size_t k = 0; k < samples; ++k)
+      for (std::size_t i = 0; i < ps.size(); ++i) u[k][i] = uniform();
+  } else {  // Latin hypercube: sample k of parameter i lies in stratum perm_i[k] of `samples` equal strata
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      std::vector<std::size_t> perm(samples);
+      for (std::size_t k = 0; k < samples; ++k) perm[k] = k;
+      for (std::size_t k = samples; k-- > 1;) {  // Fisher-Yates
+        const auto j = std::min(k, static_cast<std::size_t>(uniform() * static_cast<double>(k + 1)));
+        std::swap(perm[k], perm[j]);
+      }
+      for (std::size_t k = 0; k < samples; ++k)
+        u[k][i] = (static_cast<double>(perm[k]) + uniform()) / static_cast<double>(samples);
+    }
+  }
+  for (std::size_t k = 0; k < samples; ++k) {
+    std::vector<double> row(ps.size());
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      const auto& p = ps[i];
+      row[i] = p.log_scale ? std::exp(std::log(p.from) + u[k][i] * (std::log(p.to) - std::log(p.from)))
+                           : p.from + u[k][i] * (p.to - p.from);
+    }
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
 
 StudyDescription parse_study(const std::string& text, const std::string& file) {
   YAML::Node root;
@@ -190,7 +356,7 @@ StudyDescription parse_study(const std::string& text, const std::string& file) {
     throw SceneError(file, {e.mark.line + 1, e.mark.column + 1}, "", e.msg);
   }
   if (!root.IsMap()) fail(file, root, "", "a study file is a map with keys scene, outputs, times, cases");
-  check_keys(file, root, "", {"title", "scene", "set", "outputs", "times", "plot", "cases"});
+  check_keys(file, root, "", {"title", "scene", "set", "outputs", "times", "plot", "cases", "sweep"});
   StudyDescription s;
   s.file = file;
   s.title = root["title"] ? scalar_string(file, root["title"], "title") : fs::path(file).filename().string();
@@ -225,11 +391,12 @@ StudyDescription parse_study(const std::string& text, const std::string& file) {
       fail(file, root["plot"], "plot", fmt::format("'{}' is not one of the outputs ({})", s.plot, fmt::join(s.outputs, ", ")));
   }
 
+  if (root["sweep"]) read_sweep(file, root["sweep"], s);
   const YAML::Node cases = root["cases"];
-  if (!cases) fail(file, root, "cases", "missing key 'cases'");
-  if (!cases.IsSequence() || cases.size() == 0) fail(file, cases, "cases", "expected a non-empty list of cases");
+  if (!cases && !root["sweep"]) fail(file, root, "cases", "missing key 'cases' (or a 'sweep')");
+  if (cases && (!cases.IsSequence() || cases.size() == 0)) fail(file, cases, "cases", "expected a non-empty list of cases");
   std::set<std::string> names;
-  for (std::size_t i = 0; i < cases.size(); ++i) {
+  for (std::size_t i = 0; cases && i < cases.size(); ++i) {
     const YAML::Node c = cases[i];
     const std::string key = fmt::format("cases[{}]", i);
     if (!c.IsMap()) fail(file, c, key, "expected a map {name: ..., set: {...}}");
@@ -248,6 +415,32 @@ StudyDescription parse_study(const std::string& text, const std::string& file) {
       sc.set.insert(sc.set.end(), own.begin(), own.end());
     }
     s.cases.push_back(std::move(sc));
+  }
+  if (!s.parameters.empty()) {
+    const auto rows = sweep_values(s.parameters, s.method, s.samples, s.seed);
+    if (rows.size() > 100000) fail(file, root["sweep"], "sweep", fmt::format("the grid makes {} cases (more than 100000)", rows.size()));
+    const int width = static_cast<int>(std::to_string(rows.size()).size());
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      StudyCase sc;
+      sc.where = s.parameters.front().where;
+      sc.set = common;
+      sc.parameter_values = rows[k];
+      std::vector<std::string> name_parts, label;
+      for (std::size_t i = 0; i < s.parameters.size(); ++i) {
+        const auto& p = s.parameters[i];
+        sc.set.push_back({p.key, fmt::format("{}", rows[k][i]), p.where});
+        name_parts.push_back(p.name + "-" + name_value(rows[k][i]));
+        label.push_back(fmt::format("{} = {:.4g}{}", p.name, rows[k][i], p.unit == "-" ? "" : " " + p.unit));
+      }
+      // A grid case is named by its values (phi-33_E1-1e08); a drawn one by its number (sample007).
+      sc.name = s.method == SweepMethod::grid ? fmt::format("{}", fmt::join(name_parts, "_"))
+                                              : fmt::format("sample{:0{}}", k + 1, width);
+      sc.sweep_label = fmt::format("{}", fmt::join(label, ", "));
+      if (!names.insert(sc.name).second)
+        fail(file, root["sweep"], "sweep",
+             fmt::format("two cases are named '{}' (a listed case, or values equal to 6 significant digits)", sc.name));
+      s.cases.push_back(std::move(sc));
+    }
   }
   return s;
 }
@@ -286,7 +479,9 @@ std::string case_scene_text(const StudyDescription& study, const std::string& ba
   if (!own_title) {
     const YAML::Node t = YAML::Load(base_text)["title"];
     const std::string base = t && t.IsScalar() ? t.as<std::string>() : fs::path(study.scene).filename().string();
-    root["title"] = case_title(base, c, study.common_count);
+    // A swept case's title is short: the base title and the parameter values.
+    root["title"] = c.sweep_label.empty() ? case_title(base, c, study.common_count)
+                                          : fmt::format("{} [{}]", base, c.sweep_label);
   }
   YAML::Emitter e;
   e << root;

@@ -11,6 +11,9 @@
 #pragma once
 
 #include <csignal>
+#include <cstdint>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -35,6 +38,29 @@ struct StudyCase {
   std::string name;                ///< folder name under OUTDIR/cases/: letters, digits, '_', '-', '.'
   std::vector<Override> set;       ///< the study's `set` first, then the case's own
   SourceLocation where{};
+  /// Value of each swept parameter (StudyDescription::parameters) [its unit]; empty
+  /// for a case listed by hand under `cases`.
+  std::vector<double> parameter_values;
+  /// The case scene's title suffix "name = value unit, ..." of a swept case; empty for a listed case.
+  std::string sweep_label;
+};
+
+/// How a sweep turns its parameters into cases (docs/studies.md, "Sweeps").
+enum class SweepMethod {
+  grid,             ///< every combination of the parameters' values (product)
+  random,           ///< `samples` independent draws, uniform in each range (or in its logarithm)
+  latin_hypercube,  ///< `samples` draws, one in each of `samples` equal strata of every range
+};
+
+/// One swept parameter: a scene key (any map key or law parameter) and its values.
+struct SweepParameter {
+  std::string name;      ///< short name: case names, titles, the study.csv column "NAME [UNIT]"
+  std::string key;       ///< dotted scene key, as in `set` (e.g. joint_sets.base.law.E1)
+  std::string unit;      ///< written next to the values (study.csv header, plots); "-" if none
+  bool log_scale = false;  ///< `scale: log`: ranges spaced/drawn in the logarithm, plot axes logarithmic
+  std::vector<double> values;  ///< grid: the listed values, or `count` values spanning `range`
+  double from = 0.0, to = 0.0;  ///< `range: [from, to]` (random and Latin-hypercube draws, grid ranges)
+  SourceLocation where{};
 };
 
 struct StudyDescription {
@@ -45,9 +71,21 @@ struct StudyDescription {
   std::vector<std::string> outputs;  ///< history.csv columns, or `POINT.displacement` = hypot(POINT.u, POINT.v)
   std::vector<double> times;       ///< times the outputs are read at [scene time unit]; linear interpolation
   std::string plot;                ///< the output overlaid across cases in study.png; default: outputs[0]
-  std::vector<StudyCase> cases;
+  std::vector<StudyCase> cases;    ///< the listed cases first, then the sweep's
   std::size_t common_count = 0;    ///< the first common_count overrides of each case's `set` are the study's `set`
+  std::vector<SweepParameter> parameters;  ///< `sweep.parameters`; empty without a sweep
+  SweepMethod method = SweepMethod::grid;
+  std::size_t samples = 0;         ///< random / Latin-hypercube draws
+  std::uint64_t seed = 0;          ///< of the draws (std::mt19937_64); the same seed gives the same cases
 };
+
+/// The values a sweep draws: row k holds sample k's value of each parameter, in
+/// parameter order. Grid: the product (last parameter fastest). Random: uniform in
+/// [from, to] (or in [ln from, ln to] with log_scale). Latin hypercube: for each
+/// parameter, a random permutation of the `samples` strata of [0, 1), a uniform draw
+/// inside the stratum (McKay, Beckman & Conover 1979), mapped as for random.
+std::vector<std::vector<double>> sweep_values(const std::vector<SweepParameter>& parameters, SweepMethod method,
+                                              std::size_t samples, std::uint64_t seed);
 
 /// Reads and checks the study file (keys, types, names); throws SceneError with
 /// the study file, line, column and key.
@@ -70,6 +108,40 @@ std::vector<std::string> prepare_cases(const StudyDescription& study);
 /// the case's own overrides first, then the study's common ones (docs/studies.md).
 std::string case_title(const std::string& base_title, const StudyCase& c, std::size_t common_count);
 
+/// A case handed to an executor: its index in the study and its folder (scene.yaml in it).
+struct CaseTask {
+  std::size_t index = 0;
+  std::string dir;      ///< OUTDIR/cases/NAME
+  bool resume = false;  ///< `rheodda run --resume` (an interrupted case)
+};
+
+/// How a case process ended.
+struct CaseOutcome {
+  std::size_t index = 0;
+  int exit_code = 0;          ///< of the case process; -1 when a signal ended it
+  int signal = 0;             ///< the signal that ended it (0: none)
+  double wall_seconds = 0.0;  ///< the case process's wall time [s]
+  std::string error;          ///< the case could not be started (e.g. a missing program); empty otherwise
+};
+
+/// Where cases run: child processes of this one (local_executor), or MPI ranks
+/// (apps/study/mpi). run_study starts cases while running() < capacity() and polls.
+class CaseExecutor {
+ public:
+  virtual ~CaseExecutor() = default;
+  virtual std::size_t capacity() const = 0;  ///< cases at once
+  virtual std::size_t running() const = 0;   ///< cases started and not yet reported
+  /// Starts a case (as `PROGRAM run DIR/scene.yaml -o DIR`, output in DIR/log.txt).
+  virtual void start(const CaseTask& task) = 0;
+  /// A finished case, or nullopt after a short wait (a few ms) when none has finished.
+  virtual std::optional<CaseOutcome> poll() = 0;
+  /// SIGTERM to every running case (each stops after its step, keeping a checkpoint).
+  virtual void stop_all() = 0;
+};
+
+/// Child processes of this one, at most `jobs` at once, each `binary run ...`.
+std::unique_ptr<CaseExecutor> local_executor(const std::string& binary, std::size_t jobs);
+
 struct StudyOptions {
   std::string out_dir;         ///< created if missing; cases go to out_dir/cases/NAME/
   int jobs = 0;                ///< cases run at once; 0: the machine's hardware threads
@@ -85,7 +157,12 @@ struct StudyOptions {
   /// same scene text is kept, an interrupted one is resumed (`rheodda run --resume`),
   /// the others run from the start.
   bool resume = false;
+  /// Where cases run; null: local_executor(rheodda_binary, jobs).
+  CaseExecutor* executor = nullptr;
 };
+
+/// The program a case runs: options.rheodda_binary, else this process's executable.
+std::string case_binary(const StudyOptions& options);
 
 struct CaseResult {
   std::string name;
@@ -102,6 +179,17 @@ struct CaseResult {
 /// disabled, out_dir/study.png (+ study.gp, study_plot.dat). Throws SceneError for
 /// a bad study (nothing is run then).
 std::vector<CaseResult> run_study(const StudyDescription& study, const StudyOptions& options);
+
+/// True when `dir` holds a study's outputs (study.json and study.csv).
+bool is_study_dir(const std::string& dir);
+
+/// Draws a study from its folder (study.json, study.csv, cases/*/history.csv):
+/// study.png (the `plot` output of every case against time) and, for a sweep,
+/// study_sweep.png (the outputs against the swept parameters) and, for a grid of two
+/// parameters, study_map.png. Returns the pictures written. Throws
+/// std::invalid_argument for a folder that is not a study's, std::runtime_error
+/// when gnuplot fails.
+std::vector<std::string> plot_study_dir(const std::string& dir);
 
 /// Reads output `column` of a run's history.csv as (time, value) pairs;
 /// `POINT.displacement` is derived as hypot(POINT.u, POINT.v). Throws std::runtime_error.
