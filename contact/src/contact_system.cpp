@@ -192,6 +192,19 @@ void ContactSystem::linearize(size_t c, double tau_guess) {
   seams_[c] = {-lin.h, lin.c / r.tributary_length};
 }
 
+void ContactSystem::fail_law(size_t c) {
+  // docs/rheology-in-dda.md, "Failure": a residual frictional joint from now on.
+  Contact& r = work_[c];
+  Hot& h = hot_[c];
+  h.law_failed = true;
+  r.creep_failed = true;
+  if (r.rheology >= 0) work_rheology_[r.rheology] = {};  // no history left
+  r.intact = false;
+  h.cohesion = 0.0;
+  h.tensile_strength = 0.0;
+  seams_[c] = {};
+}
+
 void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_displacement,
                                double dt) {
   const int nb = static_cast<int>(blocks.size());
@@ -342,7 +355,7 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
       ls.from_rest = law->step_constants(dt, laws::Scheme::implicit);
     }
     for (size_t c = 0; c < work_.size(); ++c)
-      if (work_[c].rheology >= 0 && work_[c].tributary_length > 0.0)
+      if (work_[c].rheology >= 0 && work_[c].tributary_length > 0.0 && !work_[c].creep_failed)
         linearize(c, hot_[c].tau_start);
   }
   step_dt_ = dt;
@@ -494,13 +507,25 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
     // at this iterate's stress; a change asks for another iteration (bounded
     // by max_refinements, so the switch cannot chatter).
     if (r.state == ContactState::locked && r.rheology >= 0 && r.tributary_length > 0.0 &&
-        law_steps_[r.joint_set].active &&
+        law_steps_[r.joint_set].active && !r.creep_failed &&
         !joint_sets_[r.joint_set].law->is_linear()) {
       const ShearSeam before_seam = seams_[c];
       const double tau =
           shear_stiffness(c) * (h.dt0 + seams_[c].locking_shift + slip) / r.tributary_length;
+      const laws::ContactRheology& law = *joint_sets_[r.joint_set].law;
+      if (law.failure_in_step(step_constants_of(c), work_rheology_[r.rheology], h.tau_start, tau)) {
+        // The law fails within the step at this stress (damage 1, docs/rheology-in-dda.md,
+        // "Failure"): the joint's creep strength is gone. It becomes a residual
+        // frictional joint - elastic spring, no creep, no cohesion or tensile
+        // strength - and the next iterate lets Mohr-Coulomb decide whether its
+        // friction holds.
+        fail_law(c);
+        ++res.state_changes;
+        ++res.slipped;
+        continue;
+      }
       linearize(c, tau);
-      if (joint_sets_[r.joint_set].law->linearity() == laws::Linearity::nonlinear) {
+      if (law.linearity() == laws::Linearity::nonlinear) {
         // Newton (docs/rheology-in-dda.md, "Nonlinear laws"): the iterate was
         // solved with the tangent at the last stress; the law's increment at
         // this stress, Delta d_c(tau) = h + c tau of the new tangent, differs
@@ -508,8 +533,8 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
         // k_eff e / l_t. Another iterate while that exceeds the tolerance.
         const double lt = r.tributary_length;
         const double model = -before_seam.locking_shift + before_seam.compliance * lt * tau;
-        const double law = -seams_[c].locking_shift + seams_[c].compliance * lt * tau;
-        const double stress_error = shear_stiffness(c) * std::abs(law - model) / lt;
+        const double actual = -seams_[c].locking_shift + seams_[c].compliance * lt * tau;
+        const double stress_error = shear_stiffness(c) * std::abs(actual - model) / lt;
         if (stress_error > settings_.creep_newton_tolerance * std::max(std::abs(tau), f_res / lt) &&
             h.newton < settings_.max_creep_newton) {
           ++h.newton;
@@ -550,6 +575,7 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
                                           h.cohesion * r.length)};
     switch (r.state) {
       case ContactState::open:
+        if (h.law_failed) ++creep_counters_[r.joint_set].failures;  // failed at an iterate (check)
         r.normal_force = r.shear_force = 0.0;
         if (h.start_state != ContactState::open) r.intact = false;
         break;
@@ -558,7 +584,8 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
         r.shear_force = shear_stiffness(c) * dt;
         r.shear_displacement += slip;
         max_pen = std::max(max_pen, dn);
-        if (r.rheology >= 0 && r.tributary_length > 0.0 && law_steps_[r.joint_set].active) {
+        if (r.rheology >= 0 && r.tributary_length > 0.0 && law_steps_[r.joint_set].active &&
+            !r.creep_failed) {
           // Advance the history from the step-start state with the step's end
           // stress tau = F / l_t, move the locking point by the creep increment
           // along the entrance edge (the seed's eqs. 22-29) and take the force
@@ -573,27 +600,24 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
           r.has_crept = true;
           r.creep_state = CreepState::creeping;
           if (work_rheology_[r.rheology].failed()) {
-            // The law failed within the step (damage 1, docs/rheology-in-dda.md,
-            // "Failure"): the joint's creep strength is gone. The contact goes
-            // to sliding on its residual friction (no cohesion), like a locked
-            // contact past Mohr-Coulomb; the history rule below clears its
-            // state, so a contact that relocks restarts from an intact law.
-            ++counters.failures;
+            // The law failed within the step at the converged stress although no
+            // iterate saw it (e.g. anti-chattering): the joint becomes a
+            // residual frictional joint now, without this step's creep; the
+            // next step's Mohr-Coulomb check decides whether it holds.
+            fail_law(c);
             work_creep_[c] = 0.0;
-            r.state = ContactState::sliding;
-            r.intact = false;
-            r.slide_direction = r.shear_force >= 0.0 ? 1 : -1;
-            r.shear_force = r.slide_direction * std::max(r.normal_force, 0.0) * h.tan_phi;
-            break;
-          }
+          } else {
           const BlockView& eb = blocks[r.key.eblock];
           r.locking_ratio += creep / (edge_end(eb, r.key.edge) - edge_start(eb, r.key.edge)).norm();
           r.shear_force = h.ps * (h.dt0 + slip - creep);
           work_creep_[c] = creep;
           r.creep_displacement += creep;
+          }
         }
+        if (h.law_failed) ++creep_counters_[r.joint_set].failures;
         break;
       case ContactState::sliding: {
+        if (h.law_failed) ++creep_counters_[r.joint_set].failures;  // failed at an iterate (check)
         r.normal_force = h.pn * dn;
         r.shear_force = r.slide_direction *
                         (std::max(r.normal_force, 0.0) * h.tan_phi + h.cohesion * r.length);
@@ -639,6 +663,7 @@ bool ContactSystem::extrapolate(const ContactSystem& coarse) {
     const Contact& c = cc[k];
     if (!(f.key == c.key) || f.joint_set != c.joint_set || f.state != c.state ||
         f.intact != c.intact || (f.rheology >= 0) != (c.rheology >= 0) ||
+        f.creep_failed != c.creep_failed ||
         (f.state == ContactState::sliding && f.slide_direction != c.slide_direction))
       return false;
   }

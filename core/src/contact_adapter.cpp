@@ -90,7 +90,9 @@ void ContactAdapter::end_step(std::span<const contact::BlockView> blocks, const 
   tau_now.reserve(system_.contacts().size());
   double worst = 0.0;
   for (const contact::Contact& c : system_.contacts()) {
-    if (c.rheology < 0 || c.tributary_length <= 0.0 || c.state != contact::ContactState::locked) continue;
+    if (c.rheology < 0 || c.tributary_length <= 0.0 || c.state != contact::ContactState::locked ||
+        c.creep_failed)  // a failed damage law no longer creeps (docs/rheology-in-dda.md, "Failure")
+      continue;
     const auto it = start_of.find(c.id);
     if (it == start_of.end()) continue;
     const contact::Contact& s = start_contacts[it->second];

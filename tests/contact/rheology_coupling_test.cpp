@@ -754,12 +754,14 @@ BOOST_AUTO_TEST_CASE(the_contact_newton_iterates_converge_quadratically) {
   rig.cs.end_step(rig.scene.views(), D);
 }
 
-BOOST_AUTO_TEST_CASE(a_damage_law_joint_fails_at_the_law_alone_step_and_slides) {
+BOOST_AUTO_TEST_CASE(a_damage_law_joint_fails_at_the_law_alone_step_and_becomes_frictional) {
   // damage-burgers at tau(0+) = 2 tau_ref, held: Kachanov's t_f at that stress is
   // t_r (tau_ref/tau)^r = 1000/8 = 125 h; the stress relaxes a little, so the
   // joint fails a little later. The contact fails in the same step as the law
-  // alone in series with E1 (Newton to round-off), goes to sliding, loses its
-  // cohesion (intact = false) and is counted once in creep_counters().failures.
+  // alone in series with E1 (Newton to round-off), loses its cohesion
+  // (intact = false) and its creep (creep_failed, history cleared), and is
+  // counted once in creep_counters().failures. Its residual friction holds the
+  // block: it stays locked, an elastic spring whose force no longer relaxes.
   const double E1 = 26.87, tref = 0.2, dt = 1.0;
   laws::ParameterValues p = norton_params(1.0);
   p["E2"] = 192.43;
@@ -798,11 +800,18 @@ BOOST_AUTO_TEST_CASE(a_damage_law_joint_fails_at_the_law_alone_step_and_slides) 
   BOOST_TEST(fail_alone * dt > 125.0);
   // Both contacts of the block carry the same stress and fail together.
   BOOST_TEST(rig.cs.creep_counters()[0].failures == 2);
+  const double force_at_failure = rig.shear_force(0);
+  for (int step = 0; step < 10; ++step) held_step(rig, dt, 0.0);
+  BOOST_TEST(rig.cs.creep_counters()[0].failures == 2);  // counted once
   for (const Contact& c : rig.cs.contacts()) {
-    BOOST_TEST((c.state == ContactState::sliding));
+    BOOST_TEST((c.state == ContactState::locked));
     BOOST_TEST(!c.intact);
+    BOOST_TEST(c.creep_failed);
+    BOOST_TEST((c.creep_state == CreepState::idle));
     BOOST_TEST(rig.cs.rheology_states()[c.rheology].damage == 0.0);  // history cleared
   }
+  BOOST_TEST(rig.shear_force(0) == force_at_failure);  // no creep, no relaxation
+  BOOST_TEST(std::abs(force_at_failure) > 0.0);
 }
 
 BOOST_AUTO_TEST_CASE(a_law_with_E1_and_a_shear_stiffness_on_one_joint_set_is_refused) {

@@ -99,6 +99,9 @@ struct Contact {
   double creep_displacement = 0.0;
   CreepState creep_state = CreepState::none;  ///< in the last accepted step
   bool has_crept = false;     ///< the law advanced it in at least one accepted step
+  /// Its damage law reached failure (docs/rheology-in-dda.md, "Failure"): from
+  /// then on a residual frictional joint (no cohesion, no tensile strength, no creep).
+  bool creep_failed = false;
 };
 
 /// Hook for the creep increment of the shear spring (zero without a law).
@@ -212,6 +215,7 @@ class ContactSystem {
     int flips = 0;        ///< state changes of this contact in this step
     int refinements = 0;  ///< friction refinements of this contact in this step
     int newton = 0;       ///< Newton iterates a nonlinear law asked for in this step
+    bool law_failed = false;  ///< its law failed in this step (damage 1): counted in end_step
     double assembled_normal_force = 0.0;  ///< normal_force as the last solve's assembly used it
                                           ///< (set by check; energy balance) [force/length]
   };
@@ -243,6 +247,8 @@ class ContactSystem {
   const laws::StepConstants& step_constants_of(size_t c) const;
   /// Sets seams_[c] from the law's affine form at a guessed end stress [stress].
   void linearize(size_t c, double tau_guess);
+  /// Contact c's damage law failed: residual frictional joint (no creep, cohesion, tension).
+  void fail_law(size_t c);
 
   std::vector<JointSet> joint_sets_;
   ContactSettings settings_;
