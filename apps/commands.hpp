@@ -59,4 +59,7 @@ void add_fit_command(CLI::App& app);
 /// `rheodda study`: a base scene's variations run as parallel cases (apps/study_command.cpp).
 void add_study_command(CLI::App& app);
 
+/// `rheodda forecast`: a scene with the uncertainty of a fitted law (apps/forecast_command.cpp).
+void add_forecast_command(CLI::App& app);
+
 }  // namespace rheodda::apps

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   rheodda::apps::add_scene_commands(app);
   rheodda::apps::add_fit_command(app);
   rheodda::apps::add_study_command(app);
+  rheodda::apps::add_forecast_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

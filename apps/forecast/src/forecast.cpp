@@ -1,0 +1,275 @@
+// Sampling a fitted law's parameters, unit conversion, percentiles (forecast.hpp).
+#include "rheodda/forecast/forecast.hpp"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+
+#include "rheodda/laws/registry.hpp"
+#include "rheodda/scene/error.hpp"
+
+namespace rheodda::forecast {
+namespace {
+
+using scene::SceneError;
+
+[[noreturn]] void bad(const std::string& file, const std::string& key, const std::string& msg) {
+  throw SceneError(file, {}, key, msg);
+}
+
+/// Size of a unit label in SI (m, N, s); nullopt for a label not known.
+std::optional<double> si_length(const std::string& u) {
+  static const std::map<std::string, double> t{{"m", 1.0}, {"mm", 1e-3}, {"cm", 1e-2}, {"km", 1e3}, {"um", 1e-6}};
+  const auto it = t.find(u);
+  return it == t.end() ? std::nullopt : std::optional<double>(it->second);
+}
+std::optional<double> si_force(const std::string& u) {
+  static const std::map<std::string, double> t{{"N", 1.0}, {"kN", 1e3}, {"MN", 1e6}, {"GN", 1e9}};
+  const auto it = t.find(u);
+  return it == t.end() ? std::nullopt : std::optional<double>(it->second);
+}
+std::optional<double> si_time(const std::string& u) {
+  static const std::map<std::string, double> t{{"s", 1.0}, {"min", 60.0}, {"h", 3600.0}, {"d", 86400.0},
+                                               {"a", 365.25 * 86400.0}, {"yr", 365.25 * 86400.0}};
+  const auto it = t.find(u);
+  return it == t.end() ? std::nullopt : std::optional<double>(it->second);
+}
+std::optional<double> si_stress(const std::string& u) {
+  static const std::map<std::string, double> t{{"Pa", 1.0}, {"kPa", 1e3}, {"MPa", 1e6}, {"GPa", 1e9}};
+  if (const auto it = t.find(u); it != t.end()) return it->second;
+  // force/length^2, as a scene spells its stress (e.g. N/mm^2)
+  const auto slash = u.find('/');
+  if (slash == std::string::npos || u.size() < slash + 3 || u.substr(u.size() - 2) != "^2") return std::nullopt;
+  const auto f = si_force(u.substr(0, slash));
+  const auto l = si_length(u.substr(slash + 1, u.size() - slash - 3));
+  if (!f || !l) return std::nullopt;
+  return *f / (*l * *l);
+}
+
+/// A uniform draw in [0, 1) from the top 53 bits (the same on every platform).
+double uniform01(std::mt19937_64& g) { return static_cast<double>(g() >> 11) * 0x1.0p-53; }
+
+/// A standard normal draw (Box-Muller; the second value of the pair is dropped).
+double normal01(std::mt19937_64& g) {
+  const double u1 = 1.0 - uniform01(g);  // (0, 1]
+  const double u2 = uniform01(g);
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * 3.14159265358979323846 * u2);
+}
+
+}  // namespace
+
+FittedLaw read_fit_report(const std::string& path, const std::string& law) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) bad(path, "", fmt::format("cannot open {}: {}", path, std::strerror(errno)));
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const std::exception& e) {
+    bad(path, "", fmt::format("not a `rheodda fit --json` report: {}", e.what()));
+  }
+  if (!j.is_object() || !j.contains("fits") || !j["fits"].is_array() || j["fits"].empty())
+    bad(path, "fits", "not a `rheodda fit --json` report (no 'fits' list)");
+  const std::string want = law.empty() ? j.value("best", std::string()) : law;
+  const nlohmann::json* f = nullptr;
+  std::vector<std::string> laws;
+  for (const auto& x : j["fits"]) {
+    laws.push_back(x.value("law", std::string()));
+    if (laws.back() == want) f = &x;
+  }
+  if (f == nullptr)
+    bad(path, "fits", fmt::format("the report has no fit of law '{}'; it has: {}", want, fmt::join(laws, ", ")));
+  FittedLaw r;
+  r.file = path;
+  r.law = want;
+  const laws::LawInfo* info = laws::LawRegistry::builtin().find(r.law);
+  if (info == nullptr) bad(path, "fits[" + r.law + "].law", fmt::format("'{}' is not a law of this program", r.law));
+  try {
+    const auto& ps = f->at("parameters");
+    for (const auto& p : ps) {
+      r.names.push_back(p.at("name").get<std::string>());
+      r.values.push_back(p.at("value").get<double>());
+      r.units.push_back(p.value("unit", std::string()));
+      r.identifiable.push_back(p.at("identifiable").get<bool>());
+      const auto& se = p.at("std_error");
+      const double s = se.is_number() ? se.get<double>() : 0.0;
+      // The fit's standard error is the delta method on ln p: se(p) = p se(ln p).
+      r.log_std.push_back(r.identifiable.back() && r.values.back() > 0 ? s / r.values.back() : 0.0);
+      const auto spec = std::find_if(info->parameters.begin(), info->parameters.end(),
+                                     [&](const laws::ParameterSpec& sp) { return sp.name == r.names.back(); });
+      if (spec == info->parameters.end())
+        bad(path, fmt::format("fits[{}].parameters.{}", r.law, r.names.back()), "not a parameter of the law");
+      r.dimensions.push_back(spec->unit);
+      if (!(r.values.back() > 0) || !std::isfinite(r.values.back()))
+        bad(path, fmt::format("fits[{}].parameters.{}.value", r.law, r.names.back()),
+            "a sampled parameter must be > 0 (the sampling is on its logarithm)");
+    }
+    const std::size_t n = r.names.size();
+    const auto& c = f->at("correlation");
+    if (!c.is_array() || c.size() != n) bad(path, fmt::format("fits[{}].correlation", r.law), fmt::format("expected a {}x{} matrix", n, n));
+    r.correlation.assign(n * n, std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!c[i].is_array() || c[i].size() != n) bad(path, fmt::format("fits[{}].correlation[{}]", r.law, i), fmt::format("expected {} values", n));
+      for (std::size_t k = 0; k < n; ++k)
+        if (c[i][k].is_number()) r.correlation[i * n + k] = c[i][k].get<double>();
+    }
+    const auto& u = j.at("units");
+    r.stress_unit = u.value("stress", std::string());
+    r.length_unit = u.value("length", std::string());
+    r.time_unit = u.value("time", std::string());
+  } catch (const SceneError&) {
+    throw;
+  } catch (const std::exception& e) {
+    bad(path, fmt::format("fits[{}]", r.law), fmt::format("not a `rheodda fit --json` report: {}", e.what()));
+  }
+  return r;
+}
+
+Samples draw_samples(const FittedLaw& fit, std::size_t count, std::uint64_t seed, const Unidentified& u) {
+  const std::size_t n = fit.names.size();
+  std::vector<std::size_t> id;  // identifiable parameters
+  Samples s;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (fit.identifiable[i]) id.push_back(i);
+    else (u.spread > 1.0 ? s.spread : s.held).push_back(fit.names[i]);
+  }
+  // Covariance of the ln p of the identifiable parameters: C_ij = r_ij s_i s_j.
+  const auto m = static_cast<Eigen::Index>(id.size());
+  Eigen::MatrixXd cov(m, m);
+  for (Eigen::Index a = 0; a < m; ++a)
+    for (Eigen::Index b = 0; b < m; ++b) {
+      const std::size_t i = id[static_cast<std::size_t>(a)], k = id[static_cast<std::size_t>(b)];
+      double r = fit.correlation[i * n + k];
+      if (!std::isfinite(r)) r = i == k ? 1.0 : 0.0;
+      cov(a, b) = r * fit.log_std[i] * fit.log_std[k];
+    }
+  // cov = V diag(lambda) V^T; a draw is V diag(sqrt(max(lambda, 0))) z (a correlation of
+  // +-1 to rounding leaves a tiny negative eigenvalue, which is a direction of no spread).
+  Eigen::MatrixXd factor = Eigen::MatrixXd::Zero(m, m);
+  if (m > 0) {
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(cov);
+    factor = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal();
+  }
+  std::mt19937_64 g(seed);
+  const auto& registry = laws::LawRegistry::builtin();
+  while (s.accepted.size() < count) {
+    if (s.drawn >= 100 * count)
+      throw std::runtime_error(fmt::format("{} of {} draws of {} were rejected by the law's ranges; the fit's "
+                                           "covariance is too wide for this law", s.drawn - s.accepted.size(),
+                                           s.drawn, fit.law));
+    Eigen::VectorXd z(m);
+    for (Eigen::Index a = 0; a < m; ++a) z(a) = normal01(g);
+    const Eigen::VectorXd dz = factor * z;
+    laws::ParameterValues v;
+    for (std::size_t i = 0; i < n; ++i) v[fit.names[i]] = fit.values[i];
+    for (Eigen::Index a = 0; a < m; ++a) {
+      const std::size_t i = id[static_cast<std::size_t>(a)];
+      v[fit.names[i]] = std::exp(std::log(fit.values[i]) + dz(a));
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      if (!fit.identifiable[i] && u.spread > 1.0)  // log-uniform in [value/F, value*F]
+        v[fit.names[i]] = fit.values[i] * std::exp((2.0 * uniform01(g) - 1.0) * std::log(u.spread));
+    ++s.drawn;
+    try {
+      (void)registry.create(fit.law, v);  // the law's own ranges say what is physical
+      s.accepted.push_back(std::move(v));
+    } catch (const laws::LawError& e) {
+      ++s.rejected[e.key().empty() ? e.what() : e.key() + " out of range"];
+    }
+  }
+  return s;
+}
+
+double unit_factor(const std::string& dimension, const FittedLaw& fit, const std::string& length,
+                   const std::string& force, const std::string& time) {
+  const auto need = [&](std::optional<double> v, const std::string& label, const char* what) {
+    if (!v)
+      throw std::invalid_argument(fmt::format(
+          "cannot convert the fit's parameters to the scene's units: unknown {} unit '{}' (known: m, mm, cm, km; "
+          "N, kN, MN; s, min, h, d; Pa, kPa, MPa, GPa or force/length^2)", what, label));
+    return *v;
+  };
+  const double stress = need(si_stress(fit.stress_unit), fit.stress_unit, "stress") /
+                        (need(si_force(force), force, "force") /
+                         std::pow(need(si_length(length), length, "length"), 2));
+  const double len = need(si_length(fit.length_unit), fit.length_unit, "length") / need(si_length(length), length, "length");
+  const double tim = need(si_time(fit.time_unit), fit.time_unit, "time") / need(si_time(time), time, "time");
+  // A dimension is a product of stress, length and time with * and / (e.g. stress*time/length).
+  double factor = 1.0;
+  int sign = 1;
+  std::size_t i = 0;
+  while (i < dimension.size()) {
+    const char ch = dimension[i];
+    if (ch == '*') { sign = 1; ++i; continue; }
+    if (ch == '/') { sign = -1; ++i; continue; }
+    std::size_t j = i;
+    while (j < dimension.size() && std::isalpha(static_cast<unsigned char>(dimension[j]))) ++j;
+    const std::string w = dimension.substr(i, j - i);
+    const double f = w == "stress" ? stress : w == "length" ? len : w == "time" ? tim : 0.0;
+    if (f == 0.0) throw std::invalid_argument(fmt::format("unknown dimension '{}' in '{}'", w, dimension));
+    factor *= sign > 0 ? f : 1.0 / f;
+    i = j == i ? i + 1 : j;
+  }
+  return factor;
+}
+
+double percentile(std::vector<double>& v, double p) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(v.begin(), v.end());
+  const double h = (static_cast<double>(v.size()) - 1.0) * p / 100.0;  // Hyndman & Fan definition 7
+  const auto lo = static_cast<std::size_t>(std::floor(h));
+  const std::size_t hi = std::min(lo + 1, v.size() - 1);
+  return v[lo] + (h - static_cast<double>(lo)) * (v[hi] - v[lo]);
+}
+
+History read_history(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(fmt::format("cannot read {}", path));
+  History h;
+  std::string line;
+  const auto split = [](const std::string& l) {
+    std::vector<std::string> f;
+    std::string cur;
+    for (char ch : l) {
+      if (ch == ',') { f.push_back(cur); cur.clear(); }
+      else if (ch != '\r') cur += ch;
+    }
+    f.push_back(cur);
+    return f;
+  };
+  while (std::getline(in, line)) {
+    if (line.rfind("# units:", 0) == 0) h.units_line = line;
+    if (line.empty() || line[0] == '#') continue;
+    if (h.columns.empty()) {
+      h.columns = split(line);
+      continue;
+    }
+    const auto f = split(line);
+    std::vector<double> row(h.columns.size(), std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t c = 0; c < f.size() && c < row.size(); ++c)
+      if (!f[c].empty()) row[c] = std::stod(f[c]);
+    h.rows.push_back(std::move(row));
+  }
+  return h;
+}
+
+double history_at(const History& h, std::size_t tc, std::size_t c, double t) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (h.rows.empty() || t < h.rows.front()[tc] || t > h.rows.back()[tc] * (1 + 1e-12)) return nan;
+  for (std::size_t k = 1; k < h.rows.size(); ++k)
+    if (t <= h.rows[k][tc]) {
+      const double t0 = h.rows[k - 1][tc], t1 = h.rows[k][tc];
+      if (t1 == t0) return h.rows[k][c];
+      return h.rows[k - 1][c] + (h.rows[k][c] - h.rows[k - 1][c]) * (t - t0) / (t1 - t0);
+    }
+  return h.rows.back()[c];
+}
+
+}  // namespace rheodda::forecast

@@ -1,0 +1,459 @@
+// `rheodda forecast`: a scene's histories with the uncertainty of a fitted law (docs/forecast.md).
+// Sample runs:
+//   rheodda fit examples/creep-data/table1-row1.csv --law burgers --stress 0.232 --units "MPa, mm, h" --json out/fit.json
+//   rheodda forecast examples/shear-creep-test.yaml --fit out/fit.json --joint-set plane -o out/forecast
+//   mpirun -np 3 rheodda forecast examples/shear-creep-test.yaml --fit out/fit.json --joint-set plane -o out/forecast
+//
+// The law parameters of one joint set are drawn from the fit's covariance (forecast.hpp),
+// the ensemble is written as a study file (OUT/ensemble.yaml) and run as a study
+// (OUT/cases/sampleNNN/, locally or over MPI ranks), then every history column's
+// percentiles across the members are taken at the times of the first member's history.
+#include <fmt/format.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "rheodda/forecast/forecast.hpp"
+#include "rheodda/scene/loader.hpp"
+#include "rheodda/study/study.hpp"
+#ifdef RHEODDA_WITH_MPI
+#include "mpi_study.hpp"
+#endif
+
+extern char** environ;
+
+namespace rheodda::apps {
+namespace {
+
+namespace fs = std::filesystem;
+namespace fc = rheodda::forecast;
+
+volatile std::sig_atomic_t g_forecast_stop = 0;
+extern "C" void on_forecast_stop(int signo) { g_forecast_stop = signo; }
+
+struct ForecastArgs {
+  std::string scene;
+  std::string fit;
+  std::string joint_set;
+  std::string law;
+  std::size_t samples = 100;
+  std::uint64_t seed = 1;
+  std::vector<double> percentiles{5, 50, 95};
+  double unidentified_spread = 0.0;
+  std::string column;
+  std::optional<double> threshold;
+  std::optional<double> by;
+  std::string out;
+  int jobs = 0;
+  bool no_plot = false;
+  bool resume = false;
+  std::string case_program;
+};
+
+std::string gp_text(const std::string& s) {
+  std::string q;
+  for (char ch : s) q += ch == '\'' ? std::string("''") : std::string(1, ch);
+  return q;
+}
+
+/// A dimension ("stress*time/length") in a scene's unit labels ("N/mm^2*h/mm").
+std::string scene_unit(const std::string& dimension, const scene::Units& u) {
+  std::string out, word;
+  const auto flush = [&] {
+    out += word == "stress" ? u.stress() : word == "length" ? u.length : word == "time" ? u.time : word;
+    word.clear();
+  };
+  for (char ch : dimension) {
+    if (std::isalpha(static_cast<unsigned char>(ch))) {
+      word += ch;
+    } else {
+      flush();
+      out += ch;
+    }
+  }
+  flush();
+  return out;
+}
+
+/// A YAML double-quoted scalar.
+std::string yaml_quoted(const std::string& s) {
+  std::string q = "\"";
+  for (char ch : s) {
+    if (ch == '"' || ch == '\\') q += '\\';
+    q += ch;
+  }
+  return q + "\"";
+}
+
+/// Columns of history.csv that are not results (time stepping bookkeeping).
+bool bookkeeping(const std::string& c) {
+  return c == "time" || c == "step" || c == "dt" || c == "cuts" || c == "iterations";
+}
+
+/// The ensemble as a study file: one case per accepted sample, the law's parameters set
+/// on the joint set (in the scene's units).
+std::string ensemble_text(const ForecastArgs& a, const scene::SceneDescription& s, const fc::FittedLaw& fit,
+                          const std::vector<laws::ParameterValues>& samples, const std::string& output, double by) {
+  const auto& js = *std::find_if(s.joint_sets.begin(), s.joint_sets.end(),
+                                 [&](const auto& j) { return j.name == a.joint_set; });
+  const bool same_law = js.law && js.law->name == fit.law;
+  std::string t = fmt::format(
+      "# The ensemble of `rheodda forecast`: {} samples of law {} of joint set {} drawn from {}.\n"
+      "# `rheodda study` runs it again (with --resume: only what is missing).\n"
+      "title: {}\n"
+      "scene: {}\n"
+      "outputs: [{}]\n"
+      "times: [{}]\n"
+      "cases:\n",
+      samples.size(), fit.law, a.joint_set, fit.file,
+      yaml_quoted(fmt::format("forecast of {} with the uncertainty of {}", s.title, fs::path(fit.file).filename().string())),
+      fs::absolute(a.scene).string(), output, by);
+  const int width = static_cast<int>(std::to_string(samples.size()).size());
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    std::vector<std::string> sets;
+    if (same_law) {  // the scene's law keeps its other keys (scheme, ...); its parameters change
+      for (const auto& [name, v] : samples[k]) sets.push_back(fmt::format("joint_sets.{}.law.{}: {}", a.joint_set, name, v));
+    } else {
+      std::vector<std::string> ps{fmt::format("name: {}", fit.law)};
+      for (const auto& [name, v] : samples[k]) ps.push_back(fmt::format("{}: {}", name, v));
+      sets.push_back(fmt::format("joint_sets.{}.law: {{{}}}", a.joint_set, fmt::join(ps, ", ")));
+    }
+    t += fmt::format("  - {{name: sample{:0{}}, set: {{{}}}}}\n", k + 1, width, fmt::join(sets, ", "));
+  }
+  return t;
+}
+
+void run_gnuplot(const fs::path& gp) {
+  std::string prog = "gnuplot", gps = gp.string();
+  char* argv[] = {prog.data(), gps.data(), nullptr};
+  pid_t pid = 0;
+  if (posix_spawnp(&pid, "gnuplot", nullptr, nullptr, argv, environ) != 0)
+    throw std::runtime_error("cannot start gnuplot (installed by scripts/install-deps.sh)");
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw std::runtime_error(fmt::format("gnuplot failed on {}", gps));
+}
+
+void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
+  // --- Inputs, all checked before anything runs (exit 2).
+  require_readable(a.scene);
+  require_readable(a.fit);
+  const scene::SceneDescription s = scene::load_scene(a.scene);
+  const auto js = std::find_if(s.joint_sets.begin(), s.joint_sets.end(), [&](const auto& j) { return j.name == a.joint_set; });
+  if (js == s.joint_sets.end()) {
+    std::vector<std::string> names;
+    for (const auto& j : s.joint_sets) names.push_back(j.name);
+    throw std::invalid_argument(fmt::format("--joint-set {}: the scene {} has no such joint set; it has: {}", a.joint_set,
+                                            a.scene, fmt::join(names, ", ")));
+  }
+  for (double p : a.percentiles)
+    if (!(p >= 0 && p <= 100)) throw std::invalid_argument(fmt::format("--percentiles: {:g} is not in [0, 100]", p));
+  if (a.unidentified_spread != 0.0 && !(a.unidentified_spread > 1.0))
+    throw std::invalid_argument(fmt::format("--unidentified-spread {:g}: a factor > 1 (or 0: held at the fitted value)",
+                                            a.unidentified_spread));
+  if (a.by && !a.threshold) throw std::invalid_argument("--by needs --threshold (the probability of exceeding it by that time)");
+  const double by = a.by.value_or(s.analysis.duration);
+  if (by < 0 || by > s.analysis.duration * (1 + 1e-12))
+    throw std::invalid_argument(fmt::format("--by {:g} is outside the run (0 to {:g} {})", by, s.analysis.duration, s.units.time));
+  const fc::FittedLaw fit = fc::read_fit_report(a.fit, a.law);
+
+  // The column of the fan chart and of the probability: given, or the joint set's shear
+  // displacement when it is recorded, or the first measurement point's displacement.
+  std::string column = a.column;
+  if (column.empty()) {
+    if (js->record) column = a.joint_set + ".shear_displacement_magnitude";
+    else if (!s.measurement_points.empty()) column = s.measurement_points.front().name + ".displacement";
+    else throw std::invalid_argument("--column: the scene records no joint set and has no measurement point; give a history column");
+  }
+
+  // Units: the fit's parameters in the scene's units.
+  const bool placeholder_units = fit.stress_unit == "stress" || fit.stress_unit.empty();
+  std::vector<double> factor(fit.names.size(), 1.0);
+  if (!placeholder_units)
+    for (std::size_t i = 0; i < fit.names.size(); ++i)
+      factor[i] = fc::unit_factor(fit.dimensions[i], fit, s.units.length, s.units.force, s.units.time);
+
+  fc::Unidentified u;
+  u.spread = a.unidentified_spread;
+  const fc::Samples drawn = fc::draw_samples(fit, a.samples, a.seed, u);
+  std::vector<laws::ParameterValues> scene_samples;
+  for (const auto& v : drawn.accepted) {
+    laws::ParameterValues c;
+    for (std::size_t i = 0; i < fit.names.size(); ++i) c[fit.names[i]] = v.at(fit.names[i]) * factor[i];
+    scene_samples.push_back(std::move(c));
+  }
+
+  const fs::path out = a.out.empty() ? fs::path("out") / (fs::path(a.scene).stem().string() + "-forecast") : fs::path(a.out);
+  fs::create_directories(out);
+  {  // samples.csv: each member's parameters in the scene's units
+    std::ofstream f(out / "samples.csv", std::ios::binary);
+    f << "case";
+    for (std::size_t i = 0; i < fit.names.size(); ++i) f << "," << fit.names[i] << " [" << scene_unit(fit.dimensions[i], s.units) << "]";
+    f << "\n";
+    const int width = static_cast<int>(std::to_string(scene_samples.size()).size());
+    for (std::size_t k = 0; k < scene_samples.size(); ++k) {
+      f << fmt::format("sample{:0{}}", k + 1, width);
+      for (const auto& n : fit.names) f << "," << fmt::format("{}", scene_samples[k].at(n));
+      f << "\n";
+    }
+  }
+  const fs::path study_file = out / "ensemble.yaml";
+  // The study's own output: the column at --by (its study.csv); the bands come from the histories.
+  std::ofstream(study_file, std::ios::binary) << ensemble_text(a, s, fit, scene_samples, column, by);
+  const study::StudyDescription st = study::load_study(study_file.string());
+
+  fmt::print(stderr, "rheodda forecast: {} of {} draws of {} accepted ({} rejected){}{}; running {} members\n",
+             drawn.accepted.size(), drawn.drawn, fit.law, drawn.drawn - drawn.accepted.size(),
+             drawn.held.empty() ? "" : fmt::format("; not identified, held at the fit: {}", fmt::join(drawn.held, ", ")),
+             drawn.spread.empty() ? "" : fmt::format("; not identified, drawn within a factor {:g}: {}", u.spread, fmt::join(drawn.spread, ", ")),
+             scene_samples.size());
+
+  // --- The ensemble, as a study.
+  study::StudyOptions opt;
+  opt.out_dir = out.string();
+  opt.jobs = a.jobs;
+  opt.progress = true;
+  opt.plot = !a.no_plot;
+  opt.resume = a.resume;
+  opt.stop = &g_forecast_stop;
+  opt.executor = executor;
+  if (!a.case_program.empty()) opt.rheodda_binary = fs::absolute(a.case_program).string();
+  std::vector<study::CaseResult> results;
+  try {
+    results = study::run_study(st, opt);
+  } catch (const scene::SceneError&) {
+    throw;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "rheodda: error: {}\n", e.what());
+    throw CLI::RuntimeError(kExitFailure);
+  }
+  if (g_forecast_stop) {
+    fmt::print("forecast stopped; resume with: rheodda forecast ... -o {} --resume (same arguments)\n", out.string());
+    throw CLI::RuntimeError(128 + static_cast<int>(g_forecast_stop));
+  }
+
+  // --- Bands: every history column (and POINT.displacement) at the first member's times.
+  std::vector<fc::History> members;
+  std::vector<std::string> failed;
+  for (const auto& r : results) {
+    if (r.status != "completed") {
+      failed.push_back(r.name + ": " + r.message);
+      continue;
+    }
+    members.push_back(fc::read_history((out / "cases" / r.name / "history.csv").string()));
+  }
+  if (members.empty()) {
+    fmt::print(stderr, "rheodda: error: no member of the ensemble completed; see {}/study.csv\n", out.string());
+    throw CLI::RuntimeError(kExitFailure);
+  }
+  // Derived POINT.displacement = hypot(POINT.u, POINT.v) (as `rheodda study` reads it).
+  for (auto& h : members) {
+    const std::size_t n = h.columns.size();
+    for (std::size_t c = 0; c < n; ++c) {
+      const std::string& name = h.columns[c];
+      if (name.size() < 3 || name.substr(name.size() - 2) != ".u") continue;
+      const std::string point = name.substr(0, name.size() - 2);
+      const auto v = std::find(h.columns.begin(), h.columns.end(), point + ".v");
+      if (v == h.columns.end()) continue;
+      const auto cv = static_cast<std::size_t>(v - h.columns.begin());
+      h.columns.push_back(point + ".displacement");
+      for (auto& row : h.rows) row.push_back(std::hypot(row[c], row[cv]));
+    }
+  }
+  const fc::History& first = members.front();
+  const auto index_of = [](const fc::History& h, const std::string& name) -> std::optional<std::size_t> {
+    const auto it = std::find(h.columns.begin(), h.columns.end(), name);
+    if (it == h.columns.end()) return std::nullopt;
+    return static_cast<std::size_t>(it - h.columns.begin());
+  };
+  const std::size_t tc = *index_of(first, "time");
+  if (!index_of(first, column))
+    throw std::invalid_argument(fmt::format("--column {}: history.csv has no such column; it has: {}", column,
+                                            fmt::join(first.columns, ", ")));
+  std::vector<std::string> band_columns;
+  for (const auto& c : first.columns)
+    if (!bookkeeping(c)) band_columns.push_back(c);
+  {
+    std::ofstream f(out / "bands.csv", std::ios::binary);
+    if (!first.units_line.empty()) f << first.units_line << "\n";
+    f << "time";
+    for (const auto& c : band_columns)
+      for (double p : a.percentiles) f << fmt::format(",{}.p{:g}", c, p);
+    f << ",members\n";
+    for (const auto& row : first.rows) {
+      const double t = row[tc];
+      f << fmt::format("{}", t);
+      std::size_t count = 0;
+      for (const auto& c : band_columns) {
+        std::vector<double> v;
+        for (const auto& h : members) {
+          const auto hc = index_of(h, c);
+          if (!hc) continue;
+          const double x = fc::history_at(h, *index_of(h, "time"), *hc, t);
+          if (std::isfinite(x)) v.push_back(x);
+        }
+        count = std::max(count, v.size());
+        for (double p : a.percentiles) {
+          std::vector<double> w = v;
+          f << "," << (w.empty() ? std::string() : fmt::format("{}", fc::percentile(w, p)));
+        }
+      }
+      f << "," << count << "\n";
+    }
+  }
+
+  // --- The probability that the column exceeds the threshold by time `by` (its largest value up to then).
+  nlohmann::json exceed = nullptr;
+  if (a.threshold) {
+    std::size_t over = 0, n = 0;
+    for (const auto& h : members) {
+      const auto hc = index_of(h, column);
+      const std::size_t ht = *index_of(h, "time");
+      double peak = -std::numeric_limits<double>::infinity();
+      for (const auto& row : h.rows)
+        if (row[ht] <= by * (1 + 1e-12) && std::isfinite(row[*hc])) peak = std::max(peak, row[*hc]);
+      const double at_by = fc::history_at(h, ht, *hc, by);
+      if (std::isfinite(at_by)) peak = std::max(peak, at_by);
+      ++n;
+      over += peak > *a.threshold;
+    }
+    const double p = static_cast<double>(over) / static_cast<double>(n);
+    const double se = std::sqrt(p * (1 - p) / static_cast<double>(n));  // binomial standard error
+    exceed = {{"column", column}, {"threshold", *a.threshold}, {"by", by}, {"members", n}, {"exceeding", over},
+              {"probability", p}, {"std_error", se}};
+    fmt::print("P({} > {:g} by t = {:g} {}) = {:.3f} +- {:.3f} ({} of {} members)\n", column, *a.threshold, by,
+               s.units.time, p, se, over, n);
+  }
+
+  // --- forecast.json
+  {
+    nlohmann::json params = nlohmann::json::array();
+    for (std::size_t i = 0; i < fit.names.size(); ++i)
+      params.push_back({{"name", fit.names[i]}, {"fitted", fit.values[i]}, {"fit_unit", fit.units[i]},
+                        {"factor_to_scene", factor[i]}, {"log_std", fit.identifiable[i] ? nlohmann::json(fit.log_std[i]) : nlohmann::json(nullptr)},
+                        {"identifiable", static_cast<bool>(fit.identifiable[i])},
+                        {"sampled", fit.identifiable[i] ? "normal in ln" : (u.spread > 1 ? "log-uniform within the spread" : "held at the fitted value")}});
+    nlohmann::json rejected = nlohmann::json::object();
+    for (const auto& [why, n] : drawn.rejected) rejected[why] = n;
+    const nlohmann::json j{{"scene", a.scene}, {"fit", a.fit}, {"law", fit.law}, {"joint_set", a.joint_set},
+                           {"seed", a.seed}, {"samples_requested", a.samples}, {"draws", drawn.drawn},
+                           {"accepted", drawn.accepted.size()}, {"rejected", rejected},
+                           {"unidentified_spread", u.spread}, {"parameters", params},
+                           {"members_completed", members.size()}, {"members_failed", failed},
+                           {"percentiles", a.percentiles}, {"column", column}, {"exceedance", exceed},
+                           {"units_converted", !placeholder_units}};
+    std::ofstream(out / "forecast.json", std::ios::binary) << j.dump(2) << "\n";
+  }
+
+  // --- The fan chart of the column: the outer band, the inner ones, the median.
+  if (!a.no_plot) {
+    std::vector<double> ps = a.percentiles;
+    std::sort(ps.begin(), ps.end());
+    const fs::path gp = out / "fan.gp";
+    std::ofstream g(gp);
+    const auto col_of = [&](double p) {  // column number in bands.csv (1-based)
+      const auto ci = static_cast<std::size_t>(std::find(band_columns.begin(), band_columns.end(), column) - band_columns.begin());
+      const auto pi = static_cast<std::size_t>(std::find(a.percentiles.begin(), a.percentiles.end(), p) - a.percentiles.begin());
+      return 2 + ci * a.percentiles.size() + pi;
+    };
+    g << "# Drawn by rheodda forecast: percentile bands of " << column << " across the ensemble.\n"
+      << "set terminal pngcairo size 1000,650 noenhanced\n"
+      << "set output '" << (out / "fan.png").string() << "'\n"
+      << "set datafile separator ','\nset key top left\nset grid\n"
+      << "set title '" << gp_text(fmt::format("{}: {} members, law {} of {}", s.title, members.size(), fit.law, a.joint_set)) << "'\n"
+      << "set xlabel 'time [" << s.units.time << "]'\n"
+      << "set ylabel '" << gp_text(column + " [" + s.units.length + "]") << "'\n"
+      << "plot ";
+    std::vector<std::string> parts;
+    const std::size_t nb = ps.size() / 2;
+    for (std::size_t b = 0; b < nb; ++b) {  // outer bands lighter
+      const double shade = 0.75 - 0.45 * static_cast<double>(b) / std::max<double>(1.0, static_cast<double>(nb));
+      const int c = static_cast<int>(255 * shade);
+      parts.push_back(fmt::format("'{}' skip {} using 1:{}:{} with filledcurves lc rgb '#{:02x}{:02x}ff' title '{:g}-{:g} %'",
+                                  (out / "bands.csv").string(), first.units_line.empty() ? 1 : 2, col_of(ps[b]),
+                                  col_of(ps[ps.size() - 1 - b]), c, c, ps[b], ps[ps.size() - 1 - b]));
+    }
+    if (ps.size() % 2 == 1)
+      parts.push_back(fmt::format("'{}' skip {} using 1:{} with lines lw 2 lc rgb '#000080' title '{:g} % (median)'",
+                                  (out / "bands.csv").string(), first.units_line.empty() ? 1 : 2, col_of(ps[nb]), ps[nb]));
+    if (a.threshold)
+      parts.push_back(fmt::format("{} with lines dt 2 lc rgb 'red' title 'threshold {:g}'", *a.threshold, *a.threshold));
+    g << fmt::format("{}", fmt::join(parts, ", \\\n     ")) << "\n";
+    g.close();
+    try {
+      run_gnuplot(gp);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "rheodda: error: {}\n", e.what());
+      throw CLI::RuntimeError(kExitFailure);
+    }
+  }
+  fmt::print("forecast of {}: {} members completed{}; bands of {} columns in {}/bands.csv{}, members in {}/cases/\n",
+             s.title, members.size(), failed.empty() ? "" : fmt::format(", {} failed", failed.size()),
+             band_columns.size(), out.string(), a.no_plot ? "" : ", fan chart fan.png", out.string());
+  for (const auto& f : failed) fmt::print("  failed {}\n", f);
+  if (!failed.empty()) throw CLI::RuntimeError(kExitFailure);
+}
+
+}  // namespace
+
+void add_forecast_command(CLI::App& app) {
+  auto a = std::make_shared<ForecastArgs>();
+  auto* cmd = app.add_subcommand(
+      "forecast", "Run a scene with the uncertainty of a fitted law: percentile bands, fan chart, exceedance (docs/forecast.md)");
+  cmd->add_option("SCENE", a->scene, "Scene file (YAML)")->required();
+  cmd->add_option("--fit", a->fit, "Report of `rheodda fit --json` (parameters, standard errors, correlation)")
+      ->required()->type_name("FIT.json");
+  cmd->add_option("--joint-set", a->joint_set, "Joint set whose law is sampled")->required()->type_name("NAME");
+  cmd->add_option("--law", a->law, "Law of the report to sample (default: its best)");
+  cmd->add_option("--samples", a->samples, "Members of the ensemble (accepted draws)")
+      ->capture_default_str()->check(CLI::Range(1, 100000));
+  cmd->add_option("--seed", a->seed, "Seed of the draws (the same seed gives the same members)")->capture_default_str();
+  cmd->add_option("--percentiles", a->percentiles, "Percentiles of the bands [%]")->delimiter(',')->capture_default_str();
+  cmd->add_option("--unidentified-spread", a->unidentified_spread,
+                  "Parameters the fit could not identify: 0 holds them at the fitted value, F > 1 draws them "
+                  "log-uniformly within a factor F")->capture_default_str();
+  cmd->add_option("--column", a->column,
+                  "History column of the fan chart and of --threshold (default: JOINT_SET.shear_displacement_magnitude "
+                  "when the joint set is recorded, else the first measurement point's displacement)");
+  cmd->add_option("--threshold", a->threshold, "Probability that --column exceeds this value [scene length unit]")
+      ->type_name("VALUE");
+  cmd->add_option("--by", a->by, "... by this time [scene time unit] (default: the end of the run)")->type_name("TIME");
+  cmd->add_option("-o,--out", a->out, "Output directory (default out/<scene name>-forecast)")->type_name("OUTDIR");
+  cmd->add_option("-j,--jobs", a->jobs, "Members run at once; 0 (the default): the machine's hardware threads")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--no-plot", a->no_plot, "Draw neither fan.png nor the study pictures");
+  cmd->add_flag("--resume", a->resume, "Continue a stopped forecast in OUTDIR (same arguments): completed members are kept");
+  cmd->add_option("--case-program", a->case_program, "Program run per member (as for rheodda study)")->type_name("PROGRAM");
+  cmd->callback([a] {
+    on_stop_signals(on_forecast_stop);
+#ifdef RHEODDA_WITH_MPI
+    if (study::mpi::launched_by_mpi()) {
+      if (a->jobs != 0)
+        throw std::invalid_argument("-j: under MPI each worker rank runs one member at a time; start one rank per core");
+      const std::string binary = a->case_program.empty() ? fs::read_symlink("/proc/self/exe").string()
+                                                         : fs::absolute(a->case_program).string();
+      study::mpi::run_over_ranks(binary, &g_forecast_stop, [&](study::CaseExecutor* ranks) { forecast_command(*a, ranks); });
+      return;
+    }
+#endif
+    forecast_command(*a, nullptr);
+  });
+}
+
+}  // namespace rheodda::apps
