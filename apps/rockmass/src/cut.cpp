@@ -12,7 +12,9 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <functional>
 #include <limits>
+#include <optional>
 #include <unordered_map>
 
 namespace rheodda::rockmass {
@@ -115,6 +117,154 @@ class Cutter {
     return static_cast<int>(dead.size());
   }
 
+  /// Why face f is not a simple polygon, or an empty string: it encloses a hole or
+  /// another block (an inner CCB), or its boundary touches itself at a vertex.
+  /// `lobe` receives the halfedges of the enclosed part (the first inner CCB, or the
+  /// walk between the two visits of the vertex).
+  static bool non_simple(Face f, std::vector<Halfedge>& lobe) {
+    lobe.clear();
+    if (f->number_of_inner_ccbs() > 0) {
+      Ccb c = *f->inner_ccbs_begin(), start = c;
+      do lobe.push_back(c);
+      while (++c != start);
+      return true;
+    }
+    std::unordered_map<const void*, Ccb> seen;  // vertex -> the halfedge leaving it
+    Ccb c = f->outer_ccb(), start = c;
+    do {
+      auto [it, fresh] = seen.try_emplace(&*c->source(), c);
+      if (!fresh) {
+        for (Ccb w = it->second; w != c; ++w) lobe.push_back(w);
+        return true;
+      }
+    } while (++c != start);
+    return false;
+  }
+
+  /// Makes every block a simple polygon: where a face encloses a hole or a block, or
+  /// touches itself at a vertex, the joint edge whose extension along its own line
+  /// reaches the rest of the face's boundary soonest is extended to it (a trace
+  /// continued to the next joint, as a longer trace of the same set would be). Each
+  /// round fixes one defect per face; a hole becomes a bridge first, the bridge then
+  /// a cut. Returns the number of extensions; throws CutError if a defect has no
+  /// joint edge to extend.
+  int make_simple() {
+    int extensions = 0;
+    std::vector<Halfedge> lobe, all;
+    for (int round = 0; round < 64; ++round) {
+      std::vector<Traits::Curve_2> add;
+      for (auto f = arr_.faces_begin(); f != arr_.faces_end(); ++f) {
+        if (f->data() == kOutside || f->is_unbounded() || !non_simple(f, lobe)) continue;
+        all.clear();
+        auto collect = [&](Ccb start) {
+          Ccb c = start;
+          do all.push_back(c);
+          while (++c != start);
+        };
+        collect(f->outer_ccb());
+        for (auto h = f->inner_ccbs_begin(); h != f->inner_ccbs_end(); ++h) collect(*h);
+        std::unordered_map<const void*, bool> in_lobe;
+        for (Halfedge h : lobe) in_lobe[&*h] = true;
+        bool found = false;
+        Kernel::Point_2 best_from, best_to;
+        Kernel::FT best_length = 0;
+        int best_tag = 0;
+        // The ray from the target v of h (a halfedge of f) in direction d, if d points
+        // into f at v: its first hit on f's boundary, kept if it joins the lobe to the
+        // rest and is the shortest so far.
+        auto shoot = [&](Halfedge h, const Kernel::Vector_2& d, int t) {
+          const Kernel::Point_2& v = h->target()->point();
+          const Kernel::Vector_2 a = h->next()->target()->point() - v;  // out along the boundary
+          const Kernel::Vector_2 b = h->source()->point() - v;          // back along the boundary
+          // f's sector at v runs counter-clockwise from a to b.
+          auto orient = [](const Kernel::Vector_2& x, const Kernel::Vector_2& y) {
+            return CGAL::sign(x.x() * y.y() - x.y() * y.x());
+          };
+          const bool inside = orient(a, b) == CGAL::POSITIVE
+                                  ? orient(a, d) == CGAL::POSITIVE && orient(d, b) == CGAL::POSITIVE
+                                  : !(orient(b, d) != CGAL::NEGATIVE && orient(d, a) != CGAL::NEGATIVE);
+          if (!inside) return;
+          const Kernel::Ray_2 ray(v, d);
+          const bool from_lobe = in_lobe.count(&*h) > 0 || in_lobe.count(&*h->next()) > 0;
+          std::optional<Kernel::FT> nearest;
+          Kernel::Point_2 hit;
+          bool hits_other = false;
+          Halfedge hit_edge;
+          for (Halfedge g : all) {
+            const auto x = CGAL::intersection(ray, Kernel::Segment_2(g->source()->point(), g->target()->point()));
+            if (!x) continue;
+            std::vector<Kernel::Point_2> points;
+            if (const auto* q = boost::get<Kernel::Point_2>(&*x)) points.push_back(*q);
+            if (const auto* sg = boost::get<Kernel::Segment_2>(&*x)) points = {sg->source(), sg->target()};
+            for (const auto& q : points) {
+              const Kernel::FT dist = CGAL::squared_distance(v, q);
+              if (dist == 0 || (nearest && !(dist < *nearest))) continue;
+              nearest = dist;
+              hit = q;
+              hit_edge = g;
+              hits_other = (in_lobe.count(&*g) > 0) != from_lobe;
+            }
+          }
+          if (!nearest || !hits_other) return;
+          // A ray meeting the edge at a grazing angle (e.g. the next trace of the same
+          // line, collinear but for rounding) would leave a needle DDA cannot model.
+          const Point e0 = approx(hit_edge->source()->point()), e1 = approx(hit_edge->target()->point());
+          const double ex = e1[0] - e0[0], ey = e1[1] - e0[1];
+          const double dx = CGAL::to_double(d.x()), dy = CGAL::to_double(d.y());
+          if (std::abs(dx * ey - dy * ex) < 1e-6 * std::hypot(dx, dy) * std::hypot(ex, ey)) return;
+          if (!found || *nearest < best_length) {
+            found = true;
+            best_length = *nearest;
+            best_from = v;
+            best_to = hit;
+            best_tag = t;
+          }
+        };
+        // First choice: a joint edge continued straight ahead (a longer trace).
+        for (Halfedge h : all)
+          if (const int t = tag(h); t != kBoundaryTag)
+            shoot(h, h->target()->point() - h->source()->point(), t);
+        // Else a joint parallel to one of the block's joint edges (either way) from a
+        // vertex of the lobe or of the rest: a hole inside a block its joints miss.
+        if (!found) {
+          std::vector<std::pair<Kernel::Vector_2, int>> directions;
+          for (Halfedge h : all) {
+            const int t = tag(h);
+            if (t == kBoundaryTag || directions.size() >= 16) continue;
+            const Kernel::Vector_2 d = h->target()->point() - h->source()->point();
+            const bool known = std::any_of(directions.begin(), directions.end(), [&](const auto& e) {
+              return CGAL::Direction_2<Kernel>(e.first) == CGAL::Direction_2<Kernel>(d) ||
+                     CGAL::Direction_2<Kernel>(e.first) == CGAL::Direction_2<Kernel>(-d);
+            });
+            if (!known) directions.emplace_back(d, t);
+          }
+          for (Halfedge h : all)
+            for (const auto& [d, t] : directions) {
+              shoot(h, d, t);
+              shoot(h, -d, t);
+            }
+          if (found) ++added_;
+        }
+        if (!found) {
+          const Point at = approx(lobe.front()->source()->point());
+          throw CutError(fmt::format("a block would enclose the hole or the block at ({:g}, {:g}), or touch itself "
+                                     "there, and no joint ends where it could be extended to separate it: DDA "
+                                     "blocks are simple polygons; add a trace (e.g. in `traces:`) that cuts "
+                                     "through it",
+                                     at[0], at[1]),
+                         at);
+        }
+        add.emplace_back(SegmentTraits::Curve_2(best_from, best_to), static_cast<int>(tag_of_.size()));
+        tag_of_.push_back(best_tag);
+      }
+      if (add.empty()) return extensions;
+      for (const auto& c : add) CGAL::insert(arr_, c);
+      extensions += static_cast<int>(add.size());
+      classify();  // the new faces are inside, as the face they split
+    }
+    throw CutError("the blocks could not be made simple polygons in 64 rounds of trace extensions", {0.0, 0.0});
+  }
+
   static double approx_area(Face f) {
     double a = 0.0;
     Ccb c = f->outer_ccb(), start = c;
@@ -186,13 +336,47 @@ class Cutter {
     return {merged, 0};
   }
 
-  CutResult extract() {
+  /// The blocks in doubles. Vertices closer than `weld` [length] after rounding
+  /// (distinct exact points a few ulp apart, e.g. where a trace passes 1e-15 from
+  /// a vertex) are welded into one, the same for every block at them, so that no
+  /// block has an edge DDA cannot model; zero-length edges and spikes this leaves
+  /// are dropped, and a block that collapses (area of rounding size) is dropped.
+  CutResult extract(double weld) {
     CutResult out;
     std::unordered_map<const void*, Point> rounded;
-    auto point = [&](Vertex v) {
+    auto exact_point = [&](Vertex v) {
       auto [it, fresh] = rounded.try_emplace(&*v);
       if (fresh) it->second = {CGAL::to_double(v->point().x().exact()), CGAL::to_double(v->point().y().exact())};
       return it->second;
+    };
+    // Weld: union-find over the edges shorter than `weld` after rounding.
+    std::unordered_map<const void*, const void*> parent;
+    std::unordered_map<const void*, Point> at;
+    std::function<const void*(const void*)> root = [&](const void* v) -> const void* {
+      auto it = parent.find(v);
+      if (it == parent.end() || it->second == v) return v;
+      return it->second = root(it->second);
+    };
+    for (auto e = arr_.edges_begin(); e != arr_.edges_end(); ++e) {
+      if (e->face()->data() == kOutside && e->twin()->face()->data() == kOutside) continue;
+      const Point p = exact_point(e->source()), q = exact_point(e->target());
+      if (std::hypot(q[0] - p[0], q[1] - p[1]) > weld) continue;
+      const void* a = root(&*e->source());
+      const void* b = root(&*e->target());
+      if (a == b) continue;
+      const Point pa = at.count(a) ? at[a] : exact_point(e->source());
+      const Point pb = at.count(b) ? at[b] : exact_point(e->target());
+      // The cluster's point: the lexicographically smallest of its rounded points.
+      const Point keep = std::min(pa, pb);
+      parent[a] = a;
+      parent[b] = a;
+      at[a] = keep;
+    }
+    auto point = [&](Vertex v) {
+      if (parent.empty()) return exact_point(v);
+      const void* r = root(&*v);
+      auto it = at.find(r);
+      return it == at.end() ? exact_point(v) : it->second;
     };
     // A vertex between two collinear edges of the same tag, and no other edge, is dropped
     // (both blocks at it drop it): what is left of a removed dead-end trace.
@@ -211,15 +395,7 @@ class Cutter {
     for (auto f = arr_.faces_begin(); f != arr_.faces_end(); ++f) {
       if (f->data() == kOutside || f->is_unbounded()) continue;
       Ccb start = f->outer_ccb();
-      if (f->number_of_inner_ccbs() > 0) {
-        Ccb inner = *f->inner_ccbs_begin();
-        const Point at = point(inner->source());
-        throw CutError(fmt::format("a block would enclose the hole or the block at ({:g}, {:g}), which no "
-                                   "joint reaches: DDA blocks are simple polygons; add a trace (e.g. in "
-                                   "`traces:`) that cuts through it",
-                                   at[0], at[1]),
-                       at);
-      }
+      // make_simple() ran: no holes, no vertex visited twice.
       // Start at a kept vertex (the target of `in`).
       Ccb in = start;
       while (!kept(in))
@@ -232,7 +408,38 @@ class Cutter {
           b.edge_tag.push_back(tag(std::next(c)));
         }
       } while (++c != first);
+      if (!parent.empty()) {
+        // Drop zero-length edges (vertex k equal to k+1: entry k goes) and spikes
+        // (k-1 equal to k+1: entries k-1 and k go, k+1 keeps its outgoing tag).
+        for (bool changed = true; changed && b.polygon.size() >= 3;) {
+          changed = false;
+          const std::size_t n = b.polygon.size();
+          for (std::size_t k = 0; k < n && !changed; ++k) {
+            if (b.polygon[k] == b.polygon[(k + 1) % n]) {
+              b.polygon.erase(b.polygon.begin() + long(k));
+              b.edge_tag.erase(b.edge_tag.begin() + long(k));
+              changed = true;
+            } else if (b.polygon[(k + n - 1) % n] == b.polygon[(k + 1) % n]) {
+              const std::size_t first_out = (k + n - 1) % n;
+              const std::size_t hi = std::max(first_out, k), lo = std::min(first_out, k);
+              b.polygon.erase(b.polygon.begin() + long(hi));
+              b.edge_tag.erase(b.edge_tag.begin() + long(hi));
+              b.polygon.erase(b.polygon.begin() + long(lo));
+              b.edge_tag.erase(b.edge_tag.begin() + long(lo));
+              changed = true;
+            }
+          }
+        }
+        if (b.polygon.size() < 3) {
+          ++out.collapsed_blocks;
+          continue;
+        }
+      }
       b.area = polygon_area(b.polygon);
+      if (!(b.area > 0.0) && !parent.empty()) {
+        ++out.collapsed_blocks;
+        continue;
+      }
       if (!(b.area > 0.0))
         throw CutError(fmt::format("the block at ({:g}, {:g}) has area {:g} after rounding to doubles",
                                    b.polygon[0][0], b.polygon[0][1], b.area),
@@ -257,6 +464,9 @@ class Cutter {
  private:
   Arrangement arr_;
   std::vector<int> tag_of_;  ///< per input curve
+
+ public:
+  int added_ = 0;  ///< of make_simple()'s extensions, those parallel to a joint rather than along one
 };
 
 }  // namespace
@@ -277,8 +487,21 @@ CutResult cut_blocks(const Region& region, const std::vector<Trace>& traces, con
   cutter.classify();
   const int dangling = cutter.remove_dangling();
   int merged = 0;
-  if (options.sliver_area > 0.0) merged = cutter.merge_slivers(options.sliver_area).first;
-  CutResult r = cutter.extract();
+  int extended = cutter.make_simple();
+  if (options.sliver_area > 0.0) {
+    merged += cutter.merge_slivers(options.sliver_area).first;
+    extended += cutter.make_simple();  // a merge may have closed a face around another
+  }
+  double size = 0.0;  // larger side of the region's box [length]
+  {
+    double x0 = region.outer[0][0], x1 = x0, y0 = region.outer[0][1], y1 = y0;
+    for (const Point& p : region.outer)
+      x0 = std::min(x0, p[0]), x1 = std::max(x1, p[0]), y0 = std::min(y0, p[1]), y1 = std::max(y1, p[1]);
+    size = std::max(x1 - x0, y1 - y0);
+  }
+  CutResult r = cutter.extract(1e-9 * size);
+  r.added_traces = cutter.added_;
+  r.extended_traces = extended;
   r.dangling_removed = dangling;
   r.merged_slivers = merged;
   r.region_area = std::abs(polygon_area(region.outer));

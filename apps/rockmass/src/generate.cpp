@@ -103,31 +103,40 @@ std::vector<Trace> generate_traces(const JointSetGeneration& set, const Box& box
   if (lines.size() >= kMaxLines)
     throw std::invalid_argument("the spacing gives more than 1e7 lines across the region");
   std::vector<Trace> out;
+  // One line: its traces from u0 to u1, turned together about the line's middle by
+  // `delta` [rad] (so that the traces of a line stay on one straight line and never
+  // cross each other at a grazing angle).
+  double c = 1.0, sn = 0.0;
+  Point m{0.0, 0.0};
   auto add = [&](double t, double u0, double u1) {
     Point a{n[0] * t + d[0] * u0, n[1] * t + d[1] * u0};
     Point b{n[0] * t + d[0] * u1, n[1] * t + d[1] * u1};
-    if (set.dip_spread > 0.0) {
-      // Turn the trace about its midpoint by delta ~ N(0, dip_spread).
-      const double delta = set.dip_spread * kDegree * rng.normal();
-      const double c = portable_cos(delta), s = portable_sin(delta);
-      const Point m{0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])};
+    if (sn != 0.0) {
       auto turn = [&](const Point& p) {
         const double x = p[0] - m[0], y = p[1] - m[1];
-        return Point{m[0] + c * x - s * y, m[1] + s * x + c * y};
+        return Point{m[0] + c * x - sn * y, m[1] + sn * x + c * y};
       };
       a = turn(a), b = turn(b);
     }
     if (clip(a, b, big)) out.push_back({a, b, set.tag});
   };
+  const double umid = 0.5 * (umin + umax);
   for (const double t : lines) {
+    c = 1.0, sn = 0.0;
+    if (set.dip_spread > 0.0) {
+      const double delta = set.dip_spread * kDegree * rng.normal();
+      c = portable_cos(delta), sn = portable_sin(delta);
+      m = {n[0] * t + d[0] * umid, n[1] * t + d[1] * umid};
+    }
+    // A turned line must still cross the box: make it longer by the box's extent.
+    const double extra = set.dip_spread > 0.0 ? (umax - umin) : 0.0;
     if (!set.trace_length) {
-      // Persistent: a line across the box; with a dip spread it is turned, so make it longer.
-      const double extra = set.dip_spread > 0.0 ? (umax - umin) : 0.0;
-      add(t, umin - extra, umax + extra);
+      add(t, umin - extra, umax + extra);  // persistent: across the box
       continue;
     }
     const double period = *set.trace_length + set.gap;
-    for (double u = umin - rng.uniform() * period; u < umax; u += period) add(t, u, u + *set.trace_length);
+    for (double u = umin - extra - rng.uniform() * period; u < umax + extra; u += period)
+      add(t, u, u + *set.trace_length);
   }
   return out;
 }

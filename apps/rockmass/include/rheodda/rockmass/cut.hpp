@@ -50,6 +50,15 @@ struct CutResult {
   double area_error = 0.0;         ///< |sum of block areas - region_area| / region_area [-]
   int merged_slivers = 0;          ///< faces below sliver_area merged into a neighbour
   int dangling_removed = 0;        ///< dead-end trace segments removed (arrangement edges)
+  /// Traces extended along their own line to the next joint, so that no block encloses
+  /// a hole or another block or touches itself at a vertex.
+  int extended_traces = 0;
+  /// Of these, the ones that could not continue a trace and run parallel to one of
+  /// the block's joints from a vertex of the hole or the enclosed block instead.
+  int added_traces = 0;
+  /// Blocks dropped because welding their vertices (closer than 1e-9 of the region's
+  /// size after rounding to doubles) left no area: slivers of rounding size.
+  int collapsed_blocks = 0;
   std::map<int, double> joint_length;  ///< per tag: length of the block edges it carries [length]
 };
 
@@ -63,9 +72,11 @@ class CutError : public std::runtime_error {
   Point where_;
 };
 
-/// Cuts `region` with `traces` (tags >= 0). Throws CutError when a block would
-/// enclose a hole or another block (DDA blocks are simple polygons: add a trace
-/// that reaches it) or when a check fails: block areas must sum to the region's
+/// Cuts `region` with `traces` (tags >= 0). DDA blocks are simple polygons: where a
+/// block would enclose a hole or another block, or touch itself at a vertex, the
+/// joint edge whose extension reaches the rest of its boundary soonest is extended
+/// (CutResult::extended_traces). Throws CutError when no joint edge can be extended
+/// (a hole inside an uncut block: add a trace that reaches it) or when a check fails: block areas must sum to the region's
 /// within 1e-12 relative, every block must be counter-clockwise with positive area.
 CutResult cut_blocks(const Region& region, const std::vector<Trace>& traces, const CutOptions& options = {});
 

@@ -44,7 +44,7 @@ struct JointSetGeneration {
   /// Length of each trace along a line [length]; nullopt: persistent (every line crosses the region).
   std::optional<double> trace_length;
   double gap = 0.0;          ///< rock bridge between two traces of a line [length] (with trace_length)
-  double dip_spread = 0.0;   ///< standard deviation of each trace's dip about `dip` [deg]
+  double dip_spread = 0.0;   ///< standard deviation of each line's dip about `dip` [deg]
   /// A point one line passes through [length]; nullopt: the first line's offset is random.
   std::optional<Point> origin;
 };
@@ -62,8 +62,10 @@ struct Box {
 /// the box's lowest projection (or through `origin`), successive gaps drawn from
 /// the spacing distribution; a normal spacing below 1 % of the mean is drawn
 /// again (the spacing is positive). Traces along each line start at a random
-/// phase in [0, trace_length + gap). Each trace is turned about its midpoint by
-/// a normal deviate of standard deviation dip_spread.
+/// phase in [0, trace_length + gap). Each line, with all its traces, is turned
+/// about its middle by a normal deviate of standard deviation dip_spread (traces
+/// of one line stay collinear: turned one by one they would cross each other at
+/// grazing angles and leave needles).
 std::vector<Trace> generate_traces(const JointSetGeneration& set, const Box& box, std::uint64_t seed,
                                    int index);
 
