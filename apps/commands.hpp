@@ -59,6 +59,9 @@ void add_fit_command(CLI::App& app);
 /// `rheodda study`: a base scene's variations run as parallel cases (apps/study_command.cpp).
 void add_study_command(CLI::App& app);
 
+/// `rheodda generate`: a scene's rock mass written as an explicit scene (apps/generate_command.cpp).
+void add_generate_command(CLI::App& app);
+
 /// `rheodda forecast`: a scene with the uncertainty of a fitted law (apps/forecast_command.cpp).
 void add_forecast_command(CLI::App& app);
 

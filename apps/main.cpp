@@ -2,6 +2,7 @@
 // Sample runs:
 //   rheodda --version
 //   rheodda law list
+//   rheodda generate examples/rockmass/jointed-slope.yaml -o out/jointed-slope-explicit.yaml
 //   rheodda law curve burgers --param E1=26.87 --param E2=192.43 --param eta1=34807.72
 //       --param eta2=2141.23 --force 0:0.232 --t-end 200 --dt 1
 #include <fmt/format.h>
@@ -23,6 +24,7 @@ int main(int argc, char** argv) {
   rheodda::apps::add_scene_commands(app);
   rheodda::apps::add_fit_command(app);
   rheodda::apps::add_study_command(app);
+  rheodda::apps::add_generate_command(app);
   rheodda::apps::add_forecast_command(app);
   try {
     app.parse(argc, argv);
