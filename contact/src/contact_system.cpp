@@ -192,6 +192,16 @@ void ContactSystem::linearize(size_t c, double tau_guess) {
   seams_[c] = {-lin.h, lin.c / r.tributary_length};
 }
 
+double ContactSystem::time_to_failure() const {
+  double t = std::numeric_limits<double>::infinity();
+  for (const Contact& r : committed_)
+    if (r.state == ContactState::locked && r.rheology >= 0 && r.tributary_length > 0.0 &&
+        !r.creep_failed && joint_sets_[r.joint_set].law)
+      t = std::min(t, joint_sets_[r.joint_set].law->time_to_failure(
+                          committed_rheology_[r.rheology], r.shear_force / r.tributary_length));
+  return t;
+}
+
 void ContactSystem::fail_law(size_t c) {
   // docs/rheology-in-dda.md, "Failure": a residual frictional joint from now on.
   Contact& r = work_[c];

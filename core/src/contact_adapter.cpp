@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <unordered_map>
 #include <utility>
@@ -133,6 +134,9 @@ void ContactAdapter::end_step(std::span<const contact::BlockView> blocks, const 
       const laws::Linearization lin = law->linearize(k->other, old, tau_s, tau_e);
       err = std::abs(curvature) * h2 * h2 / 12.0 * lin.c;
     }
+    // A damage law that fails within the step under one scheme and not the
+    // other has an infinite difference; NaN (both infinite) is as bad.
+    if (std::isnan(err)) err = std::numeric_limits<double>::infinity();
     worst = std::max(worst, err);
   }
   prev_tau_.swap(tau_now);

@@ -181,6 +181,10 @@ class ContactSystem {
   /// and for how long, over the accepted steps since construction. All zero
   /// for a joint set without a law.
   std::span<const CreepCounters> creep_counters() const { return creep_counters_; }
+  /// Smallest time left before a damage law fails (ContactRheology::time_to_failure)
+  /// over the locked contacts of the last accepted step, at their stress
+  /// tau = F / l_t held constant [time]; infinity when no law can fail.
+  double time_to_failure() const;
   /// The contacts' terms of the energy balance: stored energies of the records
   /// of the last accepted step and the flows of that step (contact_energy.cpp;
   /// docs/engine.md, "Energy balance").

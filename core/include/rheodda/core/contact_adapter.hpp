@@ -52,6 +52,7 @@ class ContactAdapter final : public ContactModel {
   /// Edge contacts on joint sets with a law whose state changed in the last
   /// accepted step (or that appeared closed, or vanished locked).
   int creep_state_changes() const override { return creep_changes_; }
+  double time_to_failure() const override { return system_.time_to_failure(); }
   /// A copy of the contact system (records, histories, penalty) for step doubling.
   std::unique_ptr<ContactSnapshot> snapshot() const override;
   void restore(const ContactSnapshot& s) override;

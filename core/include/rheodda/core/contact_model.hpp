@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <limits>
 #include <memory>
 #include <span>
 
@@ -86,6 +87,10 @@ class ContactModel {
   /// accepted step (locked <-> sliding or open, appeared closed or vanished
   /// locked) (asked only when StepContext::creep_error_wanted was set) [-].
   virtual int creep_state_changes() const { return 0; }
+  /// Time left [time] before a creep law of a contact fails at its present stress
+  /// (damage laws; docs/rheology-in-dda.md, "Failure"); infinity when none can.
+  /// Adaptive creep stepping ends a step there, so it does not step over a failure.
+  virtual double time_to_failure() const { return std::numeric_limits<double>::infinity(); }
   /// Step doubling (Settings::step_tolerance; asked between steps only): a copy of
   /// the state after the last accepted step, or nullptr when the model cannot copy it.
   virtual std::unique_ptr<ContactSnapshot> snapshot() const { return nullptr; }

@@ -1,0 +1,145 @@
+// A damage-law joint driven by the DDA engine to failure (docs/rheology-in-dda.md,
+// "Failure"; law damage-burgers, docs/laws.md): the seed's two-block shear creep
+// test (block A 100 x 100 mm on fixed block B, sigma = 1.408 MPa, tau = 0.232 MPa
+// at the joint line; MPa, mm, h) with Kachanov-Rabotnov damage, whose failure
+// time at that stress is t_f = t_r (tau_ref/tau)^r = 149.9 h (closed form).
+// Adaptive creep stepping (Settings::creep_tolerance) must follow the
+// accelerating creep with shrinking steps and end a step on the failure
+// instead of stepping over it; a fixed step registers it up to a step late.
+// Steps are counted, never timed.
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "rheodda/contact/contact_system.hpp"
+#include "rheodda/core/contact_adapter.hpp"
+#include "rheodda/core/engine.hpp"
+#include "rheodda/core/model.hpp"
+#include "rheodda/laws/registry.hpp"
+
+using namespace rheodda;
+
+namespace {
+
+constexpr double kW = 100.0, kSigma = 1.408, kTau = 0.232;  // [mm], [MPa]
+constexpr double kTauRef = 0.2, kTr = 234.0, kR = 3.0;      // [MPa], [h], [-]
+
+std::vector<core::Vec2> rect(double x0, double y0, double x1, double y1) {
+  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+}
+
+struct Run {
+  std::vector<double> t, dt;  ///< end time and size of each accepted step [h]
+  int failed_step = -1;       ///< index of the first step with a failure
+  int failures = 0;
+};
+
+/// ramp: the shear load grows linearly from 0 at t = 0 to 2 tau at 200 h
+/// instead of holding tau from t = 0.
+Run run(double dt, double tolerance, double t_end, bool ramp = false) {
+  core::Model m;
+  m.materials[0].young_modulus = 1e7;
+  m.materials[0].density = 1e-12;
+  m.settings.dt = dt;
+  m.settings.dynamic_ratio = 0.0;
+  m.settings.gravity = {0.0, 0.0};
+  m.settings.creep_tolerance = tolerance;
+  core::BlockDef b, a;
+  b.vertices = rect(-kW, -kW, 2 * kW, 0.0);
+  a.vertices = rect(0.0, 0.0, kW, kW);
+  m.blocks = {b, a};
+  for (int k = 0; k < 3; ++k) m.fixed_points.push_back({0, b.vertices[k]});
+  m.point_loads.push_back({1, {0.5 * kW, 0.0}, {{0.0, {0.0, -kSigma * kW}}}});
+  if (ramp)
+    m.point_loads.push_back({1, {0.5 * kW, 0.0}, {{0.0, {0.0, 0.0}}, {200.0, {2 * kTau * kW, 0.0}}}});
+  else
+    m.point_loads.push_back({1, {0.5 * kW, 0.0}, {{0.0, {kTau * kW, 0.0}}}});
+  contact::JointSet j;
+  j.name = "joint";
+  j.friction_angle = 60.0;  // the residual friction holds A once the joint fails
+  j.normal_stiffness = 1e4;
+  j.law = laws::LawRegistry::builtin().create(
+      "damage-burgers", {{"E1", 26.87}, {"E2", 192.43}, {"eta2", 2141.23}, {"A", 3.68e-6},
+                         {"tau_ref", kTauRef}, {"n", 4.0}, {"t_r", kTr}, {"r", kR}});
+  contact::ContactSystem contacts({j}, core::contact_settings_for(m));
+  core::ContactAdapter adapter(contacts);
+  core::Engine engine(m, adapter);
+  Run r;
+  engine.add_observer([&](const core::Engine& e, const core::StepReport& rep) {
+    r.t.push_back(e.time());
+    r.dt.push_back(rep.dt);
+    r.failures = adapter.system().creep_counters()[0].failures;
+    if (r.failures > 0 && r.failed_step < 0) r.failed_step = static_cast<int>(r.t.size()) - 1;
+  });
+  engine.run_until(t_end);
+  return r;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(failure_stepping)
+
+BOOST_AUTO_TEST_CASE(adaptive_steps_end_on_the_failure_instead_of_stepping_over_it) {
+  // Constant stress: both schemes integrate the law exactly (docs/laws.md), so
+  // the creep error estimate is zero and the steps grow; the step that reaches
+  // t_f is 1 + 1e-3 times the time left at its start (the engine asks
+  // ContactModel::time_to_failure), so it ends after t_f by at most 1e-3 of
+  // its own length (the contacts' stress differs from tau by round-off and
+  // the blocks' tiny rotation, 1e-6 at most here).
+  const double tf = kTr * std::pow(kTauRef / kTau, kR);  // 149.9 h
+  const Run a = run(0.01, 1e-7, 160.0);
+  BOOST_TEST_REQUIRE(a.failed_step >= 1);
+  const auto k = static_cast<std::size_t>(a.failed_step);
+  const double t_fail = a.t[k];
+  BOOST_TEST(a.failures == 2);  // both contacts carry the same stress
+  BOOST_TEST(t_fail >= tf * (1 - 1e-6));
+  BOOST_TEST(t_fail - tf <= 1e-3 * a.dt[k] + 1e-6 * tf);
+  BOOST_TEST(a.t[k - 1] < tf);
+  // A fixed step of 1 h registers the failure at the end of the step holding t_f.
+  const Run f = run(1.0, 0.0, 160.0);
+  BOOST_TEST_REQUIRE(f.failed_step >= 0);
+  const double t_fixed = f.t[static_cast<std::size_t>(f.failed_step)];
+  BOOST_TEST_MESSAGE("constant stress: t_f = " << tf << " h; adaptive: " << a.t.size()
+                     << " steps, failure registered at " << t_fail << " h (its step "
+                     << a.dt[k] << " h); fixed 1 h: at " << t_fixed << " h, "
+                     << f.failed_step + 1 << " steps");
+  BOOST_TEST(t_fixed >= tf);
+  BOOST_TEST(t_fixed < tf + 1.0);
+}
+
+BOOST_AUTO_TEST_CASE(under_a_rising_load_adaptive_steps_shrink_as_creep_accelerates) {
+  // Shear load rising linearly, tau = a t with a = 2 tau/200 h (an intact law
+  // fails at t_f = ((r+1) t_r (tau_ref/a)^r)^(1/(r+1)) = 156.5 h, docs/laws.md (K)):
+  // the implicit scheme errs at first order, the creep error estimate grows
+  // with the creep rate and the steps shrink towards the failure, in
+  // proportion to the time left; within kFailureReach = 8 steps of it the
+  // engine steps onto it (else the steps would shrink for ever). A fixed
+  // step registers the failure at the end of the step that holds it.
+  const double a_rate = 2 * kTau / 200.0;  // [MPa/h]
+  const double tf = std::pow((kR + 1) * kTr * std::pow(kTauRef / a_rate, kR), 1 / (kR + 1));
+  const Run a = run(0.01, 1e-8, 170.0, true);
+  BOOST_TEST_REQUIRE(a.failed_step >= 5);
+  const auto k = static_cast<std::size_t>(a.failed_step);
+  double early = 0.0, late = INFINITY;
+  for (std::size_t i = 0; i < k; ++i) {
+    if (a.t[i] > 0.4 * tf && a.t[i] < 0.6 * tf) early = std::max(early, a.dt[i]);
+    if (a.t[i] > 0.99 * tf) late = std::min(late, a.dt[i]);
+  }
+  const Run f = run(0.1, 0.0, 170.0, true);
+  BOOST_TEST_REQUIRE(f.failed_step >= 0);
+  const double t_fixed = f.t[static_cast<std::size_t>(f.failed_step)];
+  BOOST_TEST_MESSAGE("rising load: t_f = " << tf << " h (intact law, tau = a t); adaptive: " << k + 1
+                     << " steps, failure registered at " << a.t[k] << " h by a step of " << a.dt[k]
+                     << " h after one of " << a.dt[k - 1] << " h; steps up to " << early
+                     << " h around t_f/2, down to " << late << " h past 0.99 t_f; fixed 0.1 h: at "
+                     << t_fixed << " h");
+  BOOST_TEST(late < 0.2 * early);                   // the steps follow the acceleration
+  BOOST_TEST(a.dt[k] <= 8.0 * a.dt[k - 1] * (1 + 1e-6));  // the last one steps onto the failure
+  BOOST_TEST(std::abs(a.t[k] - tf) < 1e-3 * tf);
+  BOOST_TEST(a.t[k] <= t_fixed + 1e-6);             // not later than the fixed step's
+  BOOST_TEST(t_fixed - a.t[k] < 0.1);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
