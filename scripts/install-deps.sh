@@ -24,6 +24,7 @@ packages=(
   libcgal-dev            # exact 2D arrangements: cutting rock masses from joint sets
   libopenmpi-dev         # studies across machines (mpirun rheodda study)
   openmpi-bin            # mpirun, used by the MPI study tests
+  time                   # /usr/bin/time -v: peak memory in scripts/memory-report.sh
 )
 
 missing=()

@@ -38,6 +38,10 @@ constexpr double kRejectFactor = 2.0;
 /// Adaptive creep stepping steps onto a damage law's failure when it is within
 /// this many steps (docs/rheology-in-dda.md, "Failure") [-].
 constexpr double kFailureReach = 8.0;
+/// The contact search of a large model (g2 w0 above this fraction of the median
+/// block size) reaches only as far as the motion needs, not below this fraction
+/// (docs/engine.md, "Contact search reach") [-].
+constexpr double kSearchFloor = 0.1;
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
@@ -94,6 +98,13 @@ struct Engine::Impl {
   std::vector<contact::BlockView> views;
   std::vector<Eigen::Matrix3d> elastic;   // per material
   double w0 = 0.0;                        // half model size [length]
+  /// The displacement per step the contact search covers (StepContext::
+  /// max_displacement; contacts are looked for within search_factor x it):
+  /// g2 w0 where that is below search_floor, else adapted to the motion
+  /// (search_reach(), docs/engine.md, "Contact search reach") [length].
+  double search_disp = 0.0;
+  double search_floor = 0.0;  // kSearchFloor x the median block size [length]
+  double search_reach(const Eigen::VectorXd& d) const;
   double fixed_k = 0.0;                   // fixed point penalty [force/length]
   bool dynamic = true;
 
@@ -292,6 +303,16 @@ void Engine::Impl::initialise() {
     for (const auto& v : b.vertices) box.extend(v);
   }
   w0 = 0.5 * std::max(box.sizes().x(), box.sizes().y());
+  {
+    // Median block size sqrt(area) [length]: the contact search never reaches
+    // less than kSearchFloor of it (docs/engine.md, "Contact search reach").
+    std::vector<double> sizes;
+    sizes.reserve(st.blocks.size());
+    for (const auto& b : st.blocks) sizes.push_back(std::sqrt(std::abs(polygon_integrals(b.vertices).S)));
+    std::nth_element(sizes.begin(), sizes.begin() + static_cast<std::ptrdiff_t>(sizes.size() / 2), sizes.end());
+    search_floor = kSearchFloor * sizes[sizes.size() / 2];
+  }
+  search_disp = std::min(s.g2 * w0, search_floor);
   st.step = 0;
   st.time = 0.0;
   st.next_dt = s.dt;
@@ -375,6 +396,7 @@ double Engine::Impl::max_vertex_displacement(const Eigen::VectorXd& d) const {
 }
 
 void Engine::Impl::accept(const Eigen::VectorXd& d, double dt, int step_index, double t_end) {
+  search_disp = search_reach(d);  // before the blocks move: d is relative to the step start
   const double ratio = model.settings.dynamic_ratio;
   const bool keep_acceleration = model.settings.time_integration == TimeIntegration::trapezoidal;
   const Newmark nm = newmark();
@@ -651,7 +673,7 @@ StepReport Engine::Impl::doubling_step(double dt_cap) {
 
 Engine::Impl::Trial Engine::Impl::solve_trial(double dt, bool creep_error_wanted, StepReport& rep) {
   const Settings& s = model.settings;
-  StepContext ctx{st.step, st.time, dt, s.g2 * w0};
+  StepContext ctx{st.step, st.time, dt, search_disp};
   ctx.creep_error_wanted = creep_error_wanted;
   contacts->begin_step(views, ctx);
   auto t0 = Clock::now();
@@ -688,7 +710,24 @@ Engine::Impl::Trial Engine::Impl::solve_trial(double dt, bool creep_error_wanted
     }
   }
   trial.max_disp = trial.converged ? max_vertex_displacement(D) : 0.0;
+  if (trial.converged && trial.max_disp > search_disp && search_disp < s.g2 * w0) {
+    // The step moved a vertex further than the contact search reached: a
+    // contact beyond the search distance may have closed unseen. Redo the step
+    // (same dt) with the search widened to cover the motion (docs/engine.md,
+    // "Contact search reach"); beyond g2 w0 the caller cuts dt as before.
+    contacts->abandon_step();
+    search_disp = std::min(s.g2 * w0, 2.0 * trial.max_disp);
+    ++rep.search_widenings;
+    return solve_trial(dt, creep_error_wanted, rep);
+  }
   return trial;
+}
+
+double Engine::Impl::search_reach(const Eigen::VectorXd& d) const {
+  // After an accepted step with displacements d: twice its largest vertex
+  // displacement, not below the floor, never beyond g2 w0 (Shi's reach,
+  // search_factor x g2 w0).
+  return std::min(model.settings.g2 * w0, std::max(search_floor, 2.0 * max_vertex_displacement(d)));
 }
 
 void Engine::Impl::cut(double& dt, const Trial& trial, StepReport& rep) const {

@@ -1,4 +1,5 @@
 #include "rheodda/scene/describe.hpp"
+#include "rheodda/scene/memory.hpp"
 
 #include <fmt/format.h>
 
@@ -176,8 +177,17 @@ std::string describe_scene(const SceneDescription& s) {
   const ContactEstimate est = estimate_contacts(s.blocks, d);
   line(fmt::format("estimated contacts at the start: {} between {} block pairs (vertex-edge pairs closer than {:g} {})",
                    est.vertex_edge, est.block_pairs, d, u.length));
-  line(fmt::format("contact search distance: {:g} {} (search_factor x max_displacement_ratio x half model size)",
+  line(fmt::format("contact search distance: up to {:g} {} (search_factor x max_displacement_ratio x half model size;"
+                   " in large models as far as the motion needs, docs/engine.md)",
                    search, u.length));
+  {
+    const MemoryEstimate need = estimate_memory(s);
+    const auto available = available_memory();
+    line(fmt::format("estimated memory of a run: {} (solver {}){}", format_bytes(need.bytes), need.solver,
+                     available ? fmt::format("; {} available{}", format_bytes(*available),
+                                             need.bytes > *available ? ": `run` will refuse it" : "")
+                               : std::string()));
+  }
   const auto warnings = scene_warnings(s);
   if (!warnings.empty()) {
     line(fmt::format("warnings ({}):", warnings.size()));

@@ -15,6 +15,7 @@
 #include "rheodda/core/solver.hpp"
 #include "rheodda/scene/build.hpp"
 #include "rheodda/scene/describe.hpp"
+#include "rheodda/scene/memory.hpp"
 #include "rheodda/scene/output.hpp"
 #include "rheodda/version.hpp"
 
@@ -191,6 +192,16 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
   const std::string out = opt.out_dir;
   const std::string scene_hash = fmt::format("{:016x}", fnv1a(scene_text.data(), scene_text.size()));
 
+  // Fail early when the run will not fit in memory (docs/performance.md, "Memory").
+  if (const auto available = available_memory()) {
+    const MemoryEstimate need = estimate_memory(s);
+    if (need.bytes > *available)
+      throw std::runtime_error(fmt::format(
+          "{}: the run needs about {} of memory ({} blocks, solver {}) but this process may use only {} "
+          "(MemAvailable, the control group's limit, ulimit -v); run it where more memory is free{}",
+          s.file, format_bytes(need.bytes), s.blocks.size(), need.solver, format_bytes(*available),
+          need.solver == "cholmod" ? ", or with `solver: amg` (less memory for large models)" : ""));
+  }
   BuiltScene built = build_scene(s);
   result.warnings = built.warnings;
   std::unique_ptr<contact::ContactSystem> contacts_ptr;

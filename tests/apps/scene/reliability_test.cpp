@@ -474,3 +474,39 @@ BOOST_AUTO_TEST_CASE(the_run_says_where_each_joint_sets_law_acted) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_CASE(a_run_that_will_not_fit_in_memory_is_refused_before_it_starts_with_an_estimate) {
+  // 400 x 400 = 160 000 blocks (about 2.7 GB by the estimate) under `ulimit -v`
+  // of 1.5 GB: refused at once, naming the estimate and what is available,
+  // instead of growing until std::bad_alloc.
+  const fs::path d = fresh_dir("memory");
+  {
+    std::ofstream f(d / "big.yaml");
+    f << "title: wall too large for its memory\n"
+         "units: {length: m, force: N, time: s}\n"
+         "analysis: {type: dynamic, duration: 0.01, dt: 0.001, gravity: [0, -9.81]}\n"
+         "materials: {rock: {density: 2600, young_modulus: 5.0e9, poisson_ratio: 0.25}}\n"
+         "joint_sets: {j: {friction_angle: 35}}\n"
+         "blocks:\n"
+         "  - {name: base, rectangle: {x: -1, y: -1, width: 402, height: 1}, fixed: true}\n"
+         "  - {name: w, grid: {x: 0, y: 0, width: 1, height: 0.5, columns: 400, rows: 400}}\n";
+  }
+  const std::string cmd = "ulimit -v 1500000; exec " + std::string(RHEODDA_BINARY) + " run " +
+                          (d / "big.yaml").string() + " -o " + (d / "out").string() + " 2>&1";
+  std::string out;
+  FILE* p = ::popen(cmd.c_str(), "r");
+  BOOST_TEST_REQUIRE(p != nullptr);
+  char buf[4096];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  const int status = ::pclose(p);
+  BOOST_TEST(WIFEXITED(status));
+  BOOST_TEST(WEXITSTATUS(status) == 1, out);
+  BOOST_TEST(out.find("the run needs about 2.7 GB of memory (160001 blocks, solver amg)") != std::string::npos, out);
+  BOOST_TEST(out.find("may use only") != std::string::npos, out);
+  // `check` says the same before anything runs.
+  const auto c = run_rheodda("check " + (d / "big.yaml").string());
+  BOOST_TEST(c.exit_code == 0, c.output);
+  BOOST_TEST(c.output.find("estimated memory of a run: 2.7 GB (solver amg)") != std::string::npos, c.output);
+  fs::remove_all(d);
+}

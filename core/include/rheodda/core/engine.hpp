@@ -40,6 +40,9 @@ struct StepReport {
   int iterations = 0;         ///< open-close iterations of the accepted attempt (under
                               ///< Settings::step_tolerance: of its three solves) [-]
   int cuts = 0;               ///< times dt was cut before acceptance [-]
+  int search_widenings = 0;   ///< times the step was redone with a wider contact search
+                              ///< because a vertex moved beyond its reach (docs/engine.md,
+                              ///< "Contact search reach") [-]
   double max_displacement = 0.0;  ///< largest vertex displacement of the step [length]
   double max_penetration = 0.0;   ///< largest penetration reported by the contacts [length]
   double creep_error = 0.0;       ///< contacts' creep error estimate of the step, under
