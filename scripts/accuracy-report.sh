@@ -18,6 +18,7 @@ trap 'rm -rf "$work"' EXIT
 "$build/bench/accuracy_bench" --csv "$work/accuracy.csv" >"$work/accuracy.md"
 "$build/bench/stability_map" --csv "$work/stability.csv" >"$work/stability.md"
 "$build/bench/stability_map" --dda >"$work/stability-dda.md"
+"$build/bench/stability_map" --power >"$work/stability-power.md"
 "$build/bench/accuracy_bench" --toppling "$root/examples/goodman-toppling-creep.yaml" 100 |
   sed "s|$root/||" >"$work/toppling.md"
 
@@ -26,6 +27,7 @@ splice() { "$root/scripts/splice-doc.sh" "$root/docs/speed-accuracy.md" "$1" "$2
 splice accuracy-table "$work/accuracy.md"
 splice stability-table "$work/stability.md"
 splice stability-dda "$work/stability-dda.md"
+splice stability-power "$work/stability-power.md"
 splice toppling-table "$work/toppling.md"
 
 # Error vs wall time, one panel per case, one line per scheme (fixed steps).
