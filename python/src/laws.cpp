@@ -246,6 +246,26 @@ void bind_laws(py::module_& m) {
       .def_property_readonly("internal_count", &ContactRheology::internal_count)
       .def_property_readonly("instantaneous_stiffness", &ContactRheology::instantaneous_stiffness)
       .def_property_readonly("is_linear", &ContactRheology::is_linear)
+      .def_property_readonly(
+          "linearity",
+          [](const ContactRheology& l) {
+            switch (l.linearity()) {
+              case laws::Linearity::affine: return std::string("affine");
+              case laws::Linearity::piecewise_affine: return std::string("piecewise-affine");
+              case laws::Linearity::nonlinear: return std::string("nonlinear");
+            }
+            return std::string("?");
+          },
+          "'affine', 'piecewise-affine' or 'nonlinear' (linearize returns the tangent; docs/laws.md)")
+      .def(
+          "failure_time",
+          [](const ContactRheology& l, double force) {
+            const auto t = l.failure_time(force);
+            return t ? *t : std::numeric_limits<double>::infinity();
+          },
+          py::arg("force"),
+          "Failure time under a constant force from an intact state [time] (damage laws: "
+          "t_f = t_r (tau_ref/|F|)^r); inf for laws that do not fail")
       .def_property_readonly("linear_limit", &ContactRheology::linear_limit)
       .def("creep_closed_form",
            [](const ContactRheology& l, double force, const py::object& t) {
@@ -275,23 +295,33 @@ void bind_laws(py::module_& m) {
           py::arg("dt"), py::arg("scheme") = "implicit")
       .def(
           "linearize",
-          [](const ContactRheology& l, const laws::StepConstants& k, const py::object& q, double fs, double fe) {
-            const laws::Linearization lin = l.linearize(k, state_from(q, "q"), fs, fe);
+          [](const ContactRheology& l, const laws::StepConstants& k, const py::object& q, double fs, double fe,
+             double damage) {
+            laws::RheologyState st = state_from(q, "q");
+            st.damage = damage;
+            const laws::Linearization lin = l.linearize(k, st, fs, fe);
             return py::make_tuple(lin.h, lin.c);
           },
-          py::arg("k"), py::arg("q"), py::arg("force_start"), py::arg("force_end_guess"),
-          "Affine form of the step's creep increment: (h [length], c [length/force]), Delta d_c = h + c F_e")
+          py::arg("k"), py::arg("q"), py::arg("force_start"), py::arg("force_end_guess"), py::arg("damage") = 0.0,
+          "Affine form of the step's creep increment: (h [length], c [length/force]), Delta d_c = h + c F_e "
+          "(the tangent at force_end_guess for a nonlinear law); damage: the damage D of a damage law [-]")
       .def(
           "advance",
-          [](const ContactRheology& l, const laws::StepConstants& k, const py::object& q, double fs, double fe) {
-            laws::RheologyState next;
-            const double dd = l.advance(k, state_from(q, "q"), fs, fe, next);
+          [](const ContactRheology& l, const laws::StepConstants& k, const py::object& q, double fs, double fe,
+             double damage) -> py::tuple {
+            laws::RheologyState st = state_from(q, "q"), next;
+            st.damage = damage;
+            const double dd = l.advance(k, st, fs, fe, next);
             py::array_t<double> qn(laws::kMaxInternal);
             std::copy(next.q.begin(), next.q.end(), qn.mutable_data());
+            // A damage law also returns its new damage, which the next step needs.
+            if (l.failure_time(1.0)) return py::make_tuple(dd, qn, next.damage);
             return py::make_tuple(dd, qn);
           },
-          py::arg("k"), py::arg("q"), py::arg("force_start"), py::arg("force_end"),
-          "One step from state q (internal displacements [length]): (Delta d_c [length], q_new as a numpy array)")
+          py::arg("k"), py::arg("q"), py::arg("force_start"), py::arg("force_end"), py::arg("damage") = 0.0,
+          "One step from state q (internal displacements [length]): (Delta d_c [length], q_new as a numpy "
+          "array); a damage law (damage-burgers) takes its damage D and returns (Delta d_c, q_new, D_new), "
+          "D_new = 1 at failure")
       .def("__repr__", [](const ContactRheology& l) {
         std::string s = "rheodda.law('" + std::string(l.name()) + "', {";
         bool first = true;
