@@ -108,13 +108,19 @@ class Cutter {
   }
 
   /// Removes every edge with the same inside face on both sides: dead-end traces
-  /// (and traces that only bridge to a hole) do not separate blocks (Shi's DC).
+  /// (and traces that only bridge to a hole) do not separate blocks (Shi's DC);
+  /// and every edge outside the region. Returns the number of inside edges removed.
   int remove_dangling() {
     std::vector<Halfedge> dead;
-    for (auto e = arr_.edges_begin(); e != arr_.edges_end(); ++e)
-      if (e->face() == e->twin()->face() && e->face()->data() != kOutside) dead.push_back(e);
+    int inside = 0;
+    for (auto e = arr_.edges_begin(); e != arr_.edges_end(); ++e) {
+      const bool out = e->face()->data() == kOutside && e->twin()->face()->data() == kOutside;
+      if (e->face() == e->twin()->face() && !out) ++inside;
+      // Traces outside the region go too: where they met the boundary no vertex is left.
+      if (e->face() == e->twin()->face() || out) dead.push_back(e);
+    }
     for (Halfedge h : dead) arr_.remove_edge(h);
-    return static_cast<int>(dead.size());
+    return inside;
   }
 
   /// Why face f is not a simple polygon, or an empty string: it encloses a hole or

@@ -60,7 +60,7 @@ namespace {
 // docs/scene-format.md against it) says cannot diverge. Order: that of the docs.
 namespace keys {
 const std::vector<std::string> top{"title", "units", "analysis", "materials", "joint_sets",
-                                   "blocks", "fixed_points", "loads", "measurement_points"};
+                                   "blocks", "rock_mass", "fixed_points", "loads", "measurement_points"};
 const std::vector<std::string> units{"length", "force", "time"};
 const std::vector<std::string> analysis{
     "type", "duration", "dt", "dt_growth", "dt_cut", "max_cuts", "max_displacement_ratio",
@@ -80,6 +80,12 @@ const std::vector<std::string> block{"name", "material", "polygon", "rectangle",
                                      "initial_velocity"};
 const std::vector<std::string> rectangle{"x", "y", "width", "height", "angle"};
 const std::vector<std::string> grid{"x", "y", "width", "height", "columns", "rows", "angle"};
+const std::vector<std::string> rock_mass{"name", "material", "region", "holes", "boundary_joint_set",
+                                         "seed", "sliver_area", "joint_sets", "traces"};
+const std::vector<std::string> rock_mass_joint_set{"joint_set", "dip", "dip_direction", "spacing",
+                                                   "spacing_distribution", "spacing_deviation",
+                                                   "trace_length", "gap", "dip_spread", "origin"};
+const std::vector<std::string> rock_mass_trace{"joint_set", "from", "to"};
 const std::vector<std::string> fixed_point{"point", "block"};
 const std::vector<std::string> load{"point", "block", "force", "history"};
 const std::vector<std::string> measurement_point{"name", "point", "block"};
@@ -647,6 +653,188 @@ void read_blocks(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, std::
   }
 }
 
+/// A polygon `[[x, y], ...]` of 3 to kMaxVertices vertices [length].
+std::vector<Point> polygon_points(const Ctx& ctx, const YAML::Node& v, const std::string& key) {
+  if (!v.IsSequence())
+    ctx.fail(v, key, fmt::format("expected a list of [x, y] vertices, got {}", type_word(v)));
+  if (v.size() > kMaxVertices) ctx.fail(v, key, fmt::format("more than {} vertices", kMaxVertices));
+  std::vector<Point> p;
+  for (std::size_t k = 0; k < v.size(); ++k) p.push_back(point(ctx, v[k], fmt::format("{}[{}]", key, k)));
+  if (p.size() < 3) ctx.fail(v, key, fmt::format("has {} vertices; a polygon needs at least 3", p.size()));
+  return p;
+}
+
+/// `rock_mass:` (docs/rockmass.md): reads the region, the joint sets' statistics and the
+/// explicit traces, generates and cuts (rockmass::generate_traces, cut_blocks) and
+/// appends the blocks to `raw`; they are checked with the hand-written ones.
+void read_rock_mass(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, std::vector<RawBlock>& raw) {
+  MapReader m(ctx, n, "rock_mass", keys::rock_mass);
+  RockMassDescription rm;
+  rm.where = m.where();
+  if (YAML::Node v = m.find("name"); v.IsDefined()) rm.name = name_text(ctx, v, m.child("name"));
+  if (YAML::Node v = m.find("material"); v.IsDefined())
+    rm.material = resolve(ctx, v, m.child("material"), s.materials, "material");
+  else if (s.materials.size() != 1)
+    ctx.fail(m.node(), m.child("material"), "missing key 'material': the scene has several materials");
+  const YAML::Node region = m.required("region", "the polygon to cut, [[x, y], ...] [length]");
+  rm.region.outer = polygon_points(ctx, region, m.child("region"));
+  if (auto defect = coordinate_defect(rm.region.outer)) ctx.fail(region, m.child("region"), "the region " + *defect);
+  rockmass::Box box{rm.region.outer[0][0], rm.region.outer[0][1], rm.region.outer[0][0], rm.region.outer[0][1]};
+  for (const Point& p : rm.region.outer)
+    box = {std::min(box.x0, p[0]), std::min(box.y0, p[1]), std::max(box.x1, p[0]), std::max(box.y1, p[1])};
+  const double tol = std::max(1e-9 * std::hypot(box.x1 - box.x0, box.y1 - box.y0), std::numeric_limits<double>::min());
+  if (auto defect = polygon_defect(rm.region.outer, tol)) ctx.fail(region, m.child("region"), "the region " + *defect);
+  if (YAML::Node h = m.find("holes"); h.IsDefined()) {
+    if (!h.IsSequence()) ctx.fail(h, m.child("holes"), fmt::format("expected a list of polygons, got {}", type_word(h)));
+    for (std::size_t k = 0; k < h.size(); ++k) {
+      const std::string key = fmt::format("{}[{}]", m.child("holes"), k);
+      auto hole = polygon_points(ctx, h[k], key);
+      if (auto defect = polygon_defect(hole, tol)) ctx.fail(h[k], key, "the hole " + *defect);
+      for (const Point& p : hole)
+        if (!contains(rm.region.outer, p, tol) || boundary_distance(rm.region.outer, p) <= tol)
+          ctx.fail(h[k], key, fmt::format("vertex ({:g}, {:g}) of the hole is not strictly inside the region", p[0], p[1]));
+      for (const Point& p : rm.region.outer)
+        if (contains(hole, p, tol))
+          ctx.fail(h[k], key, fmt::format("the hole covers the region's vertex ({:g}, {:g})", p[0], p[1]));
+      for (std::size_t j = 0; j < rm.region.holes.size(); ++j) {
+        bool touch = interiors_overlap(hole, rm.region.holes[j], tol);
+        for (const Point& p : hole) touch = touch || contains(rm.region.holes[j], p, tol);
+        for (const Point& p : rm.region.holes[j]) touch = touch || contains(hole, p, tol);
+        if (touch) ctx.fail(h[k], key, fmt::format("holes {} and {} overlap or touch", j, k));
+      }
+      rm.region.holes.push_back(std::move(hole));
+    }
+  }
+  if (YAML::Node v = m.find("boundary_joint_set"); v.IsDefined())
+    rm.boundary_joint_set = resolve(ctx, v, m.child("boundary_joint_set"), s.joint_sets, "joint set");
+  else if (s.joint_sets.size() != 1)
+    ctx.fail(m.node(), m.child("boundary_joint_set"),
+             "missing key 'boundary_joint_set' (the joint set of the edges on the region's boundary): the scene "
+             "has several joint sets");
+  if (YAML::Node v = m.find("seed"); v.IsDefined()) {
+    const double seed = number(ctx, v, m.child("seed"), {0.0, false, 9007199254740992.0, false, ""});
+    if (seed != std::floor(seed)) ctx.fail(v, m.child("seed"), fmt::format("{:g} is not a whole number", seed));
+    rm.seed = static_cast<std::uint64_t>(seed);
+  }
+  if (YAML::Node v = m.find("sliver_area"); v.IsDefined())
+    rm.sliver_area = number(ctx, v, m.child("sliver_area"), non_negative("length^2"));
+  auto list = [&](const char* key) {
+    YAML::Node v = m.find(key);
+    if (v.IsDefined() && !v.IsSequence())
+      ctx.fail(v, m.child(key), fmt::format("expected a list of maps, got {}", type_word(v)));
+    return v;
+  };
+  std::vector<rockmass::Trace> traces;
+  if (YAML::Node sets = list("joint_sets"); sets.IsDefined())
+    for (std::size_t i = 0; i < sets.size(); ++i) {
+      MapReader j(ctx, sets[i], fmt::format("{}[{}]", m.child("joint_sets"), i), keys::rock_mass_joint_set);
+      rockmass::JointSetGeneration g;
+      g.tag = resolve(ctx, j.required("joint_set", "a name of the scene's joint_sets"), j.child("joint_set"),
+                      s.joint_sets, "joint set");
+      g.dip = number(ctx, j.required("dip", "angle below the horizontal [deg], 0 to 90"), j.child("dip"),
+                     {0.0, false, 90.0, false, "deg"});
+      if (YAML::Node v = j.find("dip_direction"); v.IsDefined())
+        g.dips_right = choice(ctx, v, j.child("dip_direction"), {"right", "left"}) == "right";
+      g.spacing = number(ctx, j.required("spacing", "mean spacing normal to the joints [length]"),
+                         j.child("spacing"), positive("length"));
+      if (YAML::Node v = j.find("spacing_distribution"); v.IsDefined()) {
+        const std::string d = choice(ctx, v, j.child("spacing_distribution"),
+                                     {"constant", "normal", "exponential", "log-normal"});
+        for (auto k : {rockmass::SpacingDistribution::constant, rockmass::SpacingDistribution::normal,
+                       rockmass::SpacingDistribution::exponential, rockmass::SpacingDistribution::log_normal})
+          if (d == rockmass::spacing_distribution_name(k)) g.spacing_distribution = k;
+      }
+      const bool deviation = g.spacing_distribution == rockmass::SpacingDistribution::normal ||
+                             g.spacing_distribution == rockmass::SpacingDistribution::log_normal;
+      if (YAML::Node v = j.find("spacing_deviation"); v.IsDefined()) {
+        if (!deviation)
+          ctx.fail(v, j.child("spacing_deviation"),
+                   fmt::format("a {} spacing has no deviation; spacing_deviation applies to spacing_distribution "
+                               "normal or log-normal",
+                               rockmass::spacing_distribution_name(g.spacing_distribution)));
+        g.spacing_deviation = number(ctx, v, j.child("spacing_deviation"), positive("length"));
+      } else if (deviation) {
+        ctx.fail(j.node(), j.child("spacing_deviation"),
+                 fmt::format("missing key 'spacing_deviation' (standard deviation of a {} spacing [length])",
+                             rockmass::spacing_distribution_name(g.spacing_distribution)));
+      }
+      YAML::Node length = j.find("trace_length"), gap = j.find("gap");
+      if (length.IsDefined() != gap.IsDefined())
+        ctx.fail(length.IsDefined() ? length : gap, j.child(length.IsDefined() ? "gap" : "trace_length"),
+                 "give trace_length and gap together (non-persistent joints), or neither (persistent joints)");
+      if (length.IsDefined()) {
+        g.trace_length = number(ctx, length, j.child("trace_length"), positive("length"));
+        g.gap = number(ctx, gap, j.child("gap"), non_negative("length"));
+      }
+      if (YAML::Node v = j.find("dip_spread"); v.IsDefined())
+        g.dip_spread = number(ctx, v, j.child("dip_spread"), {0.0, false, 45.0, false, "deg"});
+      if (YAML::Node v = j.find("origin"); v.IsDefined()) g.origin = point(ctx, v, j.child("origin"));
+      // Lines across the region: its box's diagonal over the smallest likely spacing.
+      const double lines = std::hypot(box.x1 - box.x0, box.y1 - box.y0) / g.spacing;
+      if (lines > 1e6)
+        ctx.fail(j.find("spacing"), j.child("spacing"),
+                 fmt::format("spacing {:g} gives about {:.3g} joints across the region (more than 1e6)", g.spacing, lines));
+      std::vector<rockmass::Trace> t;
+      try {
+        t = rockmass::generate_traces(g, {box.x0, box.y0, box.x1, box.y1}, rm.seed, static_cast<int>(i));
+      } catch (const std::invalid_argument& e) {
+        ctx.fail(j.node(), j.child("spacing"), e.what());
+      }
+      if (traces.size() + t.size() > 2'000'000)
+        ctx.fail(j.node(), j.child("spacing"), "the joint sets give more than 2e6 traces: larger spacing or fewer sets");
+      rm.traces_generated.push_back(t.size());
+      traces.insert(traces.end(), t.begin(), t.end());
+      rm.joint_sets.push_back(g);
+    }
+  if (YAML::Node list_t = list("traces"); list_t.IsDefined())
+    for (std::size_t i = 0; i < list_t.size(); ++i) {
+      MapReader j(ctx, list_t[i], fmt::format("{}[{}]", m.child("traces"), i), keys::rock_mass_trace);
+      rockmass::Trace t;
+      t.tag = resolve(ctx, j.required("joint_set", "a name of the scene's joint_sets"), j.child("joint_set"),
+                      s.joint_sets, "joint set");
+      t.a = point(ctx, j.required("from", "[x, y] [length]"), j.child("from"));
+      YAML::Node to = j.required("to", "[x, y] [length]");
+      t.b = point(ctx, to, j.child("to"));
+      if (t.a == t.b) ctx.fail(to, j.child("to"), "the trace ends where it starts");
+      rm.traces.push_back(t);
+      traces.push_back(t);
+    }
+  rockmass::CutResult cut;
+  try {
+    cut = rockmass::cut_blocks(rm.region, traces, {rm.sliver_area});
+  } catch (const rockmass::CutError& e) {
+    ctx.fail(region, m.child("region"), e.what());
+  }
+  if (cut.blocks.size() + raw.size() > kMaxBlocks)
+    ctx.fail(n, "rock_mass", fmt::format("the cut gives {} blocks; more than {} blocks in the scene",
+                                         cut.blocks.size(), kMaxBlocks));
+  rm.first_block = raw.size();
+  rm.block_count = cut.blocks.size();
+  rm.joint_length = cut.joint_length;
+  rm.merged_slivers = cut.merged_slivers;
+  rm.dangling_removed = cut.dangling_removed;
+  rm.extended_traces = cut.extended_traces;
+  rm.added_traces = cut.added_traces;
+  rm.collapsed_blocks = cut.collapsed_blocks;
+  rm.area_error = cut.area_error;
+  for (std::size_t k = 0; k < cut.blocks.size(); ++k) {
+    rockmass::Block& c = cut.blocks[k];
+    BlockDescription b;
+    b.name = fmt::format("{}.{}", rm.name, k + 1);
+    b.material = rm.material;
+    b.where = rm.where;
+    std::vector<bool> on_boundary;
+    for (std::size_t e = 0; e < c.polygon.size(); ++e) {
+      b.polygon.push_back({c.polygon[e][0], c.polygon[e][1]});
+      on_boundary.push_back(c.edge_tag[e] == rockmass::kBoundaryTag);
+      b.edge_joint_set.push_back(on_boundary.back() ? rm.boundary_joint_set : c.edge_tag[e]);
+    }
+    rm.edge_on_boundary.push_back(std::move(on_boundary));
+    raw.push_back({std::move(b), "rock_mass", n, region});
+  }
+  s.rock_mass = std::move(rm);
+}
+
 /// Tolerance for "same place": a billionth of the model size [length].
 double geometry_tolerance(const std::vector<BlockDescription>& blocks) {
   return std::max(1e-9 * 2.0 * half_model_size(blocks), std::numeric_limits<double>::min());
@@ -814,7 +1002,10 @@ SceneDescription parse_scene(const std::string& text_in, const std::string& file
     s.materials = read_materials(ctx, top.required("materials", "named block materials"));
     s.joint_sets = read_joint_sets(ctx, top.required("joint_sets", "named joint sets"));
     std::vector<RawBlock> raw;
-    read_blocks(ctx, top.required("blocks", "the list of blocks"), s, raw);
+    // With `rock_mass:`, `blocks:` is optional (blocks besides the generated ones).
+    const YAML::Node rock_mass = top.find("rock_mass");
+    if (!rock_mass.IsDefined() || top.has("blocks")) read_blocks(ctx, top.required("blocks", "the list of blocks"), s, raw);
+    if (rock_mass.IsDefined()) read_rock_mass(ctx, rock_mass, s, raw);
     check_geometry(ctx, raw, s);
     read_points(ctx, top, s);
     if (s.analysis.penalty == 0.0) {
@@ -919,6 +1110,9 @@ const std::vector<SceneMapKeys>& scene_schema() {
       {"blocks[*]", keys::block},
       {"blocks[*].rectangle", keys::rectangle},
       {"blocks[*].grid", keys::grid},
+      {"rock_mass", keys::rock_mass},
+      {"rock_mass.joint_sets[*]", keys::rock_mass_joint_set},
+      {"rock_mass.traces[*]", keys::rock_mass_trace},
       {"fixed_points[*]", keys::fixed_point},
       {"loads[*]", keys::load},
       {"measurement_points[*]", keys::measurement_point},

@@ -13,6 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "rheodda/scene/loader.hpp"
 #include "rheodda/scene/output.hpp"
 
 extern char** environ;
@@ -56,8 +57,56 @@ double nice(double x) {
 
 }  // namespace
 
+std::string plot_scene(const SceneDescription& s, const std::string& picture, const std::string& format) {
+  // One data file of edge segments per joint set (and one for the rock mass's region
+  // boundary), each drawn in its own colour with the joint set's name in the key.
+  const std::size_t sets = s.joint_sets.size();
+  std::vector<std::string> edges(sets + 1);  // [sets]: region boundary
+  for (std::size_t i = 0; i < s.blocks.size(); ++i) {
+    const auto& b = s.blocks[i];
+    const bool generated = s.rock_mass && i >= s.rock_mass->first_block &&
+                           i < s.rock_mass->first_block + s.rock_mass->block_count;
+    for (std::size_t k = 0; k < b.polygon.size(); ++k) {
+      const Point& p = b.polygon[k];
+      const Point& q = b.polygon[(k + 1) % b.polygon.size()];
+      const bool boundary = generated && s.rock_mass->edge_on_boundary[i - s.rock_mass->first_block][k];
+      const std::size_t slot = boundary ? sets : static_cast<std::size_t>(b.edge_joint_set[k]);
+      edges[slot] += fmt::format("{:.10g} {:.10g}\n{:.10g} {:.10g}\n\n", p[0], p[1], q[0], q[1]);
+    }
+  }
+  const fs::path pic(picture);
+  const fs::path stem = pic.parent_path() / pic.stem();
+  static const char* kColours[] = {"#1f4e9a", "#d1495b", "#2e933c", "#edae49", "#7b2cbf", "#00798c", "#8d6a9f", "#c05805"};
+  std::string plots;
+  for (std::size_t k = 0; k <= sets; ++k) {
+    if (edges[k].empty()) continue;
+    const fs::path dat = fs::path(stem.string() + fmt::format("_edges{}.dat", k));
+    write_file_atomic(dat.string(), edges[k]);
+    const std::string title = k == sets ? std::string("region boundary") : s.joint_sets[k].name;
+    plots += fmt::format("{}{} with lines lw {} lc rgb '{}' title {} noenhanced", plots.empty() ? "" : ", \\\n     ",
+                         quote(dat.string()), k == sets ? 2.0 : 1.2, k == sets ? "#555555" : kColours[k % 8],
+                         quote(title));
+  }
+  const std::string script = fmt::format(
+      "{}\nset output {}\nset title {} noenhanced\nset size ratio -1\nset xlabel 'x [{}]' noenhanced\n"
+      "set ylabel 'y [{}]' noenhanced\nset key outside bottom center horizontal\nplot {}\n",
+      terminal(format, 1000, 760), quote(picture),
+      quote(fmt::format("{}: {} blocks, edges by joint set", s.title, s.blocks.size())), s.units.length,
+      s.units.length, plots);
+  const std::string gp = stem.string() + ".gp";
+  write_file_atomic(gp, script);
+  run_gnuplot(gp);
+  return picture;
+}
+
 std::vector<std::string> plot_run(const PlotOptions& o) {
   const fs::path dir(o.out_dir);
+  // A scene file instead of a run's directory: its blocks, edges coloured by joint set,
+  // into <scene without extension>-blocks.<format> beside it.
+  if (fs::is_regular_file(dir)) {
+    const SceneDescription s = load_scene(dir.string());
+    return {plot_scene(s, (dir.parent_path() / (dir.stem().string() + "-blocks." + o.format)).string(), o.format)};
+  }
   if (!fs::exists(dir / "summary.json") || !fs::exists(dir / "blocks.pvd"))
     throw std::invalid_argument(fmt::format("{} holds no run (no summary.json or blocks.pvd)", o.out_dir));
   const auto summary = nlohmann::json::parse(read_file((dir / "summary.json").string()));

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "rheodda/scene/scene.hpp"
+
 namespace rheodda::scene {
 
 struct PlotOptions {
@@ -20,6 +22,12 @@ struct PlotOptions {
   std::function<void(const std::string&)> warn;
 };
 
+/// The blocks of a scene, each edge coloured by its joint set (a rock mass's region
+/// boundary in grey), with each set's joint length in the key, into `picture`
+/// (gnuplot script and data beside it); returns `picture`. Throws std::runtime_error if gnuplot fails.
+std::string plot_scene(const SceneDescription& s, const std::string& picture, const std::string& format);
+
+/// `options.out_dir` may also be a scene file: then plot_scene() into <scene without extension>-blocks.<format>.
 /// Writes OUTDIR/plots/blocks_<frame>.<format> and OUTDIR/plots/history.<format>
 /// (and the gnuplot scripts and data next to them); returns the pictures' paths.
 /// Throws std::invalid_argument for a directory that holds no run, std::runtime_error if gnuplot fails.

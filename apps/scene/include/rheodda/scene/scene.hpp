@@ -12,12 +12,16 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "rheodda/laws/contact_rheology.hpp"
 #include "rheodda/laws/parameters.hpp"
+#include "rheodda/rockmass/cut.hpp"
+#include "rheodda/rockmass/generate.hpp"
 #include "rheodda/scene/error.hpp"
 
 namespace rheodda::scene {
@@ -155,6 +159,33 @@ struct MeasurementPoint {
   BlockPoint at;
 };
 
+/// `rock_mass:` — blocks cut from a region by joint sets (docs/rockmass.md). The loader
+/// generates the traces, cuts the region (rockmass::cut_blocks) and appends the blocks
+/// to SceneDescription::blocks; this keeps what was asked and what came out.
+struct RockMassDescription {
+  std::string name = "rock";        ///< block names are <name>.<k>, k = 1, 2, ...
+  int material = 0;                 ///< index into SceneDescription::materials
+  rockmass::Region region;          ///< outer polygon and holes [length]
+  int boundary_joint_set = 0;       ///< joint set of the edges on the region's boundary
+  std::uint64_t seed = 1;           ///< of the random generation
+  double sliver_area = 0.0;         ///< blocks below this area are merged into a neighbour [length^2]
+  std::vector<rockmass::JointSetGeneration> joint_sets;  ///< tag = index into SceneDescription::joint_sets
+  std::vector<rockmass::Trace> traces;                   ///< explicit traces; tag as above
+  // What came out:
+  std::size_t first_block = 0;      ///< the generated blocks are blocks[first_block, first_block + block_count)
+  std::size_t block_count = 0;
+  std::vector<std::vector<bool>> edge_on_boundary;  ///< per generated block and edge: on the region's boundary
+  std::vector<std::size_t> traces_generated;        ///< per rock_mass joint set: traces drawn (clipped to the region's box)
+  std::map<int, double> joint_length;  ///< per joint set index (-1: the region's boundary): edge length in blocks [length]
+  int merged_slivers = 0;
+  int dangling_removed = 0;
+  int extended_traces = 0;          ///< traces continued so that every block is a simple polygon
+  int added_traces = 0;             ///< of these, joints added parallel to a block's joints (a hole no trace reached)
+  int collapsed_blocks = 0;         ///< blocks of rounding size dropped when their vertices were welded
+  double area_error = 0.0;          ///< |sum of block areas - region area| / region area [-]
+  SourceLocation where{};
+};
+
 struct SceneDescription {
   std::string file;   ///< the scene file's path as given
   std::string title;  ///< `title:`; default: the file name
@@ -166,6 +197,7 @@ struct SceneDescription {
   std::vector<BlockPoint> fixed_points;  ///< explicit ones only; `fixed: true` blocks are in BlockDescription
   std::vector<LoadDescription> loads;
   std::vector<MeasurementPoint> measurement_points;
+  std::optional<RockMassDescription> rock_mass;  ///< `rock_mass:`, if given
 };
 
 std::string_view analysis_type_name(AnalysisType t);
