@@ -241,6 +241,9 @@ LawInfo info_of(std::string name, std::string summary, std::string equation,
   info.make = [](const ParameterValues& p) -> std::unique_ptr<ContactRheology> {
     return std::make_unique<Law>(p);
   };
+  // rheodda fit's models are the linear series laws'; A and tau_ref would also
+  // enter a fit only as A/tau_ref^n (docs/laws.md).
+  info.fittable = false;
   return info;
 }
 }  // namespace

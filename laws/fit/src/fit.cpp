@@ -849,6 +849,11 @@ void identify(FitResult& res, gsl_matrix* jac, double s, const std::vector<Candi
 }  // namespace
 
 FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOptions& options) {
+  if (!info.fittable)
+    throw FitError(info.name, fmt::format("law '{}' cannot be fitted yet: its creep is nonlinear in the "
+                                          "stress (docs/laws.md, \"Nonlinear laws\"); compare it with the "
+                                          "data through `rheodda law curve {}`",
+                                          info.name, info.name));
   const ErrorHandlerOff handler_off;
   const std::size_t n = data.t.size(), np = info.parameters.size();
   for (const auto& spec : info.parameters)

@@ -3,6 +3,8 @@
 // with file, line and column for bad input.
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
+
 #include <sys/wait.h>
 #include <unistd.h>
 #include <yaml-cpp/yaml.h>
@@ -96,7 +98,11 @@ BOOST_AUTO_TEST_CASE(law_all_ranks_burgers_first_on_the_example) {
   const auto json = nlohmann::json::parse(slurp(dir / "fit.json"));
   BOOST_TEST(json["best"] == "burgers");
   BOOST_TEST(json["rank_by"] == "bic");
-  BOOST_TEST(json["fits"].size() == rheodda::laws::LawRegistry::builtin().laws().size());
+  // Every fittable law (the nonlinear ones are skipped, fit.hpp fit_all).
+  const auto& all = rheodda::laws::LawRegistry::builtin().laws();
+  BOOST_TEST(json["fits"].size() ==
+             static_cast<std::size_t>(std::count_if(all.begin(), all.end(),
+                                                    [](const auto& i) { return i.fittable; })));
   for (std::size_t i = 1; i < json["fits"].size(); ++i)
     BOOST_TEST(json["fits"][i - 1]["bic"].get<double>() <= json["fits"][i]["bic"].get<double>());
   BOOST_TEST(r.out.find("ranking by BIC") != std::string::npos);

@@ -113,6 +113,7 @@ BOOST_AUTO_TEST_CASE(curve_without_time_dependence_flags_every_time_parameter_of
   fit::CreepData data = fit::test::synthetic_curve("maxwell", {{"E1", 30.0}, {"eta1", 1e4}}, h, times);
   data.displacement.assign(times.size(), 0.3 / 30.0);
   for (const auto& info : laws::LawRegistry::builtin().laws()) {
+    if (!info.fittable) continue;  // the nonlinear laws: model_selection_test
     BOOST_TEST_CONTEXT(info.name) {
       const auto r = fit::fit_law(info, data);
       BOOST_TEST(!r.r2_defined());

@@ -22,6 +22,9 @@ struct LawInfo {
   std::vector<ParameterSpec> parameters;
   /// Builds the law from complete, validated values.
   std::function<std::unique_ptr<ContactRheology>(const ParameterValues&)> make;
+  /// `rheodda fit` can fit it; false for the nonlinear laws (power-law,
+  /// power-law-burgers, damage-burgers), whose fits are not written yet.
+  bool fittable = true;
 };
 
 class LawRegistry {
