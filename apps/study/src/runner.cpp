@@ -446,7 +446,8 @@ namespace {
 /// Cases as child processes of this one (`rheodda run`), at most `jobs` at once.
 class LocalExecutor final : public CaseExecutor {
  public:
-  LocalExecutor(std::string binary, std::size_t jobs) : binary_(std::move(binary)), jobs_(jobs) {}
+  LocalExecutor(std::string binary, std::size_t jobs, int poll_sleep_ms)
+      : binary_(std::move(binary)), jobs_(jobs), poll_sleep_ms_(poll_sleep_ms) {}
   ~LocalExecutor() override {
     for (const auto& [pid, _] : running_) {  // an exception on the way: leave no case process behind
       ::kill(pid, SIGTERM);
@@ -472,7 +473,7 @@ class LocalExecutor final : public CaseExecutor {
       running_.erase(p);
       return o;
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    if (poll_sleep_ms_ > 0) std::this_thread::sleep_for(std::chrono::milliseconds(poll_sleep_ms_));
     return std::nullopt;
   }
   void stop_all() override {
@@ -483,13 +484,14 @@ class LocalExecutor final : public CaseExecutor {
  private:
   std::string binary_;
   std::size_t jobs_;
+  int poll_sleep_ms_;
   std::map<pid_t, Running> running_;
 };
 
 }  // namespace
 
-std::unique_ptr<CaseExecutor> local_executor(const std::string& binary, std::size_t jobs) {
-  return std::make_unique<LocalExecutor>(binary, std::max<std::size_t>(1, jobs));
+std::unique_ptr<CaseExecutor> local_executor(const std::string& binary, std::size_t jobs, int poll_sleep_ms) {
+  return std::make_unique<LocalExecutor>(binary, std::max<std::size_t>(1, jobs), poll_sleep_ms);
 }
 
 std::string case_binary(const StudyOptions& options) {

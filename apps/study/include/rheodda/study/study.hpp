@@ -139,8 +139,9 @@ class CaseExecutor {
   virtual void stop_all() = 0;
 };
 
-/// Child processes of this one, at most `jobs` at once, each `binary run ...`.
-std::unique_ptr<CaseExecutor> local_executor(const std::string& binary, std::size_t jobs);
+/// Child processes of this one, at most `jobs` at once, each `binary run ...`; poll()
+/// sleeps `poll_sleep_ms` [ms] when no case has finished (0: returns at once).
+std::unique_ptr<CaseExecutor> local_executor(const std::string& binary, std::size_t jobs, int poll_sleep_ms = 5);
 
 struct StudyOptions {
   std::string out_dir;         ///< created if missing; cases go to out_dir/cases/NAME/
