@@ -48,6 +48,13 @@ std::unique_ptr<ContactRheology> make(const std::string& name) {
   if (name == "nishihara") p = {{"E1", e1}, {"E2", e2}, {"eta2", eta2}, {"eta3", eta1}, {"Fs", 0.2}};
   if (name == "generalized-kelvin")
     p = {{"E1", e1}, {"E2", e2}, {"eta2", eta2}, {"E3", 0.5 * e2}, {"eta3", eta1}};
+  // Nonlinear laws (docs/laws.md): Norton A = tau_ref/eta1, n = 4; damage t_r = 234 h, r = 3.
+  if (name == "power-law") p = {{"E1", e1}, {"A", 0.2 / eta1}, {"tau_ref", 0.2}, {"n", 4.0}};
+  if (name == "power-law-burgers")
+    p = {{"E1", e1}, {"E2", e2}, {"eta2", eta2}, {"A", 0.2 / eta1}, {"tau_ref", 0.2}, {"n", 4.0}};
+  if (name == "damage-burgers")
+    p = {{"E1", e1}, {"E2", e2}, {"eta2", eta2}, {"A", 0.2 / eta1}, {"tau_ref", 0.2}, {"n", 4.0},
+         {"t_r", 234.0}, {"r", 3.0}};
   return LawRegistry::builtin().create(name, p);
 }
 
@@ -145,7 +152,8 @@ int main() {
   fmt::print(
       "| law | scheme | advance [ns] | linearize [ns] | advance, in cache [ns] |\n"
       "|---|---|---|---|---|\n");
-  for (const char* name : {"burgers", "maxwell", "kelvin", "nishihara", "generalized-kelvin"}) {
+  for (const char* name : {"burgers", "maxwell", "kelvin", "nishihara", "generalized-kelvin", "power-law",
+                           "power-law-burgers", "damage-burgers"}) {
     const auto law = make(name);
     for (Scheme scheme : {Scheme::lagged, Scheme::implicit, Scheme::exponential_linear}) {
       const Cost c = contact_step_cost(*law, scheme, contacts, steps);
