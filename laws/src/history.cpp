@@ -228,6 +228,7 @@ std::vector<CurveSample> integrate_curve(const ContactRheology& law, Control con
   auto sample = [&](double t) {
     CurveSample s;
     s.t = t;
+    s.damage = state.damage;
     if (control == Control::force) {
       s.force = history.at(t);
       s.displacement = (e1 ? s.force / *e1 : 0.0) + state.creep();

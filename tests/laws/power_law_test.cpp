@@ -152,6 +152,27 @@ BOOST_AUTO_TEST_CASE(damage_burgers_meets_its_closed_form_and_fails_at_kachanovs
       }
 }
 
+BOOST_AUTO_TEST_CASE(a_law_curve_reports_the_damage_and_the_failure) {
+  // Constant stress: D(t) = 1 - (1 - t/t_f)^(1/(r+1)) (power_law.hpp (K)) in
+  // each sample of integrate_curve (what `rheodda law curve` runs), 1 from
+  // the first sample at or after t_f.
+  const auto law = make("damage-burgers", damage(3.0));
+  const double tau = 0.25, tf = kTr * std::pow(kTauRef / tau, kR);
+  const auto curve = integrate_curve(*law, Control::force, StagedHistory({{0.0, tau}}), 1.5 * tf,
+                                     tf / 10.0, Scheme::implicit);
+  int failed = 0;
+  for (const auto& s : curve) {
+    if (s.t < tf * (1 - 1e-12)) {
+      const double exact = 1.0 - std::pow(1.0 - s.t / tf, 1.0 / (kR + 1.0));
+      BOOST_TEST(std::abs(s.damage - exact) <= 1e-12, "t " << s.t);
+    } else {
+      BOOST_TEST(s.damage == 1.0, "t " << s.t);
+      ++failed;
+    }
+  }
+  BOOST_TEST(failed == 6);  // t_f, 1.1 t_f, ..., 1.5 t_f
+}
+
 BOOST_AUTO_TEST_CASE(staged_stress_matches_a_converged_rk4_reference_to_1e_6) {
   // Load, raise, reverse, unload: the lagged and implicit schemes integrate
   // each constant stage exactly; exponential-linear steps the stage starts as

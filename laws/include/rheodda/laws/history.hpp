@@ -46,6 +46,7 @@ struct CurveSample {
   double force = 0.0;         ///< [force]
   double displacement = 0.0;  ///< total: instantaneous spring + creep [length]
   std::optional<double> exact{};  ///< closed-form displacement (force control) or force (displacement control)
+  double damage = 0.0;  ///< damage D of a damage law at t [-] (1: failed; 0 for other laws)
 };
 
 /// Exact total displacement at t under a staged force history, where the law has one.
