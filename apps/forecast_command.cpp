@@ -375,7 +375,7 @@ void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
     g << "# Drawn by rheodda forecast: percentile bands of " << column << " across the ensemble.\n"
       << "set terminal pngcairo size 1000,650 noenhanced\n"
       << "set output '" << (out / "fan.png").string() << "'\n"
-      << "set datafile separator ','\nset key top left\nset grid\n"
+      << "set datafile separator ','\nset key bottom right\nset grid\nset format y '%.4g'\n"
       << "set title '" << gp_text(fmt::format("{}: {} members, law {} of {}", s.title, members.size(), fit.law, a.joint_set)) << "'\n"
       << "set xlabel 'time [" << s.units.time << "]'\n"
       << "set ylabel '" << gp_text(column + " [" + s.units.length + "]") << "'\n"

@@ -34,7 +34,7 @@ make_study() {  # make_study FILE N DURATION
     echo "sweep:"
     echo "  method: random"
     echo "  samples: $2"
-    echo "  parameters: [{name: phi, key: joint_sets.slope.friction_angle, unit: deg, range: [5, 25]}]"
+    echo "  parameters: [{name: phi, key: joint_sets.slope.friction_angle, unit: deg, range: [26, 29]}]"
   } > "$1"
 }
 
