@@ -448,7 +448,11 @@ void add_forecast_command(CLI::App& app) {
         throw std::invalid_argument("-j: under MPI each worker rank runs one member at a time; start one rank per core");
       const std::string binary = a->case_program.empty() ? fs::read_symlink("/proc/self/exe").string()
                                                          : fs::absolute(a->case_program).string();
-      study::mpi::run_over_ranks(binary, &g_forecast_stop, [&](study::CaseExecutor* ranks) { forecast_command(*a, ranks); });
+      study::mpi::run_over_ranks(binary, &g_forecast_stop, [&](study::CaseExecutor* ranks) {
+        if (ranks != nullptr)
+          fmt::print(stderr, "rheodda forecast: members over {} MPI worker ranks (rank 0 dispatches)\n", ranks->capacity());
+        forecast_command(*a, ranks);
+      });
       return;
     }
 #endif

@@ -1,7 +1,7 @@
 // `mpirun --oversubscribe -np 3 rheodda study ...` (docs/studies.md, "On a cluster: MPI"):
 // rank 0 dispatches, ranks 1 and 2 run the cases; a failing and a crashing case are
 // isolated and reported, the others give what the single-machine path gives; a resumed
-// study skips its completed cases.
+// study skips its completed cases; a forecast over ranks gives the local one's bands.
 #include <boost/test/unit_test.hpp>
 
 #include <sys/stat.h>
@@ -125,6 +125,25 @@ BOOST_AUTO_TEST_CASE(over_mpi_jobs_per_rank_are_refused_with_exit_2) {
   BOOST_TEST(r.exit_code == 2, r.output);
   BOOST_TEST(r.output.find("one case at a time") != std::string::npos, r.output);
   BOOST_TEST(!fs::exists(dir / "out" / "study.csv"));
+}
+
+BOOST_AUTO_TEST_CASE(over_mpi_a_forecast_gives_the_bands_of_the_same_forecast_run_locally) {
+  const fs::path dir = fresh_dir("mpi-forecast");
+  const std::string fit = (dir / "fit.json").string();
+  BOOST_TEST_REQUIRE(run_rheodda("fit " + source_path("examples/creep-data/table1-row1.csv") +
+                                 " --law burgers --stress 0.232 --units 'MPa, mm, h' --json " + fit)
+                         .exit_code == 0);
+  const std::string args = "forecast " + source_path("examples/shear-creep-test.yaml") + " --fit " + fit +
+                           " --joint-set plane --samples 6 --seed 9 --no-plot --threshold 0.01117 -o ";
+  const auto m = mpirun_rheodda(3, args + (dir / "mpi").string());
+  BOOST_TEST_REQUIRE(m.exit_code == 0, m.output);
+  BOOST_TEST(m.output.find("members over 2 MPI worker ranks") != std::string::npos, m.output);
+  BOOST_TEST(m.output.find("6 members completed") != std::string::npos, m.output);
+  const auto l = run_rheodda(args + (dir / "local").string() + " -j 2");
+  BOOST_TEST_REQUIRE(l.exit_code == 0, l.output);
+  // The same seed draws the same members, each run gives the same history: the same bands, byte for byte.
+  BOOST_TEST(read_text((dir / "mpi" / "bands.csv").string()) == read_text((dir / "local" / "bands.csv").string()));
+  BOOST_TEST(read_text((dir / "mpi" / "samples.csv").string()) == read_text((dir / "local" / "samples.csv").string()));
 }
 
 BOOST_AUTO_TEST_SUITE_END()
