@@ -33,7 +33,7 @@ inline constexpr const char* kExitCodesHelp =
     "Exit codes:\n"
     "  0      success\n"
     "  1      the command failed while working: a run stopped by an engine or output error,\n"
-    "         a study with a failed case, gnuplot missing or failing (plot, fit --plot)\n"
+    "         a study or forecast with a failed case, gnuplot missing or failing (plot, fit --plot)\n"
     "  2      bad input: command-line arguments, a file that cannot be opened, a scene, study\n"
     "         or data file refused (file:line:column: key: message), law parameters,\n"
     "         a directory that holds no run (plot), --resume on another scene\n"
