@@ -37,6 +37,8 @@ const std::map<std::string, std::string> kSectionPath{
     {"Top level", ""},           {"Units", "units"},           {"analysis", "analysis"},
     {"materials", "materials.*"}, {"joint_sets", "joint_sets.*"}, {"law", "joint_sets.*.law"},
     {"blocks", "blocks[*]"},
+    {"rock_mass", "rock_mass"},   {"rock_mass.joint_sets", "rock_mass.joint_sets[*]"},
+    {"rock_mass.traces", "rock_mass.traces[*]"},
 };
 /// The section whose `list` table documents the keys of each point list.
 const std::string kPointsSection = "fixed_points, loads, measurement_points";
@@ -204,6 +206,11 @@ BOOST_AUTO_TEST_CASE(the_schema_is_the_list_each_map_refuses_unknown_keys_with) 
       {"fixed_points[*]", kBaseScene + "fixed_points:\n  - {bogus_key: 1, point: [0, 0]}\n"},
       {"loads[*]", kBaseScene + "loads:\n  - {bogus_key: 1, point: [1.5, 2], force: [0, 0]}\n"},
       {"measurement_points[*]", with("{name: p,", "{bogus_key: 1, name: p,")},
+      {"rock_mass", kBaseScene + "rock_mass: {bogus_key: 1, region: [[0, 5], [4, 5], [4, 8], [0, 8]]}\n"},
+      {"rock_mass.joint_sets[*]", kBaseScene + "rock_mass: {region: [[0, 5], [4, 5], [4, 8], [0, 8]], "
+                                                "boundary_joint_set: bedding, joint_sets: [{bogus_key: 1}]}\n"},
+      {"rock_mass.traces[*]", kBaseScene + "rock_mass: {region: [[0, 5], [4, 5], [4, 8], [0, 8]], "
+                                            "boundary_joint_set: bedding, traces: [{bogus_key: 1}]}\n"},
   };
   for (const auto& m : scene::scene_schema()) {
     BOOST_TEST_CONTEXT("schema path '" << m.path << "'") {
