@@ -188,4 +188,27 @@ BOOST_AUTO_TEST_CASE(a_swept_study_writes_a_column_per_parameter_and_draws_outpu
   BOOST_TEST(bad.output.find("study's folder") != std::string::npos, bad.output);
 }
 
+BOOST_AUTO_TEST_CASE(a_latin_hypercube_study_draws_a_sensitivity_scatter_and_no_map) {
+  const fs::path dir = fresh_dir("lhs-run");
+  const fs::path study = dir / "lhs.yaml";
+  std::ofstream(study) << head()
+                       << "sweep:\n"
+                          "  method: latin_hypercube\n"
+                          "  samples: 4\n"
+                          "  parameters:\n"
+                          "    - {name: phi, key: joint_sets.slope.friction_angle, unit: deg, range: [5, 25]}\n"
+                          "    - {name: E, key: materials.rock.young_modulus, unit: Pa, range: [1.0e9, 1.0e10], scale: log}\n";
+  const auto r = run_rheodda("study " + study.string() + " -o " + (dir / "out").string() + " -j 2");
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.output);
+  const auto rows = read_study_csv((dir / "out" / "study.csv").string());
+  BOOST_TEST_REQUIRE(rows.size() == 4u);
+  for (const auto& row : rows) BOOST_TEST((!row.at("phi [deg]").empty() && !row.at("E [Pa]").empty()));
+  BOOST_TEST(fs::exists(dir / "out" / "study_sweep.png"));
+  BOOST_TEST(!fs::exists(dir / "out" / "study_map.png"));  // a map needs a grid of two parameters
+  // One panel per parameter: the output against phi, then against E (log axis).
+  const std::string gp = read_text((dir / "out" / "study_sweep.gp").string());
+  BOOST_TEST(gp.find("set multiplot layout 1,2") != std::string::npos, gp);
+  BOOST_TEST(gp.find("set logscale x\nset xlabel 'E [Pa]'") != std::string::npos, gp);
+}
+
 BOOST_AUTO_TEST_SUITE_END()
