@@ -107,9 +107,13 @@ FittedLaw read_fit_report(const std::string& path, const std::string& law) {
       if (spec == info->parameters.end())
         bad(path, fmt::format("fits[{}].parameters.{}", r.law, r.names.back()), "not a parameter of the law");
       r.dimensions.push_back(spec->unit);
-      if (!(r.values.back() > 0) || !std::isfinite(r.values.back()))
+      if (!(r.values.back() >= 0) || !std::isfinite(r.values.back()))
         bad(path, fmt::format("fits[{}].parameters.{}.value", r.law, r.names.back()),
-            "a sampled parameter must be > 0 (the sampling is on its logarithm)");
+            "a fitted parameter must be a number >= 0 (the sampling is on its logarithm)");
+      if (r.values.back() == 0) {  // no logarithm to draw: held at 0 (e.g. a Nishihara threshold Fs = 0)
+        r.identifiable.back() = false;
+        r.log_std.back() = 0.0;
+      }
     }
     const std::size_t n = r.names.size();
     const auto& c = f->at("correlation");
@@ -138,7 +142,7 @@ Samples draw_samples(const FittedLaw& fit, std::size_t count, std::uint64_t seed
   Samples s;
   for (std::size_t i = 0; i < n; ++i) {
     if (fit.identifiable[i]) id.push_back(i);
-    else (u.spread > 1.0 ? s.spread : s.held).push_back(fit.names[i]);
+    else (u.spread > 1.0 && fit.values[i] > 0 ? s.spread : s.held).push_back(fit.names[i]);
   }
   // Covariance of the ln p of the identifiable parameters: C_ij = r_ij s_i s_j.
   const auto m = static_cast<Eigen::Index>(id.size());

@@ -163,6 +163,30 @@ BOOST_AUTO_TEST_CASE(non_physical_draws_are_rejected_and_counted) {
   for (const auto& v : s.accepted) BOOST_TEST((std::isfinite(v.at("E1")) && v.at("E1") > 0));
 }
 
+BOOST_AUTO_TEST_CASE(a_parameter_fitted_to_zero_is_read_as_unidentified_and_held_at_zero) {
+  const fs::path dir = fresh_dir("forecast-zero");
+  const fs::path report = dir / "fit.json";
+  // A Nishihara fit whose threshold Fs came out 0 (no logarithm to draw); Fs has no standard error.
+  std::ofstream(report) << R"({"units": {"stress": "MPa", "length": "mm", "time": "h"}, "best": "nishihara",
+    "fits": [{"law": "nishihara", "parameters": [
+      {"name": "E1", "value": 26.8, "std_error": 0.03, "identifiable": true},
+      {"name": "E2", "value": 194.0, "std_error": 1.3, "identifiable": true},
+      {"name": "eta2", "value": 2180.0, "std_error": 36.0, "identifiable": true},
+      {"name": "eta3", "value": 34800.0, "std_error": 130.0, "identifiable": true},
+      {"name": "Fs", "value": 0, "std_error": null, "identifiable": true}],
+     "correlation": [[1,0,0,0,null],[0,1,0,0,null],[0,0,1,0,null],[0,0,0,1,null],[null,null,null,null,null]]}]})";
+  const auto f = fc::read_fit_report(report.string(), "");
+  BOOST_TEST(f.law == "nishihara");
+  BOOST_TEST(!f.identifiable[4]);
+  BOOST_TEST(f.log_std[0] == 0.03 / 26.8, boost::test_tools::tolerance(1e-14));  // se(ln p) = se(p) / p
+  fc::Unidentified u;
+  u.spread = 5.0;
+  const auto s = fc::draw_samples(f, 50, 2, u);
+  BOOST_TEST(s.held == std::vector<std::string>{"Fs"});
+  BOOST_TEST(s.spread.empty());
+  for (const auto& v : s.accepted) BOOST_TEST(v.at("Fs") == 0.0);
+}
+
 BOOST_AUTO_TEST_CASE(on_the_two_block_creep_test_the_bands_equal_the_closed_form_with_the_same_samples) {
   const fs::path dir = fresh_dir("forecast-two-block");
   const std::string fit = (dir / "fit.json").string();
