@@ -17,7 +17,7 @@ BENCHES=(
 )
 "$root/scripts/install-deps.sh"
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRHEODDA_BUILD_BENCH=ON >/dev/null
-cmake --build "$build" -j "$(nproc)" --target "${BENCHES[@]}"
+cmake --build "$build" -j "$(nproc)" --target "${BENCHES[@]}" rheodda
 # Run them all even if one fails; report the failures at the end.
 failed=()
 for b in "${BENCHES[@]}"; do
@@ -25,6 +25,10 @@ for b in "${BENCHES[@]}"; do
   "$build/bench/$b" || failed+=("$b")
   echo
 done
+# Scripts that benchmark whole commands (they build nothing themselves).
+echo "==== bench/study-mpi.sh ===="
+bash "$root/bench/study-mpi.sh" "$build" || failed+=("bench/study-mpi.sh")
+echo
 if ((${#failed[@]})); then
   echo "failed: ${failed[*]}" >&2
   exit 1
