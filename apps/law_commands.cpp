@@ -1,6 +1,8 @@
 // `rheodda law list` and `rheodda law curve`: the law library on its own.
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -71,15 +73,35 @@ int run_curve(const CurveOptions& o) {
                                        stage.t, o.t_end));
   const auto samples = integrate_curve(*law, by_force ? Control::force : Control::displacement,
                                        history, o.t_end, o.dt, scheme);
-  bool any_exact = false;
-  for (const auto& s : samples) any_exact = any_exact || s.exact.has_value();
-  std::string out = any_exact ? "t,force,displacement,exact\n" : "t,force,displacement\n";
+  bool any_exact = false, any_damage = false;
+  for (const auto& s : samples) {
+    any_exact = any_exact || s.exact.has_value();
+    any_damage = any_damage || s.damage > 0.0;
+  }
+  // A damage law (damage-burgers, docs/laws.md) adds its damage D [-] per sample.
+  std::string out = std::string("t,force,displacement") + (any_exact ? ",exact" : "") +
+                    (any_damage ? ",damage" : "") + "\n";
   for (const auto& s : samples) {
     out += fmt::format("{:.10g},{:.10g},{:.10g}", s.t, s.force, s.displacement);
     if (any_exact) out += s.exact ? fmt::format(",{:.10g}", *s.exact) : ",";
+    if (any_damage) out += fmt::format(",{:.10g}", s.damage);
     out += '\n';
   }
   std::fputs(out.c_str(), stdout);
+  // The failure, on stderr (the CSV stays a table): the first sample at damage 1,
+  // and under a constant force the law's closed-form failure time t_f.
+  if (any_damage) {
+    const auto failed = std::find_if(samples.begin(), samples.end(), [](const auto& s) { return s.damage >= 1.0; });
+    std::string closed;
+    if (by_force && history.stages().size() == 1)
+      if (const auto tf = law->failure_time(history.stages().front().value))
+        closed = fmt::format(" (closed form under the constant force {:g}: t_f = {:.10g})",
+                             history.stages().front().value, history.stages().front().t + *tf);
+    if (failed != samples.end())
+      fmt::print(stderr, "law curve: {} failed (damage 1) by t = {:.10g}{}\n", o.law, failed->t, closed);
+    else
+      fmt::print(stderr, "law curve: {} did not fail by t = {:g}{}\n", o.law, o.t_end, closed);
+  }
   return 0;
 }
 

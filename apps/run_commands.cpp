@@ -64,8 +64,11 @@ void run_command(const RunArgs& args) {
              r.resumed_from_step >= 0 ? fmt::format(", resumed from step {}", r.resumed_from_step) : "",
              r.frames, r.max_penetration, s.units.length, r.wall_seconds, opt.out_dir);
   for (const auto& c : r.creep)
-    fmt::print("  creep on joint set {}: {} contacts, {:g} {} of contact-time\n", c.joint_set, c.contacts,
-               c.contact_time, s.units.time);
+    fmt::print("  creep on joint set {}: {} contacts, {:g} {} of contact-time{}\n", c.joint_set, c.contacts,
+               c.contact_time, s.units.time,
+               c.failures > 0 ? fmt::format("; {} contacts failed (damage 1), the first at t = {:g} {}", c.failures,
+                                            c.first_failure_time, s.units.time)
+                              : std::string());
   if (r.status == scene::RunStatus::interrupted) {
     fmt::print("  resume with: rheodda run {} -o {} --resume\n", args.scene, opt.out_dir);
     throw CLI::RuntimeError(128 + (g_stop ? static_cast<int>(g_stop) : SIGINT));

@@ -57,6 +57,12 @@ std::vector<std::vector<double>> parse_csv(const std::string& text, std::string*
   }
   return rows;
 }
+// "t_f = 149.9138..." as `law curve` prints it on stderr (10 significant digits).
+std::string fmt_tf(double tf) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "t_f = %.10g", tf);
+  return buf;
+}
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(law_curve_cli)
@@ -133,6 +139,35 @@ BOOST_AUTO_TEST_CASE(law_curve_bad_input_exits_2_naming_the_key) {
     BOOST_TEST(r.err.find(c.expected) != std::string::npos, c.args << " -> " << r.err);
     BOOST_TEST(r.out.empty(), c.args);
   }
+}
+
+BOOST_AUTO_TEST_CASE(law_curve_of_a_damage_law_prints_its_damage_and_when_it_failed) {
+  // damage-burgers at tau = 0.232 MPa (examples/damage-creep-test.yaml's law):
+  // Kachanov's t_f = t_r (tau_ref / tau)^r = 234 (0.2 / 0.232)^3 = 149.9 h.
+  const Run r = run(
+      "law curve damage-burgers --param E1=26.87 --param E2=192.43 --param eta2=2141.23 "
+      "--param A=3.68e-6 --param tau_ref=0.2 --param n=4 --param t_r=234 --param r=3 "
+      "--force 0:0.232 --t-end 200 --dt 0.5");
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  std::string header;
+  const auto rows = parse_csv(r.out, &header);
+  BOOST_TEST(header.find(",damage") != std::string::npos, header);
+  BOOST_TEST_REQUIRE(rows.size() > 10u);
+  const std::size_t d = rows.front().size() - 1;  // the last column
+  BOOST_TEST(rows.front()[d] == 0.0);
+  BOOST_TEST(rows.back()[d] == 1.0);
+  for (std::size_t k = 1; k < rows.size(); ++k) BOOST_TEST(rows[k][d] >= rows[k - 1][d]);  // never heals
+  const double tf = 234.0 * std::pow(0.2 / 0.232, 3.0);
+  BOOST_TEST(r.err.find(fmt_tf(tf)) != std::string::npos, r.err);
+  // The first sample at damage 1 is the step end past t_f.
+  std::size_t first = 0;
+  while (rows[first][d] < 1.0) ++first;
+  BOOST_TEST(rows[first][0] >= tf);
+  BOOST_TEST(rows[first][0] <= tf + 0.5);
+  // A law that cannot fail prints no damage column.
+  const Run b = run(std::string(kRow1) + "--force 0:0.232");
+  BOOST_TEST(b.out.find("damage") == std::string::npos);
+  BOOST_TEST(b.err.empty(), b.err);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

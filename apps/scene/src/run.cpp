@@ -382,7 +382,12 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
   enum class Mode { replay, record } mode = Mode::record;
   int replay_target = 0;
   Clock::time_point last_progress{};
+  // The time of the first failure of a damage law per joint set: the end of the
+  // step in which its failure count first rose (docs/outputs.md, summary.json "creep").
+  std::vector<double> first_failure(s.joint_sets.size(), std::numeric_limits<double>::quiet_NaN());
   engine.add_observer([&](const core::Engine& e, const core::StepReport& r) {
+    for (std::size_t j = 0; j < s.joint_sets.size() && j < contacts.creep_counters().size(); ++j)
+      if (std::isnan(first_failure[j]) && contacts.creep_counters()[j].failures > 0) first_failure[j] = e.time();
     if (mode == Mode::replay) {
       if (e.step_count() >= replay_target) throw StopAfterStep{};
       return;
@@ -532,7 +537,7 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     for (std::size_t j = 0; j < s.joint_sets.size(); ++j)
       if (contacts.joint_sets()[j].law) {
         const contact::CreepCounters& k = contacts.creep_counters()[j];
-        result.creep.push_back({s.joint_sets[j].name, k.contacts, k.contact_time});
+        result.creep.push_back({s.joint_sets[j].name, k.contacts, k.contact_time, k.failures, first_failure[j]});
       }
     result.steps = engine.step_count();
     result.time = engine.time();
@@ -606,7 +611,12 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     // Where each joint set's law acted (docs/outputs.md, "summary.json").
     j["creep"] = json::object();
     for (const auto& c : result.creep)
-      j["creep"][c.joint_set] = {{"contacts", c.contacts}, {"contact_time", c.contact_time}};
+      j["creep"][c.joint_set] = {{"contacts", c.contacts},
+                                 {"contact_time", c.contact_time},
+                                 {"failures", c.failures},
+                                 {"first_failure_time", std::isnan(c.first_failure_time)
+                                                            ? json(nullptr)
+                                                            : json(c.first_failure_time)}};
     {
       // The linear solver actually used (automatic resolved) and its work since
       // this process started (a resumed run counts from the resume).

@@ -510,3 +510,30 @@ BOOST_AUTO_TEST_CASE(a_run_that_will_not_fit_in_memory_is_refused_before_it_star
   BOOST_TEST(c.output.find("estimated memory of a run: 2.7 GB (solver amg)") != std::string::npos, c.output);
   fs::remove_all(d);
 }
+
+BOOST_AUTO_TEST_CASE(the_run_reports_how_many_contacts_a_damage_law_failed_and_when_the_first_did) {
+  // examples/damage-creep-test.yaml: the two contacts of the sheared joint fail
+  // at 143.5-144 h and 151-151.5 h (Kachanov's t_f = 149.9 h at the mean stress;
+  // the contact nearer the shear load carries more and fails first).
+  const auto s = scene::load_scene(source_path("examples/damage-creep-test.yaml"));
+  const fs::path out = fresh_dir("damage-failures");
+  const auto r = run(s, out);
+  BOOST_TEST_REQUIRE(r.creep.size() == 1u);
+  BOOST_TEST(r.creep[0].failures == 2);
+  BOOST_TEST(r.creep[0].first_failure_time >= 143.5);
+  BOOST_TEST(r.creep[0].first_failure_time <= 144.0);
+  const auto sum = nlohmann::json::parse(read_text((out / "summary.json").string()));
+  BOOST_TEST(sum.at("creep").at("plane").at("failures").get<int>() == 2);
+  BOOST_TEST(sum.at("creep").at("plane").at("first_failure_time").get<double>() == r.creep[0].first_failure_time);
+  // A law that cannot fail reports none, and null for the time.
+  const auto s2 = scene::load_scene(source_path("examples/shear-creep-test.yaml"));
+  auto s3 = s2;
+  s3.analysis.duration = 2.0;
+  const fs::path out2 = fresh_dir("no-failures");
+  const auto r2 = run(s3, out2);
+  BOOST_TEST(r2.creep.at(0).failures == 0);
+  const auto sum2 = nlohmann::json::parse(read_text((out2 / "summary.json").string()));
+  BOOST_TEST(sum2.at("creep").at("plane").at("first_failure_time").is_null());
+  fs::remove_all(out);
+  fs::remove_all(out2);
+}

@@ -11,6 +11,8 @@
 // carries on writing. The result is the same as that of an uninterrupted run.
 #pragma once
 
+#include <limits>
+
 #include <csignal>
 #include <cstdio>
 #include <string>
@@ -54,6 +56,9 @@ struct RunResult {
     std::string joint_set;
     int contacts = 0;
     double contact_time = 0.0;
+    int failures = 0;  ///< contacts whose damage law failed (damage 1) [-]
+    double first_failure_time = std::numeric_limits<double>::quiet_NaN();  ///< end of the step in
+                       ///< which the first of them failed; NaN if none [time]
   };
   std::vector<JointCreep> creep;
 };
