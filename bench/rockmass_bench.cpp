@@ -9,6 +9,7 @@
 // Sample runs:
 //   build/bench/rockmass_bench                       # generation, then creep at ~1e3 blocks
 //   build/bench/rockmass_bench --creep 1000,10000 --max-wall 1200 --solver cholmod
+//   build/bench/rockmass_bench --no-generation --example tunnel --creep 1000
 // Prints figures; asserts nothing.
 #include <fmt/format.h>
 
@@ -104,6 +105,7 @@ int main(int argc, char** argv) {
   double max_wall = 900.0;
   bool generation = true;
   std::string solver;  // empty: the scene's (automatic)
+  std::string example = "jointed-slope";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--creep" && i + 1 < argc) {
@@ -116,12 +118,14 @@ int main(int argc, char** argv) {
       }
     } else if (a == "--max-wall" && i + 1 < argc) {
       max_wall = std::stod(argv[++i]);
+    } else if (a == "--example" && i + 1 < argc) {
+      example = argv[++i];
     } else if (a == "--solver" && i + 1 < argc) {
       solver = argv[++i];
     } else if (a == "--no-generation") {
       generation = false;
     } else {
-      fmt::print(stderr, "usage: rockmass_bench [--creep N,N...] [--max-wall SECONDS] [--solver automatic|cholmod|pcg|amg] "
+      fmt::print(stderr, "usage: rockmass_bench [--creep N,N...] [--max-wall SECONDS] [--solver automatic|cholmod|pcg|amg] [--example jointed-slope|tunnel] "
                            "[--no-generation]\n");
       return 2;
     }
@@ -143,7 +147,7 @@ int main(int argc, char** argv) {
     }
   }
 
-  const std::string slope_file = std::string(RHEODDA_SOURCE_DIR) + "/examples/rockmass/jointed-slope.yaml";
+  const std::string slope_file = std::string(RHEODDA_SOURCE_DIR) + "/examples/rockmass/" + example + ".yaml";
   const std::string slope = scene::read_scene_text(slope_file);
   const std::size_t base_blocks = scene::parse_scene(slope, slope_file).rock_mass->block_count;
   std::signal(SIGALRM, on_alarm);
@@ -166,15 +170,15 @@ int main(int argc, char** argv) {
       r = scene::run_scene(s, text, o);
     } catch (const std::exception& e) {
       alarm(0);
-      fmt::print("creep: jointed slope, lengths x {:.3f}: {} blocks, solver {}: run failed: {}\n", f,
+      fmt::print("creep: {}, lengths x {:.3f}: {} blocks, solver {}: run failed: {}\n", example, f,
                  s.rock_mass->block_count, solver.empty() ? "of the scene" : solver, e.what());
       std::filesystem::remove_all(dir);
       continue;
     }
     alarm(0);
-    fmt::print("creep: jointed slope, lengths x {:.3f}: {} blocks, solver {} (scene loaded and cut in {:.2f} s); "
+    fmt::print("creep: {}, lengths x {:.3f}: {} blocks, solver {} (scene loaded and cut in {:.2f} s); "
                "{} at t = {:g} of {:g} d: {} steps, {} cuts, {} redone, wall {:.1f} s{}\n",
-               f, s.rock_mass->block_count, solver.empty() ? "of the scene" : solver, load_s, r.status == scene::RunStatus::completed ? "completed" : "stopped",
+               example, f, s.rock_mass->block_count, solver.empty() ? "of the scene" : solver, load_s, r.status == scene::RunStatus::completed ? "completed" : "stopped",
                r.time, s.analysis.duration, r.steps, r.cuts, r.redone, r.wall_seconds,
                r.status == scene::RunStatus::completed ? "" : fmt::format(" (stopped at --max-wall {:g} s)", max_wall));
     std::fflush(stdout);
