@@ -98,7 +98,7 @@ void add_scene_commands(CLI::App& app) {
 
   auto plot = std::make_shared<scene::PlotOptions>();
   auto* p = app.add_subcommand("plot", "Draw the blocks at chosen times and the history curves (gnuplot)");
-  p->add_option("OUTDIR", plot->out_dir, "Output directory of a run")->required();
+  p->add_option("OUTDIR", plot->out_dir, "Output directory of a run or a study, or a scene file (its blocks coloured by joint set)")->required();
   p->add_option("--times", plot->times, "Times to draw the blocks at (default: first, middle, last frame)")
       ->delimiter(',');
   p->add_option("--format", plot->format, "png or svg")->check(CLI::IsMember({"png", "svg"}))->capture_default_str();
