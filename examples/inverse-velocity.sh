@@ -44,6 +44,8 @@ set key outside below
 set arrow from $forecast, graph 0 to $forecast, graph 1 nohead dt 2 lc rgb 'gray'
 f(x) = a + b * x
 a = 1; b = -1
+set fit quiet
+set fit logfile '/dev/null'
 fit [100:140] f(x) '$data' using 1:2 via a, b
 plot '$data' using 1:2 with points pt 7 ps 0.5 title '1/v from history.csv', \
      [60:$forecast] f(x) with lines lw 2 title sprintf('line fitted over 100-140 h: zero at %.1f h', $forecast)
