@@ -950,13 +950,13 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
   // all), against the best minimum polished on that subsample; a start that
   // finds a lower one there is then polished on all points. (A 100-point
   // subsample of the 201-point staged Nishihara curves of docs/fitting.md missed
-  // the reference's minimum in 10 of 300 draws; 250 points of 1 000 keep a
+  // the reference's minimum in 10 of 300 draws; 200 points of 1 000 keep a
   // Burgers fit within 1 ms, bench/fit_bench.)
   const int classic = 1 + std::max(options.restarts, 0);
   std::vector<std::vector<double>> classic_starts;
   for (int r = 0; r < classic; ++r)
     classic_starts.push_back(logs(r == 0 ? base : restart_start(base, pr.structure, r, features.f_max)));
-  constexpr std::size_t kReferencePoints = 500, kReferenceSample = 250;
+  constexpr std::size_t kReferencePoints = 500, kReferenceSample = 200;
   if (structured > 0 && std::isfinite(best_rss) && n > kReferencePoints) {
     const CreepData sub = subsample(data, kReferenceSample);
     Solver small(info, sub, structure, 1.0 / dmax);
