@@ -1,0 +1,86 @@
+#!/usr/bin/python3
+"""Headline results of the shipped examples (docs/outputs.md, "Shipped examples:
+headline results"): runs `rheodda run` on every examples/*.yaml and reports, per
+example, the final displacement magnitude |(u, v)| of each measurement point
+[length] and, for a joint set whose damage law failed, the time of the first
+failure [time] (summary.json). With --write the table is spliced into
+docs/outputs.md between <!-- example-results:begin/end -->; the test
+tests/python/test_example_results.py reruns the examples and fails when a
+value drifts from the documented one by more than its tolerance.
+
+Usage: /usr/bin/python3 scripts/example_results.py [--write]   (build: $RHEODDA_BUILD_DIR or build/)
+"""
+import csv
+import json
+import math
+import os
+import pathlib
+import subprocess
+import sys
+import tempfile
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+DOC = ROOT / "docs" / "outputs.md"
+MARK = "example-results"
+# Relative tolerance of a documented value: the runs are deterministic on one
+# machine; 1e-4 leaves room for another BLAS kernel's rounding, not for a change
+# of behaviour.
+TOLERANCE = 1e-4
+
+
+def binary():
+    build = pathlib.Path(os.environ.get("RHEODDA_BUILD_DIR", ROOT / "build"))
+    return build / "apps" / "rheodda"
+
+
+def examples():
+    return sorted((ROOT / "examples").glob("*.yaml"))
+
+
+def headline(example, out_dir):
+    """[(quantity, value, unit)] of one example after `rheodda run` into out_dir."""
+    subprocess.run([str(binary()), "run", str(example), "-o", str(out_dir)], check=True,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    with open(out_dir / "history.csv") as f:
+        units_line = f.readline()
+        rows = list(csv.DictReader(f))
+    units = dict(kv.split("=") for kv in units_line.lstrip("# units:").split())
+    last = rows[-1]
+    points = [c[:-2] for c in rows[0] if c.endswith(".u") and c[:-2] + ".v" in rows[0]]
+    out = [(f"displacement of {p} at t = {float(last['time']):g} {units['time']}",
+            math.hypot(float(last[p + ".u"]), float(last[p + ".v"])), units["length"]) for p in points]
+    summary = json.loads((out_dir / "summary.json").read_text())
+    for joint, c in summary.get("creep", {}).items():
+        if c.get("failures", 0) > 0:
+            out.append((f"first failure on {joint}", float(c["first_failure_time"]), units["time"]))
+    return out
+
+
+def table():
+    lines = ["| example | quantity | value | unit | tolerance |", "|---|---|---:|---|---:|"]
+    with tempfile.TemporaryDirectory() as tmp:
+        for e in examples():
+            for q, v, u in headline(e, pathlib.Path(tmp) / e.stem):
+                lines.append(f"| {e.name} | {q} | {v:.9g} | {u} | {TOLERANCE:g} |")
+    return "\n".join(lines) + "\n"
+
+
+def documented():
+    """{(example, quantity): (value, tolerance)} from the table in docs/outputs.md."""
+    text = DOC.read_text()
+    body = text.split(f"<!-- {MARK}:begin -->")[1].split(f"<!-- {MARK}:end -->")[0]
+    rows = {}
+    for line in body.strip().splitlines()[2:]:
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        rows[(cells[0], cells[1])] = (float(cells[2]), float(cells[4]))
+    return rows
+
+
+if __name__ == "__main__":
+    t = table()
+    if "--write" in sys.argv:
+        with tempfile.NamedTemporaryFile("w", suffix=".md", delete=False) as f:
+            f.write(t)
+        subprocess.run(["bash", str(ROOT / "scripts" / "splice-doc.sh"), str(DOC), MARK, f.name], check=True)
+        os.unlink(f.name)
+    print(t, end="")
