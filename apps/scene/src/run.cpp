@@ -620,15 +620,18 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     {
       // The linear solver actually used (automatic resolved) and its work since
       // this process started (a resumed run counts from the resume).
-      const core::SolverKind used =
-          core::LinearSolver::resolve(engine.model().settings.solver, engine.block_count());
       const auto& ss = engine.solver_stats();
+      const core::SolverKind used =
+          ss.amg_fallback_solve >= 0
+              ? core::SolverKind::cholmod
+              : core::LinearSolver::resolve(engine.model().settings.solver, engine.block_count());
       j["solver"] = {{"used", used == core::SolverKind::amg       ? "amg"
                               : used == core::SolverKind::pcg     ? "pcg"
                                                                   : "cholmod"},
                      {"solves", ss.solves},
                      {"cg_iterations", ss.pcg_iterations},
-                     {"analyses", ss.analyses}};
+                     {"analyses", ss.analyses},
+                     {"amg_fallback_solve", ss.amg_fallback_solve}};
     }
     j["measurement_points"] = json::array();
     for (const auto& mp : s.measurement_points) j["measurement_points"].push_back(mp.name);

@@ -537,3 +537,33 @@ BOOST_AUTO_TEST_CASE(the_run_reports_how_many_contacts_a_damage_law_failed_and_w
   fs::remove_all(out);
   fs::remove_all(out2);
 }
+
+BOOST_AUTO_TEST_CASE(automatic_solver_falls_back_to_cholmod_when_amg_does_not_converge) {
+  // 420 blocks: `automatic` picks amg. With one CG iteration allowed, amg cannot
+  // converge; the solve is redone by CHOLMOD, which runs the rest: the run is
+  // the CHOLMOD run to the last digit, and summary.json says so.
+  const std::string wall =
+      "title: wall\n"
+      "units: {length: m, force: N, time: s}\n"
+      "analysis: {type: dynamic, duration: 0.002, dt: 0.001, gravity: [0, -9.81], solver_max_iterations: 1}\n"
+      "materials: {rock: {density: 2600, young_modulus: 5.0e9, poisson_ratio: 0.25}}\n"
+      "joint_sets: {j: {friction_angle: 35}}\n"
+      "blocks:\n"
+      "  - {name: base, rectangle: {x: -1, y: -1, width: 23, height: 1}, fixed: true}\n"
+      "  - {name: w, grid: {x: 0, y: 0, width: 1, height: 0.5, columns: 21, rows: 20}}\n"
+      "measurement_points:\n"
+      "  - {name: top, point: [10.5, 9.75], block: w.r20.c11}\n";
+  const fs::path d = fresh_dir("amg-fallback");
+  const auto automatic = scene::parse_scene(wall, "wall.yaml");
+  const auto cholmod = scene::parse_scene(with("solver_max_iterations: 1", "solver_max_iterations: 1, solver: cholmod", wall),
+                                          "wall-cholmod.yaml");
+  run(automatic, d / "automatic");
+  run(cholmod, d / "cholmod");
+  BOOST_TEST(read_text((d / "automatic" / "history.csv").string()) == read_text((d / "cholmod" / "history.csv").string()));
+  const auto sum = nlohmann::json::parse(read_text((d / "automatic" / "summary.json").string()));
+  BOOST_TEST(sum.at("solver").at("used").get<std::string>() == "cholmod");
+  BOOST_TEST(sum.at("solver").at("amg_fallback_solve").get<long>() == 1);
+  const auto sum_c = nlohmann::json::parse(read_text((d / "cholmod" / "summary.json").string()));
+  BOOST_TEST(sum_c.at("solver").at("amg_fallback_solve").get<long>() == -1);
+  fs::remove_all(d);
+}

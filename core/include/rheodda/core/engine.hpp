@@ -69,6 +69,9 @@ struct SolverStats {
   long factorizations = 0;  ///< CHOLMOD numeric factorisations [-]
   long solves = 0;          ///< linear solves [-]
   long pcg_iterations = 0;  ///< total PCG iterations [-]
+  /// Under `automatic`: the step at whose solve amg's conjugate gradient did not
+  /// converge and CHOLMOD took over for the rest of the run (-1: never) [-].
+  long amg_fallback_solve = -1;
 };
 
 /// Run-time state of one block.

@@ -48,12 +48,19 @@ class LinearSolver {
   LinearSolver& operator=(const LinearSolver&) = delete;
 
   /// Solves K D = F for a finalised system. Throws std::runtime_error if K is
-  /// not positive definite (cholmod) or PCG does not converge.
+  /// not positive definite (cholmod) or PCG does not converge. Under `automatic`
+  /// a solve whose amg conjugate gradient does not converge is redone by CHOLMOD,
+  /// which then solves the rest of the run (SolverStats::amg_fallback_solve).
   Eigen::VectorXd solve(const BlockSystem& system);
   SolverKind kind() const { return kind_; }
   /// The solver `kind` stands for in a model of `blocks` blocks (automatic ->
   /// cholmod or amg; the others are themselves).
   static SolverKind resolve(SolverKind kind, int blocks);
+  /// The solver this one uses now: resolve(kind(), blocks), or cholmod after an
+  /// automatic fallback.
+  SolverKind used(int blocks) const {
+    return amg_failed_ ? SolverKind::cholmod : resolve(kind_, blocks);
+  }
   /// automatic picks amg from this many blocks on. Below it CHOLMOD is exact
   /// (no tolerance to choose) and faster: on the brick-wall benchmark
   /// (docs/performance.md) 2.7 ms against 4.2 ms per step at 105 blocks, while at
@@ -64,7 +71,9 @@ class LinearSolver {
  private:
   struct Cholmod;
   Eigen::VectorXd solve_amg(const BlockSystem& system);
+  Eigen::VectorXd solve_cholmod(const BlockSystem& system);
   SolverKind kind_;
+  bool amg_failed_ = false;  ///< automatic: amg did not converge once, CHOLMOD from then on
   double tolerance_;
   int max_iterations_;
   SolverStats stats_;
