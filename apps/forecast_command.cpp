@@ -9,8 +9,6 @@
 // (OUT/cases/sampleNNN/, locally or over MPI ranks), then every history column's
 // percentiles across the members are taken at the times of the first member's history.
 #include <fmt/format.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -31,12 +29,12 @@
 #include "commands.hpp"
 #include "rheodda/forecast/forecast.hpp"
 #include "rheodda/scene/loader.hpp"
+#include "rheodda/scene/plot.hpp"
 #include "rheodda/study/study.hpp"
 #ifdef RHEODDA_WITH_MPI
 #include "mpi_study.hpp"
 #endif
 
-extern char** environ;
 
 namespace rheodda::apps {
 namespace {
@@ -66,11 +64,6 @@ struct ForecastArgs {
   std::string case_program;
 };
 
-std::string gp_text(const std::string& s) {
-  std::string q;
-  for (char ch : s) q += ch == '\'' ? std::string("''") : std::string(1, ch);
-  return q;
-}
 
 /// A dimension ("stress*time/length") in a scene's unit labels ("N/mm^2*h/mm").
 std::string scene_unit(const std::string& dimension, const scene::Units& u) {
@@ -137,17 +130,6 @@ std::string ensemble_text(const ForecastArgs& a, const scene::SceneDescription& 
     t += fmt::format("  - {{name: sample{:0{}}, set: {{{}}}}}\n", k + 1, width, fmt::join(sets, ", "));
   }
   return t;
-}
-
-void run_gnuplot(const fs::path& gp) {
-  std::string prog = "gnuplot", gps = gp.string();
-  char* argv[] = {prog.data(), gps.data(), nullptr};
-  pid_t pid = 0;
-  if (posix_spawnp(&pid, "gnuplot", nullptr, nullptr, argv, environ) != 0)
-    throw std::runtime_error("cannot start gnuplot (installed by scripts/install-deps.sh)");
-  int status = 0;
-  waitpid(pid, &status, 0);
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw std::runtime_error(fmt::format("gnuplot failed on {}", gps));
 }
 
 void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
@@ -376,9 +358,9 @@ void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
       << "set terminal pngcairo size 1000,650 noenhanced\n"
       << "set output '" << (out / "fan.png").string() << "'\n"
       << "set datafile separator ','\nset key bottom right\nset grid\nset format y '%.4g'\n"
-      << "set title '" << gp_text(fmt::format("{}: {} members, law {} of {}", s.title, members.size(), fit.law, a.joint_set)) << "'\n"
+      << "set title '" << scene::gnuplot_text(fmt::format("{}: {} members, law {} of {}", s.title, members.size(), fit.law, a.joint_set)) << "'\n"
       << "set xlabel 'time [" << s.units.time << "]'\n"
-      << "set ylabel '" << gp_text(column + " [" + s.units.length + "]") << "'\n"
+      << "set ylabel '" << scene::gnuplot_text(column + " [" + s.units.length + "]") << "'\n"
       << "plot ";
     std::vector<std::string> parts;
     const std::size_t nb = ps.size() / 2;
@@ -397,7 +379,7 @@ void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
     g << fmt::format("{}", fmt::join(parts, ", \\\n     ")) << "\n";
     g.close();
     try {
-      run_gnuplot(gp);
+      scene::run_gnuplot(gp.string());
     } catch (const std::exception& e) {
       fmt::print(stderr, "rheodda: error: {}\n", e.what());
       throw CLI::RuntimeError(kExitFailure);

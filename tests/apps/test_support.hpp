@@ -95,8 +95,9 @@ struct CommandResult {
 };
 
 /// Runs the rheodda binary with `args` (shell words, already quoted as needed).
-inline CommandResult run_rheodda(const std::string& args) {
-  const std::string cmd = std::string(RHEODDA_BINARY) + " " + args + " 2>&1";
+/// Runs a shell command line, stdout and stderr together.
+inline CommandResult run_command(const std::string& command_line) {
+  const std::string cmd = command_line + " 2>&1";
   CommandResult r;
   FILE* p = ::popen(cmd.c_str(), "r");
   char buf[4096];
@@ -105,6 +106,11 @@ inline CommandResult run_rheodda(const std::string& args) {
   const int status = ::pclose(p);
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+/// `rheodda ARGS`, stdout and stderr together.
+inline CommandResult run_rheodda(const std::string& args) {
+  return run_command(std::string(RHEODDA_BINARY) + " " + args);
 }
 
 /// Starts the rheodda binary with `args` in the background, its output discarded;

@@ -19,11 +19,7 @@
 extern char** environ;
 
 namespace rheodda::scene {
-namespace {
 
-namespace fs = std::filesystem;
-
-/// Runs `gnuplot SCRIPT`; throws std::runtime_error if it cannot start or fails.
 void run_gnuplot(const std::string& script) {
   std::string prog = "gnuplot";
   std::vector<char*> argv{prog.data(), const_cast<char*>(script.c_str()), nullptr};
@@ -36,11 +32,17 @@ void run_gnuplot(const std::string& script) {
     throw std::runtime_error(fmt::format("gnuplot failed on {}", script));
 }
 
-std::string quote(const std::string& s) {
-  std::string out = "'";
+std::string gnuplot_text(const std::string& s) {
+  std::string out;
   for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
-  return out + "'";
+  return out;
 }
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string quote(const std::string& s) { return "'" + gnuplot_text(s) + "'"; }
 
 std::string terminal(const std::string& format, int w, int h) {
   return format == "svg" ? fmt::format("set terminal svg size {},{} dynamic background rgb 'white'", w, h)

@@ -19,6 +19,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "rheodda/scene/plot.hpp"
 #include "rheodda/study/study.hpp"
 
 extern char** environ;
@@ -154,25 +155,6 @@ void write_study_csv(const StudyDescription& study, const std::vector<CaseResult
   }
 }
 
-/// Text inside a gnuplot single-quoted string ('' stands for ').
-std::string gp_text(const std::string& s) {
-  std::string q;
-  for (char ch : s) q += ch == '\'' ? std::string("''") : std::string(1, ch);
-  return q;
-}
-
-void run_gnuplot(const fs::path& gp) {
-  const std::string prog = "gnuplot";
-  std::string gps = gp.string();
-  char* argv[] = {const_cast<char*>(prog.c_str()), gps.data(), nullptr};
-  pid_t pid = 0;
-  if (posix_spawnp(&pid, "gnuplot", nullptr, nullptr, argv, environ) != 0)
-    throw std::runtime_error("cannot start gnuplot (installed by scripts/install-deps.sh)");
-  int status = 0;
-  waitpid(pid, &status, 0);
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw std::runtime_error(fmt::format("gnuplot failed on {}", gps));
-}
-
 /// study.png: the `plot` output of every case against time.
 void plot_histories(const StudyDescription& study, const std::vector<CaseResult>& results, const fs::path& out_dir) {
   const fs::path dat = out_dir / "study_plot.dat";
@@ -208,7 +190,7 @@ void plot_histories(const StudyDescription& study, const std::vector<CaseResult>
   g << "# Drawn by rheodda study: " << study.plot << " of every case against time.\n"
     << "set terminal pngcairo size 1000,650 noenhanced\n"
     << "set output '" << (out_dir / "study.png").string() << "'\n"
-    << "set title '" << gp_text(study.title) << "'\n"
+    << "set title '" << scene::gnuplot_text(study.title) << "'\n"
     << "set xlabel 'time" << (time_unit.empty() ? "" : " [" + time_unit + "]") << "'\n"
     << "set ylabel '" << study.plot << (units.empty() ? "" : " (" + units + ")") << "'\n"
     << "set grid\n";
@@ -216,10 +198,10 @@ void plot_histories(const StudyDescription& study, const std::vector<CaseResult>
   g << (titles.size() > 12 ? "set key off\n" : "set key outside right\n") << "plot ";
   for (std::size_t i = 0; i < titles.size(); ++i)
     g << (i ? ", \\\n     " : "") << "'" << dat.string() << "' index " << i << " using 1:2 with lines lw 2 title '"
-      << gp_text(titles[i]) << "'";
+      << scene::gnuplot_text(titles[i]) << "'";
   g << "\n";
   g.close();
-  run_gnuplot(gp);
+  scene::run_gnuplot(gp.string());
 }
 
 std::string param_label(const SweepParameter& p) {
@@ -317,20 +299,20 @@ std::vector<std::string> plot_sweep(const StudyDescription& study, const std::ve
       << "set terminal pngcairo size " << 560 * columns + 240 << "," << 380 * rows + 60 << " noenhanced\n"
       << "set output '" << (out_dir / "study_sweep.png").string() << "'\n"
       << "set grid\nset key outside right\n"
-      << "set multiplot layout " << rows << "," << columns << " title '" << gp_text(study.title) << "'\n";
+      << "set multiplot layout " << rows << "," << columns << " title '" << scene::gnuplot_text(study.title) << "'\n";
     std::size_t block = 0;
     for (const auto& pn : panels) {
-      g << (pn.logx ? "set logscale x\n" : "unset logscale x\n") << "set xlabel '" << gp_text(pn.xlabel) << "'\n"
-        << "set ylabel '" << gp_text(pn.ylabel) << "'\n"
+      g << (pn.logx ? "set logscale x\n" : "unset logscale x\n") << "set xlabel '" << scene::gnuplot_text(pn.xlabel) << "'\n"
+        << "set ylabel '" << scene::gnuplot_text(pn.ylabel) << "'\n"
         << (pn.curves.size() > 10 ? "set key off\n" : "set key outside right\n") << "plot ";
       for (std::size_t i = 0; i < pn.curves.size(); ++i, ++block)
         g << (i ? ", \\\n     " : "") << "'" << dat.string() << "' index " << block << " using 1:2 with "
-          << (grid ? "linespoints lw 2 pt 7" : "points pt 7") << " title '" << gp_text(pn.curves[i].title) << "'";
+          << (grid ? "linespoints lw 2 pt 7" : "points pt 7") << " title '" << scene::gnuplot_text(pn.curves[i].title) << "'";
       g << "\n";
     }
     g << "unset multiplot\n";
   }
-  run_gnuplot(gp);
+  scene::run_gnuplot(gp.string());
   files.push_back((out_dir / "study_sweep.png").string());
   if (!(grid && ps.size() == 2)) return files;
   // The map: rows of constant first parameter, separated by blank lines (gnuplot's grid format).
@@ -355,15 +337,15 @@ std::vector<std::string> plot_sweep(const StudyDescription& study, const std::ve
     g << "# Drawn by rheodda study: " << study.plot << " at t = " << last_time << " over the two swept parameters.\n"
       << "set terminal pngcairo size 900,700 noenhanced\n"
       << "set output '" << (out_dir / "study_map.png").string() << "'\n"
-      << "set title '" << gp_text(study.title) << "'\n"
+      << "set title '" << scene::gnuplot_text(study.title) << "'\n"
       << "set view map\nset pm3d corners2color mean interpolate 8,8\nset autoscale fix\n"
       << (ps[0].log_scale ? "set logscale x\n" : "") << (ps[1].log_scale ? "set logscale y\n" : "")
-      << "set xlabel '" << gp_text(param_label(ps[0])) << "'\n"
-      << "set ylabel '" << gp_text(param_label(ps[1])) << "'\n"
-      << "set cblabel '" << gp_text(study.plot + " at t = " + last_time) << "'\n"
+      << "set xlabel '" << scene::gnuplot_text(param_label(ps[0])) << "'\n"
+      << "set ylabel '" << scene::gnuplot_text(param_label(ps[1])) << "'\n"
+      << "set cblabel '" << scene::gnuplot_text(study.plot + " at t = " + last_time) << "'\n"
       << "splot '" << mdat.string() << "' using 1:2:3 with pm3d notitle, '' using 1:2:3 with points pt 7 lc rgb 'black' notitle\n";
   }
-  run_gnuplot(mgp);
+  scene::run_gnuplot(mgp.string());
   files.push_back((out_dir / "study_map.png").string());
   return files;
 }

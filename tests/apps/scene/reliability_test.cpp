@@ -491,17 +491,10 @@ BOOST_AUTO_TEST_CASE(a_run_that_will_not_fit_in_memory_is_refused_before_it_star
          "  - {name: base, rectangle: {x: -1, y: -1, width: 402, height: 1}, fixed: true}\n"
          "  - {name: w, grid: {x: 0, y: 0, width: 1, height: 0.5, columns: 400, rows: 400}}\n";
   }
-  const std::string cmd = "ulimit -v 1500000; exec " + std::string(RHEODDA_BINARY) + " run " +
-                          (d / "big.yaml").string() + " -o " + (d / "out").string() + " 2>&1";
-  std::string out;
-  FILE* p = ::popen(cmd.c_str(), "r");
-  BOOST_TEST_REQUIRE(p != nullptr);
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  const int status = ::pclose(p);
-  BOOST_TEST(WIFEXITED(status));
-  BOOST_TEST(WEXITSTATUS(status) == 1, out);
+  const auto r = run_command("ulimit -v 1500000; exec " + std::string(RHEODDA_BINARY) + " run " +
+                              (d / "big.yaml").string() + " -o " + (d / "out").string());
+  const std::string& out = r.output;
+  BOOST_TEST(r.exit_code == 1, out);
   BOOST_TEST(out.find("the run needs about 2.7 GB of memory (160001 blocks, solver amg)") != std::string::npos, out);
   BOOST_TEST(out.find("may use only") != std::string::npos, out);
   // `check` says the same before anything runs.

@@ -19,16 +19,8 @@ namespace {
 
 /// `mpirun --oversubscribe -np N rheodda ARGS` (as root, allowed through the environment ctest sets).
 CommandResult mpirun_rheodda(int ranks, const std::string& args) {
-  const std::string cmd = std::string(RHEODDA_MPIEXEC) + " --oversubscribe -np " + std::to_string(ranks) + " " +
-                          RHEODDA_BINARY + " " + args + " 2>&1";
-  CommandResult r;
-  FILE* p = ::popen(cmd.c_str(), "r");
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
-  const int status = ::pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return rheodda::test::run_command(std::string(RHEODDA_MPIEXEC) + " --oversubscribe -np " + std::to_string(ranks) + " " +
+                     RHEODDA_BINARY + " " + args);
 }
 
 /// Five cases of the sliding block; `broken` fails at its first step (a step displacement

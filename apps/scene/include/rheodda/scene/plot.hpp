@@ -12,6 +12,13 @@
 
 namespace rheodda::scene {
 
+/// Runs `gnuplot SCRIPT`; throws std::runtime_error if it cannot start or fails
+/// (every picture of the program is drawn this way: plot, study, forecast).
+void run_gnuplot(const std::string& script);
+
+/// Text inside a gnuplot single-quoted string ('' stands for ').
+std::string gnuplot_text(const std::string& s);
+
 struct PlotOptions {
   std::string out_dir;         ///< a run's output directory
   std::vector<double> times;   ///< draw the frames nearest these times [time]; empty: first, middle, last
