@@ -25,7 +25,7 @@ BOOST_AUTO_TEST_CASE(base_scene_loads_with_documented_defaults) {
   BOOST_TEST(s.analysis.output_interval == 0.01);     // duration / 100
   BOOST_TEST(s.analysis.penalty == 40.0 * 1.0e9);      // 40 x largest young_modulus
   BOOST_TEST(s.analysis.fixed_point_stiffness == 100.0 * 1.0e9);
-  BOOST_TEST(s.analysis.open_close_limit == 8);
+  BOOST_TEST(s.analysis.open_close_limit == 30);
   BOOST_TEST(s.analysis.max_cuts == 30);
   BOOST_TEST((s.materials[0].plane == scene::PlaneKind::strain));
   BOOST_TEST(s.joint_sets.size() == 2u);

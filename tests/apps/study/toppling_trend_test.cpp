@@ -1,8 +1,9 @@
 // The seed's toppling study (section 5), reduced: the Goodman slope of
 // examples/goodman-toppling.yaml run through `rheodda study` over a few days
 // instead of 100, reproduces the seed's trends (docs/toppling-study.md):
-// without creep, the slope slides far when the base friction angle is low, less
-// as it grows, and only settles elastically when it is high; with creep at phi = 50 deg the displacement of
+// without creep, the slope slides far along its base when the base friction
+// angle is low and stands on a plateau above it, where the columns' settling
+// falls gently as phi grows; with creep at phi = 50 deg the displacement of
 // blocks 1 and 10 grows with time.
 #include <boost/test/unit_test.hpp>
 
@@ -20,7 +21,12 @@ BOOST_AUTO_TEST_CASE(reduced_toppling_study_displacement_falls_with_phi_and_cree
   const fs::path dir = fresh_dir("toppling");
   const std::string scene = source_path("examples/goodman-toppling.yaml");
 
-  // Without creep (the laws removed, the joints keep E1 = 1e8 Pa/m as elastic shear stiffness).
+  // Without creep (the laws removed, the joints keep E1 = 1e8 Pa/m as elastic shear stiffness),
+  // on step controls the refinement study justifies: g2 6.25e-5 with dt 1/32 d is
+  // level L4 of scripts/refinement-goodman.sh (docs/contacts.md), where block 10
+  // agrees with level L3 within 2 % at 35 and 55 deg and 6 % at 45 deg; the
+  // shipped g2 0.0005 with dt 0.5 d is not converged (block 1 at 45 deg: 0.094 m
+  // there, 0.062 m at L4).
   const fs::path phi = dir / "phi.yaml";
   std::ofstream(phi) << "scene: " << scene << "\n"
                      << "set:\n"
@@ -29,7 +35,8 @@ BOOST_AUTO_TEST_CASE(reduced_toppling_study_displacement_falls_with_phi_and_cree
                         "  joint_sets.anti_toppling.law: ~\n"
                         "  joint_sets.anti_toppling.shear_stiffness: 1.0e8\n"
                         "  analysis.duration: 2\n"
-                        "  analysis.max_displacement_ratio: 0.0005\n"
+                        "  analysis.max_displacement_ratio: 6.25e-5\n"
+                        "  analysis.dt: 0.03125\n"
                         "outputs: [block1_top.displacement, block10_top.displacement]\n"
                         "times: [2]\n"
                         "cases:\n"
@@ -44,19 +51,26 @@ BOOST_AUTO_TEST_CASE(reduced_toppling_study_displacement_falls_with_phi_and_cree
   const auto d = [&](std::size_t i, const std::string& col) { return std::stod(rows[i].at(col + "@2")); };
   for (const std::string col : {"block1_top.displacement", "block10_top.displacement"}) {
     BOOST_TEST_CONTEXT(col) {
-      // phi = 33 deg: the slope slides along its base (metres); the displacement falls as
-      // phi grows (35 deg) to the columns' settling alone, the same within 30% at 45 and 55 deg.
+      // phi = 33 deg: the slope slides along its base (metres, 7.3 and 27 m at L4).
+      // From 35 deg on it stands: a plateau (35, 45 and 55 deg within 30 % of
+      // 45 deg; at L4 they are 16 % and 2 % apart for block 1, 11 % and 6 % for
+      // block 10) on which the displacement falls from 35 to 55 deg (by 13-18 % at
+      // L3 and L4, where the two levels differ by 0.1-2 % at 35 and 55 deg).
       BOOST_TEST(d(0, col) > 2.0);
       BOOST_TEST(d(0, col) > 10.0 * d(1, col));
-      BOOST_TEST(d(1, col) > d(2, col));
+      BOOST_TEST(std::abs(d(1, col) - d(2, col)) < 0.3 * d(2, col));
       BOOST_TEST(std::abs(d(3, col) - d(2, col)) < 0.3 * d(2, col));
+      BOOST_TEST(d(1, col) > d(3, col));
     }
   }
 
-  // With the seed's Table 3 Burgers joints at phi = 50 deg (the example as shipped, g2 = 0.0005), 20 days.
+  // With the seed's Table 3 Burgers joints at phi = 50 deg, 20 days, on level L3
+  // of the same refinement (g2 1.25e-4, dt 1/16 d): it and L4 agree within 5 %
+  // at 1, 5, 10 and 20 d. (Coarser controls do not show the trend: at g2 0.01,
+  // dt 0.5 d block 1 is at 0.73 m at 5 d and 0.19 m at 10 d.)
   const fs::path creep = dir / "creep.yaml";
   std::ofstream(creep) << "scene: " << scene << "\n"
-                       << "set: {analysis.duration: 20, analysis.max_displacement_ratio: 0.0005}\n"
+                       << "set: {analysis.duration: 20, analysis.max_displacement_ratio: 1.25e-4, analysis.dt: 0.0625}\n"
                           "outputs: [block1_top.displacement, block10_top.displacement]\n"
                           "times: [1, 5, 10, 20]\n"
                           "cases:\n"

@@ -140,7 +140,7 @@ struct Settings {
   Vec2 gravity{0.0, -9.81};      ///< body acceleration (gx, gy) [length/time^2]
   double fixed_point_stiffness = 0.0;  ///< penalty spring of fixed points [force/length];
                                        ///< 0 = automatic: 100 x the largest Young's modulus
-  int max_open_close = 8;        ///< open-close iterations before a step is cut [-]; >= 1
+  int max_open_close = 30;       ///< open-close iterations before a step is cut [-]; >= 1 (docs/contacts.md, "The wall converges when the iteration is not cut")
   SolverKind solver = SolverKind::automatic;  ///< default automatic
   double pcg_tolerance = 1.0e-10;  ///< stop of the iterative solvers (pcg, amg):
                                    ///< ||F - K D|| <= tol ||F|| [-]; > 0. 1e-10: what double
