@@ -3,8 +3,8 @@
 # "Stick and slip"): bench/scenes/stepped-toppling.yaml - the Goodman & Bray
 # toppling slope at friction 5 deg above its limit-equilibrium angle, dynamic,
 # 8 s - at dt = 5, 2, 1, 0.5, 0.25 and 0.1 ms, with Shi's rule
-# (analysis.stick_keeps_force: false, the default) and with elastic-plastic
-# joints (stick_keeps_force: true). Prints a Markdown table of the largest
+# (analysis.stick_keeps_force: false, the static default) and with elastic-plastic
+# joints (stick_keeps_force: true, the dynamic default). Prints a Markdown table of the largest
 # displacement of the 16 block tops at 8 s [mm], with the run's cuts of dt and
 # its energy-balance residual, and puts it between the refinement-stepped
 # markers of docs/contacts.md. About 1 min on 2 cores.
@@ -55,7 +55,7 @@ for line in open(sys.argv[2]):
 dts = sys.argv[3:]
 print("| joint rule | quantity | " + " | ".join(f"{float(d) * 1e3:g} ms" for d in dts) + " |")
 print("|---|---|" + "---:|" * len(dts))
-for stick, name in (("false", "Shi's (default)"), ("true", "`stick_keeps_force: true`")):
+for stick, name in (("false", "Shi's (`stick_keeps_force: false`)"), ("true", "`stick_keeps_force: true` (dynamic default)")):
     cells = []
     for d in dts:
         status = rows[stick, d][0]

@@ -400,6 +400,11 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   num("search_factor", a.search_factor, positive(""));
   num("angle_tolerance", a.angle_tolerance, {0.0, true, 45.0, false, "deg"});
   num("penetration_ratio", a.penetration_ratio, {0.0, true, 1.0, false, ""});
+  // Default by analysis type (docs/contacts.md, "Stick and slip"): in a dynamic
+  // analysis Shi's stick rule ratchets a slope that stands down its friction
+  // limit, the more the smaller dt; in a static creep analysis the kept force
+  // makes the creep run depend on dt.
+  a.stick_keeps_force = a.type == AnalysisType::dynamic_analysis;
   if (YAML::Node v = m.find("stick_keeps_force"); v.IsDefined())
     a.stick_keeps_force = flag(ctx, v, m.child("stick_keeps_force"));
   // The open-close iteration's settings (contact::ContactSettings; docs/contacts.md).

@@ -204,10 +204,15 @@ BOOST_AUTO_TEST_CASE(time_integration_reaches_the_engine_settings_and_needs_a_dy
                   7, "trapezoidal", "analysis.time_integration", "dynamic_ratio = 0 carries no velocity");
 }
 
-BOOST_AUTO_TEST_CASE(stick_keeps_force_reaches_the_contact_settings_default_off) {
+BOOST_AUTO_TEST_CASE(stick_keeps_force_reaches_the_contact_settings_default_on_only_in_dynamic_analysis) {
+  // The base scene is static: Shi's rule by default; a dynamic scene keeps the force by default.
   BOOST_TEST(!scene::build_scene(scene::parse_scene(kBaseScene, "base.yaml")).contact_settings.stick_keeps_force);
   const auto on = with("  dt: 0.01", "  dt: 0.01\n  stick_keeps_force: true");
   BOOST_TEST(scene::build_scene(scene::parse_scene(on, "on.yaml")).contact_settings.stick_keeps_force);
+  const auto dynamic = with("  dt: 0.01", "  dt: 0.01\n  type: dynamic");
+  BOOST_TEST(scene::build_scene(scene::parse_scene(dynamic, "dyn.yaml")).contact_settings.stick_keeps_force);
+  const auto dynamic_off = with("  dt: 0.01", "  dt: 0.01\n  type: dynamic\n  stick_keeps_force: false");
+  BOOST_TEST(!scene::build_scene(scene::parse_scene(dynamic_off, "off.yaml")).contact_settings.stick_keeps_force);
   expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  stick_keeps_force: sometimes"), 5, "sometimes",
                   "analysis.stick_keeps_force", "is not true or false");
 }

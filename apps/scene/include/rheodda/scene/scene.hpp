@@ -74,7 +74,8 @@ struct Analysis {
   double angle_tolerance = 3.0;        ///< angle rule tolerance [deg]
   double penetration_ratio = 1e-4;     ///< allowed penetration / half model size [-]
   bool stick_keeps_force = false;      ///< a sliding contact that sticks keeps its friction force
-                                       ///< (contact::ContactSettings::stick_keeps_force) [-]
+                                       ///< (contact::ContactSettings::stick_keeps_force) [-];
+                                       ///< the loader's default: true in a dynamic analysis
   // The open-close iteration (contact::ContactSettings fields of the same names):
   double friction_tolerance = 0.01;    ///< relative change of N that asks for one more iterate [-]
   double force_resolution = 1e-3;      ///< force resolution / largest normal force [-]
