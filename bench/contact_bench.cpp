@@ -7,7 +7,7 @@
 //   build/bench/contact_bench --solver cholmod     # one solver (default automatic:
 //                                                  # cholmod below 400 blocks, amg above)
 //   build/bench/contact_bench --solver amg --tol 1e-8  # iterative stop ||F - K D|| <= tol ||F||
-//   build/bench/contact_bench --open-close 20      # open-close iterations before a cut (default 8)
+//   build/bench/contact_bench --open-close 20      # open-close iterations before a cut (default 30)
 //   build/bench/contact_bench --penalty 10         # contact penalty in units of E (default 40)
 //   build/bench/contact_bench --glued              # cohesion and tensile strength so high that every
 //                                                  # contact stays locked: one iterate per step, the
@@ -30,7 +30,7 @@
 // end with a half brick, so the sides are straight) stands on a fixed base
 // block; gravity, friction 30 deg on every joint, E = 5 GPa, nu = 0.2 (--poisson),
 // density 2600 kg/m^3, dynamic analysis, dt = 1e-3 s, g2 w0 = 1 mm, 50 steps,
-// default open-close limit (8) and contact settings. Prints the
+// default open-close limit (30) and contact settings. Prints the
 // time of contact detection and of a full step (open-close iteration
 // included), block-steps per second, the growth exponent of the step time
 // between successive sizes, and the largest displacement after 50 steps (the
