@@ -76,6 +76,10 @@ EnergyFlows& EnergyFlows::operator+=(const EnergyFlows& o) {
   return *this;
 }
 
+double inertia_share(const EnergyFlows& f) {
+  return f.scale > 0.0 ? f.integration_inertia / f.scale : 0.0;
+}
+
 double EnergyBalance::relative_residual() const {
   const double scale = initial.total() + total.scale;
   return scale > 0.0 ? std::abs(total.residual) / scale : 0.0;

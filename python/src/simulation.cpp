@@ -90,7 +90,7 @@ class Simulation {
          {"energy_kinetic", "energy_strain", "energy_fixed", "energy_contact_normal", "energy_contact_shear",
           "work_gravity", "work_loads", "work_contact_restart", "dissipation_friction", "dissipation_creep",
           "dissipation_integration", "dissipation_contact_damping", "dissipation_contact_closing",
-          "dissipation_contact_release", "energy_residual", "energy_residual_relative"})
+          "dissipation_contact_release", "energy_residual", "energy_residual_relative", "inertia_share"})
       columns_.push_back(c);
     history_.assign(columns_.size(), {});
     record(nullptr);
@@ -467,7 +467,7 @@ class Simulation {
                            fl.work_loads, fl.work_contact_restart, fl.dissipation_friction, fl.dissipation_creep,
                            fl.dissipation_integration, fl.dissipation_contact_damping,
                            fl.dissipation_contact_closing, fl.dissipation_contact_release, fl.residual,
-                           en.relative_residual()})
+                           en.relative_residual(), core::inertia_share(en.step)})
       put(v);
   }
 

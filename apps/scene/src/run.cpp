@@ -313,7 +313,8 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
                            fl.work_gravity, fl.work_loads, fl.work_contact_restart,
                            fl.dissipation_friction, fl.dissipation_creep, fl.dissipation_integration,
                            fl.dissipation_contact_damping, fl.dissipation_contact_closing,
-                           fl.dissipation_contact_release, fl.residual, en.relative_residual()})
+                           fl.dissipation_contact_release, fl.residual, en.relative_residual(),
+                           core::inertia_share(en.step)})
       row += fmt::format(",{:.10g}", v);
     return row + '\n';
   };
@@ -326,7 +327,7 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
       ",energy_kinetic,energy_strain,energy_fixed,energy_contact_normal,energy_contact_shear,"
       "work_gravity,work_loads,work_contact_restart,dissipation_friction,dissipation_creep,"
       "dissipation_integration,dissipation_contact_damping,dissipation_contact_closing,"
-      "dissipation_contact_release,energy_residual,energy_residual_relative\n";
+      "dissipation_contact_release,energy_residual,energy_residual_relative,inertia_share\n";
 
   const std::string contacts_header =
       "time,step,id,joint_set,state,kind,vertex_block,vertex,edge_block,edge,x,y,"
@@ -543,6 +544,17 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     result.time = engine.time();
     result.cuts = result.redone = result.extrapolated = 0;
     result.max_penetration = 0.0;
+    result.mechanism = {};
+    result.mechanism.static_analysis = s.analysis.type == AnalysisType::static_analysis;
+    if (result.mechanism.static_analysis) {
+      const core::EnergyFlows& t = engine.energy().total;
+      result.mechanism.inertia_share = core::inertia_share(t);
+      for (const auto& r : engine.reports())
+        if (core::inertia_share(r.energy) > core::kMechanismStepShare) {
+          if (result.mechanism.steps++ == 0) result.mechanism.first_time = r.time;
+          result.mechanism.last_time = r.time;
+        }
+    }
     for (const auto& r : engine.reports()) {
       result.cuts += r.cuts;
       result.redone += r.rejections;
@@ -603,6 +615,17 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
                      {"scale", en.initial.total() + t.scale},
                      {"relative_residual", en.relative_residual()},
                      {"max_relative_residual", en.max_relative_residual}};
+    }
+    if (result.mechanism.static_analysis) {
+      // Mechanism motion of a static analysis (docs/engine.md, "Mechanisms in static analysis").
+      const auto& m = result.mechanism;
+      auto time_or_null = [](double t) { return std::isnan(t) ? json(nullptr) : json(t); };
+      j["static_mechanism"] = {{"inertia_share", m.inertia_share},
+                               {"steps", m.steps},
+                               {"first_time", time_or_null(m.first_time)},
+                               {"last_time", time_or_null(m.last_time)}};
+    } else {
+      j["static_mechanism"] = nullptr;
     }
     j["frames"] = result.frames;
     j["wall_seconds"] = result.wall_seconds;
@@ -782,6 +805,16 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
       result.warnings.push_back(fmt::format(
           "joint set '{}' has a creep law but none of its contacts crept (none stayed locked through a step)",
           c.joint_set));
+  if (const auto& m = result.mechanism; m.static_analysis && m.steps > 0 &&
+                                                 m.inertia_share > core::kMechanismRunShare)
+    result.warnings.push_back(fmt::format(
+        "static analysis: parts of the model moved as a mechanism in {} steps (from t = {:g} to {:g} {}): "
+        "the inertia term of the static steps took {:.1f} % of the work of gravity and loads. A static "
+        "step starts at rest and holds a mechanism (or a part whose springs are soft on the step's scale) "
+        "by its inertia term alone, so how far and how fast it moves there depends on dt and "
+        "max_displacement_ratio: check the results with both halved, or run that phase as a dynamic "
+        "analysis (docs/engine.md, \"Mechanisms in static analysis\")",
+        m.steps, m.first_time, m.last_time, s.units.time, 100.0 * m.inertia_share));
   write_summary("completed", "");
   return result;
 }

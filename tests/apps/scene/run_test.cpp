@@ -5,6 +5,7 @@
 
 #include <csignal>
 #include <cmath>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <fcntl.h>
 #include <fmt/format.h>
@@ -12,6 +13,7 @@
 #include <unistd.h>
 
 #include "../test_support.hpp"
+#include "rheodda/core/energy.hpp"
 #include "rheodda/scene/loader.hpp"
 #include "rheodda/scene/output.hpp"
 #include "rheodda/scene/run.hpp"
@@ -168,6 +170,61 @@ BOOST_AUTO_TEST_CASE(sliding_block_example_follows_the_incline_closed_form) {
   const double d = 0.5 * 9.81 * (std::sin(a) - std::cos(a) * std::tan(phi)) * t * t;  // dda.md
   BOOST_TEST(std::hypot(u, v) == d, boost::test_tools::tolerance(0.02));
   BOOST_TEST(std::atan2(-v, -u) == a, boost::test_tools::tolerance(0.01));  // along the slope, downwards
+}
+
+BOOST_AUTO_TEST_CASE(a_static_block_that_slides_is_reported_as_a_mechanism_and_one_that_stands_is_not) {
+  // docs/engine.md, "Mechanisms in static analysis": the sliding-block example in
+  // static analysis. At friction 20 deg on the 30 deg incline nothing but the
+  // inertia term of each static step holds the block: it takes the unbalanced
+  // force's work, a share (tan 30 - tan 20) / tan 30 = 0.37 of gravity's along the
+  // slope (less the normal settling); every step is a mechanism step and the run
+  // warns. At 40 deg the contact holds it: the share is that of the inertia term
+  // against the contact springs, about (2M/dt^2) / k, and no warning.
+  for (const double phi : {20.0, 40.0}) {
+    // The example as a user would change it: type, step and friction in its text.
+    std::string text = read_text(source_path("examples/sliding-block.yaml"));
+    for (const auto& [from, to] : {std::pair<std::string, std::string>{"type: dynamic", "type: static"},
+                                   {"duration: 1 ", "duration: 0.5 "},
+                                   {"dt: 0.001 ", "dt: 0.01 "},
+                                   {"friction_angle: 20,", fmt::format("friction_angle: {},", phi)}}) {
+      const auto at = text.find(from);
+      BOOST_TEST_REQUIRE(at != std::string::npos, from);
+      text.replace(at, from.size(), to);
+    }
+    const fs::path out = fresh_dir(fmt::format("static_phi{}", phi));
+    const fs::path file = out.parent_path() / fmt::format("static_phi{}.yaml", phi);
+    std::ofstream(file) << text;
+    const auto s = scene::load_scene(file.string());
+    const auto r = run(s, out);
+    BOOST_TEST_REQUIRE((r.status == scene::RunStatus::completed));
+    const auto sum = nlohmann::json::parse(read_text((out / "summary.json").string()));
+    const auto& m = sum.at("static_mechanism");
+    const Csv h = read_csv(out / "history.csv");
+    const std::size_t last = h.rows.size() - 1;
+    const double slip = std::hypot(h.at(last, "centre.u"), h.at(last, "centre.v"));
+    bool warned = false;
+    for (const auto& w : r.warnings) warned = warned || w.find("moved as a mechanism") != std::string::npos;
+    if (phi == 20.0) {
+      BOOST_TEST(slip > 1e-3);  // it slides
+      BOOST_TEST(m.at("inertia_share").get<double>() > 0.2);
+      BOOST_TEST(m.at("inertia_share").get<double>() < 0.5);
+      BOOST_TEST(m.at("steps").get<int>() == r.steps);
+      BOOST_TEST(m.at("first_time").get<double>() == s.analysis.dt, boost::test_tools::tolerance(1e-9));
+      BOOST_TEST(h.at(last, "inertia_share") > core::kMechanismStepShare);
+      BOOST_TEST(warned);
+    } else {
+      BOOST_TEST(slip < 1e-5);  // it stands
+      BOOST_TEST(m.at("inertia_share").get<double>() < core::kMechanismRunShare);
+      BOOST_TEST(m.at("steps").get<int>() == 0);
+      BOOST_TEST(m.at("first_time").is_null());
+      BOOST_TEST(!warned);
+    }
+  }
+  // A dynamic analysis has no static mechanism to report.
+  const auto d = example("sliding-block.yaml", 0.05, 0.05);
+  const fs::path out = fresh_dir("dynamic_mechanism");
+  BOOST_TEST_REQUIRE((run(d, out).status == scene::RunStatus::completed));
+  BOOST_TEST(nlohmann::json::parse(read_text((out / "summary.json").string())).at("static_mechanism").is_null());
 }
 
 BOOST_AUTO_TEST_CASE(goodman_example_runs_its_first_days_with_finite_outputs) {

@@ -73,6 +73,22 @@ struct EnergyFlows {
   EnergyFlows& operator+=(const EnergyFlows& o);
 };
 
+/// The share of a step's work of gravity and loads that its inertia term took,
+/// integration_inertia / scale [-] (0 when the step did no such work). In a static
+/// analysis (docs/engine.md, "Mechanisms in static analysis") a part that stands
+/// takes its load in springs: the share is about (2M/dt^2) d / F_g, far below 1 %.
+/// A part that moves as a mechanism is held by nothing but the inertia term
+/// 2M/dt^2 of the step: the term takes the unbalanced force's work (about half of
+/// the work on the Goodman slope while it settles), and how far the part moves is
+/// set by dt and the displacement limit, not by the model.
+double inertia_share(const EnergyFlows& f);
+
+/// A static step moved as a mechanism when its inertia_share exceeds this [-].
+inline constexpr double kMechanismStepShare = 0.1;
+/// A static run's displacements depend on its step controls when its inertia
+/// terms took more than this share of all the work of gravity and loads [-].
+inline constexpr double kMechanismRunShare = 0.01;
+
 /// The energy balance of a run.
 struct EnergyBalance {
   StoredEnergy initial;  ///< at t = 0 (the contacts store nothing before the first step)

@@ -61,6 +61,17 @@ struct RunResult {
                        ///< which the first of them failed; NaN if none [time]
   };
   std::vector<JointCreep> creep;
+  /// A static analysis's mechanism motion (docs/engine.md, "Mechanisms in static
+  /// analysis"; core::inertia_share): how much of the work of gravity and loads the
+  /// static steps' inertia terms took, and which steps moved as a mechanism.
+  struct StaticMechanism {
+    bool static_analysis = false;  ///< the scene's analysis is static (else nothing below is set)
+    double inertia_share = 0.0;    ///< all steps: integration_inertia / work of gravity and loads [-]
+    int steps = 0;                 ///< steps whose own share exceeded core::kMechanismStepShare [-]
+    double first_time = std::numeric_limits<double>::quiet_NaN();  ///< end of the first of them [time]
+    double last_time = std::numeric_limits<double>::quiet_NaN();   ///< end of the last of them [time]
+  };
+  StaticMechanism mechanism;
 };
 
 /// Runs the scene; `scene_text` is the file's text (echoed in summary.json, hashed in
