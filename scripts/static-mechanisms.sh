@@ -3,7 +3,8 @@
 # analysis"): runs every shipped static example, the sliding block in static
 # analysis at friction 20 and 40 deg, the Goodman slope without creep (base
 # 45 deg, 2 d) at two refinement levels and the toppling model of
-# examples/goodman-toppling-creep.yaml at dt 0.5, 0.25 and 0.0625 d, and prints
+# examples/goodman-toppling-creep.yaml at dt 0.5, 0.25 and 0.0625 d, the stepped
+# slope of bench/scenes/stepped-toppling.yaml in static analysis, and prints
 # summary.json's `static_mechanism` for each: the share of the work of gravity
 # and loads the static steps' inertia terms took, and the steps that moved as a
 # mechanism. Puts the table into docs/engine.md between the static-mechanisms
@@ -30,6 +31,10 @@ cases+=("Goodman slope without creep, base 45°, 2 d, g2 6.25e-5, dt 1/32 d|$(va
   "$noc; s/^  dt: .*/  dt: 0.03125/; s/^analysis:/analysis:\n  max_displacement_ratio: 6.25e-5/")")
 cases+=("Goodman slope without creep, base 45°, 2 d, g2 1.25e-4, dt 1/16 d|$(variant g3 "$ex/goodman-toppling.yaml" \
   "$noc; s/^  dt: .*/  dt: 0.0625/; s/^analysis:/analysis:\n  max_displacement_ratio: 1.25e-4/")")
+for dt in 0.01 0.0001; do
+  cases+=("bench/scenes/stepped-toppling.yaml (stands 5° above its limit), static, 2 s, dt $dt s|$(variant st$dt \
+    "$root/bench/scenes/stepped-toppling.yaml" "s/type: dynamic/type: static/; s/^  duration: .*/  duration: 2/; s/^  dt: .*/  dt: $dt/")")
+done
 for dt in 0.25 0.0625; do
   cases+=("examples/goodman-toppling-creep.yaml at dt $dt d|$(variant gc$dt "$ex/goodman-toppling-creep.yaml" "s/^  dt: .*/  dt: $dt/")")
 done

@@ -341,7 +341,9 @@ class Simulation:
 def run_study(path, out_dir, jobs=0, plot=False, rheodda_binary=None):
     """``rheodda study STUDY -o OUT_DIR -j JOBS``: runs every case (each a `rheodda run`
     process) and returns {'cases': [...], 'outputs': [...], 'times': array, 'table': dict}
-    where each case has name, status, message, exit_code, steps, wall_seconds and values
+    where each case has name, status, message, exit_code, steps, wall_seconds,
+    inertia_share (static cases: the share of the work the static steps' inertia term took;
+    None for a dynamic case) and values
     (outputs x times, NaN where not reached); out_dir/study.csv is written as by the command."""
     binary = rheodda_binary
     if binary is None:

@@ -133,6 +133,7 @@ void bind_run(py::module_& m) {
           d["exit_code"] = c.exit_code;
           d["steps"] = c.steps;
           d["wall_seconds"] = c.wall_seconds;
+          d["inertia_share"] = c.inertia_share ? py::object(py::float_(*c.inertia_share)) : py::object(py::none());
           const auto n_out = static_cast<py::ssize_t>(st.outputs.size());
           const auto n_t = static_cast<py::ssize_t>(st.times.size());
           py::array_t<double> v({n_out, n_t});

@@ -104,6 +104,8 @@ void collect(const StudyDescription& study, const fs::path& dir, CaseResult& r) 
     try {
       const auto j = nlohmann::json::parse(read_text(summary));
       r.steps = j.value("steps", 0);
+      if (j.contains("static_mechanism") && j["static_mechanism"].is_object())
+        r.inertia_share = j["static_mechanism"].value("inertia_share", 0.0);
       summary_status = j.value("status", "");
       if (j.contains("error") && j["error"].is_string()) r.message = j["error"].get<std::string>();
     } catch (const std::exception& e) {
@@ -144,14 +146,15 @@ void write_study_csv(const StudyDescription& study, const std::vector<CaseResult
   for (const auto& p : study.parameters) out << "," << p.name << " [" << p.unit << "]";
   for (const auto& o : study.outputs)
     for (double t : study.times) out << "," << csv_quote(fmt::format("{}@{:g}", o, t));
-  out << ",wall_seconds,steps,message\n";
+  out << ",wall_seconds,steps,inertia_share,message\n";
   for (std::size_t c = 0; c < results.size(); ++c) {
     const auto& r = results[c];
     out << csv_quote(r.name) << "," << r.status;
     const auto& pv = study.cases[c].parameter_values;
     for (std::size_t i = 0; i < study.parameters.size(); ++i) out << "," << (i < pv.size() ? format_value(pv[i]) : "");
     for (const auto& v : r.values) out << "," << (v ? format_value(*v) : "");
-    out << "," << fmt::format("{:.3f}", r.wall_seconds) << "," << r.steps << "," << csv_quote(r.message) << "\n";
+    out << "," << fmt::format("{:.3f}", r.wall_seconds) << "," << r.steps << ","
+        << (r.inertia_share ? format_value(*r.inertia_share) : "") << "," << csv_quote(r.message) << "\n";
   }
 }
 

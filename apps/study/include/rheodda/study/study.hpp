@@ -172,6 +172,10 @@ struct CaseResult {
   int exit_code = 0;     ///< of the child `rheodda run` (-1: killed by a signal)
   int steps = 0;         ///< accepted steps (summary.json)
   double wall_seconds = 0.0;  ///< the case process's wall time [s]
+  /// Static analyses: the share of the work of gravity and loads the static steps'
+  /// inertia term took (summary.json static_mechanism.inertia_share; docs/engine.md,
+  /// "Mechanisms in static analysis") [-]; empty for a dynamic case or without a summary.
+  std::optional<double> inertia_share;
   /// values[i * times.size() + j]: output i at times[j]; empty when the run did not reach the time.
   std::vector<std::optional<double>> values;
 };
