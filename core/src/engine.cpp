@@ -140,6 +140,13 @@ struct Engine::Impl {
   void refresh_geometry();
   void assemble_blocks(double dt, double t_end, std::vector<Mat6>& diag, Eigen::VectorXd& rhs) const;
   double max_vertex_displacement(const Eigen::VectorXd& d) const;
+  /// In the settling stage (Settings::settle_until; docs/engine.md, "Settling stage").
+  bool settling() const {
+    const double end = model.settings.settle_until;
+    return end > 0.0 && st.time < end - 1e-12 * std::max(1.0, std::abs(end));
+  }
+  /// The displacement limit g2 in force now: settle_g2 in the settling stage.
+  double g2_now() const { return settling() ? model.settings.settle_g2 : model.settings.g2; }
   void accept(const Eigen::VectorXd& d, double dt, int step_index, double t_end);
   void record_measurements(int step_index);
   StepReport step(double dt_cap);
@@ -262,6 +269,12 @@ void Engine::Impl::validate() {
   if (!(s.dt_max >= 0.0 && std::isfinite(s.dt_max)))
     throw ModelError("settings.dt_max", "must be >= 0 (time; 0 = no limit)");
   if (!(s.g2 > 0.0 && std::isfinite(s.g2))) throw ModelError("settings.g2", "must be > 0");
+  if (!(s.settle_until >= 0.0 && std::isfinite(s.settle_until)))
+    throw ModelError("settings.settle_until", "must be >= 0 (time; 0 = no settling stage)");
+  if (s.settle_until > 0.0 && !(s.settle_dt > 0.0 && std::isfinite(s.settle_dt)))
+    throw ModelError("settings.settle_dt", "must be > 0 (time) with a settling stage");
+  if (s.settle_until > 0.0 && !(s.settle_g2 > 0.0 && std::isfinite(s.settle_g2)))
+    throw ModelError("settings.settle_g2", "must be > 0 with a settling stage");
   if (!(s.dynamic_ratio >= 0.0 && s.dynamic_ratio <= 1.0))
     throw ModelError("settings.dynamic_ratio", "must be in [0, 1]");
   if (!finite(s.gravity)) throw ModelError("settings.gravity", "must be finite");
@@ -312,10 +325,10 @@ void Engine::Impl::initialise() {
     std::nth_element(sizes.begin(), sizes.begin() + static_cast<std::ptrdiff_t>(sizes.size() / 2), sizes.end());
     search_floor = kSearchFloor * sizes[sizes.size() / 2];
   }
-  search_disp = std::min(s.g2 * w0, search_floor);
   st.step = 0;
   st.time = 0.0;
-  st.next_dt = s.dt;
+  search_disp = std::min(g2_now() * w0, search_floor);
+  st.next_dt = settling() ? std::min(s.dt, s.settle_dt) : s.dt;
   solver = std::make_unique<LinearSolver>(s.solver, s.pcg_tolerance, s.pcg_max_iterations);
   D = Eigen::VectorXd::Zero(6 * static_cast<Eigen::Index>(st.blocks.size()));
   refresh_geometry();
@@ -447,10 +460,14 @@ void Engine::Impl::record_measurements(int step_index) {
 
 StepReport Engine::Impl::step(double dt_cap) {
   const Settings& s = model.settings;
-  if (s.step_tolerance > 0.0) return doubling_step(dt_cap);
+  // Settling stage (docs/engine.md, "Settling stage"): steps of at most
+  // settle_dt with g2 = settle_g2, ending on settle_until, no adaptive control.
+  const bool settle = settling();
+  if (settle) dt_cap = std::min(dt_cap, s.settle_until - st.time);
+  if (s.step_tolerance > 0.0 && !settle) return doubling_step(dt_cap);
   StepReport rep;
   rep.step = st.step;
-  const bool adaptive = s.creep_tolerance > 0.0;
+  const bool adaptive = s.creep_tolerance > 0.0 && !settle;
   double load_break = std::numeric_limits<double>::infinity();
   double failure_step = std::numeric_limits<double>::infinity();  // step that reaches a failure
   if (adaptive) {
@@ -472,7 +489,7 @@ StepReport Engine::Impl::step(double dt_cap) {
   // and the failing step's creep is not kept (the contact becomes frictional).
   if (failure_step < dt || (failure_step <= kFailureReach * dt && failure_step <= dt_cap))
     dt = failure_step;
-  const double allowed = s.g2 * w0;
+  const double allowed = g2_now() * w0;
   for (;;) {
     const Trial trial = solve_trial(dt, adaptive, rep);
     if (trial.converged && trial.max_disp <= allowed) {
@@ -511,8 +528,9 @@ StepReport Engine::Impl::step(double dt_cap) {
           next = std::min(next, s.dt);
         st.next_dt = next;
       } else if (rep.cuts > 0 || !capped) {
-        st.next_dt = std::min(s.dt, dt * s.dt_growth);
+        st.next_dt = std::min(settle ? std::min(s.dt, s.settle_dt) : s.dt, dt * s.dt_growth);
       }
+      if (settle && !settling()) st.next_dt = s.dt;  // the stage is over: the analysis's dt
       return rep;
     }
     contacts->abandon_step();
@@ -549,7 +567,7 @@ double Engine::Impl::next_adaptive_dt(double dt, double tolerance, double err,
 
 bool Engine::Impl::take(double dt, StepReport& rep, Trial& trial) {
   trial = solve_trial(dt, false, rep);
-  if (trial.converged && trial.max_disp <= model.settings.g2 * w0) {
+  if (trial.converged && trial.max_disp <= g2_now() * w0) {
     contacts->end_step(views, D);
     accept(D, dt, st.step, st.time + dt);
     return true;
@@ -710,13 +728,13 @@ Engine::Impl::Trial Engine::Impl::solve_trial(double dt, bool creep_error_wanted
     }
   }
   trial.max_disp = trial.converged ? max_vertex_displacement(D) : 0.0;
-  if (trial.converged && trial.max_disp > search_disp && search_disp < s.g2 * w0) {
+  if (trial.converged && trial.max_disp > search_disp && search_disp < g2_now() * w0) {
     // The step moved a vertex further than the contact search reached: a
     // contact beyond the search distance may have closed unseen. Redo the step
     // (same dt) with the search widened to cover the motion (docs/engine.md,
     // "Contact search reach"); beyond g2 w0 the caller cuts dt as before.
     contacts->abandon_step();
-    search_disp = std::min(s.g2 * w0, 2.0 * trial.max_disp);
+    search_disp = std::min(g2_now() * w0, 2.0 * trial.max_disp);
     ++rep.search_widenings;
     return solve_trial(dt, creep_error_wanted, rep);
   }
@@ -727,7 +745,7 @@ double Engine::Impl::search_reach(const Eigen::VectorXd& d) const {
   // After an accepted step with displacements d: twice its largest vertex
   // displacement, not below the floor, never beyond g2 w0 (Shi's reach,
   // search_factor x g2 w0).
-  return std::min(model.settings.g2 * w0, std::max(search_floor, 2.0 * max_vertex_displacement(d)));
+  return std::min(g2_now() * w0, std::max(search_floor, 2.0 * max_vertex_displacement(d)));
 }
 
 void Engine::Impl::cut(double& dt, const Trial& trial, StepReport& rep) const {
@@ -741,7 +759,7 @@ void Engine::Impl::cut(double& dt, const Trial& trial, StepReport& rep) const {
     throw std::runtime_error(
         "step " + std::to_string(st.step) + " at time " + std::to_string(st.time) + ": " +
         (trial.converged ? "displacement " + std::to_string(trial.max_disp) +
-                               " exceeds g2 * w0 = " + std::to_string(s.g2 * w0)
+                               " exceeds g2 * w0 = " + std::to_string(g2_now() * w0)
                          : "open-close iteration did not converge" + last_changes(trial.check)) +
         " after " + std::to_string(rep.cuts) + " cuts of dt (settings.max_cuts)");
   dt *= s.dt_cut;
@@ -796,7 +814,7 @@ int Engine::block_count() const { return static_cast<int>(impl_->st.blocks.size(
 int Engine::step_count() const { return impl_->st.step; }
 double Engine::time() const { return impl_->st.time; }
 double Engine::half_model_size() const { return impl_->w0; }
-double Engine::allowed_displacement() const { return impl_->model.settings.g2 * impl_->w0; }
+double Engine::allowed_displacement() const { return impl_->g2_now() * impl_->w0; }
 const BlockState& Engine::block(int b) const { return impl_->st.blocks.at(b); }
 std::span<const Vec2> Engine::vertices(int b) const { return impl_->st.blocks.at(b).vertices; }
 Vec2 Engine::centroid(int b) const { return impl_->st.blocks.at(b).centroid; }

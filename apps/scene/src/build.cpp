@@ -121,6 +121,11 @@ BuiltScene build_scene(const SceneDescription& s) {
   st.gravity = {a.gravity[0], a.gravity[1]};
   st.fixed_point_stiffness = a.fixed_point_stiffness;
   st.max_open_close = a.open_close_limit;
+  if (a.settle) {  // docs/engine.md, "Settling stage"
+    st.settle_until = a.settle->until;
+    st.settle_dt = a.settle->dt;
+    st.settle_g2 = a.settle->max_displacement_ratio;
+  }
   switch (a.solver) {
     case SolverKind::automatic: st.solver = core::SolverKind::automatic; break;
     case SolverKind::cholmod: st.solver = core::SolverKind::cholmod; break;

@@ -63,13 +63,14 @@ const std::vector<std::string> top{"title", "units", "analysis", "materials", "j
                                    "blocks", "rock_mass", "fixed_points", "loads", "measurement_points"};
 const std::vector<std::string> units{"length", "force", "time"};
 const std::vector<std::string> analysis{
-    "type", "duration", "dt", "dt_growth", "dt_cut", "max_cuts", "max_displacement_ratio",
+    "type", "duration", "dt", "dt_growth", "dt_cut", "max_cuts", "max_displacement_ratio", "settle",
     "dynamic_ratio", "time_integration", "scheme", "creep_tolerance", "step_tolerance",
     "step_extrapolation", "dt_max", "creep_restart_on_contact_change", "penalty",
     "shear_normal_ratio", "search_factor", "angle_tolerance", "penetration_ratio",
     "stick_keeps_force", "friction_tolerance", "force_resolution", "max_flips", "max_refinements",
     "penalty_raise", "penalty_max_factor", "open_close_limit", "fixed_point_stiffness", "solver", "solver_tolerance",
     "solver_max_iterations", "output_interval", "max_travel_ratio", "max_output_size", "gravity"};
+const std::vector<std::string> settle{"until", "dt", "max_displacement_ratio"};
 const std::vector<std::string> material{"density", "young_modulus", "poisson_ratio", "plane"};
 const std::vector<std::string> joint_set{"friction_angle", "cohesion", "tensile_strength",
                                          "normal_stiffness", "shear_stiffness", "law", "record"};
@@ -334,6 +335,26 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
     a.max_cuts = integer(ctx, v, m.child("max_cuts"), 0, 200);
   num("dt_cut", a.dt_cut, {0.0, true, 1.0, true, ""});
   num("max_displacement_ratio", a.max_displacement_ratio, {0.0, true, 1.0, false, ""});
+  if (YAML::Node v = m.find("settle"); v.IsDefined()) {
+    // The settling stage (docs/engine.md, "Settling stage").
+    MapReader sm(ctx, v, m.child("settle"), keys::settle);
+    Analysis::Settle st;
+    YAML::Node until = sm.required("until", "end of the settling stage [time]");
+    st.until = number(ctx, until, sm.child("until"), positive("time"));
+    if (st.until >= a.duration)
+      ctx.fail(until, sm.child("until"),
+               fmt::format("the settling stage ends at {:g}, not before the analysis does (duration = {:g})",
+                           st.until, a.duration));
+    YAML::Node sdt = sm.required("dt", "largest step of the settling stage [time]");
+    st.dt = number(ctx, sdt, sm.child("dt"), positive("time"));
+    if (st.dt > st.until)
+      ctx.fail(sdt, sm.child("dt"),
+               fmt::format("dt = {:g} is longer than the settling stage (until = {:g})", st.dt, st.until));
+    st.max_displacement_ratio = a.max_displacement_ratio;
+    if (YAML::Node g = sm.find("max_displacement_ratio"); g.IsDefined())
+      st.max_displacement_ratio = number(ctx, g, sm.child("max_displacement_ratio"), {0.0, true, 1.0, false, ""});
+    a.settle = st;
+  }
   a.dynamic_ratio = a.type == AnalysisType::dynamic_analysis ? 1.0 : 0.0;
   if (YAML::Node v = m.find("dynamic_ratio"); v.IsDefined()) {
     if (a.type == AnalysisType::static_analysis)
@@ -1109,6 +1130,7 @@ const std::vector<SceneMapKeys>& scene_schema() {
       {"", keys::top},
       {"units", keys::units},
       {"analysis", keys::analysis},
+      {"analysis.settle", keys::settle},
       {"materials.*", keys::material},
       {"joint_sets.*", keys::joint_set},
       {"joint_sets.*.law", keys::law},

@@ -51,6 +51,10 @@ json scene_json(const SceneDescription& s) {
                    {"dt_max", a.dt_max},
                    {"creep_restart_on_contact_change", a.creep_restart_on_contact_change},
                    {"max_displacement_ratio", a.max_displacement_ratio},
+                   {"settle", a.settle ? json{{"until", a.settle->until},
+                                              {"dt", a.settle->dt},
+                                              {"max_displacement_ratio", a.settle->max_displacement_ratio}}
+                                       : json(nullptr)},
                    {"dynamic_ratio", a.dynamic_ratio},
                    {"time_integration", time_integration_name(a.time_integration)},
                    {"scheme", scheme_text(a)},

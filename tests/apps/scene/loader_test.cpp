@@ -131,6 +131,32 @@ BOOST_AUTO_TEST_CASE(creep_tolerance_and_dt_max_reach_the_engine_settings_and_ne
                   "out of range");
 }
 
+BOOST_AUTO_TEST_CASE(a_settling_stage_reaches_the_engine_settings_and_bad_ones_are_refused) {
+  // docs/engine.md, "Settling stage".
+  const auto text = with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, max_displacement_ratio: 0.0005}");
+  const scene::SceneDescription s = scene::parse_scene(text, "settle.yaml");
+  BOOST_TEST_REQUIRE(s.analysis.settle.has_value());
+  BOOST_TEST(s.analysis.settle->until == 0.1);
+  BOOST_TEST(s.analysis.settle->dt == 0.001);
+  BOOST_TEST(s.analysis.settle->max_displacement_ratio == 0.0005);
+  const scene::BuiltScene built = scene::build_scene(s);
+  BOOST_TEST(built.model.settings.settle_until == 0.1);
+  BOOST_TEST(built.model.settings.settle_dt == 0.001);
+  BOOST_TEST(built.model.settings.settle_g2 == 0.0005);
+  // Its g2 defaults to the analysis's; no stage by default.
+  BOOST_TEST(scene::parse_scene(with("  dt: 0.01", "  dt: 0.01\n  max_displacement_ratio: 0.002\n"
+                                                   "  settle: {until: 0.1, dt: 0.001}"), "d.yaml")
+                 .analysis.settle->max_displacement_ratio == 0.002);
+  BOOST_TEST(scene::build_scene(scene::parse_scene(kBaseScene, "base.yaml")).model.settings.settle_until == 0.0);
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 1, dt: 0.001}"), 5, "1,",
+                  "analysis.settle.until", "not before the analysis does");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.5}"), 5, "0.5",
+                  "analysis.settle.dt", "longer than the settling stage");
+  expect_error(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1}"), 5, 0, "analysis.settle.dt", "required");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, max_displacement_ratio: 0}"), 5,
+                  "0}", "analysis.settle.max_displacement_ratio", "out of range");
+}
+
 BOOST_AUTO_TEST_CASE(step_tolerance_and_step_extrapolation_reach_the_engine_settings_and_bad_values_are_refused) {
   const auto text = with("  dt: 0.01", "  dt: 0.01\n  step_tolerance: 1.0e-4\n  step_extrapolation: false\n"
                                        "  dt_max: 0.5");

@@ -196,6 +196,7 @@ BOOST_AUTO_TEST_CASE(the_schema_is_the_list_each_map_refuses_unknown_keys_with) 
       {"", "bogus_key: 1\n" + kBaseScene},
       {"units", with("units: {length: m,", "units: {bogus_key: 1, length: m,")},
       {"analysis", with("  duration: 1\n", "  bogus_key: 1\n  duration: 1\n")},
+      {"analysis.settle", with("  duration: 1\n", "  duration: 1\n  settle: {bogus_key: 1, until: 0.1, dt: 0.01}\n")},
       {"materials.*", with("rock: {density", "rock: {bogus_key: 1, density")},
       {"joint_sets.*", with("bedding: {friction_angle: 30}", "bedding: {bogus_key: 1, friction_angle: 30}")},
       {"joint_sets.*.law", with("{name: burgers,", "{name: burgers, bogus_key: 1,")},

@@ -134,6 +134,13 @@ struct Settings {
   int max_cuts = 30;             ///< cuts allowed in one step before the engine gives up [-]; >= 0
   double g2 = 0.01;              ///< allowed displacement per step as a fraction of the half
                                  ///< model size (Shi's g2) [-]; > 0
+  /// Settling stage (docs/engine.md, "Settling stage"): until this time the
+  /// steps are at most settle_dt, with the displacement limit settle_g2 and
+  /// without the adaptive controls; from it on, dt and g2 (the next step
+  /// starts at dt) [time]; 0 = no settling stage; >= 0
+  double settle_until = 0.0;
+  double settle_dt = 0.0;        ///< largest step of the settling stage [time]; > 0 with settle_until
+  double settle_g2 = 0.0;        ///< g2 of the settling stage [-]; > 0 with settle_until
   double dynamic_ratio = 1.0;    ///< share of the velocity carried to the next step [-], in [0, 1];
                                  ///< 0 = static analysis (no velocities at all), 1 = fully dynamic
   TimeIntegration time_integration = TimeIntegration::shi;  ///< default shi

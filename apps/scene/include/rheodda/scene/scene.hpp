@@ -52,6 +52,15 @@ struct Analysis {
   double dt_cut = 0.3;                 ///< factor on the step when a step is cut [-]; in (0, 1)
   int max_cuts = 30;                   ///< cuts of dt (x dt_cut each) allowed in one step before the run fails [-]
   double max_displacement_ratio = 0.01;  ///< g2: allowed step displacement / half model size [-]
+  /// `settle: {until, dt, max_displacement_ratio}`: a settling stage at the start
+  /// (docs/engine.md, "Settling stage"): steps of at most `dt` with the displacement
+  /// limit `max_displacement_ratio` until `until`, then the analysis's own.
+  struct Settle {
+    double until = 0.0;                   ///< end of the stage [time]; > 0, < duration
+    double dt = 0.0;                      ///< largest step in it [time]; > 0, <= until
+    double max_displacement_ratio = 0.0;  ///< its g2 [-]; default the analysis's
+  };
+  std::optional<Settle> settle;
   double dynamic_ratio = 0.0;          ///< share of velocity carried to the next step [-]; default 1 dynamic, 0 static
   /// Inertia terms `time_integration: shi|trapezoidal` (docs/engine.md); trapezoidal needs
   /// a dynamic analysis with dynamic_ratio > 0.
