@@ -4,7 +4,8 @@
 // - contact terms given through the SystemSink couple blocks, and CHOLMOD and
 //   PCG runs of the same coupled model agree;
 // - a step whose displacement exceeds g2 * w0 is cut and redone, and dt grows
-//   back afterwards.
+//   back afterwards;
+// - a settling stage (Settings::settle_*) takes its own steps and limit, then hands over.
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
@@ -203,6 +204,45 @@ BOOST_AUTO_TEST_CASE(a_step_that_cannot_be_made_small_enough_throws_after_max_cu
   BOOST_CHECK_THROW(e.step(), std::runtime_error);
   BOOST_TEST(e.step_count() == 0);
   BOOST_TEST(e.centroid(0).y() == 0.5);
+}
+
+BOOST_AUTO_TEST_CASE(a_settling_stage_takes_its_own_steps_and_limit_then_hands_over) {
+  // docs/engine.md, "Settling stage": a falling 1 m square (w0 = 0.5 m). Until
+  // t = 0.03 the steps are at most 0.01 with g2 = 0.01 (5 mm; the 0.01 steps fall
+  // less, so none is cut), the stage's last step ends on 0.03; then dt = 0.05 and
+  // g2 = 1 (no limit here) apply, the first step after the stage at 0.05.
+  Model m;
+  m.settings.dt = 0.05;
+  m.settings.g2 = 1.0;
+  m.settings.settle_until = 0.03;
+  m.settings.settle_dt = 0.01;
+  m.settings.settle_g2 = 0.01;
+  m.blocks.push_back(block({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));
+  Engine e(m);
+  BOOST_TEST(e.allowed_displacement() == 0.005, boost::test_tools::tolerance(1e-15));
+  for (int k = 0; k < 3; ++k) {
+    const StepReport r = e.step();
+    BOOST_TEST(r.dt == 0.01, boost::test_tools::tolerance(1e-12));
+    BOOST_TEST(r.cuts == 0);
+  }
+  BOOST_TEST(e.time() == 0.03, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(e.allowed_displacement() == 0.5, boost::test_tools::tolerance(1e-15));  // g2 = 1 now
+  const StepReport after = e.step();
+  BOOST_TEST(after.dt == 0.05, boost::test_tools::tolerance(1e-12));
+  // A static analysis (no carried velocity) would fall g dt^2/2 per step; this
+  // one is dynamic: free fall is exact through the hand-over.
+  BOOST_TEST(e.centroid(0).y() == 0.5 - 0.5 * 9.81 * 0.08 * 0.08, boost::test_tools::tolerance(1e-12));
+  // The stage's limit cuts its steps as g2 does: settle_g2 1e-4 (0.05 mm).
+  Model tight = m;
+  tight.settings.settle_g2 = 1e-4;
+  Engine t(tight);
+  const StepReport r = t.step();
+  BOOST_TEST(r.cuts > 0);
+  BOOST_TEST(r.max_displacement <= 0.5e-4 * (1.0 + 1e-12));
+  // Bad stage settings name their key.
+  Model bad = m;
+  bad.settings.settle_dt = 0.0;
+  BOOST_CHECK_EXCEPTION(Engine{bad}, ModelError, [](const ModelError& x) { return x.key() == "settings.settle_dt"; });
 }
 
 BOOST_AUTO_TEST_CASE(observers_see_every_accepted_step) {
