@@ -81,13 +81,29 @@ class Tracer final : public core::ContactModel {
 
 }  // namespace
 
+int trace(int argc, char** argv);
+
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr,
-                 "usage: scene_trace SCENE.yaml [--steps N] [--from S] [--to S] [--contacts] "
-                 "[--dt DT] [--duration T] [--summary]\n");
+  const char* usage =
+      "usage: scene_trace SCENE.yaml [--steps N] [--from S] [--to S] [--contacts] "
+      "[--dt DT] [--duration T] [--summary]\n";
+  if (argc >= 2 && (!std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h"))) {
+    std::printf("%s", usage);
+    return 0;
+  }
+  if (argc < 2 || argv[1][0] == '-') {
+    std::fprintf(stderr, "%s", usage);
     return 2;
   }
+  try {
+    return trace(argc, argv);
+  } catch (const std::exception& e) {  // a refused scene (file:line:column: key: message) or a failed step
+    std::fprintf(stderr, "scene_trace: %s\n", e.what());
+    return 1;
+  }
+}
+
+int trace(int argc, char** argv) {
   int steps = -1;
   double dt = 0.0, duration = 0.0;
   bool summary = false;
