@@ -136,6 +136,27 @@ BOOST_AUTO_TEST_CASE(rheodda_study_exits_2_on_a_bad_study_and_runs_nothing) {
   BOOST_TEST(run_rheodda("study " + (dir / "missing.yaml").string()).exit_code == 2);
 }
 
+BOOST_AUTO_TEST_CASE(every_shipped_study_loads_and_each_of_its_cases_is_a_valid_scene) {
+  // examples/studies/*.yaml: what docs/studies.md tells users to run (the folder also
+  // holds forecast-slope.yaml, a scene for `rheodda forecast`: no `scene:` line).
+  int studies = 0;
+  for (const auto& e : fs::directory_iterator(source_path("examples/studies"))) {
+    if (e.path().extension() != ".yaml") continue;
+    const std::string text = read_text(e.path().string());
+    if (text.find("\nscene: ") == std::string::npos) continue;
+    BOOST_TEST_CONTEXT(e.path().filename().string()) {
+      ++studies;
+      const auto s = st::load_study(e.path().string());
+      const auto texts = st::prepare_cases(s);
+      BOOST_TEST_REQUIRE(texts.size() == s.cases.size());
+      BOOST_TEST(!texts.empty());
+      for (std::size_t k = 0; k < texts.size(); ++k)
+        BOOST_CHECK_NO_THROW((void)rheodda::scene::parse_scene(texts[k], "case " + s.cases[k].name));
+    }
+  }
+  BOOST_TEST(studies >= 4);
+}
+
 BOOST_AUTO_TEST_CASE(a_case_scene_is_titled_by_the_base_title_and_the_case_changes) {
   // The shipped phi sweep: every case removes the base's Burgers laws, so its title must not
   // be the base scene's "...with Burgers creep on its joints (phi = 50 deg)" alone.
