@@ -6,6 +6,7 @@
 // run stops after its current step exactly as `rheodda run` does on SIGINT
 // (files consistent, checkpoint.json written, resumable with resume=True), and
 // KeyboardInterrupt is raised once the worker has finished.
+#include <cmath>
 #include <rheodda/scene/run.hpp>
 #include <rheodda/study/study.hpp>
 
@@ -103,6 +104,19 @@ void bind_run(py::module_& m) {
         d["wall_seconds"] = r.wall_seconds;
         d["resumed_from_step"] = r.resumed_from_step;
         d["warnings"] = r.warnings;
+        // summary.json's static_mechanism (docs/engine.md, "Mechanisms in static analysis"); None if dynamic.
+        if (r.mechanism.static_analysis) {
+          py::dict m;
+          m["inertia_share"] = r.mechanism.inertia_share;
+          m["steps"] = r.mechanism.steps;
+          m["first_time"] = std::isnan(r.mechanism.first_time) ? py::object(py::none())
+                                                                : py::object(py::float_(r.mechanism.first_time));
+          m["last_time"] = std::isnan(r.mechanism.last_time) ? py::object(py::none())
+                                                              : py::object(py::float_(r.mechanism.last_time));
+          d["static_mechanism"] = m;
+        } else {
+          d["static_mechanism"] = py::none();
+        }
         d["out_dir"] = out_dir;
         return d;
       },

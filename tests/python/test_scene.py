@@ -2,6 +2,7 @@
 changes loads, law parameters and step settings, the state as numpy arrays,
 run() equals `rheodda run`, errors carry the command's messages, Ctrl-C."""
 import copy
+import json
 import os
 import signal
 import subprocess
@@ -60,6 +61,10 @@ def test_history_equals_rheodda_run(tmp_path):
     yaml_scene = rheodda.scene_from_dict(few_frames)
     result = rheodda.run(yaml_scene, str(tmp_path / "out"))
     assert result["status"] == "completed" and result["steps"] == 200
+    # a static creep test that stands: summary.json's static_mechanism, no mechanism step
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert result["static_mechanism"] == summary["static_mechanism"]
+    assert result["static_mechanism"]["steps"] == 0 and result["static_mechanism"]["inertia_share"] < 0.01
     lines = [l for l in (tmp_path / "out" / "history.csv").read_text().splitlines() if not l.startswith("#")]
     header = lines[0].split(",")
     rows = [l.split(",") for l in lines[1:]]
