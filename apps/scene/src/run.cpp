@@ -555,7 +555,10 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
       result.mechanism.inertia_share = core::inertia_share(t);
       for (const auto& r : engine.reports())
         if (core::inertia_share(r.energy) > core::kMechanismStepShare) {
-          if (result.mechanism.steps++ == 0) result.mechanism.first_time = r.time;
+          if (result.mechanism.steps++ == 0) {
+            result.mechanism.first_time = r.time;
+            result.mechanism.first_step = r.step;
+          }
           result.mechanism.last_time = r.time;
         }
     }
@@ -817,8 +820,14 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
         "step starts at rest and holds a mechanism (or a part whose springs are soft on the step's scale) "
         "by its inertia term alone, so how far and how fast it moves there depends on dt and "
         "max_displacement_ratio: check the results with both halved, or run that phase as a dynamic "
-        "analysis (docs/engine.md, \"Mechanisms in static analysis\")",
-        m.steps, m.first_time, m.last_time, s.units.time, 100.0 * m.inertia_share));
+        "analysis (docs/engine.md, \"Mechanisms in static analysis\"){}",
+        m.steps, m.first_time, m.last_time, s.units.time, 100.0 * m.inertia_share,
+        // Settling under gravity applied at once: the usual case, with its remedy.
+        m.first_step >= 0 && m.first_step < 10 && !s.analysis.settle
+            ? ". It began in the first steps: where that is the model settling as gravity comes on, a "
+              "settling stage (analysis.settle, docs/engine.md \"Settling stage\") makes every run start "
+              "from the same settled state"
+            : ""));
   write_summary("completed", "");
   return result;
 }

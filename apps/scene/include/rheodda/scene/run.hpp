@@ -69,6 +69,7 @@ struct RunResult {
     double inertia_share = 0.0;    ///< all steps: integration_inertia / work of gravity and loads [-]
     int steps = 0;                 ///< steps whose own share exceeded core::kMechanismStepShare [-]
     double first_time = std::numeric_limits<double>::quiet_NaN();  ///< end of the first of them [time]
+    int first_step = -1;           ///< index of the first of them (-1: none) [-]
     double last_time = std::numeric_limits<double>::quiet_NaN();   ///< end of the last of them [time]
   };
   StaticMechanism mechanism;
