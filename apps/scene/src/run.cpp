@@ -548,25 +548,22 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     result.time = engine.time();
     result.cuts = result.redone = result.extrapolated = 0;
     result.max_penetration = 0.0;
-    result.mechanism = {};
-    result.mechanism.static_analysis = s.analysis.type == AnalysisType::static_analysis;
-    if (result.mechanism.static_analysis) {
-      const core::EnergyFlows& t = engine.energy().total;
-      result.mechanism.inertia_share = core::inertia_share(t);
-      for (const auto& r : engine.reports())
-        if (core::inertia_share(r.energy) > core::kMechanismStepShare) {
-          if (result.mechanism.steps++ == 0) {
-            result.mechanism.first_time = r.time;
-            result.mechanism.first_step = r.step;
-          }
-          result.mechanism.last_time = r.time;
-        }
-    }
+    auto& mech = result.mechanism;
+    mech = {};
+    mech.static_analysis = s.analysis.type == AnalysisType::static_analysis;
+    if (mech.static_analysis) mech.inertia_share = core::inertia_share(engine.energy().total);
     for (const auto& r : engine.reports()) {
       result.cuts += r.cuts;
       result.redone += r.rejections;
       result.extrapolated += r.extrapolated ? 1 : 0;
       result.max_penetration = std::max(result.max_penetration, r.max_penetration);
+      if (mech.static_analysis && core::inertia_share(r.energy) > core::kMechanismStepShare) {
+        if (mech.steps++ == 0) {
+          mech.first_time = r.time;
+          mech.first_step = r.step;
+        }
+        mech.last_time = r.time;
+      }
     }
     result.frames = frames_done;
     result.wall_seconds = earlier_wall + std::chrono::duration<double>(Clock::now() - wall_start).count();
