@@ -24,9 +24,13 @@ inline void on_stop_signals(void (*handler)(int)) {
 }
 
 /// Exit codes: 0 success, 1 run-time failure, 2 bad input (arguments, files, parameters),
+/// 3 step controls too coarse (check --refine),
 /// 128 + N a run stopped by signal N. `rheodda --help` lists them (kExitCodesHelp).
 inline constexpr int kExitFailure = 1;
 inline constexpr int kExitBadInput = 2;
+/// `rheodda check --refine`: the scene's step controls are coarser than the tolerance,
+/// or its refinement did not converge (docs/speed-accuracy.md).
+inline constexpr int kExitStepControls = 3;
 
 /// The exit codes as `rheodda --help` prints them; each line says where the code comes from.
 inline constexpr const char* kExitCodesHelp =
@@ -37,6 +41,8 @@ inline constexpr const char* kExitCodesHelp =
     "  2      bad input: command-line arguments, a file that cannot be opened, a scene, study\n"
     "         or data file refused (file:line:column: key: message), law parameters,\n"
     "         a directory that holds no run (plot), --resume on another scene\n"
+    "  3      check --refine: the scene's step controls are coarser than the tolerance,\n"
+    "         or its refinement study does not converge\n"
     "  128+N  a run stopped by signal N between two steps (130: Ctrl-C, 143: kill);\n"
     "         continue it with `rheodda run SCENE -o OUTDIR --resume`";
 
@@ -50,7 +56,11 @@ inline void require_readable(const std::string& path) {
 /// `rheodda law list`, `rheodda law curve`.
 void add_law_commands(CLI::App& app);
 
-/// `rheodda check`, `rheodda run`, `rheodda plot` (apps/run_commands.cpp).
+/// `rheodda check` (apps/check_command.cpp): a scene validated and described; with
+/// --refine, its step controls measured by a refinement study.
+void add_check_command(CLI::App& app);
+
+/// `rheodda run`, `rheodda plot` (apps/run_commands.cpp).
 void add_scene_commands(CLI::App& app);
 
 /// `rheodda fit`: fit laws to laboratory creep curves (apps/fit_command.cpp).

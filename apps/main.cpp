@@ -2,6 +2,7 @@
 // Sample runs:
 //   rheodda --version
 //   rheodda law list
+//   rheodda check examples/goodman-toppling-creep.yaml --refine -j 2
 //   rheodda generate examples/rockmass/jointed-slope.yaml -o out/jointed-slope-explicit.yaml
 //   rheodda law curve burgers --param E1=26.87 --param E2=192.43 --param eta1=34807.72
 //       --param eta2=2141.23 --force 0:0.232 --t-end 200 --dt 1
@@ -21,6 +22,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", rheodda::kProgramVersion, "Print the version (rheodda X.Y.Z) and exit");
   app.footer(rheodda::apps::kExitCodesHelp);
   rheodda::apps::add_law_commands(app);
+  rheodda::apps::add_check_command(app);
   rheodda::apps::add_scene_commands(app);
   rheodda::apps::add_fit_command(app);
   rheodda::apps::add_study_command(app);

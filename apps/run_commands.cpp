@@ -1,6 +1,5 @@
-// `rheodda check`, `rheodda run`, `rheodda plot`: scenes from YAML files.
+// `rheodda run`, `rheodda plot`: scenes from YAML files (`rheodda check`: check_command.cpp).
 // Sample runs:
-//   rheodda check examples/shear-creep-test.yaml
 //   rheodda run examples/shear-creep-test.yaml -o out/shear-creep
 //   rheodda plot out/shear-creep
 #include <fmt/format.h>
@@ -78,17 +77,6 @@ void run_command(const RunArgs& args) {
 }  // namespace
 
 void add_scene_commands(CLI::App& app) {
-  auto file = std::make_shared<std::string>();
-  auto* check = app.add_subcommand(
-      "check", "Validate a scene file and print what will be modelled, without running it");
-  check->add_option("SCENE", *file, "Scene file (YAML, docs/scene-format.md)")->required();
-  check->callback([file] {
-    require_readable(*file);
-    const scene::SceneDescription s = scene::load_scene(*file);
-    fmt::print("{}", scene::describe_scene(s));
-    fmt::print("scene OK\n");
-  });
-
   auto args = std::make_shared<RunArgs>();
   auto* run = app.add_subcommand("run", "Run a scene; outputs go to OUTDIR (docs/outputs.md)");
   run->add_option("SCENE", args->scene, "Scene file (YAML, docs/scene-format.md)")->required();

@@ -327,11 +327,8 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
   for (int j : recorded)
     history_header += fmt::format(",{0}.contacts,{0}.shear_displacement,{0}.shear_force,{0}.shear_displacement_magnitude",
                                   s.joint_sets[j].name);
-  history_header +=
-      ",energy_kinetic,energy_strain,energy_fixed,energy_contact_normal,energy_contact_shear,"
-      "work_gravity,work_loads,work_contact_restart,dissipation_friction,dissipation_creep,"
-      "dissipation_integration,dissipation_contact_damping,dissipation_contact_closing,"
-      "dissipation_contact_release,energy_residual,energy_residual_relative,inertia_share\n";
+  for (const char* column : kHistoryEnergyColumns) history_header += fmt::format(",{}", column);
+  history_header += '\n';
 
   const std::string contacts_header =
       "time,step,id,joint_set,state,kind,vertex_block,vertex,edge_block,edge,x,y,"

@@ -14,6 +14,7 @@
 
 #include "rheodda/scene/loader.hpp"
 #include "rheodda/study/study.hpp"
+#include "rheodda/scene/output.hpp"
 
 namespace rheodda::study {
 namespace fs = std::filesystem;
@@ -178,6 +179,7 @@ std::set<std::string> history_columns(const scene::SceneDescription& s) {
     if (j.record)
       for (const char* f : {".contacts", ".shear_displacement", ".shear_force", ".shear_displacement_magnitude"})
         c.insert(j.name + f);
+  c.insert(scene::kHistoryEnergyColumns.begin(), scene::kHistoryEnergyColumns.end());
   return c;
 }
 

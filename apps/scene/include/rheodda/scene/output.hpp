@@ -12,6 +12,17 @@
 
 namespace rheodda::scene {
 
+/// The energy-balance columns that end every history.csv row, in order (docs/outputs.md;
+/// docs/engine.md, "Energy balance"): stored energies now, flows since t = 0, the
+/// residual and the step's inertia share.
+inline constexpr std::array<const char*, 17> kHistoryEnergyColumns{
+    "energy_kinetic",          "energy_strain",           "energy_fixed",
+    "energy_contact_normal",   "energy_contact_shear",    "work_gravity",
+    "work_loads",              "work_contact_restart",    "dissipation_friction",
+    "dissipation_creep",       "dissipation_integration", "dissipation_contact_damping",
+    "dissipation_contact_closing", "dissipation_contact_release", "energy_residual",
+    "energy_residual_relative", "inertia_share"};
+
 /// Writes `content` to `path` through `path + ".tmp"` and a rename, so that a reader
 /// (or a run killed at any moment) sees either the old or the new content. With
 /// `durable`, the file is also flushed to disk (fsync) before the rename and the rename

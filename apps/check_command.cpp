@@ -1,0 +1,131 @@
+// `rheodda check`: a scene validated and described without running it; with --refine,
+// its step controls measured: the scene run at them and with each of them halved,
+// level after level, as the parallel cases of a study (rheodda/study/refinement.hpp,
+// docs/speed-accuracy.md "Checking a scene's step controls").
+// Sample runs:
+//   rheodda check examples/shear-creep-test.yaml
+//   rheodda check examples/goodman-toppling-creep.yaml --refine -j 2
+//   rheodda check examples/sliding-block.yaml --refine=5 --until 0.5 -o out/sliding-refine
+#include <fmt/format.h>
+
+#include <csignal>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "rheodda/scene/describe.hpp"
+#include "rheodda/scene/loader.hpp"
+#include "rheodda/scene/output.hpp"
+#include "rheodda/study/refinement.hpp"
+
+namespace rheodda::apps {
+namespace {
+
+volatile std::sig_atomic_t g_check_stop = 0;
+extern "C" void on_check_stop(int signo) { g_check_stop = signo; }
+
+struct CheckArgs {
+  std::string scene;
+  int levels = 0;  ///< --refine: levels of the refinement study (0: no refinement)
+  std::string out;
+  int jobs = 0;
+  double until = 0.0;
+  double tolerance = 0.05;
+};
+
+void refine(const CheckArgs& args) {
+  study::RefinementOptions o;
+  o.levels = args.levels;
+  if (args.until > 0.0) o.until = args.until;
+  o.tolerance = args.tolerance;
+  const std::string out_dir =
+      args.out.empty() ? (std::filesystem::path("out") / (std::filesystem::path(args.scene).stem().string() + "-refine")).string()
+                       : args.out;
+  std::filesystem::create_directories(out_dir);
+  const std::string study_file = (std::filesystem::path(out_dir) / "refinement.yaml").string();
+  const study::RefinementStudy r = study::refinement_study(args.scene, study_file, o);
+  scene::write_file_atomic(study_file, r.study_text);
+
+  study::StudyOptions opt;
+  opt.out_dir = out_dir;
+  opt.jobs = args.jobs;
+  opt.progress = true;
+  opt.stop = &g_check_stop;
+  on_stop_signals(on_check_stop);
+  fmt::print("\nmeasuring the step controls: {} levels, each with every step control halved (the last costs "
+             "about {} times a run); cases in {}/cases/\n",
+             o.levels, 1 << (o.levels - 1), out_dir);
+  std::fflush(stdout);
+  std::vector<study::CaseResult> results;
+  try {
+    results = study::run_study(r.study, opt);
+  } catch (const study::SceneError&) {
+    throw;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "rheodda: error: {}\n", e.what());
+    throw CLI::RuntimeError(kExitFailure);
+  }
+  if (g_check_stop) {
+    fmt::print("stopped: the refinement is incomplete; resume its cases with: rheodda study {} -o {} --resume\n",
+               study_file, out_dir);
+    throw CLI::RuntimeError(128 + static_cast<int>(g_check_stop));
+  }
+  const study::RefinementAssessment as = study::assess_refinement(r, results, o);
+  const std::string report = study::refinement_report(r, results, as, o);
+  scene::write_file_atomic((std::filesystem::path(out_dir) / "refinement.txt").string(), report);
+  fmt::print("{}  the table: {}/refinement.txt; the levels' histories: {}/study.png; rerun: rheodda study {}\n",
+             report, out_dir, out_dir, study_file);
+  switch (as.verdict) {
+    case study::RefinementVerdict::fine: return;
+    case study::RefinementVerdict::incomplete: throw CLI::RuntimeError(kExitFailure);
+    default:
+      fmt::print(stderr, "rheodda: warning: {}\n", as.message);
+      throw CLI::RuntimeError(kExitStepControls);
+  }
+}
+
+}  // namespace
+
+void add_check_command(CLI::App& app) {
+  auto args = std::make_shared<CheckArgs>();
+  auto* check = app.add_subcommand(
+      "check", "Validate a scene file and print what will be modelled, without running it; with --refine, "
+               "measure whether its step controls are fine enough");
+  check->add_option("SCENE", args->scene, "Scene file (YAML, docs/scene-format.md)")->required();
+  auto* refine_flag = check->add_flag(
+      "--refine{4}", args->levels,
+      "Run the scene at its step controls and with them halved, LEVELS levels in all (default 4), and say whether "
+      "its answer is within --tolerance of the finest level and converges (docs/speed-accuracy.md); exit 3 when not");
+  refine_flag->type_name("LEVELS");
+  check->add_option("-o,--out", args->out, "--refine: output directory (default out/<scene name>-refine)")
+      ->type_name("OUTDIR")
+      ->needs(refine_flag);
+  check->add_option("-j,--jobs", args->jobs, "--refine: levels run at once; 0 (the default): the hardware threads")
+      ->check(CLI::NonNegativeNumber)
+      ->needs(refine_flag);
+  check->add_option("--until", args->until,
+                    "--refine: run each level to this time [scene time unit] instead of the scene's duration")
+      ->check(CLI::PositiveNumber)
+      ->needs(refine_flag);
+  check->add_option("--tolerance", args->tolerance,
+                    "--refine: largest relative difference allowed between the scene's own level and the finest "
+                    "(default 0.05)")
+      ->needs(refine_flag);
+  check->callback([args] {
+    require_readable(args->scene);
+    const scene::SceneDescription s = scene::load_scene(args->scene);
+    fmt::print("{}", scene::describe_scene(s));
+    fmt::print("scene OK\n");
+    if (args->levels > 0)
+      refine(*args);
+    else
+      fmt::print("step controls: not measured (rheodda check {} --refine: whether the answer is within 5 % of "
+                 "that of finer controls)\n",
+                 args->scene);
+  });
+}
+
+}  // namespace rheodda::apps
