@@ -76,7 +76,10 @@ void refine(const CheckArgs& args) {
   const study::RefinementAssessment as = study::assess_refinement(r, results, o);
   const std::string report = study::refinement_report(r, results, as, o);
   scene::write_file_atomic((std::filesystem::path(out_dir) / "refinement.txt").string(), report);
-  fmt::print("{}  the table: {}/refinement.txt; the levels' histories: {}/study.png; rerun: rheodda study {}\n",
+  scene::write_file_atomic((std::filesystem::path(out_dir) / "refinement.json").string(),
+                           study::refinement_json(r, results, as, o));
+  fmt::print("{}  the table: {}/refinement.txt (and .json); the levels' histories: {}/study.png; rerun: rheodda "
+             "study {}\n",
              report, out_dir, out_dir, study_file);
   switch (as.verdict) {
     case study::RefinementVerdict::fine: return;

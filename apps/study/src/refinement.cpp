@@ -8,6 +8,8 @@
 #include <map>
 #include <stdexcept>
 
+#include <nlohmann/json.hpp>
+
 #include "rheodda/scene/loader.hpp"
 
 namespace rheodda::study {
@@ -299,13 +301,63 @@ std::string refinement_report(const RefinementStudy& refinement, const std::vect
   if (!as.quantities.empty())
     out += "(reference: the finest level, or * the Richardson limit of the last three levels; L0 error: "
            "|L0 - reference| / the largest value over the levels)\n";
-  const char* verdict = as.verdict == RefinementVerdict::fine            ? "fine"
-                        : as.verdict == RefinementVerdict::coarse        ? "coarse"
-                        : as.verdict == RefinementVerdict::not_converged ? "not converged"
-                                                                          : "incomplete";
-  out += fmt::format("\nstep controls: {} (tolerance {:g} %, convergence {:g} %)\n{}\n", verdict,
+  out += fmt::format("\nstep controls: {} (tolerance {:g} %, convergence {:g} %)\n{}\n", verdict_name(as.verdict),
                      100.0 * o.tolerance, 100.0 * o.converged, as.message);
   return out;
+}
+
+const char* verdict_name(RefinementVerdict v) {
+  switch (v) {
+    case RefinementVerdict::fine: return "fine";
+    case RefinementVerdict::coarse: return "coarse";
+    case RefinementVerdict::not_converged: return "not converged";
+    case RefinementVerdict::incomplete: return "incomplete";
+  }
+  return "";
+}
+
+std::string refinement_json(const RefinementStudy& refinement, const std::vector<CaseResult>& results,
+                            const RefinementAssessment& as, const RefinementOptions& o) {
+  using nlohmann::json;
+  const StudyDescription& st = refinement.study;
+  auto number = [](std::optional<double> v) { return v ? json(*v) : json(nullptr); };
+  json levels = json::array();
+  for (std::size_t k = 0; k < st.cases.size(); ++k) {
+    const CaseResult* r = k < results.size() ? &results[k] : nullptr;
+    levels.push_back({{"name", st.cases[k].name},
+                      {"controls", refinement.level_controls[k]},
+                      {"status", r ? r->status : "not started"},
+                      {"steps", r ? r->steps : 0},
+                      {"wall_seconds", r ? r->wall_seconds : 0.0},
+                      {"inertia_share", r ? number(r->inertia_share) : json(nullptr)}});
+  }
+  json quantities = json::array();
+  for (const auto& q : as.quantities) {
+    json values = json::array();
+    for (const auto& v : q.values) values.push_back(number(v));
+    quantities.push_back({{"output", q.output},
+                          {"time", q.time},
+                          {"values", values},
+                          {"differences", q.differences},
+                          {"reference", q.reference},
+                          {"extrapolated", q.extrapolated},
+                          {"error", q.error},
+                          {"judged", q.judged},
+                          {"converged", q.converged},
+                          {"first_within", q.first_within}});
+  }
+  const json j{{"title", st.title},
+               {"scene", st.scene},
+               {"tolerance", o.tolerance},
+               {"converged", o.converged},
+               {"levels", levels},
+               {"quantities", quantities},
+               {"verdict", verdict_name(as.verdict)},
+               {"largest_error", as.largest_error},
+               {"largest_inertia_share", as.largest_inertia_share},
+               {"recommended_level", as.recommended_level},
+               {"message", as.message}};
+  return j.dump(2) + "\n";
 }
 
 }  // namespace rheodda::study

@@ -179,6 +179,9 @@ BOOST_AUTO_TEST_CASE(check_refine_says_a_coarse_step_is_coarse_and_a_fine_one_fi
     BOOST_TEST(r.output.find("step controls: coarse") != std::string::npos, r.output);
     BOOST_TEST(r.output.find("Level L1 is the first within 5 %") != std::string::npos, r.output);
     BOOST_TEST(fs::exists(dir / "coarse" / "refinement.txt"));
+    const std::string json = read_text((dir / "coarse" / "refinement.json").string());
+    BOOST_TEST(json.find("\"verdict\": \"coarse\"") != std::string::npos, json);
+    BOOST_TEST(json.find("\"recommended_level\": 1") != std::string::npos, json);
     BOOST_TEST(fs::exists(dir / "coarse" / "study.csv"));
     // The levels' joint displacement at 200 h against the creep of the ramp in closed
     // form: the ramp's Burgers response, d(t) = F'(t/E1 + t^2/(2 eta1) + t/E2 - eta2/E2^2 (1 - exp(-E2 t/eta2))),

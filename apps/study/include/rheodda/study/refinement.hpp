@@ -85,4 +85,13 @@ RefinementAssessment assess_refinement(const RefinementStudy& refinement, const 
 std::string refinement_report(const RefinementStudy& refinement, const std::vector<CaseResult>& results,
                               const RefinementAssessment& assessment, const RefinementOptions& options);
 
+/// The same as JSON (refinement.json, for scripts): the options, per level its name,
+/// controls, status, steps, wall time and inertia share, per quantity its values,
+/// differences, reference and error, then the verdict, message and recommended level.
+std::string refinement_json(const RefinementStudy& refinement, const std::vector<CaseResult>& results,
+                            const RefinementAssessment& assessment, const RefinementOptions& options);
+
+/// "fine", "coarse", "not converged", "incomplete".
+const char* verdict_name(RefinementVerdict v);
+
 }  // namespace rheodda::study
