@@ -251,7 +251,7 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
   previous_keys_.resize(committed_.size());
   for (size_t k = 0; k < committed_.size(); ++k) previous_keys_[k] = committed_[k].key;
   const std::vector<DetectedContact> found =
-      detect_contacts(blocks, pairs, {d0, settings_.angle_tolerance}, previous_keys_);
+      detect_contacts(blocks, pairs, {d0, settings_.angle_tolerance, allowed_penetration_}, previous_keys_);
 
   // Transfer: the same key keeps its record; otherwise the same vertex on an
   // adjacent edge of the same block inherits it (the vertex slid over a corner).

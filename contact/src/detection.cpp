@@ -161,7 +161,7 @@ void detect_pair(std::span<const BlockView> blocks, int ia, int ib, const Detect
       // that was a contact in the last step stays (two blocks sliding past a
       // straight-angle vertex keep both contacts and their identities); if none
       // was, one is taken: preferably one whose vertex projects inside its edge.
-      std::array<bool, 4> in_range{}, was{};
+      std::array<bool, 4> in_range{}, was{}, in_reach{};
       for (int c = 0; c < 4; ++c) {
         const BlockView& eb = blocks[cand[c].eblock];
         const int ne = static_cast<int>(eb.vertices.size());
@@ -170,6 +170,8 @@ void detect_pair(std::span<const BlockView> blocks, int ia, int ib, const Detect
         const double l2 = (b - a).squaredNorm();
         const double r = (b - a).dot(blocks[cand[c].vblock].vertices[cand[c].vertex] - a) / l2;
         in_range[c] = r >= -1e-9 && r <= 1.0 + 1e-9;
+        const double reach = params.notch_reach / std::sqrt(l2);
+        in_reach[c] = params.notch_reach < 0.0 || (r >= -reach - 1e-9 && r <= 1.0 + reach + 1e-9);
         was[c] = std::binary_search(previous.begin(), previous.end(), cand[c]);
       }
       auto emit = [&](int c) {
@@ -179,8 +181,17 @@ void detect_pair(std::span<const BlockView> blocks, int ia, int ib, const Detect
         out.push_back({key, len > 0.0 ? ContactKind::edge_edge : ContactKind::vertex_vertex, len});
       };
       if (p_in_notch || q_in_notch) {
+        // Only the notch edges the corner still lies along: a corner that has
+        // moved on past the notch's vertex along one edge (beyond the other's
+        // end by more than the allowed penetration) no longer touches the other,
+        // whose line would hold it with a spring in tension (docs/contacts.md,
+        // "Contact types"; measured on the toppling example's toe block).
+        bool any = false;
         for (int c = 0; c < 4; ++c)
-          if ((c < 2 ? p_in_notch : q_in_notch) && score[c] >= -sin_tol) emit(c);
+          if ((c < 2 ? p_in_notch : q_in_notch) && score[c] >= -sin_tol && in_reach[c]) emit(c), any = true;
+        if (!any)
+          for (int c = 0; c < 4; ++c)
+            if ((c < 2 ? p_in_notch : q_in_notch) && score[c] >= -sin_tol) emit(c);
         continue;
       }
       bool kept = false;

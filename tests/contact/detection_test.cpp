@@ -156,6 +156,37 @@ BOOST_AUTO_TEST_CASE(corner_in_a_notch_touches_both_edges_of_the_notch) {
   BOOST_TEST(tread);
 }
 
+BOOST_AUTO_TEST_CASE(a_corner_past_the_notch_along_one_edge_touches_that_edge_only) {
+  // The notch of the test above; the block's corner has moved 0.5 mm along the
+  // tread past the riser's foot (x = 0.9995) and sits 0.2 mm below the riser's
+  // lower end (y = -0.0002, inside the tread by the penalty overlap).
+  auto keys = [](const std::vector<DetectedContact>& c) {
+    bool riser = false, tread = false;
+    for (const auto& k : c) {
+      riser |= k.key == ContactKey{1, 1, 0, 3};
+      tread |= k.key == ContactKey{1, 1, 0, 4};
+    }
+    return std::pair{riser, tread};
+  };
+  Scene s;
+  s.add({{0, -1}, {2, -1}, {2, 1}, {1, 1}, {1, 0}, {0, 0}});
+  s.add({{0.1995, -0.0002}, {0.9995, -0.0002}, {0.9995, 0.4998}, {0.1995, 0.4998}});
+  std::vector<std::pair<int, int>> pairs{{0, 1}};
+  // Within the reach (the allowed penetration, 0.5 mm here): still in the notch, both edges.
+  auto [riser, tread] = keys(detect_contacts(s.views(), pairs, {d0, 3.0, 5e-4}, {}));
+  BOOST_TEST(riser);
+  BOOST_TEST(tread);
+  // With a reach of 0.1 mm the corner is 0.2 mm below the riser's end: the tread alone.
+  std::tie(riser, tread) = keys(detect_contacts(s.views(), pairs, {d0, 3.0, 1e-4}, {}));
+  BOOST_TEST(!riser);
+  BOOST_TEST(tread);
+  // Even when the riser contact existed in the last step: its line would hold the corner in tension.
+  const std::vector<ContactKey> previous{ContactKey{1, 1, 0, 3}, ContactKey{1, 1, 0, 4}};
+  std::tie(riser, tread) = keys(detect_contacts(s.views(), pairs, {d0, 3.0, 1e-4}, previous));
+  BOOST_TEST(!riser);
+  BOOST_TEST(tread);
+}
+
 BOOST_AUTO_TEST_CASE(straight_angle_vertices_never_enter_an_edge) {
   // The base's top is split at (1, 0) (a straight angle); the block lies across it.
   Scene s;

@@ -83,6 +83,11 @@ double point_tributary_length(const BlockView& vb, int v, const Vec2& t);
 struct DetectionParams {
   double search_distance = 0.0;  ///< d0 = 2.5 g2 w0 [length]
   double angle_tolerance = 3.0;  ///< [deg]
+  /// A corner in a notch touches a notch edge while its projection lies on the
+  /// edge or beyond the notch's vertex by at most this much (docs/contacts.md,
+  /// "Contact types"); the contact system passes the allowed penetration [length].
+  /// Negative: no limit (both notch edges whatever the projection).
+  double notch_reach = -1.0;
 };
 
 /// Contacts between blocks `ia` and `ib` (both orders), appended to `out`.
