@@ -204,11 +204,12 @@ RefinementAssessment assess_refinement(const RefinementStudy& refinement, const 
     q.reference = finest;
     q.error = std::abs(*q.values[0] - finest) / scale;
     const double last = q.differences.back();
-    // Converged: the last two levels agree within `converged`, and the last difference
-    // did not grow (or is below a tenth of `converged`, where rounding decides).
-    q.converged = last <= o.converged &&
-                  (q.differences.size() < 2 || last <= q.differences[q.differences.size() - 2] ||
-                   last <= 0.1 * o.converged);
+    const double before = q.differences.size() >= 2 ? q.differences[q.differences.size() - 2] : last;
+    // Converged: the last three levels agree within `converged` (two differences: two
+    // levels alone can agree by chance where an event such as a slip happens at some
+    // levels and not at others), and the last difference did not grow (or is below a
+    // tenth of `converged`, where rounding decides).
+    q.converged = last <= o.converged && before <= o.converged && (last <= before || last <= 0.1 * o.converged);
     for (std::size_t k = n; k-- > 0;) {
       if (std::abs(*q.values[k] - q.reference) / scale > o.tolerance) break;
       q.first_within = static_cast<int>(k);
@@ -241,9 +242,9 @@ RefinementAssessment assess_refinement(const RefinementStudy& refinement, const 
     as.verdict = RefinementVerdict::not_converged;
     as.recommended_level = -1;
     as.message = fmt::format(
-        "The levels do not converge: {} at t = {:g} changes by {} from level to level (the last two must agree "
-        "within {:g} % and the differences shrink). The answer depends on the step controls; refine further "
-        "(--refine {}) or change the model.{}",
+        "The levels do not converge: {} at t = {:g} changes by {} from level to level (the last three levels must "
+        "agree within {:g} % and the differences shrink). The answer depends on the step controls; refine "
+        "further (--refine {}) or change the model.{}",
         q.output, q.time, fmt::join(d, ", "), 100.0 * o.converged, n + 2, mechanism);
   } else if (as.largest_error > o.tolerance) {
     const auto& q = *worst_error;
@@ -262,12 +263,14 @@ RefinementAssessment assess_refinement(const RefinementStudy& refinement, const 
   } else {
     double last = 0.0;
     for (const auto& q : as.quantities)
-      if (q.judged) last = std::max(last, q.differences.back());
+      if (q.judged)
+        for (std::size_t k = q.differences.size() >= 2 ? q.differences.size() - 2 : 0; k < q.differences.size(); ++k)
+          last = std::max(last, q.differences[k]);
     as.verdict = RefinementVerdict::fine;
     as.message = fmt::format(
         "The step controls are fine: every output at the scene's own controls (L0) is within {:.2g} % of the "
         "finest level {} or the limit extrapolated from the finest levels (tolerance {:g} %), and the levels "
-        "converge (the last two within {:.2g} %).",
+        "converge (the last three within {:.2g} %).",
         100.0 * as.largest_error, finest, 100.0 * o.tolerance, 100.0 * last);
   }
   return as;

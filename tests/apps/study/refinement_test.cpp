@@ -122,8 +122,8 @@ BOOST_AUTO_TEST_CASE(until_shortens_every_level_and_options_out_of_range_are_ref
 BOOST_AUTO_TEST_CASE(the_verdict_follows_the_levels) {
   const st::RefinementOptions o;  // tolerance 5 %, converged 1 %
   {  // Converging to first order towards 1: 1 + 0.16 / 2^k. L0 is 16 % off the limit.
-    const auto r = synthetic(5, 1);
-    const auto a = st::assess_refinement(r, results({{1.16, 1.08, 1.04, 1.02, 1.01}}), o);
+    const auto r = synthetic(6, 1);
+    const auto a = st::assess_refinement(r, results({{1.16, 1.08, 1.04, 1.02, 1.01, 1.005}}), o);
     BOOST_TEST(static_cast<int>(a.verdict) == static_cast<int>(st::RefinementVerdict::coarse));
     BOOST_TEST(a.quantities[0].extrapolated);
     BOOST_TEST(a.quantities[0].reference == 1.0, boost::test_tools::tolerance(1e-12));
@@ -143,6 +143,16 @@ BOOST_AUTO_TEST_CASE(the_verdict_follows_the_levels) {
     const auto a = st::assess_refinement(r, results({{1.0, 1.2, 0.9, 1.1}}), o);
     BOOST_TEST(static_cast<int>(a.verdict) == static_cast<int>(st::RefinementVerdict::not_converged));
     BOOST_TEST(a.recommended_level == -1);
+  }
+  {  // The same sequence one level shorter: the last three levels differ by 1.7 % and 0.86 %.
+    const auto r = synthetic(5, 1);
+    const auto a = st::assess_refinement(r, results({{1.16, 1.08, 1.04, 1.02, 1.01}}), o);
+    BOOST_TEST(static_cast<int>(a.verdict) == static_cast<int>(st::RefinementVerdict::not_converged));
+  }
+  {  // Two levels agree by chance after an event at the level before: not converged.
+    const auto r = synthetic(5, 1);
+    const auto a = st::assess_refinement(r, results({{3.10, 3.21, 3.17, 3.10, 3.1002}}), o);
+    BOOST_TEST(static_cast<int>(a.verdict) == static_cast<int>(st::RefinementVerdict::not_converged));
   }
   {  // The last two agree within 1 % but the differences grow: not converged.
     const auto r = synthetic(4, 1);

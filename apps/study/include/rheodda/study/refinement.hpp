@@ -2,7 +2,7 @@
 // its step controls? The scene is run at its own step controls and with every
 // step control halved, again and again (a refinement study, docs/speed-accuracy.md
 // "Checking a scene's step controls"), and the outputs of the levels are compared:
-// they should converge (successive differences shrink, the last two agree within
+// they should converge (successive differences shrink, the last three agree within
 // `converged`), and the scene's own level should lie within `tolerance` of the
 // finest. The levels run as the cases of a study (study.hpp), so they run in
 // parallel and leave a study folder that `rheodda plot` draws.
@@ -20,7 +20,7 @@ struct RefinementOptions {
   int levels = 4;                ///< L0 (the scene as written) .. L(levels-1); >= 2
   std::optional<double> until;   ///< simulated time to run each level to [time]; default: the duration
   double tolerance = 0.05;       ///< largest relative difference of L0 from the finest level [-]
-  double converged = 0.01;       ///< largest relative difference of the last two levels [-]
+  double converged = 0.01;       ///< largest relative difference between the last three levels [-]
 };
 
 /// A refinement study: the study (one case per level) and what each level's step
@@ -55,7 +55,8 @@ struct RefinementQuantity {
   bool extrapolated = false;        ///< reference is the Richardson limit
   double error = 0.0;               ///< |v_0 - reference| / scale: L0's error [-]
   bool judged = true;               ///< false: too small to judge (below 1 % of the largest of its kind)
-  bool converged = false;           ///< last difference <= converged and not larger than the one before
+  bool converged = false;           ///< the last two differences <= converged (the last three levels
+                                    ///< agree) and the last not larger than the one before
   int first_within = -1;            ///< first level from which on every level is within `tolerance`
                                     ///< of the reference (-1: none)
 };
