@@ -813,9 +813,10 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
         "the inertia term of the static steps took {:.1f} % of the work of gravity and loads. A static "
         "step starts at rest and holds a mechanism (or a part whose springs are soft on the step's scale) "
         "by its inertia term alone, so how far and how fast it moves there depends on dt and "
-        "max_displacement_ratio: check the results with both halved, or run that phase as a dynamic "
-        "analysis (docs/engine.md, \"Mechanisms in static analysis\"){}",
+        "max_displacement_ratio: check the results with both halved (`rheodda check {} --refine` does it), or "
+        "run that phase as a dynamic analysis (docs/engine.md, \"Mechanisms in static analysis\"){}",
         m.steps, m.first_time, m.last_time, s.units.time, 100.0 * m.inertia_share,
+        s.file.empty() ? std::string("SCENE") : s.file,
         // Settling under gravity applied at once: the usual case, with its remedy.
         m.first_step >= 0 && m.first_step < 10 && !s.analysis.settle
             ? ". It began in the first steps: where that is the model settling as gravity comes on, a "
