@@ -437,6 +437,10 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
     a.max_refinements = integer(ctx, v, m.child("max_refinements"), 0, 1000);
   num("penalty_raise", a.penalty_raise, {1.0, false, std::numeric_limits<double>::max(), false, ""});
   num("penalty_max_factor", a.penalty_max_factor, {1.0, false, std::numeric_limits<double>::max(), false, ""});
+  // Static: Shi's 8, so that a step whose contacts do not settle is cut and retaken
+  // smaller rather than settled into a sliding state at a large dt; dynamic: 30
+  // (brick walls). Measured in docs/contacts.md, "The iteration limit in static analysis".
+  a.open_close_limit = a.type == AnalysisType::dynamic_analysis ? 30 : 8;
   if (YAML::Node v = m.find("open_close_limit"); v.IsDefined())
     a.open_close_limit = integer(ctx, v, m.child("open_close_limit"), 1, 1000);
   num("fixed_point_stiffness", a.fixed_point_stiffness, positive("force/length"));

@@ -207,9 +207,10 @@ RefinementAssessment assess_refinement(const RefinementStudy& refinement, const 
     const double before = q.differences.size() >= 2 ? q.differences[q.differences.size() - 2] : last;
     // Converged: the last three levels agree within `converged` (two differences: two
     // levels alone can agree by chance where an event such as a slip happens at some
-    // levels and not at others), and the last difference did not grow (or is below a
-    // tenth of `converged`, where rounding decides).
-    q.converged = last <= o.converged && before <= o.converged && (last <= before || last <= 0.1 * o.converged);
+    // levels and not at others), and the last difference did not grow - unless it is
+    // below half of `converged`: there the differences are the scatter of a converged
+    // answer (contact events that fall in one step or the next), not a trend.
+    q.converged = last <= o.converged && before <= o.converged && (last <= before || last <= 0.5 * o.converged);
     for (std::size_t k = n; k-- > 0;) {
       if (std::abs(*q.values[k] - q.reference) / scale > o.tolerance) break;
       q.first_within = static_cast<int>(k);

@@ -25,7 +25,7 @@ BOOST_AUTO_TEST_CASE(base_scene_loads_with_documented_defaults) {
   BOOST_TEST(s.analysis.output_interval == 0.01);     // duration / 100
   BOOST_TEST(s.analysis.penalty == 40.0 * 1.0e9);      // 40 x largest young_modulus
   BOOST_TEST(s.analysis.fixed_point_stiffness == 100.0 * 1.0e9);
-  BOOST_TEST(s.analysis.open_close_limit == 30);
+  BOOST_TEST(s.analysis.open_close_limit == 8);  // static: Shi's limit (the next test: 30 in dynamic analysis)
   BOOST_TEST(s.analysis.max_cuts == 30);
   BOOST_TEST((s.materials[0].plane == scene::PlaneKind::strain));
   BOOST_TEST(s.joint_sets.size() == 2u);
@@ -228,6 +228,17 @@ BOOST_AUTO_TEST_CASE(time_integration_reaches_the_engine_settings_and_needs_a_dy
                   "analysis.time_integration", "a static analysis carries no velocity");
   expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  type: dynamic\n  dynamic_ratio: 0\n  time_integration: trapezoidal"),
                   7, "trapezoidal", "analysis.time_integration", "dynamic_ratio = 0 carries no velocity");
+}
+
+BOOST_AUTO_TEST_CASE(open_close_limit_defaults_to_8_in_static_and_30_in_dynamic_analysis_and_reaches_the_engine) {
+  // docs/contacts.md, "The iteration limit in static analysis".
+  BOOST_TEST(scene::build_scene(scene::parse_scene(kBaseScene, "base.yaml")).model.settings.max_open_close == 8);
+  const auto dynamic = with("  dt: 0.01", "  dt: 0.01\n  type: dynamic");
+  BOOST_TEST(scene::build_scene(scene::parse_scene(dynamic, "dyn.yaml")).model.settings.max_open_close == 30);
+  const auto given = with("  dt: 0.01", "  dt: 0.01\n  open_close_limit: 30");
+  BOOST_TEST(scene::build_scene(scene::parse_scene(given, "given.yaml")).model.settings.max_open_close == 30);
+  const auto given_dynamic = with("  dt: 0.01", "  dt: 0.01\n  type: dynamic\n  open_close_limit: 8");
+  BOOST_TEST(scene::build_scene(scene::parse_scene(given_dynamic, "gd.yaml")).model.settings.max_open_close == 8);
 }
 
 BOOST_AUTO_TEST_CASE(stick_keeps_force_reaches_the_contact_settings_default_on_only_in_dynamic_analysis) {

@@ -231,20 +231,26 @@ BOOST_AUTO_TEST_CASE(a_static_block_that_slides_is_reported_as_a_mechanism_and_o
   BOOST_TEST(nlohmann::json::parse(read_text((out / "summary.json").string())).at("static_mechanism").is_null());
 }
 
-BOOST_AUTO_TEST_CASE(the_toppling_example_settles_in_its_stage_then_converges_with_dt) {
-  // docs/engine.md, "Settling stage": examples/goodman-toppling-creep.yaml settles
-  // in steps of at most 1e-4 d to 0.01 d, then creeps with dt. Its steps obey the
-  // stage, and runs with dt = 1/16 d (the file's) and 1/32 d end 100 d within
-  // 1e-4 of each other (docs/speed-accuracy.md: 3.09938 and 3.09919 m; the
-  // Richardson reference 3.09922 m), neither moving as a mechanism.
+BOOST_AUTO_TEST_CASE(the_toppling_example_settles_in_its_stage_then_converges_with_its_step_controls) {
+  // docs/engine.md, "Settling stage"; docs/speed-accuracy.md, "The shipped toppling
+  // example": examples/goodman-toppling-creep.yaml settles in steps of at most
+  // 5e-5 d to 0.01 d, then creeps with dt = 1/32 d. Its steps obey the stage; with
+  // every step control halved (the stage's too: dt, g2, the stage's dt and g2) it
+  // ends 100 d within the 0.5 % that the six levels of `check --refine` span
+  // (block 10 at 3.276-3.281 m), neither run moving as a mechanism.
   auto s = example("goodman-toppling-creep.yaml", 100.0, 100.0);
   BOOST_TEST_REQUIRE(s.analysis.settle.has_value());
-  BOOST_TEST(s.analysis.dt == 0.0625);
+  BOOST_TEST(s.analysis.dt == 0.03125);
+  BOOST_TEST(s.analysis.open_close_limit == 8);  // the static default
   std::vector<double> block10;
-  for (const double dt : {0.0625, 0.03125}) {
-    s.analysis.dt = dt;
-    const fs::path out = fresh_dir(fmt::format("settle_{}", dt));
-    const auto r = run(s, out);
+  for (const double f : {1.0, 0.5}) {
+    auto level = s;
+    level.analysis.dt *= f;
+    level.analysis.max_displacement_ratio *= f;
+    level.analysis.settle->dt *= f;
+    level.analysis.settle->max_displacement_ratio *= f;
+    const fs::path out = fresh_dir(fmt::format("settle_{}", f));
+    const auto r = run(level, out);
     BOOST_TEST_REQUIRE((r.status == scene::RunStatus::completed));
     const Csv h = read_csv(out / "history.csv");  // output_interval 100: t = 0 and 100 only; steps from the reports
     const std::size_t last = h.rows.size() - 1;
@@ -252,10 +258,11 @@ BOOST_AUTO_TEST_CASE(the_toppling_example_settles_in_its_stage_then_converges_wi
     const auto sum = nlohmann::json::parse(read_text((out / "summary.json").string()));
     BOOST_TEST(sum.at("static_mechanism").at("inertia_share").get<double>() < core::kMechanismRunShare);
     BOOST_TEST(sum.at("inputs").at("analysis").at("settle").at("until").get<double>() == 0.01);
-    // 100 steps of the stage (cuts allowed) and then (100 - 0.01) / dt creep steps.
-    BOOST_TEST(r.steps >= 100 + static_cast<int>(std::floor((100.0 - 0.01) / dt)));
+    // The stage's steps (0.01 d / its dt, cuts allowed) and then (100 - 0.01) / dt creep steps.
+    BOOST_TEST(r.steps >= static_cast<int>(std::floor(0.01 / level.analysis.settle->dt + 0.5)) +
+                             static_cast<int>(std::floor((100.0 - 0.01) / level.analysis.dt)));
   }
-  BOOST_TEST(std::abs(block10[0] - block10[1]) < 1e-4 * block10[1]);
+  BOOST_TEST(std::abs(block10[0] - block10[1]) < 5e-3 * block10[1], block10[0] << " vs " << block10[1]);
   BOOST_TEST(block10[1] > 3.0);  // it creeps metres: a result, not a slope at rest
 }
 

@@ -92,7 +92,8 @@ struct Analysis {
   int max_refinements = 3;             ///< friction refinements per contact and step [-]
   double penalty_raise = 2.0;          ///< factor on the penalty when penetration exceeds its limit [-]
   double penalty_max_factor = 64.0;    ///< largest penalty / initial penalty [-]
-  int open_close_limit = 30;           ///< open-close iterations before a step is cut [-]
+  int open_close_limit = 30;           ///< open-close iterations before a step is cut [-];
+                                       ///< the loader's default: 8 (Shi's) in a static analysis, 30 in a dynamic one
   double fixed_point_stiffness = 0.0;  ///< fixed-point spring [force/length]; default 100 x largest young_modulus
   SolverKind solver = SolverKind::automatic;  ///< `solver: automatic|cholmod|pcg|amg`
   double solver_tolerance = 1e-10;     ///< relative residual at which pcg and amg stop [-]

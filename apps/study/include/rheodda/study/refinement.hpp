@@ -56,7 +56,8 @@ struct RefinementQuantity {
   double error = 0.0;               ///< |v_0 - reference| / scale: L0's error [-]
   bool judged = true;               ///< false: too small to judge (below 1 % of the largest of its kind)
   bool converged = false;           ///< the last two differences <= converged (the last three levels
-                                    ///< agree) and the last not larger than the one before
+                                    ///< agree) and the last not larger than the one before unless
+                                    ///< below converged / 2 (scatter, not a trend)
   int first_within = -1;            ///< first level from which on every level is within `tolerance`
                                     ///< of the reference (-1: none)
 };
