@@ -24,7 +24,8 @@ examples=(
   "examples/creeping-slope-failure.yaml|--refine --until 20"
   "examples/creeping-slope-failure.yaml|--refine"
   "examples/sliding-block.yaml|--refine"
-  "examples/goodman-toppling-creep.yaml|--refine=7"
+  "examples/goodman-toppling-creep.yaml|--refine=6"
+  "examples/goodman-toppling-creep.yaml|--refine=6|open_close_limit: 30"
   "examples/goodman-toppling.yaml|--refine"
   "examples/rockmass/tunnel.yaml|--refine"
   "bench/scenes/brick-wall.yaml|--refine=5"
@@ -33,11 +34,17 @@ examples=(
 )
 i=0
 for e in "${examples[@]}"; do
-  scene="${e%%|*}" opts="${e#*|}"
+  IFS='|' read -r scene opts extra <<<"$e"
   i=$((i + 1))
+  file="$root/$scene"
+  if [[ -n "$extra" ]]; then  # a variant: one more analysis key, in a copy beside the original
+    file="$(dirname "$root/$scene")/.refine-variant-$i.yaml"
+    sed "s/^analysis:/analysis:\n  $extra/" "$root/$scene" >"$file"
+  fi
   # shellcheck disable=SC2086  # opts is a list of options
-  "$build/apps/rheodda" check "$root/$scene" $opts -j "$(nproc)" -o "$work/$i" >/dev/null 2>&1 || true
-  echo "$scene|$opts|$work/$i" >>"$work/list"
+  "$build/apps/rheodda" check "$file" $opts -j "$(nproc)" -o "$work/$i" >/dev/null 2>&1 || true
+  [[ -n "$extra" ]] && rm -f "$file"
+  echo "$scene${extra:+ with $extra}|$opts|$work/$i" >>"$work/list"
 done
 /usr/bin/python3 - "$work/list" >"$work/table.md" <<'PY'
 import json, sys, os
@@ -62,6 +69,6 @@ PY
 cat "$work/table.md"
 "$root/scripts/splice-doc.sh" "$root/docs/speed-accuracy.md" refinement-examples "$work/table.md"
 # The toppling example's levels in full (its refinement.txt, as `check` prints it).
-n=$(grep -n '^examples/goodman-toppling-creep.yaml|' "$work/list" | cut -d: -f1)
+n=$(grep -n '^examples/goodman-toppling-creep.yaml|' "$work/list" | head -n 1 | cut -d: -f1)
 { echo '```'; cat "$work/$n/refinement.txt"; echo '```'; } >"$work/toppling.md"
 "$root/scripts/splice-doc.sh" "$root/docs/speed-accuracy.md" refinement-toppling-creep-levels "$work/toppling.md"
