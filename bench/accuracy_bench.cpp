@@ -192,8 +192,9 @@ std::string fmt_error(double e) {
 }
 
 // ---- The toppling model (docs/speed-accuracy.md, "The toppling model") ----
-// Every run starts from one settled state: the scene run with fixed steps of
-// kSettleStep up to kSettleEnd with g2 = kSettleG2, the columns' settling
+// Every run starts from one settled state: the scene's settling stage
+// (analysis.settle), or, for a scene without one, fixed steps of
+// kSettleStep up to kSettleEnd with g2 = kSettleG2: the columns' settling
 // under gravity applied at once (a quasi-static collapse whose path, in static
 // DDA, depends on the step: taken once, in small steps, it is the same for all
 // runs). From there each run creeps to T_END with its own fixed step or
@@ -207,18 +208,27 @@ struct Settled {
   core::EngineState engine;
   contact::ContactSystem contacts;
   long steps = 0;
+  double step = 0.0, end = 0.0, g2 = 0.0;  ///< the settling's steps, end [d] and g2 [-]
 };
 
+/// The scene's own settling stage (`analysis.settle`) when it has one, else the
+/// constants above.
 Settled settle(const scene::BuiltScene& built) {
   core::Model m = built.model;
-  m.settings.g2 = kSettleG2;
-  m.settings.dt = kSettleStep;
   m.settings.creep_tolerance = 0.0;
+  m.settings.step_tolerance = 0.0;
+  const bool own = m.settings.settle_until > 0.0;
+  const double end = own ? m.settings.settle_until : kSettleEnd;
+  if (!own) {
+    m.settings.g2 = kSettleG2;
+    m.settings.dt = kSettleStep;
+  }
   contact::ContactSystem contacts(built.joint_sets, built.contact_settings);
   core::ContactAdapter adapter(contacts);
   core::Engine engine(m, adapter);
-  engine.run_until(kSettleEnd);
-  return Settled{engine.save(), contacts, engine.step_count()};
+  engine.run_until(end);
+  return Settled{engine.save(), contacts, engine.step_count(), own ? m.settings.settle_dt : kSettleStep, end,
+                 own ? m.settings.settle_g2 : kSettleG2};
 }
 
 struct CreepRun {
@@ -312,7 +322,7 @@ int toppling(const std::string& path, double t_end) {
               built.contact_settings.scheme
                   ? std::string(laws::scheme_name(*built.contact_settings.scheme)).c_str()
                   : "default",
-              built.model.settings.g2, settled.steps, kSettleStep, kSettleEnd, kSettleG2, t_end,
+              built.model.settings.g2, settled.steps, settled.step, settled.end, settled.g2, t_end,
               1.0 / kFine, 0.5 / kFine, fine.r.steps, fine2.r.steps,
               fmt_error(fine_gap / peak).c_str());
   for (double v : ref_u) std::printf(" %.6f", v);
