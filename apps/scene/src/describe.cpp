@@ -41,16 +41,13 @@ std::string solver_text(const SceneDescription& s) {
 
 }  // namespace
 
-namespace {
-/// The shortest of 6, 10 or 17 significant digits that reads back exactly.
-std::string number(double v) {
+std::string exact_number(double v) {
   for (int digits : {6, 10}) {
     const std::string t = fmt::format("{:.{}g}", v, digits);
     if (std::strtod(t.c_str(), nullptr) == v) return t;  // (std::stod throws on denormals)
   }
   return fmt::format("{:.17g}", v);
 }
-}  // namespace
 
 std::string scheme_text(const Analysis& a) {
   return a.scheme ? std::string(laws::scheme_name(*a.scheme)) : std::string("automatic");
@@ -124,12 +121,12 @@ std::string describe_scene(const SceneDescription& s) {
     line(fmt::format("    normal_stiffness {}, shear_stiffness {}{}",
                      stiff(j.normal_stiffness, "penalty"),
                      j.law && j.law->parameters.count("E1")
-                         ? fmt::format("E1 of the law ({} {}/{})", number(j.law->parameters.at("E1")), stress, u.length)
+                         ? fmt::format("E1 of the law ({} {}/{})", exact_number(j.law->parameters.at("E1")), stress, u.length)
                          : stiff(j.shear_stiffness, "penalty / shear_normal_ratio"),
                      j.record ? ", recorded in history.csv" : ""));
     if (j.law) {
       std::string params;
-      for (const auto& [k, v] : j.law->parameters) params += fmt::format(" {}={}", k, number(v));
+      for (const auto& [k, v] : j.law->parameters) params += fmt::format(" {}={}", k, exact_number(v));
       line(fmt::format("    law {}:{} (scheme {})", j.law->name, params, scheme_text(a)));
     } else {
       line("    law: none (no creep)");

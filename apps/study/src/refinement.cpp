@@ -10,21 +10,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "rheodda/scene/describe.hpp"
 #include "rheodda/scene/loader.hpp"
 
 namespace rheodda::study {
 namespace fs = std::filesystem;
 
 namespace {
-
-/// A number that reads back exactly (17 significant digits at most, fewer when they suffice).
-std::string exact(double v) {
-  for (int digits : {6, 10, 17}) {
-    const std::string t = fmt::format("{:.{}g}", v, digits);
-    if (std::stod(t) == v) return t;
-  }
-  return fmt::format("{:.17g}", v);
-}
 
 /// "displacement" for the displacement outputs, "work" for the work columns: a
 /// quantity is judged against the largest of its kind.
@@ -72,8 +64,8 @@ RefinementStudy refinement_study(const std::string& scene_path, const std::strin
   // The common `set`: the shorter duration, when asked for.
   std::vector<Override> common;
   if (o.until && *o.until < a.duration) {
-    common.push_back({"analysis.duration", exact(until), {}});
-    if (a.output_interval > until) common.push_back({"analysis.output_interval", exact(until), {}});
+    common.push_back({"analysis.duration", scene::exact_number(until), {}});
+    if (a.output_interval > until) common.push_back({"analysis.output_interval", scene::exact_number(until), {}});
   }
   st.common_count = common.size();
 
@@ -84,7 +76,7 @@ RefinementStudy refinement_study(const std::string& scene_path, const std::strin
     c.name = fmt::format("L{}", k);
     std::vector<std::string> text;
     auto control = [&](const std::string& key, double value, const std::string& shown, const std::string& unit) {
-      if (k > 0) c.set.push_back({key, exact(value * f), {}});
+      if (k > 0) c.set.push_back({key, scene::exact_number(value * f), {}});
       text.push_back(fmt::format("{} {:g}{}", shown, value * f, unit.empty() ? "" : " " + unit));
     };
     const std::string& lu = s.units.length;
@@ -111,16 +103,10 @@ RefinementStudy refinement_study(const std::string& scene_path, const std::strin
                               "# and with every step control halved, level by level (docs/speed-accuracy.md,\n"
                               "# \"Checking a scene's step controls\").\n",
                               scene_path, o.levels);
+  std::vector<std::string> times;
+  for (double x : st.times) times.push_back(scene::exact_number(x));
   y += fmt::format("title: \"{}\"\nscene: \"{}\"\noutputs: [{}]\ntimes: [{}]\nplot: {}\n", st.title, st.scene,
-                   fmt::join(st.outputs, ", "),
-                   fmt::join(std::vector<std::string>(
-                                 [&] {
-                                   std::vector<std::string> t;
-                                   for (double x : st.times) t.push_back(exact(x));
-                                   return t;
-                                 }()),
-                             ", "),
-                   st.plot);
+                   fmt::join(st.outputs, ", "), fmt::join(times, ", "), st.plot);
   if (!common.empty()) {
     y += "set:\n";
     for (const auto& ov : common) y += fmt::format("  {}: {}\n", ov.key, ov.value_yaml);

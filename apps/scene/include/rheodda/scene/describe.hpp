@@ -14,6 +14,10 @@ std::string describe_scene(const SceneDescription& scene);
 /// The scheme's name, "automatic" when unset.
 std::string scheme_text(const Analysis& analysis);
 
+/// The shortest of 6, 10 or 17 significant digits that reads back exactly as `v`
+/// (parameters in `check`, values written into scene and study files).
+std::string exact_number(double v);
+
 /// Contact search distance at the start: search_factor * g2 * w0 [length] (Shi's rule).
 double search_distance(const SceneDescription& scene);
 
