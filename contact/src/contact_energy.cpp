@@ -5,8 +5,10 @@
 //
 // Springs (Shi 1988; the seed's eqs. 17-18, 23-29), per contact:
 //   normal  p_n, stretch d_n (penetration): d_n0 on the step-start geometry,
-//           d_n = d_n0 + n_i.D_i + n_j.D_j at the end, force N = p_n d_n (plus
-//           whatever else the contact adds to it, e.g. a dashpot: `damping`);
+//           d_n = d_n0 + n_i.D_i + n_j.D_j at the end, force N = p_n d_n;
+//   dashpots (JointSet::restitution) beside the normal spring of a closed
+//           contact and the shear spring of a locked one: their end forces
+//           times the step's approach d_n - d_n0 and slip (`damping`);
 //   shear   k_s (elastic: p_s, or the joint's k l, or the law's E1 l), stretch
 //           s0 = dt0 from the locking point at the step start and
 //           s1 = dt0 + slip - Delta d_c at the end, force F = k_s s1 (end_step).
@@ -50,9 +52,9 @@ ContactEnergy ContactSystem::energy() const {
     if (n_end) {
       const double d = w.dn - w.dn0;
       e.normal += 0.5 * w.pn * r.penetration * r.penetration;
-      // Any normal force beyond the spring's p_n d_n (a dashpot) takes its end
-      // value times the approach of the step.
-      e.damping += (r.normal_force - w.pn * w.dn) * d;
+      // The normal dashpot (JointSet::restitution): its end force times the
+      // approach of the step.
+      e.damping += w.normal_damping * d;
       if (n_start)
         e.integration += 0.5 * w.pn * d * d;
       else
@@ -82,6 +84,8 @@ ContactEnergy ContactSystem::energy() const {
     // both signed along the edge: > 0 when the vertex slides the way friction
     // resists.
     if (r.state == ContactState::sliding) e.friction += w.friction * w.slip;
+    // Shear dashpot (locked; JointSet::restitution): its end force over the slip.
+    e.damping += w.shear_damping * w.slip;
   }
   e.restart = start - stored_before_;
   return e;

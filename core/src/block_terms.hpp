@@ -56,6 +56,24 @@ inline Mat6 unit_mass_matrix(const PolygonIntegrals& m) {
   return M;
 }
 
+/// Retardation time tau [time] of a block's Kelvin-Voigt strain damping
+/// (Material::damping_ratio zeta; docs/engine.md, "Block damping"): the viscous
+/// stress E_e tau eps_dot is stiffness proportional, so a strain mode of angular
+/// frequency omega has the damping ratio tau omega / 2; tau = 2 zeta / omega_1
+/// gives the block's lowest strain mode the ratio zeta (its higher modes more).
+/// omega_1^2 is the smallest eigenvalue of K_e v = omega^2 M_e v with K_e = S E_e
+/// and M_e = rho x the strain rows of int T^T T dA (Shi 1988; the rigid-body rows
+/// couple only through rotation, left out: the strain modes of a block at rest).
+inline double strain_damping_time(const PolygonIntegrals& g, const Material& m,
+                                  const Eigen::Matrix3d& elastic) {
+  if (!(m.damping_ratio > 0.0)) return 0.0;
+  const Eigen::Matrix3d K = g.S * elastic;
+  const Eigen::Matrix3d M = m.density * unit_mass_matrix(g).block<3, 3>(3, 3);
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix3d> es(K, M, Eigen::EigenvaluesOnly);
+  const double w2 = es.eigenvalues().minCoeff();
+  return w2 > 0.0 ? 2.0 * m.damping_ratio / std::sqrt(w2) : 0.0;
+}
+
 /// Piecewise-linear value of a load history at time t (held beyond the ends).
 inline Vec2 load_at(const std::vector<LoadSample>& h, double t) {
   if (t <= h.front().time) return h.front().force;

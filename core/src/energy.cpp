@@ -47,6 +47,7 @@ void each_flow(EnergyFlows& a, const EnergyFlows& b, F f) {
   f(a.dissipation_integration, b.dissipation_integration);
   f(a.integration_inertia, b.integration_inertia);
   f(a.dissipation_contact_damping, b.dissipation_contact_damping);
+  f(a.dissipation_block_damping, b.dissipation_block_damping);
   f(a.dissipation_contact_closing, b.dissipation_contact_closing);
   f(a.dissipation_contact_release, b.dissipation_contact_release);
   f(a.residual, b.residual);
@@ -67,6 +68,7 @@ void settle(EnergyFlows& f, const StoredEnergy& before, const StoredEnergy& afte
 double EnergyFlows::net_input() const {
   return work_gravity + work_loads + work_contact_restart - dissipation_friction -
          dissipation_creep - dissipation_integration - dissipation_contact_damping -
+         dissipation_block_damping -
          dissipation_contact_closing -
          dissipation_contact_release;
 }
@@ -132,6 +134,11 @@ void EnergyAccount::begin(const EnergyInputs& in, const Eigen::VectorXd& D, doub
     // Block elasticity, end stress sigma + E_e eps: (1) with k = S E_e.
     const Vec3 eps = Dk.tail<3>();
     springs += 0.5 * g.S * eps.dot(in.elastic[b.material] * eps);
+    // Block damping: the viscous stress's end value (tau/dt) E_e eps over the strain eps.
+    if (dynamic)
+      if (const double tau = strain_damping_time(g, in.model.materials[b.material], in.elastic[b.material]);
+          tau > 0.0)
+        flows_.dissipation_block_damping += (tau / dt) * g.S * eps.dot(in.elastic[b.material] * eps);
     // Inertia: (2) in the header comment.
     const Mat6 M = rho * unit_mass_matrix(g);
     if (!dynamic) {

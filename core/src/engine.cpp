@@ -95,6 +95,7 @@ struct Engine::Impl {
 
   EngineState st;
   std::vector<PolygonIntegrals> moments;  // central integrals of the step-start geometry
+  std::vector<char> held;                 // block held by two or more fixed points
   std::vector<contact::BlockView> views;
   std::vector<Eigen::Matrix3d> elastic;   // per material
   double w0 = 0.0;                        // half model size [length]
@@ -190,6 +191,11 @@ void Engine::Impl::validate() {
       throw ModelError(at("materials", k) + ".young_modulus", "must be > 0 (stress)");
     if (!(mat.poisson_ratio >= 0.0 && mat.poisson_ratio < 0.5))
       throw ModelError(at("materials", k) + ".poisson_ratio", "must be in [0, 0.5)");
+    if (!(mat.damping_ratio >= 0.0 && mat.damping_ratio <= 1.0))
+      throw ModelError(at("materials", k) + ".damping_ratio", "must be in [0, 1]");
+    if (mat.damping_ratio > 0.0 && !(m.settings.dynamic_ratio > 0.0))
+      throw ModelError(at("materials", k) + ".damping_ratio",
+                       "damps velocities; a static analysis (dynamic_ratio 0) has none");
   }
   if (m.blocks.empty()) throw ModelError("blocks", "at least one block is required");
   const Settings& s = m.settings;
@@ -301,6 +307,12 @@ void Engine::Impl::initialise() {
 
   Eigen::AlignedBox2d box;
   st.blocks.resize(model.blocks.size());
+  held.assign(model.blocks.size(), 0);
+  {
+    std::vector<int> points(model.blocks.size(), 0);
+    for (const FixedPoint& fp : model.fixed_points) ++points[fp.block];
+    for (std::size_t k = 0; k < points.size(); ++k) held[k] = points[k] >= 2;
+  }
   for (std::size_t k = 0; k < model.blocks.size(); ++k) {
     const BlockDef& def = model.blocks[k];
     BlockState& b = st.blocks[k];
@@ -344,7 +356,11 @@ void Engine::Impl::refresh_geometry() {
   for (std::size_t k = 0; k < n; ++k) {
     BlockState& b = st.blocks[k];
     moments[k] = central_integrals(b.vertices, &b.centroid);
-    views[k] = contact::BlockView{b.vertices, b.centroid, b.edge_joint_set};
+    // Mass for the contact dashpots: a block held at two or more fixed points
+    // does not move with the impact (infinite).
+    views[k] = contact::BlockView{b.vertices, b.centroid, b.edge_joint_set,
+                                  held[k] ? std::numeric_limits<double>::infinity()
+                                          : model.materials[b.material].density * moments[k].S};
   }
 }
 
@@ -369,6 +385,11 @@ void Engine::Impl::assemble_blocks(double dt, double t_end, std::vector<Mat6>& d
     K = (1.0 / (nm.beta * dt * dt)) * M;
     // Elastic strain energy S/2 e^T E_e e: K(ex..gxy) += S E_e.
     K.block<3, 3>(3, 3) += g.S * elastic[b.material];
+    // Block damping (Material::damping_ratio), implicit over the step: the
+    // viscous stress E_e tau eps_dot with eps_dot = eps/dt adds (tau/dt) S E_e.
+    if (const double tau = strain_damping_time(g, model.materials[b.material], elastic[b.material]);
+        tau > 0.0 && dynamic)
+      K.block<3, 3>(3, 3) += (tau / dt) * g.S * elastic[b.material];
     // Body force rho g over the area; the other rows vanish about the centroid.
     F.setZero();
     F(0) = rho * s.gravity.x() * g.S;

@@ -20,6 +20,7 @@
 #include <rheodda/scene/build.hpp>
 #include <rheodda/scene/describe.hpp>
 #include <rheodda/scene/loader.hpp>
+#include <rheodda/scene/output.hpp>
 
 #include <fmt/format.h>
 
@@ -86,12 +87,7 @@ class Simulation {
     for (int j : recorded_)
       for (const char* c : {".contacts", ".shear_displacement", ".shear_force", ".shear_displacement_magnitude"})
         columns_.push_back(scene_.joint_sets[j].name + c);
-    for (const char* c :
-         {"energy_kinetic", "energy_strain", "energy_fixed", "energy_contact_normal", "energy_contact_shear",
-          "work_gravity", "work_loads", "work_contact_restart", "dissipation_friction", "dissipation_creep",
-          "dissipation_integration", "dissipation_contact_damping", "dissipation_contact_closing",
-          "dissipation_contact_release", "energy_residual", "energy_residual_relative", "inertia_share"})
-      columns_.push_back(c);
+    for (const char* c : scene::kHistoryEnergyColumns) columns_.push_back(c);
     history_.assign(columns_.size(), {});
     record(nullptr);
   }
@@ -460,15 +456,7 @@ class Simulation {
       put(n ? force / n : std::nan(""));
       put(n ? magnitude / n : std::nan(""));
     }
-    const core::EnergyBalance& en = engine_->energy();
-    const core::StoredEnergy& st = en.stored;
-    const core::EnergyFlows& fl = en.total;
-    for (const double v : {st.kinetic, st.strain, st.fixed, st.contact_normal, st.contact_shear, fl.work_gravity,
-                           fl.work_loads, fl.work_contact_restart, fl.dissipation_friction, fl.dissipation_creep,
-                           fl.dissipation_integration, fl.dissipation_contact_damping,
-                           fl.dissipation_contact_closing, fl.dissipation_contact_release, fl.residual,
-                           en.relative_residual(), core::inertia_share(en.step)})
-      put(v);
+    for (const double v : scene::history_energy_values(engine_->energy())) put(v);
   }
 
   // Declared first, destroyed last: the Python laws outlive the contact system that calls them.

@@ -78,7 +78,8 @@ BuiltScene build_scene(const SceneDescription& s) {
   for (const auto& mat : s.materials)
     m.materials.push_back({mat.density, mat.young_modulus, mat.poisson_ratio,
                            mat.plane == PlaneKind::strain ? core::PlaneMode::plane_strain
-                                                          : core::PlaneMode::plane_stress});
+                                                          : core::PlaneMode::plane_stress,
+                           mat.damping_ratio});
 
   for (std::size_t i = 0; i < s.blocks.size(); ++i) {
     const BlockDescription& b = s.blocks[i];
@@ -159,6 +160,7 @@ BuiltScene build_scene(const SceneDescription& s) {
     j.tensile_strength = js.tensile_strength;
     j.normal_stiffness = js.normal_stiffness;
     j.shear_stiffness = js.shear_stiffness;
+    j.restitution = js.restitution;
     if (js.law) j.law = registry.create(js.law->name, js.law->parameters);
     out.joint_sets.push_back(std::move(j));
   }

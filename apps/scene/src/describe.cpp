@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "rheodda/contact/joint_set.hpp"
 #include "rheodda/core/solver.hpp"
 #include "rheodda/scene/build.hpp"
 #include "rheodda/scene/geometry.hpp"
@@ -107,9 +108,11 @@ std::string describe_scene(const SceneDescription& s) {
 
   line(fmt::format("materials ({}):", s.materials.size()));
   for (const auto& m : s.materials)
-    line(fmt::format("  {}: density {:g} {}*{}^2/{}^4, young_modulus {:g} {}, poisson_ratio {:g}, plane {}",
+    line(fmt::format("  {}: density {:g} {}*{}^2/{}^4, young_modulus {:g} {}, poisson_ratio {:g}, plane {}{}",
                      m.name, m.density, u.force, u.time, u.length, m.young_modulus, stress,
-                     m.poisson_ratio, plane_name(m.plane)));
+                     m.poisson_ratio, plane_name(m.plane),
+                     m.damping_ratio > 0.0 ? fmt::format(", damping_ratio {:g}", m.damping_ratio)
+                                           : std::string()));
 
   line(fmt::format("joint sets ({}):", s.joint_sets.size()));
   for (const auto& j : s.joint_sets) {
@@ -124,6 +127,9 @@ std::string describe_scene(const SceneDescription& s) {
                          ? fmt::format("E1 of the law ({} {}/{})", exact_number(j.law->parameters.at("E1")), stress, u.length)
                          : stiff(j.shear_stiffness, "penalty / shear_normal_ratio"),
                      j.record ? ", recorded in history.csv" : ""));
+    if (j.restitution)
+      line(fmt::format("    restitution {:g} (contact dashpots, damping ratio {:.4g})", *j.restitution,
+                       contact::restitution_damping_ratio(*j.restitution)));
     if (j.law) {
       std::string params;
       for (const auto& [k, v] : j.law->parameters) params += fmt::format(" {}={}", k, exact_number(v));

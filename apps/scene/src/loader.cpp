@@ -71,9 +71,9 @@ const std::vector<std::string> analysis{
     "penalty_raise", "penalty_max_factor", "open_close_limit", "fixed_point_stiffness", "solver", "solver_tolerance",
     "solver_max_iterations", "output_interval", "max_travel_ratio", "max_output_size", "gravity"};
 const std::vector<std::string> settle{"until", "dt", "max_displacement_ratio"};
-const std::vector<std::string> material{"density", "young_modulus", "poisson_ratio", "plane"};
+const std::vector<std::string> material{"density", "young_modulus", "poisson_ratio", "plane", "damping_ratio"};
 const std::vector<std::string> joint_set{"friction_angle", "cohesion", "tensile_strength",
-                                         "normal_stiffness", "shear_stiffness", "law", "record"};
+                                         "normal_stiffness", "shear_stiffness", "restitution", "law", "record"};
 /// And the parameters of the law named, which only the registry knows.
 const std::vector<std::string> law{"name"};
 const std::vector<std::string> block{"name", "material", "polygon", "rectangle", "grid",
@@ -467,7 +467,7 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   return a;
 }
 
-std::vector<Material> read_materials(const Ctx& ctx, const YAML::Node& n) {
+std::vector<Material> read_materials(const Ctx& ctx, const YAML::Node& n, AnalysisType type) {
   if (!n.IsMap() || n.size() == 0)
     ctx.fail(n, "materials", "expected a map of named materials, e.g. `rock: {density: ..., ...}`");
   std::vector<Material> out;
@@ -489,6 +489,13 @@ std::vector<Material> read_materials(const Ctx& ctx, const YAML::Node& n) {
     if (YAML::Node v = m.find("plane"); v.IsDefined())
       mat.plane = choice(ctx, v, m.child("plane"), {"strain", "stress"}) == "strain" ? PlaneKind::strain
                                                                                    : PlaneKind::stress;
+    if (YAML::Node v = m.find("damping_ratio"); v.IsDefined()) {
+      // Block damping damps velocities; a static analysis carries none.
+      if (type == AnalysisType::static_analysis)
+        ctx.fail(v, m.child("damping_ratio"),
+                 "a static analysis carries no velocity; damping_ratio needs `analysis: {type: dynamic}`");
+      mat.damping_ratio = number(ctx, v, m.child("damping_ratio"), {0.0, false, 1.0, false, ""});
+    }
     out.push_back(std::move(mat));
   }
   return out;
@@ -534,7 +541,7 @@ LawChoice read_law(const Ctx& ctx, const YAML::Node& n, const std::string& path)
   return law;
 }
 
-std::vector<JointSetDescription> read_joint_sets(const Ctx& ctx, const YAML::Node& n) {
+std::vector<JointSetDescription> read_joint_sets(const Ctx& ctx, const YAML::Node& n, AnalysisType type) {
   if (!n.IsMap() || n.size() == 0)
     ctx.fail(n, "joint_sets", "expected a map of named joint sets, e.g. `bedding: {friction_angle: 30}`");
   std::vector<std::string> names;  // every name is a valid key of this map
@@ -556,6 +563,13 @@ std::vector<JointSetDescription> read_joint_sets(const Ctx& ctx, const YAML::Nod
       js.normal_stiffness = number(ctx, v, m.child("normal_stiffness"), positive("stress/length"));
     if (YAML::Node v = m.find("shear_stiffness"); v.IsDefined())
       js.shear_stiffness = number(ctx, v, m.child("shear_stiffness"), positive("stress/length"));
+    if (YAML::Node v = m.find("restitution"); v.IsDefined()) {
+      // Contact dashpots damp motion; a static analysis has none to damp.
+      if (type == AnalysisType::static_analysis)
+        ctx.fail(v, m.child("restitution"),
+                 "a static analysis carries no velocity; restitution needs `analysis: {type: dynamic}`");
+      js.restitution = number(ctx, v, m.child("restitution"), {0.0, false, 1.0, false, ""});
+    }
     if (YAML::Node v = m.find("law"); v.IsDefined()) {
       js.law = read_law(ctx, v, m.child("law"));
       // A law with an instantaneous spring E1 (burgers, maxwell, nishihara) is the
@@ -1029,8 +1043,8 @@ SceneDescription parse_scene(const std::string& text_in, const std::string& file
     if (YAML::Node v = top.find("title"); v.IsDefined()) s.title = text(ctx, v, "title");
     s.units = read_units(ctx, top.required("units", "labels {length, force, time}"));
     s.analysis = read_analysis(ctx, top.required("analysis", "time stepping: duration, dt, gravity, ..."));
-    s.materials = read_materials(ctx, top.required("materials", "named block materials"));
-    s.joint_sets = read_joint_sets(ctx, top.required("joint_sets", "named joint sets"));
+    s.materials = read_materials(ctx, top.required("materials", "named block materials"), s.analysis.type);
+    s.joint_sets = read_joint_sets(ctx, top.required("joint_sets", "named joint sets"), s.analysis.type);
     std::vector<RawBlock> raw;
     // With `rock_mass:`, `blocks:` is optional (blocks besides the generated ones).
     const YAML::Node rock_mass = top.find("rock_mass");

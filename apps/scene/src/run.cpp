@@ -310,16 +310,7 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
                : fmt::format(",0,,,");
     }
     // Energy balance (docs/engine.md, "Energy balance"): stored energies now, flows since t = 0.
-    const core::EnergyBalance& en = engine.energy();
-    const core::StoredEnergy& st = en.stored;
-    const core::EnergyFlows& fl = en.total;
-    for (const double v : {st.kinetic, st.strain, st.fixed, st.contact_normal, st.contact_shear,
-                           fl.work_gravity, fl.work_loads, fl.work_contact_restart,
-                           fl.dissipation_friction, fl.dissipation_creep, fl.dissipation_integration,
-                           fl.dissipation_contact_damping, fl.dissipation_contact_closing,
-                           fl.dissipation_contact_release, fl.residual, en.relative_residual(),
-                           core::inertia_share(en.step)})
-      row += fmt::format(",{:.10g}", v);
+    for (const double v : history_energy_values(engine.energy())) row += fmt::format(",{:.10g}", v);
     return row + '\n';
   };
   std::string history_header = "time,step,dt,cuts,iterations";
@@ -610,6 +601,7 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
                      {"dissipation_integration", t.dissipation_integration},
                      {"integration_inertia", t.integration_inertia},
                      {"dissipation_contact_damping", t.dissipation_contact_damping},
+                     {"dissipation_block_damping", t.dissipation_block_damping},
                      {"dissipation_contact_closing", t.dissipation_contact_closing},
                      {"dissipation_contact_release", t.dissipation_contact_release},
                      {"residual", t.residual},

@@ -39,9 +39,10 @@ struct ContactEnergy {
                           ///< what the law's Kelvin springs store)
   double integration = 0.0;  ///< sum of k Delta^2/2 over the normal and shear springs
                              ///< attached through the whole step
-  double damping = 0.0;   ///< sum over closed contacts of (N - p_n d_n)(d_n - d_n0): the
-                          ///< normal force beyond the spring (a normal dashpot, where the
-                          ///< model has one; else 0) times the approach of the step
+  double damping = 0.0;   ///< contact dashpots (JointSet::restitution; else 0): the sum over
+                          ///< closed contacts of the normal dashpot's end force times the
+                          ///< step's approach d_n - d_n0, and over locked contacts of the
+                          ///< shear dashpot's end force times the slip
   double closing = 0.0;   ///< springs attached during the step: k Delta^2/2 - k s0^2/2
                           ///< = F1 Delta - k s1^2/2 (the end force over the gap closed)
   double release = 0.0;   ///< springs detached during the step: k s0^2/2, their energy at

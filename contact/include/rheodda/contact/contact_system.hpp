@@ -208,6 +208,14 @@ class ContactSystem {
     double dt0 = 0.0;  ///< [length]
     double pn = 0.0;   ///< normal spring [stress]
     double ps = 0.0;   ///< shear spring [stress]
+    /// Contact dashpots (JointSet::restitution; 0 without): normal and shear
+    /// [force time / length^2 per unit thickness]. Over a step of length dt they
+    /// act as springs c/dt on the step's motion (implicit: the end-of-step rate).
+    double cn = 0.0, cs = 0.0;
+    /// Penetration from which the normal dashpot counts the step's approach:
+    /// d_n0 for a contact closed at the step start, max(d_n0, 0) for one open
+    /// at the step start (from the touching point across a gap) [length].
+    double dn_ref = 0.0;
     double tan_phi = 0.0;
     double cohesion = 0.0;          ///< [stress]
     double tensile_strength = 0.0;  ///< [stress]
@@ -233,11 +241,16 @@ class ContactSystem {
     ContactState start_state = ContactState::open;
     double friction = 0.0;       ///< friction force of the final solve, signed along the edge
                                  ///< (sliding; from the N that solve assembled) [force/length]
+    double normal_damping = 0.0;  ///< normal dashpot force at the end (closed; JointSet::restitution) [force/length]
+    double shear_damping = 0.0;   ///< shear dashpot force at the end, along the edge (locked) [force/length]
   };
   /// Sum of p_n d_n^2/2 + F^2/(2 k_s) over records with their springs [force x length].
   static double stored_energy(std::span<const Contact> records, std::span<const StepWork> work);
   void prepare(std::span<const BlockView> blocks, const Contact& c, Hot& h) const;
   double shear_stiffness(size_t c) const;
+  /// The dashpots as springs on the step's motion, c / dt [stress] (0 without).
+  double normal_dashpot(size_t c) const;
+  double shear_dashpot(size_t c) const;
   /// Sliding -> locked where the vertex stood at the step start: the shear
   /// spring unstretched, or carrying the friction force under
   /// ContactSettings::stick_keeps_force.

@@ -17,13 +17,25 @@
 // and the shear spring E1 l_t or shear_stiffness l_t.
 #pragma once
 
+#include <cmath>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <string>
 
 #include "rheodda/laws/contact_rheology.hpp"
 
 namespace rheodda::contact {
+
+/// Damping ratio zeta [-] of a linear spring-dashpot contact whose free impact
+/// has the coefficient of restitution e (Cundall & Strack 1979: a damped
+/// half-oscillation returns e = exp(-zeta pi / sqrt(1 - zeta^2)); solved for
+/// zeta): zeta = -ln e / sqrt(pi^2 + ln^2 e), 1 (critical: no rebound) at e = 0.
+inline double restitution_damping_ratio(double e) {
+  if (e <= 0.0) return 1.0;
+  const double l = std::log(e);
+  return -l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
+}
 
 /// Mechanical properties of one family of joints.
 struct JointSet {
@@ -46,6 +58,14 @@ struct JointSet {
   /// spring E1 (burgers, maxwell, nishihara) sets the joint's elastic shear
   /// stiffness, k_s = E1 l_t: shear_stiffness must then be unset.
   std::shared_ptr<const laws::ContactRheology> law;
+  /// Coefficient of restitution e of an impact on this joint set [-], in
+  /// [0, 1]; unset: no contact dashpots (Shi's contact, elastic once the step
+  /// resolves its vibration). Set: the linear spring-dashpot contact of
+  /// Cundall & Strack (1979), a dashpot beside each spring (normal, and shear
+  /// while locked) of damping ratio zeta = -ln e / sqrt(pi^2 + ln^2 e)
+  /// (zeta = 1 at e = 0), c = 2 zeta sqrt(k m) with m the reduced mass of the
+  /// two blocks (docs/contacts.md, "Contact damping"). Dynamic analysis only.
+  std::optional<double> restitution;
 };
 
 /// Numerical settings of the contact layer (defaults: Shi's DDA code).

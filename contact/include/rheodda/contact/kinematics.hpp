@@ -32,6 +32,10 @@ struct BlockView {
   std::span<const Vec2> vertices;      ///< counter-clockwise, first vertex not repeated [length]
   Vec2 centroid = Vec2::Zero();        ///< [length]
   std::span<const int> edge_joint_set; ///< joint set index of edge k (vertex k -> k+1)
+  /// Mass per unit thickness rho S [mass/length]; the contact dashpots of a
+  /// joint set with a restitution use it (JointSet::restitution). 0: unknown;
+  /// infinity: a block that does not move (held at fixed points).
+  double mass = 0.0;
 };
 
 /// Receiver of contact terms of the global equilibrium system K D = F

@@ -58,8 +58,10 @@ struct EnergyFlows {
   double integration_inertia = 0.0;   ///< of dissipation_integration, the inertia term's share:
                                       ///< shi (1 - r^2) KE, trapezoidal (1 - r^2) KE +
                                       ///< D^T M (a' - r a) / 2, static D^T M D / (beta dt^2)
-  double dissipation_contact_damping = 0.0;  ///< normal force beyond the contact springs
-                                             ///< (ContactEnergy::damping)
+  double dissipation_contact_damping = 0.0;  ///< contact dashpots (JointSet::restitution;
+                                             ///< ContactEnergy::damping)
+  double dissipation_block_damping = 0.0;    ///< blocks' strain dashpots (Material::damping_ratio):
+                                             ///< sum of (tau/dt) S eps^T E_e eps
   double dissipation_contact_closing = 0.0;  ///< contact springs attached during the step
                                              ///< (ContactEnergy::closing)
   double dissipation_contact_release = 0.0;  ///< contact springs detached during the step

@@ -42,6 +42,12 @@ struct Material {
   double young_modulus = 1.0e10;  ///< Young's modulus E [stress]; > 0
   double poisson_ratio = 0.25;    ///< Poisson's ratio nu [-]; in [0, 0.5)
   PlaneMode plane = PlaneMode::plane_stress;  ///< default plane stress
+  /// Damping ratio zeta of the lowest strain mode of each block of this
+  /// material [-], in [0, 1]; dynamic analysis only (0: none, Shi's DDA).
+  /// Kelvin-Voigt strain damping sigma = E_e (eps + tau eps_dot), stiffness
+  /// proportional, tau = 2 zeta / omega_1 per block (block_terms.hpp,
+  /// strain_damping_time; docs/engine.md, "Block damping").
+  double damping_ratio = 0.0;
 };
 
 /// One block: a simple polygon (convex or concave) given in either orientation.

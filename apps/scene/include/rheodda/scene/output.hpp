@@ -10,18 +10,32 @@
 #include <string>
 #include <vector>
 
+#include "rheodda/core/energy.hpp"
+
 namespace rheodda::scene {
 
 /// The energy-balance columns that end every history.csv row, in order (docs/outputs.md;
 /// docs/engine.md, "Energy balance"): stored energies now, flows since t = 0, the
 /// residual and the step's inertia share.
-inline constexpr std::array<const char*, 17> kHistoryEnergyColumns{
+inline constexpr std::array<const char*, 18> kHistoryEnergyColumns{
     "energy_kinetic",          "energy_strain",           "energy_fixed",
     "energy_contact_normal",   "energy_contact_shear",    "work_gravity",
     "work_loads",              "work_contact_restart",    "dissipation_friction",
     "dissipation_creep",       "dissipation_integration", "dissipation_contact_damping",
-    "dissipation_contact_closing", "dissipation_contact_release", "energy_residual",
-    "energy_residual_relative", "inertia_share"};
+    "dissipation_block_damping", "dissipation_contact_closing", "dissipation_contact_release",
+    "energy_residual",         "energy_residual_relative", "inertia_share"};
+
+/// The values of kHistoryEnergyColumns, in that order, of a run's balance now.
+inline std::array<double, kHistoryEnergyColumns.size()> history_energy_values(const core::EnergyBalance& en) {
+  const core::StoredEnergy& st = en.stored;
+  const core::EnergyFlows& fl = en.total;
+  return {st.kinetic, st.strain, st.fixed, st.contact_normal, st.contact_shear,
+          fl.work_gravity, fl.work_loads, fl.work_contact_restart,
+          fl.dissipation_friction, fl.dissipation_creep, fl.dissipation_integration,
+          fl.dissipation_contact_damping, fl.dissipation_block_damping, fl.dissipation_contact_closing,
+          fl.dissipation_contact_release, fl.residual, en.relative_residual(),
+          core::inertia_share(en.step)};
+}
 
 /// Writes `content` to `path` through `path + ".tmp"` and a rename, so that a reader
 /// (or a run killed at any moment) sees either the old or the new content. With

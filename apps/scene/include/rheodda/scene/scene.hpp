@@ -115,6 +115,7 @@ struct Material {
   double young_modulus = 0.0;  ///< E [stress]; required, > 0
   double poisson_ratio = 0.0;  ///< nu [-]; required, in [0, 0.5)
   PlaneKind plane = PlaneKind::strain;  ///< `plane: strain|stress`
+  double damping_ratio = 0.0;  ///< zeta of each block's lowest strain mode [-], in [0, 1]; dynamic only
   SourceLocation where{};
 };
 
@@ -132,6 +133,7 @@ struct JointSetDescription {
   double tensile_strength = 0.0;  ///< [stress], >= 0
   std::optional<double> normal_stiffness;  ///< per unit joint area [stress/length]; unset: penalty
   std::optional<double> shear_stiffness;   ///< per unit joint area [stress/length]; unset: penalty / shear_normal_ratio
+  std::optional<double> restitution;       ///< coefficient of restitution e [-] in [0, 1] (contact dashpots); unset: none
   std::optional<LawChoice> law;   ///< creep of the shear spring; unset: none
   bool record = false;            ///< history.csv gets this set's mean shear displacement and force
   SourceLocation where{};
