@@ -201,6 +201,15 @@ void ContactSystem::stick(std::span<const BlockView> blocks, size_t c) {
   prepare(blocks, r, h);
 }
 
+void ContactSystem::lock_at_touch(std::span<const BlockView> blocks, size_t c, double flight) {
+  // The locking point moves along the entrance edge by the tangential motion
+  // before the touch, so the spring's stretch counts from there.
+  Contact& r = work_[c];
+  const BlockView& eb = blocks[r.key.eblock];
+  r.locking_ratio += flight / (edge_end(eb, r.key.edge) - edge_start(eb, r.key.edge)).norm();
+  prepare(blocks, r, hot_[c]);
+}
+
 double ContactSystem::normal_dashpot(size_t c) const {
   return step_dt_ > 0.0 ? hot_[c].cn / step_dt_ : 0.0;
 }
@@ -515,13 +524,24 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
         if (N > f_res) {
           // Closes; Mohr-Coulomb decides at once whether it holds or slides (a
           // vertex arriving with tangential speed would otherwise be caught by
-          // a fully stretched shear spring for one iterate).
-          const double S = shear_stiffness(c) * dt;
+          // a fully stretched shear spring for one iterate). Across a gap g0 =
+          // -d_n0 the vertex touches after the share f = g0 / (g0 + d_n) of the
+          // step's approach (linear in the step); the tangential motion before
+          // that, f slip, is flight, not stretch of the spring: the spring locks
+          // where the vertex touches. Counting it (Shi's rule: the locking point
+          // at the step-start projection) made the outcome of an impact depend
+          // on where in its step the contact was reached (docs/contacts.md,
+          // "Contact damping": a block dropped on an incline slid at the impact
+          // at some steps and not at others).
+          const double gap = std::max(-h.dn0, 0.0);
+          const double flight = gap > 0.0 ? gap / (gap + dn) * slip : 0.0;
+          const double S = shear_stiffness(c) * (dt - flight);
           if (std::abs(S) > N * h.tan_phi + h.cohesion * r.length + f_res) {
             r.state = ContactState::sliding;
-            r.slide_direction = dt >= 0.0 ? 1 : -1;
+            r.slide_direction = S >= 0.0 ? 1 : -1;
           } else {
             r.state = ContactState::locked;
+            if (flight != 0.0) lock_at_touch(blocks, c, flight);
           }
         }
         break;

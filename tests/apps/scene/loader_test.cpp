@@ -376,6 +376,28 @@ BOOST_AUTO_TEST_CASE(static_analysis_refuses_velocity_inputs) {
                   "needs `type: dynamic`");
 }
 
+BOOST_AUTO_TEST_CASE(damping_keys_need_a_dynamic_analysis_and_a_ratio_in_zero_one) {
+  // Contact damping (joint set restitution) and block damping (material damping_ratio).
+  expect_error_at(with("bedding: {friction_angle: 30}", "bedding: {friction_angle: 30, restitution: 0.5}"), 9, "0.5",
+                  "joint_sets.bedding.restitution", "needs `analysis: {type: dynamic}`");
+  expect_error_at(with("poisson_ratio: 0.25}", "poisson_ratio: 0.25, damping_ratio: 0.1}"), 7, "0.1",
+                  "materials.rock.damping_ratio", "needs `analysis: {type: dynamic}`");
+  const std::string dynamic = with("  duration: 1\n", "  type: dynamic\n  duration: 1\n");
+  expect_error_at(with("bedding: {friction_angle: 30}", "bedding: {friction_angle: 30, restitution: 1.5}", dynamic), 10,
+                  "1.5", "joint_sets.bedding.restitution", "");
+  expect_error_at(with("poisson_ratio: 0.25}", "poisson_ratio: 0.25, damping_ratio: -0.1}", dynamic), 8, "-0.1",
+                  "materials.rock.damping_ratio", "");
+  const auto s = scene::parse_scene(
+      with("poisson_ratio: 0.25}", "poisson_ratio: 0.25, damping_ratio: 0.2}",
+           with("bedding: {friction_angle: 30}", "bedding: {friction_angle: 30, restitution: 0.3}", dynamic)),
+      "damped.yaml");
+  const scene::BuiltScene built = scene::build_scene(s);
+  BOOST_TEST(built.model.materials[0].damping_ratio == 0.2);
+  BOOST_TEST_REQUIRE(built.joint_sets[0].restitution.has_value());
+  BOOST_TEST(*built.joint_sets[0].restitution == 0.3);
+  BOOST_TEST(!built.joint_sets[1].restitution.has_value());
+}
+
 BOOST_AUTO_TEST_CASE(loads_take_a_force_or_a_strictly_increasing_history) {
   const std::string loads = "loads:\n  - {point: [1.5, 2], history: [[0, 0, 0], [1, 5, -1], [1, 6, 0]]}\n";
   expect_error_at(kBaseScene + loads, 17, "[1, 6", "loads[0].history[2]", "times must increase strictly");

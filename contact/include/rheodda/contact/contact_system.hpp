@@ -255,6 +255,9 @@ class ContactSystem {
   /// spring unstretched, or carrying the friction force under
   /// ContactSettings::stick_keeps_force.
   void stick(std::span<const BlockView> blocks, size_t c);
+  /// Open -> locked across a gap: the locking point moves along the edge by
+  /// `flight`, the tangential motion of the step before the vertex touched [length].
+  void lock_at_touch(std::span<const BlockView> blocks, size_t c, double flight);
   /// Step constants of one joint set: the scheme's and the implicit ones.
   struct LawStep {
     bool active = false;  ///< the joint set has a law and dt > 0
