@@ -15,7 +15,8 @@ work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 # example | refine options (levels, --until: before a joint fails, where that is the headline)
 # (paths from the repository's root: the shipped examples, then the bench scenes
-# of issue "Steps that converge": the brick wall, the incline drop, the stepped slope)
+# of issue "Steps that converge": the brick wall, the incline drop undamped and
+# damped, the stepped slope)
 examples=(
   "examples/shear-creep-test.yaml|--refine"
   "examples/power-law-creep-test.yaml|--refine"
@@ -30,6 +31,7 @@ examples=(
   "examples/rockmass/tunnel.yaml|--refine"
   "bench/scenes/brick-wall.yaml|--refine=5"
   "bench/scenes/incline-drop.yaml|--refine=5"
+  "bench/scenes/incline-drop-damped.yaml|--refine=5"
   "bench/scenes/stepped-toppling.yaml|--refine=5 --until 2"
 )
 i=0

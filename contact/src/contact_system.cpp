@@ -532,9 +532,11 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
           // at the step-start projection) made the outcome of an impact depend
           // on where in its step the contact was reached (docs/contacts.md,
           // "Contact damping": a block dropped on an incline slid at the impact
-          // at some steps and not at others).
+          // at some steps and not at others). Dynamic analysis only
+          // (ContactSettings::lock_at_touch).
           const double gap = std::max(-h.dn0, 0.0);
-          const double flight = gap > 0.0 ? gap / (gap + dn) * slip : 0.0;
+          const double flight =
+              (settings_.lock_at_touch && gap > 0.0) ? gap / (gap + dn) * slip : 0.0;
           const double S = shear_stiffness(c) * (dt - flight);
           if (std::abs(S) > N * h.tan_phi + h.cohesion * r.length + f_res) {
             r.state = ContactState::sliding;

@@ -14,6 +14,7 @@ contact::ContactSettings contact_settings_for(const Model& model, double penalty
   for (const Material& m : model.materials) e_max = std::max(e_max, m.young_modulus);
   contact::ContactSettings s;
   s.penalty = penalty_factor * e_max;
+  s.lock_at_touch = model.settings.dynamic_ratio > 0.0;  // dynamic analysis (ContactSettings::lock_at_touch)
   return s;
 }
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "rheodda/laws/registry.hpp"
 #include "rheodda/laws/series_law.hpp"
@@ -65,6 +66,36 @@ std::vector<std::string> scene_warnings(const SceneDescription& s) {
       out.push_back(fmt::format("block '{}' has an extreme aspect ratio (perimeter / mean thickness = {:.3g}); "
                                 "its stiffness matrix is ill-conditioned: split it or thicken it",
                                 b.name, perimeter / thickness));
+  }
+  // Contact dashpots act once a step resolves the contact's vibration: its
+  // period on the penalty spring is T = 2 pi sqrt(m / p_n), shortest for the
+  // lightest free block; at steps above about T/10 an impact is left to the
+  // velocity update (docs/contacts.md, "Contact damping": the drop on an
+  // incline converges from T/10 on). Joint sets with a normal stiffness per
+  // area have springs that depend on each contact's length: not estimated.
+  if (a.type == AnalysisType::dynamic_analysis && a.penalty > 0.0) {
+    double lightest = std::numeric_limits<double>::infinity();
+    for (const auto& b : s.blocks) {
+      if (b.fixed) continue;
+      double area = 0.0;
+      for (std::size_t i = 0; i < b.polygon.size(); ++i) {
+        const auto& p = b.polygon[i];
+        const auto& q = b.polygon[(i + 1) % b.polygon.size()];
+        area += 0.5 * (p[0] * q[1] - q[0] * p[1]);
+      }
+      lightest = std::min(lightest, s.materials[b.material].density * std::abs(area));
+    }
+    const double period = 2.0 * std::numbers::pi * std::sqrt(lightest / a.penalty);
+    const bool adaptive = a.creep_tolerance > 0.0 || a.step_tolerance > 0.0;
+    const double largest = adaptive && a.dt_max > 0.0 ? a.dt_max : a.dt;
+    for (const auto& js : s.joint_sets)
+      if (js.restitution && !js.normal_stiffness && std::isfinite(period) && largest > 0.1 * period)
+        out.push_back(fmt::format(
+            "joint set '{}': its restitution acts once a step resolves the contacts' vibration, period about "
+            "{:.3g} {} (the lightest free block on the penalty spring), and dt is {:g} {}, above a tenth of it: "
+            "impacts are left to the time integration's velocity update (docs/contacts.md, \"Contact damping\"); "
+            "give dt below {:.3g} {} or see what the step changes with `rheodda check --refine`",
+            js.name, period, s.units.time, largest, s.units.time, 0.1 * period, s.units.time));
   }
   return out;
 }
@@ -143,6 +174,7 @@ BuiltScene build_scene(const SceneDescription& s) {
   cs.angle_tolerance = a.angle_tolerance;
   cs.penetration_ratio = a.penetration_ratio;
   cs.stick_keeps_force = a.stick_keeps_force;
+  cs.lock_at_touch = a.type == AnalysisType::dynamic_analysis;
   cs.friction_tolerance = a.friction_tolerance;
   cs.force_resolution = a.force_resolution;
   cs.max_flips = a.max_flips;

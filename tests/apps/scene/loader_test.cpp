@@ -396,6 +396,19 @@ BOOST_AUTO_TEST_CASE(damping_keys_need_a_dynamic_analysis_and_a_ratio_in_zero_on
   BOOST_TEST_REQUIRE(built.joint_sets[0].restitution.has_value());
   BOOST_TEST(*built.joint_sets[0].restitution == 0.3);
   BOOST_TEST(!built.joint_sets[1].restitution.has_value());
+  // The 1 m x 1 m block (2600 kg/m) on the 40 x 1e9 Pa penalty: contact period
+  // 2 pi sqrt(2600 / 4e10) = 1.6 ms; dt 0.01 s is above a tenth of it.
+  auto warns = [](const scene::BuiltScene& b) {
+    return std::any_of(b.warnings.begin(), b.warnings.end(), [](const std::string& w) {
+      return w.find("joint set 'bedding': its restitution acts once a step resolves") != std::string::npos;
+    });
+  };
+  BOOST_TEST(warns(built));
+  const auto fine = scene::parse_scene(with("  dt: 0.01\n", "  dt: 0.0001\n",
+                                            with("bedding: {friction_angle: 30}",
+                                                 "bedding: {friction_angle: 30, restitution: 0.3}", dynamic)),
+                                       "damped-fine.yaml");
+  BOOST_TEST(!warns(scene::build_scene(fine)));
 }
 
 BOOST_AUTO_TEST_CASE(loads_take_a_force_or_a_strictly_increasing_history) {
