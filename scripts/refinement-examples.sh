@@ -30,18 +30,26 @@ examples=(
   "examples/goodman-toppling.yaml|--refine"
   "examples/rockmass/tunnel.yaml|--refine"
   "bench/scenes/brick-wall.yaml|--refine=5"
+  "bench/scenes/brick-wall.yaml|--refine=5|restitution: 0, damping_ratio: 1"
   "bench/scenes/incline-drop.yaml|--refine=5"
   "bench/scenes/incline-drop-damped.yaml|--refine=5"
   "bench/scenes/stepped-toppling.yaml|--refine=5 --until 2"
+  "bench/scenes/stepped-toppling.yaml|--refine=5 --until 2|restitution: 0, damping_ratio: 1"
 )
 i=0
 for e in "${examples[@]}"; do
   IFS='|' read -r scene opts extra <<<"$e"
   i=$((i + 1))
   file="$root/$scene"
-  if [[ -n "$extra" ]]; then  # a variant: one more analysis key, in a copy beside the original
+  if [[ -n "$extra" ]]; then  # a variant, in a copy beside the original
     file="$(dirname "$root/$scene")/.refine-variant-$i.yaml"
-    sed "s/^analysis:/analysis:\n  $extra/" "$root/$scene" >"$file"
+    if [[ "$extra" == "restitution: 0, damping_ratio: 1" ]]; then
+      # plastic impacts on every joint set, critically damped blocks (docs/contacts.md, "Contact damping")
+      sed -e "s/^\(  [a-z_]*: {friction_angle: [0-9.]*\)/\1, restitution: 0/" \
+          -e "s/^\(  [a-z_]*: {density: .*poisson_ratio: [0-9.]*\)/\1, damping_ratio: 1/" "$root/$scene" >"$file"
+    else  # one more analysis key
+      sed "s/^analysis:/analysis:\n  $extra/" "$root/$scene" >"$file"
+    fi
   fi
   # shellcheck disable=SC2086  # opts is a list of options
   "$build/apps/rheodda" check "$file" $opts -j "$(nproc)" -o "$work/$i" >/dev/null 2>&1 || true
