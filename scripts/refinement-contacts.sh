@@ -41,6 +41,15 @@ drop_dts="0.001 0.0005 0.00025 0.0001 0.00005 0.000025 0.0000125 0.00000625"
     echo
   done
 } >"$work/drop.md"
+# Pictures: every level of `check --refine=5` of both scenes (the centre's
+# displacement against time), docs/img/incline-drop-refinement-{undamped,damped}.png.
+for scene in incline-drop incline-drop-damped; do
+  "$build/apps/rheodda" check "$root/bench/scenes/$scene.yaml" --refine=5 -j "$(nproc)" -o "$work/check-$scene" \
+    >/dev/null 2>&1 || true  # exit 3 (not converged) is a result here
+  picture=undamped
+  [[ $scene == incline-drop-damped ]] && picture=damped
+  cp "$work/check-$scene/study.png" "$root/docs/img/incline-drop-refinement-$picture.png"
+done
 
 # A running-bond wall of n x n bricks as a scene (stick = true/false).
 wall() {
