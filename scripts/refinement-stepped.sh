@@ -2,19 +2,21 @@
 # Step-size study of stick and slip on a slope that stands (docs/contacts.md,
 # "Stick and slip"): bench/scenes/stepped-toppling.yaml - the Goodman & Bray
 # toppling slope at friction 5 deg above its limit-equilibrium angle, dynamic,
-# 8 s - at dt = 5, 2, 1, 0.5, 0.25 and 0.1 ms, with Shi's rule
+# 8 s - at dt = 5, 2, 1, 0.5, 0.25, 0.1 and 0.05 ms, with Shi's rule
 # (analysis.stick_keeps_force: false, the static default) and with elastic-plastic
-# joints (stick_keeps_force: true, the dynamic default). Prints a Markdown table of the largest
+# joints (stick_keeps_force: true, the dynamic default), and the latter with
+# plastic impacts and damped blocks (joint set restitution 0, material
+# damping_ratio 1; docs/contacts.md, "Contact damping"). Prints a Markdown table of the largest
 # displacement of the 16 block tops at 8 s [mm], with the run's cuts of dt and
 # its energy-balance residual, and puts it between the refinement-stepped
-# markers of docs/contacts.md. About 1 min on 2 cores.
+# markers of docs/contacts.md. About 3 min on 2 cores.
 # Usage: scripts/refinement-stepped.sh   (uses $RHEODDA_BUILD_DIR or build/)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${RHEODDA_BUILD_DIR:-$root/build}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
-dts=(0.005 0.002 0.001 0.0005 0.00025 0.0001)
+dts=(0.005 0.002 0.001 0.0005 0.00025 0.0001 0.00005)
 {
   echo "scene: $root/bench/scenes/stepped-toppling.yaml"
   printf "outputs: ["
@@ -27,9 +29,12 @@ dts=(0.005 0.002 0.001 0.0005 0.00025 0.0001)
       echo "  - {name: ${stick}_$dt, set: {analysis.dt: $dt, analysis.stick_keeps_force: $stick}}"
     done
   done
+  for dt in "${dts[@]}"; do  # the dynamic default with plastic impacts and damped blocks
+    echo "  - {name: damped_$dt, set: {analysis.dt: $dt, joint_sets.joint.restitution: 0, materials.rock.damping_ratio: 1}}"
+  done
 } >"$work/study.yaml"
 "$build/apps/rheodda" study "$work/study.yaml" -o "$work/out" -j "$(nproc)" --no-plot >/dev/null 2>&1 || true
-for stick in false true; do
+for stick in false true damped; do
   for dt in "${dts[@]}"; do
     summary="$work/out/cases/${stick}_$dt/summary.json"
     /usr/bin/python3 - "$summary" "$stick" "$dt" >>"$work/rows.txt" <<'PY'
@@ -55,7 +60,8 @@ for line in open(sys.argv[2]):
 dts = sys.argv[3:]
 print("| joint rule | quantity | " + " | ".join(f"{float(d) * 1e3:g} ms" for d in dts) + " |")
 print("|---|---|" + "---:|" * len(dts))
-for stick, name in (("false", "Shi's (`stick_keeps_force: false`)"), ("true", "`stick_keeps_force: true` (dynamic default)")):
+for stick, name in (("false", "Shi's (`stick_keeps_force: false`)"), ("true", "`stick_keeps_force: true` (dynamic default)"),
+                    ("damped", "dynamic default, `restitution: 0`, `damping_ratio: 1`")):
     cells = []
     for d in dts:
         status = rows[stick, d][0]
