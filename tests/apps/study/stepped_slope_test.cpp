@@ -9,6 +9,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -18,12 +19,29 @@
 using namespace rheodda::study_test;
 namespace fs = std::filesystem;
 
+namespace {
+
+/// The study's `outputs:` line: the displacement of the 16 block tops.
+std::string tops_outputs() {
+  std::string outputs = "outputs: [";
+  for (int b = 1; b <= 16; ++b) outputs += "b" + std::to_string(b) + "_top.displacement" + (b < 16 ? ", " : "]\n");
+  return outputs;
+}
+
+/// The largest displacement of the 16 block tops at 2 s in a study.csv row [m].
+double largest_top(const std::map<std::string, std::string>& row) {
+  double m = 0.0;
+  for (int b = 1; b <= 16; ++b) m = std::max(m, std::stod(row.at("b" + std::to_string(b) + "_top.displacement@2")));
+  return m;
+}
+
+}  // namespace
+
 BOOST_AUTO_TEST_SUITE(stepped_slope)
 
 BOOST_AUTO_TEST_CASE(a_slope_5_deg_above_limit_equilibrium_stands_at_every_step_dynamic_and_static) {
   const fs::path dir = fresh_dir("stepped");
-  std::string outputs = "outputs: [";
-  for (int b = 1; b <= 16; ++b) outputs += "b" + std::to_string(b) + "_top.displacement" + (b < 16 ? ", " : "]\n");
+  const std::string outputs = tops_outputs();
   const fs::path study = dir / "study.yaml";
   std::ofstream(study) << "scene: " << source_path("bench/scenes/stepped-toppling.yaml") << "\n"
                        << "set: {analysis.duration: 2, analysis.output_interval: 1}\n"
@@ -43,9 +61,7 @@ BOOST_AUTO_TEST_CASE(a_slope_5_deg_above_limit_equilibrium_stands_at_every_step_
   for (const auto& row : rows) {
     BOOST_TEST_CONTEXT(row.at("case")) {
       BOOST_TEST(row.at("status") == "completed");
-      double largest = 0.0;  // largest displacement of the 16 block tops at 2 s [m]
-      for (int b = 1; b <= 16; ++b)
-        largest = std::max(largest, std::stod(row.at("b" + std::to_string(b) + "_top.displacement@2")));
+      const double largest = largest_top(row);
       // Standing: settling of 1-14 mm (docs/contacts.md); toppling: metres.
       if (row.at("case") == "below_limit")
         BOOST_TEST(largest > 0.5);
@@ -76,8 +92,7 @@ BOOST_AUTO_TEST_CASE(with_plastic_impacts_and_damped_blocks_the_settling_does_no
   // damping" and "Stick and slip"): 6.1-6.4 mm at 8 s from 5 ms to 0.05 ms, where
   // the undamped default settles 7.7-14.3 mm, more at every smaller step.
   const fs::path dir = fresh_dir("stepped-damped");
-  std::string outputs = "outputs: [";
-  for (int b = 1; b <= 16; ++b) outputs += "b" + std::to_string(b) + "_top.displacement" + (b < 16 ? ", " : "]\n");
+  const std::string outputs = tops_outputs();
   const fs::path study = dir / "study.yaml";
   std::ofstream(study) << "scene: " << source_path("bench/scenes/stepped-toppling.yaml") << "\n"
                        << "set: {analysis.duration: 2, analysis.output_interval: 1, joint_sets.joint.restitution: 0, "
@@ -95,8 +110,7 @@ BOOST_AUTO_TEST_CASE(with_plastic_impacts_and_damped_blocks_the_settling_does_no
   std::vector<double> largest;  // per case, the largest displacement of the 16 block tops at 2 s [m]
   for (const auto& row : rows) {
     BOOST_TEST(row.at("status") == "completed");
-    double m = 0.0;
-    for (int b = 1; b <= 16; ++b) m = std::max(m, std::stod(row.at("b" + std::to_string(b) + "_top.displacement@2")));
+    const double m = largest_top(row);
     BOOST_TEST_MESSAGE("damped, " << row.at("case") << ": largest displacement " << m * 1e3 << " mm");
     largest.push_back(m);
   }
