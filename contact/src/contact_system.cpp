@@ -558,9 +558,18 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
             r.state = ContactState::sliding;
             r.slide_direction = dt >= 0.0 ? 1 : -1;
           }
-        } else if (shear_stiffness(c) * slip * r.slide_direction < -f_res) {
+        } else if ((settings_.reversal_at_normal_resolution ? h.pn : shear_stiffness(c)) * slip *
+                       r.slide_direction <
+                   -f_res) {
           // The vertex moves against the friction direction assumed: it sticks
-          // where it stood at the start of the step (stick).
+          // where it stood at the start of the step (stick). The test resolves
+          // a backward slip of f_res / k_s (Shi's shear spring) or, in dynamic
+          // analysis, f_res / p_n (ContactSettings::reversal_at_normal_resolution).
+          // Measured (docs/contacts.md, "Friction that pushed"): with a soft
+          // joint (1e8 Pa/m on the seed's slope) f_res / k_s is 1e-4 m, more
+          // than a small step's slip, so a vertex moving backwards kept its
+          // friction force pushing it on: friction did negative work, and the
+          // slope settled dynamically at 1 ms but never at 0.25 ms and below.
           stick(blocks, c);
         } else {
           // The friction force N tan(phi) came from the last iterate's N.

@@ -15,6 +15,7 @@ contact::ContactSettings contact_settings_for(const Model& model, double penalty
   contact::ContactSettings s;
   s.penalty = penalty_factor * e_max;
   s.lock_at_touch = model.settings.dynamic_ratio > 0.0;  // dynamic analysis (ContactSettings::lock_at_touch)
+  s.reversal_at_normal_resolution = s.lock_at_touch;     // (ContactSettings::reversal_at_normal_resolution)
   return s;
 }
 

@@ -175,6 +175,7 @@ BuiltScene build_scene(const SceneDescription& s) {
   cs.penetration_ratio = a.penetration_ratio;
   cs.stick_keeps_force = a.stick_keeps_force;
   cs.lock_at_touch = a.type == AnalysisType::dynamic_analysis;
+  cs.reversal_at_normal_resolution = cs.lock_at_touch;
   cs.friction_tolerance = a.friction_tolerance;
   cs.force_resolution = a.force_resolution;
   cs.max_flips = a.max_flips;
