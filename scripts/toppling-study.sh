@@ -15,7 +15,7 @@ mkdir -p "$OUT" docs/img
 "$B" study examples/studies/toppling-phi.yaml  -o "$OUT/phi"  -j "$JOBS" || true   # a failed case is reported in study.csv
 "$B" study examples/studies/toppling-laws.yaml -o "$OUT/laws" -j "$JOBS" || true
 
-# Figures 9-10 of the seed: displacement at 10 d against the base friction angle, no creep.
+# Figures 9-10 of the seed: displacement at 20 s (settled dynamically) against the base friction angle, no creep.
 awk -F, 'NR > 1 && $2 == "completed" { sub(/^phi/, "", $1); print $1, $4, $6 }' "$OUT/phi/study.csv" > "$OUT/phi.dat"
 # Figure 11: displacement histories of blocks 1 and 10 with Burgers creep, phi = 50 deg, 100 d.
 awk -F, '/^#/ || $1 == "time" { next } { print $1, sqrt($6*$6 + $7*$7), sqrt($8*$8 + $9*$9) }' \
@@ -25,7 +25,7 @@ gnuplot <<GP
 set terminal pngcairo size 900,560 noenhanced
 set grid
 set output 'docs/img/toppling-phi.png'
-set title 'Goodman slope without creep: displacement at 10 d against base friction angle'
+set title 'Goodman slope without creep, settled dynamically: displacement at 20 s against base friction angle'
 set xlabel 'base friction angle phi [deg]'
 set ylabel 'displacement [m]'
 set logscale y
