@@ -13,9 +13,7 @@
 #                        (joint sets restitution 0, material damping_ratio 1;
 #                        docs/contacts.md, "Contact damping"): gravity on at t = 0,
 #                        20 s of motion (2.315e-4 d), g2 / dt from 0.001 / 2 ms over
-#                        five levels with the contact search distance of the first
-#                        (search_factor doubled as g2 halves), refinement-goodman-dynamic
-#                        markers; about 1 min.
+#                        five levels, refinement-goodman-dynamic markers; about 1 min.
 set -euo pipefail
 marker=refinement-goodman
 levels=7
@@ -62,13 +60,7 @@ phis=(35 45 60)
     for ((l = 0; l < levels; ++l)); do
       g2=$(awk -v l=$l 'BEGIN { printf "%.9g", 0.001 / 2^l }')
       dt=$(awk -v l=$l -v d=$dt0 'BEGIN { printf "%.9g", d / 2^l }')
-      search=""
-      # Dynamic: the contact search distance (search_factor x g2 x w0) kept at
-      # the first level's, 0.27 m (measured: below about 0.2 m it changes the
-      # settled state, docs/contacts.md, "Friction that pushed").
-      [[ $marker == refinement-goodman-dynamic ]] &&
-        search=", analysis.search_factor: $(awk -v l=$l 'BEGIN { printf "%.9g", 2.5 * 2^l }')"
-      echo "  - {name: phi${phi}_L$l, set: {joint_sets.base.friction_angle: $phi, analysis.max_displacement_ratio: $g2, analysis.dt: $dt$search}}"
+      echo "  - {name: phi${phi}_L$l, set: {joint_sets.base.friction_angle: $phi, analysis.max_displacement_ratio: $g2, analysis.dt: $dt}}"
     done
   done
 } >"$work/study.yaml"

@@ -149,18 +149,25 @@ void ContactSystem::prepare(std::span<const BlockView> blocks, const Contact& c,
   h.tj = -displacement_matrix(bj.centroid, p0).transpose() * t;
 
   // Springs: penalty (eq. 17, one value for every contact point), or the joint
-  // stiffness per unit area times the contact length where the contact has one.
-  // On a joint set with a law the shear spring takes the tributary length
-  // (point contacts too), so that the law's per-area response holds there.
+  // stiffness per unit area times the contact's tributary length l_t (its
+  // length for an edge-edge contact, point_tributary_length for a point
+  // contact), so that the joint's per-area response holds on every contact
+  // and a contact's springs do not jump when it changes kind. Measured
+  // (docs/contacts.md, "Springs of a joint on point contacts"): taking the
+  // contact length, a column of the seed's slope that rose 3.4 cm off one base
+  // corner turned its other base contact from edge-edge into a point contact,
+  // whose shear spring jumped from the joint's 5e8 to the penalty's 1.6e11 N/m
+  // with the stretch it had: the contact slid, and the settled slope depended
+  // on whether the contact search reached the lifted corner.
   const JointSet& js = joint_sets_[c.joint_set];
-  const double ls = js.law ? c.tributary_length : c.length;  // shear spring's joint length
-  h.pn = (js.normal_stiffness && c.length > 0.0) ? *js.normal_stiffness * c.length : penalty_;
-  h.ps = (js.shear_stiffness && ls > 0.0) ? *js.shear_stiffness * ls
+  const double lt = c.tributary_length > 0.0 ? c.tributary_length : c.length;  // [length]
+  h.pn = (js.normal_stiffness && lt > 0.0) ? *js.normal_stiffness * lt : penalty_;
+  h.ps = (js.shear_stiffness && lt > 0.0) ? *js.shear_stiffness * lt
                                           : penalty_ / settings_.shear_normal_ratio;
   // A creep law's instantaneous spring E1 [stress/length] is the joint's elastic
   // shear stiffness, so a run reproduces the law's instantaneous response.
-  if (js.law && ls > 0.0)
-    if (const auto e1 = js.law->instantaneous_stiffness()) h.ps = *e1 * ls;
+  if (js.law && lt > 0.0)
+    if (const auto e1 = js.law->instantaneous_stiffness()) h.ps = *e1 * lt;
   // Dashpots c = 2 zeta sqrt(k m) beside the springs (JointSet::restitution),
   // m the reduced mass m_i m_j / (m_i + m_j) of the two blocks: the mass that
   // oscillates on the contact spring (the moving block's own mass against a

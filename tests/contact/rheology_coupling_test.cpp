@@ -2,6 +2,8 @@
 // hand-made blocks, displacements prescribed by the test (the host's solve is
 // not needed when the displacement is held). Units MPa, mm, h, unit thickness.
 #include <boost/test/unit_test.hpp>
+
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -437,6 +439,56 @@ BOOST_AUTO_TEST_CASE(a_block_rocking_between_face_and_corner_keeps_a_continuous_
   BOOST_TEST(std::abs(flat.back().creep) > 0.1 * delta);
   BOOST_TEST(point_steps >= 20);
   BOOST_TEST(changes == 3);  // to the corner, back to the face, to the corner again
+}
+
+BOOST_AUTO_TEST_CASE(an_elastic_joint_keeps_its_springs_per_unit_length_on_a_corner) {
+  // The rocking block above on a joint set without a law, with the joint's
+  // stiffnesses per unit area (normal_stiffness 1e4, shear_stiffness 30
+  // MPa/mm): sheared by 1e-4 mm and held, its left contact turns from
+  // edge_edge into vertex_edge and back as it rocks about that corner. The
+  // corner does not move, so the contact's forces per unit tributary length,
+  // N / l_t = k_n x penetration and F / l_t = k_s x stretch, are the flat
+  // run's at every step. Taking the springs over the contact length (0 for a
+  // point contact: the penalty's springs instead) made them jump at each
+  // change of kind, and the seed's slope settle where the contact search
+  // reached a lifted corner (docs/contacts.md, "Springs of a joint on point
+  // contacts").
+  const double delta = 1e-4, theta = 0.06;
+  JointSet j = joint("b", nullptr);
+  j.shear_stiffness = 30.0;  // [MPa/mm]
+  auto run = [&](bool rock) {
+    Rig rig({j}, {0});
+    std::vector<std::array<double, 2>> per_length;  // N / l_t, F / l_t [MPa]
+    std::vector<ContactKind> kinds;
+    for (int n = 1; n <= 60; ++n) {
+      double turn = 0.0;
+      if (rock && ((n >= 11 && n <= 15) || (n >= 46 && n <= 50))) turn = theta / 5;
+      if (rock && n >= 31 && n <= 35) turn = -theta / 5;
+      rig.scene.rotate(rig.movers[0], rig.scene.block(rig.movers[0]).vertices[0], turn);
+      rig.step(1.0, n == 1 ? delta : 0.0);
+      const Contact* left = nullptr;
+      for (const Contact& c : rig.cs.contacts())
+        if (c.key.vblock == rig.movers[0] && c.key.vertex == 0) left = &c;
+      BOOST_TEST_REQUIRE(left != nullptr);
+      BOOST_TEST((left->state == ContactState::locked));
+      per_length.push_back({left->normal_force / left->tributary_length,
+                            left->shear_force / left->tributary_length});
+      kinds.push_back(left->kind);
+    }
+    return std::pair{per_length, kinds};
+  };
+  const auto [flat, flat_kinds] = run(false);
+  const auto [rocking, kinds] = run(true);
+  int point_steps = 0;
+  for (size_t n = 0; n < flat.size(); ++n) {
+    BOOST_TEST_CONTEXT("step " << n + 1 << " (" << contact_kind_name(kinds[n]) << ")") {
+      BOOST_TEST(rocking[n][0] == flat[n][0], boost::test_tools::tolerance(1e-9));
+      BOOST_TEST(rocking[n][1] == flat[n][1], boost::test_tools::tolerance(1e-9));
+      if (kinds[n] == ContactKind::vertex_edge) ++point_steps;
+    }
+  }
+  BOOST_TEST(std::abs(flat.back()[1]) > 0.5 * 30.0 * delta);  // the held shear is there
+  BOOST_TEST(point_steps >= 20);
 }
 
 BOOST_AUTO_TEST_CASE(sliding_or_opening_loses_the_history_and_relocking_restarts_from_rest) {

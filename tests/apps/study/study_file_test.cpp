@@ -167,9 +167,12 @@ BOOST_AUTO_TEST_CASE(a_case_scene_is_titled_by_the_base_title_and_the_case_chang
   const std::string base = "Goodman toppling slope with Burgers creep on its joints (phi = 50 deg)";
   BOOST_TEST(phi33.title ==
              base + " [case phi33: joint_sets.base.friction_angle = 33, joint_sets.base.law removed, "
-                    "joint_sets.base.shear_stiffness = 1.0e8, joint_sets.anti_toppling.law removed, "
-                    "joint_sets.anti_toppling.shear_stiffness = 1.0e8, analysis.duration = 10, "
-                    "analysis.output_interval = 1, analysis.max_displacement_ratio = 0.0005]");
+                    "joint_sets.base.shear_stiffness = 1.0e8, joint_sets.base.restitution = 0, "
+                    "joint_sets.anti_toppling.law removed, joint_sets.anti_toppling.shear_stiffness = 1.0e8, "
+                    "joint_sets.anti_toppling.restitution = 0, materials.rock.damping_ratio = 1, "
+                    "analysis.type = dynamic, analysis.scheme removed, analysis.duration = 2.3148148e-4, "
+                    "analysis.dt = 5.787037e-9, analysis.output_interval = 1.1574074e-5, "
+                    "analysis.max_displacement_ratio = 0.00025]");
   // Each case's title differs by its own change, listed first.
   const auto phi55 = rheodda::scene::parse_scene(texts.back(), "case phi55");
   BOOST_TEST(phi55.title.find(base + " [case phi55: joint_sets.base.friction_angle = 55, ") == 0u, phi55.title);

@@ -104,11 +104,14 @@ BOOST_AUTO_TEST_CASE(seed_slope_settled_dynamically_is_the_same_at_two_steps) {
   // The phi sweep of docs/toppling-study.md (examples/studies/toppling-phi.yaml):
   // no creep, gravity at t = 0, dynamic with plastic impacts and damped blocks,
   // 20 s. Levels L1 and L2 of `scripts/refinement-goodman.sh --dynamic` (dt 1 and
-  // 0.5 ms, g2 halved with it, the search distance held at 0.27 m): block 10
-  // settles at 1.502 m at both at 45 deg, and every level from 2 ms down lies
-  // within 0.5 % of the next (docs/contacts.md, "The same slope settled
-  // dynamically"). Before the slide-reversal fix ("Friction that pushed") the
-  // 0.5 ms run never came to rest. At 33 deg the slope slides along its base.
+  // 0.5 ms, g2 halved with it): block 10 settles at 1.979 and 1.978 m at 45 deg,
+  // and every level from 2 ms down lies within 0.05 % of the next
+  // (docs/contacts.md, "The same slope settled dynamically"). Before the
+  // slide-reversal fix ("Friction that pushed") the 0.5 ms run never came to
+  // rest; before the joint's springs took the tributary length on point
+  // contacts too ("Springs of a joint on point contacts") the settled state
+  // changed with g2 through the contact search distance. At 33 deg the slope
+  // slides along its base.
   const fs::path dir = fresh_dir("toppling_dynamic");
   const std::string scene = source_path("examples/goodman-toppling.yaml");
   const fs::path yaml = dir / "dyn.yaml";
@@ -129,11 +132,11 @@ BOOST_AUTO_TEST_CASE(seed_slope_settled_dynamically_is_the_same_at_two_steps) {
                          "times: [1.1574074e-4, 2.3148148e-4]\n"
                          "cases:\n"
                          "  - {name: phi45_L1, set: {joint_sets.base.friction_angle: 45, analysis.dt: 1.1574074e-8,"
-                         " analysis.max_displacement_ratio: 0.0005, analysis.search_factor: 5}}\n"
+                         " analysis.max_displacement_ratio: 0.0005}}\n"
                          "  - {name: phi45_L2, set: {joint_sets.base.friction_angle: 45, analysis.dt: 5.787037e-9,"
-                         " analysis.max_displacement_ratio: 0.00025, analysis.search_factor: 10}}\n"
+                         " analysis.max_displacement_ratio: 0.00025}}\n"
                          "  - {name: phi33_L2, set: {joint_sets.base.friction_angle: 33, analysis.dt: 5.787037e-9,"
-                         " analysis.max_displacement_ratio: 0.00025, analysis.search_factor: 10}}\n";
+                         " analysis.max_displacement_ratio: 0.00025}}\n";
   const auto r = run_rheodda("study " + yaml.string() + " -o " + (dir / "out").string() + " -j 2 --no-plot");
   BOOST_TEST_REQUIRE(r.exit_code == 0, r.output);
   const auto rows = read_study_csv((dir / "out" / "study.csv").string());
