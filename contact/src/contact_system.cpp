@@ -200,8 +200,9 @@ void ContactSystem::stick(std::span<const BlockView> blocks, size_t c) {
   const BlockView& eb = blocks[r.key.eblock];
   const Vec2 a = edge_start(eb, r.key.edge), b = edge_end(eb, r.key.edge);
   const double friction = std::max(h.normal_force, 0.0) * h.tan_phi + h.cohesion * r.length;
-  const double stretch =
-      settings_.stick_keeps_force ? r.slide_direction * friction / shear_stiffness(c) : 0.0;
+  const bool keep = step_dynamic_ && settings_.stick_keeps_force_dynamic ? *settings_.stick_keeps_force_dynamic
+                                                                          : settings_.stick_keeps_force;
+  const double stretch = keep ? r.slide_direction * friction / shear_stiffness(c) : 0.0;
   r.locking_ratio = line_ratio(a, b, blocks[r.key.vblock].vertices[r.key.vertex]) -
                     stretch / (b - a).norm();
   r.state = ContactState::locked;
@@ -218,11 +219,11 @@ void ContactSystem::lock_at_touch(std::span<const BlockView> blocks, size_t c, d
 }
 
 double ContactSystem::normal_dashpot(size_t c) const {
-  return step_dt_ > 0.0 ? hot_[c].cn / step_dt_ : 0.0;
+  return step_dt_ > 0.0 && step_dynamic_ ? hot_[c].cn / step_dt_ : 0.0;
 }
 
 double ContactSystem::shear_dashpot(size_t c) const {
-  return step_dt_ > 0.0 ? hot_[c].cs / step_dt_ : 0.0;
+  return step_dt_ > 0.0 && step_dynamic_ ? hot_[c].cs / step_dt_ : 0.0;
 }
 
 double ContactSystem::shear_stiffness(size_t c) const {
@@ -275,7 +276,8 @@ void ContactSystem::fail_law(size_t c) {
 }
 
 void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_displacement,
-                               double dt) {
+                               double dt, bool dynamic) {
+  step_dynamic_ = dynamic;
   const int nb = static_cast<int>(blocks.size());
   // Half model size w0 [length].
   Box model;
@@ -543,7 +545,7 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
           // (ContactSettings::lock_at_touch).
           const double gap = std::max(-h.dn0, 0.0);
           const double flight =
-              (settings_.lock_at_touch && gap > 0.0) ? gap / (gap + dn) * slip : 0.0;
+              (settings_.lock_at_touch && step_dynamic_ && gap > 0.0) ? gap / (gap + dn) * slip : 0.0;
           const double S = shear_stiffness(c) * (dt - flight);
           if (std::abs(S) > N * h.tan_phi + h.cohesion * r.length + f_res) {
             r.state = ContactState::sliding;
@@ -565,7 +567,7 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
             r.state = ContactState::sliding;
             r.slide_direction = dt >= 0.0 ? 1 : -1;
           }
-        } else if ((settings_.reversal_at_normal_resolution ? h.pn : shear_stiffness(c)) * slip *
+        } else if ((settings_.reversal_at_normal_resolution && step_dynamic_ ? h.pn : shear_stiffness(c)) * slip *
                        r.slide_direction <
                    -f_res) {
           // The vertex moves against the friction direction assumed: it sticks

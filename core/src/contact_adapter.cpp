@@ -14,13 +14,16 @@ contact::ContactSettings contact_settings_for(const Model& model, double penalty
   for (const Material& m : model.materials) e_max = std::max(e_max, m.young_modulus);
   contact::ContactSettings s;
   s.penalty = penalty_factor * e_max;
-  s.lock_at_touch = model.settings.dynamic_ratio > 0.0;  // dynamic analysis (ContactSettings::lock_at_touch)
+  // Dynamic analysis, or a dynamic settling stage (ContactSettings::lock_at_touch;
+  // the steps say which are dynamic: StepContext::dynamic).
+  s.lock_at_touch = model.settings.dynamic_ratio > 0.0 ||
+                    (model.settings.settle_until > 0.0 && model.settings.settle_dynamic);
   s.reversal_at_normal_resolution = s.lock_at_touch;     // (ContactSettings::reversal_at_normal_resolution)
   return s;
 }
 
 void ContactAdapter::begin_step(std::span<const contact::BlockView> blocks, const StepContext& ctx) {
-  system_.begin_step(blocks, ctx.max_displacement, ctx.dt);
+  system_.begin_step(blocks, ctx.max_displacement, ctx.dt, ctx.dynamic);
   dt_ = ctx.dt;
   want_error_ = ctx.creep_error_wanted;
 }

@@ -89,16 +89,15 @@ double EnergyBalance::relative_residual() const {
 
 StoredEnergy EnergyAccount::stored_in_blocks(const EnergyInputs& in) {
   StoredEnergy e;
-  const bool dynamic = in.model.settings.dynamic_ratio > 0.0;
   std::vector<Eigen::Matrix3d> compliance(in.elastic.size());
   for (std::size_t m = 0; m < in.elastic.size(); ++m) compliance[m] = in.elastic[m].inverse();
   for (std::size_t k = 0; k < in.blocks.size(); ++k) {
     const BlockState& b = in.blocks[k];
     const PolygonIntegrals& g = in.moments[k];
-    // Kinetic: the velocity field T v over the block, rho/2 int |T v|^2 dA = v^T M v/2.
-    if (dynamic)
-      e.kinetic += 0.5 * in.model.materials[b.material].density *
-                   b.velocity.dot(unit_mass_matrix(g) * b.velocity);
+    // Kinetic: the velocity field T v over the block, rho/2 int |T v|^2 dA = v^T M v/2
+    // (zero in a static analysis, whose blocks carry no velocity).
+    e.kinetic += 0.5 * in.model.materials[b.material].density *
+                 b.velocity.dot(unit_mass_matrix(g) * b.velocity);
     // Elastic strain energy S/2 eps^T E_e eps with eps = E_e^-1 sigma (Shi 1988).
     e.strain += 0.5 * g.S * b.stress.dot(compliance[b.material] * b.stress);
   }
@@ -118,7 +117,7 @@ void EnergyAccount::begin(const EnergyInputs& in, const Eigen::VectorXd& D, doub
                           double beta, double gamma) {
   flows_ = {};
   const Settings& s = in.model.settings;
-  const double r = s.dynamic_ratio;
+  const double r = in.ratio;  // the step's carried share (1 in a dynamic settling stage)
   const bool dynamic = r > 0.0;
   const bool shi = beta == 0.5 && gamma == 1.0;
   const bool trapezoidal = beta == 0.25 && gamma == 0.5;
@@ -142,7 +141,9 @@ void EnergyAccount::begin(const EnergyInputs& in, const Eigen::VectorXd& D, doub
     // Inertia: (2) in the header comment.
     const Mat6 M = rho * unit_mass_matrix(g);
     if (!dynamic) {
-      flows_.integration_inertia += Dk.dot(M * Dk) / (beta * dt * dt);
+      // A static step starts at rest: the velocity a dynamic settling stage
+      // left (Settings::settle_dynamic) is dropped, its kinetic energy with it.
+      flows_.integration_inertia += Dk.dot(M * Dk) / (beta * dt * dt) + 0.5 * b.velocity.dot(M * b.velocity);
       continue;
     }
     const double ke = 0.5 * b.velocity.dot(M * b.velocity);

@@ -107,7 +107,13 @@ struct Engine::Impl {
   double search_floor = 0.0;  // kSearchFloor x the median block size [length]
   double search_reach(const Eigen::VectorXd& d) const;
   double fixed_k = 0.0;                   // fixed point penalty [force/length]
-  bool dynamic = true;
+  /// Share of the velocity the step starting now carries: the analysis's
+  /// dynamic_ratio, or 1 in a dynamic settling stage (Settings::settle_dynamic).
+  double ratio_now() const {
+    return settling() && model.settings.settle_dynamic ? 1.0 : model.settings.dynamic_ratio;
+  }
+  /// The step starting now carries velocity (a dynamic step).
+  bool dynamic_now() const { return ratio_now() > 0.0; }
 
   /// Newmark parameters of the current step. The trapezoidal rule needs the
   /// acceleration at the step start; the first step has none, so it uses Shi's
@@ -122,8 +128,7 @@ struct Engine::Impl {
   }
   /// Newmark predictor Dp = v dt + (1/2 - beta) dt^2 a from the carried v, a.
   Vec6 predictor(const BlockState& b, double dt, const Newmark& nm) const {
-    const double ratio = model.settings.dynamic_ratio;
-    return ratio * (dt * b.velocity + (0.5 - nm.beta) * dt * dt * b.acceleration);
+    return ratio_now() * (dt * b.velocity + (0.5 - nm.beta) * dt * dt * b.acceleration);
   }
 
   BlockSystem system;
@@ -134,7 +139,9 @@ struct Engine::Impl {
   std::vector<StepReport> reports;
   std::vector<StepObserver> observers;
   EnergyAccount energy;  // the balance itself is st.energy (energy.hpp)
-  EnergyInputs energy_inputs() const { return {model, st.blocks, moments, elastic, fixed_k}; }
+  EnergyInputs energy_inputs() const {
+    return {model, st.blocks, moments, elastic, fixed_k, ratio_now()};
+  }
 
   void validate();
   void initialise();
@@ -193,9 +200,11 @@ void Engine::Impl::validate() {
       throw ModelError(at("materials", k) + ".poisson_ratio", "must be in [0, 0.5)");
     if (!(mat.damping_ratio >= 0.0 && mat.damping_ratio <= 1.0))
       throw ModelError(at("materials", k) + ".damping_ratio", "must be in [0, 1]");
-    if (mat.damping_ratio > 0.0 && !(m.settings.dynamic_ratio > 0.0))
+    if (mat.damping_ratio > 0.0 && !(m.settings.dynamic_ratio > 0.0) &&
+        !(m.settings.settle_until > 0.0 && m.settings.settle_dynamic))
       throw ModelError(at("materials", k) + ".damping_ratio",
-                       "damps velocities; a static analysis (dynamic_ratio 0) has none");
+                       "damps velocities; a static analysis (dynamic_ratio 0) without a dynamic "
+                       "settling stage has none");
   }
   if (m.blocks.empty()) throw ModelError("blocks", "at least one block is required");
   const Settings& s = m.settings;
@@ -296,7 +305,6 @@ void Engine::Impl::validate() {
 
 void Engine::Impl::initialise() {
   const Settings& s = model.settings;
-  dynamic = s.dynamic_ratio > 0.0;
   double e_max = 0.0;
   for (const auto& mat : model.materials) {
     elastic.push_back(elastic_matrix(mat));
@@ -388,7 +396,7 @@ void Engine::Impl::assemble_blocks(double dt, double t_end, std::vector<Mat6>& d
     // Block damping (Material::damping_ratio), implicit over the step: the
     // viscous stress E_e tau eps_dot with eps_dot = eps/dt adds (tau/dt) S E_e.
     if (const double tau = strain_damping_time(g, model.materials[b.material], elastic[b.material]);
-        tau > 0.0 && dynamic)
+        tau > 0.0 && dynamic_now())
       K.block<3, 3>(3, 3) += (tau / dt) * g.S * elastic[b.material];
     // Body force rho g over the area; the other rows vanish about the centroid.
     F.setZero();
@@ -396,7 +404,7 @@ void Engine::Impl::assemble_blocks(double dt, double t_end, std::vector<Mat6>& d
     F(1) = rho * s.gravity.y() * g.S;
     // Initial stress: potential S e^T sigma gives F(ex..gxy) -= S sigma.
     F.tail<3>() -= g.S * b.stress;
-    if (dynamic) F.noalias() += (1.0 / (nm.beta * dt * dt)) * M * predictor(b, dt, nm);
+    if (dynamic_now()) F.noalias() += (1.0 / (nm.beta * dt * dt)) * M * predictor(b, dt, nm);
   }
   // Point loads: F += T(p)^T f at the current position p of the material point.
   for (const auto& l : model.point_loads) {
@@ -431,7 +439,8 @@ double Engine::Impl::max_vertex_displacement(const Eigen::VectorXd& d) const {
 
 void Engine::Impl::accept(const Eigen::VectorXd& d, double dt, int step_index, double t_end) {
   search_disp = search_reach(d);  // before the blocks move: d is relative to the step start
-  const double ratio = model.settings.dynamic_ratio;
+  const double ratio = ratio_now();
+  const bool dynamic = ratio > 0.0;
   const bool keep_acceleration = model.settings.time_integration == TimeIntegration::trapezoidal;
   const Newmark nm = newmark();
   energy.begin(energy_inputs(), d, dt, nm.beta, nm.gamma);
@@ -461,6 +470,11 @@ void Engine::Impl::accept(const Eigen::VectorXd& d, double dt, int step_index, d
       const Vec6 a_new = (Dk - predictor(b, dt, nm)) / (nm.beta * dt * dt);
       b.velocity = ratio * b.velocity + dt * ((1.0 - nm.gamma) * ratio * b.acceleration + nm.gamma * a_new);
       if (keep_acceleration) b.acceleration = a_new;
+    } else {
+      // A static step starts and ends at rest (after a dynamic settling stage
+      // the velocity it left is dropped here; the energy account books it).
+      b.velocity.setZero();
+      b.acceleration.setZero();
     }
   }
   st.step = step_index + 1;
@@ -714,6 +728,7 @@ Engine::Impl::Trial Engine::Impl::solve_trial(double dt, bool creep_error_wanted
   const Settings& s = model.settings;
   StepContext ctx{st.step, st.time, dt, search_disp};
   ctx.creep_error_wanted = creep_error_wanted;
+  ctx.dynamic = dynamic_now();
   contacts->begin_step(views, ctx);
   auto t0 = Clock::now();
   assemble_blocks(dt, st.time + dt, base_diag, base_rhs);

@@ -73,7 +73,7 @@ std::vector<std::string> scene_warnings(const SceneDescription& s) {
   // velocity update (docs/contacts.md, "Contact damping": the drop on an
   // incline converges from T/10 on). Joint sets with a normal stiffness per
   // area have springs that depend on each contact's length: not estimated.
-  if (a.type == AnalysisType::dynamic_analysis && a.penalty > 0.0) {
+  if (a.has_dynamic_steps() && a.penalty > 0.0) {
     double lightest = std::numeric_limits<double>::infinity();
     for (const auto& b : s.blocks) {
       if (b.fixed) continue;
@@ -87,7 +87,10 @@ std::vector<std::string> scene_warnings(const SceneDescription& s) {
     }
     const double period = 2.0 * std::numbers::pi * std::sqrt(lightest / a.penalty);
     const bool adaptive = a.creep_tolerance > 0.0 || a.step_tolerance > 0.0;
-    const double largest = adaptive && a.dt_max > 0.0 ? a.dt_max : a.dt;
+    // The dynamic steps: the analysis's, or a dynamic settling stage's in a static analysis.
+    const double largest = a.type == AnalysisType::static_analysis ? a.settle->dt
+                           : adaptive && a.dt_max > 0.0           ? a.dt_max
+                                                                  : a.dt;
     for (const auto& js : s.joint_sets)
       if (js.restitution && !js.normal_stiffness && std::isfinite(period) && largest > 0.1 * period)
         out.push_back(fmt::format(
@@ -157,6 +160,7 @@ BuiltScene build_scene(const SceneDescription& s) {
     st.settle_until = a.settle->until;
     st.settle_dt = a.settle->dt;
     st.settle_g2 = a.settle->max_displacement_ratio;
+    st.settle_dynamic = a.settle->dynamic;
   }
   switch (a.solver) {
     case SolverKind::automatic: st.solver = core::SolverKind::automatic; break;
@@ -174,7 +178,10 @@ BuiltScene build_scene(const SceneDescription& s) {
   cs.angle_tolerance = a.angle_tolerance;
   cs.penetration_ratio = a.penetration_ratio;
   cs.stick_keeps_force = a.stick_keeps_force;
-  cs.lock_at_touch = a.type == AnalysisType::dynamic_analysis;
+  // A dynamic settling stage of a static analysis keeps the dynamic default.
+  if (a.type == AnalysisType::static_analysis && a.has_dynamic_steps() && !a.stick_keeps_force_given)
+    cs.stick_keeps_force_dynamic = true;
+  cs.lock_at_touch = a.has_dynamic_steps();  // the static steps turn it off (StepContext::dynamic)
   cs.reversal_at_normal_resolution = cs.lock_at_touch;
   cs.friction_tolerance = a.friction_tolerance;
   cs.force_resolution = a.force_resolution;

@@ -96,9 +96,10 @@ std::string describe_scene(const SceneDescription& s) {
                      "dt_growth {:g} per step)",
                      a.dt, u.time, a.dt_cut, a.dt_growth));
   if (a.settle)
-    line(fmt::format("  settling stage: until {:g} {}, steps of at most {:g} {}, max_displacement_ratio {:g} "
+    line(fmt::format("  settling stage ({}): until {:g} {}, steps of at most {:g} {}, max_displacement_ratio {:g} "
                      "(docs/engine.md, \"Settling stage\")",
-                     a.settle->until, u.time, a.settle->dt, u.time, a.settle->max_displacement_ratio));
+                     a.settle->dynamic ? "dynamic" : "static", a.settle->until, u.time, a.settle->dt, u.time,
+                     a.settle->max_displacement_ratio));
   line(fmt::format("  output every {:g} {}: {} frames", a.output_interval, u.time,
                    static_cast<long long>(std::ceil(a.duration / a.output_interval - 1e-9)) + 1));
   line(fmt::format("  run guards: stop when a block moves more than {} or the outputs exceed {}",

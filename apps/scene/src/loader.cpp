@@ -70,7 +70,7 @@ const std::vector<std::string> analysis{
     "stick_keeps_force", "friction_tolerance", "force_resolution", "max_flips", "max_refinements",
     "penalty_raise", "penalty_max_factor", "open_close_limit", "fixed_point_stiffness", "solver", "solver_tolerance",
     "solver_max_iterations", "output_interval", "max_travel_ratio", "max_output_size", "gravity"};
-const std::vector<std::string> settle{"until", "dt", "max_displacement_ratio"};
+const std::vector<std::string> settle{"until", "dt", "max_displacement_ratio", "type"};
 const std::vector<std::string> material{"density", "young_modulus", "poisson_ratio", "plane", "damping_ratio"};
 const std::vector<std::string> joint_set{"friction_angle", "cohesion", "tensile_strength",
                                          "normal_stiffness", "shear_stiffness", "restitution", "law", "record"};
@@ -353,6 +353,14 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
     st.max_displacement_ratio = a.max_displacement_ratio;
     if (YAML::Node g = sm.find("max_displacement_ratio"); g.IsDefined())
       st.max_displacement_ratio = number(ctx, g, sm.child("max_displacement_ratio"), {0.0, true, 1.0, false, ""});
+    if (YAML::Node t = sm.find("type"); t.IsDefined()) {
+      // A dynamic settling stage in a static analysis (docs/engine.md, "Settling stage").
+      st.dynamic = choice(ctx, t, sm.child("type"), {"static", "dynamic"}) == "dynamic";
+      if (!st.dynamic && a.type == AnalysisType::dynamic_analysis)
+        ctx.fail(t, sm.child("type"),
+                 "the settling stage of a dynamic analysis is dynamic; a static stage before dynamic steps "
+                 "is not modelled");
+    }
     a.settle = st;
   }
   a.dynamic_ratio = a.type == AnalysisType::dynamic_analysis ? 1.0 : 0.0;
@@ -426,8 +434,10 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   // limit, the more the smaller dt; in a static creep analysis the kept force
   // makes the creep run depend on dt.
   a.stick_keeps_force = a.type == AnalysisType::dynamic_analysis;
-  if (YAML::Node v = m.find("stick_keeps_force"); v.IsDefined())
+  if (YAML::Node v = m.find("stick_keeps_force"); v.IsDefined()) {
     a.stick_keeps_force = flag(ctx, v, m.child("stick_keeps_force"));
+    a.stick_keeps_force_given = true;
+  }
   // The open-close iteration's settings (contact::ContactSettings; docs/contacts.md).
   num("friction_tolerance", a.friction_tolerance, positive(""));
   num("force_resolution", a.force_resolution, {0.0, false, 1.0, true, ""});
@@ -467,7 +477,7 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   return a;
 }
 
-std::vector<Material> read_materials(const Ctx& ctx, const YAML::Node& n, AnalysisType type) {
+std::vector<Material> read_materials(const Ctx& ctx, const YAML::Node& n, bool dynamic_steps) {
   if (!n.IsMap() || n.size() == 0)
     ctx.fail(n, "materials", "expected a map of named materials, e.g. `rock: {density: ..., ...}`");
   std::vector<Material> out;
@@ -491,9 +501,10 @@ std::vector<Material> read_materials(const Ctx& ctx, const YAML::Node& n, Analys
                                                                                    : PlaneKind::stress;
     if (YAML::Node v = m.find("damping_ratio"); v.IsDefined()) {
       // Block damping damps velocities; a static analysis carries none.
-      if (type == AnalysisType::static_analysis)
+      if (!dynamic_steps)
         ctx.fail(v, m.child("damping_ratio"),
-                 "a static analysis carries no velocity; damping_ratio needs `analysis: {type: dynamic}`");
+                 "a static analysis carries no velocity; damping_ratio needs `analysis: {type: dynamic}` "
+                 "or a dynamic settling stage (`settle: {type: dynamic, ...}`)");
       mat.damping_ratio = number(ctx, v, m.child("damping_ratio"), {0.0, false, 1.0, false, ""});
     }
     out.push_back(std::move(mat));
@@ -541,7 +552,7 @@ LawChoice read_law(const Ctx& ctx, const YAML::Node& n, const std::string& path)
   return law;
 }
 
-std::vector<JointSetDescription> read_joint_sets(const Ctx& ctx, const YAML::Node& n, AnalysisType type) {
+std::vector<JointSetDescription> read_joint_sets(const Ctx& ctx, const YAML::Node& n, bool dynamic_steps) {
   if (!n.IsMap() || n.size() == 0)
     ctx.fail(n, "joint_sets", "expected a map of named joint sets, e.g. `bedding: {friction_angle: 30}`");
   std::vector<std::string> names;  // every name is a valid key of this map
@@ -565,9 +576,10 @@ std::vector<JointSetDescription> read_joint_sets(const Ctx& ctx, const YAML::Nod
       js.shear_stiffness = number(ctx, v, m.child("shear_stiffness"), positive("stress/length"));
     if (YAML::Node v = m.find("restitution"); v.IsDefined()) {
       // Contact dashpots damp motion; a static analysis has none to damp.
-      if (type == AnalysisType::static_analysis)
+      if (!dynamic_steps)
         ctx.fail(v, m.child("restitution"),
-                 "a static analysis carries no velocity; restitution needs `analysis: {type: dynamic}`");
+                 "a static analysis carries no velocity; restitution needs `analysis: {type: dynamic}` "
+                 "or a dynamic settling stage (`settle: {type: dynamic, ...}`)");
       js.restitution = number(ctx, v, m.child("restitution"), {0.0, false, 1.0, false, ""});
     }
     if (YAML::Node v = m.find("law"); v.IsDefined()) {
@@ -1043,8 +1055,10 @@ SceneDescription parse_scene(const std::string& text_in, const std::string& file
     if (YAML::Node v = top.find("title"); v.IsDefined()) s.title = text(ctx, v, "title");
     s.units = read_units(ctx, top.required("units", "labels {length, force, time}"));
     s.analysis = read_analysis(ctx, top.required("analysis", "time stepping: duration, dt, gravity, ..."));
-    s.materials = read_materials(ctx, top.required("materials", "named block materials"), s.analysis.type);
-    s.joint_sets = read_joint_sets(ctx, top.required("joint_sets", "named joint sets"), s.analysis.type);
+    s.materials = read_materials(ctx, top.required("materials", "named block materials"),
+                                 s.analysis.has_dynamic_steps());
+    s.joint_sets = read_joint_sets(ctx, top.required("joint_sets", "named joint sets"),
+                                   s.analysis.has_dynamic_steps());
     std::vector<RawBlock> raw;
     // With `rock_mass:`, `blocks:` is optional (blocks besides the generated ones).
     const YAML::Node rock_mass = top.find("rock_mass");

@@ -53,7 +53,8 @@ json scene_json(const SceneDescription& s) {
                    {"max_displacement_ratio", a.max_displacement_ratio},
                    {"settle", a.settle ? json{{"until", a.settle->until},
                                               {"dt", a.settle->dt},
-                                              {"max_displacement_ratio", a.settle->max_displacement_ratio}}
+                                              {"max_displacement_ratio", a.settle->max_displacement_ratio},
+                                              {"type", a.settle->dynamic ? "dynamic" : "static"}}
                                        : json(nullptr)},
                    {"dynamic_ratio", a.dynamic_ratio},
                    {"time_integration", time_integration_name(a.time_integration)},

@@ -6,6 +6,7 @@
 
 #include "../test_support.hpp"
 #include "rheodda/scene/build.hpp"
+#include "rheodda/scene/describe.hpp"
 #include "rheodda/scene/geometry.hpp"
 #include "rheodda/scene/loader.hpp"
 
@@ -155,6 +156,45 @@ BOOST_AUTO_TEST_CASE(a_settling_stage_reaches_the_engine_settings_and_bad_ones_a
   expect_error(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1}"), 5, 0, "analysis.settle.dt", "required");
   expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, max_displacement_ratio: 0}"), 5,
                   "0}", "analysis.settle.max_displacement_ratio", "out of range");
+}
+
+BOOST_AUTO_TEST_CASE(a_dynamic_settling_stage_admits_the_damping_keys_in_a_static_analysis) {
+  // docs/engine.md, "Settling stage": `settle: {type: dynamic}` makes the
+  // stage's steps carry velocity in a static analysis; the damping keys are
+  // then accepted (they act in the stage), the stage keeps a sticking
+  // contact's force unless the scene says otherwise, and its static steps
+  // follow Shi's rule.
+  const std::string stage = with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, type: dynamic}");
+  const auto s = scene::parse_scene(
+      with("poisson_ratio: 0.25}", "poisson_ratio: 0.25, damping_ratio: 1}",
+           with("bedding: {friction_angle: 30}", "bedding: {friction_angle: 30, restitution: 0}", stage)),
+      "settle-dynamic.yaml");
+  BOOST_TEST_REQUIRE(s.analysis.settle.has_value());
+  BOOST_TEST(s.analysis.settle->dynamic);
+  BOOST_TEST(s.analysis.has_dynamic_steps());
+  const scene::BuiltScene built = scene::build_scene(s);
+  BOOST_TEST(built.model.settings.settle_dynamic);
+  BOOST_TEST(built.model.settings.dynamic_ratio == 0.0);
+  BOOST_TEST(built.model.materials[0].damping_ratio == 1.0);
+  BOOST_TEST(built.contact_settings.lock_at_touch);
+  BOOST_TEST(!built.contact_settings.stick_keeps_force);
+  BOOST_TEST_REQUIRE(built.contact_settings.stick_keeps_force_dynamic.has_value());
+  BOOST_TEST(*built.contact_settings.stick_keeps_force_dynamic);
+  BOOST_TEST(scene::describe_scene(s).find("settling stage (dynamic)") != std::string::npos);
+  // A scene's own stick_keeps_force applies to every step.
+  const auto given = scene::build_scene(scene::parse_scene(
+      with("  dt: 0.01\n", "  dt: 0.01\n  stick_keeps_force: false\n", stage), "given.yaml"));
+  BOOST_TEST(!given.contact_settings.stick_keeps_force_dynamic.has_value());
+  // Without the stage's type the keys are refused, as in any static analysis.
+  expect_error_at(with("bedding: {friction_angle: 30}", "bedding: {friction_angle: 30, restitution: 0}",
+                       with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001}")),
+                  10, "0}", "joint_sets.bedding.restitution", "or a dynamic settling stage");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, type: fast}"), 5, "fast",
+                  "analysis.settle.type", "");
+  // A dynamic analysis's stage is dynamic: `type: static` there is refused, not ignored.
+  expect_error_at(with("  duration: 1\n", "  type: dynamic\n  duration: 1\n",
+                       with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, type: static}")),
+                  6, "static", "analysis.settle.type", "is dynamic");
 }
 
 BOOST_AUTO_TEST_CASE(step_tolerance_and_step_extrapolation_reach_the_engine_settings_and_bad_values_are_refused) {

@@ -143,7 +143,12 @@ class ContactSystem {
   /// Detects contacts on the step-start geometry (search distance
   /// search_factor * max_displacement [length]) and carries states over.
   /// dt is the step size [time] the creep laws integrate over (0: no creep).
-  void begin_step(std::span<const BlockView> blocks, double max_displacement, double dt = 0.0);
+  /// `dynamic`: the step carries velocity; in a static step (false: a static
+  /// analysis after a dynamic settling stage) the contact dashpots and the
+  /// dynamic rules (ContactSettings::lock_at_touch,
+  /// reversal_at_normal_resolution) are off.
+  void begin_step(std::span<const BlockView> blocks, double max_displacement, double dt = 0.0,
+                  bool dynamic = true);
   /// Springs and friction loads of the trial states (the seed's eqs. 28-29).
   void assemble(std::span<const BlockView> blocks, SystemSink& sink) const;
   /// Updates the trial states from the trial displacements D (6 per block).
@@ -277,6 +282,7 @@ class ContactSystem {
   double last_max_penetration_ = 0.0;
   double step_max_penetration_ = 0.0;
   double force_scale_ = 0.0;  ///< largest |N| of the last iterate [force/length]
+  bool step_dynamic_ = true;  ///< the step being solved carries velocity (begin_step)
   std::uint64_t next_id_ = 1;
 
   std::vector<Contact> committed_, work_;

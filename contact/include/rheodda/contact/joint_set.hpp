@@ -106,6 +106,12 @@ struct ContactSettings {
   /// at its friction limit it changes which way the slope goes, with the step
   /// (docs/contacts.md, "Why the iteration does not settle").
   bool stick_keeps_force = false;
+  /// The rule of stick_keeps_force in the dynamic steps of a static analysis
+  /// (a dynamic settling stage, docs/engine.md "Settling stage") when set;
+  /// unset: stick_keeps_force in every step [-]. The scene sets it true there
+  /// unless the scene gives `stick_keeps_force`: a dynamic step keeps the
+  /// force (the dynamic default), the static steps after it follow Shi.
+  std::optional<bool> stick_keeps_force_dynamic;
   /// A contact that closes across a gap locks its shear spring where the
   /// vertex touches (the step's tangential motion before the touch is flight,
   /// not stretch) instead of at the vertex's step-start projection (Shi) [-].

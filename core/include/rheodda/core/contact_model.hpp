@@ -24,6 +24,10 @@ struct StepContext {
   double dt = 0.0;      ///< step size [time]
   double max_displacement = 0.0;  ///< allowed displacement per step (g2 * half model size) [length]
   bool creep_error_wanted = false;  ///< the host will ask creep_error_estimate() after end_step
+  /// The step carries velocity (a dynamic analysis, or a dynamic settling
+  /// stage): contact dashpots act, and the contacts follow their dynamic rules
+  /// (ContactSettings::lock_at_touch, reversal_at_normal_resolution) where set.
+  bool dynamic = true;
 };
 
 /// What the open-close iteration changed, by kind (docs/contacts.md, "States and

@@ -112,6 +112,7 @@ struct EnergyInputs {
   const std::vector<PolygonIntegrals>& moments;  ///< central integrals of their geometry
   const std::vector<Eigen::Matrix3d>& elastic;   ///< E_e per material [stress]
   double fixed_k = 0.0;                          ///< fixed-point spring [force/length]
+  double ratio = 0.0;  ///< share of the velocity the step carries (0: a static step) [-]
 };
 
 /// Computes the balance of each accepted step (called by the engine from

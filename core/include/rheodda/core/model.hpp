@@ -147,6 +147,13 @@ struct Settings {
   double settle_until = 0.0;
   double settle_dt = 0.0;        ///< largest step of the settling stage [time]; > 0 with settle_until
   double settle_g2 = 0.0;        ///< g2 of the settling stage [-]; > 0 with settle_until
+  /// The settling stage is dynamic (docs/engine.md, "Settling stage"): its
+  /// steps carry the whole velocity (dynamic_ratio 1, with the materials'
+  /// damping_ratio and the joint sets' restitution), whatever the analysis's
+  /// dynamic_ratio; a static analysis then starts its first step after the
+  /// stage at rest (the kinetic energy left is booked as dissipated by the
+  /// time integration) [-]
+  bool settle_dynamic = false;
   double dynamic_ratio = 1.0;    ///< share of the velocity carried to the next step [-], in [0, 1];
                                  ///< 0 = static analysis (no velocities at all), 1 = fully dynamic
   TimeIntegration time_integration = TimeIntegration::shi;  ///< default shi

@@ -52,14 +52,22 @@ struct Analysis {
   double dt_cut = 0.3;                 ///< factor on the step when a step is cut [-]; in (0, 1)
   int max_cuts = 30;                   ///< cuts of dt (x dt_cut each) allowed in one step before the run fails [-]
   double max_displacement_ratio = 0.01;  ///< g2: allowed step displacement / half model size [-]
-  /// `settle: {until, dt, max_displacement_ratio}`: a settling stage at the start
+  /// `settle: {until, dt, max_displacement_ratio, type}`: a settling stage at the start
   /// (docs/engine.md, "Settling stage"): steps of at most `dt` with the displacement
   /// limit `max_displacement_ratio` until `until`, then the analysis's own.
   struct Settle {
     double until = 0.0;                   ///< end of the stage [time]; > 0, < duration
     double dt = 0.0;                      ///< largest step in it [time]; > 0, <= until
     double max_displacement_ratio = 0.0;  ///< its g2 [-]; default the analysis's
+    /// `type: dynamic`: the stage's steps carry velocity (with the materials'
+    /// damping_ratio and the joint sets' restitution), and a static analysis
+    /// goes on from rest after it; default `static` (the analysis's own kind).
+    bool dynamic = false;
   };
+  /// The run has dynamic steps: a dynamic analysis, or a dynamic settling stage.
+  bool has_dynamic_steps() const {
+    return type == AnalysisType::dynamic_analysis || (settle && settle->dynamic);
+  }
   std::optional<Settle> settle;
   double dynamic_ratio = 0.0;          ///< share of velocity carried to the next step [-]; default 1 dynamic, 0 static
   /// Inertia terms `time_integration: shi|trapezoidal` (docs/engine.md); trapezoidal needs
@@ -85,6 +93,8 @@ struct Analysis {
   bool stick_keeps_force = false;      ///< a sliding contact that sticks keeps its friction force
                                        ///< (contact::ContactSettings::stick_keeps_force) [-];
                                        ///< the loader's default: true in a dynamic analysis
+  bool stick_keeps_force_given = false;  ///< the scene gave stick_keeps_force (else a dynamic settling
+                                         ///< stage of a static analysis keeps the force, its static steps not)
   // The open-close iteration (contact::ContactSettings fields of the same names):
   double friction_tolerance = 0.01;    ///< relative change of N that asks for one more iterate [-]
   double force_resolution = 1e-3;      ///< force resolution / largest normal force [-]
