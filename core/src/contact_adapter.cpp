@@ -16,8 +16,7 @@ contact::ContactSettings contact_settings_for(const Model& model, double penalty
   s.penalty = penalty_factor * e_max;
   // Dynamic analysis, or a dynamic settling stage (ContactSettings::lock_at_touch;
   // the steps say which are dynamic: StepContext::dynamic).
-  s.lock_at_touch = model.settings.dynamic_ratio > 0.0 ||
-                    (model.settings.settle_until > 0.0 && model.settings.settle_dynamic);
+  s.lock_at_touch = model.settings.has_dynamic_steps();
   s.reversal_at_normal_resolution = s.lock_at_touch;     // (ContactSettings::reversal_at_normal_resolution)
   return s;
 }

@@ -200,8 +200,7 @@ void Engine::Impl::validate() {
       throw ModelError(at("materials", k) + ".poisson_ratio", "must be in [0, 0.5)");
     if (!(mat.damping_ratio >= 0.0 && mat.damping_ratio <= 1.0))
       throw ModelError(at("materials", k) + ".damping_ratio", "must be in [0, 1]");
-    if (mat.damping_ratio > 0.0 && !(m.settings.dynamic_ratio > 0.0) &&
-        !(m.settings.settle_until > 0.0 && m.settings.settle_dynamic))
+    if (mat.damping_ratio > 0.0 && !m.settings.has_dynamic_steps())
       throw ModelError(at("materials", k) + ".damping_ratio",
                        "damps velocities; a static analysis (dynamic_ratio 0) without a dynamic "
                        "settling stage has none");

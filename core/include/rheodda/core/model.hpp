@@ -154,6 +154,8 @@ struct Settings {
   /// stage at rest (the kinetic energy left is booked as dissipated by the
   /// time integration) [-]
   bool settle_dynamic = false;
+  /// Some steps carry velocity: a dynamic analysis, or a dynamic settling stage.
+  bool has_dynamic_steps() const { return dynamic_ratio > 0.0 || (settle_until > 0.0 && settle_dynamic); }
   double dynamic_ratio = 1.0;    ///< share of the velocity carried to the next step [-], in [0, 1];
                                  ///< 0 = static analysis (no velocities at all), 1 = fully dynamic
   TimeIntegration time_integration = TimeIntegration::shi;  ///< default shi
