@@ -3,6 +3,7 @@
 //   rheodda run examples/shear-creep-test.yaml -o out/shear-creep
 //   rheodda plot out/shear-creep
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <unistd.h>
 
 #include <csignal>
@@ -68,6 +69,9 @@ void run_command(const RunArgs& args) {
                c.failures > 0 ? fmt::format("; {} contacts failed (damage 1), the first at t = {:g} {}", c.failures,
                                             c.first_failure_time, s.units.time)
                               : std::string());
+  if (const auto& cs = r.mechanism.collapse_stages; !cs.empty())
+    fmt::print("  collapse stages (docs/engine.md, \"Collapse stages\"): {}, starting at t = {:.6g} {}\n", cs.size(),
+               fmt::join(cs, ", "), s.units.time);
   if (r.status == scene::RunStatus::interrupted) {
     fmt::print("  resume with: rheodda run {} -o {} --resume\n", args.scene, opt.out_dir);
     throw CLI::RuntimeError(128 + (g_stop ? static_cast<int>(g_stop) : SIGINT));

@@ -173,6 +173,31 @@ void EnergyAccount::begin(const EnergyInputs& in, const Eigen::VectorXd& D, doub
     load_start_.push_back(position(in.blocks[l.block], l.point));
 }
 
+double EnergyAccount::static_trial_share(const EnergyInputs& in, const Eigen::VectorXd& D, double dt,
+                                         double beta, double t_end) {
+  // (2) of the header comment for a static step, without the kinetic energy a
+  // dynamic stage left (that is dropped whatever the step does); the work as
+  // begin() and end() book it, the load points moved to first order (T D).
+  const Settings& s = in.model.settings;
+  double inertia = 0.0, gravity = 0.0, loads = 0.0;
+  for (std::size_t k = 0; k < in.blocks.size(); ++k) {
+    const BlockState& b = in.blocks[k];
+    const PolygonIntegrals& g = in.moments[k];
+    const double rho = in.model.materials[b.material].density;
+    const Vec6 Dk = D.segment<6>(6 * static_cast<Eigen::Index>(k));
+    gravity += rho * g.S * (s.gravity.x() * Dk(0) + s.gravity.y() * Dk(1));
+    inertia += rho * Dk.dot(unit_mass_matrix(g) * Dk) / (beta * dt * dt);
+  }
+  for (const PointLoad& l : in.model.point_loads) {
+    const BlockState& b = in.blocks[l.block];
+    const Vec2 u = contact::displacement_matrix(b.centroid, position(b, l.point)) *
+                   D.segment<6>(6 * static_cast<Eigen::Index>(l.block));
+    loads += load_at(l.history, t_end).dot(u);
+  }
+  const double scale = std::abs(gravity) + std::abs(loads);
+  return scale > 0.0 ? inertia / scale : 0.0;
+}
+
 void EnergyAccount::end(const EnergyInputs& in, double t_end, const ContactEnergy& contacts,
                         EnergyBalance& balance) {
   // Point loads: the force of the step (evaluated at its end, as assembled) times

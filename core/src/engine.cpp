@@ -148,10 +148,22 @@ struct Engine::Impl {
   void refresh_geometry();
   void assemble_blocks(double dt, double t_end, std::vector<Mat6>& diag, Eigen::VectorXd& rhs) const;
   double max_vertex_displacement(const Eigen::VectorXd& d) const;
-  /// In the settling stage (Settings::settle_until; docs/engine.md, "Settling stage").
+  /// End of the collapse stage in progress, or of the last one (Settings::
+  /// collapse_dt; docs/engine.md, "Collapse stages"); 0 before any [time].
+  double collapse_until = 0.0;
+  /// End of the stage the run is in or was last in: the settling stage or a
+  /// collapse stage [time].
+  double stage_end() const { return std::max(model.settings.settle_until, collapse_until); }
+  /// In the settling stage (Settings::settle_until; docs/engine.md, "Settling
+  /// stage") or in a collapse stage.
   bool settling() const {
-    const double end = model.settings.settle_until;
+    const double end = stage_end();
     return end > 0.0 && st.time < end - 1e-12 * std::max(1.0, std::abs(end));
+  }
+  /// A static step of dt whose trial D moves as a mechanism (collapse stages).
+  bool collapses(double dt) const {
+    return EnergyAccount::static_trial_share(energy_inputs(), D, dt, newmark().beta, st.time + dt) >
+           kMechanismStepShare;
   }
   /// The displacement limit g2 in force now: settle_g2 in the settling stage.
   double g2_now() const { return settling() ? model.settings.settle_g2 : model.settings.g2; }
@@ -289,6 +301,16 @@ void Engine::Impl::validate() {
     throw ModelError("settings.settle_dt", "must be > 0 (time) with a settling stage");
   if (s.settle_until > 0.0 && !(s.settle_g2 > 0.0 && std::isfinite(s.settle_g2)))
     throw ModelError("settings.settle_g2", "must be > 0 with a settling stage");
+  if (!(s.collapse_dt >= 0.0 && std::isfinite(s.collapse_dt)))
+    throw ModelError("settings.collapse_dt", "must be >= 0 (time; 0 = no collapse stages)");
+  if (s.collapse_dt > 0.0) {
+    if (!(s.settle_until > 0.0 && s.settle_dynamic && s.dynamic_ratio == 0.0))
+      throw ModelError("settings.collapse_dt",
+                       "collapse stages are for a static analysis with a dynamic settling stage (their model)");
+    if (!(s.collapse_dt < s.dt)) throw ModelError("settings.collapse_dt", "must be < dt");
+    if (s.step_tolerance > 0.0)
+      throw ModelError("settings.collapse_dt", "not with step_tolerance (step doubling takes no collapse stage)");
+  }
   if (!(s.dynamic_ratio >= 0.0 && s.dynamic_ratio <= 1.0))
     throw ModelError("settings.dynamic_ratio", "must be in [0, 1]");
   if (!finite(s.gravity)) throw ModelError("settings.gravity", "must be finite");
@@ -496,12 +518,12 @@ StepReport Engine::Impl::step(double dt_cap) {
   const Settings& s = model.settings;
   // Settling stage (docs/engine.md, "Settling stage"): steps of at most
   // settle_dt with g2 = settle_g2, ending on settle_until, no adaptive control.
-  const bool settle = settling();
-  if (settle) dt_cap = std::min(dt_cap, s.settle_until - st.time);
+  bool settle = settling();
+  if (settle) dt_cap = std::min(dt_cap, stage_end() - st.time);
   if (s.step_tolerance > 0.0 && !settle) return doubling_step(dt_cap);
   StepReport rep;
   rep.step = st.step;
-  const bool adaptive = s.creep_tolerance > 0.0 && !settle;
+  bool adaptive = s.creep_tolerance > 0.0 && !settle;
   double load_break = std::numeric_limits<double>::infinity();
   double failure_step = std::numeric_limits<double>::infinity();  // step that reaches a failure
   if (adaptive) {
@@ -515,7 +537,7 @@ StepReport Engine::Impl::step(double dt_cap) {
     // the shear creep test at 1e-6 beyond).
     failure_step = contacts->time_to_failure() * (1.0 + 1e-3);
   }
-  const bool capped = dt_cap < st.next_dt;
+  bool capped = dt_cap < st.next_dt;
   double dt = std::min(st.next_dt, dt_cap);
   // Step onto the failure rather than over it, and also when it is within
   // kFailureReach steps: the creep rate diverges there, the error control
@@ -523,9 +545,34 @@ StepReport Engine::Impl::step(double dt_cap) {
   // and the failing step's creep is not kept (the contact becomes frictional).
   if (failure_step < dt || (failure_step <= kFailureReach * dt && failure_step <= dt_cap))
     dt = failure_step;
-  const double allowed = g2_now() * w0;
+  double allowed = g2_now() * w0;
+  const bool watch = s.collapse_dt > 0.0;  // collapse stages (docs/engine.md, "Collapse stages")
   for (;;) {
     const Trial trial = solve_trial(dt, adaptive, rep);
+    if (watch && !settle && trial.converged && collapses(dt)) {
+      // A static step that moves as a mechanism: its path would be set by dt
+      // and g2. Cut it down to collapse_dt (locating the onset); at collapse_dt,
+      // take the collapse from the step's start in a dynamic stage.
+      contacts->abandon_step();
+      if (dt > s.collapse_dt * (1.0 + 1e-9)) {
+        if (rep.cuts >= s.max_cuts)
+          throw std::runtime_error("step " + std::to_string(st.step) + " at time " + std::to_string(st.time) +
+                                   ": moves as a mechanism at dt = " + std::to_string(dt) + " after " +
+                                   std::to_string(rep.cuts) + " cuts, above collapse_dt = " +
+                                   std::to_string(s.collapse_dt) + " (settings.max_cuts)");
+        dt = std::max(dt * s.dt_cut, s.collapse_dt);
+        ++rep.cuts;
+        continue;
+      }
+      collapse_until = st.time + s.settle_until;
+      rep.collapse_stage = true;
+      settle = true;
+      adaptive = false;
+      dt = std::min(s.settle_dt, collapse_until - st.time);
+      capped = true;
+      allowed = g2_now() * w0;
+      continue;
+    }
     if (trial.converged && trial.max_disp <= allowed) {
       contacts->end_step(views, D);
       double err = 0.0;

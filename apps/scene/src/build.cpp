@@ -161,6 +161,7 @@ BuiltScene build_scene(const SceneDescription& s) {
     st.settle_dt = a.settle->dt;
     st.settle_g2 = a.settle->max_displacement_ratio;
     st.settle_dynamic = a.settle->dynamic;
+    st.collapse_dt = a.settle->collapse_dt;
   }
   switch (a.solver) {
     case SolverKind::automatic: st.solver = core::SolverKind::automatic; break;

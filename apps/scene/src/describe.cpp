@@ -100,6 +100,10 @@ std::string describe_scene(const SceneDescription& s) {
                      "(docs/engine.md, \"Settling stage\")",
                      a.settle->dynamic ? "dynamic" : "static", a.settle->until, u.time, a.settle->dt, u.time,
                      a.settle->max_displacement_ratio));
+  if (a.settle && a.settle->collapse_dt > 0.0)
+    line(fmt::format("  collapse stages: a static step that moves as a mechanism is cut down to {:g} {}, then taken "
+                     "as a dynamic stage of {:g} {} (docs/engine.md, \"Collapse stages\")",
+                     a.settle->collapse_dt, u.time, a.settle->until, u.time));
   line(fmt::format("  output every {:g} {}: {} frames", a.output_interval, u.time,
                    static_cast<long long>(std::ceil(a.duration / a.output_interval - 1e-9)) + 1));
   line(fmt::format("  run guards: stop when a block moves more than {} or the outputs exceed {}",

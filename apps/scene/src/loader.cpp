@@ -70,7 +70,7 @@ const std::vector<std::string> analysis{
     "stick_keeps_force", "friction_tolerance", "force_resolution", "max_flips", "max_refinements",
     "penalty_raise", "penalty_max_factor", "open_close_limit", "fixed_point_stiffness", "solver", "solver_tolerance",
     "solver_max_iterations", "output_interval", "max_travel_ratio", "max_output_size", "gravity"};
-const std::vector<std::string> settle{"until", "dt", "max_displacement_ratio", "type"};
+const std::vector<std::string> settle{"until", "dt", "max_displacement_ratio", "type", "collapse_dt"};
 const std::vector<std::string> material{"density", "young_modulus", "poisson_ratio", "plane", "damping_ratio"};
 const std::vector<std::string> joint_set{"friction_angle", "cohesion", "tensile_strength",
                                          "normal_stiffness", "shear_stiffness", "restitution", "law", "record"};
@@ -361,6 +361,17 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
                  "the settling stage of a dynamic analysis is dynamic; a static stage before dynamic steps "
                  "is not modelled");
     }
+    if (YAML::Node c = sm.find("collapse_dt"); c.IsDefined()) {
+      // Collapse stages (docs/engine.md, "Collapse stages").
+      st.collapse_dt = number(ctx, c, sm.child("collapse_dt"), positive("time"));
+      if (!st.dynamic || a.type != AnalysisType::static_analysis)
+        ctx.fail(c, sm.child("collapse_dt"),
+                 "collapse stages are dynamic stages within a static analysis: give `type: dynamic` in the "
+                 "settling stage of a static analysis");
+      if (st.collapse_dt >= a.dt)
+        ctx.fail(c, sm.child("collapse_dt"),
+                 fmt::format("collapse_dt = {:g} is not below the analysis's dt = {:g}", st.collapse_dt, a.dt));
+    }
     a.settle = st;
   }
   a.dynamic_ratio = a.type == AnalysisType::dynamic_analysis ? 1.0 : 0.0;
@@ -396,6 +407,9 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
       ctx.fail(v, m.child("step_tolerance"),
                "give step_tolerance (step doubling) or creep_tolerance (creep error estimate), "
                "not both: they are two step controls");
+    if (a.step_tolerance > 0.0 && a.settle && a.settle->collapse_dt > 0.0)
+      ctx.fail(v, m.child("step_tolerance"),
+               "step doubling takes no collapse stage: give step_tolerance or settle.collapse_dt, not both");
   }
   if (YAML::Node v = m.find("step_extrapolation"); v.IsDefined()) {
     a.step_extrapolation = flag(ctx, v, m.child("step_extrapolation"));

@@ -54,7 +54,8 @@ json scene_json(const SceneDescription& s) {
                    {"settle", a.settle ? json{{"until", a.settle->until},
                                               {"dt", a.settle->dt},
                                               {"max_displacement_ratio", a.settle->max_displacement_ratio},
-                                              {"type", a.settle->dynamic ? "dynamic" : "static"}}
+                                              {"type", a.settle->dynamic ? "dynamic" : "static"},
+                                              {"collapse_dt", a.settle->collapse_dt}}
                                        : json(nullptr)},
                    {"dynamic_ratio", a.dynamic_ratio},
                    {"time_integration", time_integration_name(a.time_integration)},
@@ -546,6 +547,7 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
       result.redone += r.rejections;
       result.extrapolated += r.extrapolated ? 1 : 0;
       result.max_penetration = std::max(result.max_penetration, r.max_penetration);
+      if (r.collapse_stage) mech.collapse_stages.push_back(r.time - r.dt);
       if (mech.static_analysis && core::inertia_share(r.energy) > core::kMechanismStepShare) {
         if (mech.steps++ == 0) {
           mech.first_time = r.time;
@@ -617,7 +619,8 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
       j["static_mechanism"] = {{"inertia_share", m.inertia_share},
                                {"steps", m.steps},
                                {"first_time", time_or_null(m.first_time)},
-                               {"last_time", time_or_null(m.last_time)}};
+                               {"last_time", time_or_null(m.last_time)},
+                               {"collapse_stages", m.collapse_stages}};
     } else {
       j["static_mechanism"] = nullptr;
     }

@@ -87,6 +87,8 @@ RefinementStudy refinement_study(const std::string& scene_path, const std::strin
       control("analysis.settle.max_displacement_ratio",
               a.settle->max_displacement_ratio > 0.0 ? a.settle->max_displacement_ratio : a.max_displacement_ratio,
               "settle g2", "");
+      if (a.settle->collapse_dt > 0.0)
+        control("analysis.settle.collapse_dt", a.settle->collapse_dt, "collapse_dt", tu);
     }
     if (a.step_tolerance > 0.0) control("analysis.step_tolerance", a.step_tolerance, "step_tolerance", lu);
     if (a.creep_tolerance > 0.0) control("analysis.creep_tolerance", a.creep_tolerance, "creep_tolerance", lu);

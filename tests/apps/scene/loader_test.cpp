@@ -197,6 +197,25 @@ BOOST_AUTO_TEST_CASE(a_dynamic_settling_stage_admits_the_damping_keys_in_a_stati
                   6, "static", "analysis.settle.type", "is dynamic");
 }
 
+BOOST_AUTO_TEST_CASE(collapse_dt_reaches_the_engine_with_a_dynamic_stage_of_a_static_analysis_only) {
+  // docs/engine.md, "Collapse stages".
+  const auto text = with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, type: dynamic, collapse_dt: 0.002}");
+  const auto s = scene::parse_scene(text, "collapse.yaml");
+  BOOST_TEST_REQUIRE(s.analysis.settle.has_value());
+  BOOST_TEST(s.analysis.settle->collapse_dt == 0.002);
+  BOOST_TEST(scene::build_scene(s).model.settings.collapse_dt == 0.002);
+  BOOST_TEST(scene::describe_scene(s).find("collapse stages") != std::string::npos);
+  // Not with a static stage, not at or above dt, not with step doubling, not negative.
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, collapse_dt: 0.002}"), 5,
+                  "0.002}", "analysis.settle.collapse_dt", "give `type: dynamic`");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, type: dynamic, collapse_dt: 0.01}"),
+                  5, "0.01}", "analysis.settle.collapse_dt", "not below the analysis's dt");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, type: dynamic, collapse_dt: -1}"),
+                  5, "-1}", "analysis.settle.collapse_dt", "out of range");
+  expect_error_at(with("  dt: 0.01\n", "  dt: 0.01\n  step_tolerance: 1.0e-4\n", text), 5, "1.0e-4",
+                  "analysis.step_tolerance", "no collapse stage");
+}
+
 BOOST_AUTO_TEST_CASE(step_tolerance_and_step_extrapolation_reach_the_engine_settings_and_bad_values_are_refused) {
   const auto text = with("  dt: 0.01", "  dt: 0.01\n  step_tolerance: 1.0e-4\n  step_extrapolation: false\n"
                                        "  dt_max: 0.5");

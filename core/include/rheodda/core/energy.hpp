@@ -142,6 +142,13 @@ class EnergyAccount {
                               const EnergyFlows& coarse, bool extrapolated,
                               const ContactEnergy& contacts, EnergyBalance& balance);
 
+  /// A static trial step D of dt, before it is taken: the work its inertia term
+  /// D^T M D/(beta dt^2) absorbs over the work of gravity and of the point loads
+  /// (at t_end, over the displacement T D of their points), as inertia_share
+  /// would find it after the step (docs/engine.md, "Collapse stages") [-].
+  static double static_trial_share(const EnergyInputs& in, const Eigen::VectorXd& D, double dt,
+                                   double beta, double t_end);
+
  private:
   EnergyFlows flows_;             ///< of the step in progress
   std::vector<Vec2> load_start_;  ///< load points at the step start [length]

@@ -52,6 +52,8 @@ struct StepReport {
                                   ///< step_tolerance) [-]
   int creep_state_changes = 0;    ///< creeping contacts whose state changed in the step, under
                                   ///< Settings::creep_tolerance only (else 0) [-]
+  bool collapse_stage = false;    ///< the step opened a collapse stage (Settings::collapse_dt):
+                                  ///< its static attempt moved as a mechanism at collapse_dt [-]
   double step_error = 0.0;         ///< step-doubling error estimate max |y(dt/2, twice) - y(dt)| over
                                   ///< the block vertices, under Settings::step_tolerance only [length]
   bool extrapolated = false;      ///< under Settings::step_tolerance: the step was extrapolated

@@ -154,6 +154,13 @@ struct Settings {
   /// stage at rest (the kinetic energy left is booked as dissipated by the
   /// time integration) [-]
   bool settle_dynamic = false;
+  /// Collapse stages (docs/engine.md, "Collapse stages"): with a dynamic
+  /// settling stage, a later static step that moves as a mechanism (its
+  /// inertia share above kMechanismStepShare) is cut down to this size; one
+  /// that still does at it is not taken, and a dynamic stage as long as the
+  /// settling stage (settle_until, with settle_dt and settle_g2) carries the
+  /// collapse from the step's start [time]; 0 = off; >= 0, < dt
+  double collapse_dt = 0.0;
   /// Some steps carry velocity: a dynamic analysis, or a dynamic settling stage.
   bool has_dynamic_steps() const { return dynamic_ratio > 0.0 || (settle_until > 0.0 && settle_dynamic); }
   double dynamic_ratio = 1.0;    ///< share of the velocity carried to the next step [-], in [0, 1];

@@ -71,6 +71,9 @@ struct RunResult {
     double first_time = std::numeric_limits<double>::quiet_NaN();  ///< end of the first of them [time]
     int first_step = -1;           ///< index of the first of them (-1: none) [-]
     double last_time = std::numeric_limits<double>::quiet_NaN();   ///< end of the last of them [time]
+    /// Start of each collapse stage (analysis.settle.collapse_dt; docs/engine.md,
+    /// "Collapse stages") [time].
+    std::vector<double> collapse_stages;
   };
   StaticMechanism mechanism;
 };

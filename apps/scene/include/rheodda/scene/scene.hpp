@@ -63,6 +63,10 @@ struct Analysis {
     /// damping_ratio and the joint sets' restitution), and a static analysis
     /// goes on from rest after it; default `static` (the analysis's own kind).
     bool dynamic = false;
+    /// Collapse stages (docs/engine.md, "Collapse stages"): a later static step
+    /// that moves as a mechanism is cut down to this size, then taken as a
+    /// dynamic stage as long as this one [time]; 0 = none; dynamic stage only.
+    double collapse_dt = 0.0;
   };
   /// The run has dynamic steps: a dynamic analysis, or a dynamic settling stage.
   bool has_dynamic_steps() const {
