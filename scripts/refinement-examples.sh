@@ -4,7 +4,7 @@
 # verdict (fine / coarse / not converged) with L0's error, the last two levels'
 # difference, the largest static inertia share and, where a joint fails, the
 # failure time of each level. Puts the table into docs/speed-accuracy.md between
-# the refinement-examples markers. About 10 min on 2 cores. Not in it:
+# the refinement-examples markers. About 16 min on 2 cores. Not in it:
 # examples/rockmass/jointed-slope.yaml, whose level L2 (dt and g2 / 4) takes
 # more than 10 min for its first 5 days (55 000 steps: the static g2 trap).
 # Usage: scripts/refinement-examples.sh   (uses $RHEODDA_BUILD_DIR or build/)
@@ -31,6 +31,7 @@ examples=(
   "examples/rockmass/tunnel.yaml|--refine"
   "bench/scenes/brick-wall.yaml|--refine=5"
   "bench/scenes/brick-wall.yaml|--refine=5|restitution: 0, damping_ratio: 1"
+  "bench/scenes/brick-wall.yaml|--refine=5|restitution: 0, damping_ratio: 1, dt 3.125e-05, g2 1.25e-05"
   "bench/scenes/incline-drop.yaml|--refine=5"
   "bench/scenes/incline-drop-damped.yaml|--refine=5"
   "bench/scenes/stepped-toppling.yaml|--refine=5 --until 2"
@@ -43,10 +44,17 @@ for e in "${examples[@]}"; do
   file="$root/$scene"
   if [[ -n "$extra" ]]; then  # a variant, in a copy beside the original
     file="$(dirname "$root/$scene")/.refine-variant-$i.yaml"
-    if [[ "$extra" == "restitution: 0, damping_ratio: 1" ]]; then
-      # plastic impacts on every joint set, critically damped blocks (docs/contacts.md, "Contact damping")
+    if [[ "$extra" == "restitution: 0, damping_ratio: 1"* ]]; then
+      # plastic impacts on every joint set, critically damped blocks (docs/contacts.md, "Contact damping");
+      # optionally with the scene's dt and g2 replaced (", dt DT, g2 G2": finer levels)
+      dt_g2=()
+      if [[ "$extra" =~ dt\ ([0-9.e-]+),\ g2\ ([0-9.e-]+) ]]; then
+        dt_g2=(-e "s/^  dt: [0-9.e-]*/  dt: ${BASH_REMATCH[1]}/"
+               -e "s/^  max_displacement_ratio: [0-9.e-]*/  max_displacement_ratio: ${BASH_REMATCH[2]}/")
+      fi
       sed -e "s/^\(  [a-z_]*: {friction_angle: [0-9.]*\)/\1, restitution: 0/" \
-          -e "s/^\(  [a-z_]*: {density: .*poisson_ratio: [0-9.]*\)/\1, damping_ratio: 1/" "$root/$scene" >"$file"
+          -e "s/^\(  [a-z_]*: {density: .*poisson_ratio: [0-9.]*\)/\1, damping_ratio: 1/" "${dt_g2[@]}" \
+          "$root/$scene" >"$file"
     else  # one more analysis key
       sed "s/^analysis:/analysis:\n  $extra/" "$root/$scene" >"$file"
     fi

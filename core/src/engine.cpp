@@ -549,10 +549,17 @@ StepReport Engine::Impl::step(double dt_cap) {
   const bool watch = s.collapse_dt > 0.0;  // collapse stages (docs/engine.md, "Collapse stages")
   for (;;) {
     const Trial trial = solve_trial(dt, adaptive, rep);
-    if (watch && !settle && trial.converged && collapses(dt)) {
+    if (watch && !settle && trial.singular.empty() &&
+        (!trial.converged || trial.max_disp > allowed || collapses(dt))) {
       // A static step that moves as a mechanism: its path would be set by dt
       // and g2. Cut it down to collapse_dt (locating the onset); at collapse_dt,
-      // take the collapse from the step's start in a dynamic stage.
+      // take the collapse from the step's start in a dynamic stage. Beyond the
+      // step limit g2 w0 counts as well: a part sliding at its friction limit
+      // gives the inertia term only the unbalanced share of the work, yet
+      // moves by that force times dt^2 / 2M; and so does an open-close
+      // iteration that does not settle at collapse_dt, where the static steps
+      // would otherwise go on cutting into a crawl of the mechanism
+      // (docs/engine.md, "Collapse stages").
       contacts->abandon_step();
       if (dt > s.collapse_dt * (1.0 + 1e-9)) {
         if (rep.cuts >= s.max_cuts)

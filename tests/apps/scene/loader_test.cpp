@@ -203,7 +203,15 @@ BOOST_AUTO_TEST_CASE(collapse_dt_reaches_the_engine_with_a_dynamic_stage_of_a_st
   const auto s = scene::parse_scene(text, "collapse.yaml");
   BOOST_TEST_REQUIRE(s.analysis.settle.has_value());
   BOOST_TEST(s.analysis.settle->collapse_dt == 0.002);
-  BOOST_TEST(scene::build_scene(s).model.settings.collapse_dt == 0.002);
+  const scene::BuiltScene built = scene::build_scene(s);
+  BOOST_TEST(built.model.settings.collapse_dt == 0.002);
+  // The static steps keep the stages' stick rule unless the scene gives one.
+  BOOST_TEST(built.contact_settings.stick_keeps_force);
+  BOOST_TEST(*built.contact_settings.stick_keeps_force_dynamic);
+  const auto shi = scene::build_scene(scene::parse_scene(
+      with("  dt: 0.01\n", "  dt: 0.01\n  stick_keeps_force: false\n", text), "shi.yaml"));
+  BOOST_TEST(!shi.contact_settings.stick_keeps_force);
+  BOOST_TEST(!shi.contact_settings.stick_keeps_force_dynamic.has_value());
   BOOST_TEST(scene::describe_scene(s).find("collapse stages") != std::string::npos);
   // Not with a static stage, not at or above dt, not with step doubling, not negative.
   expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, collapse_dt: 0.002}"), 5,
