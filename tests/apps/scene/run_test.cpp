@@ -6,6 +6,7 @@
 #include <csignal>
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <nlohmann/json.hpp>
 #include <fcntl.h>
 #include <fmt/format.h>
@@ -229,6 +230,43 @@ BOOST_AUTO_TEST_CASE(a_static_block_that_slides_is_reported_as_a_mechanism_and_o
   const fs::path out = fresh_dir("dynamic_mechanism");
   BOOST_TEST_REQUIRE((run(d, out).status == scene::RunStatus::completed));
   BOOST_TEST(nlohmann::json::parse(read_text((out / "summary.json").string())).at("static_mechanism").is_null());
+}
+
+BOOST_AUTO_TEST_CASE(a_static_slide_with_collapse_stages_follows_the_dynamics_and_lists_its_stages) {
+  // docs/engine.md, "Collapse stages": the static sliding block of the test
+  // above (phi 20 deg on the 30 deg incline, dt 0.01 s), with a dynamic
+  // settling stage of 0.01 s and collapse_dt 0.002 s. Every static step would
+  // move as a mechanism, so the slide is taken in stages end to end: the slip
+  // at 0.5 s is the dynamic closed form g (sin a - cos a tan phi) t^2 / 2
+  // (the static run slid a share of it set by dt), and summary.json lists the
+  // stages from the end of the settling stage on.
+  std::string text = read_text(source_path("examples/sliding-block.yaml"));
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"type: dynamic", "type: static"},
+        {"duration: 1 ", "duration: 0.5 "},
+        {"dt: 0.001 ", "dt: 0.01\n  settle: {type: dynamic, until: 0.01, dt: 0.001, collapse_dt: 0.002}\n  # "}}) {
+    const auto at = text.find(from);
+    BOOST_TEST_REQUIRE(at != std::string::npos, from);
+    text.replace(at, from.size(), to);
+  }
+  const fs::path out = fresh_dir("static_collapse_stages");
+  const fs::path file = out.parent_path() / "static_collapse_stages.yaml";
+  std::ofstream(file) << text;
+  const auto s = scene::load_scene(file.string());
+  const auto r = run(s, out);
+  BOOST_TEST_REQUIRE((r.status == scene::RunStatus::completed));
+  const auto stages = nlohmann::json::parse(read_text((out / "summary.json").string()))
+                          .at("static_mechanism")
+                          .at("collapse_stages");
+  BOOST_TEST_REQUIRE(stages.size() >= 1u);
+  BOOST_TEST(stages[0].get<double>() == 0.01, boost::test_tools::tolerance(1e-9));
+  BOOST_TEST(r.mechanism.collapse_stages.size() == stages.size());
+  const Csv h = read_csv(out / "history.csv");
+  const std::size_t last = h.rows.size() - 1;
+  const double t = h.at(last, "time"), a = 30.0 * std::numbers::pi / 180.0, phi = 20.0 * std::numbers::pi / 180.0;
+  const double slip = std::hypot(h.at(last, "centre.u"), h.at(last, "centre.v"));
+  BOOST_TEST(slip == 0.5 * 9.81 * (std::sin(a) - std::cos(a) * std::tan(phi)) * t * t,
+             boost::test_tools::tolerance(0.02));
 }
 
 BOOST_AUTO_TEST_CASE(the_toppling_example_settles_in_its_stage_then_converges_with_its_step_controls) {
