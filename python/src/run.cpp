@@ -113,6 +113,8 @@ void bind_run(py::module_& m) {
                                                                 : py::object(py::float_(r.mechanism.first_time));
           m["last_time"] = std::isnan(r.mechanism.last_time) ? py::object(py::none())
                                                               : py::object(py::float_(r.mechanism.last_time));
+          // The start of each collapse stage (docs/engine.md, "Collapse stages").
+          m["collapse_stages"] = r.mechanism.collapse_stages;
           d["static_mechanism"] = m;
         } else {
           d["static_mechanism"] = py::none();

@@ -65,6 +65,7 @@ def test_history_equals_rheodda_run(tmp_path):
     summary = json.loads((tmp_path / "out" / "summary.json").read_text())
     assert result["static_mechanism"] == summary["static_mechanism"]
     assert result["static_mechanism"]["steps"] == 0 and result["static_mechanism"]["inertia_share"] < 0.01
+    assert result["static_mechanism"]["collapse_stages"] == []  # no settle.collapse_dt, no stage
     lines = [l for l in (tmp_path / "out" / "history.csv").read_text().splitlines() if not l.startswith("#")]
     header = lines[0].split(",")
     rows = [l.split(",") for l in lines[1:]]
