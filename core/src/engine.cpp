@@ -170,6 +170,11 @@ struct Engine::Impl {
   void accept(const Eigen::VectorXd& d, double dt, int step_index, double t_end);
   void record_measurements(int step_index);
   StepReport step(double dt_cap);
+  /// After a static trial of dt that moved as a mechanism (docs/engine.md,
+  /// "Collapse stages"): cuts dt towards collapse_dt and returns false, or, at
+  /// collapse_dt, opens a collapse stage from the step's start, sets dt to the
+  /// stage's first step and returns true.
+  bool open_collapse_stage(double& dt, StepReport& rep);
 
   /// One attempt at a step of dt from the current state: begin_step, then the
   /// open-close iteration up to max_open_close iterates. The contacts are left
@@ -561,23 +566,12 @@ StepReport Engine::Impl::step(double dt_cap) {
       // would otherwise go on cutting into a crawl of the mechanism
       // (docs/engine.md, "Collapse stages").
       contacts->abandon_step();
-      if (dt > s.collapse_dt * (1.0 + 1e-9)) {
-        if (rep.cuts >= s.max_cuts)
-          throw std::runtime_error("step " + std::to_string(st.step) + " at time " + std::to_string(st.time) +
-                                   ": moves as a mechanism at dt = " + std::to_string(dt) + " after " +
-                                   std::to_string(rep.cuts) + " cuts, above collapse_dt = " +
-                                   std::to_string(s.collapse_dt) + " (settings.max_cuts)");
-        dt = std::max(dt * s.dt_cut, s.collapse_dt);
-        ++rep.cuts;
-        continue;
+      if (open_collapse_stage(dt, rep)) {
+        settle = true;
+        adaptive = false;
+        capped = true;
+        allowed = g2_now() * w0;
       }
-      collapse_until = st.time + s.settle_until;
-      rep.collapse_stage = true;
-      settle = true;
-      adaptive = false;
-      dt = std::min(s.settle_dt, collapse_until - st.time);
-      capped = true;
-      allowed = g2_now() * w0;
       continue;
     }
     if (trial.converged && trial.max_disp <= allowed) {
@@ -624,6 +618,24 @@ StepReport Engine::Impl::step(double dt_cap) {
     contacts->abandon_step();
     cut(dt, trial, rep);
   }
+}
+
+bool Engine::Impl::open_collapse_stage(double& dt, StepReport& rep) {
+  const Settings& s = model.settings;
+  if (dt > s.collapse_dt * (1.0 + 1e-9)) {  // locate the onset: retry smaller, not below collapse_dt
+    if (rep.cuts >= s.max_cuts)
+      throw std::runtime_error("step " + std::to_string(st.step) + " at time " + std::to_string(st.time) +
+                               ": moves as a mechanism at dt = " + std::to_string(dt) + " after " +
+                               std::to_string(rep.cuts) + " cuts, above collapse_dt = " +
+                               std::to_string(s.collapse_dt) + " (settings.max_cuts)");
+    dt = std::max(dt * s.dt_cut, s.collapse_dt);
+    ++rep.cuts;
+    return false;
+  }
+  collapse_until = st.time + s.settle_until;  // a stage as long as the settling stage
+  rep.collapse_stage = true;
+  dt = std::min(s.settle_dt, collapse_until - st.time);
+  return true;
 }
 
 double Engine::Impl::next_load_break() const {
