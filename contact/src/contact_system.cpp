@@ -173,11 +173,11 @@ void ContactSystem::prepare(std::span<const BlockView> blocks, const Contact& c,
   // oscillates on the contact spring (the moving block's own mass against a
   // held one, infinite; one block's mass where the other's is unknown, 0).
   h.cn = h.cs = 0.0;
+  h.reduced_mass = reduced_mass(bi.mass, bj.mass);
   if (js.restitution) {
-    const double m = reduced_mass(bi.mass, bj.mass);
     const double zeta = restitution_damping_ratio(*js.restitution);
-    h.cn = 2.0 * zeta * std::sqrt(h.pn * m);
-    h.cs = 2.0 * zeta * std::sqrt(h.ps * m);
+    h.cn = 2.0 * zeta * std::sqrt(h.pn * h.reduced_mass);
+    h.cs = 2.0 * zeta * std::sqrt(h.ps * h.reduced_mass);
   }
   h.tan_phi = std::tan(js.friction_angle * std::numbers::pi / 180.0);
   h.cohesion = c.intact ? js.cohesion : 0.0;
@@ -224,6 +224,28 @@ double ContactSystem::normal_dashpot(size_t c) const {
 
 double ContactSystem::shear_dashpot(size_t c) const {
   return step_dt_ > 0.0 && step_dynamic_ ? hot_[c].cs / step_dt_ : 0.0;
+}
+
+double ContactSystem::reversal_stiffness(size_t c) const {
+  // The smallest backward slip of a sliding contact that counts as a reversal
+  // is f_res / k, the slip a force residual f_res moves the vertex by. Static
+  // steps, or unset: Shi's shear spring k_s. Dynamic steps
+  // (ContactSettings::reversal_at_normal_resolution): the normal spring p_n
+  // plus the step's inertia on the contact, m_red / (beta dt^2) (the Newmark
+  // term the host adds to the block's stiffness; m_red the reduced mass of the
+  // two blocks). Measured (docs/contacts.md, "Friction that pushed"): with a
+  // soft joint f_res / k_s was 1e-4 m on the seed's slope, more than a small
+  // step's slip, so a vertex moving backwards kept its friction force pushing
+  // it on, and the slope settled at 1 ms but never at 0.25 ms. Measured
+  // (docs/contacts.md, "Contacts that stop"): with p_n alone the resolution is
+  // a fixed length while the backward slip of a contact whose friction exceeds
+  // its drive shrinks as dt^2 (the inertia holds it): contacts that had
+  // stopped stayed sliding, more of them the smaller the step (the damped
+  // brick wall: 41 at dt 31 us, 539 at 1.95 us), and the joints' shear
+  // displacement did not converge.
+  const Hot& h = hot_[c];
+  if (!(settings_.reversal_at_normal_resolution && step_dynamic_)) return shear_stiffness(c);
+  return h.pn + h.reduced_mass * step_inertia_;
 }
 
 double ContactSystem::shear_stiffness(size_t c) const {
@@ -276,7 +298,7 @@ void ContactSystem::fail_law(size_t c) {
 }
 
 void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_displacement,
-                               double dt, bool dynamic) {
+                               double dt, bool dynamic, double inertia) {
   step_dynamic_ = dynamic;
   const int nb = static_cast<int>(blocks.size());
   // Half model size w0 [length].
@@ -435,6 +457,7 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
         linearize(c, hot_[c].tau_start);
   }
   step_dt_ = dt;
+  step_inertia_ = inertia;
   step_max_penetration_ = 0.0;
   force_scale_ = 0.0;
   for (const Contact& c : committed_) force_scale_ = std::max(force_scale_, std::abs(c.normal_force));
@@ -567,18 +590,11 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
             r.state = ContactState::sliding;
             r.slide_direction = dt >= 0.0 ? 1 : -1;
           }
-        } else if ((settings_.reversal_at_normal_resolution && step_dynamic_ ? h.pn : shear_stiffness(c)) * slip *
-                       r.slide_direction <
-                   -f_res) {
+        } else if (reversal_stiffness(c) * slip * r.slide_direction < -f_res) {
           // The vertex moves against the friction direction assumed: it sticks
           // where it stood at the start of the step (stick). The test resolves
-          // a backward slip of f_res / k_s (Shi's shear spring) or, in dynamic
-          // analysis, f_res / p_n (ContactSettings::reversal_at_normal_resolution).
-          // Measured (docs/contacts.md, "Friction that pushed"): with a soft
-          // joint (1e8 Pa/m on the seed's slope) f_res / k_s is 1e-4 m, more
-          // than a small step's slip, so a vertex moving backwards kept its
-          // friction force pushing it on: friction did negative work, and the
-          // slope settled dynamically at 1 ms but never at 0.25 ms and below.
+          // a backward slip of f_res / k with k the stiffness that holds the
+          // vertex's tangential motion (reversal_stiffness).
           stick(blocks, c);
         } else {
           // The friction force N tan(phi) came from the last iterate's N.

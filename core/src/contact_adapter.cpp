@@ -22,7 +22,7 @@ contact::ContactSettings contact_settings_for(const Model& model, double penalty
 }
 
 void ContactAdapter::begin_step(std::span<const contact::BlockView> blocks, const StepContext& ctx) {
-  system_.begin_step(blocks, ctx.max_displacement, ctx.dt, ctx.dynamic);
+  system_.begin_step(blocks, ctx.max_displacement, ctx.dt, ctx.dynamic, ctx.inertia);
   dt_ = ctx.dt;
   want_error_ = ctx.creep_error_wanted;
 }

@@ -794,6 +794,7 @@ Engine::Impl::Trial Engine::Impl::solve_trial(double dt, bool creep_error_wanted
   StepContext ctx{st.step, st.time, dt, search_disp};
   ctx.creep_error_wanted = creep_error_wanted;
   ctx.dynamic = dynamic_now();
+  ctx.inertia = 1.0 / (newmark().beta * dt * dt);  // as assemble_blocks adds M/(beta dt^2)
   contacts->begin_step(views, ctx);
   auto t0 = Clock::now();
   assemble_blocks(dt, st.time + dt, base_diag, base_rhs);

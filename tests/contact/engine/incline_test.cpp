@@ -1,6 +1,7 @@
 // A block on an incline with the engine: sliding follows the closed form, a
 // block thrown up the slope on a soft joint turns back with the friction
-// reversed (at every step size), and the four classic cases (stable, slides,
+// reversed (at every step size), a block pushed down a slope it holds stops
+// and sticks (at every step size), and the four classic cases (stable, slides,
 // topples, slides and topples) come out as decided by alpha vs phi and b/h vs
 // tan(alpha).
 #include <boost/test/unit_test.hpp>
@@ -105,6 +106,46 @@ BOOST_AUTO_TEST_CASE(block_thrown_up_a_soft_joint_turns_back_with_friction_rever
       BOOST_TEST(highest == highest_cf, boost::test_tools::tolerance(0.01));
       BOOST_TEST(back == back_cf, boost::test_tools::tolerance(0.005));
       BOOST_TEST(friction_drop <= 1e-6 * friction);
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(block_pushed_down_a_slope_it_holds_stops_and_sticks_at_every_step) {
+  // Pushed down a 20 deg slope at v0 = 1 m/s on a joint with phi = 30 deg: the
+  // block decelerates by a = g (cos(alpha) tan(phi) - sin(alpha)), stops after
+  // v0^2 / (2 a) = 0.254 m, and stays where it stopped: its contacts lock. At
+  // every step size. Plastic impacts (restitution 0): undamped, the block's
+  // elastic vibration after the stop rattles its corners at 1e-5 s (contacts
+  // open and close) and it walks on down the slope at ~1 mm/s.
+  const double alpha = deg(20.0), phi = deg(30.0), g = 9.81, v0 = 1.0;
+  const double a = g * (std::cos(alpha) * std::tan(phi) - std::sin(alpha));
+  const double t1 = v0 / a, travel_cf = v0 * v0 / (2.0 * a);
+  const Vec2 down(-std::cos(alpha), -std::sin(alpha));
+  for (const double dt : {1e-3, 1e-4, 1e-5}) {
+    BOOST_TEST_CONTEXT("dt " << dt) {
+      core::Model m = incline_scene(alpha, 1.0, 0.5, 4.0);
+      m.settings.dt = dt;
+      m.blocks[1].initial_velocity = v0 * down;
+      contact::JointSet j = joint(30.0);
+      j.restitution = 0.0;
+      Sim sim(std::move(m), {j});
+      const Vec2 c0 = sim.engine.centroid(1);
+      while (sim.engine.time() < t1 + 0.1 - 0.5 * dt) sim.engine.step();
+      const double travel = sim.engine.point_displacement(1, c0).dot(down);
+      int sliding = 0, closed = 0;
+      for (const contact::Contact& c : sim.contacts.contacts()) {
+        if (c.state == contact::ContactState::open) continue;
+        ++closed;
+        if (c.state == contact::ContactState::sliding) ++sliding;
+      }
+      const double speed = sim.engine.velocity(1).head<2>().norm();
+      BOOST_TEST_MESSAGE("dt " << dt << ": travel " << travel << " m (closed form " << travel_cf
+                               << "), speed " << speed << " m/s, " << sliding << " of " << closed
+                               << " closed contacts sliding 0.1 s after the stop");
+      BOOST_TEST(travel == travel_cf, boost::test_tools::tolerance(0.01));
+      BOOST_TEST(closed >= 2);
+      BOOST_TEST(sliding == 0);
+      BOOST_TEST(speed < 1e-3 * v0);
     }
   }
 }

@@ -50,6 +50,9 @@ struct Sim {
       : contacts(std::move(joints), core::contact_settings_for(m, penalty_factor)),
         adapter(contacts),
         engine(std::move(m), adapter) {}
+  /// With contact settings of the caller's (e.g. a scene's: stick_keeps_force).
+  Sim(core::Model m, std::vector<contact::JointSet> joints, const contact::ContactSettings& settings)
+      : contacts(std::move(joints), settings), adapter(contacts), engine(std::move(m), adapter) {}
   contact::ContactSystem contacts;
   core::ContactAdapter adapter;
   core::Engine engine;

@@ -146,9 +146,11 @@ class ContactSystem {
   /// `dynamic`: the step carries velocity; in a static step (false: a static
   /// analysis after a dynamic settling stage) the contact dashpots and the
   /// dynamic rules (ContactSettings::lock_at_touch,
-  /// reversal_at_normal_resolution) are off.
+  /// reversal_at_normal_resolution) are off. `inertia`: the step's inertia
+  /// stiffness per unit mass, 1/(beta dt^2) of the host's Newmark scheme
+  /// [1/time^2] (0: unknown; ContactSettings::reversal_at_normal_resolution).
   void begin_step(std::span<const BlockView> blocks, double max_displacement, double dt = 0.0,
-                  bool dynamic = true);
+                  bool dynamic = true, double inertia = 0.0);
   /// Springs and friction loads of the trial states (the seed's eqs. 28-29).
   void assemble(std::span<const BlockView> blocks, SystemSink& sink) const;
   /// Updates the trial states from the trial displacements D (6 per block).
@@ -217,6 +219,8 @@ class ContactSystem {
     /// [force time / length^2 per unit thickness]. Over a step of length dt they
     /// act as springs c/dt on the step's motion (implicit: the end-of-step rate).
     double cn = 0.0, cs = 0.0;
+    /// Reduced mass m_i m_j / (m_i + m_j) of the two blocks [mass/length].
+    double reduced_mass = 0.0;
     /// Penetration from which the normal dashpot counts the step's approach:
     /// d_n0 for a contact closed at the step start, max(d_n0, 0) for one open
     /// at the step start (from the touching point across a gap) [length].
@@ -256,6 +260,9 @@ class ContactSystem {
   /// The dashpots as springs on the step's motion, c / dt [stress] (0 without).
   double normal_dashpot(size_t c) const;
   double shear_dashpot(size_t c) const;
+  /// Stiffness that resolves a sliding contact's backward slip: the slip
+  /// f_res / k counts as a reversal [stress].
+  double reversal_stiffness(size_t c) const;
   /// Sliding -> locked where the vertex stood at the step start: the shear
   /// spring unstretched, or carrying the friction force under
   /// ContactSettings::stick_keeps_force.
@@ -290,6 +297,7 @@ class ContactSystem {
   std::vector<double> committed_creep_, work_creep_;
   std::vector<CreepCounters> creep_counters_;  ///< per joint set, accepted steps only
   double step_dt_ = 0.0;  ///< creep time of the step being solved [time]
+  double step_inertia_ = 0.0;  ///< inertia stiffness per unit mass of the step, 1/(beta dt^2) [1/time^2]
   std::vector<StepWork> committed_work_, step_work_;  ///< energy balance (contact_energy.cpp)
   double stored_before_ = 0.0;  ///< stored energy before the last accepted step [force x length]
   std::vector<LawStep> law_steps_;  ///< per joint set, for the step being solved

@@ -123,15 +123,19 @@ struct ContactSettings {
   /// "Contact damping").
   bool lock_at_touch = false;
   /// A sliding contact turns back (sticks) once its backward slip in the step
-  /// exceeds the normal spring's length resolution f_res / p_n, instead of
-  /// f_res / k_s (Shi's spring) [-]. The hosts set it for dynamic analyses:
-  /// with a soft joint (k_s << p_n) and a small step, the coarser resolution
-  /// let a vertex that moved backwards keep a friction force that pushed it on,
-  /// step after step; friction did negative work and the seed's slope settled
-  /// at 1 ms but never at 0.25 ms and below (docs/contacts.md, "Friction that
-  /// pushed"). Off in static analysis, where no velocity carries the error to
-  /// the next step: measured on the toppling example, the finer resolution
-  /// made its static iteration fail and cut the step towards 1e-6 d.
+  /// exceeds f_res / (p_n + m_red / (beta dt^2)), the slip a force residual moves
+  /// the vertex by against the normal spring and the step's inertia (the
+  /// `inertia` of begin_step), instead of f_res / k_s (Shi's spring) [-]. The
+  /// hosts set it for dynamic analyses: with a soft joint (k_s << p_n) and a
+  /// small step, the coarser resolution let a vertex that moved backwards keep
+  /// a friction force that pushed it on, step after step; friction did negative
+  /// work and the seed's slope settled at 1 ms but never at 0.25 ms and below
+  /// (docs/contacts.md, "Friction that pushed"); without the inertia, contacts
+  /// that had stopped stayed sliding, more of them the smaller the step
+  /// (docs/contacts.md, "Contacts that stop"). Off in static analysis, where no
+  /// velocity carries the error to the next step: measured on the toppling
+  /// example, the finer resolution made its static iteration fail and cut the
+  /// step towards 1e-6 d.
   bool reversal_at_normal_resolution = false;
   /// Factor by which the penalty is raised [-].
   double penalty_raise = 2.0;

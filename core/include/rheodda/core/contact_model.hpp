@@ -28,6 +28,9 @@ struct StepContext {
   /// stage): contact dashpots act, and the contacts follow their dynamic rules
   /// (ContactSettings::lock_at_touch, reversal_at_normal_resolution) where set.
   bool dynamic = true;
+  /// Inertia stiffness per unit mass the step adds to each block, 1/(beta dt^2)
+  /// of the Newmark scheme (Settings::time_integration) [1/time^2].
+  double inertia = 0.0;
 };
 
 /// What the open-close iteration changed, by kind (docs/contacts.md, "States and
