@@ -7,6 +7,8 @@
 //   build/bench/contact_bench --solver cholmod     # one solver (default automatic:
 //                                                  # cholmod below 400 blocks, amg above)
 //   build/bench/contact_bench --solver amg --tol 1e-8  # iterative stop ||F - K D|| <= tol ||F||
+//   build/bench/contact_bench --iterate-tol 0       # the same stop in open-close iterates whose states
+//                                                  # still change (default 1e-4; 0: every solve at --tol)
 //   build/bench/contact_bench --open-close 20      # open-close iterations before a cut (default 30)
 //   build/bench/contact_bench --penalty 10         # contact penalty in units of E (default 40)
 //   build/bench/contact_bench --glued              # cohesion and tensile strength so high that every
@@ -175,6 +177,7 @@ int main(int argc, char** argv) {
   int steps = 50;
   bool detect_only = false;
   double pcg_tol = 0.0;
+  double iterate_tol = -1.0;  // < 0: the engine's default (Settings::pcg_iterate_tolerance)
   std::string solver = "automatic";
   int open_close = 0;
   double penalty = 40.0;  // [E]
@@ -190,6 +193,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[k], "--detect-only")) detect_only = true;
     else if (!std::strcmp(argv[k], "--solver") && k + 1 < argc) solver = argv[++k];
     else if (!std::strcmp(argv[k], "--tol") && k + 1 < argc) pcg_tol = std::atof(argv[++k]);
+    else if (!std::strcmp(argv[k], "--iterate-tol") && k + 1 < argc) iterate_tol = std::atof(argv[++k]);
     else if (!std::strcmp(argv[k], "--open-close") && k + 1 < argc) open_close = std::atoi(argv[++k]);
     else if (!std::strcmp(argv[k], "--penalty") && k + 1 < argc) penalty = std::atof(argv[++k]);
     else if (!std::strcmp(argv[k], "--glued")) glued = true;
@@ -236,6 +240,7 @@ int main(int argc, char** argv) {
   std::printf("# running-bond brick wall, %d steps, dt = 1e-3 s, g2 w0 = 1 mm (one core), solver %s",
               steps, solver.c_str());
   if (pcg_tol > 0.0) std::printf(", tol %g", pcg_tol);
+  if (iterate_tol >= 0.0) std::printf(", iterate tol %g", iterate_tol);
   std::printf(", penalty %g E%s\n", penalty, glued ? ", glued joints" : "");
   std::printf("%8s %6s %6s %8s %10s %10s %10s %10s %14s %8s %6s %5s %8s %8s %12s\n", "blocks", "NX",
               "NY", "contacts", "detect_ms", "step_ms", "solve_ms", "assemb_ms", "block-steps/s",
@@ -245,6 +250,7 @@ int main(int argc, char** argv) {
     core::Model model = brick_wall(nx, ny, poisson);
     model.settings.solver = solver_kind;
     if (pcg_tol > 0.0) model.settings.pcg_tolerance = pcg_tol;
+    if (iterate_tol >= 0.0) model.settings.pcg_iterate_tolerance = iterate_tol;
     if (open_close > 0) model.settings.max_open_close = open_close;
     const double n = static_cast<double>(model.blocks.size() - 1);
     if (n > 1.2 * static_cast<double>(max_blocks)) break;

@@ -171,17 +171,20 @@ const char* unknown_name(int k) {
   return k >= 0 && k < 6 ? names[k] : "?";
 }
 
-Eigen::VectorXd LinearSolver::solve(const BlockSystem& system) {
+Eigen::VectorXd LinearSolver::solve(const BlockSystem& system) { return solve(system, tolerance_); }
+
+Eigen::VectorXd LinearSolver::solve(const BlockSystem& system, double tolerance) {
+  tolerance = std::max(tolerance, tolerance_);
   ++stats_.solves;
   const SolverKind kind = resolve(kind_, system.block_count());
-  if (kind == SolverKind::pcg) return solve_block_jacobi(system, tolerance_, max_iterations_, stats_);
-  if (kind == SolverKind::amg && kind_ == SolverKind::amg) return solve_amg(system);
+  if (kind == SolverKind::pcg) return solve_block_jacobi(system, tolerance, max_iterations_, stats_);
+  if (kind == SolverKind::amg && kind_ == SolverKind::amg) return solve_amg(system, tolerance);
   if (kind == SolverKind::amg && !amg_failed_) {
     // automatic: the V-cycle has been seen to lose definiteness on irregular
     // block sizes (a generated rock mass of 734 blocks, docs/engine.md
     // "Solvers"); CHOLMOD, exact, takes over rather than the run failing.
     try {
-      return solve_amg(system);
+      return solve_amg(system, tolerance);
     } catch (const SingularSystemError&) {
       throw;
     } catch (const std::runtime_error&) {
@@ -239,7 +242,7 @@ SolverKind LinearSolver::resolve(SolverKind kind, int blocks) {
   return blocks >= kAmgBlocks ? SolverKind::amg : SolverKind::cholmod;
 }
 
-Eigen::VectorXd LinearSolver::solve_amg(const BlockSystem& system) {
+Eigen::VectorXd LinearSolver::solve_amg(const BlockSystem& system, double tolerance) {
   if (!amg_) amg_ = std::make_unique<BlockAmg>();
   if (amg_->same_pattern(system)) {
     amg_->refresh(system);
@@ -251,7 +254,7 @@ Eigen::VectorXd LinearSolver::solve_amg(const BlockSystem& system) {
   // Warm start from the last solution: the previous iterate of the open-close
   // iteration, or the last step's displacements.
   if (last_.size() != system.rhs().size()) last_.setZero(system.rhs().size());
-  pcg(system, tolerance_, max_iterations_, stats_,
+  pcg(system, tolerance, max_iterations_, stats_,
       [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { amg_->apply(r, z); }, last_);
   return last_;
 }

@@ -326,7 +326,8 @@ class Simulation:
     def set_settings(self, **settings):
         """Step settings by their scene names: dt, dt_growth, dt_cut, max_cuts,
         max_displacement_ratio, creep_tolerance, step_tolerance, step_extrapolation, dt_max,
-        open_close_limit, solver_tolerance, solver_max_iterations."""
+        open_close_limit, solver_tolerance, solver_max_iterations,
+        solver_iterate_tolerance."""
         self._sim.set_settings(**settings)
 
     def _block_index(self, block):

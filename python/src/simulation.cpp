@@ -312,11 +312,12 @@ class Simulation {
       else if (key == "open_close_limit") s.max_open_close = item.second.cast<int>();
       else if (key == "solver_tolerance") s.pcg_tolerance = number();
       else if (key == "solver_max_iterations") s.pcg_max_iterations = item.second.cast<int>();
+      else if (key == "solver_iterate_tolerance") s.pcg_iterate_tolerance = number();
       else
         throw InputError(fmt::format(
             "set_settings: unknown setting '{}'; valid: dt, dt_growth, dt_cut, max_cuts, max_displacement_ratio, "
             "creep_tolerance, step_tolerance, step_extrapolation, dt_max, open_close_limit, solver_tolerance, "
-            "solver_max_iterations",
+            "solver_max_iterations, solver_iterate_tolerance",
             key));
     }
     prepare_engine(std::move(m), dt_changed);
@@ -368,6 +369,7 @@ class Simulation {
     d["open_close_limit"] = s.max_open_close;
     d["solver_tolerance"] = s.pcg_tolerance;
     d["solver_max_iterations"] = s.pcg_max_iterations;
+    d["solver_iterate_tolerance"] = s.pcg_iterate_tolerance;
     return d;
   }
 

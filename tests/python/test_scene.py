@@ -182,6 +182,12 @@ def test_errors_carry_the_command_line_messages(root, rheodda_binary, tmp_path):
         rheodda.Simulation(SHEAR_TEST).set_settings(dt=-1.0)
     with pytest.raises(rheodda.Error, match="unknown setting 'dtt'"):
         rheodda.Simulation(SHEAR_TEST).set_settings(dtt=1.0)
+    sim = rheodda.Simulation(SHEAR_TEST)
+    assert sim.settings["solver_iterate_tolerance"] == 1e-4
+    sim.set_settings(solver_iterate_tolerance=0.0)
+    assert sim.settings["solver_iterate_tolerance"] == 0.0
+    with pytest.raises(rheodda.ModelError, match="settings.pcg_iterate_tolerance"):
+        rheodda.Simulation(SHEAR_TEST).set_settings(solver_iterate_tolerance=1.0)
     with pytest.raises(rheodda.Error, match="load 5 does not exist"):
         rheodda.Simulation(SHEAR_TEST).set_load(5, (0.0, 0.0))
 

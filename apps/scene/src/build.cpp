@@ -170,6 +170,7 @@ BuiltScene build_scene(const SceneDescription& s) {
     case SolverKind::amg: st.solver = core::SolverKind::amg; break;
   }
   st.pcg_tolerance = a.solver_tolerance;
+  st.pcg_iterate_tolerance = a.solver_iterate_tolerance;
   st.pcg_max_iterations = a.solver_max_iterations;
 
   contact::ContactSettings& cs = out.contact_settings;

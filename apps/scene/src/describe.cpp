@@ -35,8 +35,8 @@ std::string solver_text(const SceneDescription& s) {
                         core::LinearSolver::kAmgBlocks);
   }
   if (iterative)
-    name += fmt::format(", solver_tolerance {:g}, solver_max_iterations {}", a.solver_tolerance,
-                        a.solver_max_iterations);
+    name += fmt::format(", solver_tolerance {:g}, solver_max_iterations {}, solver_iterate_tolerance {:g}",
+                        a.solver_tolerance, a.solver_max_iterations, a.solver_iterate_tolerance);
   return name;
 }
 

@@ -77,6 +77,7 @@ json scene_json(const SceneDescription& s) {
                    {"solver", solver_name(a.solver)},
                    {"solver_tolerance", a.solver_tolerance},
                    {"solver_max_iterations", a.solver_max_iterations},
+                   {"solver_iterate_tolerance", a.solver_iterate_tolerance},
                    {"output_interval", a.output_interval},
                    {"max_travel_ratio", a.max_travel_ratio},
                    {"max_output_size", a.max_output_size},

@@ -255,7 +255,7 @@ BOOST_AUTO_TEST_CASE(step_tolerance_and_step_extrapolation_reach_the_engine_sett
                   "analysis.dt_max", "shorter than dt");
 }
 
-BOOST_AUTO_TEST_CASE(solver_and_solver_tolerance_reach_the_engine_settings_and_bad_values_are_refused) {
+BOOST_AUTO_TEST_CASE(solver_and_solver_tolerances_reach_the_engine_settings_and_bad_values_are_refused) {
   // Default: automatic with the iterative stop 1e-10.
   const scene::BuiltScene base = scene::build_scene(scene::parse_scene(kBaseScene, "base.yaml"));
   BOOST_TEST((base.model.settings.solver == core::SolverKind::automatic));
@@ -273,6 +273,14 @@ BOOST_AUTO_TEST_CASE(solver_and_solver_tolerance_reach_the_engine_settings_and_b
                   "not one of: automatic, cholmod, pcg, amg");
   expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  solver_tolerance: 0"), 5, "0", "analysis.solver_tolerance",
                   "out of range (0, 1)");
+  // The stop of iterates whose states still change: default 1e-4, 0 allowed (off).
+  BOOST_TEST(base.model.settings.pcg_iterate_tolerance == 1e-4);
+  for (double v : {0.0, 1e-6}) {
+    const auto t = with("  dt: 0.01", "  dt: 0.01\n  solver_iterate_tolerance: " + std::to_string(v));
+    BOOST_TEST(scene::build_scene(scene::parse_scene(t, "s.yaml")).model.settings.pcg_iterate_tolerance == v);
+  }
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  solver_iterate_tolerance: 1"), 5, "1",
+                  "analysis.solver_iterate_tolerance", "out of range [0, 1)");
 }
 
 BOOST_AUTO_TEST_CASE(time_integration_reaches_the_engine_settings_and_needs_a_dynamic_analysis) {

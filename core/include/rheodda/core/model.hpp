@@ -176,6 +176,11 @@ struct Settings {
                                    ///< precision attains on contact-dominated systems
                                    ///< (condition numbers 1e5-1e6)
   int pcg_max_iterations = 10000;  ///< iteration limit per solve of pcg and amg [-]; >= 1
+  /// Stop of the iterative solvers in an open-close iterate whose contact
+  /// states are still changing [-]: ||F - K D|| <= pcg_iterate_tolerance ||F||;
+  /// a trial is accepted only on a check of a solve at pcg_tolerance (docs/contacts.md,
+  /// "Inexact iterates"). 0 = every solve at pcg_tolerance; in [0, 1)
+  double pcg_iterate_tolerance = 1.0e-4;
 };
 
 /// A complete DDA model.

@@ -52,6 +52,14 @@ class LinearSolver {
   /// a solve whose amg conjugate gradient does not converge is redone by CHOLMOD,
   /// which then solves the rest of the run (SolverStats::amg_fallback_solve).
   Eigen::VectorXd solve(const BlockSystem& system);
+  /// The same with the iterative solvers' stop loosened to `tolerance` when it
+  /// is above the solver's own (an open-close iterate whose states are still
+  /// changing; cholmod is exact either way).
+  Eigen::VectorXd solve(const BlockSystem& system, double tolerance);
+  /// The solve of `blocks` blocks is iterative (pcg or amg), so a looser
+  /// tolerance makes it cheaper.
+  bool iterative(int blocks) const { return used(blocks) != SolverKind::cholmod; }
+  double tolerance() const { return tolerance_; }
   SolverKind kind() const { return kind_; }
   /// The solver `kind` stands for in a model of `blocks` blocks (automatic ->
   /// cholmod or amg; the others are themselves).
@@ -70,7 +78,7 @@ class LinearSolver {
 
  private:
   struct Cholmod;
-  Eigen::VectorXd solve_amg(const BlockSystem& system);
+  Eigen::VectorXd solve_amg(const BlockSystem& system, double tolerance);
   Eigen::VectorXd solve_cholmod(const BlockSystem& system);
   SolverKind kind_;
   bool amg_failed_ = false;  ///< automatic: amg did not converge once, CHOLMOD from then on

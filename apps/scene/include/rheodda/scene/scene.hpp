@@ -111,6 +111,7 @@ struct Analysis {
   double fixed_point_stiffness = 0.0;  ///< fixed-point spring [force/length]; default 100 x largest young_modulus
   SolverKind solver = SolverKind::automatic;  ///< `solver: automatic|cholmod|pcg|amg`
   double solver_tolerance = 1e-10;     ///< relative residual at which pcg and amg stop [-]
+  double solver_iterate_tolerance = 1e-4;  ///< the same in open-close iterates whose states still change [-]
   int solver_max_iterations = 10000;   ///< CG iteration limit per solve of pcg and amg [-]; >= 1
   double output_interval = 0.0;        ///< time between output frames [time]; default duration / 100
   /// Run guard: the run stops when a block vertex has moved more than this times the
