@@ -3,7 +3,8 @@
 #   bash scripts/toppling-study.sh            # after scripts/build.sh
 # Runs examples/studies/toppling-phi.yaml and toppling-laws.yaml with `rheodda study`
 # into out/toppling-study/, then draws with gnuplot and copies the pictures to
-# docs/img/toppling-*.png. Environment: RHEODDA (the binary, default
+# docs/img/toppling-*.png, and splices the tables of docs/toppling-study.md
+# (toppling-phi, toppling-creep-history, toppling-laws markers). Environment: RHEODDA (the binary, default
 # build/apps/rheodda), OUT (default out/toppling-study), JOBS (default 2).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -51,3 +52,37 @@ done
 # The four laws on the anti-toppling planes: block 10's displacement against time.
 cp "$OUT/laws/study.png" docs/img/toppling-laws.png
 ls docs/img/toppling-*.png
+
+# The tables of docs/toppling-study.md from the laws study (its study.csv):
+# the Burgers case's displacements at 1, 10, 50 and 100 d, and per law.
+/usr/bin/python3 - "$OUT/laws/study.csv" "$OUT/history.md" "$OUT/laws.md" <<'PY'
+import csv, sys
+rows = {r["case"]: r for r in csv.DictReader(open(sys.argv[1]))}
+def v(r, block, t):
+    return float(r[f"{block}_top.displacement@{t}"])
+b = rows["burgers"]
+with open(sys.argv[2], "w") as f:
+    print("| time [d] | 1 | 10 | 50 | 100 |", file=f)
+    print("|---|---|---|---|---|", file=f)
+    for block, name in (("block1", "block 1"), ("block10", "block 10")):
+        print(f"| {name} displacement [m] | " + " | ".join(f"{v(b, block, t):.3g}" for t in (1, 10, 50, 100)) + " |", file=f)
+    print("", file=f)
+    print("Rate over the last 50 days: block 10 " + f"{(v(b, 'block10', 100) - v(b, 'block10', 50)) / 50:.3f} m/d, block 1 "
+          + f"{(v(b, 'block1', 100) - v(b, 'block1', 50)) / 50:.3f} m/d.", file=f)
+with open(sys.argv[3], "w") as f:
+    print("| law | block 10 at 1 d [m] | at 100 d [m] | block 1 at 100 d [m] |", file=f)
+    print("|---|---|---|---|", file=f)
+    for law in ("burgers", "maxwell", "kelvin", "nishihara"):
+        r = rows[law]
+        if r["status"] != "completed":
+            print(f"| {law} | {r['status']} | | |", file=f)
+            continue
+        print(f"| {law} | {v(r, 'block10', 1):.2f} | {v(r, 'block10', 100):.2f} | {v(r, 'block1', 100):.2f} |", file=f)
+PY
+scripts/splice-doc.sh docs/toppling-study.md toppling-creep-history "$OUT/history.md"
+scripts/splice-doc.sh docs/toppling-study.md toppling-laws "$OUT/laws.md"
+# The phi sweep's table (phi.dat: phi, block 1, block 10 at 20 s).
+awk 'BEGIN { h = "| φ [deg] |"; s = "|---|"; a = "| block 1 |"; b = "| block 10 |" }
+     { h = h " " $1 " |"; s = s "---|"; a = a sprintf(" %#.3g |", $2); b = b sprintf(" %#.3g |", $3) }
+     END { print h; print s; print a; print b }' "$OUT/phi.dat" >"$OUT/phi.md"
+scripts/splice-doc.sh docs/toppling-study.md toppling-phi "$OUT/phi.md"
