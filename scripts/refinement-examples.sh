@@ -4,7 +4,7 @@
 # verdict (fine / coarse / not converged) with L0's error, the last two levels'
 # difference, the largest static inertia share and, where a joint fails, the
 # failure time of each level. Puts the table into docs/speed-accuracy.md between
-# the refinement-examples markers. About 16 min on 2 cores. Not in it:
+# the refinement-examples markers. About 25 min on 2 cores. Not in it:
 # examples/rockmass/jointed-slope.yaml, whose level L2 (dt and g2 / 4) takes
 # more than 10 min for its first 5 days (55 000 steps: the static g2 trap).
 # Usage: scripts/refinement-examples.sh   (uses $RHEODDA_BUILD_DIR or build/)
@@ -31,7 +31,7 @@ examples=(
   "examples/rockmass/tunnel.yaml|--refine"
   "bench/scenes/brick-wall.yaml|--refine=5"
   "bench/scenes/brick-wall.yaml|--refine=5|restitution: 0, damping_ratio: 1"
-  "bench/scenes/brick-wall.yaml|--refine=5|restitution: 0, damping_ratio: 1, dt 3.125e-05, g2 1.25e-05"
+  "bench/scenes/brick-wall.yaml|--refine=6|restitution: 0, damping_ratio: 1, dt 3.125e-05, g2 1.25e-05"
   "bench/scenes/incline-drop.yaml|--refine=5"
   "bench/scenes/incline-drop-damped.yaml|--refine=5"
   "bench/scenes/stepped-toppling.yaml|--refine=5 --until 2"
@@ -90,3 +90,7 @@ cat "$work/table.md"
 n=$(grep -n '^examples/goodman-toppling-creep.yaml|' "$work/list" | head -n 1 | cut -d: -f1)
 { echo '```'; cat "$work/$n/refinement.txt"; echo '```'; } >"$work/toppling.md"
 "$root/scripts/splice-doc.sh" "$root/docs/speed-accuracy.md" refinement-toppling-creep-levels "$work/toppling.md"
+# The damped wall refined past its contact period, its levels in full.
+n=$(grep -n '^bench/scenes/brick-wall.yaml with restitution: 0, damping_ratio: 1, dt ' "$work/list" | head -n 1 | cut -d: -f1)
+{ echo '```'; cat "$work/$n/refinement.txt"; echo '```'; } >"$work/wall.md"
+"$root/scripts/splice-doc.sh" "$root/docs/speed-accuracy.md" refinement-damped-wall-levels "$work/wall.md"
