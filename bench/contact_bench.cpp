@@ -5,7 +5,7 @@
 //   build/bench/contact_bench --max-blocks 100000  # adds N = 1e5
 //   build/bench/contact_bench --detect-only --max-blocks 100000  # detection alone
 //   build/bench/contact_bench --solver cholmod     # one solver (default automatic:
-//                                                  # cholmod below 400 blocks, amg above)
+//                                                  # cholmod below 2 000 blocks, amg above)
 //   build/bench/contact_bench --solver amg --tol 1e-8  # iterative stop ||F - K D|| <= tol ||F||
 //   build/bench/contact_bench --iterate-tol 0       # the same stop in open-close iterates whose states
 //                                                  # still change (default 1e-4; 0: every solve at --tol)

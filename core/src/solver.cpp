@@ -1,6 +1,7 @@
 #include "rheodda/core/solver.hpp"
 
 #include <cholmod.h>
+#include <omp.h>
 
 #include "block_amg.hpp"
 
@@ -11,6 +12,30 @@
 #include <vector>
 
 namespace rheodda::core {
+
+namespace {
+
+// Debian's CHOLMOD is built with OpenMP and opens its supernodal parallel
+// regions with a compiled-in num_threads(4) (CHOLMOD_OMP_NUM_THREADS in
+// cholmod_core.h), which neither OMP_NUM_THREADS nor omp_set_num_threads
+// overrides. On a machine with fewer free cores than that the threads wait on
+// each other: on two cores the 1 620-block wall's factorisations took 3.3x the
+// time of serial ones (docs/engine.md, "Solvers"). rheodda solves one model per
+// core (studies run their cases in parallel, `-j`), so CHOLMOD runs serially:
+// no parallel region is active while this guard lives (OpenMP's
+// max-active-levels 0), and the caller's setting comes back after.
+class SerialOpenMp {
+ public:
+  SerialOpenMp() : levels_(omp_get_max_active_levels()) { omp_set_max_active_levels(0); }
+  ~SerialOpenMp() { omp_set_max_active_levels(levels_); }
+  SerialOpenMp(const SerialOpenMp&) = delete;
+  SerialOpenMp& operator=(const SerialOpenMp&) = delete;
+
+ private:
+  int levels_;
+};
+
+}  // namespace
 
 // CHOLMOD state kept between solves: the matrix (its pattern stays valid while
 // the block pattern is unchanged, so only values are refilled) and the factor
@@ -198,6 +223,7 @@ Eigen::VectorXd LinearSolver::solve(const BlockSystem& system, double tolerance)
 Eigen::VectorXd LinearSolver::solve_cholmod(const BlockSystem& system) {
   if (!cholmod_) cholmod_ = std::make_unique<Cholmod>();
   Cholmod& c = *cholmod_;
+  const SerialOpenMp serial;
   if (!c.A || !c.pattern_unchanged(system)) {
     c.build_structure(system);
     c.fill_values(system);

@@ -218,7 +218,7 @@ BOOST_AUTO_TEST_CASE(automatic_picks_cholmod_for_small_models_and_amg_for_large_
   BOOST_TEST((LinearSolver::resolve(SolverKind::automatic, 100) == SolverKind::cholmod));
   BOOST_TEST((LinearSolver::resolve(SolverKind::automatic, LinearSolver::kAmgBlocks) == SolverKind::amg));
   BOOST_TEST((LinearSolver::resolve(SolverKind::pcg, 100000) == SolverKind::pcg));
-  Grid g{30, 20, 4e3, 1.0, {}, 1.0, 0.5};  // 600 blocks: amg, iterations counted
+  Grid g{50, 40, 4e3, 1.0, {}, 1.0, 0.5};  // 2 000 blocks: amg, iterations counted
   const BlockSystem s = grid_system(g);
   LinearSolver automatic(SolverKind::automatic, 1e-10, 100000);
   LinearSolver chol(SolverKind::cholmod);

@@ -1,5 +1,7 @@
 #include "rheodda/scene/memory.hpp"
 
+#include "rheodda/core/solver.hpp"
+
 #include <fmt/format.h>
 #include <sys/resource.h>
 
@@ -38,8 +40,9 @@ std::optional<double> read_number(const std::string& path) {
 MemoryEstimate estimate_memory(const SceneDescription& scene) {
   const double n = static_cast<double>(scene.blocks.size());
   SolverKind solver = scene.analysis.solver;
-  if (solver == SolverKind::automatic)  // core::LinearSolver: cholmod below 400 blocks
-    solver = scene.blocks.size() < 400 ? SolverKind::cholmod : SolverKind::amg;
+  if (solver == SolverKind::automatic)  // as core::LinearSolver::resolve decides
+    solver = scene.blocks.size() < static_cast<std::size_t>(core::LinearSolver::kAmgBlocks) ? SolverKind::cholmod
+                                                                                          : SolverKind::amg;
   MemoryEstimate e;
   e.solver = std::string(solver_name(solver));
   const double per_block = solver == SolverKind::cholmod

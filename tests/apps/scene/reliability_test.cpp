@@ -532,7 +532,7 @@ BOOST_AUTO_TEST_CASE(the_run_reports_how_many_contacts_a_damage_law_failed_and_w
 }
 
 BOOST_AUTO_TEST_CASE(automatic_solver_falls_back_to_cholmod_when_amg_does_not_converge) {
-  // 420 blocks: `automatic` picks amg. With one CG iteration allowed, amg cannot
+  // 2 001 blocks: `automatic` picks amg. With one CG iteration allowed, amg cannot
   // converge; the solve is redone by CHOLMOD, which runs the rest: the run is
   // the CHOLMOD run to the last digit, and summary.json says so.
   const std::string wall =
@@ -542,8 +542,8 @@ BOOST_AUTO_TEST_CASE(automatic_solver_falls_back_to_cholmod_when_amg_does_not_co
       "materials: {rock: {density: 2600, young_modulus: 5.0e9, poisson_ratio: 0.25}}\n"
       "joint_sets: {j: {friction_angle: 35}}\n"
       "blocks:\n"
-      "  - {name: base, rectangle: {x: -1, y: -1, width: 23, height: 1}, fixed: true}\n"
-      "  - {name: w, grid: {x: 0, y: 0, width: 1, height: 0.5, columns: 21, rows: 20}}\n"
+      "  - {name: base, rectangle: {x: -1, y: -1, width: 52, height: 1}, fixed: true}\n"
+      "  - {name: w, grid: {x: 0, y: 0, width: 1, height: 0.5, columns: 50, rows: 40}}\n"
       "measurement_points:\n"
       "  - {name: top, point: [10.5, 9.75], block: w.r20.c11}\n";
   const fs::path d = fresh_dir("amg-fallback");

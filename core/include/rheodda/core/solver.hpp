@@ -69,11 +69,13 @@ class LinearSolver {
   SolverKind used(int blocks) const {
     return amg_failed_ ? SolverKind::cholmod : resolve(kind_, blocks);
   }
-  /// automatic picks amg from this many blocks on. Below it CHOLMOD is exact
-  /// (no tolerance to choose) and faster: on the brick-wall benchmark
-  /// (docs/performance.md) 2.7 ms against 4.2 ms per step at 105 blocks, while at
-  /// 1 040 blocks a Cholesky factor's N^1.5 flops make it 420 ms against 155.
-  static constexpr int kAmgBlocks = 400;
+  /// automatic picks amg from this many blocks on. Below it CHOLMOD (run
+  /// serially) is exact (no tolerance to choose) and faster: on the brick-wall
+  /// benchmark (docs/performance.md, "Which solver, from how many blocks";
+  /// scripts/solver-switch.sh) amg takes 1.1-1.2x CHOLMOD's time per step from
+  /// 105 to 1 620 blocks, about 1.0x at 2 139 and 0.6x at 4 128, where the
+  /// Cholesky factor's N^1.5 flops take over.
+  static constexpr int kAmgBlocks = 2000;
   const SolverStats& stats() const { return stats_; }
 
  private:
