@@ -49,6 +49,30 @@ i=0
 for f in "$OUT"/laws/cases/burgers/plots/blocks_*.png; do
   cp "$f" "docs/img/toppling-blocks-$i.png"; i=$((i + 1))
 done
+# Figure 10: the slope settled without creep at several base friction angles (20 s).
+for phi in 33 35 45 55; do
+  rm -rf "$OUT/phi/cases/phi$phi/plots"
+  "$B" plot "$OUT/phi/cases/phi$phi" --times 2.3148148e-4 --scale 1
+  cp "$OUT"/phi/cases/phi$phi/plots/blocks_*.png "docs/img/toppling-phi-blocks-$phi.png"
+done
+# The joints' shear displacement with Burgers creep (the seed discusses it, section 5):
+# per joint set, the mean over its shear-carrying contacts of |shear displacement|
+# (history.csv's JOINTSET.shear_displacement_magnitude, docs/outputs.md).
+awk -F, '/^#/ { next }
+  $1 == "time" { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+  { print $1, $col["base.shear_displacement_magnitude"], $col["anti_toppling.shear_displacement_magnitude"] }' \
+  "$OUT/laws/cases/burgers/history.csv" > "$OUT/joint-shear.dat"
+gnuplot <<GP
+set terminal pngcairo size 900,560 noenhanced
+set grid
+set output 'docs/img/toppling-joint-shear.png'
+set title 'Goodman slope, Burgers joints, phi = 50 deg: mean |shear displacement| of the joints'
+set xlabel 'time [d]'
+set ylabel 'mean |shear displacement| over the joint set [m]'
+set key bottom right
+plot '$OUT/joint-shear.dat' using 1:2 with lines lw 2 title 'base (slip surface)', \
+     '' using 1:3 with lines lw 2 title 'anti-toppling planes'
+GP
 # The four laws on the anti-toppling planes: block 10's displacement against time.
 cp "$OUT/laws/study.png" docs/img/toppling-laws.png
 ls docs/img/toppling-*.png
@@ -86,3 +110,11 @@ awk 'BEGIN { h = "| φ [deg] |"; s = "|---|"; a = "| block 1 |"; b = "| block 10
      { h = h " " $1 " |"; s = s "---|"; a = a sprintf(" %#.3g |", $2); b = b sprintf(" %#.3g |", $3) }
      END { print h; print s; print a; print b }' "$OUT/phi.dat" >"$OUT/phi.md"
 scripts/splice-doc.sh docs/toppling-study.md toppling-phi "$OUT/phi.md"
+# The joints' mean |shear displacement| of the Burgers case at 1, 10, 50 and 100 d.
+awk 'function near(t,   d) { d = $1 - t; return d < 0 ? -d : d }
+     BEGIN { n = split("1 10 50 100", T, " ") }
+     { for (k = 1; k <= n; ++k) if (!(k in best) || near(T[k]) < best[k]) { best[k] = near(T[k]); b[k] = $2; a[k] = $3 } }
+     END { h = "| time [d] |"; s = "|---|"; x = "| base: mean \\|shear displacement\\| [m] |"; y = "| anti-toppling planes [m] |"
+           for (k = 1; k <= n; ++k) { h = h " " T[k] " |"; s = s "---|"; x = x sprintf(" %.3f |", b[k]); y = y sprintf(" %.3f |", a[k]) }
+           print h; print s; print x; print y }' "$OUT/joint-shear.dat" >"$OUT/joint-shear.md"
+scripts/splice-doc.sh docs/toppling-study.md toppling-joint-shear "$OUT/joint-shear.md"

@@ -2,6 +2,7 @@
 // exits 2 with file:line:column and writes nothing, `plot` draws pictures.
 #include <boost/test/unit_test.hpp>
 
+#include "rheodda/scene/plot.hpp"
 #include "test_support.hpp"
 
 using namespace rheodda::test;
@@ -61,6 +62,38 @@ BOOST_AUTO_TEST_CASE(run_is_quiet_off_a_terminal_and_plot_draws_block_pictures_a
     BOOST_TEST(png.substr(0, 4) == "\x89PNG", f);
   }
   BOOST_TEST(run_rheodda("plot " + (dir / "nothing").string()).exit_code == 2);
+}
+
+BOOST_AUTO_TEST_CASE(a_long_picture_title_is_broken_into_lines_that_fit_and_keeps_every_word) {
+  // A study case's title lists every setting it changes; it ran off the picture.
+  std::string title = "Goodman slope [case phi33: joint_sets.base.friction_angle = 33";
+  for (int k = 0; k < 12; ++k) title += ", joint_sets.set" + std::to_string(k) + ".law removed";
+  title += ", a \"quoted\" C:\\path]";
+  const std::string q = rheodda::scene::gnuplot_wrapped(title, 110);
+  BOOST_TEST_REQUIRE(q.size() > 2);
+  BOOST_TEST(q.front() == '"');
+  BOOST_TEST(q.back() == '"');
+  // Undo the gnuplot escapes: \n ends a line, \" and \\ stand for " and \.
+  std::vector<std::string> lines(1);
+  for (std::size_t i = 1; i + 1 < q.size(); ++i) {
+    if (q[i] == '\\') {
+      const char next = q[++i];
+      if (next == 'n') lines.emplace_back();
+      else lines.back() += next;
+    } else {
+      lines.back() += q[i];
+    }
+  }
+  BOOST_TEST(lines.size() >= 4u);
+  std::string joined;
+  for (const auto& l : lines) {
+    BOOST_TEST(l.size() <= 110u, l);
+    BOOST_TEST(!l.empty());
+    joined += (joined.empty() ? "" : " ") + l;
+  }
+  BOOST_TEST(joined == title);
+  // A short title stays on one line.
+  BOOST_TEST(rheodda::scene::gnuplot_wrapped("shear creep test", 110) == "\"shear creep test\"");
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -38,11 +38,38 @@ std::string gnuplot_text(const std::string& s) {
   return out;
 }
 
+std::string gnuplot_wrapped(const std::string& s, std::size_t width) {
+  std::string out = "\"", line;
+  auto flush = [&](bool last) {
+    for (char c : line) out += c == '"' || c == '\\' ? std::string("\\") + c : std::string(1, c);
+    if (!last) out += "\\n";
+    line.clear();
+  };
+  std::size_t start = 0;
+  while (start <= s.size()) {
+    const std::size_t end = std::min(s.find(' ', start), s.size());
+    const std::string word = s.substr(start, end - start);
+    if (!line.empty() && line.size() + 1 + word.size() > width) flush(false);
+    if (!line.empty()) line += ' ';
+    line += word;
+    start = end + 1;
+  }
+  flush(true);
+  return out + "\"";
+}
+
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string quote(const std::string& s) { return "'" + gnuplot_text(s) + "'"; }
+constexpr std::size_t kTitleWidth = 110;  // characters per title line of a 1000-pixel picture
+
+std::string quote(const std::string& s) {
+  std::string out(1, '\'');
+  out += gnuplot_text(s);
+  out += '\'';
+  return out;
+}
 
 std::string terminal(const std::string& format, int w, int h) {
   return format == "svg" ? fmt::format("set terminal svg size {},{} dynamic background rgb 'white'", w, h)
@@ -93,7 +120,7 @@ std::string plot_scene(const SceneDescription& s, const std::string& picture, co
       "{}\nset output {}\nset title {} noenhanced\nset size ratio -1\nset xlabel 'x [{}]' noenhanced\n"
       "set ylabel 'y [{}]' noenhanced\nset key outside bottom center horizontal\nplot {}\n",
       terminal(format, 1000, 760), quote(picture),
-      quote(fmt::format("{}: {} blocks, edges by joint set", s.title, s.blocks.size())), s.units.length,
+      gnuplot_wrapped(fmt::format("{}: {} blocks, edges by joint set", s.title, s.blocks.size()), kTitleWidth), s.units.length,
       s.units.length, plots);
   const std::string gp = stem.string() + ".gp";
   write_file_atomic(gp, script);
@@ -198,7 +225,7 @@ std::vector<std::string> plot_run(const PlotOptions& o) {
         "plot {} with lines dt 2 lc rgb '#999999' title 'initial', \\\n"
         "     {} with lines lw 1.5 lc rgb '#1f4e9a' title {} noenhanced\n",
         terminal(o.format, 1000, 760), quote(picture.string()),
-        quote(fmt::format("{}: blocks at t = {:g} {}", title, frames[k].first, T)), L, L, quote(dat_i.string()),
+        gnuplot_wrapped(fmt::format("{}: blocks at t = {:g} {}", title, frames[k].first, T), kTitleWidth), L, L, quote(dat_i.string()),
         quote(dat_d.string()),
         quote(scale == 1.0 ? std::string("deformed") : fmt::format("deformed (displacements x {:g})", scale)));
     const fs::path gp = dir / "plots" / (stem + ".gp");

@@ -4,6 +4,7 @@
 // too small to see) and the history curves of history.csv.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <string>
 #include <vector>
@@ -18,6 +19,11 @@ void run_gnuplot(const std::string& script);
 
 /// Text inside a gnuplot single-quoted string ('' stands for ').
 std::string gnuplot_text(const std::string& s);
+
+/// `s` as a gnuplot double-quoted string broken at spaces into lines of at most
+/// `width` characters (a word longer than that keeps its own line), for a
+/// picture's title: a study case's title lists every setting it changes.
+std::string gnuplot_wrapped(const std::string& s, std::size_t width);
 
 struct PlotOptions {
   std::string out_dir;         ///< a run's output directory
