@@ -22,6 +22,13 @@ awk -F, 'NR > 1 && $2 == "completed" { sub(/^phi/, "", $1); print $1, $4, $6 }' 
 awk -F, '/^#/ || $1 == "time" { next } { print $1, sqrt($6*$6 + $7*$7), sqrt($8*$8 + $9*$9) }' \
   "$OUT/laws/cases/burgers/history.csv" > "$OUT/creep.dat"
 
+# The joints' shear displacement with Burgers creep (the seed discusses it, section 5):
+# per joint set, the mean over its shear-carrying contacts of |shear displacement|
+# (history.csv's JOINTSET.shear_displacement_magnitude, docs/outputs.md).
+awk -F, '/^#/ { next }
+  $1 == "time" { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+  { print $1, $col["base.shear_displacement_magnitude"], $col["anti_toppling.shear_displacement_magnitude"] }' \
+  "$OUT/laws/cases/burgers/history.csv" > "$OUT/joint-shear.dat"
 gnuplot <<GP
 set terminal pngcairo size 900,560 noenhanced
 set grid
@@ -40,6 +47,13 @@ set xlabel 'time [d]'
 set key bottom right
 plot '$OUT/creep.dat' using 1:2 with lines lw 2 title 'block 1 (top centre)', \
      '' using 1:3 with lines lw 2 title 'block 10 (top centre)'
+set output 'docs/img/toppling-joint-shear.png'
+set title 'Goodman slope, Burgers joints, phi = 50 deg: mean |shear displacement| of the joints'
+set xlabel 'time [d]'
+set ylabel 'mean |shear displacement| over the joint set [m]'
+set key bottom right
+plot '$OUT/joint-shear.dat' using 1:2 with lines lw 2 title 'base (slip surface)', \
+     '' using 1:3 with lines lw 2 title 'anti-toppling planes'
 GP
 
 # Figure 12: the deformed slope at several times (rheodda plot of the Burgers case).
@@ -55,24 +69,6 @@ for phi in 33 35 45 55; do
   "$B" plot "$OUT/phi/cases/phi$phi" --times 2.3148148e-4 --scale 1
   cp "$OUT"/phi/cases/phi$phi/plots/blocks_*.png "docs/img/toppling-phi-blocks-$phi.png"
 done
-# The joints' shear displacement with Burgers creep (the seed discusses it, section 5):
-# per joint set, the mean over its shear-carrying contacts of |shear displacement|
-# (history.csv's JOINTSET.shear_displacement_magnitude, docs/outputs.md).
-awk -F, '/^#/ { next }
-  $1 == "time" { for (i = 1; i <= NF; ++i) col[$i] = i; next }
-  { print $1, $col["base.shear_displacement_magnitude"], $col["anti_toppling.shear_displacement_magnitude"] }' \
-  "$OUT/laws/cases/burgers/history.csv" > "$OUT/joint-shear.dat"
-gnuplot <<GP
-set terminal pngcairo size 900,560 noenhanced
-set grid
-set output 'docs/img/toppling-joint-shear.png'
-set title 'Goodman slope, Burgers joints, phi = 50 deg: mean |shear displacement| of the joints'
-set xlabel 'time [d]'
-set ylabel 'mean |shear displacement| over the joint set [m]'
-set key bottom right
-plot '$OUT/joint-shear.dat' using 1:2 with lines lw 2 title 'base (slip surface)', \
-     '' using 1:3 with lines lw 2 title 'anti-toppling planes'
-GP
 # The four laws on the anti-toppling planes: block 10's displacement against time.
 cp "$OUT/laws/study.png" docs/img/toppling-laws.png
 ls docs/img/toppling-*.png
