@@ -34,6 +34,7 @@ struct CheckArgs {
   int jobs = 0;
   double until = 0.0;
   double tolerance = 0.05;
+  std::vector<std::string> hold;
 };
 
 void refine(const CheckArgs& args) {
@@ -41,6 +42,7 @@ void refine(const CheckArgs& args) {
   o.levels = args.levels;
   if (args.until > 0.0) o.until = args.until;
   o.tolerance = args.tolerance;
+  o.hold = args.hold;
   const std::string out_dir =
       args.out.empty() ? (std::filesystem::path("out") / (std::filesystem::path(args.scene).stem().string() + "-refine")).string()
                        : args.out;
@@ -55,9 +57,10 @@ void refine(const CheckArgs& args) {
   opt.progress = true;
   opt.stop = &g_check_stop;
   on_stop_signals(on_check_stop);
-  fmt::print("\nmeasuring the step controls: {} levels, each with every step control halved (the last costs "
+  fmt::print("\nmeasuring the step controls: {} levels, each with every step control{} halved (the last costs "
              "about {} times a run); cases in {}/cases/\n",
-             o.levels, 1 << (o.levels - 1), out_dir);
+             o.levels, o.hold.empty() ? std::string() : fmt::format(" but {}", fmt::join(o.hold, ", ")),
+             1 << (o.levels - 1), out_dir);
   std::fflush(stdout);
   std::vector<study::CaseResult> results;
   try {
@@ -116,6 +119,13 @@ void add_check_command(CLI::App& app) {
   check->add_option("--tolerance", args->tolerance,
                     "--refine: largest relative difference allowed between the scene's own level and the finest "
                     "(default 0.05)")
+      ->needs(refine_flag);
+  check->add_option("--hold", args->hold,
+                    "--refine: step controls kept at the scene's value on every level, by their key under "
+                    "analysis (e.g. settle.dt,settle.max_displacement_ratio): controls whose own refinement is "
+                    "shown converged elsewhere")
+      ->delimiter(',')
+      ->type_name("KEY,...")
       ->needs(refine_flag);
   check->callback([args] {
     require_readable(args->scene);

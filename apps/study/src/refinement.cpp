@@ -70,12 +70,22 @@ RefinementStudy refinement_study(const std::string& scene_path, const std::strin
   st.common_count = common.size();
 
   const std::string& tu = s.units.time;
+  std::vector<std::string> used;  // the scene's step controls, as `--hold` names them
+  std::vector<bool> held_found(o.hold.size(), false);
   for (int k = 0; k < o.levels; ++k) {
     const double f = std::ldexp(1.0, -k);
     StudyCase c;
     c.name = fmt::format("L{}", k);
     std::vector<std::string> text;
     auto control = [&](const std::string& key, double value, const std::string& shown, const std::string& unit) {
+      const std::string name = key.substr(std::string("analysis.").size());
+      if (k == 0) used.push_back(name);
+      const auto h = std::find(o.hold.begin(), o.hold.end(), name);
+      if (h != o.hold.end()) {
+        held_found[static_cast<std::size_t>(h - o.hold.begin())] = true;
+        text.push_back(fmt::format("{} {:g}{} (held)", shown, value, unit.empty() ? "" : " " + unit));
+        return;
+      }
       if (k > 0) c.set.push_back({key, scene::exact_number(value * f), {}});
       text.push_back(fmt::format("{} {:g}{}", shown, value * f, unit.empty() ? "" : " " + unit));
     };
@@ -97,6 +107,13 @@ RefinementStudy refinement_study(const std::string& scene_path, const std::strin
     r.level_controls.push_back(fmt::format("{}", fmt::join(text, ", ")));
     st.cases.push_back(std::move(c));
   }
+  for (std::size_t i = 0; i < o.hold.size(); ++i)
+    if (!held_found[i])
+      throw std::invalid_argument(fmt::format("--hold {}: not a step control of {}; its step controls are {}",
+                                              o.hold[i], scene_path, fmt::join(used, ", ")));
+  if (o.hold.size() >= used.size())
+    throw std::invalid_argument(fmt::format("--hold {}: holds every step control of {}: nothing is refined",
+                                            fmt::join(o.hold, ","), scene_path));
   // The common overrides go first in each case's `set` (StudyDescription::common_count).
   for (auto& c : st.cases) std::rotate(c.set.begin(), c.set.end() - static_cast<long>(common.size()), c.set.end());
 

@@ -97,6 +97,42 @@ BOOST_AUTO_TEST_CASE(every_step_control_the_scene_uses_is_halved_level_by_level)
   BOOST_TEST(st::prepare_cases(r.study).size() == 3u);
 }
 
+BOOST_AUTO_TEST_CASE(held_step_controls_keep_the_scene_value_and_the_others_are_halved) {
+  const fs::path dir = fresh_dir("refine-hold");
+  const std::string scene = source_path("examples/goodman-toppling-creep.yaml");
+  const std::string file = (dir / "r.yaml").string();
+  st::RefinementOptions o;
+  o.levels = 3;
+  o.hold = {"settle.dt", "settle.max_displacement_ratio"};
+  const auto r = st::refinement_study(scene, file, o);
+  BOOST_TEST_REQUIRE(r.study.cases.size() == 3u);
+  const auto& l2 = r.study.cases[2];
+  BOOST_TEST(find(l2, "analysis.settle.dt") == nullptr);  // held: the scene's 5e-5 d on every level
+  BOOST_TEST(find(l2, "analysis.settle.max_displacement_ratio") == nullptr);
+  BOOST_TEST_REQUIRE(find(l2, "analysis.dt") != nullptr);  // the others halved as before
+  BOOST_TEST(std::stod(find(l2, "analysis.dt")->value_yaml) == 0.0078125);
+  BOOST_TEST(std::stod(find(l2, "analysis.max_displacement_ratio")->value_yaml) == 0.0025);
+  BOOST_TEST(r.level_controls[2].find("settle dt 5e-05 d (held)") != std::string::npos, r.level_controls[2]);
+  // The study file reruns the same levels.
+  std::ofstream(file) << r.study_text;
+  const st::StudyDescription back = st::load_study(file);
+  BOOST_TEST_REQUIRE(back.cases.size() == 3u);
+  BOOST_TEST(find(back.cases[2], "analysis.settle.dt") == nullptr);
+  // A key that is not one of the scene's step controls is refused, naming them.
+  o.hold = {"settle.dt", "step_tolerance"};
+  try {
+    st::refinement_study(scene, file, o);
+    BOOST_FAIL("--hold step_tolerance was accepted");
+  } catch (const std::invalid_argument& e) {
+    const std::string m = e.what();
+    BOOST_TEST(m.find("--hold step_tolerance: not a step control") != std::string::npos, m);
+    BOOST_TEST(m.find("dt, max_displacement_ratio, settle.dt, settle.max_displacement_ratio") != std::string::npos, m);
+  }
+  // Holding every control leaves nothing to refine.
+  o.hold = {"dt", "max_displacement_ratio", "settle.dt", "settle.max_displacement_ratio"};
+  BOOST_CHECK_THROW(st::refinement_study(scene, file, o), std::invalid_argument);
+}
+
 BOOST_AUTO_TEST_CASE(until_shortens_every_level_and_options_out_of_range_are_refused) {
   const fs::path dir = fresh_dir("refine-until");
   const std::string scene = source_path("examples/goodman-toppling-creep.yaml");

@@ -21,6 +21,11 @@ struct RefinementOptions {
   std::optional<double> until;   ///< simulated time to run each level to [time]; default: the duration
   double tolerance = 0.05;       ///< largest relative difference of L0 from the finest level [-]
   double converged = 0.01;       ///< largest relative difference between the last three levels [-]
+  /// Step controls kept at the scene's value on every level, by their scene key under
+  /// `analysis` ("settle.dt", "settle.max_displacement_ratio", ...): a control whose own
+  /// refinement is shown converged elsewhere, so that the study refines the others
+  /// without paying for it (a settling stage's dynamic steps, docs/speed-accuracy.md).
+  std::vector<std::string> hold;
 };
 
 /// A refinement study: the study (one case per level) and what each level's step
@@ -33,8 +38,9 @@ struct RefinementStudy {
 
 /// The refinement study of the scene at `scene_path`: level k divides by 2^k every
 /// step control the scene uses: dt, max_displacement_ratio (g2), the settling stage's
-/// dt and max_displacement_ratio, step_tolerance or creep_tolerance and dt_max where
-/// set. Its outputs are every measurement point's displacement, every recorded joint
+/// dt, max_displacement_ratio and collapse_dt, step_tolerance or creep_tolerance and
+/// dt_max where set; but those in `options.hold` (std::invalid_argument for a key that
+/// is not one of them, listing them). Its outputs are every measurement point's displacement, every recorded joint
 /// set's mean shear-displacement magnitude and, under gravity, the work of gravity
 /// (and of the loads, when there are any); the times are half-way and the end.
 /// `study_file` is where the study is written (errors are located in it). Throws
