@@ -28,6 +28,7 @@ examples=(
   "examples/goodman-toppling-creep.yaml|--refine=6"
   "examples/goodman-toppling-creep.yaml|--refine=6|open_close_limit: 30"
   "examples/goodman-toppling.yaml|--refine"
+  "examples/goodman-toppling-stages.yaml|--refine=3 --hold settle.dt,settle.max_displacement_ratio"
   "examples/rockmass/tunnel.yaml|--refine"
   "bench/scenes/brick-wall.yaml|--refine=5"
   "bench/scenes/brick-wall.yaml|--refine=5|restitution: 0, damping_ratio: 1"
