@@ -3,6 +3,9 @@
 // symbolic analysis is redone only when the block pattern changes.
 #include <boost/test/unit_test.hpp>
 
+#include <omp.h>
+
+#include <filesystem>
 #include <random>
 
 #include "rheodda/core/block_system.hpp"
@@ -100,6 +103,34 @@ BOOST_AUTO_TEST_CASE(symbolic_analysis_is_reused_while_the_pattern_is_unchanged)
   const Eigen::VectorXd x = chol.solve(s);
   BOOST_TEST(chol.stats().analyses == 2);
   BOOST_TEST(rel(x, dense(s).ldlt().solve(s.rhs())) <= 1e-10);
+}
+
+BOOST_AUTO_TEST_CASE(cholmod_factorises_on_the_callers_thread_and_leaves_openmp_as_it_was) {
+  // Debian's CHOLMOD opens its supernodal regions with four OpenMP threads, which
+  // waited on each other on two cores (3.3x slower factorisations): rheodda runs
+  // them serially. A model large enough for supernodal factorisation (a 2-D grid
+  // of 40 x 40 blocks joined to their neighbours) is solved without the process
+  // gaining a thread, and the caller's OpenMP setting is as it was.
+  auto threads = [] {
+    return std::distance(std::filesystem::directory_iterator("/proc/self/task"), std::filesystem::directory_iterator{});
+  };
+  BlockSystem s;
+  const int side = 40, n = side * side;
+  std::vector<std::pair<int, int>> pairs;
+  for (int r = 0; r < side; ++r)
+    for (int c = 0; c < side; ++c) {
+      if (c + 1 < side) pairs.emplace_back(r * side + c, r * side + c + 1);
+      if (r + 1 < side) pairs.emplace_back(r * side + c, (r + 1) * side + c);
+    }
+  fill_random(s, n, pairs, 5);
+  omp_set_max_active_levels(3);
+  const auto before = threads();
+  LinearSolver chol(SolverKind::cholmod);
+  const Eigen::VectorXd x = chol.solve(s);
+  BOOST_TEST((s.multiply(x) - s.rhs()).norm() <= 1e-10 * s.rhs().norm());
+  BOOST_TEST(threads() == before);
+  BOOST_TEST(omp_get_max_active_levels() == 3);
+  omp_set_max_active_levels(1);
 }
 
 BOOST_AUTO_TEST_CASE(block_diagonal_system_is_solved_exactly_by_both) {
