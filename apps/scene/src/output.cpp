@@ -195,6 +195,42 @@ std::string vtk_polydata(const std::vector<FrameBlock>& blocks) {
   return s;
 }
 
+std::string vtk_contacts(const std::vector<FrameContact>& contacts) {
+  const std::size_t n = contacts.size();
+  std::string s;
+  s += "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n";
+  s += fmt::format("<PolyData>\n<Piece NumberOfPoints=\"{}\" NumberOfVerts=\"{}\">\n", n, n);
+  s += "<Points>\n<DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (const auto& c : contacts) s += fmt::format("{:.17g} {:.17g} 0\n", c.point[0], c.point[1]);
+  s += "</DataArray>\n</Points>\n<PointData>\n";
+  auto ints = [&](const char* name, auto field) {
+    s += fmt::format("<DataArray type=\"Int32\" Name=\"{}\" format=\"ascii\">\n", name);
+    for (const auto& c : contacts) s += fmt::format("{}\n", field(c));
+    s += "</DataArray>\n";
+  };
+  auto reals = [&](const char* name, auto field) {
+    s += fmt::format("<DataArray type=\"Float64\" Name=\"{}\" format=\"ascii\">\n", name);
+    for (const auto& c : contacts) s += fmt::format("{:.17g}\n", field(c));
+    s += "</DataArray>\n";
+  };
+  ints("id", [](const FrameContact& c) { return c.id; });
+  ints("joint_set", [](const FrameContact& c) { return c.joint_set; });
+  ints("state", [](const FrameContact& c) { return c.state; });
+  ints("kind", [](const FrameContact& c) { return c.kind; });
+  reals("normal_force", [](const FrameContact& c) { return c.normal_force; });
+  reals("shear_force", [](const FrameContact& c) { return c.shear_force; });
+  reals("shear_displacement", [](const FrameContact& c) { return c.shear_displacement; });
+  reals("creep_displacement", [](const FrameContact& c) { return c.creep_displacement; });
+  reals("penetration", [](const FrameContact& c) { return c.penetration; });
+  reals("length", [](const FrameContact& c) { return c.length; });
+  s += "</PointData>\n<Verts>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+  for (std::size_t i = 0; i < n; ++i) s += fmt::format("{}\n", i);
+  s += "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+  for (std::size_t i = 0; i < n; ++i) s += fmt::format("{}\n", i + 1);
+  s += "</DataArray>\n</Verts>\n</Piece>\n</PolyData>\n</VTKFile>\n";
+  return s;
+}
+
 std::string vtk_collection(const std::vector<std::pair<double, std::string>>& frames) {
   std::string s = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
   for (const auto& [t, file] : frames)

@@ -430,6 +430,43 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     }
     return vtk_polydata(blocks);
   };
+  // The contact layer of a frame: each contact at its vertex with the fields of contacts.csv.
+  auto contacts_frame_text = [&] {
+    std::vector<FrameContact> layer;
+    for (const auto& c : contacts.contacts()) {
+      const core::Vec2 p = engine.vertices(c.key.vblock)[c.key.vertex];
+      FrameContact fc;
+      fc.point = {p.x(), p.y()};
+      fc.id = static_cast<int>(c.id);
+      fc.joint_set = c.joint_set;
+      fc.state = static_cast<int>(c.state);
+      fc.kind = static_cast<int>(c.kind);
+      fc.normal_force = c.normal_force;
+      fc.shear_force = c.shear_force;
+      fc.shear_displacement = c.shear_displacement;
+      fc.creep_displacement = c.creep_displacement;
+      fc.penetration = c.penetration;
+      fc.length = c.length;
+      layer.push_back(fc);
+    }
+    return vtk_contacts(layer);
+  };
+  // A frame is two files, frames/blocks_NNNNNN.vtp and frames/contacts_NNNNNN.vtp;
+  // the checkpoint keeps one hash of both.
+  auto contacts_file = [](const std::string& blocks_file) {
+    std::string f = blocks_file;
+    const std::size_t at = f.rfind("blocks_");
+    if (at != std::string::npos) f.replace(at, 7, "contacts_");
+    return f;
+  };
+  auto frame_pair_hash = [](const std::string& blocks_text, const std::string& contacts_text) {
+    return fnv1a(contacts_text.data(), contacts_text.size(), fnv1a(blocks_text.data(), blocks_text.size()));
+  };
+  auto contacts_collection = [&] {
+    std::vector<std::pair<double, std::string>> files;
+    for (const auto& [t, f] : pvd) files.emplace_back(t, contacts_file(f));
+    return vtk_collection(files);
+  };
 
   if (opt.resume) {
     json ck;
@@ -479,19 +516,21 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     history.resume((fs::path(out) / "history.csv").string(), history_bytes, history_hash);
     contacts_csv.resume((fs::path(out) / "contacts.csv").string(), contacts_bytes, contacts_hash);
     for (int k = 0; k < frames_done; ++k) {
-      std::string text;
+      std::string text, layer;
       try {
         text = read_file((fs::path(out) / pvd[k].second).string());
+        layer = read_file((fs::path(out) / contacts_file(pvd[k].second)).string());
       } catch (const std::exception&) {
       }
-      frame_ok.push_back(!text.empty() && fnv1a(text.data(), text.size()) == frame_hash[k]);
+      frame_ok.push_back(!text.empty() && !layer.empty() && frame_pair_hash(text, layer) == frame_hash[k]);
     }
     auto restore_frame = [&](int k) {
       if (k >= frames_done || frame_ok[k] || hex(engine.time()) != hex(pvd[k].first)) return;
-      const std::string text = frame_text();
-      if (fnv1a(text.data(), text.size()) != frame_hash[k])
+      const std::string text = frame_text(), layer = contacts_frame_text();
+      if (frame_pair_hash(text, layer) != frame_hash[k])
         throw std::runtime_error(fmt::format("--resume: replaying did not reproduce frame {} ({})", k, pvd[k].second));
       write_file_atomic((fs::path(out) / pvd[k].second).string(), text);
+      write_file_atomic((fs::path(out) / contacts_file(pvd[k].second)).string(), layer);
       frame_ok[k] = true;
     };
     mode = Mode::replay;
@@ -518,6 +557,7 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
       if (!frame_ok[j])
         throw std::runtime_error(fmt::format("--resume: frame {} ({}) could not be written again", j, pvd[j].second));
     write_file_atomic((fs::path(out) / "blocks.pvd").string(), vtk_collection(pvd));
+    write_file_atomic((fs::path(out) / "contacts.pvd").string(), contacts_collection());
     mode = Mode::record;
     result.resumed_from_step = step;
   } else {
@@ -718,12 +758,14 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
                                       name, c.id, engine.step_count(), engine.time(), s.units.time));
     if (!rows.empty()) contacts_csv.append(rows);
     const std::string file = fmt::format("frames/blocks_{:06d}.vtp", k);
-    const std::string text = frame_text();
+    const std::string text = frame_text(), layer = contacts_frame_text();
     write_file_atomic((fs::path(out) / file).string(), text);
-    frames_bytes += text.size();
+    write_file_atomic((fs::path(out) / contacts_file(file)).string(), layer);
+    frames_bytes += text.size() + layer.size();
     pvd.emplace_back(engine.time(), file);
-    frame_hash.push_back(fnv1a(text.data(), text.size()));
+    frame_hash.push_back(frame_pair_hash(text, layer));
     write_file_atomic((fs::path(out) / "blocks.pvd").string(), vtk_collection(pvd));
+    write_file_atomic((fs::path(out) / "contacts.pvd").string(), contacts_collection());
     ++frames_done;
     // A checkpoint costs a few fsyncs (~10 ms here): at most one per second of wall
     // time at frames; always on a stop, a failure and at the end. A resume after a

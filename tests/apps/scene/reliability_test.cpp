@@ -155,10 +155,15 @@ BOOST_AUTO_TEST_CASE(resume_writes_a_deleted_or_changed_frame_again) {
   fs::remove(out / "frames/blocks_000003.vtp");  // the frame of the checkpoint's segment
   { std::ofstream(out / "frames/blocks_000002.vtp") << "changed"; }
   fs::remove(out / "blocks.pvd");
+  fs::remove(out / "frames/contacts_000001.vtp");  // the contact layer of a frame likewise
+  { std::ofstream(out / "frames/contacts_000000.vtp") << "changed"; }
+  fs::remove(out / "contacts.pvd");
   const auto r = run(s, out, -1, true);
   BOOST_TEST((r.status == scene::RunStatus::completed));
   for (const char* f : {"frames/blocks_000001.vtp", "frames/blocks_000002.vtp", "frames/blocks_000003.vtp",
-                        "frames/blocks_000005.vtp", "blocks.pvd", "history.csv", "contacts.csv"})
+                        "frames/blocks_000005.vtp", "blocks.pvd", "history.csv", "contacts.csv",
+                        "frames/contacts_000000.vtp", "frames/contacts_000001.vtp", "frames/contacts_000005.vtp",
+                        "contacts.pvd"})
     BOOST_TEST(read_text((out / f).string()) == read_text((whole / f).string()), f);
 }
 

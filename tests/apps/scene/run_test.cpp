@@ -3,6 +3,8 @@
 // files as an uninterrupted run (through the library and through real signals).
 #include <boost/test/unit_test.hpp>
 
+#include <sstream>
+
 #include <csignal>
 #include <cmath>
 #include <fstream>
@@ -149,6 +151,39 @@ BOOST_AUTO_TEST_CASE(shear_creep_example_follows_the_burgers_closed_form_of_tabl
   // contacts.csv: rows at output times only, the joint's contacts all closed.
   const Csv c = read_csv(out / "contacts.csv");
   BOOST_TEST(!c.rows.empty());
+  // The contact layer of each frame (frames/contacts_NNNNNN.vtp, listed by contacts.pvd):
+  // one point per contacts.csv row of that frame, at (x, y), with its fields.
+  const std::string cpvd = read_text((out / "contacts.pvd").string());
+  auto numbers = [](const std::string& text, const std::string& name) {
+    const std::size_t at = text.find("Name=\"" + name + "\"");
+    BOOST_TEST_REQUIRE(at != std::string::npos, name);
+    const std::size_t start = text.find('>', at) + 1;
+    std::istringstream in(text.substr(start, text.find("</DataArray>", start) - start));
+    std::vector<double> v;
+    for (double x; in >> x;) v.push_back(x);
+    return v;
+  };
+  for (int k = 0; k < 6; ++k) {
+    const std::string f = fmt::format("frames/contacts_{:06d}.vtp", k);
+    BOOST_TEST(cpvd.find(f) != std::string::npos, f);
+    const std::string layer = read_text((out / f).string());
+    const double t = 2.0 * k;
+    std::vector<const std::vector<std::string>*> rows;
+    for (const auto& row : c.rows)
+      if (std::stod(row[c.column("time")]) == t) rows.push_back(&row);
+    const auto pts = numbers(layer, "Points"), normal = numbers(layer, "normal_force"),
+               creep = numbers(layer, "creep_displacement"), state = numbers(layer, "state");
+    BOOST_TEST_REQUIRE(normal.size() == rows.size(), f);
+    BOOST_TEST_REQUIRE(pts.size() == 3 * rows.size(), f);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const auto& row = *rows[i];
+      BOOST_TEST(pts[3 * i] == std::stod(row[c.column("x")]), boost::test_tools::tolerance(1e-9));
+      BOOST_TEST(pts[3 * i + 1] == std::stod(row[c.column("y")]), boost::test_tools::tolerance(1e-9));
+      BOOST_TEST(normal[i] == std::stod(row[c.column("normal_force")]), boost::test_tools::tolerance(1e-9));
+      BOOST_TEST(creep[i] == std::stod(row[c.column("creep_displacement")]), boost::test_tools::tolerance(1e-9));
+      BOOST_TEST(state[i] == (row[c.column("state")] == "locked" ? 2.0 : row[c.column("state")] == "sliding" ? 1.0 : 0.0));
+    }
+  }
   for (const auto& row : c.rows) {
     BOOST_TEST(row[c.column("joint_set")] == "plane");
     BOOST_TEST(row[c.column("state")] != "open");

@@ -113,6 +113,26 @@ struct FrameBlock {
 /// A VTK XML PolyData file (.vtp, ASCII) of the blocks at one time.
 std::string vtk_polydata(const std::vector<FrameBlock>& blocks);
 
+/// One contact of a VTK contact frame: a point at the contact vertex with the
+/// fields of contacts.csv (docs/outputs.md, "VTK frames").
+struct FrameContact {
+  std::array<double, 2> point{};  ///< the contact vertex, current [length]
+  int id = 0;                     ///< as contacts.csv's id
+  int joint_set = 0;              ///< index of the joint set in the scene's order
+  int state = 0;                  ///< 0 open, 1 sliding, 2 locked
+  int kind = 0;                   ///< 0 vertex-edge, 1 vertex-vertex, 2 edge-edge
+  double normal_force = 0.0;       ///< [force] (per unit thickness)
+  double shear_force = 0.0;        ///< [force]
+  double shear_displacement = 0.0; ///< accumulated, signed along the entrance edge [length]
+  double creep_displacement = 0.0; ///< accumulated by the joint set's law [length]
+  double penetration = 0.0;        ///< [length]
+  double length = 0.0;             ///< contact (tributary) length [length]
+};
+
+/// A VTK XML PolyData file (.vtp, ASCII) of the contacts at one time: one vertex
+/// cell per contact, its fields as point data.
+std::string vtk_contacts(const std::vector<FrameContact>& contacts);
+
 /// A ParaView collection (.pvd) listing (time, file) frames.
 std::string vtk_collection(const std::vector<std::pair<double, std::string>>& frames);
 
