@@ -35,8 +35,10 @@ def binary():
 
 
 def examples():
-    """Every shipped example scene: examples/*.yaml and examples/rockmass/*.yaml."""
-    return sorted((ROOT / "examples").glob("*.yaml")) + sorted((ROOT / "examples" / "rockmass").glob("*.yaml"))
+    """Every shipped example scene: examples/*.yaml and examples/rockmass/*.yaml, not the
+    hidden variants the report scripts write beside them (.refine-variant-*.yaml)."""
+    found = sorted((ROOT / "examples").glob("*.yaml")) + sorted((ROOT / "examples" / "rockmass").glob("*.yaml"))
+    return [p for p in found if not p.name.startswith(".")]
 
 
 def label(example):
