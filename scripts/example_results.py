@@ -11,6 +11,7 @@ value drifts from the documented one by more than its tolerance.
 
 Usage: /usr/bin/python3 scripts/example_results.py [--write]   (build: $RHEODDA_BUILD_DIR or build/)
 """
+import concurrent.futures
 import csv
 import json
 import math
@@ -65,11 +66,25 @@ def headline(example, out_dir):
     return out
 
 
+def headlines(scenes, work_dir):
+    """{example: headline(example) or the exception its run raised}, the runs side by
+    side on every core (each `rheodda run` is one process on one core)."""
+    def one(e):
+        try:
+            return headline(e, pathlib.Path(work_dir) / label(e).replace("/", "_"))
+        except Exception as error:  # reported by the caller, per example
+            return error
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, os.cpu_count() or 1)) as pool:
+        return dict(zip(scenes, pool.map(one, scenes)))
+
+
 def table():
     lines = ["| example | quantity | value | unit | tolerance |", "|---|---|---:|---|---:|"]
     with tempfile.TemporaryDirectory() as tmp:
-        for e in examples():
-            for q, v, u in headline(e, pathlib.Path(tmp) / e.stem):
+        for e, results in headlines(examples(), tmp).items():
+            if isinstance(results, Exception):
+                raise results
+            for q, v, u in results:
                 lines.append(f"| {label(e)} | {q} | {v:.9g} | {u} | {TOLERANCE:g} |")
     return "\n".join(lines) + "\n"
 

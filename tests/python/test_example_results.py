@@ -16,10 +16,18 @@ _spec.loader.exec_module(example_results)
 DOCUMENTED = example_results.documented()
 
 
-@pytest.mark.parametrize("example", example_results.examples(), ids=example_results.label)
-def test_headline_results_match_the_documented_values(example):
+@pytest.fixture(scope="module")
+def headlines():
+    """Every example run once, side by side on every core."""
     with tempfile.TemporaryDirectory() as tmp:
-        results = example_results.headline(example, pathlib.Path(tmp) / "out")
+        yield example_results.headlines(example_results.examples(), tmp)
+
+
+@pytest.mark.parametrize("example", example_results.examples(), ids=example_results.label)
+def test_headline_results_match_the_documented_values(example, headlines):
+    results = headlines[example]
+    if isinstance(results, Exception):
+        raise results
     name = example_results.label(example)
     assert results, f"{name}: no measurement point and no failure to report"
     for quantity, value, _unit in results:
