@@ -82,10 +82,10 @@ def v(r, block, t):
     return float(r[f"{block}_top.displacement@{t}"])
 b = rows["burgers"]
 with open(sys.argv[2], "w") as f:
-    print("| time [d] | 1 | 10 | 50 | 100 |", file=f)
-    print("|---|---|---|---|---|", file=f)
+    print("| time [d] | 1 | 10 | 50 | 60 | 100 |", file=f)
+    print("|---|---|---|---|---|---|", file=f)
     for block, name in (("block1", "block 1"), ("block10", "block 10")):
-        print(f"| {name} displacement [m] | " + " | ".join(f"{v(b, block, t):.3g}" for t in (1, 10, 50, 100)) + " |", file=f)
+        print(f"| {name} displacement [m] | " + " | ".join(f"{v(b, block, t):.3g}" for t in (1, 10, 50, 60, 100)) + " |", file=f)
     print("", file=f)
     print("Rate over the last 50 days: block 10 " + f"{(v(b, 'block10', 100) - v(b, 'block10', 50)) / 50:.3f} m/d, block 1 "
           + f"{(v(b, 'block1', 100) - v(b, 'block1', 50)) / 50:.3f} m/d.", file=f)
