@@ -71,7 +71,7 @@ RefinementStudy refinement_study(const std::string& scene_path, const std::strin
 
   const std::string& tu = s.units.time;
   std::vector<std::string> used;  // the scene's step controls, as `--hold` names them
-  std::vector<bool> held_found(o.hold.size(), false);
+  auto held = [&](const std::string& name) { return std::find(o.hold.begin(), o.hold.end(), name) != o.hold.end(); };
   for (int k = 0; k < o.levels; ++k) {
     const double f = std::ldexp(1.0, -k);
     StudyCase c;
@@ -80,9 +80,7 @@ RefinementStudy refinement_study(const std::string& scene_path, const std::strin
     auto control = [&](const std::string& key, double value, const std::string& shown, const std::string& unit) {
       const std::string name = key.substr(std::string("analysis.").size());
       if (k == 0) used.push_back(name);
-      const auto h = std::find(o.hold.begin(), o.hold.end(), name);
-      if (h != o.hold.end()) {
-        held_found[static_cast<std::size_t>(h - o.hold.begin())] = true;
+      if (held(name)) {
         text.push_back(fmt::format("{} {:g}{} (held)", shown, value, unit.empty() ? "" : " " + unit));
         return;
       }
@@ -107,11 +105,11 @@ RefinementStudy refinement_study(const std::string& scene_path, const std::strin
     r.level_controls.push_back(fmt::format("{}", fmt::join(text, ", ")));
     st.cases.push_back(std::move(c));
   }
-  for (std::size_t i = 0; i < o.hold.size(); ++i)
-    if (!held_found[i])
+  for (const std::string& key : o.hold)
+    if (std::find(used.begin(), used.end(), key) == used.end())
       throw std::invalid_argument(fmt::format("--hold {}: not a step control of {}; its step controls are {}",
-                                              o.hold[i], scene_path, fmt::join(used, ", ")));
-  if (o.hold.size() >= used.size())
+                                              key, scene_path, fmt::join(used, ", ")));
+  if (std::all_of(used.begin(), used.end(), held))
     throw std::invalid_argument(fmt::format("--hold {}: holds every step control of {}: nothing is refined",
                                             fmt::join(o.hold, ","), scene_path));
   // The common overrides go first in each case's `set` (StudyDescription::common_count).
