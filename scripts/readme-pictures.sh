@@ -9,7 +9,7 @@ work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 "$B" run "$root/examples/goodman-toppling.yaml" -o "$work/goodman" >/dev/null
 "$B" plot "$work/goodman" >/dev/null
-last="$(ls "$work/goodman/plots"/blocks_*.png | sort | tail -1)"   # the frame at 60 d
+last="$(ls "$work/goodman/plots"/blocks_*.png | sort | tail -1)"   # the frame at 100 d
 cp "$last" "$root/docs/img/tour-goodman-blocks.png"
 "$B" run "$root/examples/shear-creep-test.yaml" -o "$work/shear" >/dev/null
 "$B" plot "$work/shear" >/dev/null

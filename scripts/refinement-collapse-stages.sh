@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The seed's slope with its Burgers creep (examples/goodman-toppling.yaml: base
+# The seed's slope with its Burgers creep (bench/scenes/goodman-toppling-seed-steps.yaml: base
 # 50 deg, planes 25 deg, static) run for 100 d with collapse stages
 # (analysis.settle with type dynamic and collapse_dt; docs/engine.md, "Collapse
 # stages"): the columns settle in a 20 s dynamic stage (plastic impacts, damped
@@ -18,9 +18,9 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${RHEODDA_BUILD_DIR:-$root/build}"
 work="$(mktemp -d)"
-scene="$root/examples/.collapse-stages.yaml"  # beside the original (its relative paths)
+scene="$root/bench/scenes/.collapse-stages.yaml"  # beside the original (its relative paths)
 trap 'rm -rf "$work" "$scene"' EXIT
-/usr/bin/python3 - "$root/examples/goodman-toppling.yaml" "$scene" <<'PY'
+/usr/bin/python3 - "$root/bench/scenes/goodman-toppling-seed-steps.yaml" "$scene" <<'PY'
 import re, sys
 s = open(sys.argv[1]).read()
 def sub(pattern, repl):

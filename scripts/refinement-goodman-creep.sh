@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Step-control refinement of the seed's Goodman slope with its Burgers creep
-# (examples/goodman-toppling.yaml, base 50 deg, static): blocks 1 and 10 at 1,
+# (bench/scenes/goodman-toppling-seed-steps.yaml, base 50 deg, static): blocks 1 and 10 at 1,
 # 2, 5, 10 and 20 d with max_displacement_ratio (g2) and dt halved together from
 # 0.0005 / 0.25 d (level L1 of scripts/refinement-goodman.sh) to 6.25e-5 /
 # 1/32 d (L4), with each level's steps and the share of the work the static
@@ -17,7 +17,7 @@ work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 times=(1 2 5 10 20)
 {
-  echo "scene: $root/examples/goodman-toppling.yaml"
+  echo "scene: $root/bench/scenes/goodman-toppling-seed-steps.yaml"
   echo "set: {analysis.duration: 20, analysis.output_interval: 1}"
   echo "outputs: [block1_top.displacement, block10_top.displacement]"
   echo "times: [$(IFS=,; echo "${times[*]}")]"

@@ -45,7 +45,7 @@ work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 phis=(35 45 60)
 {
-  echo "scene: $root/examples/goodman-toppling.yaml"
+  echo "scene: $root/bench/scenes/goodman-toppling-seed-steps.yaml"
   echo "set:"
   echo "  joint_sets.base.law: ~"
   echo "  joint_sets.base.shear_stiffness: 1.0e8"

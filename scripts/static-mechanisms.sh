@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Mechanism motion of static analyses (docs/engine.md, "Mechanisms in static
-# analysis"): runs every shipped static example, the sliding block in static
+# analysis"): runs every shipped static example, the seed's slope on its
+# own static steps (bench/scenes/goodman-toppling-seed-steps.yaml), the sliding block in static
 # analysis at friction 20 and 40 deg, the Goodman slope without creep (base
 # 45 deg, 2 d) at two refinement levels and the toppling model of
 # examples/goodman-toppling-creep.yaml at dt 1/8 d and without its settling stage, the stepped
@@ -22,14 +23,15 @@ cases=()
 for f in shear-creep-test power-law-creep-test damage-creep-test creeping-slope-failure goodman-toppling goodman-toppling-creep; do
   cases+=("examples/$f.yaml|$ex/$f.yaml")
 done
+cases+=("bench/scenes/goodman-toppling-seed-steps.yaml (the seed's static steps)|$root/bench/scenes/goodman-toppling-seed-steps.yaml")
 for phi in 20 40; do
   cases+=("sliding block, static, dt 0.01 s, friction $phi°|$(variant slide$phi "$ex/sliding-block.yaml" \
     "s/type: dynamic/type: static/; s/dt: 0.001 /dt: 0.01 /; s/friction_angle: 20,/friction_angle: $phi,/")")
 done
 noc='s/^    law: {name: burgers.*/    shear_stiffness: 1.0e8/; s/friction_angle: 50/friction_angle: 45/; s/duration: 60 /duration: 2 /'
-cases+=("Goodman slope without creep, base 45°, 2 d, g2 6.25e-5, dt 1/32 d|$(variant g4 "$ex/goodman-toppling.yaml" \
+cases+=("Goodman slope without creep, base 45°, 2 d, g2 6.25e-5, dt 1/32 d|$(variant g4 "$root/bench/scenes/goodman-toppling-seed-steps.yaml" \
   "$noc; s/^  dt: .*/  dt: 0.03125/; s/^analysis:/analysis:\n  max_displacement_ratio: 6.25e-5/")")
-cases+=("Goodman slope without creep, base 45°, 2 d, g2 1.25e-4, dt 1/16 d|$(variant g3 "$ex/goodman-toppling.yaml" \
+cases+=("Goodman slope without creep, base 45°, 2 d, g2 1.25e-4, dt 1/16 d|$(variant g3 "$root/bench/scenes/goodman-toppling-seed-steps.yaml" \
   "$noc; s/^  dt: .*/  dt: 0.0625/; s/^analysis:/analysis:\n  max_displacement_ratio: 1.25e-4/")")
 for dt in 0.01 0.0001; do
   cases+=("bench/scenes/stepped-toppling.yaml (stands 5° above its limit), static, 2 s, dt $dt s|$(variant st$dt \

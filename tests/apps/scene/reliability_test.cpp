@@ -296,7 +296,7 @@ BOOST_AUTO_TEST_CASE(the_output_interval_never_changes_the_steps_taken) {
   std::map<std::string, std::string> reference;
   for (const double interval : {1.0, 10.0, 20.0, 30.0, 60.0}) {
     BOOST_TEST_CONTEXT("output_interval " << interval << " d") {
-      auto s = scene::load_scene(source_path("examples/goodman-toppling.yaml"));
+      auto s = scene::load_scene(source_path("bench/scenes/goodman-toppling-seed-steps.yaml"));
       s.analysis.output_interval = interval;
       const fs::path out = fresh_dir("interval");
       const auto r = run(s, out);

@@ -170,7 +170,8 @@ BOOST_AUTO_TEST_CASE(a_case_scene_is_titled_by_the_base_title_and_the_case_chang
                     "joint_sets.base.shear_stiffness = 1.0e8, joint_sets.base.restitution = 0, "
                     "joint_sets.anti_toppling.law removed, joint_sets.anti_toppling.shear_stiffness = 1.0e8, "
                     "joint_sets.anti_toppling.restitution = 0, materials.rock.damping_ratio = 1, "
-                    "analysis.type = dynamic, analysis.scheme removed, analysis.duration = 2.3148148e-4, "
+                    "analysis.type = dynamic, analysis.settle removed, analysis.scheme removed, "
+                    "analysis.duration = 2.3148148e-4, "
                     "analysis.dt = 5.787037e-9, analysis.output_interval = 1.1574074e-5, "
                     "analysis.max_displacement_ratio = 0.00025]");
   // Each case's title differs by its own change, listed first.

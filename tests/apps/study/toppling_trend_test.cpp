@@ -1,5 +1,6 @@
 // The seed's toppling study (section 5), reduced: the Goodman slope of
-// examples/goodman-toppling.yaml run through `rheodda study` over a few days
+// bench/scenes/goodman-toppling-seed-steps.yaml (the seed's slope on its own static
+// steps, which each case here refines) run through `rheodda study` over a few days
 // instead of 100, reproduces the seed's trends (docs/toppling-study.md):
 // without creep, the slope slides far along its base when the base friction
 // angle is low and stands on a plateau above it, where the columns' settling
@@ -19,7 +20,7 @@ BOOST_AUTO_TEST_SUITE(toppling_trend)
 
 BOOST_AUTO_TEST_CASE(reduced_toppling_study_displacement_falls_with_phi_and_creep_grows_with_time) {
   const fs::path dir = fresh_dir("toppling");
-  const std::string scene = source_path("examples/goodman-toppling.yaml");
+  const std::string scene = source_path("bench/scenes/goodman-toppling-seed-steps.yaml");
 
   // Without creep (the laws removed, the joints keep E1 = 1e8 Pa/m as elastic shear stiffness),
   // on step controls the refinement study justifies: g2 6.25e-5 with dt 1/32 d is
@@ -113,7 +114,7 @@ BOOST_AUTO_TEST_CASE(seed_slope_settled_dynamically_is_the_same_at_two_steps) {
   // changed with g2 through the contact search distance. At 33 deg the slope
   // slides along its base.
   const fs::path dir = fresh_dir("toppling_dynamic");
-  const std::string scene = source_path("examples/goodman-toppling.yaml");
+  const std::string scene = source_path("bench/scenes/goodman-toppling-seed-steps.yaml");
   const fs::path yaml = dir / "dyn.yaml";
   std::ofstream(yaml) << "scene: " << scene << "\n"
                       << "set:\n"
