@@ -114,13 +114,14 @@ EnergyBalance EnergyAccount::start(const EnergyInputs& in) {
 }
 
 void EnergyAccount::begin(const EnergyInputs& in, const Eigen::VectorXd& D, double dt,
-                          double beta, double gamma) {
+                          double beta, double gamma, double t_end) {
   flows_ = {};
   const Settings& s = in.model.settings;
   const double r = in.ratio;  // the step's carried share (1 in a dynamic settling stage)
   const bool dynamic = r > 0.0;
   const bool shi = beta == 0.5 && gamma == 1.0;
   const bool trapezoidal = beta == 0.25 && gamma == 0.5;
+  const Vec2 gravity = s.gravity_at(t_end);  // the step's body force, as the engine assembles it
   double springs = 0.0;
   for (std::size_t k = 0; k < in.blocks.size(); ++k) {
     const BlockState& b = in.blocks[k];
@@ -129,7 +130,7 @@ void EnergyAccount::begin(const EnergyInputs& in, const Eigen::VectorXd& D, doub
     const Vec6 Dk = D.segment<6>(6 * static_cast<Eigen::Index>(k));
     // Gravity: the body force rho S g acts at the centroid, which moves by (u0, v0)
     // exactly (the post-correction rotates about the centroid).
-    flows_.work_gravity += rho * g.S * (s.gravity.x() * Dk(0) + s.gravity.y() * Dk(1));
+    flows_.work_gravity += rho * g.S * (gravity.x() * Dk(0) + gravity.y() * Dk(1));
     // Block elasticity, end stress sigma + E_e eps: (1) with k = S E_e.
     const Vec3 eps = Dk.tail<3>();
     springs += 0.5 * g.S * eps.dot(in.elastic[b.material] * eps);
@@ -185,7 +186,8 @@ double EnergyAccount::static_trial_share(const EnergyInputs& in, const Eigen::Ve
     const PolygonIntegrals& g = in.moments[k];
     const double rho = in.model.materials[b.material].density;
     const Vec6 Dk = D.segment<6>(6 * static_cast<Eigen::Index>(k));
-    gravity += rho * g.S * (s.gravity.x() * Dk(0) + s.gravity.y() * Dk(1));
+    const Vec2 g_end = s.gravity_at(t_end);
+    gravity += rho * g.S * (g_end.x() * Dk(0) + g_end.y() * Dk(1));
     inertia += rho * Dk.dot(unit_mass_matrix(g) * Dk) / (beta * dt * dt);
   }
   for (const PointLoad& l : in.model.point_loads) {

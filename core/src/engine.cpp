@@ -319,6 +319,11 @@ void Engine::Impl::validate() {
   if (!(s.dynamic_ratio >= 0.0 && s.dynamic_ratio <= 1.0))
     throw ModelError("settings.dynamic_ratio", "must be in [0, 1]");
   if (!finite(s.gravity)) throw ModelError("settings.gravity", "must be finite");
+  if (!(s.settle_gravity_ramp >= 0.0 && std::isfinite(s.settle_gravity_ramp)))
+    throw ModelError("settings.settle_gravity_ramp", "must be >= 0 (time; 0 = gravity at once)");
+  if (s.settle_gravity_ramp > 0.0 && !(s.settle_gravity_ramp <= s.settle_until))
+    throw ModelError("settings.settle_gravity_ramp",
+                     "must end within the settling stage (<= settle_until), so that the creep starts under full gravity");
   if (!(s.fixed_point_stiffness >= 0.0 && std::isfinite(s.fixed_point_stiffness)))
     throw ModelError("settings.fixed_point_stiffness", "must be >= 0 (0 = automatic)");
   if (s.max_open_close < 1) throw ModelError("settings.max_open_close", "must be >= 1");
@@ -428,8 +433,11 @@ void Engine::Impl::assemble_blocks(double dt, double t_end, std::vector<Mat6>& d
       K.block<3, 3>(3, 3) += (tau / dt) * g.S * elastic[b.material];
     // Body force rho g over the area; the other rows vanish about the centroid.
     F.setZero();
-    F(0) = rho * s.gravity.x() * g.S;
-    F(1) = rho * s.gravity.y() * g.S;
+    // With a gravity ramp (Settings::settle_gravity_ramp) its value at the
+    // step's end, where the step's equilibrium is written.
+    const Vec2 gravity = s.gravity_at(t_end);
+    F(0) = rho * gravity.x() * g.S;
+    F(1) = rho * gravity.y() * g.S;
     // Initial stress: potential S e^T sigma gives F(ex..gxy) -= S sigma.
     F.tail<3>() -= g.S * b.stress;
     if (dynamic_now()) F.noalias() += (1.0 / (nm.beta * dt * dt)) * M * predictor(b, dt, nm);
@@ -471,7 +479,7 @@ void Engine::Impl::accept(const Eigen::VectorXd& d, double dt, int step_index, d
   const bool dynamic = ratio > 0.0;
   const bool keep_acceleration = model.settings.time_integration == TimeIntegration::trapezoidal;
   const Newmark nm = newmark();
-  energy.begin(energy_inputs(), d, dt, nm.beta, nm.gamma);
+  energy.begin(energy_inputs(), d, dt, nm.beta, nm.gamma, t_end);
   for (std::size_t k = 0; k < st.blocks.size(); ++k) {
     BlockState& b = st.blocks[k];
     const Vec6 Dk = d.segment<6>(6 * static_cast<Eigen::Index>(k));

@@ -162,6 +162,7 @@ BuiltScene build_scene(const SceneDescription& s) {
     st.settle_g2 = a.settle->max_displacement_ratio;
     st.settle_dynamic = a.settle->dynamic;
     st.collapse_dt = a.settle->collapse_dt;
+    st.settle_gravity_ramp = a.settle->gravity_ramp;
   }
   switch (a.solver) {
     case SolverKind::automatic: st.solver = core::SolverKind::automatic; break;

@@ -100,6 +100,10 @@ std::string describe_scene(const SceneDescription& s) {
                      "(docs/engine.md, \"Settling stage\")",
                      a.settle->dynamic ? "dynamic" : "static", a.settle->until, u.time, a.settle->dt, u.time,
                      a.settle->max_displacement_ratio));
+  if (a.settle && a.settle->gravity_ramp > 0.0)
+    line(fmt::format("  gravity ramp: gravity rises linearly from zero to its full value over the first {:g} {} of "
+                     "the stage (docs/engine.md, \"Gravity ramp\")",
+                     a.settle->gravity_ramp, u.time));
   if (a.settle && a.settle->collapse_dt > 0.0)
     line(fmt::format("  collapse stages: a static step that moves as a mechanism is cut down to {:g} {}, then taken "
                      "as a dynamic stage of {:g} {} (docs/engine.md, \"Collapse stages\")",

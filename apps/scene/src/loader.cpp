@@ -70,7 +70,7 @@ const std::vector<std::string> analysis{
     "stick_keeps_force", "friction_tolerance", "force_resolution", "max_flips", "max_refinements",
     "penalty_raise", "penalty_max_factor", "open_close_limit", "fixed_point_stiffness", "solver", "solver_tolerance",
     "solver_max_iterations", "solver_iterate_tolerance", "output_interval", "max_travel_ratio", "max_output_size", "gravity"};
-const std::vector<std::string> settle{"until", "dt", "max_displacement_ratio", "type", "collapse_dt"};
+const std::vector<std::string> settle{"until", "dt", "max_displacement_ratio", "type", "collapse_dt", "gravity_ramp"};
 const std::vector<std::string> material{"density", "young_modulus", "poisson_ratio", "plane", "damping_ratio"};
 const std::vector<std::string> joint_set{"friction_angle", "cohesion", "tensile_strength",
                                          "normal_stiffness", "shear_stiffness", "restitution", "law", "record"};
@@ -371,6 +371,15 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
       if (st.collapse_dt >= a.dt)
         ctx.fail(c, sm.child("collapse_dt"),
                  fmt::format("collapse_dt = {:g} is not below the analysis's dt = {:g}", st.collapse_dt, a.dt));
+    }
+    if (YAML::Node r = sm.find("gravity_ramp"); r.IsDefined()) {
+      // Gravity ramped up over the stage's start (docs/engine.md, "Gravity ramp").
+      st.gravity_ramp = number(ctx, r, sm.child("gravity_ramp"), positive("time"));
+      if (st.gravity_ramp > st.until)
+        ctx.fail(r, sm.child("gravity_ramp"),
+                 fmt::format("the gravity ramp ends at {:g}, after the settling stage (until = {:g}): the creep "
+                             "would start under part of gravity",
+                             st.gravity_ramp, st.until));
     }
     a.settle = st;
   }

@@ -55,7 +55,8 @@ json scene_json(const SceneDescription& s) {
                                               {"dt", a.settle->dt},
                                               {"max_displacement_ratio", a.settle->max_displacement_ratio},
                                               {"type", a.settle->dynamic ? "dynamic" : "static"},
-                                              {"collapse_dt", a.settle->collapse_dt}}
+                                              {"collapse_dt", a.settle->collapse_dt},
+                                              {"gravity_ramp", a.settle->gravity_ramp}}
                                        : json(nullptr)},
                    {"dynamic_ratio", a.dynamic_ratio},
                    {"time_integration", time_integration_name(a.time_integration)},

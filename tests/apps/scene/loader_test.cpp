@@ -224,6 +224,28 @@ BOOST_AUTO_TEST_CASE(collapse_dt_reaches_the_engine_with_a_dynamic_stage_of_a_st
                   "analysis.step_tolerance", "no collapse stage");
 }
 
+BOOST_AUTO_TEST_CASE(gravity_ramp_reaches_the_engine_and_must_end_within_the_settling_stage) {
+  // docs/engine.md, "Gravity ramp".
+  const auto text = with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, type: dynamic, gravity_ramp: 0.05}");
+  const auto s = scene::parse_scene(text, "ramp.yaml");
+  BOOST_TEST_REQUIRE(s.analysis.settle.has_value());
+  BOOST_TEST(s.analysis.settle->gravity_ramp == 0.05);
+  const scene::BuiltScene built = scene::build_scene(s);
+  BOOST_TEST(built.model.settings.settle_gravity_ramp == 0.05);
+  BOOST_TEST(built.model.settings.gravity_at(0.025).y() == 0.5 * built.model.settings.gravity.y());
+  BOOST_TEST(built.model.settings.gravity_at(0.06).y() == built.model.settings.gravity.y());
+  BOOST_TEST(scene::describe_scene(s).find("gravity ramp") != std::string::npos);
+  // Without it gravity comes on at once.
+  BOOST_TEST(scene::build_scene(scene::parse_scene(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001}"),
+                                                   "once.yaml"))
+                 .model.settings.settle_gravity_ramp == 0.0);
+  // Not beyond the stage, not zero or negative.
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, gravity_ramp: 0.2}"), 5, "0.2}",
+                  "analysis.settle.gravity_ramp", "after the settling stage");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, gravity_ramp: 0}"), 5, "0}",
+                  "analysis.settle.gravity_ramp", "out of range");
+}
+
 BOOST_AUTO_TEST_CASE(step_tolerance_and_step_extrapolation_reach_the_engine_settings_and_bad_values_are_refused) {
   const auto text = with("  dt: 0.01", "  dt: 0.01\n  step_tolerance: 1.0e-4\n  step_extrapolation: false\n"
                                        "  dt_max: 0.5");

@@ -125,9 +125,10 @@ class EnergyAccount {
   static StoredEnergy stored_in_blocks(const EnergyInputs& in);
 
   /// Before the blocks move by D (step-start geometry and velocities): the
-  /// flows that need them. beta, gamma: the Newmark parameters of the step.
+  /// flows that need them. beta, gamma: the Newmark parameters of the step;
+  /// t_end: its end time (the gravity of a ramp, Settings::gravity_at).
   void begin(const EnergyInputs& in, const Eigen::VectorXd& D, double dt, double beta,
-             double gamma);
+             double gamma, double t_end);
   /// After the blocks moved and the geometry was refreshed, and after the
   /// contacts' end_step: the stored energies, the load work, the contact terms
   /// and the residual; adds the step to `balance`.

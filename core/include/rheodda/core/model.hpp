@@ -161,6 +161,17 @@ struct Settings {
   /// settling stage (settle_until, with settle_dt and settle_g2) carries the
   /// collapse from the step's start [time]; 0 = off; >= 0, < dt
   double collapse_dt = 0.0;
+  /// Gravity ramp of the settling stage (docs/engine.md, "Gravity ramp"): the
+  /// body force rises linearly from zero at t = 0 to its full value at this
+  /// time, which lies within the stage (0 < settle_gravity_ramp <= settle_until),
+  /// so that the model is loaded slowly on the scale of its vibration instead of
+  /// at once [time]; 0 = gravity at once
+  double settle_gravity_ramp = 0.0;
+  /// The body acceleration at time t: gravity times min(1, t / settle_gravity_ramp)
+  /// [length/time^2].
+  Vec2 gravity_at(double t) const {
+    return settle_gravity_ramp > 0.0 && t < settle_gravity_ramp ? (t / settle_gravity_ramp) * gravity : gravity;
+  }
   /// Some steps carry velocity: a dynamic analysis, or a dynamic settling stage.
   bool has_dynamic_steps() const { return dynamic_ratio > 0.0 || (settle_until > 0.0 && settle_dynamic); }
   double dynamic_ratio = 1.0;    ///< share of the velocity carried to the next step [-], in [0, 1];

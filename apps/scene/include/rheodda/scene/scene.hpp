@@ -52,7 +52,7 @@ struct Analysis {
   double dt_cut = 0.3;                 ///< factor on the step when a step is cut [-]; in (0, 1)
   int max_cuts = 30;                   ///< cuts of dt (x dt_cut each) allowed in one step before the run fails [-]
   double max_displacement_ratio = 0.01;  ///< g2: allowed step displacement / half model size [-]
-  /// `settle: {until, dt, max_displacement_ratio, type}`: a settling stage at the start
+  /// `settle: {until, dt, max_displacement_ratio, type, collapse_dt, gravity_ramp}`: a settling stage at the start
   /// (docs/engine.md, "Settling stage"): steps of at most `dt` with the displacement
   /// limit `max_displacement_ratio` until `until`, then the analysis's own.
   struct Settle {
@@ -67,6 +67,10 @@ struct Analysis {
     /// that moves as a mechanism is cut down to this size, then taken as a
     /// dynamic stage as long as this one [time]; 0 = none; dynamic stage only.
     double collapse_dt = 0.0;
+    /// `gravity_ramp`: gravity rises linearly from zero at t = 0 to its full value
+    /// at this time, within the stage (docs/engine.md, "Gravity ramp") [time];
+    /// 0 = gravity at once; > 0, <= until.
+    double gravity_ramp = 0.0;
   };
   /// The run has dynamic steps: a dynamic analysis, or a dynamic settling stage.
   bool has_dynamic_steps() const {
