@@ -102,6 +102,13 @@ enum class SolverKind {
             ///< coarse unknowns are the six DDA unknowns of groups of blocks (O(N) per solve)
 };
 
+/// How a step's contact problem is solved (contact_solve.hpp; docs/contacts.md,
+/// "Contact solves").
+enum class ContactSolver {
+  open_close,  ///< Shi's open-close iteration: solve, check every contact, repeat until no
+               ///< state changes (the reference)
+};
+
 /// Time integration of the inertia terms (Newmark family; docs/engine.md).
 enum class TimeIntegration {
   shi,          ///< beta = 1/2, gamma = 1 (Shi 1988): exact for constant acceleration, dissipative
@@ -182,6 +189,7 @@ struct Settings {
                                        ///< 0 = automatic: 100 x the largest Young's modulus
   int max_open_close = 30;       ///< open-close iterations before a step is cut [-]; >= 1 (docs/contacts.md, "The wall converges when the iteration is not cut")
   SolverKind solver = SolverKind::automatic;  ///< default automatic
+  ContactSolver contact_solver = ContactSolver::open_close;  ///< default open_close
   double pcg_tolerance = 1.0e-10;  ///< stop of the iterative solvers (pcg, amg):
                                    ///< ||F - K D|| <= tol ||F|| [-]; > 0. 1e-10: what double
                                    ///< precision attains on contact-dominated systems

@@ -1,0 +1,14 @@
+#include "rheodda/core/contact_solve.hpp"
+
+#include "contact_solves.hpp"
+
+namespace rheodda::core {
+
+std::unique_ptr<ContactSolve> make_contact_solve(ContactSolver kind) {
+  switch (kind) {
+    case ContactSolver::open_close: return make_open_close_solve();
+  }
+  return make_open_close_solve();
+}
+
+}  // namespace rheodda::core

@@ -1,0 +1,159 @@
+// The engine's internals, shared by the files that implement it (one concern
+// each): engine.cpp (state, geometry, accepting a step, the public API),
+// model_checks.cpp (validation of the model), block_assembly.cpp (the block
+// sub-matrices), step_trial.cpp (one attempt at a step: contacts and the
+// contact solve), step_control.cpp (step size, cuts, adaptive creep stepping,
+// settling and collapse stages), step_doubling.cpp (step doubling with
+// Richardson extrapolation).
+#pragma once
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rheodda/core/block_system.hpp"
+#include "rheodda/core/contact_solve.hpp"
+#include "rheodda/core/engine.hpp"
+#include "rheodda/core/polygon.hpp"
+#include "rheodda/core/solver.hpp"
+
+namespace rheodda::core {
+
+using Clock = std::chrono::steady_clock;
+
+inline double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/// Adaptive creep stepping rejects a step whose creep error estimate exceeds
+/// this multiple of Settings::creep_tolerance [-] (docs/speed-accuracy.md).
+constexpr double kRejectFactor = 2.0;
+/// Adaptive creep stepping steps onto a damage law's failure when it is within
+/// this many steps (docs/rheology-in-dda.md, "Failure") [-].
+constexpr double kFailureReach = 8.0;
+/// The contact search of a large model (g2 w0 above this fraction of the median
+/// block size) reaches only as far as the motion needs, not below this fraction
+/// (docs/engine.md, "Contact search reach") [-].
+constexpr double kSearchFloor = 0.1;
+
+struct Engine::Impl {
+  Model model;
+  NullContactModel null_contacts;
+  ContactModel* contacts = nullptr;
+
+  EngineState st;
+  std::vector<PolygonIntegrals> moments;  // central integrals of the step-start geometry
+  std::vector<char> held;                 // block held by two or more fixed points
+  std::vector<contact::BlockView> views;
+  std::vector<Eigen::Matrix3d> elastic;   // per material
+  double w0 = 0.0;                        // half model size [length]
+  /// The displacement per step the contact search covers (StepContext::
+  /// max_displacement; contacts are looked for within search_factor x it):
+  /// g2 w0 where that is below search_floor, else adapted to the motion
+  /// (search_reach(), docs/engine.md, "Contact search reach") [length].
+  double search_disp = 0.0;
+  double search_floor = 0.0;  // kSearchFloor x the median block size [length]
+  double search_reach(const Eigen::VectorXd& d) const;
+  double fixed_k = 0.0;                   // fixed point penalty [force/length]
+  /// Share of the velocity the step starting now carries: the analysis's
+  /// dynamic_ratio, or 1 in a dynamic settling stage (Settings::settle_dynamic).
+  double ratio_now() const {
+    return settling() && model.settings.settle_dynamic ? 1.0 : model.settings.dynamic_ratio;
+  }
+  /// The step starting now carries velocity (a dynamic step).
+  bool dynamic_now() const { return ratio_now() > 0.0; }
+
+  /// Newmark parameters of the current step. The trapezoidal rule needs the
+  /// acceleration at the step start; the first step has none, so it uses Shi's
+  /// scheme (exact for a constant acceleration), which yields it.
+  struct Newmark {
+    double beta, gamma;
+  };
+  Newmark newmark() const {
+    if (model.settings.time_integration == TimeIntegration::trapezoidal && st.step > 0)
+      return {0.25, 0.5};
+    return {0.5, 1.0};
+  }
+  /// Newmark predictor Dp = v dt + (1/2 - beta) dt^2 a from the carried v, a.
+  Vec6 predictor(const BlockState& b, double dt, const Newmark& nm) const {
+    return ratio_now() * (dt * b.velocity + (0.5 - nm.beta) * dt * dt * b.acceleration);
+  }
+
+  BlockSystem system;
+  std::unique_ptr<LinearSolver> solver;
+  std::unique_ptr<ContactSolve> contact_solve;  // Settings::contact_solver (contact_solve.hpp)
+  Eigen::VectorXd D;
+  std::vector<Mat6> base_diag;  // block terms of the step being solved (scratch)
+  Eigen::VectorXd base_rhs;
+  std::vector<StepReport> reports;
+  std::vector<StepObserver> observers;
+  EnergyAccount energy;  // the balance itself is st.energy (energy.hpp)
+  EnergyInputs energy_inputs() const {
+    return {model, st.blocks, moments, elastic, fixed_k, ratio_now()};
+  }
+
+  void validate();
+  void initialise();
+  void refresh_geometry();
+  void assemble_blocks(double dt, double t_end, std::vector<Mat6>& diag, Eigen::VectorXd& rhs) const;
+  double max_vertex_displacement(const Eigen::VectorXd& d) const;
+  /// End of the collapse stage in progress, or of the last one (Settings::
+  /// collapse_dt; docs/engine.md, "Collapse stages"); 0 before any [time].
+  double collapse_until = 0.0;
+  /// End of the stage the run is in or was last in: the settling stage or a
+  /// collapse stage [time].
+  double stage_end() const { return std::max(model.settings.settle_until, collapse_until); }
+  /// In the settling stage (Settings::settle_until; docs/engine.md, "Settling
+  /// stage") or in a collapse stage.
+  bool settling() const {
+    const double end = stage_end();
+    return end > 0.0 && st.time < end - 1e-12 * std::max(1.0, std::abs(end));
+  }
+  /// A static step of dt whose trial D moves as a mechanism (collapse stages).
+  bool collapses(double dt) const {
+    return EnergyAccount::static_trial_share(energy_inputs(), D, dt, newmark().beta, st.time + dt) >
+           kMechanismStepShare;
+  }
+  /// The displacement limit g2 in force now: settle_g2 in the settling stage.
+  double g2_now() const { return settling() ? model.settings.settle_g2 : model.settings.g2; }
+  void accept(const Eigen::VectorXd& d, double dt, int step_index, double t_end);
+  void record_measurements(int step_index);
+  StepReport step(double dt_cap);
+  /// After a static trial of dt that moved as a mechanism (docs/engine.md,
+  /// "Collapse stages"): cuts dt towards collapse_dt and returns false, or, at
+  /// collapse_dt, opens a collapse stage from the step's start, sets dt to the
+  /// stage's first step and returns true.
+  bool open_collapse_stage(double& dt, StepReport& rep);
+
+  /// One attempt at a step of dt from the current state: begin_step, then the
+  /// contact solve (Settings::contact_solver). The contacts are left in their
+  /// trial states: the caller ends or abandons the step (step_trial.cpp).
+  struct Trial {
+    bool converged = false;
+    int iterations = 0;
+    double max_disp = 0.0;  // largest vertex displacement of the converged D [length]
+    ContactCheck check;
+    /// Set when a solve found the matrix not positive definite (the attempt is
+    /// cut like one that did not converge: a shorter step stiffens the inertia
+    /// terms 2M/dt^2; after max_cuts the error is thrown with this diagnosis).
+    std::string singular;
+    int singular_block = -1, singular_unknown = -1;
+  };
+  Trial solve_trial(double dt, bool creep_error_wanted, StepReport& rep);
+  class Problem;  ///< the StepProblem of a trial (step_trial.cpp)
+  /// Cuts dt after a failed attempt (dt *= dt_cut), or throws after max_cuts cuts.
+  void cut(double& dt, const Trial& trial, StepReport& rep) const;
+  /// Attempts a step of dt and accepts it (contacts end_step, blocks move) when
+  /// it converges within g2 w0; otherwise abandons it. No creep estimate.
+  bool take(double dt, StepReport& rep, Trial& trial);
+  /// A step under Settings::step_tolerance: step doubling with local extrapolation.
+  StepReport doubling_step(double dt_cap);
+  /// First point-load sample time after the current time (inf if none) [time].
+  double next_load_break() const;
+  /// Next step of an adaptive control from the error estimate err of a step dt [time].
+  double next_adaptive_dt(double dt, double tolerance, double err, double load_break) const;
+};
+
+}  // namespace rheodda::core

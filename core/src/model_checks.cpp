@@ -1,0 +1,169 @@
+// Validation of a Model before a run (docs/engine.md, "Parameters"): every
+// refusal names the offending entry (ModelError::key) so that a scene reader
+// can point at its file and line.
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "engine_impl.hpp"
+
+namespace rheodda::core {
+
+namespace {
+
+bool finite(const Vec2& v) { return std::isfinite(v.x()) && std::isfinite(v.y()); }
+
+std::string at(const char* list, std::size_t k) { return std::string(list) + "[" + std::to_string(k) + "]"; }
+
+/// Is p inside the polygon or within tol of its boundary?
+bool inside_or_near(std::span<const Vec2> v, const Vec2& p, double tol) {
+  bool inside = false;
+  const std::size_t n = v.size();
+  for (std::size_t k = 0, j = n - 1; k < n; j = k++) {
+    const Vec2& a = v[k];
+    const Vec2& b = v[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) &&
+        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
+      inside = !inside;
+    const Vec2 e = b - a;
+    const double s = std::clamp((p - a).dot(e) / e.squaredNorm(), 0.0, 1.0);
+    if ((a + s * e - p).norm() <= tol) return true;
+  }
+  return inside;
+}
+
+}  // namespace
+
+void Engine::Impl::validate() {
+  const Model& m = model;
+  if (m.materials.empty()) throw ModelError("materials", "at least one material is required");
+  for (std::size_t k = 0; k < m.materials.size(); ++k) {
+    const Material& mat = m.materials[k];
+    if (!(mat.density > 0.0 && std::isfinite(mat.density)))
+      throw ModelError(at("materials", k) + ".density", "must be > 0 (mass/length^3)");
+    if (!(mat.young_modulus > 0.0 && std::isfinite(mat.young_modulus)))
+      throw ModelError(at("materials", k) + ".young_modulus", "must be > 0 (stress)");
+    if (!(mat.poisson_ratio >= 0.0 && mat.poisson_ratio < 0.5))
+      throw ModelError(at("materials", k) + ".poisson_ratio", "must be in [0, 0.5)");
+    if (!(mat.damping_ratio >= 0.0 && mat.damping_ratio <= 1.0))
+      throw ModelError(at("materials", k) + ".damping_ratio", "must be in [0, 1]");
+    if (mat.damping_ratio > 0.0 && !m.settings.has_dynamic_steps())
+      throw ModelError(at("materials", k) + ".damping_ratio",
+                       "damps velocities; a static analysis (dynamic_ratio 0) without a dynamic "
+                       "settling stage has none");
+  }
+  if (m.blocks.empty()) throw ModelError("blocks", "at least one block is required");
+  const Settings& s = m.settings;
+  for (std::size_t k = 0; k < m.blocks.size(); ++k) {
+    const BlockDef& b = m.blocks[k];
+    const std::string key = at("blocks", k);
+    if (b.vertices.size() < 3)
+      throw ModelError(key + ".vertices", "a block needs at least 3 vertices");
+    for (const auto& v : b.vertices)
+      if (!finite(v)) throw ModelError(key + ".vertices", "vertex coordinates must be finite");
+    if (!is_simple_polygon(b.vertices))
+      throw ModelError(key + ".vertices",
+                       "not a simple polygon (edges cross, touch or have zero length)");
+    if (polygon_integrals(b.vertices).S == 0.0)
+      throw ModelError(key + ".vertices", "the polygon has zero area");
+    if (!b.edge_joint_set.empty() && b.edge_joint_set.size() != b.vertices.size())
+      throw ModelError(key + ".edge_joint_set",
+                       "needs one joint set per edge (" + std::to_string(b.vertices.size()) +
+                           "), or none");
+    for (int j : b.edge_joint_set)
+      if (j < 0) throw ModelError(key + ".edge_joint_set", "joint set indices must be >= 0");
+    if (b.material < 0 || b.material >= static_cast<int>(m.materials.size()))
+      throw ModelError(key + ".material", "no material with index " + std::to_string(b.material));
+    if (!b.initial_stress.allFinite())
+      throw ModelError(key + ".initial_stress", "must be finite");
+    if (!finite(b.initial_velocity) || !std::isfinite(b.initial_angular_velocity))
+      throw ModelError(key + ".initial_velocity", "must be finite");
+    if (s.dynamic_ratio == 0.0 &&
+        (b.initial_velocity != Vec2::Zero() || b.initial_angular_velocity != 0.0))
+      throw ModelError(key + ".initial_velocity",
+                       "a static analysis (settings.dynamic_ratio = 0) carries no velocities");
+  }
+  auto check_point = [&](const std::string& key, int block, const Vec2& p) {
+    if (block < 0 || block >= static_cast<int>(m.blocks.size()))
+      throw ModelError(key + ".block", "no block with index " + std::to_string(block));
+    if (!finite(p)) throw ModelError(key + ".point", "must be finite");
+    const auto& v = m.blocks[block].vertices;
+    Eigen::AlignedBox2d box;
+    for (const auto& q : v) box.extend(q);
+    if (!inside_or_near(v, p, 1e-9 * box.diagonal().norm()))
+      throw ModelError(key + ".point", "lies outside block " + std::to_string(block));
+  };
+  for (std::size_t k = 0; k < m.point_loads.size(); ++k) {
+    const PointLoad& l = m.point_loads[k];
+    const std::string key = at("point_loads", k);
+    check_point(key, l.block, l.point);
+    if (l.history.empty()) throw ModelError(key + ".history", "needs at least one sample");
+    for (std::size_t i = 0; i < l.history.size(); ++i) {
+      if (!std::isfinite(l.history[i].time) || !finite(l.history[i].force))
+        throw ModelError(key + ".history", "time and force must be finite");
+      if (i > 0 && !(l.history[i].time > l.history[i - 1].time))
+        throw ModelError(key + ".history", "times must increase strictly");
+    }
+  }
+  for (std::size_t k = 0; k < m.fixed_points.size(); ++k)
+    check_point(at("fixed_points", k), m.fixed_points[k].block, m.fixed_points[k].point);
+  for (std::size_t k = 0; k < m.measurement_points.size(); ++k)
+    check_point(at("measurement_points", k), m.measurement_points[k].block,
+                m.measurement_points[k].point);
+
+  if (!(s.dt > 0.0 && std::isfinite(s.dt))) throw ModelError("settings.dt", "must be > 0 (time)");
+  if (!(s.dt_growth >= 1.0 && std::isfinite(s.dt_growth)))
+    throw ModelError("settings.dt_growth", "must be >= 1");
+  if (!(s.dt_cut > 0.0 && s.dt_cut < 1.0)) throw ModelError("settings.dt_cut", "must be in (0, 1)");
+  if (s.max_cuts < 0) throw ModelError("settings.max_cuts", "must be >= 0");
+  if (!(s.creep_tolerance >= 0.0 && std::isfinite(s.creep_tolerance)))
+    throw ModelError("settings.creep_tolerance", "must be >= 0 (length; 0 = fixed dt)");
+  if (s.creep_tolerance > 0.0 && s.dt_max > 0.0 && s.dt_max < s.dt)
+    throw ModelError("settings.dt_max", "must be >= dt (the first step) under creep_tolerance");
+  if (!(s.step_tolerance >= 0.0 && std::isfinite(s.step_tolerance)))
+    throw ModelError("settings.step_tolerance", "must be >= 0 (length; 0 = off)");
+  if (s.step_tolerance > 0.0 && s.creep_tolerance > 0.0)
+    throw ModelError("settings.step_tolerance",
+                     "give step_tolerance or creep_tolerance, not both (two step controls)");
+  if (s.step_tolerance > 0.0 && s.dt_max > 0.0 && s.dt_max < s.dt)
+    throw ModelError("settings.dt_max", "must be >= dt (the first step) under step_tolerance");
+  if (!(s.dt_max >= 0.0 && std::isfinite(s.dt_max)))
+    throw ModelError("settings.dt_max", "must be >= 0 (time; 0 = no limit)");
+  if (!(s.g2 > 0.0 && std::isfinite(s.g2))) throw ModelError("settings.g2", "must be > 0");
+  if (!(s.settle_until >= 0.0 && std::isfinite(s.settle_until)))
+    throw ModelError("settings.settle_until", "must be >= 0 (time; 0 = no settling stage)");
+  if (s.settle_until > 0.0 && !(s.settle_dt > 0.0 && std::isfinite(s.settle_dt)))
+    throw ModelError("settings.settle_dt", "must be > 0 (time) with a settling stage");
+  if (s.settle_until > 0.0 && !(s.settle_g2 > 0.0 && std::isfinite(s.settle_g2)))
+    throw ModelError("settings.settle_g2", "must be > 0 with a settling stage");
+  if (!(s.collapse_dt >= 0.0 && std::isfinite(s.collapse_dt)))
+    throw ModelError("settings.collapse_dt", "must be >= 0 (time; 0 = no collapse stages)");
+  if (s.collapse_dt > 0.0) {
+    if (!(s.settle_until > 0.0 && s.settle_dynamic && s.dynamic_ratio == 0.0))
+      throw ModelError("settings.collapse_dt",
+                       "collapse stages are for a static analysis with a dynamic settling stage (their model)");
+    if (!(s.collapse_dt < s.dt)) throw ModelError("settings.collapse_dt", "must be < dt");
+    if (s.step_tolerance > 0.0)
+      throw ModelError("settings.collapse_dt", "not with step_tolerance (step doubling takes no collapse stage)");
+  }
+  if (!(s.dynamic_ratio >= 0.0 && s.dynamic_ratio <= 1.0))
+    throw ModelError("settings.dynamic_ratio", "must be in [0, 1]");
+  if (!finite(s.gravity)) throw ModelError("settings.gravity", "must be finite");
+  if (!(s.settle_gravity_ramp >= 0.0 && std::isfinite(s.settle_gravity_ramp)))
+    throw ModelError("settings.settle_gravity_ramp", "must be >= 0 (time; 0 = gravity at once)");
+  if (s.settle_gravity_ramp > 0.0 && !(s.settle_gravity_ramp <= s.settle_until))
+    throw ModelError("settings.settle_gravity_ramp",
+                     "must end within the settling stage (<= settle_until), so that the creep starts under full gravity");
+  if (!(s.fixed_point_stiffness >= 0.0 && std::isfinite(s.fixed_point_stiffness)))
+    throw ModelError("settings.fixed_point_stiffness", "must be >= 0 (0 = automatic)");
+  if (s.max_open_close < 1) throw ModelError("settings.max_open_close", "must be >= 1");
+  if (!(s.pcg_tolerance > 0.0)) throw ModelError("settings.pcg_tolerance", "must be > 0");
+  if (s.pcg_max_iterations < 1) throw ModelError("settings.pcg_max_iterations", "must be >= 1");
+  if (!(s.pcg_iterate_tolerance >= 0.0 && s.pcg_iterate_tolerance < 1.0))
+    throw ModelError("settings.pcg_iterate_tolerance", "must be in [0, 1) (0 = every solve at pcg_tolerance)");
+  if (s.time_integration == TimeIntegration::trapezoidal && s.dynamic_ratio == 0.0)
+    throw ModelError("settings.time_integration",
+                     "the trapezoidal rule needs a dynamic analysis (settings.dynamic_ratio > 0)");
+}
+
+}  // namespace rheodda::core

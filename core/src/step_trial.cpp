@@ -1,0 +1,89 @@
+// One attempt at a step (docs/engine.md, "A step"): the contacts are detected
+// on the step-start geometry (begin_step), the block terms assembled, and the
+// contact solve (Settings::contact_solver; contact_solve.hpp) finds D and the
+// contact states that agree. A step whose motion outran the contact search is
+// redone with a wider one.
+#include <algorithm>
+
+#include "engine_impl.hpp"
+
+namespace rheodda::core {
+
+/// The step as the contact solve sees it: the engine's block terms, its
+/// block system and linear solver, timed into the step report.
+class Engine::Impl::Problem final : public StepProblem {
+ public:
+  Problem(Engine::Impl& e, StepReport& rep) : e_(e), rep_(rep) {}
+  std::span<const contact::BlockView> blocks() const override { return e_.views; }
+  const std::vector<Mat6>& block_matrix() const override { return e_.base_diag; }
+  const Eigen::VectorXd& block_rhs() const override { return e_.base_rhs; }
+  ContactModel& contacts() override { return *e_.contacts; }
+  const Settings& settings() const override { return e_.model.settings; }
+  bool iterative_solver() const override {
+    return e_.solver->iterative(static_cast<int>(e_.st.blocks.size()));
+  }
+  Eigen::VectorXd solve_system(bool loose) override {
+    auto t0 = Clock::now();
+    e_.system.reset(e_.base_diag, e_.base_rhs);
+    e_.system.set_centroids(e_.views);  // the points the unknowns refer to (the amg solver's coarse spaces)
+    e_.contacts->assemble(e_.views, e_.system);
+    e_.system.finalize();
+    rep_.assembly_seconds += seconds_since(t0);
+    t0 = Clock::now();
+    Eigen::VectorXd d = loose ? e_.solver->solve(e_.system, e_.model.settings.pcg_iterate_tolerance)
+                              : e_.solver->solve(e_.system);
+    rep_.solve_seconds += seconds_since(t0);
+    return d;
+  }
+  ContactCheck check(const Eigen::VectorXd& d) override {
+    const ContactCheck c = e_.contacts->check(e_.views, d);
+    rep_.changes += c.changes;
+    return c;
+  }
+
+ private:
+  Engine::Impl& e_;
+  StepReport& rep_;
+};
+
+Engine::Impl::Trial Engine::Impl::solve_trial(double dt, bool creep_error_wanted, StepReport& rep) {
+  StepContext ctx{st.step, st.time, dt, search_disp};
+  ctx.creep_error_wanted = creep_error_wanted;
+  ctx.dynamic = dynamic_now();
+  ctx.inertia = 1.0 / (newmark().beta * dt * dt);  // as assemble_blocks adds M/(beta dt^2)
+  contacts->begin_step(views, ctx);
+  auto t0 = Clock::now();
+  assemble_blocks(dt, st.time + dt, base_diag, base_rhs);
+  rep.assembly_seconds += seconds_since(t0);
+  Trial trial;
+  Problem problem(*this, rep);
+  try {
+    const ContactSolveResult r = contact_solve->solve(problem, D);
+    trial.converged = r.converged;
+    trial.iterations = r.iterations;
+    trial.check = r.check;
+  } catch (const SingularSystemError& e) {
+    contacts->abandon_step();
+    trial.singular = e.what();
+    trial.singular_block = e.block;
+    trial.singular_unknown = e.unknown;
+    return trial;
+  } catch (...) {
+    contacts->abandon_step();  // leave the contacts at their step-start states
+    throw;
+  }
+  trial.max_disp = trial.converged ? max_vertex_displacement(D) : 0.0;
+  if (trial.converged && trial.max_disp > search_disp && search_disp < g2_now() * w0) {
+    // The step moved a vertex further than the contact search reached: a
+    // contact beyond the search distance may have closed unseen. Redo the step
+    // (same dt) with the search widened to cover the motion (docs/engine.md,
+    // "Contact search reach"); beyond g2 w0 the caller cuts dt as before.
+    contacts->abandon_step();
+    search_disp = std::min(g2_now() * w0, 2.0 * trial.max_disp);
+    ++rep.search_widenings;
+    return solve_trial(dt, creep_error_wanted, rep);
+  }
+  return trial;
+}
+
+}  // namespace rheodda::core
