@@ -30,6 +30,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <unordered_map>
 #include <span>
 #include <vector>
 
@@ -149,8 +150,10 @@ class ContactSystem {
   /// reversal_at_normal_resolution) are off. `inertia`: the step's inertia
   /// stiffness per unit mass, 1/(beta dt^2) of the host's Newmark scheme
   /// [1/time^2] (0: unknown; ContactSettings::reversal_at_normal_resolution).
+  /// `creep_error_wanted`: the host will ask creep_error_estimate() and may
+  /// retract_step() after this step's end_step.
   void begin_step(std::span<const BlockView> blocks, double max_displacement, double dt = 0.0,
-                  bool dynamic = true, double inertia = 0.0);
+                  bool dynamic = true, double inertia = 0.0, bool creep_error_wanted = false);
   /// Springs and friction loads of the trial states (the seed's eqs. 28-29).
   void assemble(std::span<const BlockView> blocks, SystemSink& sink) const;
   /// Updates the trial states from the trial displacements D (6 per block).
@@ -159,6 +162,24 @@ class ContactSystem {
   void end_step(std::span<const BlockView> blocks, const Eigen::VectorXd& D);
   /// Rejects the step: the records of the last accepted step stay as they were.
   void abandon_step();
+  /// Largest local creep error estimate of the last accepted step over the
+  /// contacts locked with a law at both ends of the step [length]
+  /// (contact_creep_error.cpp); 0 unless begin_step was asked for it. For a
+  /// joint set stepped with the lagged or implicit scheme: |Delta d_c(scheme) -
+  /// Delta d_c(exponential-linear)| from the same history and start and end
+  /// stresses (exponential-linear is exact for a force linear over the step).
+  /// For exponential-linear: |tau''| dt^2/12 c, tau'' from the stresses at the
+  /// last three step boundaries and c the implicit step compliance (~ dt/eta).
+  /// Zero under a constant force.
+  double creep_error_estimate() const { return creep_error_; }
+  /// Contacts on joint sets with a law whose state changed in the last
+  /// accepted step (locked <-> sliding or open, appeared closed, vanished
+  /// locked); 0 unless begin_step was asked for the creep error [-].
+  int creep_state_changes() const { return creep_changes_; }
+  /// Undoes the last end_step (only right after it, and only when its
+  /// begin_step was asked for the creep error): back to the step-start
+  /// records, as after abandon_step. Returns false when it cannot.
+  bool retract_step();
   /// Richardson extrapolation for step doubling (docs/speed-accuracy.md, "Step
   /// doubling"): this system holds the records after two steps of dt/2 and
   /// `coarse` those after one step of dt from the same records. Every
@@ -277,6 +298,10 @@ class ContactSystem {
     laws::StepConstants main, from_rest;
   };
   const laws::StepConstants& step_constants_of(size_t c) const;
+  /// Law constants of the step being solved, once per joint set (never per
+  /// contact), and each creeping contact's seam at its start stress
+  /// (contact_creep.cpp; called by begin_step).
+  void start_laws(double dt);
   /// Sets seams_[c] from the law's affine form at a guessed end stress [stress].
   void linearize(size_t c, double tau_guess);
   /// Contact c's damage law failed: residual frictional joint (no creep, cohesion, tension).
@@ -303,6 +328,26 @@ class ContactSystem {
   std::vector<LawStep> law_steps_;  ///< per joint set, for the step being solved
   std::vector<ShearSeam> seams_;
   std::vector<Hot> hot_;
+  // Creep error estimate and retraction (contact_creep_error.cpp).
+  void estimate_creep_error();
+  bool creep_error_wanted_ = false;  ///< set by begin_step for the step being solved
+  bool can_retract_ = false;
+  double creep_error_ = 0.0;  ///< of the last accepted step [length]
+  int creep_changes_ = 0;     ///< creep_state_changes() of the last accepted step [-]
+  /// What an end_step changed beside the records, kept for retract_step.
+  struct Retract {
+    std::vector<CreepCounters> counters;
+    double last_max_penetration = 0.0, penalty = 0.0, stored_before = 0.0;
+  } retract_;
+  /// The records at the start of the last accepted step (creep_error_wanted only).
+  std::vector<Contact> start_records_;
+  std::vector<laws::RheologyState> start_rheology_;
+  std::vector<double> start_creep_;
+  std::vector<StepWork> start_work_;
+  std::unordered_map<std::uint64_t, double> prev_tau_;  ///< stress at the last step's start, by contact id [stress]
+  double prev_dt_ = 0.0;                                ///< last accepted step [time]
+  std::unordered_map<std::uint64_t, double> retract_prev_tau_;  ///< prev_tau_ before the last end_step
+  double retract_prev_dt_ = 0.0;                                ///< prev_dt_ before the last end_step [time]
   std::vector<ContactKey> previous_keys_;
   std::vector<Box> boxes_;
   BroadPhase broad_;

@@ -15,10 +15,6 @@
 #include "rheodda/core/contact_model.hpp"
 #include "rheodda/core/model.hpp"
 
-#include <cstdint>
-#include <optional>
-#include <unordered_map>
-#include <vector>
 
 namespace rheodda::core {
 
@@ -37,21 +33,12 @@ class ContactAdapter final : public ContactModel {
   ContactCheck check(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) override;
   void end_step(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) override;
   void abandon_step() override;
-  /// Largest local creep error estimate of the last accepted step over the
-  /// contacts locked with a law at both ends of the step [length]. For a joint
-  /// set stepped with the lagged or implicit scheme: |Delta d_c(scheme) -
-  /// Delta d_c(exponential-linear)| from the same history and start and end
-  /// stresses (exponential-linear is exact for a force linear over the step).
-  /// For exponential-linear: |tau''| dt^2/12 c, tau'' from the stresses at the
-  /// last three step boundaries and c the implicit step compliance (~ dt/eta).
-  /// Zero under a constant force. Computed only when the step context asked for it.
-  double creep_error_estimate() const override { return creep_error_; }
-  /// Restores the contact system and the estimate's history to the start of the
-  /// last accepted step (a copy taken in end_step when the estimate was asked for).
+  /// contact::ContactSystem::creep_error_estimate (asked for by the step context).
+  double creep_error_estimate() const override { return system_.creep_error_estimate(); }
+  /// contact::ContactSystem::retract_step.
   bool retract_step() override;
-  /// Edge contacts on joint sets with a law whose state changed in the last
-  /// accepted step (or that appeared closed, or vanished locked).
-  int creep_state_changes() const override { return creep_changes_; }
+  /// contact::ContactSystem::creep_state_changes.
+  int creep_state_changes() const override { return system_.creep_state_changes(); }
   double time_to_failure() const override { return system_.time_to_failure(); }
   /// A copy of the contact system (records, histories, penalty) for step doubling.
   std::unique_ptr<ContactSnapshot> snapshot() const override;
@@ -68,19 +55,6 @@ class ContactAdapter final : public ContactModel {
 
  private:
   contact::ContactSystem& system_;
-  double dt_ = 0.0;            ///< step size of the step being solved [time]
-  bool want_error_ = false;
-  double creep_error_ = 0.0;   ///< [length]
-  int creep_changes_ = 0;
-  /// The contact system just before the last end_step (when the estimate was
-  /// asked for): its committed records are the step-start states; retract_step
-  /// copies it back.
-  std::optional<contact::ContactSystem> saved_;
-  bool can_retract_ = false;
-  std::unordered_map<std::uint64_t, double> prev_tau_;  ///< stress at the last step's start, by contact id [stress]
-  double prev_dt_ = 0.0;                                ///< last accepted step [time]
-  std::unordered_map<std::uint64_t, double> saved_prev_tau_;  ///< prev_tau_ before the last end_step
-  double saved_prev_dt_ = 0.0;                                ///< prev_dt_ before the last end_step [time]
 };
 
 }  // namespace rheodda::core

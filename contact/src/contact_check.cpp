@@ -1,0 +1,225 @@
+// The open-close check of a trial (docs/contacts.md, "States and the
+// open-close iteration"): each contact's state against the trial displacements
+// (open, locked, sliding by Mohr-Coulomb), the stick and lock-at-touch rules,
+// anti-chattering, friction refinements and the creep laws' Newton.
+#include "rheodda/contact/contact_system.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "contact_geometry.hpp"
+
+namespace rheodda::contact {
+
+void ContactSystem::stick(std::span<const BlockView> blocks, size_t c) {
+  // Sliding -> locked where the vertex stood at the step start p. By default
+  // (Shi's rule) the shear spring restarts unstretched there. With
+  // ContactSettings::stick_keeps_force it keeps the friction force F the
+  // contact slid against, as an elastic-plastic joint keeps its elastic shear
+  // displacement: the locking point P0 goes behind p by the stretch that
+  // carries F, P0 = p - s t with s = d F / k_s (d the slide direction, t the
+  // edge direction). Measured trade (docs/contacts.md, "Why the iteration does
+  // not settle"): far fewer iterates and cuts on walls and slopes at the
+  // friction limit; a creeping slope at its limit takes other, step-dependent
+  // paths.
+  Contact& r = work_[c];
+  Hot& h = hot_[c];
+  const BlockView& eb = blocks[r.key.eblock];
+  const Vec2 a = edge_start(eb, r.key.edge), b = edge_end(eb, r.key.edge);
+  const double friction = std::max(h.normal_force, 0.0) * h.tan_phi + h.cohesion * r.length;
+  const bool keep = step_dynamic_ && settings_.stick_keeps_force_dynamic ? *settings_.stick_keeps_force_dynamic
+                                                                          : settings_.stick_keeps_force;
+  const double stretch = keep ? r.slide_direction * friction / shear_stiffness(c) : 0.0;
+  r.locking_ratio = line_ratio(a, b, blocks[r.key.vblock].vertices[r.key.vertex]) -
+                    stretch / (b - a).norm();
+  r.state = ContactState::locked;
+  prepare(blocks, r, h);
+}
+
+void ContactSystem::lock_at_touch(std::span<const BlockView> blocks, size_t c, double flight) {
+  // The locking point moves along the entrance edge by the tangential motion
+  // before the touch, so the spring's stretch counts from there.
+  Contact& r = work_[c];
+  const BlockView& eb = blocks[r.key.eblock];
+  r.locking_ratio += flight / (edge_end(eb, r.key.edge) - edge_start(eb, r.key.edge)).norm();
+  prepare(blocks, r, hot_[c]);
+}
+
+CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen::VectorXd& D) {
+  assert(D.size() == 6 * static_cast<Eigen::Index>(blocks.size()));
+  CheckResult res;
+  // Force resolution: forces below this are zero for the state decisions, so
+  // contacts that carry (almost) nothing - the vertical joints of a wall - do
+  // not flip on round-off.
+  const double f_res = settings_.force_resolution * force_scale_;
+  double scale = 0.0;
+  for (size_t c = 0; c < work_.size(); ++c) {
+    Contact& r = work_[c];
+    Hot& h = hot_[c];
+    h.assembled_normal_force = h.normal_force;  // energy balance: the friction just solved with
+    const auto Di = D.segment<6>(6 * r.key.vblock);
+    const auto Dj = D.segment<6>(6 * r.key.eblock);
+    const double dn = h.dn0 + h.ni.dot(Di) + h.nj.dot(Dj);
+    const double slip = h.ti.dot(Di) + h.tj.dot(Dj);  // tangential motion this step [length]
+    const double dt = h.dt0 + seams_[c].locking_shift + slip;
+    // The states follow the springs alone (the overlap and the shear spring's
+    // stretch), as in Cundall & Strack's spring-dashpot contact: a contact
+    // dashpot (JointSet::restitution) adds its force c rate beside the spring
+    // of a closed (normal) or locked (shear) contact, but neither opens, closes,
+    // nor makes a contact slide, and friction is N tan(phi) of the spring's N.
+    // Measured (docs/contacts.md, "Contact damping"): deciding on the total
+    // force instead, the dashpot's transient force at an impact (c v, hundreds
+    // of times the block's weight) locks the shear spring with a stretch that
+    // the weight's friction cannot hold afterwards, and the drop on an incline
+    // ends 1.24-1.43 mm down the slope depending on the step.
+    const double N = h.pn * dn;
+    r.penetration = dn;
+    const ContactState before = r.state;
+    bool refine = false;  // friction force from a stale normal force
+    switch (r.state) {
+      case ContactState::open:
+        if (N > f_res) {
+          // Closes; Mohr-Coulomb decides at once whether it holds or slides (a
+          // vertex arriving with tangential speed would otherwise be caught by
+          // a fully stretched shear spring for one iterate). Across a gap g0 =
+          // -d_n0 the vertex touches after the share f = g0 / (g0 + d_n) of the
+          // step's approach (linear in the step); the tangential motion before
+          // that, f slip, is flight, not stretch of the spring: the spring locks
+          // where the vertex touches. Counting it (Shi's rule: the locking point
+          // at the step-start projection) made the outcome of an impact depend
+          // on where in its step the contact was reached (docs/contacts.md,
+          // "Contact damping": a block dropped on an incline slid at the impact
+          // at some steps and not at others). Dynamic analysis only
+          // (ContactSettings::lock_at_touch).
+          const double gap = std::max(-h.dn0, 0.0);
+          const double flight =
+              (settings_.lock_at_touch && step_dynamic_ && gap > 0.0) ? gap / (gap + dn) * slip : 0.0;
+          const double S = shear_stiffness(c) * (dt - flight);
+          if (std::abs(S) > N * h.tan_phi + h.cohesion * r.length + f_res) {
+            r.state = ContactState::sliding;
+            r.slide_direction = S >= 0.0 ? 1 : -1;
+          } else {
+            r.state = ContactState::locked;
+            if (flight != 0.0) lock_at_touch(blocks, c, flight);
+          }
+        }
+        break;
+      case ContactState::locked:
+      case ContactState::sliding:
+        if (N < -h.tensile_strength * r.length - f_res) {
+          r.state = ContactState::open;
+        } else if (r.state == ContactState::locked) {
+          // Mohr-Coulomb: slip when |F_T| > N tan(phi) + c l.
+          const double S = shear_stiffness(c) * dt;
+          if (std::abs(S) > N * h.tan_phi + h.cohesion * r.length + f_res) {
+            r.state = ContactState::sliding;
+            r.slide_direction = dt >= 0.0 ? 1 : -1;
+          }
+        } else if (reversal_stiffness(c) * slip * r.slide_direction < -f_res) {
+          // The vertex moves against the friction direction assumed: it sticks
+          // where it stood at the start of the step (stick). The test resolves
+          // a backward slip of f_res / k with k the stiffness that holds the
+          // vertex's tangential motion (reversal_stiffness).
+          stick(blocks, c);
+        } else {
+          // The friction force N tan(phi) came from the last iterate's N.
+          refine = std::abs(N - h.normal_force) >
+                   std::max(settings_.friction_tolerance *
+                                std::max(std::abs(N), std::abs(h.normal_force)),
+                            f_res);
+        }
+        break;
+    }
+    if (r.state != before) {
+      if (h.flips >= settings_.max_flips && r.state != ContactState::locked) {
+        // Anti-chattering: a contact that already changed max_flips times in
+        // this step (typically a vertex that stops within the step: sliding
+        // reverses it, locking needs more than friction to stop it) may only
+        // go to the most constrained state, locked, for the rest of the step.
+        // Any Mohr-Coulomb excess lasts one step: the next step starts from it.
+        if (before == ContactState::locked) {
+          r.state = before;
+        } else {
+          if (before == ContactState::sliding) stick(blocks, c);
+          r.state = ContactState::locked;
+        }
+      }
+      if (r.state != before) {
+        ++h.flips;
+        ++res.state_changes;
+        if (before == ContactState::open) ++res.closed;
+        else if (r.state == ContactState::open) ++res.opened;
+        else if (r.state == ContactState::sliding) ++res.slipped;
+        else ++res.stuck;
+      }
+    } else if (refine && h.refinements < settings_.max_refinements) {
+      ++h.refinements;
+      ++res.state_changes;
+      ++res.refinements;
+    }
+    // The normal force that drives friction in the next iterate. A contact that
+    // just closed has N from a trial without its spring (the whole free
+    // approach of the step as penetration): start its friction from zero and
+    // let the refinement above bring it to its own N.
+    h.normal_force = (r.state == ContactState::open || before == ContactState::open) ? 0.0 : N;
+    if (r.state != ContactState::open) {
+      res.max_penetration = std::max(res.max_penetration, dn);
+      scale = std::max(scale, std::abs(N));
+    }
+    // A piecewise-affine law (Nishihara's threshold): take the piece that holds
+    // at this iterate's stress; a change asks for another iteration (bounded
+    // by max_refinements, so the switch cannot chatter).
+    if (r.state == ContactState::locked && r.rheology >= 0 && r.tributary_length > 0.0 &&
+        law_steps_[r.joint_set].active && !r.creep_failed &&
+        !joint_sets_[r.joint_set].law->is_linear()) {
+      const ShearSeam before_seam = seams_[c];
+      const double tau =
+          shear_stiffness(c) * (h.dt0 + seams_[c].locking_shift + slip) / r.tributary_length;
+      const laws::ContactRheology& law = *joint_sets_[r.joint_set].law;
+      if (law.failure_in_step(step_constants_of(c), work_rheology_[r.rheology], h.tau_start, tau)) {
+        // The law fails within the step at this stress (damage 1, docs/rheology-in-dda.md,
+        // "Failure"): the joint's creep strength is gone. It becomes a residual
+        // frictional joint - elastic spring, no creep, no cohesion or tensile
+        // strength - and the next iterate lets Mohr-Coulomb decide whether its
+        // friction holds.
+        fail_law(c);
+        ++res.state_changes;
+        ++res.slipped;
+        continue;
+      }
+      linearize(c, tau);
+      if (law.linearity() == laws::Linearity::nonlinear) {
+        // Newton (docs/rheology-in-dda.md, "Nonlinear laws"): the iterate was
+        // solved with the tangent at the last stress; the law's increment at
+        // this stress, Delta d_c(tau) = h + c tau of the new tangent, differs
+        // from that model by e [length], which moves the stress by about
+        // k_eff e / l_t. Another iterate while that exceeds the tolerance.
+        const double lt = r.tributary_length;
+        const double model = -before_seam.locking_shift + before_seam.compliance * lt * tau;
+        const double actual = -seams_[c].locking_shift + seams_[c].compliance * lt * tau;
+        const double stress_error = shear_stiffness(c) * std::abs(actual - model) / lt;
+        if (stress_error > settings_.creep_newton_tolerance * std::max(std::abs(tau), f_res / lt) &&
+            h.newton < settings_.max_creep_newton) {
+          ++h.newton;
+          ++res.state_changes;
+          ++res.refinements;
+        }
+      } else if ((seams_[c].compliance != before_seam.compliance ||
+                  seams_[c].locking_shift != before_seam.locking_shift) &&
+                 h.refinements < settings_.max_refinements) {
+        ++h.refinements;
+        ++res.state_changes;
+        ++res.refinements;
+      }
+    }
+  }
+  force_scale_ = scale;
+  step_max_penetration_ = res.max_penetration;
+  return res;
+}
+
+}  // namespace rheodda::contact

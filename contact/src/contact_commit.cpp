@@ -1,0 +1,137 @@
+// Accepting a step (docs/contacts.md; docs/rheology-in-dda.md): the records
+// of the step become the committed ones, with their forces, accumulated shear,
+// locking points and the creep laws' histories advanced over the step.
+#include "rheodda/contact/contact_system.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "contact_geometry.hpp"
+
+namespace rheodda::contact {
+
+void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::VectorXd& D) {
+  assert(D.size() == 6 * static_cast<Eigen::Index>(blocks.size()));
+  // A step that may be retracted (begin_step's creep_error_wanted) keeps what
+  // this commit changes beside the records (contact_creep_error.cpp).
+  can_retract_ = false;
+  if (creep_error_wanted_)
+    retract_ = {creep_counters_, last_max_penetration_, penalty_, stored_before_};
+  double max_pen = 0.0;
+  stored_before_ = stored_energy(committed_, committed_work_);  // energy balance
+  step_work_.resize(work_.size());                              // energy balance
+  for (size_t c = 0; c < work_.size(); ++c) {
+    Contact& r = work_[c];
+    const Hot& h = hot_[c];
+    const auto Di = D.segment<6>(6 * r.key.vblock);
+    const auto Dj = D.segment<6>(6 * r.key.eblock);
+    const double dn = h.dn0 + h.ni.dot(Di) + h.nj.dot(Dj);
+    const double slip = h.ti.dot(Di) + h.tj.dot(Dj);
+    const double dt = h.dt0 + seams_[c].locking_shift + slip;
+    r.penetration = dn;
+    r.creep_state = r.rheology >= 0 ? CreepState::idle : CreepState::none;
+    step_work_[c] = {h.pn, h.ps, h.dn0, dn, h.dt0, slip, h.start_state,  // energy balance
+                     r.slide_direction * (std::max(h.assembled_normal_force, 0.0) * h.tan_phi +
+                                          h.cohesion * r.length),
+                     r.state != ContactState::open ? normal_dashpot(c) * (dn - h.dn_ref) : 0.0,
+                     r.state == ContactState::locked ? shear_dashpot(c) * slip : 0.0};
+    switch (r.state) {
+      case ContactState::open:
+        if (h.law_failed) ++creep_counters_[r.joint_set].failures;  // failed at an iterate (check)
+        r.normal_force = r.shear_force = 0.0;
+        if (h.start_state != ContactState::open) r.intact = false;
+        break;
+      case ContactState::locked:
+        r.normal_force = h.pn * dn;
+        r.shear_force = shear_stiffness(c) * dt;
+        r.shear_displacement += slip;
+        max_pen = std::max(max_pen, dn);
+        if (r.rheology >= 0 && r.tributary_length > 0.0 && law_steps_[r.joint_set].active &&
+            !r.creep_failed) {
+          // Advance the history from the step-start state with the step's end
+          // stress tau = F / l_t, move the locking point by the creep increment
+          // along the entrance edge (the seed's eqs. 22-29) and take the force
+          // from the spring's remaining stretch.
+          const laws::RheologyState old = work_rheology_[r.rheology];
+          const double creep = joint_sets_[r.joint_set].law->advance(
+              step_constants_of(c), old, h.tau_start, r.shear_force / r.tributary_length,
+              work_rheology_[r.rheology]);
+          CreepCounters& counters = creep_counters_[r.joint_set];
+          counters.contact_time += step_dt_;
+          if (!r.has_crept) ++counters.contacts;
+          r.has_crept = true;
+          r.creep_state = CreepState::creeping;
+          if (work_rheology_[r.rheology].failed()) {
+            // The law failed within the step at the converged stress although no
+            // iterate saw it (e.g. anti-chattering): the joint becomes a
+            // residual frictional joint now, without this step's creep; the
+            // next step's Mohr-Coulomb check decides whether it holds.
+            fail_law(c);
+            work_creep_[c] = 0.0;
+          } else {
+          const BlockView& eb = blocks[r.key.eblock];
+          r.locking_ratio += creep / (edge_end(eb, r.key.edge) - edge_start(eb, r.key.edge)).norm();
+          r.shear_force = h.ps * (h.dt0 + slip - creep);
+          work_creep_[c] = creep;
+          r.creep_displacement += creep;
+          }
+        }
+        if (h.law_failed) ++creep_counters_[r.joint_set].failures;
+        break;
+      case ContactState::sliding: {
+        if (h.law_failed) ++creep_counters_[r.joint_set].failures;  // failed at an iterate (check)
+        r.normal_force = h.pn * dn;
+        r.shear_force = r.slide_direction *
+                        (std::max(r.normal_force, 0.0) * h.tan_phi + h.cohesion * r.length);
+        r.shear_displacement += slip;
+        r.intact = false;
+        max_pen = std::max(max_pen, dn);
+        // The locking point follows the vertex: its projection on the displaced edge.
+        const BlockView& bi = blocks[r.key.vblock];
+        const BlockView& bj = blocks[r.key.eblock];
+        const Vec2& p = bi.vertices[r.key.vertex];
+        const Vec2 a = edge_start(bj, r.key.edge), b = edge_end(bj, r.key.edge);
+        const Vec2 p1 = p + displacement_matrix(bi.centroid, p) * Di;
+        const Vec2 a1 = a + displacement_matrix(bj.centroid, a) * Dj;
+        const Vec2 b1 = b + displacement_matrix(bj.centroid, b) * Dj;
+        r.locking_ratio = line_ratio(a1, b1, p1);
+        break;
+      }
+    }
+  }
+  last_max_penetration_ = max_pen;
+  // Penetration control: raise the penalty for the next steps.
+  if (max_pen > allowed_penetration_ &&
+      penalty_ * settings_.penalty_raise <= settings_.penalty * settings_.penalty_max_factor)
+    penalty_ *= settings_.penalty_raise;
+  // History rules: an open or sliding contact loses its creep history (the
+  // spring relocks unstretched, so the law restarts from rest).
+  for (const Contact& r : work_)
+    if (r.rheology >= 0 && r.state != ContactState::locked) work_rheology_[r.rheology] = {};
+  committed_.swap(work_);
+  committed_rheology_.swap(work_rheology_);
+  committed_creep_.swap(work_creep_);
+  committed_work_.swap(step_work_);  // energy balance
+  if (creep_error_wanted_) {
+    // The step-start records (now in the working arrays) are the estimate's
+    // start, and what retract_step swaps back.
+    start_records_.swap(work_);
+    start_rheology_.swap(work_rheology_);
+    start_creep_.swap(work_creep_);
+    start_work_.swap(step_work_);
+    estimate_creep_error();
+    can_retract_ = true;
+  } else {
+    creep_error_ = 0.0;
+    creep_changes_ = 0;
+  }
+  work_.clear();
+  work_rheology_.clear();
+  work_creep_.clear();
+}
+
+}  // namespace rheodda::contact

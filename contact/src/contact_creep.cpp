@@ -1,0 +1,107 @@
+// The creep laws on the contacts (docs/rheology-in-dda.md): per joint set and
+// step the law's constants and scheme, per locked contact the affine form of
+// its creep increment (the seam in its shear spring), failures of damage laws.
+#include "rheodda/contact/contact_system.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "contact_geometry.hpp"
+
+#include "rheodda/laws/series_law.hpp"
+
+namespace rheodda::contact {
+
+namespace {
+
+/// Scheme of a joint set when the settings leave it open: exponential-linear
+/// (2nd order) while dt (k + E_i) <= 2 eta_i for every creep element i, where it
+/// neither diverges nor rings under the series spring k [stress/length];
+/// implicit (monotone at any dt) otherwise (docs/rheology-in-dda.md, "Schemes").
+laws::Scheme automatic_scheme(const laws::ContactRheology& law, double k, double dt) {
+  const auto* series = dynamic_cast<const laws::SeriesLaw*>(&law);
+  if (!series) return laws::Scheme::implicit;
+  for (const laws::CreepElement& e : series->elements()) {
+    const double E = e.kind == laws::CreepElement::Kind::kelvin ? e.E : 0.0;
+    if (dt * (k + E) > 2.0 * e.eta) return laws::Scheme::implicit;
+  }
+  return laws::Scheme::exponential_linear;
+}
+
+}  // namespace
+
+std::optional<laws::Scheme> ContactSystem::scheme_used(int js) const {
+  if (js < 0 || js >= static_cast<int>(law_steps_.size()) || !law_steps_[js].active)
+    return std::nullopt;
+  return law_steps_[js].scheme;
+}
+
+const laws::StepConstants& ContactSystem::step_constants_of(size_t c) const {
+  const LawStep& ls = law_steps_[work_[c].joint_set];
+  return hot_[c].creep_from_rest ? ls.from_rest : ls.main;
+}
+
+void ContactSystem::linearize(size_t c, double tau_guess) {
+  // Delta d_c = h + c tau_e (laws/contact_rheology.hpp) with tau = F / l_t:
+  // locking point shifted by h, compliance c / l_t in force terms.
+  const Contact& r = work_[c];
+  const laws::Linearization lin = joint_sets_[r.joint_set].law->linearize(
+      step_constants_of(c), work_rheology_[r.rheology], hot_[c].tau_start, tau_guess);
+  seams_[c] = {-lin.h, lin.c / r.tributary_length};
+}
+
+double ContactSystem::time_to_failure() const {
+  double t = std::numeric_limits<double>::infinity();
+  for (const Contact& r : committed_)
+    if (r.state == ContactState::locked && r.rheology >= 0 && r.tributary_length > 0.0 &&
+        !r.creep_failed && joint_sets_[r.joint_set].law)
+      t = std::min(t, joint_sets_[r.joint_set].law->time_to_failure(
+                          committed_rheology_[r.rheology], r.shear_force / r.tributary_length));
+  return t;
+}
+
+void ContactSystem::fail_law(size_t c) {
+  // docs/rheology-in-dda.md, "Failure": a residual frictional joint from now on.
+  Contact& r = work_[c];
+  Hot& h = hot_[c];
+  h.law_failed = true;
+  r.creep_failed = true;
+  if (r.rheology >= 0) work_rheology_[r.rheology] = {};  // no history left
+  r.intact = false;
+  h.cohesion = 0.0;
+  h.tensile_strength = 0.0;
+  seams_[c] = {};
+}
+
+void ContactSystem::start_laws(double dt) {
+  // Law constants, once per joint set and step (never per contact). The
+  // automatic scheme looks at the stiffest spring per unit area of the set.
+  law_steps_.assign(joint_sets_.size(), LawStep{});
+  const bool any_law = std::any_of(joint_sets_.begin(), joint_sets_.end(),
+                                   [](const JointSet& j) { return j.law != nullptr; });
+  if (dt > 0.0 && any_law) {
+    std::vector<double> k_area(joint_sets_.size(), 0.0);
+    for (size_t c = 0; c < work_.size(); ++c)
+      if (work_[c].rheology >= 0 && work_[c].tributary_length > 0.0)
+        k_area[work_[c].joint_set] =
+            std::max(k_area[work_[c].joint_set], hot_[c].ps / work_[c].tributary_length);
+    for (size_t j = 0; j < joint_sets_.size(); ++j) {
+      const auto& law = joint_sets_[j].law;
+      if (!law) continue;
+      LawStep& ls = law_steps_[j];
+      ls.active = true;
+      ls.scheme = settings_.scheme ? *settings_.scheme : automatic_scheme(*law, k_area[j], dt);
+      ls.main = law->step_constants(dt, ls.scheme);
+      ls.from_rest = law->step_constants(dt, laws::Scheme::implicit);
+    }
+    for (size_t c = 0; c < work_.size(); ++c)
+      if (work_[c].rheology >= 0 && work_[c].tributary_length > 0.0 && !work_[c].creep_failed)
+        linearize(c, hot_[c].tau_start);
+  }
+}
+
+}  // namespace rheodda::contact
