@@ -72,6 +72,18 @@ void run_command(const RunArgs& args) {
   if (const auto& cs = r.mechanism.collapse_stages; !cs.empty())
     fmt::print("  collapse stages (docs/engine.md, \"Collapse stages\"): {}, starting at t = {:.6g} {}\n", cs.size(),
                fmt::join(cs, ", "), s.units.time);
+  if (!r.events.empty()) {
+    int settling = 0, mechanisms = 0, at_rest = 0;
+    double dissipated = 0.0;
+    for (const auto& e : r.events) {
+      (e.kind == core::StageKind::settling ? settling : mechanisms) += 1;
+      at_rest += e.at_rest ? 1 : 0;
+      dissipated += e.energy_dissipated;
+    }
+    fmt::print("  dynamic stages (events.csv; docs/engine.md, \"Dynamic stages\"): {} settling, {} mechanism, {} "
+               "ended at rest; {:.4g} {}*{} dissipated in them\n",
+               settling, mechanisms, at_rest, dissipated, s.units.force, s.units.length);
+  }
   if (r.status == scene::RunStatus::interrupted) {
     fmt::print("  resume with: rheodda run {} -o {} --resume\n", args.scene, opt.out_dir);
     throw CLI::RuntimeError(128 + (g_stop ? static_cast<int>(g_stop) : SIGINT));

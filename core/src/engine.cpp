@@ -60,6 +60,7 @@ void Engine::Impl::initialise() {
   }
   st.step = 0;
   st.time = 0.0;
+  if (s.settle_until > 0.0) start_stage(StageKind::settling, s.settle_until);
   search_disp = std::min(g2_now() * w0, search_floor);
   st.next_dt = settling() ? std::min(s.dt, s.settle_dt) : s.dt;
   solver = std::make_unique<LinearSolver>(s.solver, s.pcg_tolerance, s.pcg_max_iterations);
@@ -214,6 +215,8 @@ const std::vector<std::vector<MeasurementSample>>& Engine::measurements() const 
 }
 const SolverStats& Engine::solver_stats() const { return impl_->solver->stats(); }
 const EnergyBalance& Engine::energy() const { return impl_->st.energy; }
+const std::vector<StageEvent>& Engine::events() const { return impl_->st.events; }
+bool Engine::in_stage() const { return impl_->settling(); }
 
 EngineState Engine::save() const { return impl_->st; }
 

@@ -99,18 +99,21 @@ struct Engine::Impl {
   void refresh_geometry();
   void assemble_blocks(double dt, double t_end, std::vector<Mat6>& diag, Eigen::VectorXd& rhs) const;
   double max_vertex_displacement(const Eigen::VectorXd& d) const;
-  /// End of the collapse stage in progress, or of the last one (Settings::
-  /// collapse_dt; docs/engine.md, "Collapse stages"); 0 before any [time].
-  double collapse_until = 0.0;
   /// End of the stage the run is in or was last in: the settling stage or a
-  /// collapse stage [time].
-  double stage_end() const { return std::max(model.settings.settle_until, collapse_until); }
+  /// collapse stage (EngineState::stage; dynamic_stages.cpp) [time].
+  double stage_end() const { return st.stage.until; }
   /// In the settling stage (Settings::settle_until; docs/engine.md, "Settling
   /// stage") or in a collapse stage.
   bool settling() const {
     const double end = stage_end();
     return end > 0.0 && st.time < end - 1e-12 * std::max(1.0, std::abs(end));
   }
+  /// Opens a dynamic stage of `kind` from now, at most `length` long and, when
+  /// it may end at rest, at least `shortest` (dynamic_stages.cpp).
+  void start_stage(StageKind kind, double length, double shortest = 0.0);
+  /// After an accepted step: the stage's figures, and its end at rest
+  /// (Settings::settle_rest_tolerance) or at its longest, recorded as an event.
+  void update_stage(const StepReport& rep);
   /// A static step of dt whose trial D moves as a mechanism (collapse stages).
   bool collapses(double dt) const {
     return EnergyAccount::static_trial_share(energy_inputs(), D, dt, newmark().beta, st.time + dt) >

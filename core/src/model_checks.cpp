@@ -136,6 +136,11 @@ void Engine::Impl::validate() {
     throw ModelError("settings.settle_dt", "must be > 0 (time) with a settling stage");
   if (s.settle_until > 0.0 && !(s.settle_g2 > 0.0 && std::isfinite(s.settle_g2)))
     throw ModelError("settings.settle_g2", "must be > 0 with a settling stage");
+  if (!(s.settle_rest_tolerance >= 0.0 && s.settle_rest_tolerance < 1.0))
+    throw ModelError("settings.settle_rest_tolerance", "must be in [0, 1) (0 = stages run to their longest)");
+  if (s.settle_rest_tolerance > 0.0 && !(s.settle_until > 0.0 && s.settle_dynamic))
+    throw ModelError("settings.settle_rest_tolerance",
+                     "ends dynamic stages at rest; the analysis has no dynamic settling stage");
   if (!(s.collapse_dt >= 0.0 && std::isfinite(s.collapse_dt)))
     throw ModelError("settings.collapse_dt", "must be >= 0 (time; 0 = no collapse stages)");
   if (s.collapse_dt > 0.0) {

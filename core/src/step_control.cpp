@@ -115,6 +115,7 @@ StepReport Engine::Impl::step(double dt_cap) {
       rep.max_penetration = trial.check.max_penetration;
       accept(D, dt, st.step, st.time + dt);
       rep.time = st.time;
+      if (settle) update_stage(rep);
       if (adaptive) {
         // Step size from the creep error estimate err of this step.
         rep.creep_error = err;
@@ -148,9 +149,10 @@ bool Engine::Impl::open_collapse_stage(double& dt, StepReport& rep) {
     ++rep.cuts;
     return false;
   }
-  collapse_until = st.time + s.settle_until;  // a stage as long as the settling stage
+  // At most as long as the settling stage; at least over the failed step.
+  start_stage(StageKind::mechanism, s.settle_until, dt);
   rep.collapse_stage = true;
-  dt = std::min(s.settle_dt, collapse_until - st.time);
+  dt = std::min(s.settle_dt, stage_end() - st.time);
   return true;
 }
 

@@ -163,6 +163,7 @@ BuiltScene build_scene(const SceneDescription& s) {
     st.settle_dynamic = a.settle->dynamic;
     st.collapse_dt = a.settle->collapse_dt;
     st.settle_gravity_ramp = a.settle->gravity_ramp;
+    st.settle_rest_tolerance = a.settle->rest_tolerance;
   }
   switch (a.solver) {
     case SolverKind::automatic: st.solver = core::SolverKind::automatic; break;

@@ -95,7 +95,13 @@ std::string describe_scene(const SceneDescription& s) {
     line(fmt::format("  time step: fixed dt {:g} {} (cut by dt_cut {:g} when a step fails, then grown back by "
                      "dt_growth {:g} per step)",
                      a.dt, u.time, a.dt_cut, a.dt_growth));
-  if (a.settle)
+  if (a.settle && a.settle->rest_tolerance > 0.0)
+    line(fmt::format("  settling stage (dynamic): until at rest (kinetic energy below {:g} of the stage's work of "
+                     "gravity and loads), at most {:g} {}, steps of at most {:g} {}, max_displacement_ratio {:g} "
+                     "(docs/engine.md, \"Dynamic stages\")",
+                     a.settle->rest_tolerance, a.settle->until, u.time, a.settle->dt, u.time,
+                     a.settle->max_displacement_ratio));
+  else if (a.settle)
     line(fmt::format("  settling stage ({}): until {:g} {}, steps of at most {:g} {}, max_displacement_ratio {:g} "
                      "(docs/engine.md, \"Settling stage\")",
                      a.settle->dynamic ? "dynamic" : "static", a.settle->until, u.time, a.settle->dt, u.time,
@@ -104,7 +110,11 @@ std::string describe_scene(const SceneDescription& s) {
     line(fmt::format("  gravity ramp: gravity rises linearly from zero to its full value over the first {:g} {} of "
                      "the stage (docs/engine.md, \"Gravity ramp\")",
                      a.settle->gravity_ramp, u.time));
-  if (a.settle && a.settle->collapse_dt > 0.0)
+  if (a.settle && a.settle->collapse_dt > 0.0 && a.settle->rest_tolerance > 0.0)
+    line(fmt::format("  collapse stages: a static step that moves as a mechanism is cut down to {:g} {}, then taken "
+                     "as a dynamic stage until at rest, at most {:g} {} (docs/engine.md, \"Dynamic stages\")",
+                     a.settle->collapse_dt, u.time, a.settle->until, u.time));
+  else if (a.settle && a.settle->collapse_dt > 0.0)
     line(fmt::format("  collapse stages: a static step that moves as a mechanism is cut down to {:g} {}, then taken "
                      "as a dynamic stage of {:g} {} (docs/engine.md, \"Collapse stages\")",
                      a.settle->collapse_dt, u.time, a.settle->until, u.time));

@@ -70,7 +70,8 @@ const std::vector<std::string> analysis{
     "stick_keeps_force", "friction_tolerance", "force_resolution", "max_flips", "max_refinements",
     "penalty_raise", "penalty_max_factor", "open_close_limit", "fixed_point_stiffness", "solver", "solver_tolerance",
     "solver_max_iterations", "solver_iterate_tolerance", "output_interval", "max_travel_ratio", "max_output_size", "gravity"};
-const std::vector<std::string> settle{"until", "dt", "max_displacement_ratio", "type", "collapse_dt", "gravity_ramp"};
+const std::vector<std::string> settle{"until", "dt", "max_displacement_ratio", "type", "collapse_dt", "gravity_ramp",
+                                      "rest_tolerance"};
 const std::vector<std::string> material{"density", "young_modulus", "poisson_ratio", "plane", "damping_ratio"};
 const std::vector<std::string> joint_set{"friction_angle", "cohesion", "tensile_strength",
                                          "normal_stiffness", "shear_stiffness", "restitution", "law", "record"};
@@ -339,12 +340,25 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
     // The settling stage (docs/engine.md, "Settling stage").
     MapReader sm(ctx, v, m.child("settle"), keys::settle);
     Analysis::Settle st;
-    YAML::Node until = sm.required("until", "end of the settling stage [time]");
-    st.until = number(ctx, until, sm.child("until"), positive("time"));
-    if (st.until >= a.duration)
-      ctx.fail(until, sm.child("until"),
-               fmt::format("the settling stage ends at {:g}, not before the analysis does (duration = {:g})",
-                           st.until, a.duration));
+    // A stage that ends at rest (docs/engine.md, "Dynamic stages") needs no
+    // length: `until` is then its longest, by default the analysis's duration.
+    YAML::Node rest = sm.find("rest_tolerance");
+    YAML::Node until = rest.IsDefined() ? sm.find("until") : sm.required("until", "end of the settling stage [time]");
+    if (until.IsDefined()) {
+      st.until = number(ctx, until, sm.child("until"), positive("time"));
+      if (st.until > a.duration || (!rest.IsDefined() && st.until >= a.duration))
+        ctx.fail(until, sm.child("until"),
+                 fmt::format("the settling stage ends at {:g}, not before the analysis does (duration = {:g})",
+                             st.until, a.duration));
+    } else {
+      st.until = a.duration;
+    }
+    if (rest.IsDefined()) {
+      st.rest_tolerance = number(ctx, rest, sm.child("rest_tolerance"), {0.0, true, 1.0, true, ""});
+      if (!sm.find("type").IsDefined() || sm.find("type").as<std::string>() != "dynamic")
+        ctx.fail(rest, sm.child("rest_tolerance"),
+                 "a stage ends at rest when its kinetic energy has decayed: give `type: dynamic`");
+    }
     YAML::Node sdt = sm.required("dt", "largest step of the settling stage [time]");
     st.dt = number(ctx, sdt, sm.child("dt"), positive("time"));
     if (st.dt > st.until)

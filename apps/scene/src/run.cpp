@@ -56,7 +56,8 @@ json scene_json(const SceneDescription& s) {
                                               {"max_displacement_ratio", a.settle->max_displacement_ratio},
                                               {"type", a.settle->dynamic ? "dynamic" : "static"},
                                               {"collapse_dt", a.settle->collapse_dt},
-                                              {"gravity_ramp", a.settle->gravity_ramp}}
+                                              {"gravity_ramp", a.settle->gravity_ramp},
+                                              {"rest_tolerance", a.settle->rest_tolerance}}
                                        : json(nullptr)},
                    {"dynamic_ratio", a.dynamic_ratio},
                    {"time_integration", time_integration_name(a.time_integration)},
@@ -665,6 +666,34 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
                                {"collapse_stages", m.collapse_stages}};
     } else {
       j["static_mechanism"] = nullptr;
+    }
+    if (a.settle) {
+      // Dynamic stages (docs/engine.md, "Dynamic stages"): summary.json's
+      // "events" and the events table events.csv, rewritten whole each time.
+      j["events"] = json::array();
+      std::string csv =
+          "kind,start_time,end_time,start_step,steps,at_rest,blocks_involved,largest_displacement,"
+          "kinetic_energy_peak,kinetic_energy_end,work,energy_dissipated\n";
+      for (const core::StageEvent& e : engine.events()) {
+        j["events"].push_back({{"kind", core::stage_kind_name(e.kind)},
+                               {"start_time", e.start_time},
+                               {"end_time", e.end_time},
+                               {"start_step", e.start_step},
+                               {"steps", e.steps},
+                               {"at_rest", e.at_rest},
+                               {"blocks_involved", e.blocks_involved},
+                               {"largest_displacement", e.largest_displacement},
+                               {"kinetic_energy_peak", e.kinetic_energy_peak},
+                               {"kinetic_energy_end", e.kinetic_energy_end},
+                               {"work", e.work},
+                               {"energy_dissipated", e.energy_dissipated}});
+        csv += fmt::format("{},{:.10g},{:.10g},{},{},{},{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g}\n",
+                           core::stage_kind_name(e.kind), e.start_time, e.end_time, e.start_step, e.steps,
+                           e.at_rest ? 1 : 0, e.blocks_involved, e.largest_displacement, e.kinetic_energy_peak,
+                           e.kinetic_energy_end, e.work, e.energy_dissipated);
+      }
+      write_file_atomic((fs::path(out) / "events.csv").string(), csv);
+      result.events = engine.events();
     }
     j["frames"] = result.frames;
     j["wall_seconds"] = result.wall_seconds;

@@ -246,6 +246,31 @@ BOOST_AUTO_TEST_CASE(gravity_ramp_reaches_the_engine_and_must_end_within_the_set
                   "analysis.settle.gravity_ramp", "out of range");
 }
 
+BOOST_AUTO_TEST_CASE(rest_tolerance_ends_stages_at_rest_and_makes_until_their_longest) {
+  // docs/engine.md, "Dynamic stages".
+  const auto text = with("  dt: 0.01", "  dt: 0.01\n  settle: {dt: 0.001, type: dynamic, rest_tolerance: 1.0e-5}");
+  const auto s = scene::parse_scene(text, "rest.yaml");
+  BOOST_TEST_REQUIRE(s.analysis.settle.has_value());
+  BOOST_TEST(s.analysis.settle->rest_tolerance == 1e-5);
+  BOOST_TEST(s.analysis.settle->until == s.analysis.duration);  // no length given: at most the duration
+  const scene::BuiltScene built = scene::build_scene(s);
+  BOOST_TEST(built.model.settings.settle_rest_tolerance == 1e-5);
+  BOOST_TEST(built.model.settings.settle_until == s.analysis.duration);
+  BOOST_TEST(scene::describe_scene(s).find("until at rest") != std::string::npos);
+  // With `until`, it is the longest; without rest_tolerance `until` is still required.
+  BOOST_TEST(scene::parse_scene(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, type: dynamic, "
+                                                  "rest_tolerance: 1.0e-5}"),
+                                "rest.yaml")
+                 .analysis.settle->until == 0.1);
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  settle: {dt: 0.001, type: dynamic}"), 5, "{dt",
+                  "analysis.settle.until", "required");
+  // Only a dynamic stage comes to rest; a fraction in (0, 1).
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  settle: {dt: 0.001, rest_tolerance: 1.0e-5}"), 5, "1.0e-5}",
+                  "analysis.settle.rest_tolerance", "give `type: dynamic`");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  settle: {dt: 0.001, type: dynamic, rest_tolerance: 1}"), 5, "1}",
+                  "analysis.settle.rest_tolerance", "out of range");
+}
+
 BOOST_AUTO_TEST_CASE(step_tolerance_and_step_extrapolation_reach_the_engine_settings_and_bad_values_are_refused) {
   const auto text = with("  dt: 0.01", "  dt: 0.01\n  step_tolerance: 1.0e-4\n  step_extrapolation: false\n"
                                        "  dt_max: 0.5");

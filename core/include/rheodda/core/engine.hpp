@@ -101,6 +101,49 @@ struct MeasurementSample {
   Vec2 displacement = Vec2::Zero();  ///< position minus initial position [length]
 };
 
+/// What kind of dynamic stage (docs/engine.md, "Dynamic stages").
+enum class StageKind {
+  settling,   ///< the settling stage at the start of a static analysis (Settings::settle_until)
+  mechanism,  ///< a part a static step found without equilibrium, taken dynamically (Settings::collapse_dt)
+};
+
+/// Name used in outputs: "settling", "mechanism".
+const char* stage_kind_name(StageKind k);
+
+/// One dynamic stage of a static analysis, from its start to its end (the
+/// events table, docs/outputs.md).
+struct StageEvent {
+  StageKind kind = StageKind::settling;
+  double start_time = 0.0;           ///< [time]
+  double end_time = 0.0;             ///< [time]
+  int start_step = 0;                ///< first step of the stage
+  int steps = 0;                     ///< accepted steps in the stage [-]
+  bool at_rest = false;              ///< ended because its kinetic energy had decayed
+                                     ///< (Settings::settle_rest_tolerance), not at its longest
+  int blocks_involved = 0;           ///< blocks with a vertex that moved more than the stage's
+                                     ///< step limit (settle_g2 w0) over the stage [-]
+  double largest_displacement = 0.0; ///< largest vertex displacement over the stage [length]
+  double kinetic_energy_peak = 0.0;  ///< largest kinetic energy after a step of the stage [force x length]
+  double kinetic_energy_end = 0.0;   ///< kinetic energy left at its end (dropped by the next
+                                     ///< static step) [force x length]
+  double work = 0.0;                 ///< work of gravity and loads over the stage [force x length]
+  double energy_dissipated = 0.0;    ///< dissipation over the stage's steps (friction, creep,
+                                     ///< integration, dashpots, springs attached or detached) [force x length]
+};
+
+/// The dynamic stage in progress (docs/engine.md, "Dynamic stages").
+struct StageState {
+  /// Latest end of the stage in progress or of the last one; the run is in a
+  /// stage while time < until (0: none yet) [time].
+  double until = 0.0;
+  /// The stage does not end at rest before this time: the end of the static
+  /// step that found the mechanism (that step's motion is the stage's to take) [time].
+  double not_before = 0.0;
+  bool open = false;              ///< a stage has started and its event is not yet recorded
+  StageEvent event;               ///< the stage's figures so far
+  std::vector<std::vector<Vec2>> start_vertices;  ///< block vertices at its start [length]
+};
+
 /// Everything that evolves during a run: copy it to checkpoint, hand it back
 /// to Engine::restore to resume (the ContactModel keeps its own state).
 struct EngineState {
@@ -110,6 +153,8 @@ struct EngineState {
   std::vector<BlockState> blocks;
   std::vector<std::vector<MeasurementSample>> measurements;  ///< per measurement point
   EnergyBalance energy;      ///< energy balance since t = 0 (energy.hpp)
+  StageState stage;          ///< the dynamic stage in progress, or the last one
+  std::vector<StageEvent> events;  ///< dynamic stages that have ended, in order
 };
 
 /// Called after every accepted step.
@@ -171,6 +216,10 @@ class Engine {
   /// Energy balance: stored energies, the last step's flows and the sums since
   /// t = 0 (docs/engine.md, "Energy balance").
   const EnergyBalance& energy() const;
+  /// Dynamic stages that have ended (docs/engine.md, "Dynamic stages").
+  const std::vector<StageEvent>& events() const;
+  /// The run is in a dynamic stage (the next step is dynamic).
+  bool in_stage() const;
 
   /// Copy of everything that evolves.
   EngineState save() const;

@@ -168,6 +168,13 @@ struct Settings {
   /// settling stage (settle_until, with settle_dt and settle_g2) carries the
   /// collapse from the step's start [time]; 0 = off; >= 0, < dt
   double collapse_dt = 0.0;
+  /// Dynamic stages end at rest (docs/engine.md, "Dynamic stages"): a settling
+  /// or collapse stage ends after a step whose kinetic energy is below this
+  /// fraction of the work gravity and the loads did over the stage (not before
+  /// the gravity ramp has ended, Settings::settle_gravity_ramp), else at its
+  /// longest, settle_until from its start [-]; 0 = stages run to their
+  /// longest; in [0, 1)
+  double settle_rest_tolerance = 0.0;
   /// Gravity ramp of the settling stage (docs/engine.md, "Gravity ramp"): the
   /// body force rises linearly from zero at t = 0 to its full value at this
   /// time, which lies within the stage (0 < settle_gravity_ramp <= settle_until),

@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "rheodda/core/engine.hpp"
+
 #include "rheodda/scene/scene.hpp"
 
 namespace rheodda::scene {
@@ -76,6 +78,9 @@ struct RunResult {
     std::vector<double> collapse_stages;
   };
   StaticMechanism mechanism;
+  /// The dynamic stages that have ended (analysis.settle; docs/engine.md,
+  /// "Dynamic stages"), as in events.csv.
+  std::vector<core::StageEvent> events;
 };
 
 /// Runs the scene; `scene_text` is the file's text (echoed in summary.json, hashed in

@@ -52,7 +52,7 @@ struct Analysis {
   double dt_cut = 0.3;                 ///< factor on the step when a step is cut [-]; in (0, 1)
   int max_cuts = 30;                   ///< cuts of dt (x dt_cut each) allowed in one step before the run fails [-]
   double max_displacement_ratio = 0.01;  ///< g2: allowed step displacement / half model size [-]
-  /// `settle: {until, dt, max_displacement_ratio, type, collapse_dt, gravity_ramp}`: a settling stage at the start
+  /// `settle: {until, dt, max_displacement_ratio, type, collapse_dt, gravity_ramp, rest_tolerance}`: a settling stage at the start
   /// (docs/engine.md, "Settling stage"): steps of at most `dt` with the displacement
   /// limit `max_displacement_ratio` until `until`, then the analysis's own.
   struct Settle {
@@ -71,6 +71,12 @@ struct Analysis {
     /// at this time, within the stage (docs/engine.md, "Gravity ramp") [time];
     /// 0 = gravity at once; > 0, <= until.
     double gravity_ramp = 0.0;
+    /// `rest_tolerance`: the stage, and every collapse stage, ends at rest:
+    /// after a step whose kinetic energy is below this fraction of the work
+    /// gravity and the loads did over the stage (docs/engine.md, "Dynamic
+    /// stages"); `until` is then the longest a stage may last (default: the
+    /// duration) [-]; 0 = stages last `until`; in (0, 1); dynamic stage only.
+    double rest_tolerance = 0.0;
   };
   /// The run has dynamic steps: a dynamic analysis, or a dynamic settling stage.
   bool has_dynamic_steps() const {

@@ -1,0 +1,89 @@
+// Dynamic stages of a static analysis (docs/engine.md, "Dynamic stages"): the
+// settling stage at the start (Settings::settle_until) and the stages that take
+// a collapse dynamically (Settings::collapse_dt). A stage carries velocity with
+// the settling stage's dt and g2; it ends at rest - after a step whose kinetic
+// energy is below Settings::settle_rest_tolerance of the work gravity and the
+// loads did over the stage - or at its longest, settle_until from its start.
+// Each stage is recorded as a StageEvent when it ends.
+#include <algorithm>
+#include <cmath>
+
+#include "engine_impl.hpp"
+
+namespace rheodda::core {
+
+namespace {
+
+/// A stage ends at rest no sooner than after this many steps: the step that
+/// opens a collapse stage starts at rest, with no kinetic energy and no work
+/// done yet [-].
+constexpr int kMinStageSteps = 2;
+
+}  // namespace
+
+const char* stage_kind_name(StageKind k) {
+  switch (k) {
+    case StageKind::settling: return "settling";
+    case StageKind::mechanism: return "mechanism";
+  }
+  return "?";
+}
+
+void Engine::Impl::start_stage(StageKind kind, double length, double shortest) {
+  StageState& g = st.stage;
+  g.until = st.time + length;
+  g.not_before = st.time + shortest;
+  g.open = true;
+  g.event = StageEvent{};
+  g.event.kind = kind;
+  g.event.start_time = st.time;
+  g.event.start_step = st.step;
+  g.start_vertices.resize(st.blocks.size());
+  for (std::size_t k = 0; k < st.blocks.size(); ++k) g.start_vertices[k] = st.blocks[k].vertices;
+}
+
+void Engine::Impl::update_stage(const StepReport& rep) {
+  StageState& g = st.stage;
+  if (!g.open) return;
+  const Settings& s = model.settings;
+  StageEvent& e = g.event;
+  const EnergyFlows& f = st.energy.step;
+  ++e.steps;
+  e.end_time = rep.time;
+  e.work += f.work_gravity + f.work_loads;
+  e.energy_dissipated += f.dissipation_friction + f.dissipation_creep + f.dissipation_integration +
+                         f.dissipation_contact_damping + f.dissipation_block_damping +
+                         f.dissipation_contact_closing + f.dissipation_contact_release;
+  const double kinetic = st.energy.stored.kinetic;
+  e.kinetic_energy_peak = std::max(e.kinetic_energy_peak, kinetic);
+  e.kinetic_energy_end = kinetic;
+  // At rest: not before the gravity ramp has ended (a slow load keeps the
+  // kinetic energy small while it rises), nor before the end of the static step
+  // that found the mechanism (the stage starts at rest, before the cause of
+  // the motion may have come), and relative to the work the stage took in (the
+  // energy that had to be stored or dissipated).
+  const double ramp_end = s.settle_gravity_ramp;
+  const double not_before = std::max(ramp_end, g.not_before);
+  const bool late_enough = st.time >= not_before - 1e-12 * std::max(1.0, std::abs(not_before));
+  if (settling() && s.settle_rest_tolerance > 0.0 && e.steps >= kMinStageSteps && late_enough &&
+      e.work > 0.0 && kinetic <= s.settle_rest_tolerance * e.work) {
+    e.at_rest = true;
+    g.until = st.time;  // the stage is over: the next step is static
+  }
+  if (settling()) return;
+  // The stage has ended (at rest or at its longest): its event.
+  const double reach = s.settle_g2 * w0;  // the stage's step limit [length]
+  for (std::size_t k = 0; k < st.blocks.size(); ++k) {
+    double moved = 0.0;
+    const auto& v = st.blocks[k].vertices;
+    const auto& v0 = g.start_vertices[k];
+    for (std::size_t i = 0; i < v.size() && i < v0.size(); ++i) moved = std::max(moved, (v[i] - v0[i]).norm());
+    e.largest_displacement = std::max(e.largest_displacement, moved);
+    if (moved > reach) ++e.blocks_involved;
+  }
+  st.events.push_back(e);
+  g.open = false;
+  g.start_vertices.clear();
+}
+
+}  // namespace rheodda::core
