@@ -27,6 +27,9 @@
 //                                                  # --max-refinements 3: the open-close settings
 //                                                  # of contact::ContactSettings (defaults there)
 //   build/bench/contact_bench --stick-keeps-force  # ContactSettings::stick_keeps_force
+//   build/bench/contact_bench --contact-solver newton --residual-tol 1e-4
+//                                                  # the contact solve (Settings::contact_solver)
+//                                                  # and its residual tolerance
 //
 // A wall of NX x NY bricks 0.2 m x 0.1 m in running bond (odd rows start and
 // end with a half brick, so the sides are straight) stands on a fixed base
@@ -184,6 +187,8 @@ int main(int argc, char** argv) {
   bool glued = false, trace = false;
   double poisson = 0.2, duration = 0.0;
   bool stick_keeps_force = false;
+  std::string contact_solver = "open-close";
+  double residual_tol = -1.0;  // < 0: the engine's default (Settings::contact_residual_tolerance)
   contact::ContactSettings tuned;  // contact iteration settings given on the command line
   bool tuned_any = false;
   std::vector<std::pair<int, int>> sizes{{10, 10}, {32, 32}, {100, 100}, {316, 316}};
@@ -209,6 +214,8 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[k], "--max-refinements") && k + 1 < argc)
       tuned.max_refinements = std::atoi(argv[++k]), tuned_any = true;
     else if (!std::strcmp(argv[k], "--stick-keeps-force")) stick_keeps_force = true;
+    else if (!std::strcmp(argv[k], "--contact-solver") && k + 1 < argc) contact_solver = argv[++k];
+    else if (!std::strcmp(argv[k], "--residual-tol") && k + 1 < argc) residual_tol = std::atof(argv[++k]);
     else if (!std::strcmp(argv[k], "--sizes") && k + 1 < argc && !(sizes = parse_sizes(argv[++k])).empty()) {}
     else {
       std::fprintf(stderr,
@@ -216,7 +223,7 @@ int main(int argc, char** argv) {
                    "[--solver automatic|cholmod|pcg|amg] [--tol T] [--open-close N] [--penalty F] "
                    "[--glued] [--trace] [--sizes N|NXxNY,...] [--poisson NU] [--duration T] "
                    "[--friction-tolerance F] [--force-resolution F] [--max-flips N] [--max-refinements N] "
-                   "[--stick-keeps-force]\n");
+                   "[--stick-keeps-force] [--contact-solver open-close|newton] [--residual-tol R]\n");
       return 2;
     }
   }
@@ -252,6 +259,12 @@ int main(int argc, char** argv) {
     if (pcg_tol > 0.0) model.settings.pcg_tolerance = pcg_tol;
     if (iterate_tol >= 0.0) model.settings.pcg_iterate_tolerance = iterate_tol;
     if (open_close > 0) model.settings.max_open_close = open_close;
+    if (contact_solver == "newton") model.settings.contact_solver = core::ContactSolver::newton;
+    else if (contact_solver != "open-close") {
+      std::fprintf(stderr, "contact_bench: unknown --contact-solver '%s'\n", contact_solver.c_str());
+      return 2;
+    }
+    if (residual_tol > 0.0) model.settings.contact_residual_tolerance = residual_tol;
     const double n = static_cast<double>(model.blocks.size() - 1);
     if (n > 1.2 * static_cast<double>(max_blocks)) break;
     contact::ContactSettings cs = core::contact_settings_for(model, penalty);

@@ -166,4 +166,28 @@ void ContactSystem::assemble(std::span<const BlockView>, SystemSink& sink) const
   }
 }
 
+void ContactSystem::contact_forces(const Eigen::VectorXd& D, Eigen::VectorXd& f) const {
+  for (size_t c = 0; c < work_.size(); ++c) {
+    const Contact& r = work_[c];
+    if (r.state == ContactState::open) continue;
+    const Hot& h = hot_[c];
+    const auto Di = D.segment<6>(6 * r.key.vblock);
+    const auto Dj = D.segment<6>(6 * r.key.eblock);
+    const double dn = h.dn0 + h.ni.dot(Di) + h.nj.dot(Dj);
+    const double slip = h.ti.dot(Di) + h.tj.dot(Dj);
+    // Normal: spring p_n d_n and dashpot (c/dt)(d_n - d_ref), as assemble.
+    const double N = h.pn * dn + normal_dashpot(c) * (dn - h.dn_ref);
+    double T = 0.0;
+    if (r.state == ContactState::locked) {
+      // Shear spring to the locking point shifted by the creep seam, and its dashpot.
+      T = shear_stiffness(c) * (h.dt0 + seams_[c].locking_shift + slip) + shear_dashpot(c) * slip;
+    } else {
+      // Mohr-Coulomb friction from the spring's normal force at D.
+      T = r.slide_direction * (std::max(h.pn * dn, 0.0) * h.tan_phi + h.cohesion * r.length);
+    }
+    f.segment<6>(6 * r.key.vblock) += h.ni * N + h.ti * T;
+    f.segment<6>(6 * r.key.eblock) += h.nj * N + h.tj * T;
+  }
+}
+
 }  // namespace rheodda::contact

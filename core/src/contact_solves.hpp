@@ -10,5 +10,7 @@ namespace rheodda::core {
 
 /// Shi's open-close iteration, the reference (open_close_solve.cpp).
 std::unique_ptr<ContactSolve> make_open_close_solve();
+/// Newton's iterates converged on the residual (newton_solve.cpp).
+std::unique_ptr<ContactSolve> make_newton_solve();
 
 }  // namespace rheodda::core

@@ -13,7 +13,7 @@ namespace rheodda::core {
 /// block system and linear solver, timed into the step report.
 class Engine::Impl::Problem final : public StepProblem {
  public:
-  Problem(Engine::Impl& e, StepReport& rep) : e_(e), rep_(rep) {}
+  Problem(Engine::Impl& e, StepReport& rep, double dt) : e_(e), rep_(rep), dt_(dt) {}
   std::span<const contact::BlockView> blocks() const override { return e_.views; }
   const std::vector<Mat6>& block_matrix() const override { return e_.base_diag; }
   const Eigen::VectorXd& block_rhs() const override { return e_.base_rhs; }
@@ -35,6 +35,15 @@ class Engine::Impl::Problem final : public StepProblem {
     rep_.solve_seconds += seconds_since(t0);
     return d;
   }
+  bool dynamic() const override { return e_.dynamic_now(); }
+  Eigen::VectorXd predictor() const override {
+    Eigen::VectorXd p = Eigen::VectorXd::Zero(6 * static_cast<Eigen::Index>(e_.st.blocks.size()));
+    if (!e_.dynamic_now()) return p;
+    const Newmark nm = e_.newmark();
+    for (std::size_t k = 0; k < e_.st.blocks.size(); ++k)
+      p.segment<6>(6 * static_cast<Eigen::Index>(k)) = e_.predictor(e_.st.blocks[k], dt_, nm);
+    return p;
+  }
   ContactCheck check(const Eigen::VectorXd& d) override {
     const ContactCheck c = e_.contacts->check(e_.views, d);
     rep_.changes += c.changes;
@@ -44,6 +53,7 @@ class Engine::Impl::Problem final : public StepProblem {
  private:
   Engine::Impl& e_;
   StepReport& rep_;
+  double dt_;  ///< the step's size [time]
 };
 
 Engine::Impl::Trial Engine::Impl::solve_trial(double dt, bool creep_error_wanted, StepReport& rep) {
@@ -56,7 +66,7 @@ Engine::Impl::Trial Engine::Impl::solve_trial(double dt, bool creep_error_wanted
   assemble_blocks(dt, st.time + dt, base_diag, base_rhs);
   rep.assembly_seconds += seconds_since(t0);
   Trial trial;
-  Problem problem(*this, rep);
+  Problem problem(*this, rep, dt);
   try {
     const ContactSolveResult r = contact_solve->solve(problem, D);
     trial.converged = r.converged;

@@ -158,6 +158,15 @@ class ContactSystem {
   void assemble(std::span<const BlockView> blocks, SystemSink& sink) const;
   /// Updates the trial states from the trial displacements D (6 per block).
   CheckResult check(std::span<const BlockView> blocks, const Eigen::VectorXd& D);
+  /// Adds the forces the contacts exert on the blocks at the trial
+  /// displacements D, in their current trial states, into f (6 per block;
+  /// contact_springs.cpp): the normal spring and dashpot of a closed contact,
+  /// the shear spring and dashpot of a locked one, and the friction of a
+  /// sliding one from its normal force at D (not the last iterate's, as
+  /// assemble takes it). A D that solves the assembled system with states that
+  /// check finds consistent leaves F0 - K0 D - f near zero: the residual of
+  /// the step's equations (docs/contacts.md, "Contact solves").
+  void contact_forces(const Eigen::VectorXd& D, Eigen::VectorXd& f) const;
   /// Accepts the step: locking points, forces, accumulated shear; may raise the penalty.
   void end_step(std::span<const BlockView> blocks, const Eigen::VectorXd& D);
   /// Rejects the step: the records of the last accepted step stay as they were.

@@ -32,6 +32,11 @@ class ContactAdapter final : public ContactModel {
   void assemble(std::span<const contact::BlockView> blocks, contact::SystemSink& sink) override;
   ContactCheck check(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) override;
   void end_step(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) override;
+  /// contact::ContactSystem::contact_forces.
+  bool contact_forces(const Eigen::VectorXd& D, Eigen::VectorXd& f) const override {
+    system_.contact_forces(D, f);
+    return true;
+  }
   void abandon_step() override;
   /// contact::ContactSystem::creep_error_estimate (asked for by the step context).
   double creep_error_estimate() const override { return system_.creep_error_estimate(); }

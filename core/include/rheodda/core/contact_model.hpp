@@ -78,6 +78,11 @@ class ContactModel {
   /// Check the trial displacements D (6 per block) and update the trial states.
   virtual ContactCheck check(std::span<const contact::BlockView> blocks,
                              const Eigen::VectorXd& D) = 0;
+  /// Adds the contacts' forces on the blocks at the trial displacements D, in
+  /// their current trial states, into f (6 per block) and returns true; false
+  /// (f untouched) for a model that cannot (contact solves that need the
+  /// residual of the step's equations then fall back; contact_solve.hpp).
+  virtual bool contact_forces(const Eigen::VectorXd& /*D*/, Eigen::VectorXd& /*f*/) const { return false; }
   /// Accept the step: commit states, locking points, forces and rheology history.
   virtual void end_step(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) = 0;
   /// Reject the step (it will be redone with a smaller dt): restore the step-start states.
@@ -125,6 +130,7 @@ class NullContactModel final : public ContactModel {
     return {};
   }
   void end_step(std::span<const contact::BlockView>, const Eigen::VectorXd&) override {}
+  bool contact_forces(const Eigen::VectorXd&, Eigen::VectorXd&) const override { return true; }
   void abandon_step() override {}
   std::unique_ptr<ContactSnapshot> snapshot() const override {
     return std::make_unique<ContactSnapshot>();

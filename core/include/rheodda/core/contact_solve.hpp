@@ -56,6 +56,12 @@ class StepProblem {
   /// The contacts check D and update their trial states (ContactModel::check);
   /// what they changed is counted in the step report.
   virtual ContactCheck check(const Eigen::VectorXd& D) = 0;
+  /// The step carries velocity (a dynamic step).
+  virtual bool dynamic() const = 0;
+  /// The displacements the step would take with no force but inertia: the
+  /// Newmark predictor v dt + (1/2 - beta) dt^2 a of each block (6 per block;
+  /// zero in a static step) [length, -].
+  virtual Eigen::VectorXd predictor() const = 0;
 };
 
 /// What a contact solve did in one attempt at a step.

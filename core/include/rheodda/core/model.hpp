@@ -107,6 +107,9 @@ enum class SolverKind {
 enum class ContactSolver {
   open_close,  ///< Shi's open-close iteration: solve, check every contact, repeat until no
                ///< state changes (the reference)
+  newton,      ///< the same Newton iterates, converged on the residual of the step's
+               ///< equations (Settings::contact_residual_tolerance), a dynamic step
+               ///< starting from the states at its Newmark predictor
 };
 
 /// Time integration of the inertia terms (Newmark family; docs/engine.md).
@@ -197,6 +200,10 @@ struct Settings {
   int max_open_close = 30;       ///< open-close iterations before a step is cut [-]; >= 1 (docs/contacts.md, "The wall converges when the iteration is not cut")
   SolverKind solver = SolverKind::automatic;  ///< default automatic
   ContactSolver contact_solver = ContactSolver::open_close;  ///< default open_close
+  /// ContactSolver::newton accepts a step when the residual of its equations,
+  /// |F0 - K0 D - f(D)|, is at most this fraction of the contact forces |f(D)|
+  /// (docs/contacts.md, "Contact solves") [-]; in (0, 1)
+  double contact_residual_tolerance = 1.0e-4;
   double pcg_tolerance = 1.0e-10;  ///< stop of the iterative solvers (pcg, amg):
                                    ///< ||F - K D|| <= tol ||F|| [-]; > 0. 1e-10: what double
                                    ///< precision attains on contact-dominated systems
