@@ -10,6 +10,8 @@
 //   build/bench/rockmass_bench                       # generation, then creep at ~1e3 blocks
 //   build/bench/rockmass_bench --creep 1000,10000 --max-wall 1200 --solver cholmod
 //   build/bench/rockmass_bench --no-generation --example tunnel --creep 1000
+//   build/bench/rockmass_bench --no-generation --scene bench/scenes/jointed-slope-cohesionless.yaml --creep 1000
+//                                                    # any scene with a rock_mass, scaled the same way
 // Prints figures; asserts nothing.
 #include <fmt/format.h>
 
@@ -106,6 +108,7 @@ int main(int argc, char** argv) {
   bool generation = true;
   std::string solver;  // empty: the scene's (automatic)
   std::string example = "jointed-slope";
+  std::string scene_path;  // --scene: overrides --example
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--creep" && i + 1 < argc) {
@@ -120,12 +123,14 @@ int main(int argc, char** argv) {
       max_wall = std::stod(argv[++i]);
     } else if (a == "--example" && i + 1 < argc) {
       example = argv[++i];
+    } else if (a == "--scene" && i + 1 < argc) {
+      scene_path = argv[++i];
     } else if (a == "--solver" && i + 1 < argc) {
       solver = argv[++i];
     } else if (a == "--no-generation") {
       generation = false;
     } else {
-      fmt::print(stderr, "usage: rockmass_bench [--creep N,N...] [--max-wall SECONDS] [--solver automatic|cholmod|pcg|amg] [--example jointed-slope|tunnel] "
+      fmt::print(stderr, "usage: rockmass_bench [--creep N,N...] [--max-wall SECONDS] [--solver automatic|cholmod|pcg|amg] [--example jointed-slope|tunnel] [--scene FILE] "
                            "[--no-generation]\n");
       return 2;
     }
@@ -147,7 +152,9 @@ int main(int argc, char** argv) {
     }
   }
 
-  const std::string slope_file = std::string(RHEODDA_SOURCE_DIR) + "/examples/rockmass/" + example + ".yaml";
+  const std::string slope_file =
+      scene_path.empty() ? std::string(RHEODDA_SOURCE_DIR) + "/examples/rockmass/" + example + ".yaml" : scene_path;
+  if (!scene_path.empty()) example = std::filesystem::path(scene_path).stem().string();
   const std::string slope = scene::read_scene_text(slope_file);
   const std::size_t base_blocks = scene::parse_scene(slope, slope_file).rock_mass->block_count;
   std::signal(SIGALRM, on_alarm);

@@ -8,6 +8,12 @@
 //       # block/vertex, edge block/edge, state, N, shear force, penetration
 //   build/bench/scene_trace scene.yaml --dt 1e-4 --duration 0.5 --summary
 //       # only the totals: steps, cuts, solves per step, changes by kind
+//   build/bench/scene_trace scene.yaml --duration 1e-4 --diagnose
+//       # why attempts were cut, by class (docs/notes/rock-mass-steps.md): iterates
+//       # that still changed states (and of their changes the 2-cycles, at corners),
+//       # singular solves, attempts that settled but were redone (motion beyond the
+//       # step limit, a mechanism, a wider contact search); and the spring energy
+//       # contacts started steps with beyond what they stored, by cause
 //
 // Runs the scene as `rheodda run` does (same model, joint sets and contact
 // settings) without writing outputs. A diagnostic tool: it asserts nothing.
@@ -33,8 +39,18 @@ class Tracer final : public core::ContactModel {
   bool contacts = false, quiet = false;
 
   bool on() const { return !quiet && step_ >= from && step_ <= to; }
+  /// Cut (or redone) attempts by why (--diagnose).
+  struct Diagnosis {
+    int cycling = 0;       ///< the last iterate's changes were mostly 2-cycles
+    int unsettled = 0;     ///< the last iterate still changed states, mostly not undoing
+    int singular = 0;      ///< a solve found the matrix not positive definite
+    int redone = 0;        ///< the iteration settled, the step was redone all the same
+    long cycled = 0, cycled_corners = 0, changes = 0;  ///< over the last iterates of cut attempts
+    contact::DetectionStats::Restart restart_new, restart_edge, restart_kind, restart_same;  ///< accepted steps
+  } diagnosis;
   void begin_step(std::span<const contact::BlockView> b, const core::StepContext& ctx) override {
     step_ = ctx.step;
+    checked_ = false;
     if (on()) std::printf("step %d t %.6g dt %.3g:", ctx.step, ctx.time, ctx.dt);
     inner_.begin_step(b, ctx);
   }
@@ -43,9 +59,11 @@ class Tracer final : public core::ContactModel {
   }
   core::ContactCheck check(std::span<const contact::BlockView> b, const Eigen::VectorXd& D) override {
     const core::ContactCheck r = inner_.check(b, D);
+    checked_ = true;
+    last_ = r;
     if (on()) {
       const auto& k = r.changes;
-      std::printf(" [c%d o%d s%d l%d r%d]", k.closed, k.opened, k.slipped, k.stuck, k.refinements);
+      std::printf(" [c%d o%d s%d l%d r%d y%d]", k.closed, k.opened, k.slipped, k.stuck, k.refinements, k.cycled);
       if (contacts) {
         std::printf("\n");
         for (const auto& c : sys_.trial_contacts())
@@ -58,6 +76,15 @@ class Tracer final : public core::ContactModel {
     return r;
   }
   void end_step(std::span<const contact::BlockView> b, const Eigen::VectorXd& D) override {
+    const contact::DetectionStats& st = sys_.stats();
+    auto add = [](contact::DetectionStats::Restart& to, const contact::DetectionStats::Restart& r) {
+      to.contacts += r.contacts;
+      to.energy += r.energy;
+    };
+    add(diagnosis.restart_new, st.restart_new);
+    add(diagnosis.restart_edge, st.restart_edge);
+    add(diagnosis.restart_kind, st.restart_kind);
+    add(diagnosis.restart_same, st.restart_same);
     inner_.end_step(b, D);
     if (on()) {
       std::printf(" ok\n");
@@ -70,13 +97,35 @@ class Tracer final : public core::ContactModel {
   }
   void abandon_step() override {
     if (on()) std::printf(" cut\n");
+    if (!checked_) {
+      ++diagnosis.singular;
+    } else if (last_.state_changes == 0) {
+      ++diagnosis.redone;
+    } else {
+      const auto& k = last_.changes;
+      const int changes = k.closed + k.opened + k.slipped + k.stuck;
+      (2 * k.cycled >= changes && changes > 0 ? diagnosis.cycling : diagnosis.unsettled) += 1;
+      diagnosis.cycled += k.cycled;
+      diagnosis.cycled_corners += k.cycled_corners;
+      diagnosis.changes += changes;
+    }
     inner_.abandon_step();
+  }
+  bool retract_step() override { return inner_.retract_step(); }
+  double creep_error_estimate() const override { return inner_.creep_error_estimate(); }
+  int creep_state_changes() const override { return inner_.creep_state_changes(); }
+  double time_to_failure() const override { return inner_.time_to_failure(); }
+  core::ContactEnergy energy() const override { return inner_.energy(); }
+  bool contact_forces(const Eigen::VectorXd& D, Eigen::VectorXd& f) const override {
+    return inner_.contact_forces(D, f);
   }
 
  private:
   core::ContactAdapter& inner_;
   contact::ContactSystem& sys_;
   int step_ = 0;
+  bool checked_ = false;       ///< a check since the attempt's begin_step
+  core::ContactCheck last_;    ///< the last check
 };
 
 }  // namespace
@@ -86,7 +135,7 @@ int trace(int argc, char** argv);
 int main(int argc, char** argv) {
   const char* usage =
       "usage: scene_trace SCENE.yaml [--steps N] [--from S] [--to S] [--contacts] "
-      "[--dt DT] [--duration T] [--summary]\n";
+      "[--dt DT] [--duration T] [--summary] [--diagnose]\n";
   if (argc >= 2 && (!std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h"))) {
     std::printf("%s", usage);
     return 0;
@@ -106,7 +155,7 @@ int main(int argc, char** argv) {
 int trace(int argc, char** argv) {
   int steps = -1;
   double dt = 0.0, duration = 0.0;
-  bool summary = false;
+  bool summary = false, diagnose = false;
   scene::SceneDescription sd = scene::load_scene(argv[1]);
   scene::BuiltScene built = scene::build_scene(sd);
   contact::ContactSystem sys(built.joint_sets, built.contact_settings);
@@ -120,6 +169,7 @@ int trace(int argc, char** argv) {
     else if (!std::strcmp(argv[k], "--dt") && k + 1 < argc) dt = std::atof(argv[++k]);
     else if (!std::strcmp(argv[k], "--duration") && k + 1 < argc) duration = std::atof(argv[++k]);
     else if (!std::strcmp(argv[k], "--summary")) summary = true;
+    else if (!std::strcmp(argv[k], "--diagnose")) diagnose = summary = true;
     else {
       std::fprintf(stderr, "scene_trace: unknown option '%s'\n", argv[k]);
       return 2;
@@ -141,6 +191,23 @@ int trace(int argc, char** argv) {
               engine.step_count(), engine.time(), cuts,
               static_cast<double>(engine.solver_stats().solves) / n, ch.closed / n, ch.opened / n,
               ch.slipped / n, ch.stuck / n, ch.refinements / n);
+  if (diagnose) {
+    const auto& d = tracer.diagnosis;
+    const auto& e = engine.energy().total;
+    std::printf("# cut or redone attempts: %d still changing states (%d of them mostly 2-cycles), %d singular "
+                "solves, %d settled and redone (motion beyond the step limit, a mechanism, a wider search)\n",
+                d.cycling + d.unsettled, d.cycling, d.singular, d.redone);
+    std::printf("# their last iterates: %ld changes, %ld of them 2-cycles, %ld of those at corners "
+                "(vertex-vertex)\n", d.changes, d.cycled, d.cycled_corners);
+    std::printf("# 2-cycles in all iterates: %d, at corners %d\n", ch.cycled, ch.cycled_corners);
+    std::printf("# spring energy at step starts beyond what the records stored [force x length]: new contacts "
+                "%d / %.4g, moved edge %d / %.4g, changed kind %d / %.4g, same %d / %.4g; work of gravity and "
+                "loads %.4g, energy residual %.3g (relative, largest %.3g)\n",
+                d.restart_new.contacts, d.restart_new.energy, d.restart_edge.contacts, d.restart_edge.energy,
+                d.restart_kind.contacts, d.restart_kind.energy, d.restart_same.contacts, d.restart_same.energy,
+                e.work_gravity + e.work_loads, engine.energy().relative_residual(),
+                engine.energy().max_relative_residual);
+  }
   for (std::size_t k = 0; k < engine.measurements().size(); ++k) {
     const auto& m = engine.measurements()[k].back();
     std::printf("# measurement %zu: displacement (%.9g, %.9g)\n", k, m.displacement.x(),

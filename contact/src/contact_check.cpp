@@ -79,6 +79,7 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
     const double N = h.pn * dn;
     r.penetration = dn;
     const ContactState before = r.state;
+    const int direction_before = r.slide_direction;
     bool refine = false;  // friction force from a stale normal force
     switch (r.state) {
       case ContactState::open:
@@ -149,6 +150,15 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
         }
       }
       if (r.state != before) {
+        // Diagnosis (CheckResult::cycled): a change that undoes this contact's
+        // last one in the step (A -> B -> A; for sliding, in the same direction).
+        if (h.flips > 0 && r.state == h.undo_state &&
+            (r.state != ContactState::sliding || r.slide_direction == h.undo_direction)) {
+          ++res.cycled;
+          if (r.kind == ContactKind::vertex_vertex) ++res.cycled_corners;
+        }
+        h.undo_state = before;
+        h.undo_direction = direction_before;
         ++h.flips;
         ++res.state_changes;
         if (before == ContactState::open) ++res.closed;

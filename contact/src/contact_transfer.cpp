@@ -71,6 +71,7 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
   work_.clear();
   work_rheology_.clear();
   hot_.clear();
+  DetectionStats restart;  // its restart_* only
   for (size_t c = 0; c < n; ++c) {
     const DetectedContact& d = found[c];
     const BlockView& eb = blocks[d.key.eblock];
@@ -134,6 +135,26 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
       rec.rheology = -1;
     }
     h.start_state = rec.state;
+    {
+      // Diagnosis (DetectionStats::restart_*): the springs' energy at the step
+      // start against what the record stored at the end of the last step.
+      double u0 = 0.0, u_old = 0.0;
+      if (rec.state != ContactState::open) u0 += 0.5 * h.pn * h.dn0 * h.dn0;
+      if (rec.state == ContactState::locked) u0 += 0.5 * h.ps * h.dt0 * h.dt0;
+      if (old && from[c] < static_cast<int>(committed_work_.size())) {
+        const StepWork& w = committed_work_[from[c]];
+        if (old->state != ContactState::open) u_old += 0.5 * w.pn * old->penetration * old->penetration;
+        if (old->state == ContactState::locked && w.ps > 0.0) u_old += 0.5 * old->shear_force * old->shear_force / w.ps;
+      }
+      if (u0 > u_old) {
+        DetectionStats::Restart& cause = !old                        ? restart.restart_new
+                                         : old->key.edge != d.key.edge ? restart.restart_edge
+                                         : old->kind != d.kind         ? restart.restart_kind
+                                                                       : restart.restart_same;
+        ++cause.contacts;
+        cause.energy += u0 - u_old;
+      }
+    }
     // The dashpot counts the step's approach from the step start, or for a
     // contact open across a gap from where it touches: it never pushes a
     // separating contact (one open at the step start but still overlapping, after
@@ -159,7 +180,11 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
   step_max_penetration_ = 0.0;
   force_scale_ = 0.0;
   for (const Contact& c : committed_) force_scale_ = std::max(force_scale_, std::abs(c.normal_force));
-  stats_ = {static_cast<int>(pairs.size()), static_cast<int>(work_.size()), transferred, d0};
+  stats_ = restart;
+  stats_.candidate_pairs = static_cast<int>(pairs.size());
+  stats_.contacts = static_cast<int>(work_.size());
+  stats_.transferred = transferred;
+  stats_.search_distance = d0;
 }
 
 }  // namespace rheodda::contact

@@ -32,7 +32,7 @@ ContactCheck ContactAdapter::check(std::span<const contact::BlockView> blocks,
                                    const Eigen::VectorXd& D) {
   const contact::CheckResult r = system_.check(blocks, D);
   return {r.state_changes, r.max_penetration,
-          ContactChanges{r.closed, r.opened, r.slipped, r.stuck, r.refinements}};
+          ContactChanges{r.closed, r.opened, r.slipped, r.stuck, r.refinements, r.cycled, r.cycled_corners}};
 }
 
 void ContactAdapter::end_step(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) {

@@ -173,6 +173,9 @@ BuiltScene build_scene(const SceneDescription& s) {
   }
   st.pcg_tolerance = a.solver_tolerance;
   st.pcg_iterate_tolerance = a.solver_iterate_tolerance;
+  st.contact_solver = a.contact_solver == ContactSolverKind::newton ? core::ContactSolver::newton
+                                                                    : core::ContactSolver::open_close;
+  st.contact_residual_tolerance = a.contact_residual_tolerance;
   st.pcg_max_iterations = a.solver_max_iterations;
 
   contact::ContactSettings& cs = out.contact_settings;

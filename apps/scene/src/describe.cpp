@@ -73,6 +73,10 @@ std::string describe_scene(const SceneDescription& s) {
                    "fixed_point_stiffness {:g} {}/{}",
                    a.max_displacement_ratio, a.penalty, stress, a.shear_normal_ratio,
                    a.fixed_point_stiffness, u.force, u.length));
+  if (a.contact_solver == ContactSolverKind::newton)
+    line(fmt::format("  contact_solver newton: open-close iterates accepted when the residual of the step's equations "
+                     "is at most {:g} of the contact forces (docs/contacts.md, \"Contact solves\")",
+                     a.contact_residual_tolerance));
   line(fmt::format("  open_close_limit {}, penetration_ratio {:g}, angle_tolerance {:g} deg, search_factor {:g}",
                    a.open_close_limit, a.penetration_ratio, a.angle_tolerance, a.search_factor));
   line(fmt::format("  friction_tolerance {:g}, force_resolution {:g}, max_flips {}, max_refinements {}, "

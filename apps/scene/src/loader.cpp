@@ -69,7 +69,7 @@ const std::vector<std::string> analysis{
     "shear_normal_ratio", "search_factor", "angle_tolerance", "penetration_ratio",
     "stick_keeps_force", "friction_tolerance", "force_resolution", "max_flips", "max_refinements",
     "penalty_raise", "penalty_max_factor", "open_close_limit", "fixed_point_stiffness", "solver", "solver_tolerance",
-    "solver_max_iterations", "solver_iterate_tolerance", "output_interval", "max_travel_ratio", "max_output_size", "gravity"};
+    "solver_max_iterations", "solver_iterate_tolerance", "contact_solver", "contact_residual_tolerance", "output_interval", "max_travel_ratio", "max_output_size", "gravity"};
 const std::vector<std::string> settle{"until", "dt", "max_displacement_ratio", "type", "collapse_dt", "gravity_ramp",
                                       "rest_tolerance"};
 const std::vector<std::string> material{"density", "young_modulus", "poisson_ratio", "plane", "damping_ratio"};
@@ -505,6 +505,12 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   if (YAML::Node v = m.find("solver_max_iterations"); v.IsDefined())
     a.solver_max_iterations = integer(ctx, v, m.child("solver_max_iterations"), 1, 1000000000);
   num("solver_iterate_tolerance", a.solver_iterate_tolerance, {0.0, false, 1.0, true, ""});
+  if (YAML::Node v = m.find("contact_solver"); v.IsDefined()) {
+    // docs/contacts.md, "Contact solves".
+    const std::string name = choice(ctx, v, m.child("contact_solver"), {"open-close", "newton"});
+    a.contact_solver = name == "newton" ? ContactSolverKind::newton : ContactSolverKind::open_close;
+  }
+  num("contact_residual_tolerance", a.contact_residual_tolerance, {0.0, true, 1.0, true, ""});
   a.output_interval = a.duration / 100.0;
   if (YAML::Node v = m.find("output_interval"); v.IsDefined()) {
     a.output_interval = number(ctx, v, m.child("output_interval"), positive("time"));

@@ -80,6 +80,8 @@ json scene_json(const SceneDescription& s) {
                    {"solver_tolerance", a.solver_tolerance},
                    {"solver_max_iterations", a.solver_max_iterations},
                    {"solver_iterate_tolerance", a.solver_iterate_tolerance},
+                   {"contact_solver", a.contact_solver == ContactSolverKind::newton ? "newton" : "open-close"},
+                   {"contact_residual_tolerance", a.contact_residual_tolerance},
                    {"output_interval", a.output_interval},
                    {"max_travel_ratio", a.max_travel_ratio},
                    {"max_output_size", a.max_output_size},

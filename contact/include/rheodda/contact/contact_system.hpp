@@ -125,6 +125,10 @@ struct CheckResult {
   int stuck = 0;        ///< sliding -> locked
   int refinements = 0;  ///< sliding contacts whose friction force moved, and piecewise laws
                         ///< that changed piece (one more iterate, no state change)
+  /// Of the changes, those that undo the contact's last change in this step
+  /// (A -> B -> A, a 2-cycle; docs/notes/rock-mass-steps.md) [-], and of those
+  /// the vertex-vertex (corner) contacts [-].
+  int cycled = 0, cycled_corners = 0;
 };
 
 /// Counters of the last begin_step (for benchmarks and logs).
@@ -133,6 +137,18 @@ struct DetectionStats {
   int contacts = 0;         ///< contacts after the narrow phase
   int transferred = 0;      ///< contacts that kept the identity of a last-step contact
   double search_distance = 0.0;  ///< d0 [length]
+  /// Spring energy contacts start the step with beyond what their records
+  /// stored at the end of the last step (the energy balance's
+  /// work_contact_restart, docs/engine.md), by cause: how many contacts, and
+  /// the energy [force x length] (docs/notes/rock-mass-steps.md).
+  struct Restart {
+    int contacts = 0;
+    double energy = 0.0;
+  };
+  Restart restart_new;   ///< new contacts that start closed, already overlapping
+  Restart restart_edge;  ///< contacts moved to an adjacent edge of the same block
+  Restart restart_kind;  ///< the same vertex and edge, another kind (point <-> edge-edge)
+  Restart restart_same;  ///< the same vertex, edge and kind: the geometry moved
 };
 
 class ContactSystem {
@@ -264,6 +280,8 @@ class ContactSystem {
     bool creep_from_rest = true;  ///< not locked at the step start: the step's creep uses
                                   ///< the end force for the whole step (implicit constants)
     int flips = 0;        ///< state changes of this contact in this step
+    ContactState undo_state = ContactState::open;  ///< state before its last change (diagnosis)
+    int undo_direction = 0;                        ///< slide direction before its last change
     int refinements = 0;  ///< friction refinements of this contact in this step
     int newton = 0;       ///< Newton iterates a nonlinear law asked for in this step
     bool law_failed = false;  ///< its law failed in this step (damage 1): counted in end_step

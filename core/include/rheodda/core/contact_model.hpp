@@ -42,10 +42,15 @@ struct ContactChanges {
   int stuck = 0;        ///< sliding -> locked
   int refinements = 0;  ///< no state change, but one more iterate asked for (a sliding
                         ///< contact's friction force moved, a piecewise law changed piece)
+  /// Of closed ... stuck, the changes that undo the contact's last change in the
+  /// step (2-cycles), and of those the corner (vertex-vertex) contacts'
+  /// (diagnosis; not counted in total()).
+  int cycled = 0, cycled_corners = 0;
   int total() const { return closed + opened + slipped + stuck + refinements; }
   ContactChanges& operator+=(const ContactChanges& o) {
     closed += o.closed, opened += o.opened, slipped += o.slipped, stuck += o.stuck;
     refinements += o.refinements;
+    cycled += o.cycled, cycled_corners += o.cycled_corners;
     return *this;
   }
 };

@@ -40,6 +40,8 @@ struct Units {
 enum class AnalysisType { static_analysis, dynamic_analysis };
 enum class PlaneKind { strain, stress };
 enum class SolverKind { automatic, cholmod, pcg, amg };
+/// `contact_solver`: how a step's contact problem is solved (docs/contacts.md, "Contact solves").
+enum class ContactSolverKind { open_close, newton };
 enum class TimeIntegration { shi, trapezoidal };
 
 /// `analysis:` — time stepping, contact numerics, outputs.
@@ -122,6 +124,13 @@ struct Analysis {
   SolverKind solver = SolverKind::automatic;  ///< `solver: automatic|cholmod|pcg|amg`
   double solver_tolerance = 1e-10;     ///< relative residual at which pcg and amg stop [-]
   double solver_iterate_tolerance = 1e-4;  ///< the same in open-close iterates whose states still change [-]
+  /// `contact_solver`: `open-close` (Shi's iteration, until no contact changes its
+  /// state) or `newton` (the same iterates, accepted on the residual of the step's
+  /// equations; docs/contacts.md, "Contact solves")
+  ContactSolverKind contact_solver = ContactSolverKind::open_close;
+  /// `contact_residual_tolerance`: under `newton`, a step is accepted when the
+  /// residual of its equations is at most this fraction of the contact forces [-]; in (0, 1)
+  double contact_residual_tolerance = 1e-4;
   int solver_max_iterations = 10000;   ///< CG iteration limit per solve of pcg and amg [-]; >= 1
   double output_interval = 0.0;        ///< time between output frames [time]; default duration / 100
   /// Run guard: the run stops when a block vertex has moved more than this times the
