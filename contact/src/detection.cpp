@@ -201,6 +201,15 @@ void detect_pair(std::span<const BlockView> blocks, int ia, int ib, const Detect
       int chosen = -1;
       for (int c = 0; c < 4 && chosen < 0; ++c)
         if (score[c] >= best - sin_tol && in_range[c]) chosen = c;
+      // No tied candidate has its vertex within its edge: the vertices are
+      // apart (within the search distance, not coincident) and the best
+      // scored edge is one the vertex lies beyond. Its line's distance
+      // measures nothing there; a valid candidate the vertex does lie along
+      // is its entrance (at a T-junction of a generated rock mass, the edge
+      // the vertex sits on; docs/contacts.md, "Contact types").
+      if (chosen < 0)
+        for (int c = 0; c < 4; ++c)
+          if (score[c] >= -sin_tol && in_range[c] && (chosen < 0 || score[c] > score[chosen])) chosen = c;
       for (int c = 0; c < 4 && chosen < 0; ++c)
         if (score[c] >= best - sin_tol) chosen = c;
       emit(chosen);

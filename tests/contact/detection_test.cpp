@@ -195,4 +195,39 @@ BOOST_AUTO_TEST_CASE(straight_angle_vertices_never_enter_an_edge) {
   for (const auto& k : detect(s)) BOOST_TEST(!(k.key.vblock == 0 && k.key.vertex == 3));
 }
 
+BOOST_AUTO_TEST_CASE(a_vertex_near_a_corner_enters_the_edge_it_lies_along_not_one_it_lies_beyond) {
+  // Two blocks of a generated rock mass (bench/scenes/jointed-slope-cohesionless.yaml
+  // scaled to 1 021 blocks, blocks 458 and 460) sharing a 4.7 mm edge between
+  // vertices 0 and 4 of the first. Vertex 4 of the second (on the shared edge's
+  // end) is within the search distance of vertex 0 of the first; the angle rule
+  // scores the first block's edge 0 best, whose line the vertex lies 2 mm behind
+  // but beyond its end: taken as the entrance, that was a spring pushing with
+  // p_n x 2 mm from the first step. The vertex lies along the shared edge
+  // (edge 4), and that is its entrance, with no penetration.
+  Scene s;
+  s.add({{5.8184765764427375, 15.505570963047253}, {5.423605791326956, 15.900441748163034},
+         {5.33129923193458, 15.866844908116684}, {5.7298310885258035, 15.468313051525463},
+         {5.820081486141942, 15.501161509888426}});
+  s.add({{6.4821990597100765, 15.74215259825179}, {6.307494018747157, 16.222150753362303},
+         {5.645376445179023, 15.981159664998941}, {5.8184765764427375, 15.505570963047253},
+         {5.820081486141942, 15.501161509888426}});
+  const std::vector<std::pair<int, int>> pairs{{0, 1}};
+  const auto found = detect_contacts(s.views(), pairs, {0.0385, 3.0}, {});
+  BOOST_TEST_REQUIRE(!found.empty());
+  for (const auto& c : found) {
+    const BlockView& vb = s.views()[c.key.vblock];
+    const BlockView& eb = s.views()[c.key.eblock];
+    const Vec2 p = vb.vertices[c.key.vertex];
+    const Vec2 a = eb.vertices[c.key.edge], b = eb.vertices[(c.key.edge + 1) % eb.vertices.size()];
+    const Vec2 t = (b - a).normalized();
+    const double behind = (a - p).x() * (b - p).y() - (a - p).y() * (b - p).x();  // > 0: p behind the line
+    const double r = t.dot(p - a) / (b - a).norm();
+    BOOST_TEST_CONTEXT("vertex " << c.key.vblock << "." << c.key.vertex << " edge " << c.key.eblock << "."
+                                 << c.key.edge) {
+      // Every contact's vertex lies along its entrance edge, or is not behind its line.
+      BOOST_TEST((behind / (b - a).norm() <= 1e-9 || (r >= -1e-9 && r <= 1.0 + 1e-9)));
+    }
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()
