@@ -162,6 +162,8 @@ void Engine::Impl::validate() {
   if (!(s.fixed_point_stiffness >= 0.0 && std::isfinite(s.fixed_point_stiffness)))
     throw ModelError("settings.fixed_point_stiffness", "must be >= 0 (0 = automatic)");
   if (s.max_open_close < 1) throw ModelError("settings.max_open_close", "must be >= 1");
+  if (s.settle_max_open_close < 0)
+    throw ModelError("settings.settle_max_open_close", "must be >= 0 (0 = max_open_close)");
   if (!(s.contact_residual_tolerance > 0.0 && s.contact_residual_tolerance < 1.0))
     throw ModelError("settings.contact_residual_tolerance", "must be in (0, 1)");
   if (!(s.pcg_tolerance > 0.0)) throw ModelError("settings.pcg_tolerance", "must be > 0");

@@ -23,8 +23,9 @@ class OpenCloseSolve final : public ContactSolve {
     const bool may_loosen = s.pcg_iterate_tolerance > s.pcg_tolerance && p.iterative_solver();
     bool tight_next = false;
     int loose_iterates = 0;
-    while (out.iterations - loose_iterates < s.max_open_close) {
-      const bool loose = may_loosen && !tight_next && 3 * loose_iterates < s.max_open_close;
+    const int limit = p.iteration_limit();
+    while (out.iterations - loose_iterates < limit) {
+      const bool loose = may_loosen && !tight_next && 3 * loose_iterates < limit;
       if (loose) ++loose_iterates;
       D = p.solve_system(loose);
       ++out.iterations;

@@ -36,13 +36,9 @@ class Engine::Impl::Problem final : public StepProblem {
     return d;
   }
   bool dynamic() const override { return e_.dynamic_now(); }
-  Eigen::VectorXd predictor() const override {
-    Eigen::VectorXd p = Eigen::VectorXd::Zero(6 * static_cast<Eigen::Index>(e_.st.blocks.size()));
-    if (!e_.dynamic_now()) return p;
-    const Newmark nm = e_.newmark();
-    for (std::size_t k = 0; k < e_.st.blocks.size(); ++k)
-      p.segment<6>(6 * static_cast<Eigen::Index>(k)) = e_.predictor(e_.st.blocks[k], dt_, nm);
-    return p;
+  int iteration_limit() const override {
+    const Settings& s = e_.model.settings;
+    return e_.settling() && s.settle_max_open_close > 0 ? s.settle_max_open_close : s.max_open_close;
   }
   ContactCheck check(const Eigen::VectorXd& d) override {
     const ContactCheck c = e_.contacts->check(e_.views, d);

@@ -164,6 +164,7 @@ BuiltScene build_scene(const SceneDescription& s) {
     st.collapse_dt = a.settle->collapse_dt;
     st.settle_gravity_ramp = a.settle->gravity_ramp;
     st.settle_rest_tolerance = a.settle->rest_tolerance;
+    st.settle_max_open_close = a.settle->open_close_limit;
   }
   switch (a.solver) {
     case SolverKind::automatic: st.solver = core::SolverKind::automatic; break;

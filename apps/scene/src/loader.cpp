@@ -71,7 +71,7 @@ const std::vector<std::string> analysis{
     "penalty_raise", "penalty_max_factor", "open_close_limit", "fixed_point_stiffness", "solver", "solver_tolerance",
     "solver_max_iterations", "solver_iterate_tolerance", "contact_solver", "contact_residual_tolerance", "output_interval", "max_travel_ratio", "max_output_size", "gravity"};
 const std::vector<std::string> settle{"until", "dt", "max_displacement_ratio", "type", "collapse_dt", "gravity_ramp",
-                                      "rest_tolerance"};
+                                      "rest_tolerance", "open_close_limit"};
 const std::vector<std::string> material{"density", "young_modulus", "poisson_ratio", "plane", "damping_ratio"};
 const std::vector<std::string> joint_set{"friction_angle", "cohesion", "tensile_strength",
                                          "normal_stiffness", "shear_stiffness", "restitution", "law", "record"};
@@ -353,6 +353,8 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
     } else {
       st.until = a.duration;
     }
+    if (YAML::Node ol = sm.find("open_close_limit"); ol.IsDefined())
+      st.open_close_limit = integer(ctx, ol, sm.child("open_close_limit"), 1, 1000);
     if (rest.IsDefined()) {
       st.rest_tolerance = number(ctx, rest, sm.child("rest_tolerance"), {0.0, true, 1.0, true, ""});
       if (!sm.find("type").IsDefined() || sm.find("type").as<std::string>() != "dynamic")

@@ -57,7 +57,8 @@ json scene_json(const SceneDescription& s) {
                                               {"type", a.settle->dynamic ? "dynamic" : "static"},
                                               {"collapse_dt", a.settle->collapse_dt},
                                               {"gravity_ramp", a.settle->gravity_ramp},
-                                              {"rest_tolerance", a.settle->rest_tolerance}}
+                                              {"rest_tolerance", a.settle->rest_tolerance},
+                                              {"open_close_limit", a.settle->open_close_limit}}
                                        : json(nullptr)},
                    {"dynamic_ratio", a.dynamic_ratio},
                    {"time_integration", time_integration_name(a.time_integration)},

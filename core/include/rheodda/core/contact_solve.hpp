@@ -58,10 +58,9 @@ class StepProblem {
   virtual ContactCheck check(const Eigen::VectorXd& D) = 0;
   /// The step carries velocity (a dynamic step).
   virtual bool dynamic() const = 0;
-  /// The displacements the step would take with no force but inertia: the
-  /// Newmark predictor v dt + (1/2 - beta) dt^2 a of each block (6 per block;
-  /// zero in a static step) [length, -].
-  virtual Eigen::VectorXd predictor() const = 0;
+  /// Iterates a solve may take before the step is cut (Settings::max_open_close,
+  /// or settle_max_open_close in the settling stage and collapse stages).
+  virtual int iteration_limit() const = 0;
 };
 
 /// What a contact solve did in one attempt at a step.

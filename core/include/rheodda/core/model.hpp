@@ -108,8 +108,7 @@ enum class ContactSolver {
   open_close,  ///< Shi's open-close iteration: solve, check every contact, repeat until no
                ///< state changes (the reference)
   newton,      ///< the same Newton iterates, converged on the residual of the step's
-               ///< equations (Settings::contact_residual_tolerance), a dynamic step
-               ///< starting from the states at its Newmark predictor
+               ///< equations (Settings::contact_residual_tolerance)
 };
 
 /// Time integration of the inertia terms (Newmark family; docs/engine.md).
@@ -178,6 +177,12 @@ struct Settings {
   /// longest, settle_until from its start [-]; 0 = stages run to their
   /// longest; in [0, 1)
   double settle_rest_tolerance = 0.0;
+  /// Open-close iterates before a step of the settling stage or a collapse
+  /// stage is cut [-]; 0 = max_open_close. A static analysis limits its static
+  /// steps to Shi's 8 (docs/contacts.md, "The iteration limit in static
+  /// analysis"); its dynamic stages are dynamic steps, which a dynamic analysis
+  /// gives 30.
+  int settle_max_open_close = 0;
   /// Gravity ramp of the settling stage (docs/engine.md, "Gravity ramp"): the
   /// body force rises linearly from zero at t = 0 to its full value at this
   /// time, which lies within the stage (0 < settle_gravity_ramp <= settle_until),

@@ -79,6 +79,9 @@ struct Analysis {
     /// stages"); `until` is then the longest a stage may last (default: the
     /// duration) [-]; 0 = stages last `until`; in (0, 1); dynamic stage only.
     double rest_tolerance = 0.0;
+    /// `open_close_limit`: open-close iterates before a step of a dynamic stage
+    /// is cut [-]; 0 (not given) = the analysis's `open_close_limit`.
+    int open_close_limit = 0;
   };
   /// The run has dynamic steps: a dynamic analysis, or a dynamic settling stage.
   bool has_dynamic_steps() const {
