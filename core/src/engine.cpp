@@ -218,7 +218,12 @@ const EnergyBalance& Engine::energy() const { return impl_->st.energy; }
 const std::vector<StageEvent>& Engine::events() const { return impl_->st.events; }
 bool Engine::in_stage() const { return impl_->settling(); }
 
-EngineState Engine::save() const { return impl_->st; }
+EngineState Engine::save() const {
+  EngineState s = impl_->st;
+  s.search_displacement = impl_->search_disp;
+  s.solver = impl_->solver->state();
+  return s;
+}
 
 void Engine::restore(const EngineState& state) {
   if (state.blocks.size() != impl_->st.blocks.size() ||
@@ -229,6 +234,9 @@ void Engine::restore(const EngineState& state) {
       throw std::invalid_argument("Engine::restore: the state belongs to a different model (block " +
                                   std::to_string(k) + ")");
   impl_->st = state;
+  impl_->search_disp = state.search_displacement;
+  impl_->solver->restore(state.solver);
+  impl_->reports.clear();
   impl_->refresh_geometry();
 }
 
