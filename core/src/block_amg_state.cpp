@@ -37,10 +37,12 @@ void BlockAmg::save(SolverState& out) const {
 }
 
 void BlockAmg::restore(const SolverState& saved) {
-  levels_.clear();
-  pattern_.clear();
-  pending_.reset();
-  if (saved.positions.empty()) return;  // no hierarchy: the next solve sets one up
+  if (saved.positions.empty()) {  // no hierarchy: the next solve sets one up
+    levels_.clear();
+    pattern_.clear();
+    pending_.reset();
+    return;
+  }
   // The sizes must chain: level l's aggregates index level l + 1's blocks.
   const std::size_t levels = saved.aggregates.size();
   bool fits = saved.coarse_blocks.size() == levels && saved.omega.size() == levels;
@@ -55,6 +57,7 @@ void BlockAmg::restore(const SolverState& saved) {
   for (const auto& [i, j] : saved.pattern)
     fits = fits && i >= 0 && j >= 0 && static_cast<std::size_t>(std::max(i, j)) < saved.positions.size();
   if (!fits) throw std::invalid_argument("amg: the saved hierarchy is inconsistent (its levels do not chain)");
+  levels_.clear();
   pattern_ = saved.pattern;
   pending_ = std::make_unique<SolverState>(saved);
 }

@@ -233,9 +233,9 @@ void Engine::restore(const EngineState& state) {
     if (state.blocks[k].vertices.size() != impl_->st.blocks[k].vertices.size())
       throw std::invalid_argument("Engine::restore: the state belongs to a different model (block " +
                                   std::to_string(k) + ")");
+  impl_->solver->restore(state.solver);  // first: it may refuse
   impl_->st = state;
   impl_->search_disp = state.search_displacement;
-  impl_->solver->restore(state.solver);
   impl_->reports.clear();
   impl_->refresh_geometry();
 }

@@ -17,12 +17,13 @@ SolverState LinearSolver::state() const {
 }
 
 void LinearSolver::restore(const SolverState& s) {
+  if (amg_ || !s.positions.empty()) {  // first: it refuses an inconsistent hierarchy before anything changes
+    if (!amg_) amg_ = std::make_unique<BlockAmg>();
+    amg_->restore(s);
+  }
   amg_failed_ = s.amg_failed;
   stats_.amg_fallback_solve = s.amg_fallback_solve;
   last_ = Eigen::Map<const Eigen::VectorXd>(s.warm_start.data(), static_cast<Eigen::Index>(s.warm_start.size()));
-  if (!amg_ && s.positions.empty()) return;  // no hierarchy to take up
-  if (!amg_) amg_ = std::make_unique<BlockAmg>();
-  amg_->restore(s);
 }
 
 }  // namespace rheodda::core
