@@ -231,8 +231,10 @@ void Reader::get(T& v) {
 
 std::string hex16(std::uint64_t h) { return fmt::format("{:016x}", h); }
 
-/// The contacts' keys must name vertices and edges of the state's blocks.
-void check_keys(const SavedRun& run) {
+/// What the engine and the contacts index by must be in range: the contacts'
+/// vertices and edges, the blocks' joint sets (Engine::restore and
+/// ContactSystem::restore check the rest against the model).
+void check_indices(const SavedRun& run) {
   const auto& blocks = run.engine.blocks;
   auto has = [&](int b, int k) {
     return b >= 0 && b < static_cast<int>(blocks.size()) && k >= 0 &&
@@ -241,6 +243,10 @@ void check_keys(const SavedRun& run) {
   for (const auto& c : run.contacts.contacts)
     if (!has(c.key.vblock, c.key.vertex) || !has(c.key.eblock, c.key.edge))
       throw std::runtime_error(fmt::format("contact {} names a vertex or an edge its blocks do not have", c.id));
+  const int joint_sets = static_cast<int>(run.contacts.counters.size());
+  for (const auto& b : blocks)
+    for (int j : b.edge_joint_set)
+      if (j < 0 || j >= joint_sets) throw std::runtime_error(fmt::format("a block edge has joint set {}", j));
 }
 
 }  // namespace
@@ -312,7 +318,7 @@ SavedRun decode_state(const std::string& bytes, const std::string& path, const s
     r(run.totals);
     section(r, "end");
     if (r.left() != 0) throw std::runtime_error(fmt::format("{} bytes follow its end", r.left()));
-    check_keys(run);
+    check_indices(run);
     if (h.at("step").get<int>() != run.engine.step)
       throw std::runtime_error("its header and its state name other steps");
   } catch (const std::invalid_argument&) {

@@ -470,6 +470,9 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
       if (saved.engine.step != ck.step || saved.engine.time != ck.time)
         throw std::invalid_argument(
             fmt::format("it is of step {}, the checkpoint of step {}", saved.engine.step, ck.step));
+      if (saved.totals.first_failure.size() != s.joint_sets.size())
+        throw std::invalid_argument(fmt::format("its totals are of {} joint sets, the scene has {}",
+                                                saved.totals.first_failure.size(), s.joint_sets.size()));
       engine.restore(saved.engine);
       contacts.restore(saved.contacts);
     } catch (const std::invalid_argument& e) {
