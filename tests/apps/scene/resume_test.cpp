@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "../test_support.hpp"
+#include "run_support.hpp"
 #include "rheodda/scene/loader.hpp"
 #include "rheodda/scene/run.hpp"
 
@@ -29,14 +29,6 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 namespace {
-
-scene::RunResult run(const scene::SceneDescription& s, const fs::path& out, int stop_after = -1, bool resume = false) {
-  scene::RunOptions o;
-  o.out_dir = out.string();
-  o.stop_after_step = stop_after;
-  o.resume = resume;
-  return scene::run_scene(s, read_text(s.file), o);
-}
 
 json summary(const fs::path& out) { return json::parse(read_text((out / "summary.json").string())); }
 
@@ -212,9 +204,7 @@ BOOST_AUTO_TEST_CASE(an_amg_run_resumed_solves_on_as_the_uninterrupted_one_to_th
 }
 
 BOOST_AUTO_TEST_CASE(a_state_file_of_another_scene_a_corrupt_one_or_one_of_another_version_is_refused) {
-  auto s = scene::load_scene(source_path("examples/sliding-block.yaml"));
-  s.analysis.duration = 0.05;
-  s.analysis.output_interval = 0.01;
+  const auto s = sliding(0.05, 0.01);
   const fs::path base = fresh_dir("resume-refusals");
   BOOST_TEST_REQUIRE((run(s, base / "run", 20).status == scene::RunStatus::interrupted));
   auto creep = scene::load_scene(source_path("examples/shear-creep-test.yaml"));
@@ -284,9 +274,7 @@ BOOST_AUTO_TEST_CASE(a_state_file_of_another_scene_a_corrupt_one_or_one_of_anoth
 }
 
 BOOST_AUTO_TEST_CASE(an_older_state_file_or_a_checkpoint_without_one_is_refused) {
-  auto s = scene::load_scene(source_path("examples/sliding-block.yaml"));
-  s.analysis.duration = 0.05;
-  s.analysis.output_interval = 0.01;
+  const auto s = sliding(0.05, 0.01);
   const fs::path out = fresh_dir("resume-older");
   auto states = [&] {
     int n = 0;
