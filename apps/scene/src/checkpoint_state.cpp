@@ -54,7 +54,7 @@ static_assert(field_count<contact::CreepCounters>() == 3);
 static_assert(field_count<contact::ContactSystem::StepWork>() == 10);
 static_assert(field_count<contact::ContactSystem::State>() == 14);
 static_assert(field_count<laws::RheologyState>() == 2);
-static_assert(field_count<core::ContactChanges>() == 5);
+static_assert(field_count<core::ContactChanges>() == 7);
 static_assert(field_count<RunResult::StaticMechanism>() == 7);
 
 template <class T>
@@ -177,7 +177,9 @@ void io(auto& ar, Is<contact::ContactSystem::State> auto& s) {
   ar(s.contacts, s.rheology, s.creep, s.work, s.counters, s.penalty, s.allowed_penetration, s.last_max_penetration,
      s.stored_before, s.next_id, s.previous_stress, s.previous_dt, s.creep_error, s.creep_changes);
 }
-void io(auto& ar, Is<core::ContactChanges> auto& c) { ar(c.closed, c.opened, c.slipped, c.stuck, c.refinements); }
+void io(auto& ar, Is<core::ContactChanges> auto& c) {
+  ar(c.closed, c.opened, c.slipped, c.stuck, c.refinements, c.cycled, c.cycled_corners);
+}
 void io(auto& ar, Is<RunResult::StaticMechanism> auto& m) {
   ar(m.static_analysis, m.inertia_share, m.steps, m.first_time, m.first_step, m.last_time, m.collapse_stages);
 }
