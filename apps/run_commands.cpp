@@ -61,7 +61,9 @@ void run_command(const RunArgs& args) {
   fmt::print("{}: {} at t = {:g} of {:g} {}: {} steps ({} cuts of dt){}, {} frames, largest penetration {:g} {}, "
              "wall time {:.2f} s\n  outputs in {}/ (history.csv, contacts.csv, blocks.pvd, summary.json)\n",
              s.title, status, r.time, s.analysis.duration, s.units.time, r.steps, r.cuts,
-             r.resumed_from_step >= 0 ? fmt::format(", resumed from step {}", r.resumed_from_step) : "",
+             r.resumed_from_step >= 0
+                 ? fmt::format(", resumed from step {} ({} computed now)", r.resumed_from_step, r.steps_computed)
+                 : "",
              r.frames, r.max_penetration, s.units.length, r.wall_seconds, opt.out_dir);
   for (const auto& c : r.creep)
     fmt::print("  creep on joint set {}: {} contacts, {:g} {} of contact-time{}\n", c.joint_set, c.contacts,

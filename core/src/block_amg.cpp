@@ -40,7 +40,12 @@ Mat6 inverse_spd(const Mat6& a, int block, int level) {
 }  // namespace
 
 bool BlockAmg::same_pattern(const BlockSystem& s) const {
-  if (levels_.empty() || s.block_count() != levels_[0].n || s.off_diagonal().size() != pattern_.size())
+  // A restored hierarchy not yet rebuilt (restore()) has its level-0 points.
+  const std::size_t built = pending_         ? pending_->positions.size()
+                            : levels_.empty() ? 0
+                                              : static_cast<std::size_t>(levels_[0].n);
+  if (built == 0 || static_cast<std::size_t>(s.block_count()) != built ||
+      s.off_diagonal().size() != pattern_.size())
     return false;
   const auto& off = s.off_diagonal();
   for (std::size_t k = 0; k < off.size(); ++k)
@@ -300,6 +305,7 @@ void BlockAmg::factor_coarsest() {
 }
 
 void BlockAmg::setup(const BlockSystem& s) {
+  pending_.reset();
   levels_.clear();
   levels_.reserve(16);
   pattern_.clear();
@@ -333,6 +339,7 @@ void BlockAmg::setup(const BlockSystem& s) {
 }
 
 void BlockAmg::refresh(const BlockSystem& s) {
+  if (pending_) rebuild(s);
   levels_[0].diag = &s.diagonals();
   levels_[0].off = &s.off_diagonal();
   // Blocks that moved since the last setup or refresh (a pattern can hold for

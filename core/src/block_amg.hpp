@@ -42,13 +42,18 @@
 // Reuse: the aggregates and the coarse patterns depend only on the block
 // pattern of A; while it is unchanged (the iterates of one step, and steps
 // whose contacts join the same block pairs), refresh() recomputes only the
-// values and the transfers from the blocks' current centroids.
+// values and the transfers from the blocks' current centroids. The aggregates
+// and the smoothing weights so depend on the systems of earlier steps: a
+// resumed run takes them up from its saved state (save(), restore()) to solve
+// as the uninterrupted run does, bit for bit.
 #pragma once
 
 #include <Eigen/Dense>
+#include <memory>
 #include <vector>
 
 #include "rheodda/core/block_system.hpp"
+#include "rheodda/core/engine.hpp"
 
 namespace rheodda::core {
 
@@ -69,6 +74,15 @@ class BlockAmg {
   int blocks(int l) const { return levels_[l].n; }
   /// Coarse block of each block of level l (empty on the coarsest level).
   const std::vector<int>& aggregates(int l) const { return levels_[l].agg; }
+
+  /// The part of the hierarchy that depends on the systems seen so far (the
+  /// aggregates, the smoothing weights and the points they were computed at;
+  /// block_amg_state.cpp), into `out`'s amg fields.
+  void save(SolverState& out) const;
+  /// Takes up a saved hierarchy: same_pattern() compares with its pattern and
+  /// the next refresh() rebuilds its levels from it before refreshing, so the
+  /// solves go on as they would have in the hierarchy it was saved from.
+  void restore(const SolverState& saved);
 
   /// Coarsening stops at this many blocks; below it a dense Cholesky solves.
   static constexpr int kCoarsest = 24;
@@ -113,6 +127,8 @@ class BlockAmg {
   /// A_c = P^T A P into C; with build = true also the pattern of C.
   void galerkin(Level& L, Level& C, bool build) const;
   void factor_coarsest();
+  /// Builds the levels for s from the saved aggregates (restore()).
+  void rebuild(const BlockSystem& s);
   void vcycle(std::size_t l);
   void forward_sweep(Level& L) const;   // x <- forward Gauss-Seidel on A x = b, from x = 0
   void backward_sweep(Level& L) const;  // x <- backward Gauss-Seidel on A x = b
@@ -123,6 +139,8 @@ class BlockAmg {
   Eigen::LLT<Eigen::MatrixXd> coarse_llt_;
   Eigen::LDLT<Eigen::MatrixXd> coarse_ldlt_;
   bool coarse_definite_ = true;
+  /// Saved by restore(), built into levels_ by the next refresh() (then reset).
+  std::unique_ptr<SolverState> pending_;
 };
 
 }  // namespace rheodda::core

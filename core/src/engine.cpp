@@ -218,17 +218,33 @@ const EnergyBalance& Engine::energy() const { return impl_->st.energy; }
 const std::vector<StageEvent>& Engine::events() const { return impl_->st.events; }
 bool Engine::in_stage() const { return impl_->settling(); }
 
-EngineState Engine::save() const { return impl_->st; }
+EngineState Engine::save() const {
+  EngineState s = impl_->st;
+  s.search_displacement = impl_->search_disp;
+  s.solver = impl_->solver->state();
+  return s;
+}
 
 void Engine::restore(const EngineState& state) {
   if (state.blocks.size() != impl_->st.blocks.size() ||
       state.measurements.size() != impl_->st.measurements.size())
     throw std::invalid_argument("Engine::restore: the state belongs to a different model");
-  for (std::size_t k = 0; k < state.blocks.size(); ++k)
-    if (state.blocks[k].vertices.size() != impl_->st.blocks[k].vertices.size())
+  for (std::size_t k = 0; k < state.blocks.size(); ++k) {
+    const BlockState& b = state.blocks[k];
+    const std::size_t n = impl_->st.blocks[k].vertices.size();
+    const bool open_stage = state.stage.open && (state.stage.start_vertices.size() != state.blocks.size() ||
+                                                 state.stage.start_vertices[k].size() != n);
+    if (b.vertices.size() != n || b.edge_joint_set.size() != n || b.material < 0 ||
+        b.material >= static_cast<int>(impl_->model.materials.size()) || open_stage)
       throw std::invalid_argument("Engine::restore: the state belongs to a different model (block " +
                                   std::to_string(k) + ")");
+  }
+  for (const auto& m : state.measurements)
+    if (m.empty()) throw std::invalid_argument("Engine::restore: a measurement point has no sample");
+  impl_->solver->restore(state.solver);  // first: it may refuse
   impl_->st = state;
+  impl_->search_disp = state.search_displacement;
+  impl_->reports.clear();
   impl_->refresh_geometry();
 }
 

@@ -103,6 +103,7 @@ void bind_run(py::module_& m) {
         d["frames"] = r.frames;
         d["wall_seconds"] = r.wall_seconds;
         d["resumed_from_step"] = r.resumed_from_step;
+        d["steps_computed"] = r.steps_computed;
         d["warnings"] = r.warnings;
         // summary.json's static_mechanism (docs/engine.md, "Mechanisms in static analysis"); None if dynamic.
         if (r.mechanism.static_analysis) {

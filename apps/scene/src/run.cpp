@@ -9,6 +9,8 @@
 #include <new>
 #include <nlohmann/json.hpp>
 
+#include "checkpoint.hpp"
+#include "checkpoint_state.hpp"
 #include "rheodda/contact/contact_system.hpp"
 #include "rheodda/core/contact_adapter.hpp"
 #include "rheodda/core/engine.hpp"
@@ -18,6 +20,7 @@
 #include "rheodda/scene/memory.hpp"
 #include "rheodda/scene/output.hpp"
 #include "rheodda/version.hpp"
+#include "run_totals.hpp"
 
 namespace rheodda::scene {
 namespace {
@@ -27,10 +30,6 @@ using Clock = std::chrono::steady_clock;
 
 /// Thrown by the step observer to leave Engine::run_until between two steps.
 struct StopAfterStep {};
-
-/// Exact text of a double (C99 hex float), for bit-for-bit comparisons on resume.
-std::string hex(double v) { return fmt::format("{:a}", v); }
-double unhex(const std::string& s) { return std::strtod(s.c_str(), nullptr); }
 
 json scene_json(const SceneDescription& s) {
   json j;
@@ -128,20 +127,6 @@ json scene_json(const SceneDescription& s) {
   for (const auto& m : s.measurement_points)
     j["measurement_points"].push_back({{"name", m.name}, {"point", m.at.point}, {"block", s.blocks[m.at.block].name}});
   return j;
-}
-
-/// Digest of everything the engine evolves (vertices, stresses, velocities, time).
-std::uint64_t state_digest(const core::Engine& e) {
-  std::uint64_t h = fnv1a(nullptr, 0);
-  const double t = e.time();
-  h = fnv1a(&t, sizeof t, h);
-  for (int b = 0; b < e.block_count(); ++b) {
-    const core::BlockState& s = e.block(b);
-    for (const auto& v : s.vertices) h = fnv1a(v.data(), 2 * sizeof(double), h);
-    h = fnv1a(s.stress.data(), 3 * sizeof(double), h);
-    h = fnv1a(s.velocity.data(), 6 * sizeof(double), h);
-  }
-  return h;
 }
 
 /// Thrown by the step observer when the state or an output row is no longer finite:
@@ -270,6 +255,7 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     std::error_code ec;
     if (fs::remove(checkpoint_path, ec)) sync_directory(out);
     if (ec) throw std::runtime_error(write_error(checkpoint_path, ec.value()));
+    for (const char* f : kStateFiles) fs::remove(fs::path(out) / f, ec);  // its states, named by nothing now
   }
 
   // Initial vertex positions, for the displacement field of the frames.
@@ -379,20 +365,19 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     }
   };
 
-  // Replay to the checkpoint (resume) without writing anything.
+  // Steps run again without writing (a resume writing a lost frame again), up to the checkpoint's.
   enum class Mode { replay, record } mode = Mode::record;
   int replay_target = 0;
   Clock::time_point last_progress{};
-  // The time of the first failure of a damage law per joint set: the end of the
-  // step in which its failure count first rose (docs/outputs.md, summary.json "creep").
-  std::vector<double> first_failure(s.joint_sets.size(), std::numeric_limits<double>::quiet_NaN());
+  RunTotals run_totals(s.joint_sets.size(), a.type == AnalysisType::static_analysis);
+  int recorded_step = engine.step_count();  // the last step whose outputs are written [-]
   engine.add_observer([&](const core::Engine& e, const core::StepReport& r) {
-    for (std::size_t j = 0; j < s.joint_sets.size() && j < contacts.creep_counters().size(); ++j)
-      if (std::isnan(first_failure[j]) && contacts.creep_counters()[j].failures > 0) first_failure[j] = e.time();
+    ++result.steps_computed;
     if (mode == Mode::replay) {
       if (e.step_count() >= replay_target) throw StopAfterStep{};
       return;
     }
+    run_totals.add(r, contacts.creep_counters());
     if (const std::string what = nonfinite_state(e, s); !what.empty())
       throw NonFinite(fmt::format("{} is not finite after step {} (t = {:g} {})", what, e.step_count(), e.time(),
                                   s.units.time));
@@ -401,6 +386,7 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
       throw NonFinite(fmt::format("history.csv column '{}' is not finite after step {} (t = {:g} {})", col,
                                   e.step_count(), e.time(), s.units.time));
     history.append(row);
+    recorded_step = e.step_count();
     check_guards(e);
     if (opt.progress) {
       const auto now = Clock::now();
@@ -473,53 +459,39 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     return vtk_collection(files);
   };
 
+  StateFile state_file;  // the state file the last checkpoint names
   if (opt.resume) {
-    json ck;
+    const Checkpoint ck = read_checkpoint(checkpoint_path, s.file, scene_hash, frame_times.size());
+    SavedRun saved = read_state_file(out, ck.state, scene_hash);
+    // Take the saved state up before any file is changed: one that does not fit
+    // this scene's model is refused with the folder as it was.
+    const core::EngineState start = engine.save();
+    const contact::ContactSystem::State start_contacts = contacts.state();
     try {
-      ck = json::parse(read_file(checkpoint_path));
-    } catch (const std::exception& e) {
-      throw std::invalid_argument(fmt::format("--resume: {} is not a readable checkpoint ({}); run without "
-                                              "--resume, or into a new folder",
-                                              checkpoint_path, e.what()));
-    }
-    if (ck.value("scene_hash", "") != scene_hash) {
-      const std::string other = ck.contains("scene_file")
-                                    ? fmt::format(" of {} ('{}')", ck.value("scene_file", ""), ck.value("title", ""))
-                                    : std::string();
+      if (saved.engine.step != ck.step || saved.engine.time != ck.time)
+        throw std::invalid_argument(
+            fmt::format("it is of step {}, the checkpoint of step {}", saved.engine.step, ck.step));
+      if (saved.totals.first_failure.size() != s.joint_sets.size())
+        throw std::invalid_argument(fmt::format("its totals are of {} joint sets, the scene has {}",
+                                                saved.totals.first_failure.size(), s.joint_sets.size()));
+      engine.restore(saved.engine);
+      contacts.restore(saved.contacts);
+    } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(fmt::format(
-          "--resume: {} holds a run{} whose scene text differs from {} (another scene, or the file changed "
-          "since): nothing was changed; to keep those results run into a new folder (-o NEW_FOLDER), to "
-          "replace them run without --resume",
-          out, other, s.file));
+          "--resume: {} does not fit this run ({}); nothing was changed: run without --resume to start again, or "
+          "into a new folder",
+          (fs::path(out) / ck.state.name).string(), e.what()));
     }
-    std::vector<bool> frame_ok;  // false: missing or changed, recreated during the replay
-    int step = 0;
-    std::uint64_t history_bytes = 0, contacts_bytes = 0, history_hash = 0, contacts_hash = 0;
-    try {
-      frames_done = ck.at("frames").get<int>();
-      step = ck.at("step").get<int>();
-      earlier_wall = ck.at("wall_seconds").get<double>();
-      history_bytes = ck.at("history_bytes").get<std::uint64_t>();
-      contacts_bytes = ck.at("contacts_bytes").get<std::uint64_t>();
-      history_hash = std::stoull(ck.at("history_hash").get<std::string>(), nullptr, 16);
-      contacts_hash = std::stoull(ck.at("contacts_hash").get<std::string>(), nullptr, 16);
-      for (const auto& f : ck.at("pvd")) {
-        pvd.emplace_back(unhex(f.at(0).get<std::string>()), f.at(1).get<std::string>());
-        frame_hash.push_back(std::stoull(f.at(2).get<std::string>(), nullptr, 16));
-      }
-    } catch (const std::exception& e) {
-      throw std::invalid_argument(fmt::format("--resume: {} lacks what a resume needs ({}); run without --resume, "
-                                              "or into a new folder",
-                                              checkpoint_path, e.what()));
-    }
-    if (frames_done < 1 || static_cast<int>(pvd.size()) != frames_done || frames_done > int(frame_times.size()))
-      throw std::invalid_argument(
-          fmt::format("--resume: {} is inconsistent (frames {}, listed {}); run without --resume, or into a new folder",
-                      checkpoint_path, frames_done, pvd.size()));
-    // Every file the run continues must be what the checkpoint recorded; a frame
-    // that is missing or changed is written again from the replayed state.
-    history.resume((fs::path(out) / "history.csv").string(), history_bytes, history_hash);
-    contacts_csv.resume((fs::path(out) / "contacts.csv").string(), contacts_bytes, contacts_hash);
+    state_file = ck.state;
+    frames_done = static_cast<int>(ck.frames.size());
+    pvd = ck.frames;
+    frame_hash = ck.frame_hashes;
+    earlier_wall = ck.wall_seconds;
+    // Every file the run continues must be what the checkpoint recorded.
+    history.resume((fs::path(out) / "history.csv").string(), ck.history_bytes, ck.history_hash);
+    contacts_csv.resume((fs::path(out) / "contacts.csv").string(), ck.contacts_bytes, ck.contacts_hash);
+    std::vector<bool> frame_ok;  // false: missing or changed
+    int last_lost = -1;
     for (int k = 0; k < frames_done; ++k) {
       std::string text, layer;
       try {
@@ -528,43 +500,49 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
       } catch (const std::exception&) {
       }
       frame_ok.push_back(!text.empty() && !layer.empty() && frame_pair_hash(text, layer) == frame_hash[k]);
+      if (!frame_ok.back()) last_lost = k;
     }
-    auto restore_frame = [&](int k) {
-      if (k >= frames_done || frame_ok[k] || hex(engine.time()) != hex(pvd[k].first)) return;
-      const std::string text = frame_text(), layer = contacts_frame_text();
-      if (frame_pair_hash(text, layer) != frame_hash[k])
-        throw std::runtime_error(fmt::format("--resume: replaying did not reproduce frame {} ({})", k, pvd[k].second));
-      write_file_atomic((fs::path(out) / pvd[k].second).string(), text);
-      write_file_atomic((fs::path(out) / contacts_file(pvd[k].second)).string(), layer);
-      frame_ok[k] = true;
-    };
-    mode = Mode::replay;
-    replay_target = step;
-    restore_frame(0);
-    int f = 1;  // the frame the replay reaches next
-    try {
-      for (std::size_t k = next_output(engine.time());
-           k < frame_times.size() && f < frames_done && engine.step_count() < step; k = next_output(engine.time())) {
-        engine.run_until(frame_times[k], a.duration);
-        restore_frame(f++);
+    if (last_lost >= 0) {
+      // A lost or changed frame can be written again only from the state of its
+      // time: the steps up to it are run again from the start (the one case in
+      // which a resume computes steps), then the saved state is taken up again.
+      auto restore_frame = [&](int k) {
+        if (frame_ok[k] || engine.time() != pvd[k].first) return;
+        const std::string text = frame_text(), layer = contacts_frame_text();
+        if (frame_pair_hash(text, layer) != frame_hash[k])
+          throw std::runtime_error(
+              fmt::format("--resume: running again did not reproduce frame {} ({})", k, pvd[k].second));
+        write_file_atomic((fs::path(out) / pvd[k].second).string(), text);
+        write_file_atomic((fs::path(out) / contacts_file(pvd[k].second)).string(), layer);
+        frame_ok[k] = true;
+      };
+      engine.restore(start);
+      contacts.restore(start_contacts);
+      mode = Mode::replay;
+      replay_target = ck.step;
+      restore_frame(0);
+      int f = 1;  // the frame the steps reach next
+      try {
+        for (std::size_t k = next_output(engine.time()); k < frame_times.size() && f <= last_lost;
+             k = next_output(engine.time())) {
+          engine.run_until(frame_times[k], a.duration);
+          restore_frame(f++);
+        }
+      } catch (const StopAfterStep&) {  // at the checkpoint's step: its frame, if it is one
+        if (f <= last_lost) restore_frame(f);
       }
-      // The checkpoint's own segment, stopped at its step.
-      if (engine.step_count() < step) engine.run_until(a.duration, a.duration);
-    } catch (const StopAfterStep&) {
+      mode = Mode::record;
+      for (int k = 0; k <= last_lost; ++k)
+        if (!frame_ok[k])
+          throw std::runtime_error(fmt::format("--resume: frame {} ({}) could not be written again", k, pvd[k].second));
+      engine.restore(saved.engine);
+      contacts.restore(saved.contacts);
     }
-    if (f < frames_done) restore_frame(f);
-    if (engine.step_count() != step || hex(engine.time()) != ck.at("time").get<std::string>() ||
-        fmt::format("{:016x}", state_digest(engine)) != ck.at("digest").get<std::string>())
-      throw std::runtime_error(fmt::format(
-          "--resume: replaying {} steps did not reproduce the checkpoint (step {}, time {:g})", step,
-          engine.step_count(), engine.time()));
-    for (int j = 0; j < frames_done; ++j)
-      if (!frame_ok[j])
-        throw std::runtime_error(fmt::format("--resume: frame {} ({}) could not be written again", j, pvd[j].second));
     write_file_atomic((fs::path(out) / "blocks.pvd").string(), vtk_collection(pvd));
     write_file_atomic((fs::path(out) / "contacts.pvd").string(), contacts_collection());
-    mode = Mode::record;
-    result.resumed_from_step = step;
+    run_totals = std::move(saved.totals);
+    recorded_step = ck.step;
+    result.resumed_from_step = ck.step;
   } else {
     history.create((fs::path(out) / "history.csv").string());
     contacts_csv.create((fs::path(out) / "contacts.csv").string());
@@ -578,30 +556,18 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     for (std::size_t j = 0; j < s.joint_sets.size(); ++j)
       if (contacts.joint_sets()[j].law) {
         const contact::CreepCounters& k = contacts.creep_counters()[j];
-        result.creep.push_back({s.joint_sets[j].name, k.contacts, k.contact_time, k.failures, first_failure[j]});
+        result.creep.push_back(
+            {s.joint_sets[j].name, k.contacts, k.contact_time, k.failures, run_totals.first_failure[j]});
       }
     result.steps = engine.step_count();
     result.time = engine.time();
-    result.cuts = result.redone = result.extrapolated = 0;
-    result.max_penetration = 0.0;
-    auto& mech = result.mechanism;
-    mech = {};
-    mech.static_analysis = s.analysis.type == AnalysisType::static_analysis;
-    if (mech.static_analysis) mech.inertia_share = core::inertia_share(engine.energy().total);
-    for (const auto& r : engine.reports()) {
-      result.cuts += r.cuts;
-      result.redone += r.rejections;
-      result.extrapolated += r.extrapolated ? 1 : 0;
-      result.max_penetration = std::max(result.max_penetration, r.max_penetration);
-      if (r.collapse_stage) mech.collapse_stages.push_back(r.time - r.dt);
-      if (mech.static_analysis && core::inertia_share(r.energy) > core::kMechanismStepShare) {
-        if (mech.steps++ == 0) {
-          mech.first_time = r.time;
-          mech.first_step = r.step;
-        }
-        mech.last_time = r.time;
-      }
-    }
+    result.cuts = run_totals.cuts;
+    result.redone = run_totals.redone;
+    result.extrapolated = run_totals.extrapolated;
+    result.max_penetration = run_totals.max_penetration;
+    result.mechanism = run_totals.mechanism;
+    if (result.mechanism.static_analysis)
+      result.mechanism.inertia_share = core::inertia_share(engine.energy().total);
     result.frames = frames_done;
     result.wall_seconds = earlier_wall + std::chrono::duration<double>(Clock::now() - wall_start).count();
   };
@@ -625,8 +591,7 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     {
       // What the open-close checks changed over the run, by kind (every iterate
       // of every attempt, cut ones included): where the iterations went.
-      core::ContactChanges c;
-      for (const auto& r : engine.reports()) c += r.changes;
+      const core::ContactChanges& c = run_totals.contact_changes;
       j["contact_changes"] = {{"closed", c.closed},   {"opened", c.opened},
                               {"slipped", c.slipped}, {"stuck", c.stuck},
                               {"refinements", c.refinements}};
@@ -701,6 +666,7 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     j["frames"] = result.frames;
     j["wall_seconds"] = result.wall_seconds;
     j["resumed_from_step"] = result.resumed_from_step;
+    j["steps_computed"] = result.steps_computed;
     j["warnings"] = result.warnings;
     // Where each joint set's law acted (docs/outputs.md, "summary.json").
     j["creep"] = json::object();
@@ -742,31 +708,35 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
   };
   Clock::time_point last_checkpoint{};
   auto write_checkpoint = [&] {
-    // What the checkpoint counts must be on disk before the checkpoint is (the
-    // frames and blocks.pvd need not: resume writes them again when they are lost).
+    // What the checkpoint counts must be on disk before the checkpoint is: the
+    // CSVs and the state file it names (the frames and blocks.pvd need not:
+    // resume writes them again when they are lost).
     history.sync();
     contacts_csv.sync();
-    json ck;
-    ck["scene_hash"] = scene_hash;
-    ck["scene_file"] = s.file;
-    ck["title"] = s.title;
-    ck["step"] = engine.step_count();
-    ck["time"] = hex(engine.time());
-    ck["digest"] = fmt::format("{:016x}", state_digest(engine));
-    ck["frames"] = frames_done;
-    ck["history_bytes"] = history.bytes();
-    ck["history_hash"] = fmt::format("{:016x}", history.hash());
-    ck["contacts_bytes"] = contacts_csv.bytes();
-    ck["contacts_hash"] = fmt::format("{:016x}", contacts_csv.hash());
-    ck["wall_seconds"] = earlier_wall + std::chrono::duration<double>(Clock::now() - wall_start).count();
-    json frames = json::array();
-    for (std::size_t k = 0; k < pvd.size(); ++k)
-      frames.push_back({hex(pvd[k].first), pvd[k].second, fmt::format("{:016x}", frame_hash[k])});
-    ck["pvd"] = frames;
-    write_file_atomic(checkpoint_path, ck.dump(1) + "\n", true);
+    const StateFile previous = state_file;
+    state_file = write_state_file(out, {engine.save(), contacts.state(), run_totals}, scene_hash, previous.name);
+    Checkpoint ck;
+    ck.scene_hash = scene_hash;
+    ck.scene_file = s.file;
+    ck.title = s.title;
+    ck.step = engine.step_count();
+    ck.time = engine.time();
+    ck.wall_seconds = earlier_wall + std::chrono::duration<double>(Clock::now() - wall_start).count();
+    ck.history_bytes = history.bytes();
+    ck.history_hash = history.hash();
+    ck.contacts_bytes = contacts_csv.bytes();
+    ck.contacts_hash = contacts_csv.hash();
+    ck.frames = pvd;
+    ck.frame_hashes = frame_hash;
+    ck.state = state_file;
+    write_file_atomic(checkpoint_path, checkpoint_text(ck), true);
+    std::error_code ec;  // the state the previous checkpoint named is needed no more
+    if (!previous.name.empty() && previous.name != state_file.name) fs::remove(fs::path(out) / previous.name, ec);
     last_checkpoint = Clock::now();
   };
+  bool frame_open = false;  // a frame is being written (its rows may be in contacts.csv already)
   auto write_frame = [&] {
+    frame_open = true;
     const int k = frames_done;
     std::string rows;
     for (const auto& c : contacts.contacts()) {
@@ -800,9 +770,11 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     write_file_atomic((fs::path(out) / "blocks.pvd").string(), vtk_collection(pvd));
     write_file_atomic((fs::path(out) / "contacts.pvd").string(), contacts_collection());
     ++frames_done;
-    // A checkpoint costs a few fsyncs (~10 ms here): at most one per second of wall
-    // time at frames; always on a stop, a failure and at the end. A resume after a
-    // crash replays from the last one (and writes the later frames again).
+    frame_open = false;
+    // A checkpoint costs a few fsyncs (~10 ms here) and the state file: at most one
+    // per second of wall time at frames; always on a stop, a failure and at the end.
+    // A resume after a crash continues from the last one (and writes the later
+    // frames again).
     if (frames_done == 1 || Clock::now() - last_checkpoint > std::chrono::seconds(1)) write_checkpoint();
     write_summary("running", "");
   };
@@ -858,7 +830,9 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
           closed, total, s.blocks[se->block].fixed ? " (it is fixed)" : "");
     }
     try {
-      write_checkpoint();
+      // Only where the state is that of the outputs: not within a step (a
+      // failure inside the engine can leave it there), nor within a frame.
+      if (engine.step_count() == recorded_step && !frame_open) write_checkpoint();
     } catch (const std::exception&) {
     }
     try {

@@ -15,7 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "../test_support.hpp"
+#include "run_support.hpp"
 #include "rheodda/scene/build.hpp"
 #include "rheodda/scene/describe.hpp"
 #include "rheodda/scene/loader.hpp"
@@ -28,22 +28,6 @@ using namespace rheodda::test;
 namespace fs = std::filesystem;
 
 namespace {
-
-scene::SceneDescription sliding(double duration, double interval) {
-  auto s = scene::load_scene(source_path("examples/sliding-block.yaml"));
-  s.analysis.duration = duration;
-  s.analysis.output_interval = interval;
-  return s;
-}
-
-scene::RunResult run(const scene::SceneDescription& s, const fs::path& out, int stop_after = -1,
-                     bool resume = false) {
-  scene::RunOptions o;
-  o.out_dir = out.string();
-  o.stop_after_step = stop_after;
-  o.resume = resume;
-  return scene::run_scene(s, read_text(s.file), o);
-}
 
 std::string status_of(const fs::path& out) {
   return nlohmann::json::parse(read_text((out / "summary.json").string())).at("status").get<std::string>();

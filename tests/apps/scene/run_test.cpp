@@ -15,7 +15,7 @@
 #include <thread>
 #include <unistd.h>
 
-#include "../test_support.hpp"
+#include "run_support.hpp"
 #include "rheodda/core/energy.hpp"
 #include "rheodda/scene/loader.hpp"
 #include "rheodda/scene/output.hpp"
@@ -72,14 +72,6 @@ scene::SceneDescription example(const std::string& name, double duration, double
   s.analysis.duration = duration;
   s.analysis.output_interval = interval;
   return s;
-}
-
-scene::RunResult run(const scene::SceneDescription& s, const fs::path& out, int stop_after = -1, bool resume = false) {
-  scene::RunOptions o;
-  o.out_dir = out.string();
-  o.stop_after_step = stop_after;
-  o.resume = resume;
-  return scene::run_scene(s, read_text(s.file), o);
 }
 
 }  // namespace

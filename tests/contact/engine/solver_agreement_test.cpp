@@ -12,45 +12,11 @@
 using namespace rheodda;
 using namespace rheodda::testing;
 
-namespace {
-
-/// nx x ny running-bond wall of 0.2 m x 0.1 m bricks on a fixed base
-/// (E = 5 GPa, friction 30 deg, dynamic, dt = 1e-3 s, g2 w0 = 1 mm), every
-/// open-close iterate solved to the full tolerance unless `iterate_tolerance`.
-core::Model wall(int nx, int ny, core::SolverKind solver, double dynamic_ratio = 1.0,
-                 double iterate_tolerance = 0.0) {
-  core::Model m;
-  m.settings.pcg_iterate_tolerance = iterate_tolerance;
-  m.settings.dynamic_ratio = dynamic_ratio;
-  m.materials[0].density = 2600.0;
-  m.materials[0].young_modulus = 5e9;
-  m.materials[0].poisson_ratio = 0.2;
-  m.settings.dt = 1e-3;
-  m.settings.solver = solver;
-  const double w = 0.2, h = 0.1, width = nx * w;
-  m.settings.g2 = 1e-3 / (0.5 * std::max(width + 1.0, ny * h + 0.5));
-  add_fixed(m, rect(-0.5, -0.5, width + 0.5, 0.0));
-  for (int j = 0; j < ny; ++j) {
-    const double y0 = j * h, y1 = y0 + h;
-    if (j % 2 == 0) {
-      for (int i = 0; i < nx; ++i) m.blocks.push_back(block(rect(i * w, y0, (i + 1) * w, y1)));
-    } else {
-      m.blocks.push_back(block(rect(0.0, y0, 0.5 * w, y1)));
-      for (int i = 0; i + 1 < nx; ++i)
-        m.blocks.push_back(block(rect((i + 0.5) * w, y0, (i + 1.5) * w, y1)));
-      m.blocks.push_back(block(rect(width - 0.5 * w, y0, width, y1)));
-    }
-  }
-  return m;
-}
-
-}  // namespace
-
 BOOST_AUTO_TEST_SUITE(solver_agreement)
 
 BOOST_AUTO_TEST_CASE(amg_runs_the_brick_wall_as_cholmod_does) {
-  Sim a(wall(20, 20, core::SolverKind::cholmod), {joint(30.0)});
-  Sim b(wall(20, 20, core::SolverKind::amg), {joint(30.0)});
+  Sim a(running_bond_wall(20, 20, core::SolverKind::cholmod), {joint(30.0)});
+  Sim b(running_bond_wall(20, 20, core::SolverKind::amg), {joint(30.0)});
   BOOST_TEST_REQUIRE(a.engine.block_count() == 411);
   int changes = 0;
   for (int k = 0; k < 10; ++k) {
@@ -76,8 +42,8 @@ BOOST_AUTO_TEST_CASE(inexact_iterates_end_on_a_full_solve_and_run_the_wall_as_ex
   // solve). The contact problem of a step can have several consistent state
   // sets and the inexact path may end on another one than the exact path:
   // over 10 steps of the settling wall the displacements agree within 1e-3.
-  Sim a(wall(20, 20, core::SolverKind::amg), {joint(30.0)});
-  Sim b(wall(20, 20, core::SolverKind::amg, 1.0, 1e-4), {joint(30.0)});
+  Sim a(running_bond_wall(20, 20, core::SolverKind::amg), {joint(30.0)});
+  Sim b(running_bond_wall(20, 20, core::SolverKind::amg, 1.0, 1e-4), {joint(30.0)});
   Eigen::VectorXd sum_a = Eigen::VectorXd::Zero(6 * 411), sum_b = sum_a;
   for (int k = 0; k < 10; ++k) {
     const core::StepReport ra = a.engine.step(), rb = b.engine.step();
@@ -100,8 +66,8 @@ BOOST_AUTO_TEST_CASE(inexact_iterates_end_on_a_full_solve_and_run_the_wall_as_ex
 BOOST_AUTO_TEST_CASE(amg_runs_a_static_analysis_as_cholmod_does) {
   // No inertia on the diagonal: the stiffness comes from the contacts, the
   // blocks' elasticity and the fixed base alone (the hardest case for CG).
-  Sim a(wall(20, 20, core::SolverKind::cholmod, 0.0), {joint(30.0)});
-  Sim b(wall(20, 20, core::SolverKind::amg, 0.0), {joint(30.0)});
+  Sim a(running_bond_wall(20, 20, core::SolverKind::cholmod, 0.0), {joint(30.0)});
+  Sim b(running_bond_wall(20, 20, core::SolverKind::amg, 0.0), {joint(30.0)});
   for (int k = 0; k < 5; ++k) {
     const core::StepReport ra = a.engine.step(), rb = b.engine.step();
     BOOST_TEST(ra.iterations == rb.iterations);

@@ -32,6 +32,7 @@
 #include <optional>
 #include <unordered_map>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "rheodda/contact/broad_phase.hpp"
@@ -250,6 +251,49 @@ class ContactSystem {
   double last_max_penetration() const { return last_max_penetration_; }  ///< of the last accepted step [length]
   const DetectionStats& stats() const { return stats_; }
 
+  /// What the energy balance needs of one contact's last accepted step,
+  /// recorded by end_step (parallel to committed_; contact_energy.cpp).
+  struct StepWork {
+    double pn = 0.0, ps = 0.0;   ///< normal and elastic shear springs of the step [stress]
+    double dn0 = 0.0, dn = 0.0;  ///< penetration on the step-start geometry and at the end [length]
+    double st0 = 0.0;            ///< stretch of the shear spring at the step start (dt0) [length]
+    double slip = 0.0;           ///< tangential relative motion of the step [length]
+    ContactState start_state = ContactState::open;
+    double friction = 0.0;       ///< friction force of the final solve, signed along the edge
+                                 ///< (sliding; from the N that solve assembled) [force/length]
+    double normal_damping = 0.0;  ///< normal dashpot force at the end (closed; JointSet::restitution) [force/length]
+    double shear_damping = 0.0;   ///< shear dashpot force at the end, along the edge (locked) [force/length]
+  };
+
+  /// Everything of the system that the next steps depend on, between two
+  /// steps (contact_state.cpp): the records of the last accepted step with
+  /// their creep histories and energy terms, the counters, the penalty as
+  /// raised so far, the next contact id, and the stresses the creep error
+  /// estimate remembers. A system restored from it steps on bit for bit as
+  /// the one it was taken from (a resumed run, docs/outputs.md).
+  struct State {
+    std::vector<Contact> contacts;                 ///< contacts(), sorted by key
+    std::vector<laws::RheologyState> rheology;     ///< rheology_states()
+    std::vector<double> creep;                     ///< creep_increments() [length]
+    std::vector<StepWork> work;                    ///< energy terms of the last step, parallel to contacts
+    std::vector<CreepCounters> counters;           ///< creep_counters(), per joint set
+    double penalty = 0.0;                          ///< [stress]
+    double allowed_penetration = 0.0;              ///< [length]
+    double last_max_penetration = 0.0;             ///< [length]
+    double stored_before = 0.0;                    ///< stored energy before the last step [force x length]
+    std::uint64_t next_id = 1;
+    /// Stress at the last step's start by contact id, sorted by id [stress].
+    std::vector<std::pair<std::uint64_t, double>> previous_stress;
+    double previous_dt = 0.0;                      ///< last accepted step with the creep estimate [time]
+    double creep_error = 0.0;                      ///< creep_error_estimate() [length]
+    int creep_changes = 0;                         ///< creep_state_changes() [-]
+  };
+  /// The state between two steps (not within one: no trial records).
+  State state() const;
+  /// Takes up a state saved from a system with the same joint sets. Throws
+  /// std::invalid_argument when it cannot be one (sizes, indices out of range).
+  void restore(const State& state);
+
  private:
   /// Linearized geometry of one contact on the step-start configuration:
   /// d_n = dn0 + ni.D_i + nj.D_j (penetration, the seed's normal spring, Shi 1988)
@@ -287,19 +331,6 @@ class ContactSystem {
     bool law_failed = false;  ///< its law failed in this step (damage 1): counted in end_step
     double assembled_normal_force = 0.0;  ///< normal_force as the last solve's assembly used it
                                           ///< (set by check; energy balance) [force/length]
-  };
-  /// What the energy balance needs of one contact's last accepted step,
-  /// recorded by end_step (parallel to committed_; contact_energy.cpp).
-  struct StepWork {
-    double pn = 0.0, ps = 0.0;   ///< normal and elastic shear springs of the step [stress]
-    double dn0 = 0.0, dn = 0.0;  ///< penetration on the step-start geometry and at the end [length]
-    double st0 = 0.0;            ///< stretch of the shear spring at the step start (dt0) [length]
-    double slip = 0.0;           ///< tangential relative motion of the step [length]
-    ContactState start_state = ContactState::open;
-    double friction = 0.0;       ///< friction force of the final solve, signed along the edge
-                                 ///< (sliding; from the N that solve assembled) [force/length]
-    double normal_damping = 0.0;  ///< normal dashpot force at the end (closed; JointSet::restitution) [force/length]
-    double shear_damping = 0.0;   ///< shear dashpot force at the end, along the edge (locked) [force/length]
   };
   /// Sum of p_n d_n^2/2 + F^2/(2 k_s) over records with their springs [force x length].
   static double stored_energy(std::span<const Contact> records, std::span<const StepWork> work);

@@ -21,6 +21,7 @@
 #include <functional>
 #include <memory>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "rheodda/contact/kinematics.hpp"
@@ -74,6 +75,25 @@ struct SolverStats {
   /// Under `automatic`: the step at whose solve amg's conjugate gradient did not
   /// converge and CHOLMOD took over for the rest of the run (-1: never) [-].
   long amg_fallback_solve = -1;
+};
+
+/// What the linear solver carries from one solve to the next (solver.hpp):
+/// enough for a solver restored from it to solve the next systems bit for bit
+/// as the one it was taken from (a resumed run, docs/outputs.md "Interrupting
+/// and resuming"). CHOLMOD keeps nothing that a fresh analysis of the same
+/// pattern would not give again; amg keeps its warm start and the part of its
+/// hierarchy that depends on earlier systems (block_amg.hpp, "Reuse").
+struct SolverState {
+  bool amg_failed = false;       ///< automatic: amg gave way to CHOLMOD for the rest of the run
+  long amg_fallback_solve = -1;  ///< SolverStats::amg_fallback_solve of that event [-]
+  std::vector<double> warm_start;  ///< amg: the last solution, start of the next solve
+  /// amg: the hierarchy's aggregates as they were built for the block pattern
+  /// `pattern` (level-0 block pairs (i, j)); empty when there is none.
+  std::vector<std::pair<int, int>> pattern;
+  std::vector<Vec2> positions;     ///< level-0 block points at the last refresh that moved them [length]
+  std::vector<std::vector<int>> aggregates;  ///< per level but the coarsest: coarse block of each block
+  std::vector<int> coarse_blocks;  ///< per level but the coarsest: blocks of the next level [-]
+  std::vector<double> omega;       ///< per level but the coarsest: prolongator smoothing weight [-]
 };
 
 /// Run-time state of one block.
@@ -155,6 +175,10 @@ struct EngineState {
   EnergyBalance energy;      ///< energy balance since t = 0 (energy.hpp)
   StageState stage;          ///< the dynamic stage in progress, or the last one
   std::vector<StageEvent> events;  ///< dynamic stages that have ended, in order
+  /// Reach of the next step's contact search (StepContext::max_displacement;
+  /// docs/engine.md, "Contact search reach") [length].
+  double search_displacement = 0.0;
+  SolverState solver;        ///< the linear solver's memory between solves
 };
 
 /// Called after every accepted step.
@@ -208,7 +232,7 @@ class Engine {
   std::span<const contact::BlockView> views() const;
   /// Displacements D (6 per block) of the last accepted step.
   const Eigen::VectorXd& last_displacements() const;
-  /// Reports of all accepted steps.
+  /// Reports of the accepted steps since the engine was built or restored.
   const std::vector<StepReport>& reports() const;
   /// Samples per measurement point (first sample = initial state, step -1).
   const std::vector<std::vector<MeasurementSample>>& measurements() const;
@@ -223,7 +247,10 @@ class Engine {
 
   /// Copy of everything that evolves.
   EngineState save() const;
-  /// Resumes from a saved state of an engine built from the same model.
+  /// Resumes from a saved state of an engine built from the same model: the
+  /// steps after it are those the saved engine would have taken, bit for bit
+  /// (with the contact model restored to its own state of that moment).
+  /// reports() starts again from empty.
   void restore(const EngineState& state);
 
  private:

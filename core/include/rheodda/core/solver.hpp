@@ -77,6 +77,10 @@ class LinearSolver {
   /// Cholesky factor's N^1.5 flops take over.
   static constexpr int kAmgBlocks = 2000;
   const SolverStats& stats() const { return stats_; }
+  /// What the next solves depend on beside their systems (solver_state.cpp):
+  /// restore() it into a solver of the same kind to solve on bit for bit.
+  SolverState state() const;
+  void restore(const SolverState& state);
 
  private:
   struct Cholmod;

@@ -1,14 +1,15 @@
 // `rheodda run`: a scene through the DDA engine with contacts, writing the
 // outputs (docs/outputs.md) as it goes, stoppable between steps and resumable.
 //
-// Resume. A checkpoint (checkpoint.json, rewritten whole at every output frame
-// and when a run is stopped) records the accepted steps, the time, the frames
-// written, the byte length of each CSV, a hash of the scene text and a digest of
-// the engine state. Resuming truncates the CSVs to those lengths, replays the
-// accepted steps exactly as the first run took them (the run is deterministic;
-// the contact layer's state is rebuilt this way rather than read from disk),
-// checks that the replayed state has the checkpoint's digest bit for bit, and
-// carries on writing. The result is the same as that of an uninterrupted run.
+// Resume. A checkpoint (checkpoint.json, rewritten whole at output frames at
+// most once a second, and when a run stops) records the accepted steps, the
+// time, the frames written, the byte length and hash of each CSV, a hash of the
+// scene text, and the state file that holds the engine, contact and run-total
+// state of that step (checkpoint_state.hpp: versioned, checksummed, written
+// first). Resuming checks the state file, takes the state up, truncates the
+// CSVs to those lengths and carries on writing: it computes no step again
+// (unless a frame the checkpoint lists was lost: then the steps up to it). The
+// result is the same as that of an uninterrupted run, byte for byte.
 #pragma once
 
 #include <limits>
@@ -41,7 +42,7 @@ enum class RunStatus { completed, interrupted };
 
 struct RunResult {
   RunStatus status = RunStatus::completed;
-  int steps = 0;                 ///< accepted steps (all, including replayed ones)
+  int steps = 0;                 ///< accepted steps (all, those before a resume included)
   int cuts = 0;                  ///< dt cuts over all steps
   int redone = 0;                ///< steps redone smaller by an adaptive control (creep_tolerance,
                                  ///< step_tolerance) over all steps
@@ -51,6 +52,8 @@ struct RunResult {
   int frames = 0;                ///< output frames written
   double wall_seconds = 0.0;     ///< wall time of this and earlier (resumed) sessions [s]
   int resumed_from_step = -1;    ///< -1: not resumed
+  int steps_computed = 0;        ///< steps this process computed: of a resume, those after its
+                                 ///< checkpoint (and the steps run again to write a lost frame) [-]
   std::vector<std::string> warnings;
   /// Per joint set with a creep law: the contacts the law advanced and their
   /// contact-time [time] (contact::ContactSystem::creep_counters).

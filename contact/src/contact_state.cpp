@@ -1,0 +1,78 @@
+// The contact system's state between two steps, taken and restored
+// (ContactSystem::State; a resumed run, docs/outputs.md "Interrupting and
+// resuming"). What begin_step rebuilds from the committed records (the hot
+// data, seams, law constants, the keys of the last step, the broad phase's
+// buffers) and what lives only within a step (the trial records, the
+// step-start records a retraction swaps back) is not part of it.
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "rheodda/contact/contact_system.hpp"
+
+namespace rheodda::contact {
+
+ContactSystem::State ContactSystem::state() const {
+  State s;
+  s.contacts = committed_;
+  s.rheology = committed_rheology_;
+  s.creep = committed_creep_;
+  s.work = committed_work_;
+  s.counters = creep_counters_;
+  s.penalty = penalty_;
+  s.allowed_penetration = allowed_penetration_;
+  s.last_max_penetration = last_max_penetration_;
+  s.stored_before = stored_before_;
+  s.next_id = next_id_;
+  // Sorted, so that equal states give equal files (the map's order is not defined).
+  s.previous_stress.assign(prev_tau_.begin(), prev_tau_.end());
+  std::sort(s.previous_stress.begin(), s.previous_stress.end());
+  s.previous_dt = prev_dt_;
+  s.creep_error = creep_error_;
+  s.creep_changes = creep_changes_;
+  return s;
+}
+
+void ContactSystem::restore(const State& s) {
+  auto refuse = [](const std::string& what) {
+    throw std::invalid_argument("contact state: " + what);
+  };
+  const std::size_t n = s.contacts.size();
+  if (s.counters.size() != joint_sets_.size())
+    refuse("it has " + std::to_string(s.counters.size()) + " joint sets, this system " +
+           std::to_string(joint_sets_.size()));
+  if ((!s.creep.empty() && s.creep.size() != n) || (!s.work.empty() && s.work.size() != n))
+    refuse("its creep increments or energy records do not match its " + std::to_string(n) + " contacts");
+  for (std::size_t c = 0; c < n; ++c) {
+    const Contact& r = s.contacts[c];
+    if (r.joint_set < 0 || r.joint_set >= static_cast<int>(joint_sets_.size()) || r.rheology < -1 ||
+        r.rheology >= static_cast<int>(s.rheology.size()) || r.id == 0 || r.id >= s.next_id)
+      refuse("contact " + std::to_string(c) + " has a joint set, rheology slot or id out of range");
+    if (c > 0 && r.key < s.contacts[c - 1].key) refuse("its contacts are not sorted by key");
+  }
+  if (!(s.penalty > 0.0)) refuse("its penalty is not positive");
+  committed_ = s.contacts;
+  committed_rheology_ = s.rheology;
+  committed_creep_ = s.creep;
+  committed_work_ = s.work;
+  creep_counters_ = s.counters;
+  penalty_ = s.penalty;
+  allowed_penetration_ = s.allowed_penetration;
+  last_max_penetration_ = s.last_max_penetration;
+  stored_before_ = s.stored_before;
+  next_id_ = s.next_id;
+  prev_tau_.clear();
+  prev_tau_.insert(s.previous_stress.begin(), s.previous_stress.end());
+  prev_dt_ = s.previous_dt;
+  creep_error_ = s.creep_error;
+  creep_changes_ = s.creep_changes;
+  // Between two steps: no trial, nothing to retract.
+  abandon_step();
+  start_records_.clear();
+  start_rheology_.clear();
+  start_creep_.clear();
+  start_work_.clear();
+  can_retract_ = false;
+}
+
+}  // namespace rheodda::contact
