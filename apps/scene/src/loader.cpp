@@ -25,6 +25,7 @@
 
 #include "rheodda/laws/registry.hpp"
 #include "rheodda/scene/geometry.hpp"
+#include "rheodda/scene/memory.hpp"
 #include "yaml_document.hpp"
 
 namespace rheodda::scene {
@@ -835,6 +836,7 @@ void read_rock_mass(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, st
     return v;
   };
   std::vector<rockmass::Trace> traces;
+  std::vector<std::pair<std::size_t, std::size_t>> set_traces;  // per joint set: its range in `traces`
   if (YAML::Node sets = list("joint_sets"); sets.IsDefined())
     for (std::size_t i = 0; i < sets.size(); ++i) {
       MapReader j(ctx, sets[i], fmt::format("{}[{}]", m.child("joint_sets"), i), keys::rock_mass_joint_set);
@@ -892,7 +894,7 @@ void read_rock_mass(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, st
       }
       if (traces.size() + t.size() > 2'000'000)
         ctx.fail(j.node(), j.child("spacing"), "the joint sets give more than 2e6 traces: larger spacing or fewer sets");
-      rm.traces_generated.push_back(t.size());
+      set_traces.push_back({traces.size(), traces.size() + t.size()});
       traces.insert(traces.end(), t.begin(), t.end());
       rm.joint_sets.push_back(g);
     }
@@ -909,12 +911,44 @@ void read_rock_mass(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, st
       rm.traces.push_back(t);
       traces.push_back(t);
     }
+  // What the cut will cost, before cutting: a spacing of millimetres over a slope
+  // would ask for 1e9 blocks and more memory than the machine has.
+  {
+    const rockmass::CutEstimate e = rm.estimate = rockmass::estimate_cut(rm.region, traces);
+    // Located at the joint set that draws the most traces (or the explicit traces).
+    YAML::Node at = m.find("traces");
+    std::string key = m.child("traces");
+    std::size_t most = 0;
+    for (std::size_t i = 0; i < set_traces.size(); ++i)
+      if (const std::size_t k = set_traces[i].second - set_traces[i].first; k >= most) {
+        most = k;
+        at = list("joint_sets")[i]["spacing"];
+        key = fmt::format("{}[{}].spacing", m.child("joint_sets"), i);
+      }
+    if (!at.IsDefined()) at = n, key = "rock_mass";
+    const std::string what =
+        fmt::format("the traces ({} of them) cross about {:.3g} times and would cut the region into up to {:.3g} "
+                    "blocks",
+                    traces.size(), e.crossings, e.pieces);
+    if (e.pieces > 10.0 * static_cast<double>(kMaxBlocks))
+      ctx.fail(at, key, fmt::format("{}; a scene holds at most {} blocks: a larger spacing, shorter traces or a "
+                                    "smaller region",
+                                    what, kMaxBlocks));
+    if (const auto available = available_memory(); available && e.bytes > *available)
+      ctx.fail(at, key, fmt::format("{}; the cut would need about {} of memory, {} is available: a larger spacing, "
+                                    "shorter traces or a smaller region",
+                                    what, format_bytes(e.bytes), format_bytes(*available)));
+  }
   rockmass::CutResult cut;
   try {
     cut = rockmass::cut_blocks(rm.region, traces, {rm.sliver_area});
   } catch (const rockmass::CutError& e) {
     ctx.fail(region, m.child("region"), e.what());
   }
+  for (const auto& [first, last] : set_traces)
+    rm.traces_generated.push_back(static_cast<std::size_t>(
+        std::count(cut.trace_in_region.begin() + static_cast<long>(first),
+                   cut.trace_in_region.begin() + static_cast<long>(last), 1)));
   if (cut.blocks.size() + raw.size() > kMaxBlocks)
     ctx.fail(n, "rock_mass", fmt::format("the cut gives {} blocks; more than {} blocks in the scene",
                                          cut.blocks.size(), kMaxBlocks));
@@ -1063,9 +1097,20 @@ void check_geometry(const Ctx& ctx, std::vector<RawBlock>& raw, SceneDescription
     if (b.name.empty()) b.name = fmt::format("block{}", i + 1);
     if (!names.insert(b.name).second)
       ctx.fail(raw[i].node, raw[i].path + ".name", fmt::format("block name '{}' is used twice", b.name));
-    if (auto defect = polygon_defect(b.polygon, tol))
-      ctx.fail(raw[i].geometry_node, raw[i].path + ".polygon",
-               fmt::format("block '{}' {}", b.name, *defect));
+    if (auto defect = polygon_defect(b.polygon, tol)) {
+      if (raw[i].path == "rock_mass") {
+        // A generated block has no place in the file: say where it lies and why.
+        double x = 0.0, y = 0.0;
+        for (const Point& p : b.polygon) x += p[0], y += p[1];
+        x /= static_cast<double>(b.polygon.size()), y /= static_cast<double>(b.polygon.size());
+        ctx.fail(raw[i].geometry_node, "rock_mass.region",
+                 fmt::format("the cut leaves a needle DDA cannot model at ({:g}, {:g}): the block there {}; two "
+                             "traces cross at a grazing angle (below about 1e-7 rad) there: change the seed or the "
+                             "joint sets (docs/rockmass.md, \"Limits\")",
+                             x, y, *defect));
+      }
+      ctx.fail(raw[i].geometry_node, raw[i].path + ".polygon", fmt::format("block '{}' {}", b.name, *defect));
+    }
     if (signed_area(b.polygon) < 0.0) {
       // Clockwise input: reverse to counter-clockwise. New edge k (v'_k -> v'_k+1) is
       // old edge n-2-k (mod n), so the edge joint sets follow their edges.
