@@ -117,7 +117,6 @@ std::string ensemble_text(const ForecastArgs& a, const scene::SceneDescription& 
       samples.size(), fit.law, a.joint_set, fit.file,
       yaml_quoted(fmt::format("forecast of {} with the uncertainty of {}", s.title, fs::path(fit.file).filename().string())),
       fs::absolute(a.scene).string(), output, by);
-  const int width = static_cast<int>(std::to_string(samples.size()).size());
   for (std::size_t k = 0; k < samples.size(); ++k) {
     std::vector<std::string> sets;
     if (same_law) {  // the scene's law keeps its other keys (scheme, ...); its parameters change
@@ -127,7 +126,7 @@ std::string ensemble_text(const ForecastArgs& a, const scene::SceneDescription& 
       for (const auto& [name, v] : samples[k]) ps.push_back(fmt::format("{}: {}", name, v));
       sets.push_back(fmt::format("joint_sets.{}.law: {{{}}}", a.joint_set, fmt::join(ps, ", ")));
     }
-    t += fmt::format("  - {{name: sample{:0{}}, set: {{{}}}}}\n", k + 1, width, fmt::join(sets, ", "));
+    t += fmt::format("  - {{name: {}, set: {{{}}}}}\n", study::drawn_case_name(k, samples.size()), fmt::join(sets, ", "));
   }
   return t;
 }
@@ -188,9 +187,8 @@ void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
     f << "case";
     for (std::size_t i = 0; i < fit.names.size(); ++i) f << "," << fit.names[i] << " [" << scene_unit(fit.dimensions[i], s.units) << "]";
     f << "\n";
-    const int width = static_cast<int>(std::to_string(scene_samples.size()).size());
     for (std::size_t k = 0; k < scene_samples.size(); ++k) {
-      f << fmt::format("sample{:0{}}", k + 1, width);
+      f << study::drawn_case_name(k, scene_samples.size());
       for (const auto& n : fit.names) f << "," << fmt::format("{}", scene_samples[k].at(n));
       f << "\n";
     }
@@ -199,6 +197,12 @@ void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
   // The study's own output: the column at --by (its study.csv); the bands come from the histories.
   std::ofstream(study_file, std::ios::binary) << ensemble_text(a, s, fit, scene_samples, column, by);
   const study::StudyDescription st = study::load_study(study_file.string());
+  const auto stop_if_asked = [&] {  // SIGINT or SIGTERM: stop between the phases (and the cases)
+    if (!g_forecast_stop) return;
+    fmt::print("forecast stopped; resume with: rheodda forecast ... -o {} --resume (same arguments)\n", out.string());
+    throw CLI::RuntimeError(128 + static_cast<int>(g_forecast_stop));
+  };
+  stop_if_asked();
 
   fmt::print(stderr, "rheodda forecast: {} of {} draws of {} accepted ({} rejected){}{}; running {} members\n",
              drawn.accepted.size(), drawn.drawn, fit.law, drawn.drawn - drawn.accepted.size(),
@@ -225,10 +229,7 @@ void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
     fmt::print(stderr, "rheodda: error: {}\n", e.what());
     throw CLI::RuntimeError(kExitFailure);
   }
-  if (g_forecast_stop) {
-    fmt::print("forecast stopped; resume with: rheodda forecast ... -o {} --resume (same arguments)\n", out.string());
-    throw CLI::RuntimeError(128 + static_cast<int>(g_forecast_stop));
-  }
+  stop_if_asked();
 
   // --- Bands: every history column (and POINT.displacement) at the first member's times.
   std::vector<fc::History> members;

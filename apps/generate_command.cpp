@@ -26,44 +26,48 @@ struct GenerateOptions {
   bool plot = false;
 };
 
-/// The scene text without `rock_mass:` and with the generated blocks under `blocks:`.
-/// Coordinates are written in the shortest form that reads back to the same double,
-/// so the explicit scene loads to the very same blocks.
+/// The scene text without `rock_mass:` and with the generated blocks under `blocks:`,
+/// one flow map a line after the hand-written ones. Coordinates are written in the
+/// shortest form that reads back to the same double (fmt's "{}", Ryu-like), names as
+/// they are (the loader allows letters, digits, '_', '-' and '.' only: plain YAML), so
+/// the explicit scene loads to the very same blocks (tests/apps/rockmass/scene_test.cpp).
+/// The block lines are formatted directly: yaml-cpp's emitter, and reading the file
+/// back, took 28 of the 33 s `generate` spent on 93 000 blocks.
 std::string explicit_scene(const scene::SceneDescription& s, const std::string& text) {
   YAML::Node root = YAML::Load(text);
   root.remove("rock_mass");
-  YAML::Node blocks = root["blocks"];
-  if (!blocks.IsDefined() || blocks.IsNull()) blocks = YAML::Node(YAML::NodeType::Sequence);
+  const YAML::Node hand = YAML::Clone(root["blocks"]);  // (assigning root["blocks"] below rebinds a plain copy too)
+  const std::string placeholder = "RHEODDA_GENERATED_BLOCKS";
+  root["blocks"] = placeholder;
+  YAML::Emitter head;
   const scene::RockMassDescription& r = *s.rock_mass;
+  head << YAML::Comment(fmt::format("Written by `rheodda generate` from {}: rock_mass '{}' (seed {}) as {} explicit "
+                                    "blocks; edges on the region's boundary carry joint set '{}'.",
+                                    s.file, r.name, r.seed, r.block_count, s.joint_sets[r.boundary_joint_set].name))
+       << YAML::Newline << root;
+  std::string out = std::string(head.c_str()) + "\n";
+  std::string blocks = "blocks:\n";
+  if (hand.IsDefined() && hand.IsSequence())
+    for (const auto& b : hand) {
+      YAML::Emitter e;
+      e << YAML::Flow << b;
+      blocks += fmt::format("  - {}\n", e.c_str());
+    }
   for (std::size_t i = r.first_block; i < r.first_block + r.block_count; ++i) {
     const scene::BlockDescription& b = s.blocks[i];
-    YAML::Node block(YAML::NodeType::Map);
-    block["name"] = b.name;
-    block["material"] = s.materials[b.material].name;
-    YAML::Node polygon(YAML::NodeType::Sequence);
-    for (const auto& p : b.polygon) {
-      YAML::Node xy(YAML::NodeType::Sequence);
-      xy.push_back(fmt::format("{}", p[0]));
-      xy.push_back(fmt::format("{}", p[1]));
-      xy.SetStyle(YAML::EmitterStyle::Flow);
-      polygon.push_back(xy);
-    }
-    polygon.SetStyle(YAML::EmitterStyle::Flow);
-    block["polygon"] = polygon;
-    YAML::Node sets(YAML::NodeType::Sequence);
-    for (int js : b.edge_joint_set) sets.push_back(s.joint_sets[js].name);
-    sets.SetStyle(YAML::EmitterStyle::Flow);
-    block["edge_joint_sets"] = sets;
-    block.SetStyle(YAML::EmitterStyle::Flow);
-    blocks.push_back(block);
+    blocks += fmt::format("  - {{name: {}, material: {}, polygon: [", b.name, s.materials[b.material].name);
+    for (std::size_t k = 0; k < b.polygon.size(); ++k)
+      blocks += fmt::format("{}[{}, {}]", k ? ", " : "", b.polygon[k][0], b.polygon[k][1]);
+    blocks += "], edge_joint_sets: [";
+    for (std::size_t k = 0; k < b.edge_joint_set.size(); ++k)
+      blocks += fmt::format("{}{}", k ? ", " : "", s.joint_sets[b.edge_joint_set[k]].name);
+    blocks += "]}\n";
   }
-  root["blocks"] = blocks;
-  YAML::Emitter out;
-  out << YAML::Comment(fmt::format("Written by `rheodda generate` from {}: rock_mass '{}' (seed {}) as {} explicit "
-                                   "blocks; edges on the region's boundary carry joint set '{}'.",
-                                   s.file, r.name, r.seed, r.block_count, s.joint_sets[r.boundary_joint_set].name))
-      << YAML::Newline << root;
-  return std::string(out.c_str()) + "\n";
+  const std::string line = "blocks: " + placeholder + "\n";
+  const std::size_t at = out.find(line);
+  if (at == std::string::npos || out.find(line, at + 1) != std::string::npos)
+    throw std::runtime_error("generate: the scene's text could not be rewritten (its blocks: key)");
+  return out.replace(at, line.size(), blocks);
 }
 
 }  // namespace
@@ -80,12 +84,9 @@ void add_generate_command(CLI::App& app) {
     const scene::SceneDescription s = scene::load_scene(o->scene);
     if (!s.rock_mass)
       throw std::invalid_argument(fmt::format("{} has no rock_mass: section; nothing to generate", o->scene));
+    // The blocks were checked with the rock mass (as explicit blocks are); the text
+    // reads back to them bit for bit (explicit_scene).
     const std::string text = explicit_scene(s, scene::read_scene_text(o->scene));
-    // The explicit scene must load to the same blocks (it is checked like any scene).
-    const scene::SceneDescription back = scene::parse_scene(text, o->out);
-    if (back.blocks.size() != s.blocks.size())
-      throw std::runtime_error(fmt::format("the explicit scene reads back {} blocks, not {}", back.blocks.size(),
-                                           s.blocks.size()));
     const std::filesystem::path out(o->out);
     if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
     scene::write_file_atomic(o->out, text);

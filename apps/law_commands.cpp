@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "rheodda/laws/history.hpp"
+#include "rheodda/laws/accurate_curve.hpp"
 #include "rheodda/laws/registry.hpp"
 
 namespace rheodda::apps {
@@ -35,6 +35,7 @@ struct CurveOptions {
   std::string force, displacement;
   double t_end = 0.0, dt = 0.0;
   std::string scheme = "exponential-linear";
+  double tolerance = CurveAccuracy{}.tolerance;
 };
 
 ParameterValues parse_params(const std::vector<std::string>& items) {
@@ -71,13 +72,23 @@ int run_curve(const CurveOptions& o) {
     if (stage.t > o.t_end)
       throw LawError(what, fmt::format("{}: stage at time {:g} starts after --t-end {:g}", what,
                                        stage.t, o.t_end));
-  const auto samples = integrate_curve(*law, by_force ? Control::force : Control::displacement,
-                                       history, o.t_end, o.dt, scheme);
+  // Each output step in substeps of the scheme until step doubling says the curve
+  // holds --tolerance (laws/accurate_curve.hpp); what cannot is refused (exit 1).
+  AccurateCurve curve;
+  try {
+    curve = integrate_curve_accurate(*law, by_force ? Control::force : Control::displacement, history, o.t_end,
+                                     o.dt, scheme, {o.tolerance});
+  } catch (const CurveError& e) {
+    fmt::print(stderr, "rheodda: error: law curve {}: {}\n", o.law, e.what());
+    throw CLI::RuntimeError(kExitFailure);
+  }
+  const auto& samples = curve.samples;
   bool any_exact = false, any_damage = false;
   for (const auto& s : samples) {
     any_exact = any_exact || s.exact.has_value();
     any_damage = any_damage || s.damage > 0.0;
   }
+  any_damage = any_damage || curve.failure_time.has_value();
   // A damage law (damage-burgers, docs/laws.md) adds its damage D [-] per sample.
   std::string out = std::string("t,force,displacement") + (any_exact ? ",exact" : "") +
                     (any_damage ? ",damage" : "") + "\n";
@@ -88,17 +99,28 @@ int run_curve(const CurveOptions& o) {
     out += '\n';
   }
   std::fputs(out.c_str(), stdout);
-  // The failure, on stderr (the CSV stays a table): the first sample at damage 1,
-  // and under a constant force the law's closed-form failure time t_f.
+  // What the substeps took, when the output step alone was not accurate enough.
+  const auto output_steps = static_cast<long long>(samples.size()) - 1;
+  if (curve.steps > output_steps)
+    fmt::print(stderr, "law curve: {} substeps of the {} scheme (smallest {:.3g}) held each substep's error within "
+                       "--tolerance {:g}\n",
+               curve.steps, o.scheme, curve.smallest_step, o.tolerance);
+  // The failure, on stderr (the CSV stays a table): when the damage reached 1, and
+  // under a constant force the law's closed-form failure time t_f.
   if (any_damage) {
-    const auto failed = std::find_if(samples.begin(), samples.end(), [](const auto& s) { return s.damage >= 1.0; });
     std::string closed;
     if (by_force && history.stages().size() == 1)
       if (const auto tf = law->failure_time(history.stages().front().value))
         closed = fmt::format(" (closed form under the constant force {:g}: t_f = {:.10g})",
                              history.stages().front().value, history.stages().front().t + *tf);
-    if (failed != samples.end())
-      fmt::print(stderr, "law curve: {} failed (damage 1) by t = {:.10g}{}\n", o.law, failed->t, closed);
+    if (curve.ends_at_failure)
+      fmt::print(stderr, "law curve: {} fails at t = {:.10g}{}, where its creep is infinite (n >= r + 1): the "
+                         "curve ends at t = {:.10g}, the last output time before it\n",
+                 o.law, *curve.failure_time, closed, samples.back().t);
+    else if (curve.failure_time)
+      fmt::print(stderr, "law curve: {} failed (damage 1) at t = {:.10g}{}; its creep stays at its value at "
+                         "failure from then on\n",
+                 o.law, *curve.failure_time, closed);
     else
       fmt::print(stderr, "law curve: {} did not fail by t = {:g}{}\n", o.law, o.t_end, closed);
   }
@@ -132,6 +154,11 @@ void add_law_commands(CLI::App& app) {
       ->required();
   curve->add_option("--scheme", opts->scheme, "Integration scheme (docs/laws.md, \"Schemes\")")
       ->check(CLI::IsMember({"lagged", "implicit", "exponential-linear"}))
+      ->capture_default_str();
+  curve->add_option("--tolerance", opts->tolerance,
+                    "Largest error of a substep relative to the curve's scale: each --dt is crossed in substeps "
+                    "of the scheme until one step and two half steps agree to this (docs/laws.md)")
+      ->check(CLI::Range(1e-12, 1e-2))
       ->capture_default_str();
   curve->callback([opts, curve] {
     if (opts->force.empty() && opts->displacement.empty())

@@ -47,10 +47,15 @@ def label(example):
     return example.relative_to(ROOT / "examples").as_posix()
 
 
-def headline(example, out_dir):
-    """[(quantity, value, unit)] of one example after `rheodda run` into out_dir."""
+def run(example, out_dir):
+    """`rheodda run` of one example into out_dir."""
     subprocess.run([str(binary()), "run", str(example), "-o", str(out_dir)], check=True,
                    stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+
+
+def headline_of(out_dir):
+    """[(quantity, value, unit)] of a run's outputs in out_dir."""
+    out_dir = pathlib.Path(out_dir)
     with open(out_dir / "history.csv") as f:
         units_line = f.readline()
         rows = list(csv.DictReader(f))
@@ -66,16 +71,35 @@ def headline(example, out_dir):
     return out
 
 
-def headlines(scenes, work_dir):
-    """{example: headline(example) or the exception its run raised}, the runs side by
-    side on every core (each `rheodda run` is one process on one core)."""
+def headline(example, out_dir):
+    """[(quantity, value, unit)] of one example after `rheodda run` into out_dir."""
+    run(example, out_dir)
+    return headline_of(out_dir)
+
+
+def runs(scenes, work_dir):
+    """{example: its output folder under work_dir, or the exception its run raised}, the
+    runs side by side on every core (each `rheodda run` is one process on one core)."""
     def one(e):
+        out = pathlib.Path(work_dir) / label(e).replace("/", "_")
         try:
-            return headline(e, pathlib.Path(work_dir) / label(e).replace("/", "_"))
+            run(e, out)
+            return out
         except Exception as error:  # reported by the caller, per example
             return error
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, os.cpu_count() or 1)) as pool:
         return dict(zip(scenes, pool.map(one, scenes)))
+
+
+def headlines(scenes, work_dir):
+    """{example: headline(example) or the exception its run raised}."""
+    out = {}
+    for e, r in runs(scenes, work_dir).items():
+        try:
+            out[e] = r if isinstance(r, Exception) else headline_of(r)
+        except Exception as error:
+            out[e] = error
+    return out
 
 
 def table():

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "rheodda/laws/power_law.hpp"
 #include "rheodda/laws/series_law.hpp"
 
 namespace rheodda::laws {
@@ -114,8 +115,38 @@ std::optional<double> exact_displacement(const ContactRheology& law, const Stage
   return d;
 }
 
+namespace {
+/// Force at t of `power-law` (spring E1 + Norton dashpot) under a staged displacement.
+/// Within a stage the force obeys F' = -E1 A sign(F) (|F|/tau_ref)^n, whose solution
+/// from F_s at the stage start is (docs/laws.md, "power-law")
+///     |F|^(1-n) = |F_s|^(1-n) + (n - 1) E1 A (t - t_s) / tau_ref^n      (n > 1)
+///     F = F_s exp(-E1 A (t - t_s) / tau_ref)                               (n = 1),
+/// never crossing zero; a stage's displacement jump adds E1 times the jump to F.
+/// Written as F = F_s (1 + w)^(-1/(n-1)), w = (n-1) E1 A dt/tau_ref (|F_s|/tau_ref)^(n-1),
+/// with ln(1 + w) from ln w when w would overflow, so any exponent stays finite.
+double power_law_relaxation(const ParameterValues& p, const StagedHistory& displacement, double t) {
+  const double E1 = p.at("E1"), A = p.at("A"), tau_ref = p.at("tau_ref"), n = p.at("n");
+  double f = 0.0, prev = 0.0, since = 0.0;
+  auto relax = [&](double f_s, double duration) {
+    if (f_s == 0.0 || duration <= 0.0) return f_s;
+    if (n == 1.0) return f_s * std::exp(-E1 * A * duration / tau_ref);
+    const double log_w = std::log((n - 1.0) * E1 * A * duration / tau_ref) + (n - 1.0) * std::log(std::abs(f_s) / tau_ref);
+    const double log1p_w = log_w > 30.0 ? log_w + std::log1p(std::exp(-log_w)) : std::log1p(std::exp(log_w));
+    return f_s * std::exp(-log1p_w / (n - 1.0));
+  };
+  for (const auto& s : displacement.stages()) {
+    if (s.t > t) break;
+    f = relax(f, s.t - since) + E1 * (s.value - prev);
+    prev = s.value;
+    since = s.t;
+  }
+  return relax(f, t - since);
+}
+}  // namespace
+
 std::optional<double> exact_force(const ContactRheology& law, const StagedHistory& displacement,
                                   double t) {
+  if (dynamic_cast<const PowerLaw*>(&law)) return power_law_relaxation(law.parameters(), displacement, t);
   if (!law.relaxation_modulus(0.0)) return std::nullopt;
   // F(t) = sum dd_i G(t - t_i) (Boltzmann superposition of the relaxation
   // modulus) over the stages that started at or before `time` (`inclusive`)
@@ -178,11 +209,10 @@ double solve_series_force(const ContactRheology& law, const StepConstants& k_ste
   return std::copysign(law.linear_limit(), f);
 }
 
-namespace {
 // Step boundaries: multiples of dt, every stage start and t_end. A multiple of
 // dt within round-off (1e-9 dt) of a stage start or of t_end is replaced by
 // that exact time, so a load change never falls a sliver after a boundary.
-std::vector<double> time_grid(const StagedHistory& history, double t_end, double dt) {
+std::vector<double> curve_times(const StagedHistory& history, double t_end, double dt) {
   std::vector<double> exact_times;
   for (const auto& s : history.stages())
     if (s.t > 0.0 && s.t < t_end) exact_times.push_back(s.t);
@@ -203,23 +233,26 @@ std::vector<double> time_grid(const StagedHistory& history, double t_end, double
   std::sort(grid.begin(), grid.end());
   return grid;
 }
-}  // namespace
 
-std::vector<CurveSample> integrate_curve(const ContactRheology& law, Control control,
-                                         const StagedHistory& history, double t_end, double dt,
-                                         Scheme scheme) {
+void check_curve_arguments(const ContactRheology& law, Control control, double t_end, double dt) {
   if (!(dt > 0.0) || !std::isfinite(dt))
     throw LawError("dt", fmt::format("--dt must be a positive finite time step, got {:g}", dt));
   if (!(t_end > 0.0) || !std::isfinite(t_end))
     throw LawError("t-end", fmt::format("--t-end must be a positive finite time, got {:g}", t_end));
-  const auto e1 = law.instantaneous_stiffness();
-  if (control == Control::displacement && !e1)
+  if (control == Control::displacement && !law.instantaneous_stiffness())
     throw LawError("displacement",
                    fmt::format("law '{}' has no instantaneous spring, so a held displacement would "
                                "need an infinite force; use --force, or a law with E1",
                                law.name()));
+}
 
-  const std::vector<double> grid = time_grid(history, t_end, dt);
+std::vector<CurveSample> integrate_curve(const ContactRheology& law, Control control,
+                                         const StagedHistory& history, double t_end, double dt,
+                                         Scheme scheme) {
+  check_curve_arguments(law, control, t_end, dt);
+  const auto e1 = law.instantaneous_stiffness();
+
+  const std::vector<double> grid = curve_times(history, t_end, dt);
   std::vector<CurveSample> out;
   out.reserve(grid.size());
   RheologyState state, next;

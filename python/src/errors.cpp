@@ -11,6 +11,7 @@
 #include <rheodda/core/model.hpp>
 #include <rheodda/fit/creep_data.hpp>
 #include <rheodda/fit/fit.hpp>
+#include <rheodda/laws/accurate_curve.hpp>
 #include <rheodda/laws/parameters.hpp>
 #include <rheodda/scene/error.hpp>
 
@@ -64,6 +65,8 @@ void bind_errors(py::module_& m) {
     } catch (const InputError& e) {
       raise(error_type, e.what(), py::dict());
     } catch (const RunFailure& e) {
+      raise(run_error_type, e.what(), py::dict());
+    } catch (const laws::CurveError& e) {  // a law curve that cannot hold its tolerance
       raise(run_error_type, e.what(), py::dict());
     } catch (const scene::SceneError& e) {
       py::dict a;

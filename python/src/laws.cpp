@@ -4,9 +4,13 @@
 // laws written in Python.
 #include "laws.hpp"
 
+#include <rheodda/laws/accurate_curve.hpp>
 #include <rheodda/laws/registry.hpp>
 
+#include <fmt/format.h>
+
 #include <cmath>
+#include <optional>
 
 namespace rheodda::python {
 
@@ -367,36 +371,48 @@ void bind_laws(py::module_& m) {
       py::arg("name"), py::arg("parameters") = py::none(),
       "Builds a registered law from its parameters (a dict and/or keywords), validated as in a scene; "
       "raises rheodda.LawError with the message of `rheodda law curve`");
+  // The law alone, as `rheodda law curve`: with a tolerance, substepped until it holds
+  // it (laws/accurate_curve.hpp; rheodda.RunError when it cannot); without, one step of
+  // the scheme per dt, and a RunError rather than NaN or infinity when the scheme fails.
+  const auto curve = [](const ContactRheology& law, laws::Control control, const laws::StagedHistory& h,
+                        double t_end, double dt, const std::string& scheme, const std::optional<double>& tolerance) {
+    std::vector<laws::CurveSample> s;
+    {
+      py::gil_scoped_release release;
+      if (tolerance)
+        s = laws::integrate_curve_accurate(law, control, h, t_end, dt, scheme_from(scheme), {*tolerance}).samples;
+      else
+        s = laws::integrate_curve(law, control, h, t_end, dt, scheme_from(scheme));
+    }
+    if (const std::size_t k = laws::first_non_finite(s); k < s.size())
+      throw laws::CurveError(fmt::format("the {} scheme at dt = {:g} gives a {} that is not a finite number at t = {:g}; "
+                                         "pass tolerance= (e.g. 1e-6) to substep until the curve is accurate",
+                                         scheme, dt, std::isfinite(s[k].force) ? "displacement" : "force", s[k].t));
+    return curve_dict(s, "exact");
+  };
   m.def(
       "creep_curve",
-      [](const ContactRheology& law, const py::object& force, double t_end, double dt, const std::string& scheme) {
-        const auto h = staged_history(force, "force");
-        std::vector<laws::CurveSample> s;
-        {
-          py::gil_scoped_release release;
-          s = laws::integrate_curve(law, laws::Control::force, h, t_end, dt, scheme_from(scheme));
-        }
-        return curve_dict(s, "exact");
+      [curve](const ContactRheology& law, const py::object& force, double t_end, double dt, const std::string& scheme,
+              const std::optional<double>& tolerance) {
+        return curve(law, laws::Control::force, staged_history(force, "force"), t_end, dt, scheme, tolerance);
       },
       py::arg("law"), py::arg("force"), py::arg("t_end"), py::arg("dt"), py::arg("scheme") = "implicit",
+      py::arg("tolerance") = py::none(),
       "The law alone under a staged force (shear stress) from t = 0 to t_end with step dt "
       "(`rheodda law curve --force`): dict of numpy arrays t, force, displacement (total: F/E1 + creep) and "
-      "exact (the closed form; NaN where the law has none)");
+      "exact (the closed form; NaN where the law has none). tolerance: each dt in substeps of the scheme until "
+      "one step and two half steps agree to it (as the command does; docs/laws.md); None: one step per dt");
   m.def(
       "relaxation_curve",
-      [](const ContactRheology& law, const py::object& displacement, double t_end, double dt,
-         const std::string& scheme) {
-        const auto h = staged_history(displacement, "displacement");
-        std::vector<laws::CurveSample> s;
-        {
-          py::gil_scoped_release release;
-          s = laws::integrate_curve(law, laws::Control::displacement, h, t_end, dt, scheme_from(scheme));
-        }
-        return curve_dict(s, "exact");
+      [curve](const ContactRheology& law, const py::object& displacement, double t_end, double dt,
+              const std::string& scheme, const std::optional<double>& tolerance) {
+        return curve(law, laws::Control::displacement, staged_history(displacement, "displacement"), t_end, dt, scheme,
+                     tolerance);
       },
       py::arg("law"), py::arg("displacement"), py::arg("t_end"), py::arg("dt"), py::arg("scheme") = "implicit",
+      py::arg("tolerance") = py::none(),
       "The law alone under a staged displacement (`rheodda law curve --displacement`): dict of numpy arrays "
-      "t, force, displacement and exact (the closed-form force; NaN where none)");
+      "t, force, displacement and exact (the closed-form force; NaN where none); tolerance as for creep_curve");
   m.def(
       "exact_displacement",
       [](const ContactRheology& law, const py::object& force, const py::array_t<double, py::array::c_style | py::array::forcecast>& t) {

@@ -143,11 +143,14 @@ BOOST_AUTO_TEST_CASE(law_curve_bad_input_exits_2_naming_the_key) {
 
 BOOST_AUTO_TEST_CASE(law_curve_of_a_damage_law_prints_its_damage_and_when_it_failed) {
   // damage-burgers at tau = 0.232 MPa (examples/damage-creep-test.yaml's law):
-  // Kachanov's t_f = t_r (tau_ref / tau)^r = 234 (0.2 / 0.232)^3 = 149.9 h.
-  const Run r = run(
+  // Kachanov's t_f = t_r (tau_ref / tau)^r = 234 (0.2 / 0.232)^3 = 149.9 h. With
+  // n = r + 1 its creep is infinite at t_f: the curve ends at the last output time
+  // before it (149.5 h), every value finite, and says so.
+  const std::string law =
       "law curve damage-burgers --param E1=26.87 --param E2=192.43 --param eta2=2141.23 "
-      "--param A=3.68e-6 --param tau_ref=0.2 --param n=4 --param t_r=234 --param r=3 "
-      "--force 0:0.232 --t-end 200 --dt 0.5");
+      "--param A=3.68e-6 --param tau_ref=0.2 --param t_r=234 --param r=3 --force 0:0.232 --t-end 200 --dt 0.5 ";
+  const double tf = 234.0 * std::pow(0.2 / 0.232, 3.0);
+  const Run r = run(law + "--param n=4");
   BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
   std::string header;
   const auto rows = parse_csv(r.out, &header);
@@ -155,19 +158,60 @@ BOOST_AUTO_TEST_CASE(law_curve_of_a_damage_law_prints_its_damage_and_when_it_fai
   BOOST_TEST_REQUIRE(rows.size() > 10u);
   const std::size_t d = rows.front().size() - 1;  // the last column
   BOOST_TEST(rows.front()[d] == 0.0);
-  BOOST_TEST(rows.back()[d] == 1.0);
   for (std::size_t k = 1; k < rows.size(); ++k) BOOST_TEST(rows[k][d] >= rows[k - 1][d]);  // never heals
-  const double tf = 234.0 * std::pow(0.2 / 0.232, 3.0);
+  for (const auto& row : rows)
+    for (double v : row) BOOST_TEST(std::isfinite(v));
+  BOOST_TEST(rows.back()[0] == 149.5);
+  BOOST_TEST(rows.back()[d] < 1.0);
   BOOST_TEST(r.err.find(fmt_tf(tf)) != std::string::npos, r.err);
-  // The first sample at damage 1 is the step end past t_f.
+  BOOST_TEST(r.err.find("creep is infinite") != std::string::npos, r.err);
+  // With n = 2 < r + 1 the creep at failure is finite: the damage reaches 1 at t_f,
+  // the rows go on to --t-end with the creep held at its value at failure.
+  const Run f = run(law + "--param n=2");
+  BOOST_TEST_REQUIRE(f.exit_code == 0, f.err);
+  const auto frows = parse_csv(f.out, &header);
+  BOOST_TEST(frows.back()[0] == 200.0);
+  BOOST_TEST(frows.back()[d] == 1.0);
   std::size_t first = 0;
-  while (rows[first][d] < 1.0) ++first;
-  BOOST_TEST(rows[first][0] >= tf);
-  BOOST_TEST(rows[first][0] <= tf + 0.5);
+  while (frows[first][d] < 1.0) ++first;
+  BOOST_TEST(frows[first][0] >= tf);
+  BOOST_TEST(frows[first][0] <= tf + 0.5);
+  for (std::size_t k = first; k < frows.size(); ++k) BOOST_TEST(frows[k][2] == frows[first][2]);
+  BOOST_TEST(f.err.find("failed (damage 1) at t = " + fmt_tf(tf).substr(6)) != std::string::npos, f.err);
   // A law that cannot fail prints no damage column.
   const Run b = run(std::string(kRow1) + "--force 0:0.232");
   BOOST_TEST(b.out.find("damage") == std::string::npos);
   BOOST_TEST(b.err.empty(), b.err);
+}
+
+BOOST_AUTO_TEST_CASE(law_curve_is_accurate_or_refused_never_nan_or_absurd) {
+  // The curves issue 43 found printed NaN, +-1e54 or a tenth of the exact force with
+  // exit 0: each is now within 1e-5 of its closed form (relative to the initial force),
+  // or refused with exit 1 and the reason, nothing on stdout.
+  const std::string pl = "law curve power-law --param E1=20 --param tau_ref=0.2 ";
+  for (const std::string args :
+       {pl + "--param A=1e-3 --param n=100 --displacement 0:0.1 --t-end 2 --dt 1 --scheme implicit",
+        pl + "--param A=1e-3 --param n=20 --displacement 0:10 --t-end 2 --dt 1 --scheme implicit",
+        pl + "--param A=1e50 --param n=4 --displacement 0:0.02 --t-end 2 --dt 1 --scheme implicit",
+        pl + "--param A=1e-3 --param n=20 --displacement 0:0.02 --t-end 100 --dt 10 --scheme lagged",
+        pl + "--param A=1e-3 --param n=20 --displacement 0:0.02 --t-end 100 --dt 10"}) {
+    const Run r = run(args);
+    BOOST_TEST_REQUIRE(r.exit_code == 0, args << ": " << r.err);
+    std::string header;
+    const auto rows = parse_csv(r.out, &header);
+    BOOST_TEST(header == "t,force,displacement,exact");
+    for (const auto& v : rows) {
+      for (double x : v) BOOST_TEST(std::isfinite(x), args);
+      BOOST_TEST(std::abs(v[1] - v[3]) <= 1e-5 * rows.front()[1], args << " at t " << v[0]);
+    }
+  }
+  // (100/0.2)^100 A overflows a double: refused, exit 1, with the reason.
+  const Run over = run(pl + "--param A=1e300 --param n=100 --force 0:100 --t-end 1 --dt 1");
+  BOOST_TEST(over.exit_code == 1);
+  BOOST_TEST(over.out.empty(), over.out);
+  BOOST_TEST(over.err.find("not a finite number") != std::string::npos, over.err);
+  // --tolerance outside [1e-12, 1e-2]: bad input.
+  BOOST_TEST(run(std::string(kRow1) + "--force 0:0.232 --tolerance 0.5").exit_code == 2);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -2,6 +2,7 @@
 (Norton) creep linear in time, the tangent linearization, and damage-burgers
 stepped to failure with its damage carried by advance()."""
 import numpy as np
+import pytest
 
 import rheodda
 
@@ -39,3 +40,18 @@ def test_damage_burgers_fails_at_kachanovs_time_when_its_damage_is_carried():
         dd, q, damage = law.advance(k, q, 0.232, 0.232, damage=damage)
         t += 1.0
     assert tf <= t < tf + 1.0  # fails in the step that holds t_f
+
+
+def test_a_curve_with_a_tolerance_is_accurate_and_without_one_never_returns_nan():
+    # power-law, n = 20, held at twice tau_ref (issue 43): one lagged step per 10 h
+    # goes to NaN, which is an error now; with a tolerance the curve follows the
+    # closed-form relaxation (exact) to within ten tolerances of the initial force.
+    law = rheodda.law("power-law", {"E1": 20.0, "tau_ref": 0.2, "A": 1e-3, "n": 20.0})
+    with pytest.raises(rheodda.RunError, match="not a finite number"):
+        rheodda.relaxation_curve(law, 0.02, t_end=100.0, dt=10.0, scheme="lagged")
+    for scheme in ("lagged", "implicit", "exponential-linear"):
+        c = rheodda.relaxation_curve(law, 0.02, t_end=100.0, dt=10.0, scheme=scheme, tolerance=1e-6)
+        assert np.all(np.isfinite(c["force"]))
+        assert np.max(np.abs(c["force"] - c["exact"])) <= 10 * 1e-6 * c["force"][0]
+    with pytest.raises(rheodda.LawError, match="tolerance"):
+        rheodda.creep_curve(law, 0.1, t_end=1.0, dt=1.0, tolerance=0.5)

@@ -203,6 +203,8 @@ std::string describe_scene(const SceneDescription& s) {
                        u.length, areas.front(), q(0.1), q(0.5), sum / double(areas.size()), q(0.9), areas.back(),
                        r.area_error));
     }
+    line(fmt::format("  estimated before cutting: {:.3g} trace crossings, up to {:.3g} blocks, {} of memory",
+                     r.estimate.crossings, r.estimate.pieces, format_bytes(r.estimate.bytes)));
     line(fmt::format("  slivers merged (sliver_area {:g} {}^2): {}; dead-end trace segments removed: {}",
                      r.sliver_area, u.length, r.merged_slivers, r.dangling_removed));
     if (r.extended_traces > 0)

@@ -7,6 +7,8 @@
 #include <limits>
 #include <unordered_map>
 
+#include "rheodda/rockmass/cut.hpp"
+
 namespace rheodda::scene {
 namespace {
 
@@ -135,14 +137,7 @@ void for_near_pairs(const std::vector<BlockDescription>& blocks, double margin, 
 }  // namespace
 
 double signed_area(const std::vector<Point>& polygon) {
-  double a = 0.0;
-  const std::size_t n = polygon.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Point& p = polygon[i];
-    const Point& q = polygon[(i + 1) % n];
-    a += p[0] * q[1] - q[0] * p[1];
-  }
-  return 0.5 * a;
+  return rockmass::polygon_area(polygon);  // about the first vertex: exact enough at map coordinates
 }
 
 std::optional<std::string> coordinate_defect(const std::vector<Point>& polygon) {
@@ -182,7 +177,16 @@ std::optional<std::string> polygon_defect(const std::vector<Point>& polygon, dou
   const Box box = bounding_box(polygon);
   const double size = std::hypot(box.x1 - box.x0, box.y1 - box.y0);
   if (std::abs(signed_area(polygon)) <= tol * size) {
-    // Zero area: a bow-tie's two halves cancel; say that its edges cross.
+    // Zero area: all the vertices on one line (within tol of the line through the two
+    // farthest apart), or a bow-tie whose two halves cancel: say which.
+    std::size_t far_a = 0, far_b = 1;
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i + 1; j < n; ++j)
+        if (dist(polygon[i], polygon[j]) > dist(polygon[far_a], polygon[far_b])) far_a = i, far_b = j;
+    bool on_a_line = true;
+    for (std::size_t i = 0; i < n && on_a_line; ++i)
+      on_a_line = point_segment_distance(polygon[i], polygon[far_a], polygon[far_b]) <= tol;
+    if (on_a_line) return std::string("is degenerate: its area is zero (its vertices lie on one line)");
     if (auto c = crossing()) return c;
     return std::string("is degenerate: its area is zero");
   }

@@ -2,7 +2,7 @@
 // then study.csv and the overlay plot (docs/studies.md).
 #include <fcntl.h>
 #include <fmt/format.h>
-#include <spawn.h>
+#include <sys/prctl.h>
 #include <csignal>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -13,6 +13,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -79,21 +80,54 @@ pid_t spawn_case(const std::string& binary, const fs::path& dir, bool resume) {
   const std::string scene = (dir / "scene.yaml").string();
   const std::string out = dir.string();
   const std::string log = (dir / "log.txt").string();
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log.c_str(),
-                                   O_WRONLY | O_CREAT | (resume ? O_APPEND : O_TRUNC), 0644);
-  posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
-  posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
   std::vector<std::string> args{binary, "run", scene, "-o", out};
   if (resume) args.emplace_back("--resume");
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, binary.c_str(), &fa, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  if (rc != 0) throw std::runtime_error(fmt::format("cannot start {}: {}", binary, std::strerror(rc)));
+  // fork and exec rather than posix_spawn, for the parent-death signal: a case must
+  // not outlive the study (a SIGKILL of `rheodda study` leaves no case running on, in
+  // the folder a `--resume` will use). The signal is SIGKILL: a run killed at any
+  // moment resumes to identical files (docs/outputs.md). A pipe closed by the exec
+  // (O_CLOEXEC) brings back the errno of an exec that failed.
+  int report[2];
+  if (::pipe2(report, O_CLOEXEC) != 0) throw std::runtime_error(fmt::format("cannot start {}: {}", binary, std::strerror(errno)));
+  const pid_t parent = ::getpid();
+  const int log_flags = O_WRONLY | O_CREAT | (resume ? O_APPEND : O_TRUNC);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    // The child: only async-signal-safe calls until the exec.
+    int error = 0;
+    if (::prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || ::getppid() != parent) error = ESRCH;  // the study already died
+    const int out_fd = error ? -1 : ::open(log.c_str(), log_flags, 0644);
+    const int in_fd = error ? -1 : ::open("/dev/null", O_RDONLY);
+    if (!error && (out_fd < 0 || in_fd < 0)) error = errno;
+    if (!error && (::dup2(out_fd, STDOUT_FILENO) < 0 || ::dup2(out_fd, STDERR_FILENO) < 0 ||
+                   ::dup2(in_fd, STDIN_FILENO) < 0))
+      error = errno;
+    if (!error) {
+      ::execve(binary.c_str(), argv.data(), environ);
+      error = errno;
+    }
+    [[maybe_unused]] const ssize_t w = ::write(report[1], &error, sizeof error);
+    ::_exit(127);
+  }
+  const int fork_errno = errno;
+  ::close(report[1]);
+  if (pid < 0) {
+    ::close(report[0]);
+    throw std::runtime_error(fmt::format("cannot start {}: {}", binary, std::strerror(fork_errno)));
+  }
+  int child_error = 0;
+  ssize_t got = 0;
+  do got = ::read(report[0], &child_error, sizeof child_error);
+  while (got < 0 && errno == EINTR);
+  ::close(report[0]);
+  if (got == static_cast<ssize_t>(sizeof child_error)) {
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    throw std::runtime_error(fmt::format("cannot start {}: {}", binary, std::strerror(child_error)));
+  }
   return pid;
 }
 
@@ -120,8 +154,8 @@ void collect(const StudyDescription& study, const fs::path& dir, CaseResult& r) 
   }
   if (!ok && r.message.empty() && r.status != "interrupted") {
     const std::string l = last_line(read_text(dir / "log.txt"));
-    r.message = r.exit_code < 0 ? fmt::format("killed by a signal; {}", l)
-                                : (l.empty() ? fmt::format("exit code {}", r.exit_code) : l);
+    if (r.exit_code < 0) r.message = l.empty() ? "killed by a signal" : "killed by a signal; " + l;
+    else r.message = l.empty() ? fmt::format("exit code {}", r.exit_code) : l;
   }
   if (ok) r.message.clear();
   r.values.assign(study.outputs.size() * study.times.size(), std::nullopt);
@@ -209,6 +243,20 @@ void plot_histories(const StudyDescription& study, const std::vector<CaseResult>
 
 std::string param_label(const SweepParameter& p) {
   return p.unit == "-" ? p.name : fmt::format("{} [{}]", p.name, p.unit);
+}
+
+/// A gnuplot tick format that tells the ticks of `values` apart: gnuplot's default
+/// ("% h") shows about 6 significant digits, so an output that varies by 1e-5 of its
+/// size gets the same label on every tick. Enough digits for a twentieth of the range
+/// at the size of the largest value, at least 3 and at most 15 ("%.Ng").
+std::string tick_format(const std::vector<double>& values) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (double v : values)
+    if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+  if (!(hi > lo)) return "% h";
+  const double size = std::max(std::abs(lo), std::abs(hi));
+  const int digits = static_cast<int>(std::ceil(std::log10(size / ((hi - lo) / 20.0)))) + 1;
+  return fmt::format("%.{}g", std::clamp(digits, 3, 15));
 }
 
 /// study_sweep.png: every output against the first swept parameter, and, for a grid of
@@ -305,6 +353,11 @@ std::vector<std::string> plot_sweep(const StudyDescription& study, const std::ve
       << "set multiplot layout " << rows << "," << columns << " title '" << scene::gnuplot_text(study.title) << "'\n";
     std::size_t block = 0;
     for (const auto& pn : panels) {
+      std::vector<double> xs, ys;
+      for (const auto& cv : pn.curves)
+        for (const auto& [x, y] : cv.points) xs.push_back(x), ys.push_back(y);
+      g << "set format x '" << (pn.logx ? std::string("% h") : tick_format(xs)) << "'\n"
+        << "set format y '" << tick_format(ys) << "'\n";
       g << (pn.logx ? "set logscale x\n" : "unset logscale x\n") << "set xlabel '" << scene::gnuplot_text(pn.xlabel) << "'\n"
         << "set ylabel '" << scene::gnuplot_text(pn.ylabel) << "'\n"
         << (pn.curves.size() > 10 ? "set key off\n" : "set key outside right\n") << "plot ";
@@ -484,7 +537,23 @@ std::string case_binary(const StudyOptions& options) {
 }
 
 std::vector<CaseResult> run_study(const StudyDescription& study, const StudyOptions& options) {
-  const std::vector<std::string> texts = prepare_cases(study);  // a bad study throws before anything runs
+  auto stop_requested = [&] { return options.stop && *options.stop != 0; };
+  // A bad study throws before anything runs; a stop while the cases are prepared
+  // (20 000 of them take seconds) returns before anything is written.
+  const std::vector<std::string> texts = prepare_cases(study, options.stop);
+  std::vector<CaseResult> results(study.cases.size());
+  auto not_started = [&](std::size_t from) {
+    for (std::size_t i = from; i < results.size(); ++i) {
+      results[i].name = study.cases[i].name;
+      results[i].status = "not started";
+      results[i].message = "the study was stopped before this case started; `rheodda study ... --resume` runs it";
+      results[i].values.assign(study.outputs.size() * study.times.size(), std::nullopt);
+    }
+  };
+  if (stop_requested()) {
+    not_started(0);
+    return results;
+  }
   const fs::path out_dir = options.out_dir;
   std::unique_ptr<CaseExecutor> own;
   CaseExecutor* exec = options.executor;
@@ -494,15 +563,23 @@ std::vector<CaseResult> run_study(const StudyDescription& study, const StudyOpti
     exec = own.get();
   }
 
-  std::vector<CaseResult> results(study.cases.size());
   // What each case needs: run, resume (an interrupted run of the same scene), or
-  // nothing (a completed run of the same scene, under options.resume).
+  // nothing (a completed run of the same scene, under options.resume). "The same
+  // scene" is the same scene text below the header comment, which names the study
+  // and the base scene by the paths as typed: another spelling, another working
+  // directory or a moved folder is the same case (the kept scene.yaml is not
+  // rewritten, so `rheodda run --resume` finds the scene its checkpoint hashed).
   enum class Todo { run, resume, keep };
   std::vector<Todo> todo(study.cases.size(), Todo::run);
   for (std::size_t i = 0; i < study.cases.size(); ++i) {
+    if (stop_requested()) {  // the folders of 20 000 cases take seconds too
+      not_started(0);
+      return results;
+    }
     const fs::path dir = out_dir / "cases" / study.cases[i].name;
     results[i].name = study.cases[i].name;
-    if (options.resume && fs::exists(dir / "scene.yaml") && read_text(dir / "scene.yaml") == texts[i]) {
+    if (options.resume && fs::exists(dir / "scene.yaml") &&
+        case_scene_body(read_text(dir / "scene.yaml")) == case_scene_body(texts[i])) {
       std::string status;
       try {
         status = nlohmann::json::parse(read_text(dir / "summary.json")).value("status", "");
@@ -519,7 +596,6 @@ std::vector<CaseResult> run_study(const StudyDescription& study, const StudyOpti
 
   std::size_t next = 0, done = 0;
   bool stopping = false;
-  auto stop_requested = [&] { return options.stop && *options.stop != 0; };
   while (done < results.size()) {
     if (stop_requested() && !stopping) {
       // Stop the running cases (each stops after its step, keeping a checkpoint);
@@ -571,11 +647,7 @@ std::vector<CaseResult> run_study(const StudyDescription& study, const StudyOpti
       fmt::print(stderr, "[{}/{}] {}: {} ({:.1f} s, {} steps){}\n", done, results.size(), res.name, res.status,
                  res.wall_seconds, res.steps, res.message.empty() ? "" : ": " + res.message);
   }
-  for (std::size_t i = next; i < results.size(); ++i) {
-    results[i].status = "not started";
-    results[i].message = "the study was stopped before this case started; `rheodda study ... --resume` runs it";
-    results[i].values.assign(study.outputs.size() * study.times.size(), std::nullopt);
-  }
+  not_started(next);
   write_study_csv(study, results, out_dir / "study.csv");
   write_study_json(study, out_dir / "study.json");
   if (stopping) return results;

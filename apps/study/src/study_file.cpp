@@ -421,7 +421,6 @@ StudyDescription parse_study(const std::string& text, const std::string& file) {
   if (!s.parameters.empty()) {
     const auto rows = sweep_values(s.parameters, s.method, s.samples, s.seed);
     if (rows.size() > 100000) fail(file, root["sweep"], "sweep", fmt::format("the grid makes {} cases (more than 100000)", rows.size()));
-    const int width = static_cast<int>(std::to_string(rows.size()).size());
     for (std::size_t k = 0; k < rows.size(); ++k) {
       StudyCase sc;
       sc.where = s.parameters.front().where;
@@ -434,9 +433,9 @@ StudyDescription parse_study(const std::string& text, const std::string& file) {
         name_parts.push_back(p.name + "-" + name_value(rows[k][i]));
         label.push_back(fmt::format("{} = {:.4g}{}", p.name, rows[k][i], p.unit == "-" ? "" : " " + p.unit));
       }
-      // A grid case is named by its values (phi-33_E1-1e08); a drawn one by its number (sample007).
+      // A grid case is named by its values (phi-33_E1-1e08); a drawn one by its number (sample07).
       sc.name = s.method == SweepMethod::grid ? fmt::format("{}", fmt::join(name_parts, "_"))
-                                              : fmt::format("sample{:0{}}", k + 1, width);
+                                              : drawn_case_name(k, rows.size());
       sc.sweep_label = fmt::format("{}", fmt::join(label, ", "));
       if (!names.insert(sc.name).second)
         fail(file, root["sweep"], "sweep",
@@ -492,7 +491,21 @@ std::string case_scene_text(const StudyDescription& study, const std::string& ba
   return head + "\n" + e.c_str() + "\n";
 }
 
-std::vector<std::string> prepare_cases(const StudyDescription& study) {
+std::string case_scene_body(const std::string& text) {
+  std::size_t at = 0;
+  while (at < text.size() && text[at] == '#') {
+    const std::size_t end = text.find('\n', at);
+    at = end == std::string::npos ? text.size() : end + 1;
+  }
+  return text.substr(at);
+}
+
+std::string drawn_case_name(std::size_t k, std::size_t count) {
+  const int width = std::max(2, static_cast<int>(std::to_string(count).size()));
+  return fmt::format("sample{:0{}}", k + 1, width);
+}
+
+std::vector<std::string> prepare_cases(const StudyDescription& study, const volatile std::sig_atomic_t* stop) {
   std::string base_text;
   {
     std::ifstream in(study.scene, std::ios::binary);
@@ -509,6 +522,7 @@ std::vector<std::string> prepare_cases(const StudyDescription& study) {
   }
   std::vector<std::string> texts;
   for (const auto& c : study.cases) {
+    if (stop && *stop != 0) return texts;
     std::string text = case_scene_text(study, base_text, c);
     scene::SceneDescription s;
     try {

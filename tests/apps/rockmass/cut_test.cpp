@@ -335,3 +335,45 @@ BOOST_AUTO_TEST_CASE(the_same_seed_gives_the_same_traces_bit_for_bit) {
   BOOST_TEST(a.size() == kExpectedTraces);
   BOOST_TEST(fnv1a(a) == kExpectedChecksum);
 }
+
+BOOST_AUTO_TEST_CASE(the_area_check_holds_a_million_blocks_and_still_sees_one_missing) {
+  // issue 43: the blocks' areas were summed in plain floating point against a relative
+  // 1e-12, whose rounding grows with the count: a valid cut of 1e6 blocks was refused
+  // ("the region's boundary crosses itself"), and at map coordinates each area about the
+  // origin lost its digits. 1000 x 1000 cells of an irregular grid at x ~ 5e5, y ~ 4e6 m
+  // (every vertex shared by its four cells, as the cutter's blocks share theirs) tile the
+  // square exactly; block_area_check accepts them and refuses them without one cell.
+  const int n = 1000;
+  const double x0 = 500123.456789, y0 = 4000987.654321, size = 97.5310864;  // [m]: map coordinates
+  // Vertex (i, j) of the grid, moved within its cell; the square's sides stay straight.
+  auto vertex = [&](int i, int j) {
+    const double di = i == 0 || i == n ? 0.0 : 0.3 * std::sin(1.7 * i + 2.3 * j);
+    const double dj = j == 0 || j == n ? 0.0 : 0.3 * std::cos(2.9 * i - 1.1 * j);
+    return Point{x0 + size * (i + di) / n, y0 + size * (j + dj) / n};
+  };
+  const Region region{{vertex(0, 0), vertex(n, 0), vertex(n, n), vertex(0, n)}, {}};
+  std::vector<Block> blocks;
+  blocks.reserve(std::size_t(n) * n);
+  double plain = 0.0;  // the old check: areas about the origin, summed in order
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      Block b;
+      b.polygon = {vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1), vertex(i, j + 1)};
+      b.edge_tag = {0, 0, 0, 0};
+      double about_origin = 0.0;
+      for (std::size_t k = 0; k < 4; ++k) {
+        const Point& p = b.polygon[k];
+        const Point& q = b.polygon[(k + 1) % 4];
+        about_origin += p[0] * q[1] - q[0] * p[1];
+      }
+      plain += 0.5 * about_origin;
+      blocks.push_back(std::move(b));
+    }
+  const double area = (region.outer[1][0] - region.outer[0][0]) * (region.outer[2][1] - region.outer[1][1]);
+  BOOST_TEST(std::abs(plain - area) / area > 1e-12);  // what the old check refused
+  const AreaCheck ok = block_area_check(blocks, region);
+  BOOST_TEST(ok.ok(), ok.block_sum << " against " << ok.region_area << ", bound " << ok.bound);
+  BOOST_TEST(ok.bound < 1e-9 * area);  // and the bound stays a small part of a cell (1e-6 of the area)
+  blocks.erase(blocks.begin() + 500500);
+  BOOST_TEST(!block_area_check(blocks, region).ok());
+}

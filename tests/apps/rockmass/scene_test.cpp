@@ -111,6 +111,76 @@ BOOST_AUTO_TEST_CASE(bad_rock_mass_keys_fail_with_file_line_and_column) {
                   14, "[1, 1]}", "rock_mass.traces[0].to", "ends where it starts");
 }
 
+BOOST_AUTO_TEST_CASE(a_cut_beyond_the_scene_or_the_memory_is_refused_before_cutting) {
+  // Two persistent sets at 1 mm over the 10 x 6 region: about 6e7 blocks (issue 43:
+  // `check` grew past 2 GB and died "out of memory" without a location). Refused from
+  // the estimate, at the spacing of the set that draws the most traces.
+  const std::string fine = rock_with("dip: 0, spacing: 2,", "dip: 0, spacing: 0.001,");
+  expect_error_at(with("dip: 90, spacing: 2.5,", "dip: 90, spacing: 0.001,", fine), 16, "0.001",
+                  "rock_mass.joint_sets[1].spacing", "a scene holds at most 200000 blocks");
+  // Within the block limit but beyond the memory this process may use (ulimit -v: 300 MB,
+  // the estimate 2.1 kB a crossing, scripts/rockmass-scaling.sh): refused with both figures.
+  const auto dir = fresh_dir("rockmass-memory");
+  const auto file = dir / "rock.yaml";
+  std::ofstream(file) << with("dip: 90, spacing: 2.5,", "dip: 90, spacing: 0.012,",
+                              rock_with("dip: 0, spacing: 2,", "dip: 0, spacing: 0.012,"));
+  const CommandResult r = run_command("ulimit -v 300000; " + std::string(RHEODDA_BINARY) + " check " + file.string());
+  BOOST_TEST(r.exit_code == 2, r.output);
+  BOOST_TEST(r.output.find("rock.yaml:16:") != std::string::npos, r.output);
+  BOOST_TEST(r.output.find("of memory") != std::string::npos, r.output);
+  BOOST_TEST(r.output.find("is available") != std::string::npos, r.output);
+}
+
+BOOST_AUTO_TEST_CASE(small_blocks_at_map_coordinates_keep_their_area) {
+  // A 10 m square at x = 5e5, y = 4e6 m with 1 cm corners cut off (issue 43: "has area 0
+  // after rounding to doubles"; areas about the origin come in steps of 1.2e-4 m^2 there).
+  const std::string map = with("  region: [[0, 0], [10, 0], [10, 6], [0, 6]]\n",
+                               "  region: [[500000, 4000000], [500010, 4000000], [500010, 4000006], [500000, 4000006]]\n"
+                               "  traces: [{joint_set: joints, from: [500001.01, 3999999], to: [499999, 4000001.01]}]\n",
+                               with("origin: [0, 0]}", "origin: [500000, 4000000]}",
+                                    with("x: -2, y: -2", "x: 499998, y: 3999998",
+                                         with("[9.5, 5.9]", "[500009.5, 4000005.9]", kRockScene))));
+  const scene::SceneDescription s = scene::parse_scene(map, "map.yaml");
+  double smallest = 1e300;
+  for (std::size_t i = s.rock_mass->first_block; i < s.blocks.size(); ++i)
+    smallest = std::min(smallest, scene::signed_area(s.blocks[i].polygon));
+  // 1 cm x 1 cm / 2, to the rounding of its vertices' coordinates (an ulp of 4e6 across a
+  // 1 cm leg, twice: the trace's ends are not doubles either), where steps of 1.2e-4 m^2
+  // left it 0 or 2.4e-4.
+  const double ulp = std::nextafter(4e6, 1e300) - 4e6;
+  BOOST_TEST(std::abs(smallest - 0.5e-4) <= 2 * ulp * 0.01);
+  BOOST_TEST(s.rock_mass->area_error <= 1e-15);
+}
+
+BOOST_AUTO_TEST_CASE(a_needle_a_flat_region_and_traces_outside_are_named_as_such) {
+  // Two traces crossing at 4e-9 rad leave a needle: named by where it lies (the block has
+  // no place in the file), with docs/rockmass.md's wording.
+  const std::string needle = rock_with("  boundary_joint_set: base\n",
+                                       "  boundary_joint_set: base\n  traces: [{joint_set: joints, from: [-1, 2.999999976], "
+                                       "to: [11, 3.000000024]}, {joint_set: joints, from: [-1, 3], to: [11, 3]}]\n");
+  expect_error_at(needle, 12, "[[0", "rock_mass.region", "the cut leaves a needle DDA cannot model at (");
+  // A region of zero area is not "not simple".
+  expect_error_at(rock_with("  region: [[0, 0], [10, 0], [10, 6], [0, 6]]", "  region: [[0, 0], [5, 0], [10, 0]]"), 12,
+                  "[[0", "rock_mass.region", "the region is degenerate: its area is zero (its vertices lie on one line)");
+  // A triangle in its 10 x 6 box: of the lines x + y = c (dip 45 to the right, spacing 1
+  // along the normal) drawn over the box, those with c > 10 miss the triangle x + y < 10:
+  // "traces drawn" counts the others.
+  const std::string tri = with("  region: [[0, 0], [10, 0], [10, 6], [0, 6]]", "  region: [[0, 0], [10, 0], [0, 6]]",
+                                    with("    - {joint_set: joints, dip: 90, spacing: 2.5, origin: [0, 0]}\n",
+                                         "    - {joint_set: joints, dip: 45, spacing: 1, origin: [0, 0.5]}\n",
+                                         with("[9.5, 5.9]", "[1, 1]", kRockScene)));
+  const scene::SceneDescription s = scene::parse_scene(tri, "tri.yaml");
+  // Lines through (0, 0.5 + k sqrt(2)) (spacing 1 along (1, 1)/sqrt(2)): c = 0.5 + k sqrt 2.
+  // The box (with its 1e-3 margin) holds c from about 0 to 16; the triangle x/10 + y/6 < 1
+  // reaches c < 10 (its corner (10, 0)).
+  std::size_t in_region = 0;
+  for (int k = -1; k < 20; ++k) {
+    const double c = 0.5 + k * std::sqrt(2.0);
+    in_region += c > 0.0 && c < 10.0;
+  }
+  BOOST_TEST(s.rock_mass->traces_generated.at(1) == in_region);
+}
+
 BOOST_AUTO_TEST_CASE(a_generated_scene_runs_and_its_joint_sets_laws_act_on_the_generated_edges) {
   const auto dir = fresh_dir("rockmass-run");
   const auto scene_file = dir / "rock.yaml";

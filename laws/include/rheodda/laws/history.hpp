@@ -56,6 +56,14 @@ std::optional<double> exact_displacement(const ContactRheology& law, const Stage
 std::optional<double> exact_force(const ContactRheology& law, const StagedHistory& displacement,
                                   double t);
 
+/// The output times of a curve: 0, the multiples of dt, every stage start and t_end
+/// (a multiple within 1e-9 dt of a stage start or of t_end is replaced by it) [time].
+std::vector<double> curve_times(const StagedHistory& history, double t_end, double dt);
+
+/// Throws LawError unless dt and t_end are positive finite times and the law can be
+/// driven by the control (a held displacement needs an instantaneous spring E1).
+void check_curve_arguments(const ContactRheology& law, Control control, double t_end, double dt);
+
 /// Integrates the law alone from t = 0 to t_end with step dt (steps are split
 /// so that every stage start is a step boundary), returning the state after
 /// each step and at every stage start. Throws LawError on bad arguments

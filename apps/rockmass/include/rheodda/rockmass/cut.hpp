@@ -60,7 +60,46 @@ struct CutResult {
   /// size after rounding to doubles) left no area: slivers of rounding size.
   int collapsed_blocks = 0;
   std::map<int, double> joint_length;  ///< per tag: length of the block edges it carries [length]
+  /// Per input trace (in the order given): 1 when some part of it lies in the region
+  /// (not outside it, not only in a hole), 0 otherwise (e.g. a trace of the region's box
+  /// that misses a concave region).
+  std::vector<char> trace_in_region;
 };
+
+/// The check that the blocks tile the region: |sum of block areas - region area|
+/// against what rounding alone can explain (block_area_check).
+struct AreaCheck {
+  double block_sum = 0.0;    ///< sum of the blocks' areas, compensated (Neumaier) [length^2]
+  double region_area = 0.0;  ///< outer area minus the holes' [length^2]
+  /// Largest |block_sum - region_area| rounding explains [length^2]: each block's
+  /// shoelace sum (about its first vertex, 2 k eps times the sum of its terms' magnitudes
+  /// for k vertices; Higham, "Accuracy and Stability of Numerical Algorithms", 2nd ed.,
+  /// eq. 3.5), the compensated sum (2 eps |sum|), the region's own area, and the
+  /// rounding of the vertices the traces make on the region's boundary (half an ulp of
+  /// the coordinates across each boundary edge's length). It grows with the blocks'
+  /// total area, not with their number.
+  double bound = 0.0;
+  bool ok() const;
+};
+
+/// The area check of cut_blocks, on any blocks (doubles, counter-clockwise).
+AreaCheck block_area_check(const std::vector<Block>& blocks, const Region& region);
+
+/// What a cut will cost, estimated from the traces before cutting (estimate_cut).
+struct CutEstimate {
+  double crossings = 0.0;  ///< trace crossings in the arrangement (vertices) [-]
+  double pieces = 0.0;     ///< faces of the arrangement inside the region: at most that many blocks [-]
+  double bytes = 0.0;      ///< peak memory of the cut [bytes]
+};
+
+/// Estimates a cut: the expected crossings of the traces from their lengths and
+/// directions (Santalo's formula for segments in a domain of area A: two families
+/// of total lengths L1, L2 at an angle theta cross L1 L2 |sin theta| / A times;
+/// L. A. Santalo, "Integral Geometry and Geometric Probability", 1976, ch. 8),
+/// exact in expectation for persistent sets and an upper bound of the blocks for
+/// non-persistent ones (their dead ends make no block), and the memory of the exact
+/// arrangement per vertex measured on the benchmark cuts (docs/rockmass.md, "Performance").
+CutEstimate estimate_cut(const Region& region, const std::vector<Trace>& traces);
 
 /// What went wrong in a cut, for people: `where` is a point of the region near the fault.
 class CutError : public std::runtime_error {
@@ -77,10 +116,12 @@ class CutError : public std::runtime_error {
 /// joint edge whose extension reaches the rest of its boundary soonest is extended
 /// (CutResult::extended_traces). Throws CutError when no joint edge can be extended
 /// (a hole inside an uncut block: add a trace that reaches it) or when a check fails: block areas must sum to the region's
-/// within 1e-12 relative, every block must be counter-clockwise with positive area.
+/// within what rounding explains (block_area_check), every block must be counter-clockwise with positive area.
 CutResult cut_blocks(const Region& region, const std::vector<Trace>& traces, const CutOptions& options = {});
 
-/// Shoelace area, > 0 counter-clockwise [length^2].
+/// Shoelace area, > 0 counter-clockwise [length^2], taken about the first vertex: at map
+/// coordinates (x ~ 5e5, y ~ 4e6 m) the products x y about the origin are ~2e12 m^2, and
+/// their rounding (~2e-4 m^2) would swamp the area of a small block.
 double polygon_area(const std::vector<Point>& polygon);
 
 }  // namespace rheodda::rockmass

@@ -225,7 +225,9 @@ struct RockMassDescription {
   std::size_t first_block = 0;      ///< the generated blocks are blocks[first_block, first_block + block_count)
   std::size_t block_count = 0;
   std::vector<std::vector<bool>> edge_on_boundary;  ///< per generated block and edge: on the region's boundary
-  std::vector<std::size_t> traces_generated;        ///< per rock_mass joint set: traces drawn (clipped to the region's box)
+  /// Per rock_mass joint set: its traces that reach the region (drawn over the region's box,
+  /// clipped to it; those outside a concave region or only in a hole not counted).
+  std::vector<std::size_t> traces_generated;
   std::map<int, double> joint_length;  ///< per joint set index (-1: the region's boundary): edge length in blocks [length]
   int merged_slivers = 0;
   int dangling_removed = 0;
@@ -233,6 +235,7 @@ struct RockMassDescription {
   int added_traces = 0;             ///< of these, joints added parallel to a block's joints (a hole no trace reached)
   int collapsed_blocks = 0;         ///< blocks of rounding size dropped when their vertices were welded
   double area_error = 0.0;          ///< |sum of block areas - region area| / region area [-]
+  rockmass::CutEstimate estimate;   ///< what the cut was expected to cost, before cutting
   SourceLocation where{};
 };
 

@@ -101,8 +101,20 @@ std::string case_scene_text(const StudyDescription& study, const std::string& ba
 
 /// Builds every case scene and validates it with the scene loader, and checks that
 /// every output names a column the case's history.csv will have. Returns the case
-/// scene texts in case order. Throws SceneError located in the study file.
-std::vector<std::string> prepare_cases(const StudyDescription& study);
+/// scene texts in case order. Throws SceneError located in the study file. When `stop`
+/// is set non-zero (a signal) it returns at once, with the texts prepared so far.
+std::vector<std::string> prepare_cases(const StudyDescription& study,
+                                       const volatile std::sig_atomic_t* stop = nullptr);
+
+/// A case scene's text without its header comment (the leading '#' lines, which name
+/// the study and the base scene by their paths as typed): what `--resume` compares to
+/// recognise a case already run, whatever the spelling of the paths.
+std::string case_scene_body(const std::string& text);
+
+/// The folder name of drawn case k (0-based) of `count` (random and Latin-hypercube
+/// sweeps, forecast members): "sample" and k + 1 zero-padded to at least two digits and
+/// to the digits of `count`: sample07 of 20, sample007 of 100 to 999.
+std::string drawn_case_name(std::size_t k, std::size_t count);
 
 /// The title of a case scene: "BASE [case NAME: key = value, key removed, ...]", listing
 /// the case's own overrides first, then the study's common ones (docs/studies.md).
