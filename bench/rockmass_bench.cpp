@@ -12,12 +12,23 @@
 //   build/bench/rockmass_bench --no-generation --example tunnel --creep 1000
 //   build/bench/rockmass_bench --no-generation --scene bench/scenes/jointed-slope-cohesionless.yaml --creep 1000
 //                                                    # any scene with a rock_mass, scaled the same way
+//   ... --halve          # every static step control halved (dt, dt_max, creep_tolerance,
+//                        # max_displacement_ratio, collapse_dt; the dynamic stages' dt held):
+//                        # the convergence check of docs/performance.md, "Rock masses that run"
+//   ... --write-scenes DIR --creep 1000 --max-wall 0   # only write the scaled scene files
+// Per run: simulated time reached, steps, cuts, wall and CPU seconds, the
+// dynamic stages (events.csv) and the first measurement point's displacement.
 // Prints figures; asserts nothing.
 #include <fmt/format.h>
 
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <ctime>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
 #include <filesystem>
 #include <regex>
 #include <string>
@@ -100,6 +111,65 @@ std::string scaled_slope(const std::string& text, double f) {
   return out;
 }
 
+/// The scene text with every static step control halved: the analysis's dt,
+/// dt_max, creep_tolerance and max_displacement_ratio (keys of the analysis
+/// block, two spaces in) and the collapse stages' collapse_dt; the dynamic
+/// stages' own dt and max_displacement_ratio are held, as
+/// `rheodda check --refine --hold settle.dt,settle.max_displacement_ratio`
+/// does (docs/speed-accuracy.md).
+std::string halved(const std::string& text) {
+  std::string out = text;
+  auto halve = [&](const std::regex& re) {
+    std::string next;
+    std::size_t at = 0;
+    for (auto it = std::sregex_iterator(out.begin(), out.end(), re); it != std::sregex_iterator(); ++it) {
+      next += out.substr(at, it->position() - at);
+      next += fmt::format("{}{:.8g}", (*it)[1].str(), std::stod((*it)[2]) / 2.0);
+      at = it->position() + it->length();
+    }
+    out = next + out.substr(at);
+  };
+  halve(std::regex("(\\n  (?:dt|dt_max|creep_tolerance|max_displacement_ratio): )([0-9.eE+-]+)"));
+  halve(std::regex("(collapse_dt: )([0-9.eE+-]+)"));
+  return out;
+}
+
+/// The last row of `dir`/history.csv: the first measurement point's
+/// displacement magnitude [length] (NaN when the scene has none).
+double first_point_displacement(const std::filesystem::path& dir) {
+  std::ifstream in(dir / "history.csv");
+  std::string line, header, last;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    if (header.empty()) header = line; else last = line;
+  }
+  auto split = [](const std::string& l) {
+    std::vector<std::string> v;
+    std::stringstream ss(l);
+    for (std::string f; std::getline(ss, f, ',');) v.push_back(f);
+    return v;
+  };
+  const auto h = split(header), r = split(last);
+  for (std::size_t k = 0; k + 1 < h.size() && k + 1 < r.size(); ++k)
+    if (h[k].size() > 2 && h[k].ends_with(".u") && h[k + 1].ends_with(".v"))
+      return std::hypot(std::stod(r[k]), std::stod(r[k + 1]));
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+/// Dynamic stages by kind from `dir`/events.csv: "settling 1, mechanism 3".
+std::string stages(const std::filesystem::path& dir) {
+  std::ifstream in(dir / "events.csv");
+  std::string line;
+  std::map<std::string, int> count;
+  for (bool first = true; std::getline(in, line); first = false)
+    if (!first && !line.empty()) ++count[line.substr(0, line.find(','))];
+  std::string out;
+  for (const auto& [kind, n] : count) out += fmt::format("{}{} {}", out.empty() ? "" : ", ", kind, n);
+  return out.empty() ? "none" : out;
+}
+
+double cpu_seconds() { return double(std::clock()) / CLOCKS_PER_SEC; }
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -109,6 +179,8 @@ int main(int argc, char** argv) {
   std::string solver;  // empty: the scene's (automatic)
   std::string example = "jointed-slope";
   std::string scene_path;  // --scene: overrides --example
+  bool halve = false;      // --halve: every static step control halved
+  std::string write_dir;   // --write-scenes: where the scaled scenes go
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--creep" && i + 1 < argc) {
@@ -129,9 +201,13 @@ int main(int argc, char** argv) {
       solver = argv[++i];
     } else if (a == "--no-generation") {
       generation = false;
+    } else if (a == "--halve") {
+      halve = true;
+    } else if (a == "--write-scenes" && i + 1 < argc) {
+      write_dir = argv[++i];
     } else {
       fmt::print(stderr, "usage: rockmass_bench [--creep N,N...] [--max-wall SECONDS] [--solver automatic|cholmod|pcg|amg] [--example jointed-slope|tunnel] [--scene FILE] "
-                           "[--no-generation]\n");
+                           "[--no-generation] [--halve] [--write-scenes DIR]\n");
       return 2;
     }
   }
@@ -162,6 +238,16 @@ int main(int argc, char** argv) {
     const double f = std::sqrt(double(base_blocks) / target);
     std::string text = scaled_slope(slope, f);
     if (!solver.empty()) text.replace(text.find("analysis:\n"), 10, "analysis:\n  solver: " + solver + "\n");
+    if (halve) text = halved(text);
+    if (!write_dir.empty()) {
+      std::filesystem::create_directories(write_dir);
+      const auto file = std::filesystem::path(write_dir) / fmt::format("{}-{}{}.yaml", example, target, halve ? "-halved" : "");
+      std::ofstream(file) << fmt::format("# {} with its joint lengths x {:.4f} (rockmass_bench){}\n", example, f,
+                                         halve ? ", every static step control halved" : "")
+                          << text;
+      fmt::print("wrote {}\n", file.string());
+      if (max_wall <= 0.0) continue;
+    }
     auto t0 = Clock::now();
     const scene::SceneDescription s = scene::parse_scene(text, "jointed-slope-scaled.yaml");
     const double load_s = seconds_since(t0);
@@ -173,6 +259,7 @@ int main(int argc, char** argv) {
     g_stop = 0;
     alarm(static_cast<unsigned>(max_wall));
     scene::RunResult r;
+    const double cpu0 = cpu_seconds();
     try {
       r = scene::run_scene(s, text, o);
     } catch (const std::exception& e) {
@@ -183,11 +270,15 @@ int main(int argc, char** argv) {
       continue;
     }
     alarm(0);
-    fmt::print("creep: {}, lengths x {:.3f}: {} blocks, solver {} (scene loaded and cut in {:.2f} s); "
-               "{} at t = {:g} of {:g} d: {} steps, {} cuts, {} redone, wall {:.1f} s{}\n",
-               example, f, s.rock_mass->block_count, solver.empty() ? "of the scene" : solver, load_s, r.status == scene::RunStatus::completed ? "completed" : "stopped",
-               r.time, s.analysis.duration, r.steps, r.cuts, r.redone, r.wall_seconds,
-               r.status == scene::RunStatus::completed ? "" : fmt::format(" (stopped at --max-wall {:g} s)", max_wall));
+    fmt::print("creep: {}{}, lengths x {:.3f}: {} blocks, solver {} (scene loaded and cut in {:.2f} s); "
+               "{} at t = {:g} of {:g} d: {} steps, {} cuts, {} redone, wall {:.1f} s, CPU {:.1f} s{}; "
+               "dynamic stages: {}; first measurement point displaced {:.6g}\n",
+               example, halve ? " (static controls halved)" : "", f, s.rock_mass->block_count,
+               solver.empty() ? "of the scene" : solver, load_s,
+               r.status == scene::RunStatus::completed ? "completed" : "stopped", r.time, s.analysis.duration, r.steps,
+               r.cuts, r.redone, r.wall_seconds, cpu_seconds() - cpu0,
+               r.status == scene::RunStatus::completed ? "" : fmt::format(" (stopped at --max-wall {:g} s)", max_wall),
+               stages(dir), first_point_displacement(dir));
     std::fflush(stdout);
     std::filesystem::remove_all(dir);
   }

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Step-size studies of the open-close iteration, spliced into docs/contacts.md
-# ("Why the iteration does not settle"):
+# Step-size studies of the open-close iteration, spliced into docs/contacts.md (incline-drop)
+# and docs/notes/contact-solves.md (walls; "Why the iteration does not settle"):
 #   - incline-drop: bench/scenes/incline-drop.yaml (a block dropped 2 mm on a
 #     30 deg incline, friction 40 deg) and incline-drop-damped.yaml (the same
 #     with restitution 0 and damping_ratio 1) at dt = 1 ms ... 6.25 us: the
@@ -103,7 +103,7 @@ wall() {
   done
 } >"$work/walls.md"
 
-splice() { "$root/scripts/splice-doc.sh" "$root/docs/contacts.md" "$1" "$2"; }
-splice incline-drop "$work/drop.md"
-splice walls "$work/walls.md"
+splice() { "$root/scripts/splice-doc.sh" "$root/$1" "$2" "$3"; }
+splice docs/contacts.md incline-drop "$work/drop.md"
+splice docs/notes/contact-solves.md walls "$work/walls.md"
 cat "$work/drop.md" "$work/walls.md"

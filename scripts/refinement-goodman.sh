@@ -3,7 +3,7 @@
 # joint shear stiffness 1e8 Pa/m): block 10's displacement at base friction 35,
 # 45 and 60 deg, with max_displacement_ratio (g2) and dt halved together level
 # by level. Prints a Markdown table (displacement [m] and steps per level) and
-# puts it into docs/contacts.md ("Why the iteration does not settle").
+# puts it into docs/notes/contact-solves.md ("Why the iteration does not settle").
 # Usage: scripts/refinement-goodman.sh [--stick-keeps-force | --dynamic]   (uses $RHEODDA_BUILD_DIR or build/)
 #   (default)            static, 2 d, g2 / dt from 0.001 / 0.5 d over seven levels,
 #                        refinement-goodman markers; about 5 s;
@@ -84,4 +84,4 @@ awk -F, -v levels=$levels -v dt0=$dt0 -v unit=$dt_unit -v scale=$dt_scale '
     }
   }' "$work/out/study.csv" >"$work/table.md"
 cat "$work/table.md"
-"$root/scripts/splice-doc.sh" "$root/docs/contacts.md" "$marker" "$work/table.md"
+"$root/scripts/splice-doc.sh" "$root/docs/notes/contact-solves.md" "$marker" "$work/table.md"

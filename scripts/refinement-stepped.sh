@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Step-size study of stick and slip on a slope that stands (docs/contacts.md,
+# Step-size study of stick and slip on a slope that stands (docs/notes/contact-solves.md,
 # "Stick and slip"): bench/scenes/stepped-toppling.yaml - the Goodman & Bray
 # toppling slope at friction 5 deg above its limit-equilibrium angle, dynamic,
 # 8 s - at dt = 5, 2, 1, 0.5, 0.25, 0.1 and 0.05 ms, with Shi's rule
@@ -9,7 +9,7 @@
 # damping_ratio 1; docs/contacts.md, "Contact damping"). Prints a Markdown table of the largest
 # displacement of the 16 block tops at 8 s [mm], with the run's cuts of dt and
 # its energy-balance residual, and puts it between the refinement-stepped
-# markers of docs/contacts.md. About 3 min on 2 cores.
+# markers of docs/notes/contact-solves.md. About 3 min on 2 cores.
 # Usage: scripts/refinement-stepped.sh   (uses $RHEODDA_BUILD_DIR or build/)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -73,4 +73,4 @@ for stick, name in (("false", "Shi's (`stick_keeps_force: false`)"), ("true", "`
     print("| | largest energy residual / work | " + " | ".join(f"{rows[stick, d][2]:.1e}" for d in dts) + " |")
 PY
 cat "$work/table.md"
-"$root/scripts/splice-doc.sh" "$root/docs/contacts.md" refinement-stepped "$work/table.md"
+"$root/scripts/splice-doc.sh" "$root/docs/notes/contact-solves.md" refinement-stepped "$work/table.md"

@@ -22,7 +22,7 @@ void ContactSystem::stick(std::span<const BlockView> blocks, size_t c) {
   // contact slid against, as an elastic-plastic joint keeps its elastic shear
   // displacement: the locking point P0 goes behind p by the stretch that
   // carries F, P0 = p - s t with s = d F / k_s (d the slide direction, t the
-  // edge direction). Measured trade (docs/contacts.md, "Why the iteration does
+  // edge direction). Measured trade (docs/notes/contact-solves.md, "Why the iteration does
   // not settle"): far fewer iterates and cuts on walls and slopes at the
   // friction limit; a creeping slope at its limit takes other, step-dependent
   // paths.

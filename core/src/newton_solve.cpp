@@ -39,7 +39,7 @@ class NewtonSolve final : public ContactSolve {
     int loose_iterates = 0;
     const int limit = p.iteration_limit();
     while (out.iterations - loose_iterates < limit) {
-      // Inexact iterates as in the open-close solve (docs/contacts.md, "Inexact iterates").
+      // Inexact iterates as in the open-close solve (docs/notes/contact-solves.md, "Inexact iterates").
       const bool loose = may_loosen && !tight_next && 3 * loose_iterates < limit;
       if (loose) ++loose_iterates;
       D = p.solve_system(loose);

@@ -13,7 +13,7 @@ class OpenCloseSolve final : public ContactSolve {
   ContactSolveResult solve(StepProblem& p, Eigen::VectorXd& D) override {
     const Settings& s = p.settings();
     ContactSolveResult out;
-    // Inexact iterates (docs/contacts.md, "Inexact iterates"): while the
+    // Inexact iterates (docs/notes/contact-solves.md, "Inexact iterates"): while the
     // states still change, an iterative solve stops at a loose tolerance; a
     // trial converges only on a check of a solve at the full one.
     // At most a third of the limit's worth of iterates is solved loosely, and

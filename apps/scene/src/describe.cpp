@@ -110,6 +110,10 @@ std::string describe_scene(const SceneDescription& s) {
                      "(docs/engine.md, \"Settling stage\")",
                      a.settle->dynamic ? "dynamic" : "static", a.settle->until, u.time, a.settle->dt, u.time,
                      a.settle->max_displacement_ratio));
+  if (a.settle && a.settle->open_close_limit > 0)
+    line(fmt::format("  stage steps: cut after {} open-close iterates (the analysis's steps after {}; docs/engine.md, "
+                     "\"Dynamic stages\")",
+                     a.settle->open_close_limit, a.open_close_limit));
   if (a.settle && a.settle->gravity_ramp > 0.0)
     line(fmt::format("  gravity ramp: gravity rises linearly from zero to its full value over the first {:g} {} of "
                      "the stage (docs/engine.md, \"Gravity ramp\")",

@@ -494,7 +494,7 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   num("search_factor", a.search_factor, positive(""));
   num("angle_tolerance", a.angle_tolerance, {0.0, true, 45.0, false, "deg"});
   num("penetration_ratio", a.penetration_ratio, {0.0, true, 1.0, false, ""});
-  // Default by analysis type (docs/contacts.md, "Stick and slip"): in a dynamic
+  // Default by analysis type (docs/notes/contact-solves.md, "Stick and slip"): in a dynamic
   // analysis Shi's stick rule ratchets a slope that stands down its friction
   // limit, the more the smaller dt; in a static creep analysis the kept force
   // makes the creep run depend on dt. With collapse stages (docs/engine.md,
@@ -519,7 +519,7 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   num("penalty_max_factor", a.penalty_max_factor, {1.0, false, std::numeric_limits<double>::max(), false, ""});
   // Static: Shi's 8, so that a step whose contacts do not settle is cut and retaken
   // smaller rather than settled into a sliding state at a large dt; dynamic: 30
-  // (brick walls). Measured in docs/contacts.md, "The iteration limit in static analysis".
+  // (brick walls). Measured in docs/notes/contact-solves.md, "The iteration limit in static analysis".
   a.open_close_limit = a.type == AnalysisType::dynamic_analysis ? 30 : 8;
   if (YAML::Node v = m.find("open_close_limit"); v.IsDefined())
     a.open_close_limit = integer(ctx, v, m.child("open_close_limit"), 1, 1000);

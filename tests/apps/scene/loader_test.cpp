@@ -271,6 +271,22 @@ BOOST_AUTO_TEST_CASE(rest_tolerance_ends_stages_at_rest_and_makes_until_their_lo
                   "analysis.settle.rest_tolerance", "out of range");
 }
 
+BOOST_AUTO_TEST_CASE(a_stage_takes_its_own_open_close_limit) {
+  // docs/engine.md, "Dynamic stages": the stage's steps are cut after this many
+  // iterates; without it they take the analysis's (8 in a static analysis).
+  const auto text = with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, type: dynamic, open_close_limit: 30}");
+  const auto s = scene::parse_scene(text, "limit.yaml");
+  BOOST_TEST(s.analysis.settle->open_close_limit == 30);
+  const scene::BuiltScene built = scene::build_scene(s);
+  BOOST_TEST(built.model.settings.settle_max_open_close == 30);
+  BOOST_TEST(built.model.settings.max_open_close == s.analysis.open_close_limit);
+  BOOST_TEST(scene::describe_scene(s).find("cut after 30 open-close iterates") != std::string::npos);
+  const auto plain = scene::parse_scene(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001}"), "limit.yaml");
+  BOOST_TEST(scene::build_scene(plain).model.settings.settle_max_open_close == 0);
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, open_close_limit: 0}"), 5, "0}",
+                  "analysis.settle.open_close_limit", "out of range");
+}
+
 BOOST_AUTO_TEST_CASE(step_tolerance_and_step_extrapolation_reach_the_engine_settings_and_bad_values_are_refused) {
   const auto text = with("  dt: 0.01", "  dt: 0.01\n  step_tolerance: 1.0e-4\n  step_extrapolation: false\n"
                                        "  dt_max: 0.5");
@@ -353,7 +369,7 @@ BOOST_AUTO_TEST_CASE(time_integration_reaches_the_engine_settings_and_needs_a_dy
 }
 
 BOOST_AUTO_TEST_CASE(open_close_limit_defaults_to_8_in_static_and_30_in_dynamic_analysis_and_reaches_the_engine) {
-  // docs/contacts.md, "The iteration limit in static analysis".
+  // docs/notes/contact-solves.md, "The iteration limit in static analysis".
   BOOST_TEST(scene::build_scene(scene::parse_scene(kBaseScene, "base.yaml")).model.settings.max_open_close == 8);
   const auto dynamic = with("  dt: 0.01", "  dt: 0.01\n  type: dynamic");
   BOOST_TEST(scene::build_scene(scene::parse_scene(dynamic, "dyn.yaml")).model.settings.max_open_close == 30);

@@ -1,5 +1,5 @@
 // A slope that limit equilibrium holds with a margin of 5 deg stands at every
-// step, dynamic and static (issue "Steps that converge", docs/contacts.md
+// step, dynamic and static (issue "Steps that converge", docs/notes/contact-solves.md
 // "Stick and slip"): bench/scenes/stepped-toppling.yaml, the Goodman & Bray
 // toppling slope on its stepped base at friction 43.15 deg (limit equilibrium:
 // 38.15 deg, tests/contact/engine/toppling_test.cpp), with the scene's default
@@ -89,7 +89,7 @@ BOOST_AUTO_TEST_CASE(a_slope_5_deg_above_limit_equilibrium_stands_at_every_step_
 
 BOOST_AUTO_TEST_CASE(with_plastic_impacts_and_damped_blocks_the_settling_does_not_depend_on_the_step) {
   // Joint set restitution 0, material damping_ratio 1 (docs/contacts.md, "Contact
-  // damping" and "Stick and slip"): 6.1-6.4 mm at 8 s from 5 ms to 0.05 ms, where
+  // damping", and docs/notes/contact-solves.md, "Stick and slip"): 6.1-6.4 mm at 8 s from 5 ms to 0.05 ms, where
   // the undamped default settles 7.7-14.3 mm, more at every smaller step.
   const fs::path dir = fresh_dir("stepped-damped");
   const std::string outputs = tops_outputs();

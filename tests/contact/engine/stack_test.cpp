@@ -68,7 +68,7 @@ WallRest damped_wall_at_rest(int bricks, int courses, int level) {
   contact::JointSet j = joint(30.0);
   j.restitution = 0.0;
   contact::ContactSettings settings = core::contact_settings_for(m, 50.0);
-  settings.stick_keeps_force = true;  // as a dynamic scene (docs/contacts.md, "Stick and slip")
+  settings.stick_keeps_force = true;  // as a dynamic scene (docs/notes/contact-solves.md, "Stick and slip")
   Sim sim(std::move(m), {j}, settings);
   while (sim.engine.time() < 0.02 - 1e-12) sim.engine.step();
   WallRest out;

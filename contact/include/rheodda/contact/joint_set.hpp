@@ -104,7 +104,7 @@ struct ContactSettings {
   /// in its shear spring (elastic-plastic joint) instead of restarting the
   /// spring unstretched (Shi's rule) [-]. Off by default: on a creeping slope
   /// at its friction limit it changes which way the slope goes, with the step
-  /// (docs/contacts.md, "Why the iteration does not settle").
+  /// (docs/notes/contact-solves.md, "Why the iteration does not settle").
   bool stick_keeps_force = false;
   /// The rule of stick_keeps_force in the dynamic steps of a static analysis
   /// (a dynamic settling stage, docs/engine.md "Settling stage") when set;

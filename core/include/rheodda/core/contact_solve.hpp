@@ -47,7 +47,7 @@ class StepProblem {
   virtual const Settings& settings() const = 0;
   /// Assembles K0, F0 and the contacts' terms for their current trial states
   /// and solves K D = F; `loose`: an iterative solver may stop at
-  /// Settings::pcg_iterate_tolerance instead of its own tolerance (docs/contacts.md,
+  /// Settings::pcg_iterate_tolerance instead of its own tolerance (docs/notes/contact-solves.md,
   /// "Inexact iterates"). Throws SingularSystemError (solver.hpp) when K is not
   /// positive definite. Times itself into the step report.
   virtual Eigen::VectorXd solve_system(bool loose) = 0;

@@ -179,7 +179,7 @@ struct Settings {
   double settle_rest_tolerance = 0.0;
   /// Open-close iterates before a step of the settling stage or a collapse
   /// stage is cut [-]; 0 = max_open_close. A static analysis limits its static
-  /// steps to Shi's 8 (docs/contacts.md, "The iteration limit in static
+  /// steps to Shi's 8 (docs/notes/contact-solves.md, "The iteration limit in static
   /// analysis"); its dynamic stages are dynamic steps, which a dynamic analysis
   /// gives 30.
   int settle_max_open_close = 0;
@@ -202,7 +202,7 @@ struct Settings {
   Vec2 gravity{0.0, -9.81};      ///< body acceleration (gx, gy) [length/time^2]
   double fixed_point_stiffness = 0.0;  ///< penalty spring of fixed points [force/length];
                                        ///< 0 = automatic: 100 x the largest Young's modulus
-  int max_open_close = 30;       ///< open-close iterations before a step is cut [-]; >= 1 (docs/contacts.md, "The wall converges when the iteration is not cut")
+  int max_open_close = 30;       ///< open-close iterations before a step is cut [-]; >= 1 (docs/notes/contact-solves.md, "The wall converges when the iteration is not cut")
   SolverKind solver = SolverKind::automatic;  ///< default automatic
   ContactSolver contact_solver = ContactSolver::open_close;  ///< default open_close
   /// ContactSolver::newton accepts a step when the residual of its equations,
@@ -216,7 +216,7 @@ struct Settings {
   int pcg_max_iterations = 10000;  ///< iteration limit per solve of pcg and amg [-]; >= 1
   /// Stop of the iterative solvers in an open-close iterate whose contact
   /// states are still changing [-]: ||F - K D|| <= pcg_iterate_tolerance ||F||;
-  /// a trial is accepted only on a check of a solve at pcg_tolerance (docs/contacts.md,
+  /// a trial is accepted only on a check of a solve at pcg_tolerance (docs/notes/contact-solves.md,
   /// "Inexact iterates"). 0 = every solve at pcg_tolerance; in [0, 1)
   double pcg_iterate_tolerance = 1.0e-4;
 };
