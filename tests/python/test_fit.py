@@ -15,7 +15,7 @@ def test_fit_of_a_noise_free_curve_recovers_the_parameters():
     d = law.displacement_closed_form(0.232, t)
     r = rheodda.fit("burgers", d, t=t, stress=0.232)
     assert r.law == "burgers" and r.points == 201
-    # The fit stops on a step tolerance of 1e-10 in log parameters (fit.cpp); eta2, the least
+    # The fit stops on a step tolerance of 1e-10 in log parameters (gsl_solver.cpp); eta2, the least
     # determined (retardation time eta2/E2 = 11 h of 400 h), comes within 2e-6 here.
     for name, value in TABLE1.items():
         assert r.values[name] == pytest.approx(value, rel=1e-5), name

@@ -238,7 +238,7 @@ Linear solve_node(Columns& C, const std::vector<int>& simple, const std::vector<
 
 // Kelvin column: sum_i dF_i (1 - exp(-(t - t_i)/tau)) (the seed's eq. 2 superposed, eqs. 4-6),
 // the stages before the current one through S0 = sum_{i<k} dF_i exp(-(t_k - t_i)/tau),
-// carried from stage to stage (as in fit.cpp's evaluate_series): O(1) per point.
+// carried from stage to stage (as in residuals.cpp's evaluate_series): O(1) per point.
 // 1 - e^-r directly: its rounding (eps/r relative) does not matter to the search.
 std::vector<double> kelvin_column(const Sample& s, const std::vector<double>& st,
                                   const std::vector<double>& sf, double tau) {

@@ -1,0 +1,146 @@
+// The nonlinear polish of a fit: GSL's trust-region solver on one data set (gsl_solver.hpp).
+#include "gsl_solver.hpp"
+
+#include <gsl/gsl_blas.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "varpro.hpp"
+
+namespace rheodda::fit::detail {
+
+// ---- The nonlinear polish (GSL) on one data set -------------------------------
+// Every stride-th point of each stage (its first and last always), at most
+// about max_points in all: the data the reference starts run on for long records.
+CreepData subsample(const CreepData& d, std::size_t max_points) {
+  const std::size_t n = d.t.size();
+  const std::size_t stride = (n + max_points - 1) / max_points;
+  CreepData s;
+  s.source = d.source;
+  s.history = d.history;
+  s.time_column = d.time_column;
+  s.displacement_column = d.displacement_column;
+  s.stress_column = d.stress_column;
+  for (const auto& st : d.stages) {
+    StageInfo si{st.t, st.stress, s.t.size(), 0};
+    for (std::size_t j = st.first; j < st.first + st.count; ++j)
+      if ((j - st.first) % stride == 0 || j + 1 == st.first + st.count) {
+        s.t.push_back(d.t[j]);
+        s.displacement.push_back(d.displacement[j]);
+        s.line.push_back(j < d.line.size() ? d.line[j] : 0);
+      }
+    si.count = s.t.size() - si.first;
+    s.stages.push_back(si);
+  }
+  return s;
+}
+
+// ---- Solver (gsl_solver.hpp) ----------------------------------------------------
+Solver::Solver(const laws::LawInfo& info, const CreepData& data, const std::optional<SeriesStructure>& structure,
+               double inv_scale) {
+  const std::size_t n = data.t.size(), np = info.parameters.size();
+  pr.info = &info;
+  pr.data = &data;
+  pr.structure = structure;
+  pr.n = n;
+  pr.np = np;
+  pr.inv_scale = inv_scale;
+  pr.values.resize(np);
+  pr.cached_x.assign(np, std::numeric_limits<double>::quiet_NaN());
+  pr.cached_jac.assign(n * np, 0.0);
+  double flow = 0.0;
+  for (std::size_t k = 0; k < data.stages.size(); ++k) {
+    pr.stage_t.push_back(data.stages[k].t);
+    pr.stage_f.push_back(data.stages[k].stress);
+    pr.flow_before.push_back(flow);
+    if (k + 1 < data.stages.size())
+      flow += data.stages[k].stress * (data.stages[k + 1].t - data.stages[k].t);
+  }
+  fdf_.f = residual_cb;
+  fdf_.df = pr.structure ? jacobian_cb : nullptr;  // nullptr: GSL's finite differences
+  fdf_.fvv = nullptr;
+  fdf_.n = n;
+  fdf_.p = np;
+  fdf_.params = &pr;
+  gsl_multifit_nlinear_parameters params = gsl_multifit_nlinear_default_parameters();
+  params.trs = gsl_multifit_nlinear_trs_lm;
+  // Modified Cholesky on the normal equations: a quarter faster than QR here,
+  // and robust when a parameter is unidentifiable (J^T J near singular). The
+  // covariance comes from an SVD of J (identify()).
+  params.solver = gsl_multifit_nlinear_solver_mcholesky;
+  w_.reset(gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &params, n, np));
+  x_.reset(gsl_vector_alloc(np));
+  fv_.reset(gsl_vector_alloc(n));
+}
+
+// The loop of gsl_multifit_nlinear_driver with an early stop, then varpro_refine (gsl_solver.hpp).
+Solver::Outcome Solver::polish(const std::vector<double>& start, double stop_at, double floor,
+                               const FitOptions& options, bool refine) {
+  const std::size_t np = pr.np;
+  for (std::size_t k = 0; k < np; ++k) gsl_vector_set(x_.get(), k, start[k]);
+  gsl_multifit_nlinear_init(x_.get(), &fdf_, w_.get());
+  auto rss_now = [&] {
+    const gsl_vector* f = w_->f;  // contiguous: allocated by GSL
+    double c = 0.0;
+    for (std::size_t j = 0; j < f->size; ++j) c += f->data[j] * f->data[j];
+    return c;
+  };
+  // gsl_multifit_nlinear_test(xtol = 1e-10, gtol = 1e-15) (GSL's
+  // multifit_nlinear/convergence.c) with ||f||^2 summed here once for this
+  // test and the stop_at one, instead of by the reference CBLAS dnrm2:
+  //   (1) |dx_i| <= xtol |x_i| + xtol^2 for all i;
+  //   (2) max_i |g_i max(x_i, 1)| <= gtol max(||f||^2/2, 1).
+  auto converged = [&](double rss) {
+    const gsl_vector *x = w_->x, *dx = w_->dx, *g = w_->g;
+    bool small_step = true;
+    double gnorm = 0.0;
+    for (std::size_t k = 0; k < np; ++k) {
+      const double xk = gsl_vector_get(x, k);
+      small_step = small_step && std::abs(gsl_vector_get(dx, k)) <= 1e-10 * std::abs(xk) + 1e-20;
+      gnorm = std::max(gnorm, std::abs(std::max(xk, 1.0) * gsl_vector_get(g, k)));
+    }
+    return small_step || gnorm <= 1e-15 * std::max(0.5 * rss, 1.0);
+  };
+  int status = GSL_CONTINUE;
+  for (int iter = 0; iter < options.max_iterations && status == GSL_CONTINUE; ++iter) {
+    const int step = gsl_multifit_nlinear_iterate(w_.get());
+    if (step == GSL_ENOPROG && iter == 0) {
+      status = GSL_ENOPROG;
+      break;
+    }
+    const double rss = rss_now();
+    if (converged(rss) || (stop_at >= 0 && rss <= stop_at * (1.0 + 1e-7) + floor)) status = GSL_SUCCESS;
+  }
+  if (status == GSL_CONTINUE) status = GSL_EMAXITER;
+  Outcome o;
+  o.rss = rss_now();
+  o.status = status;
+  o.iterations = static_cast<int>(gsl_multifit_nlinear_niter(w_.get()));
+  const gsl_vector* xs = gsl_multifit_nlinear_position(w_.get());
+  o.position.resize(np);
+  for (std::size_t k = 0; k < np; ++k) o.position[k] = gsl_vector_get(xs, k);
+  if (refine && pr.structure) {
+    std::vector<double> v(np);
+    for (std::size_t k = 0; k < np; ++k) v[k] = std::exp(o.position[k]);
+    if (detail::varpro_refine(*pr.structure, *pr.data, pr.inv_scale, v)) {
+      for (std::size_t k = 0; k < np; ++k) gsl_vector_set(x_.get(), k, std::log(v[k]));
+      residual_cb(x_.get(), &pr, fv_.get());
+      double c = 0.0;
+      gsl_blas_ddot(fv_.get(), fv_.get(), &c);
+      if (c < o.rss) {
+        o.rss = c;
+        for (std::size_t k = 0; k < np; ++k) o.position[k] = std::log(v[k]);
+      }
+    }
+  }
+  return o;
+}
+
+gsl_multifit_nlinear_workspace* Solver::at(const std::vector<double>& position) {
+  for (std::size_t k = 0; k < pr.np; ++k) gsl_vector_set(x_.get(), k, position[k]);
+  gsl_multifit_nlinear_init(x_.get(), &fdf_, w_.get());
+  return w_.get();
+}
+
+}  // namespace rheodda::fit::detail
