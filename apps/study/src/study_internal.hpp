@@ -1,0 +1,29 @@
+// Internal to rheodda_study: what the runner (runner.cpp), the study's record
+// (study_report.cpp) and its pictures (study_plots.cpp) share.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "rheodda/study/study.hpp"
+
+namespace rheodda::study::detail {
+
+/// The whole file as bytes ("" when it cannot be read).
+std::string read_text(const std::filesystem::path& p);
+
+/// The fields of a CSV line split at every comma (no quoting; a '\r' dropped).
+std::vector<std::string> split_csv_line(const std::string& line);
+
+/// Shortest text that reads back as the same double.
+std::string format_value(double v);
+
+/// study.csv: one row per case, its parameters, outputs at the study's times, wall time, steps and message.
+void write_study_csv(const StudyDescription& study, const std::vector<CaseResult>& results,
+                     const std::filesystem::path& path);
+
+/// study.json: what `rheodda plot OUTDIR` needs besides study.csv to redraw a study.
+void write_study_json(const StudyDescription& study, const std::filesystem::path& path);
+
+}  // namespace rheodda::study::detail
