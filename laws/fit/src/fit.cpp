@@ -62,15 +62,21 @@ using detail::subsample;
 
 std::string fmt_g(double v) { return fmt::format("{:.4g}", v); }
 
-}  // namespace
+std::vector<double> logs(const std::vector<double>& v) {
+  std::vector<double> l(v.size());
+  for (std::size_t k = 0; k < v.size(); ++k) l[k] = std::log(v[k]);
+  return l;
+}
 
-FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOptions& options) {
-  if (!info.fittable)
-    throw FitError(info.name, fmt::format("law '{}' cannot be fitted yet: its creep is nonlinear in the "
-                                          "stress (docs/laws.md, \"Nonlinear laws\"); compare it with the "
-                                          "data through `rheodda law curve {}`",
-                                          info.name, info.name));
-  const ErrorHandlerOff handler_off;
+// ---- 1. The input: what the fit can work on ----------------------------------
+struct DataScale {
+  double dmax = 0.0;  // largest |displacement|: residuals are scaled by 1/dmax
+  double mean = 0.0;  // mean displacement (for R^2)
+};
+
+// The law must be fittable with positive parameters, the data hold more points
+// than parameters, stages that cover them, a load and a displacement.
+DataScale check_input(const laws::LawInfo& info, const CreepData& data) {
   const std::size_t n = data.t.size(), np = info.parameters.size();
   for (const auto& spec : info.parameters)
     if (spec.min < 0.0)
@@ -96,20 +102,48 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
   if (!loaded)
     throw FitError(info.name, fmt::format("{}: the applied stress is zero in every stage; nothing "
                                           "to fit", data.source));
-  double dmax = 0.0, mean = 0.0;
+  DataScale sc;
   for (double d : data.displacement) {
-    dmax = std::max(dmax, std::abs(d));
-    mean += d / static_cast<double>(n);
+    sc.dmax = std::max(sc.dmax, std::abs(d));
+    sc.mean += d / static_cast<double>(n);
   }
-  if (dmax == 0.0)
+  if (sc.dmax == 0.0)
     throw FitError(info.name,
                    fmt::format("{}: the displacement is zero everywhere; nothing to fit", data.source));
+  return sc;
+}
 
-  const std::optional<SeriesStructure> structure = probe_structure(info);
-  Solver full(info, data, structure, 1.0 / dmax);
-  Problem& pr = full.pr;
+// ---- 2. The search: the best minimum over the starts -------------------------
+struct Search {
+  // Sums of squares closer than `floor` are the same: a scaled residual of
+  // 1e-10 rms (1e-10 of the largest displacement) is rounding, not fit.
+  double floor = 0.0;
+  std::vector<double> best_x;
+  double best_rss = std::numeric_limits<double>::infinity();
+  double structured_rss = std::numeric_limits<double>::infinity();
+  int best_iter = 0, best_status = GSL_FAILURE, structured = 0, starts_total = 0, agreeing_sample = 0;
+  std::vector<double> rss_full;  // final RSS of the starts run on all points
+  bool reference_lower = false;  // a classic start found a lower minimum than the structured search
 
-  const CurveFeatures features = analyse_curve(data);
+  bool consider(const Solver::Outcome& o, bool first) {
+    // A later start must improve by more than rounding.
+    if (std::isfinite(o.rss) && (first || o.rss < best_rss * (1.0 - 1e-9) - floor)) {
+      best_rss = o.rss;
+      best_iter = o.iterations;
+      best_status = o.status;
+      best_x = o.position;
+      return true;
+    }
+    return false;
+  }
+};
+
+// The starts of the variable-projection search, then the classic starts as a
+// reference, each polished by `full` (all points) or on a subsample.
+Search search_minimum(const laws::LawInfo& info, const CreepData& data, Solver& full,
+                      const CurveFeatures& features, double dmax, const FitOptions& options) {
+  const Problem& pr = full.pr;
+  const std::size_t n = pr.n, np = pr.np;
   const std::vector<double> base = pr.structure ? series_start(*pr.structure, np, features)
                                                 : generic_start(info, features);
   // The exact re-solve after the polish matters where GSL cannot settle: on a
@@ -121,43 +155,22 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
   const bool refine = options.structured_search && has_bingham;
   const bool structured_search = pr.structure && options.structured_search;
 
-  // Sums of squares closer than `floor` are the same: a scaled residual of
-  // 1e-10 rms (1e-10 of the largest displacement) is rounding, not fit.
-  const double floor = static_cast<double>(n) * 1e-20;
-  std::vector<double> best_x(np);
-  double best_rss = std::numeric_limits<double>::infinity();
-  double structured_rss = std::numeric_limits<double>::infinity();
-  int best_iter = 0, best_status = GSL_FAILURE, structured = 0, starts_total = 0, agreeing_sample = 0;
-  std::vector<double> rss_full;  // final RSS of the starts run on all points
-  bool reference_lower = false;  // a classic start found a lower minimum than the structured search
-  auto consider = [&](const Solver::Outcome& o, bool first) {
-    // A later start must improve by more than rounding.
-    if (std::isfinite(o.rss) && (first || o.rss < best_rss * (1.0 - 1e-9) - floor)) {
-      best_rss = o.rss;
-      best_iter = o.iterations;
-      best_status = o.status;
-      best_x = o.position;
-      return true;
-    }
-    return false;
-  };
-  auto logs = [](const std::vector<double>& v) {
-    std::vector<double> l(v.size());
-    for (std::size_t k = 0; k < v.size(); ++k) l[k] = std::log(v[k]);
-    return l;
-  };
+  Search sr;
+  sr.floor = static_cast<double>(n) * 1e-20;
+  const double floor = sr.floor;
+  sr.best_x.resize(np);
 
   // 1. The starts of the variable-projection search (varpro.hpp), polished on all points.
   if (structured_search) {
     detail::VarProSettings vs;
     vs.per_decade = std::max(options.grid_per_decade, 1);
     for (auto& v : detail::varpro_starts(*pr.structure, np, data, pr.inv_scale, vs)) {
-      const auto o = full.polish(logs(v.values), starts_total > 0 ? best_rss : -1.0, floor, options, refine);
-      consider(o, starts_total == 0);
-      ++starts_total;
-      ++structured;
-      rss_full.push_back(o.rss);
-      if (std::isfinite(o.rss)) structured_rss = std::min(structured_rss, o.rss);
+      const auto o = full.polish(logs(v.values), sr.starts_total > 0 ? sr.best_rss : -1.0, floor, options, refine);
+      sr.consider(o, sr.starts_total == 0);
+      ++sr.starts_total;
+      ++sr.structured;
+      sr.rss_full.push_back(o.rss);
+      if (std::isfinite(o.rss)) sr.structured_rss = std::min(sr.structured_rss, o.rss);
     }
   }
   // 2. The classic starts (the curve-derived one and `restarts` variations of
@@ -173,67 +186,59 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
   for (int r = 0; r < classic; ++r)
     classic_starts.push_back(logs(r == 0 ? base : restart_start(base, pr.structure, r, features.f_max)));
   constexpr std::size_t kReferencePoints = 500, kReferenceSample = 200;
-  if (structured > 0 && std::isfinite(best_rss) && n > kReferencePoints) {
+  if (sr.structured > 0 && std::isfinite(sr.best_rss) && n > kReferencePoints) {
     const CreepData sub = subsample(data, kReferenceSample);
-    Solver small(info, sub, structure, 1.0 / dmax);
+    Solver small(info, sub, pr.structure, 1.0 / dmax);
     const double floor_sub = static_cast<double>(sub.t.size()) * 1e-20;
-    const double level = small.polish(best_x, -1.0, floor_sub, options, refine).rss;
+    const double level = small.polish(sr.best_x, -1.0, floor_sub, options, refine).rss;
     for (const auto& start : classic_starts) {
       const auto o = small.polish(start, level, floor_sub, options, refine);
-      ++starts_total;
-      if (std::abs(o.rss - level) <= 1e-6 * level + floor_sub) ++agreeing_sample;
+      ++sr.starts_total;
+      if (std::abs(o.rss - level) <= 1e-6 * level + floor_sub) ++sr.agreeing_sample;
       else if (o.rss < level * (1.0 - 1e-6) - floor_sub) {
         const auto o2 = full.polish(o.position, -1.0, floor, options, refine);
-        rss_full.push_back(o2.rss);
-        reference_lower = consider(o2, false) || reference_lower;
+        sr.rss_full.push_back(o2.rss);
+        sr.reference_lower = sr.consider(o2, false) || sr.reference_lower;
       }
     }
   } else {
     for (const auto& start : classic_starts) {
-      const auto o = full.polish(start, starts_total > 0 ? best_rss : -1.0, floor, options, refine);
-      rss_full.push_back(o.rss);
-      const bool lower = consider(o, starts_total == 0);
-      reference_lower = reference_lower || (lower && structured > 0);
-      ++starts_total;
+      const auto o = full.polish(start, sr.starts_total > 0 ? sr.best_rss : -1.0, floor, options, refine);
+      sr.rss_full.push_back(o.rss);
+      const bool lower = sr.consider(o, sr.starts_total == 0);
+      sr.reference_lower = sr.reference_lower || (lower && sr.structured > 0);
+      ++sr.starts_total;
     }
   }
-  if (!std::isfinite(best_rss))
+  if (!std::isfinite(sr.best_rss))
     throw FitError(info.name, fmt::format("law '{}': no start gave a finite fit", info.name));
+  return sr;
+}
 
-  // Kelvin elements in series are interchangeable; report them ordered by
-  // retardation time eta/E, shortest first (E2, eta2 the fast one), so the
-  // labels do not depend on which start won.
-  if (pr.structure) {
-    std::vector<const Element*> kelvins;
-    for (const auto& el : pr.structure->elements)
-      if (el.kind == Kind::kelvin) kelvins.push_back(&el);
-    std::vector<std::pair<double, double>> pairs;  // (ln E, ln eta)
-    for (const auto* el : kelvins) pairs.emplace_back(best_x[el->E], best_x[el->eta]);
-    std::stable_sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) {
-      return a.second - a.first < b.second - b.first;
-    });
-    for (std::size_t i = 0; i < kelvins.size(); ++i) {
-      best_x[kelvins[i]->E] = pairs[i].first;
-      best_x[kelvins[i]->eta] = pairs[i].second;
-    }
+// Kelvin elements in series are interchangeable; report them ordered by
+// retardation time eta/E, shortest first (E2, eta2 the fast one), so the
+// labels do not depend on which start won.
+void order_kelvins(const SeriesStructure& s, std::vector<double>& x) {
+  std::vector<const Element*> kelvins;
+  for (const auto& el : s.elements)
+    if (el.kind == Kind::kelvin) kelvins.push_back(&el);
+  std::vector<std::pair<double, double>> pairs;  // (ln E, ln eta)
+  for (const auto* el : kelvins) pairs.emplace_back(x[el->E], x[el->eta]);
+  std::stable_sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) {
+    return a.second - a.first < b.second - b.first;
+  });
+  for (std::size_t i = 0; i < kelvins.size(); ++i) {
+    x[kelvins[i]->E] = pairs[i].first;
+    x[kelvins[i]->eta] = pairs[i].second;
   }
+}
 
-  // The model saw exp(clamp(x, -700, 700)) (to_values): report that.
-  for (double& v : best_x) v = std::clamp(v, -700.0, 700.0);
-  // Residuals and Jacobian at the best point.
-  gsl_multifit_nlinear_workspace* w = full.at(best_x);
-  std::vector<double> fitted_scaled(gsl_multifit_nlinear_residual(w)->data,
-                                    gsl_multifit_nlinear_residual(w)->data + n);
-
-  FitResult res;
-  res.law = info.name;
-  res.points = n;
-  res.starts = starts_total;
-  res.structured_starts = structured;
-  res.iterations = best_iter;
-  res.converged = best_status == GSL_SUCCESS || best_status == GSL_ENOPROG;
-  const double scale = dmax;
-  res.rss = best_rss * scale * scale;
+// ---- 3. The result: goodness of fit and how certain the minimum is ------------
+void add_statistics(FitResult& res, const CreepData& data, const std::vector<double>& fitted_scaled,
+                    const Search& sr, const DataScale& ds, std::size_t np) {
+  const std::size_t n = data.t.size();
+  const double scale = ds.dmax, mean = ds.mean, dmax = ds.dmax;
+  res.rss = sr.best_rss * scale * scale;
   double tss = 0.0;
   for (std::size_t j = 0; j < n; ++j) {
     res.fitted.push_back(data.displacement[j] + fitted_scaled[j] * scale);
@@ -248,34 +253,43 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
   const double log_mse = std::log(std::max(res.rss / nd, std::numeric_limits<double>::min()));
   res.aic = nd * log_mse + 2.0 * k;
   res.bic = nd * log_mse + k * std::log(nd);
-  res.starts_agreeing = agreeing_sample;
-  for (double rs : rss_full) res.starts_agreeing += std::abs(rs - best_rss) <= 1e-6 * best_rss + floor;
+}
 
-  // Is the minimum certain? (docs/fitting.md, "When the minimum is not certain")
-  if (structured > 0 && (reference_lower || best_rss < structured_rss * (1.0 - 1e-6) - floor)) {
+// Is the minimum certain? (docs/fitting.md, "When the minimum is not certain")
+void judge_minimum(FitResult& res, const Search& sr, double scale) {
+  const double floor = sr.floor;
+  res.starts_agreeing = sr.agreeing_sample;
+  for (double rs : sr.rss_full) res.starts_agreeing += std::abs(rs - sr.best_rss) <= 1e-6 * sr.best_rss + floor;
+  if (sr.structured > 0 && (sr.reference_lower || sr.best_rss < sr.structured_rss * (1.0 - 1e-6) - floor)) {
     res.minimum_certain = false;
     res.minimum_note = fmt::format(
         "the multi-start reference found a lower sum of squares than the variable-projection "
         "search (RSS {:.6g} < {:.6g}): other minima may exist",
-        res.rss, structured_rss * scale * scale);
+        res.rss, sr.structured_rss * scale * scale);
   } else if (res.starts_agreeing < 2) {
     res.minimum_certain = false;
     res.minimum_note = res.starts > 1 ? fmt::format("it was reached from one start only (of {})", res.starts)
                                       : std::string("only one start was tried");
   }
-
   auto& warn = res.warnings;
   if (!res.converged)
     warn.push_back(fmt::format("the fit stopped before converging ({}, {} iterations)",
-                               gsl_strerror(best_status), best_iter));
+                               gsl_strerror(sr.best_status), sr.best_iter));
   if (!res.minimum_certain)
     warn.push_back(fmt::format("the minimum is not certain: {}; try --restarts 20", res.minimum_note));
+}
 
+// ---- 4. The parameters: values, identifiability, standard errors, correlations ----
+void add_parameters(FitResult& res, const laws::LawInfo& info, gsl_multifit_nlinear_workspace* w,
+                    const Search& sr, const std::optional<SeriesStructure>& structure, const CreepData& data,
+                    const FitOptions& options) {
+  const std::size_t n = data.t.size(), np = info.parameters.size();
+  const double nd = static_cast<double>(n), k = static_cast<double>(np);
   for (std::size_t i = 0; i < np; ++i) {
     ParameterEstimate e;
     e.name = info.parameters[i].name;
     e.unit = info.parameters[i].unit;
-    e.value = std::exp(best_x[i]);
+    e.value = std::exp(sr.best_x[i]);
     res.parameters.push_back(e);
   }
   // Identifiability and standard errors from the SVD of the Jacobian (identify()).
@@ -284,9 +298,9 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
     const gsl_matrix* J = gsl_multifit_nlinear_jac(w);
     std::unique_ptr<gsl_matrix, GslFree> jc(gsl_matrix_alloc(n, np));
     gsl_matrix_memcpy(jc.get(), J);
-    const double s = std::sqrt(best_rss / (nd - k));  // residual standard deviation (scaled)
-    const auto candidates = pr.structure ? combination_candidates(*pr.structure, res.parameters, data)
-                                         : std::vector<Candidate>{};
+    const double s = std::sqrt(sr.best_rss / (nd - k));  // residual standard deviation (scaled)
+    const auto candidates = structure ? combination_candidates(*structure, res.parameters, data)
+                                      : std::vector<Candidate>{};
     identify(res, jc.get(), s, candidates, options, cov);
   }
   res.correlation.assign(np * np, std::numeric_limits<double>::quiet_NaN());
@@ -296,8 +310,13 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
       const double d = cov[i * np + i] * cov[j * np + j];
       res.correlation[i * np + j] = i == j ? 1.0 : (d > 0 ? cov[i * np + j] / std::sqrt(d) : 0.0);
     }
+}
 
-  // ---- Warnings: what the data cannot tell ----
+// ---- 5. Warnings: what the data cannot tell ----
+void warn_data_limits(FitResult& res, const std::optional<SeriesStructure>& structure, const CreepData& data,
+                      const CurveFeatures& features, const FitOptions& options) {
+  const std::size_t n = data.t.size(), np = res.parameters.size();
+  auto& warn = res.warnings;
   for (std::size_t i = 0; i < np; ++i)
     for (std::size_t j = i + 1; j < np; ++j)
       if (res.parameters[i].identifiable && res.parameters[j].identifiable &&
@@ -311,7 +330,7 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
       warn.push_back(fmt::format("{} is poorly constrained: its standard error is {:.0f}% of its "
                                  "value",
                                  e.name, 100.0 * e.std_error / e.value));
-  if (pr.structure) {
+  if (structure) {
     const double duration = data.t.back() - data.stages.front().t;
     double first_step = duration;
     for (std::size_t j = 0; j < n; ++j)
@@ -319,7 +338,7 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
         first_step = data.t[j] - data.stages.front().t;
         break;
       }
-    for (const auto& el : pr.structure->elements) {
+    for (const auto& el : structure->elements) {
       const auto& p = res.parameters;
       if (el.kind == Kind::kelvin) {
         const double tau = p[el.eta].value / p[el.E].value;
@@ -343,6 +362,44 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
       }
     }
   }
+}
+
+}  // namespace
+
+FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOptions& options) {
+  if (!info.fittable)
+    throw FitError(info.name, fmt::format("law '{}' cannot be fitted yet: its creep is nonlinear in the "
+                                          "stress (docs/laws.md, \"Nonlinear laws\"); compare it with the "
+                                          "data through `rheodda law curve {}`",
+                                          info.name, info.name));
+  const ErrorHandlerOff handler_off;
+  const std::size_t n = data.t.size();
+  const DataScale ds = check_input(info, data);
+
+  const std::optional<SeriesStructure> structure = probe_structure(info);
+  Solver full(info, data, structure, 1.0 / ds.dmax);
+  const CurveFeatures features = analyse_curve(data);
+  Search sr = search_minimum(info, data, full, features, ds.dmax, options);
+  if (structure) order_kelvins(*structure, sr.best_x);
+
+  // The model saw exp(clamp(x, -700, 700)) (to_values): report that.
+  for (double& v : sr.best_x) v = std::clamp(v, -700.0, 700.0);
+  // Residuals and Jacobian at the best point.
+  gsl_multifit_nlinear_workspace* w = full.at(sr.best_x);
+  std::vector<double> fitted_scaled(gsl_multifit_nlinear_residual(w)->data,
+                                    gsl_multifit_nlinear_residual(w)->data + n);
+
+  FitResult res;
+  res.law = info.name;
+  res.points = n;
+  res.starts = sr.starts_total;
+  res.structured_starts = sr.structured;
+  res.iterations = sr.best_iter;
+  res.converged = sr.best_status == GSL_SUCCESS || sr.best_status == GSL_ENOPROG;
+  add_statistics(res, data, fitted_scaled, sr, ds, info.parameters.size());
+  judge_minimum(res, sr, ds.dmax);
+  add_parameters(res, info, w, sr, structure, data, options);
+  warn_data_limits(res, structure, data, features, options);
   return res;
 }
 
