@@ -16,6 +16,9 @@
 //                        # max_displacement_ratio, collapse_dt; the dynamic stages' dt held):
 //                        # the convergence check of docs/performance.md, "Rock masses that run"
 //   ... --write-scenes DIR --creep 1000 --max-wall 0   # only write the scaled scene files
+//   ... --max-cpu 600    # stop each run after 600 s of CPU time (not wall time)
+//   ... --duration 10    # the analysis's duration instead of the scene's (the convergence
+//                        # check at a time both runs reach)
 // Per run: simulated time reached, steps, cuts, wall and CPU seconds, the
 // dynamic stages (events.csv) and the first measurement point's displacement.
 // Prints figures; asserts nothing.
@@ -32,6 +35,7 @@
 #include <filesystem>
 #include <regex>
 #include <string>
+#include <sys/time.h>
 #include <unistd.h>
 #include <vector>
 
@@ -175,6 +179,8 @@ double cpu_seconds() { return double(std::clock()) / CLOCKS_PER_SEC; }
 int main(int argc, char** argv) {
   std::vector<int> creep{1000};
   double max_wall = 900.0;
+  double max_cpu = 0.0;    // --max-cpu: stop each run after this much CPU time instead [s]
+  double duration = 0.0;   // --duration: the analysis's duration instead of the scene's [time]
   bool generation = true;
   std::string solver;  // empty: the scene's (automatic)
   std::string example = "jointed-slope";
@@ -193,6 +199,10 @@ int main(int argc, char** argv) {
       }
     } else if (a == "--max-wall" && i + 1 < argc) {
       max_wall = std::stod(argv[++i]);
+    } else if (a == "--max-cpu" && i + 1 < argc) {
+      max_cpu = std::stod(argv[++i]);
+    } else if (a == "--duration" && i + 1 < argc) {
+      duration = std::stod(argv[++i]);
     } else if (a == "--example" && i + 1 < argc) {
       example = argv[++i];
     } else if (a == "--scene" && i + 1 < argc) {
@@ -207,7 +217,7 @@ int main(int argc, char** argv) {
       write_dir = argv[++i];
     } else {
       fmt::print(stderr, "usage: rockmass_bench [--creep N,N...] [--max-wall SECONDS] [--solver automatic|cholmod|pcg|amg] [--example jointed-slope|tunnel] [--scene FILE] "
-                           "[--no-generation] [--halve] [--write-scenes DIR]\n");
+                           "[--no-generation] [--halve] [--write-scenes DIR] [--max-cpu SECONDS] [--duration T]\n");
       return 2;
     }
   }
@@ -234,11 +244,27 @@ int main(int argc, char** argv) {
   const std::string slope = scene::read_scene_text(slope_file);
   const std::size_t base_blocks = scene::parse_scene(slope, slope_file).rock_mass->block_count;
   std::signal(SIGALRM, on_alarm);
+  std::signal(SIGPROF, on_alarm);
+  // Each run is stopped after max_wall seconds of wall time, or with --max-cpu
+  // after that much CPU time of this process (a loaded machine's figure).
+  auto arm = [&](bool on) {
+    if (max_cpu > 0.0) {
+      itimerval t{};
+      if (on) t.it_value.tv_sec = static_cast<time_t>(max_cpu);
+      setitimer(ITIMER_PROF, &t, nullptr);
+    } else {
+      alarm(on ? static_cast<unsigned>(max_wall) : 0u);
+    }
+  };
   for (int target : creep) {
     const double f = std::sqrt(double(base_blocks) / target);
     std::string text = scaled_slope(slope, f);
     if (!solver.empty()) text.replace(text.find("analysis:\n"), 10, "analysis:\n  solver: " + solver + "\n");
     if (halve) text = halved(text);
+    if (duration > 0.0) {
+      const std::regex d("(\\n  duration: )([0-9.eE+-]+)");
+      text = std::regex_replace(text, d, fmt::format("$1{:g}", duration), std::regex_constants::format_first_only);
+    }
     if (!write_dir.empty()) {
       std::filesystem::create_directories(write_dir);
       const auto file = std::filesystem::path(write_dir) / fmt::format("{}-{}{}.yaml", example, target, halve ? "-halved" : "");
@@ -257,19 +283,19 @@ int main(int argc, char** argv) {
     o.out_dir = dir.string();
     o.stop = &g_stop;
     g_stop = 0;
-    alarm(static_cast<unsigned>(max_wall));
+    arm(true);
     scene::RunResult r;
     const double cpu0 = cpu_seconds();
     try {
       r = scene::run_scene(s, text, o);
     } catch (const std::exception& e) {
-      alarm(0);
+      arm(false);
       fmt::print("creep: {}, lengths x {:.3f}: {} blocks, solver {}: run failed: {}\n", example, f,
                  s.rock_mass->block_count, solver.empty() ? "of the scene" : solver, e.what());
       std::filesystem::remove_all(dir);
       continue;
     }
-    alarm(0);
+    arm(false);
     fmt::print("creep: {}{}, lengths x {:.3f}: {} blocks, solver {} (scene loaded and cut in {:.2f} s); "
                "{} at t = {:g} of {:g} d: {} steps, {} cuts, {} redone, wall {:.1f} s, CPU {:.1f} s{}; "
                "dynamic stages: {}; first measurement point displaced {:.6g}\n",
@@ -277,7 +303,8 @@ int main(int argc, char** argv) {
                solver.empty() ? "of the scene" : solver, load_s,
                r.status == scene::RunStatus::completed ? "completed" : "stopped", r.time, s.analysis.duration, r.steps,
                r.cuts, r.redone, r.wall_seconds, cpu_seconds() - cpu0,
-               r.status == scene::RunStatus::completed ? "" : fmt::format(" (stopped at --max-wall {:g} s)", max_wall),
+               r.status == scene::RunStatus::completed ? "" : (max_cpu > 0.0 ? fmt::format(" (stopped at --max-cpu {:g} s)", max_cpu)
+                                                                 : fmt::format(" (stopped at --max-wall {:g} s)", max_wall)),
                stages(dir), first_point_displacement(dir));
     std::fflush(stdout);
     std::filesystem::remove_all(dir);
