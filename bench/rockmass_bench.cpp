@@ -19,6 +19,7 @@
 //   ... --max-cpu 600    # stop each run after 600 s of CPU time (not wall time)
 //   ... --duration 10    # the analysis's duration instead of the scene's (the convergence
 //                        # check at a time both runs reach)
+//   ... --example tunnel --rest-tolerance 1e-5   # its dynamic settling stage ended at rest
 // Per run: simulated time reached, steps, cuts, wall and CPU seconds, the
 // dynamic stages (events.csv) and the first measurement point's displacement.
 // Prints figures; asserts nothing.
@@ -181,6 +182,7 @@ int main(int argc, char** argv) {
   double max_wall = 900.0;
   double max_cpu = 0.0;    // --max-cpu: stop each run after this much CPU time instead [s]
   double duration = 0.0;   // --duration: the analysis's duration instead of the scene's [time]
+  double rest = 0.0;       // --rest-tolerance: the dynamic settling stage ends at rest [-]
   bool generation = true;
   std::string solver;  // empty: the scene's (automatic)
   std::string example = "jointed-slope";
@@ -203,6 +205,8 @@ int main(int argc, char** argv) {
       max_cpu = std::stod(argv[++i]);
     } else if (a == "--duration" && i + 1 < argc) {
       duration = std::stod(argv[++i]);
+    } else if (a == "--rest-tolerance" && i + 1 < argc) {
+      rest = std::stod(argv[++i]);
     } else if (a == "--example" && i + 1 < argc) {
       example = argv[++i];
     } else if (a == "--scene" && i + 1 < argc) {
@@ -217,7 +221,7 @@ int main(int argc, char** argv) {
       write_dir = argv[++i];
     } else {
       fmt::print(stderr, "usage: rockmass_bench [--creep N,N...] [--max-wall SECONDS] [--solver automatic|cholmod|pcg|amg] [--example jointed-slope|tunnel] [--scene FILE] "
-                           "[--no-generation] [--halve] [--write-scenes DIR] [--max-cpu SECONDS] [--duration T]\n");
+                           "[--no-generation] [--halve] [--write-scenes DIR] [--max-cpu SECONDS] [--duration T] [--rest-tolerance R]\n");
       return 2;
     }
   }
@@ -261,6 +265,16 @@ int main(int argc, char** argv) {
     std::string text = scaled_slope(slope, f);
     if (!solver.empty()) text.replace(text.find("analysis:\n"), 10, "analysis:\n  solver: " + solver + "\n");
     if (halve) text = halved(text);
+    if (rest > 0.0) {
+      // The scene's dynamic settling stage ends at rest, its `until` its longest
+      // (docs/engine.md, "Dynamic stages").
+      const std::size_t at = text.find("settle: {");
+      if (at == std::string::npos) {
+        fmt::print(stderr, "rockmass_bench: --rest-tolerance: {} has no `settle: {{...}}` flow map\n", slope_file);
+        return 2;
+      }
+      text.insert(at + 9, fmt::format("rest_tolerance: {:g}, ", rest));
+    }
     if (duration > 0.0) {
       const std::regex d("(\\n  duration: )([0-9.eE+-]+)");
       text = std::regex_replace(text, d, fmt::format("$1{:g}", duration), std::regex_constants::format_first_only);
