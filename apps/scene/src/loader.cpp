@@ -914,7 +914,7 @@ void read_rock_mass(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, st
       } catch (const std::invalid_argument& e) {
         ctx.fail(j.node(), j.child("spacing"), e.what());
       }
-      if (traces.size() + t.size() > 2'000'000)
+      if (traces.size() + t.size() > rockmass::kMaxTraces)
         ctx.fail(j.node(), j.child("spacing"), "the joint sets give more than 2e6 traces: larger spacing or fewer sets");
       set_traces.push_back({traces.size(), traces.size() + t.size()});
       traces.insert(traces.end(), t.begin(), t.end());
