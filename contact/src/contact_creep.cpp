@@ -77,7 +77,9 @@ void ContactSystem::fail_law(size_t c, double creep) {
   r.creep_failed = true;
   if (r.rheology >= 0) work_rheology_[r.rheology] = {};  // no history left
   r.intact = false;
-  h.cohesion = 0.0;
+  const JointSet& js = joint_sets_[r.joint_set];  // its residual strength from now on
+  h.tan_phi = std::tan(js.friction_angle_of(false) * std::numbers::pi / 180.0);
+  h.cohesion = js.cohesion_of(false);
   h.tensile_strength = 0.0;
   seams_[c] = {-h.failure_creep, 0.0};
 }
