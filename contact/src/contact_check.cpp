@@ -195,8 +195,10 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
         // "Failure"): the joint's creep strength is gone. It becomes a residual
         // frictional joint - elastic spring, no creep, no cohesion or tensile
         // strength - and the next iterate lets Mohr-Coulomb decide whether its
-        // friction holds.
-        fail_law(c);
+        // friction holds. The creep up to the failure (the law's advance at this
+        // stress stops its damaging creep there) is this step's.
+        laws::RheologyState at_failure;
+        fail_law(c, law.advance(step_constants_of(c), work_rheology_[r.rheology], h.tau_start, tau, at_failure));
         ++res.state_changes;
         ++res.slipped;
         continue;

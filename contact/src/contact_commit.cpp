@@ -45,11 +45,13 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
         r.normal_force = r.shear_force = 0.0;
         if (h.start_state != ContactState::open) r.intact = false;
         break;
-      case ContactState::locked:
+      case ContactState::locked: {
         r.normal_force = h.pn * dn;
         r.shear_force = shear_stiffness(c) * dt;
         r.shear_displacement += slip;
         max_pen = std::max(max_pen, dn);
+        bool crept = false;  // this step's creep moves the locking point
+        double creep = 0.0;  // [length]
         if (r.rheology >= 0 && r.tributary_length > 0.0 && law_steps_[r.joint_set].active &&
             !r.creep_failed) {
           // Advance the history from the step-start state with the step's end
@@ -57,9 +59,9 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
           // along the entrance edge (the seed's eqs. 22-29) and take the force
           // from the spring's remaining stretch.
           const laws::RheologyState old = work_rheology_[r.rheology];
-          const double creep = joint_sets_[r.joint_set].law->advance(
-              step_constants_of(c), old, h.tau_start, r.shear_force / r.tributary_length,
-              work_rheology_[r.rheology]);
+          creep = joint_sets_[r.joint_set].law->advance(step_constants_of(c), old, h.tau_start,
+                                                        r.shear_force / r.tributary_length,
+                                                        work_rheology_[r.rheology]);
           CreepCounters& counters = creep_counters_[r.joint_set];
           counters.contact_time += step_dt_;
           if (!r.has_crept) ++counters.contacts;
@@ -68,20 +70,29 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
           if (work_rheology_[r.rheology].failed()) {
             // The law failed within the step at the converged stress although no
             // iterate saw it (e.g. anti-chattering): the joint becomes a
-            // residual frictional joint now, without this step's creep; the
-            // next step's Mohr-Coulomb check decides whether it holds.
-            fail_law(c);
-            work_creep_[c] = 0.0;
-          } else {
+            // residual frictional joint now, with this step's creep up to the
+            // failure (advance stops the damaging creep there); the next step's
+            // Mohr-Coulomb check decides whether it holds.
+            fail_law(c, creep);
+            creep = h.failure_creep;
+          }
+          crept = true;
+        } else if (h.law_failed) {
+          // Failed at an iterate (check): the creep up to the failure, which the
+          // solve already took as a shift of the locking point (fail_law).
+          creep = h.failure_creep;
+          crept = creep != 0.0;
+        }
+        if (crept) {
           const BlockView& eb = blocks[r.key.eblock];
           r.locking_ratio += creep / (edge_end(eb, r.key.edge) - edge_start(eb, r.key.edge)).norm();
           r.shear_force = h.ps * (h.dt0 + slip - creep);
           work_creep_[c] = creep;
           r.creep_displacement += creep;
-          }
         }
         if (h.law_failed) ++creep_counters_[r.joint_set].failures;
         break;
+      }
       case ContactState::sliding: {
         if (h.law_failed) ++creep_counters_[r.joint_set].failures;  // failed at an iterate (check)
         r.normal_force = h.pn * dn;

@@ -64,17 +64,24 @@ double ContactSystem::time_to_failure() const {
   return t;
 }
 
-void ContactSystem::fail_law(size_t c) {
+void ContactSystem::fail_law(size_t c, double creep) {
   // docs/rheology-in-dda.md, "Failure": a residual frictional joint from now on.
+  // The creep up to the failure is the step's last: a fixed shift of the locking
+  // point (compliance 0), as the law's own curve ends its creep at the failure
+  // (laws/accurate_curve.cpp). Where the law's creep diverges at failure
+  // (damage-burgers with n >= r + 1) none is kept.
   Contact& r = work_[c];
   Hot& h = hot_[c];
   h.law_failed = true;
+  h.failure_creep = std::isfinite(creep) ? creep : 0.0;
   r.creep_failed = true;
   if (r.rheology >= 0) work_rheology_[r.rheology] = {};  // no history left
   r.intact = false;
-  h.cohesion = 0.0;
+  const JointSet& js = joint_sets_[r.joint_set];  // its residual strength from now on
+  h.tan_phi = std::tan(js.friction_angle_of(false) * std::numbers::pi / 180.0);
+  h.cohesion = js.cohesion_of(false);
   h.tensile_strength = 0.0;
-  seams_[c] = {};
+  seams_[c] = {-h.failure_creep, 0.0};
 }
 
 void ContactSystem::start_laws(double dt) {

@@ -69,8 +69,8 @@ void ContactSystem::prepare(std::span<const BlockView> blocks, const Contact& c,
     h.cn = 2.0 * zeta * std::sqrt(h.pn * h.reduced_mass);
     h.cs = 2.0 * zeta * std::sqrt(h.ps * h.reduced_mass);
   }
-  h.tan_phi = std::tan(js.friction_angle * std::numbers::pi / 180.0);
-  h.cohesion = c.intact ? js.cohesion : 0.0;
+  h.tan_phi = std::tan(js.friction_angle_of(c.intact) * std::numbers::pi / 180.0);
+  h.cohesion = js.cohesion_of(c.intact);
   h.tensile_strength = c.intact ? js.tensile_strength : 0.0;
 }
 

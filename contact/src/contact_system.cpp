@@ -48,6 +48,15 @@ void check_joint_set(const JointSet& js, size_t index) {
                                 "': friction_angle = " + std::to_string(js.friction_angle) +
                                 " must be in [0, 90) deg");
   if (!(js.cohesion >= 0.0)) bad("cohesion", js.cohesion);
+  if (js.residual_friction_angle &&
+      !(*js.residual_friction_angle >= 0.0 && *js.residual_friction_angle <= js.friction_angle))
+    throw std::invalid_argument("joint set " + std::to_string(index) + " '" + js.name +
+                                "': residual_friction_angle = " + std::to_string(*js.residual_friction_angle) +
+                                " must be in [0, friction_angle = " + std::to_string(js.friction_angle) + "] deg");
+  if (!(js.residual_cohesion >= 0.0 && js.residual_cohesion <= js.cohesion))
+    throw std::invalid_argument("joint set " + std::to_string(index) + " '" + js.name +
+                                "': residual_cohesion = " + std::to_string(js.residual_cohesion) +
+                                " must be in [0, cohesion = " + std::to_string(js.cohesion) + "]");
   if (!(js.tensile_strength >= 0.0)) bad("tensile_strength", js.tensile_strength);
   if (js.normal_stiffness && !(*js.normal_stiffness > 0.0)) bad("normal_stiffness", *js.normal_stiffness);
   if (js.shear_stiffness && !(*js.shear_stiffness > 0.0)) bad("shear_stiffness", *js.shear_stiffness);

@@ -61,10 +61,13 @@ StepReport Engine::Impl::step(double dt_cap) {
   bool capped = dt_cap < st.next_dt;
   double dt = std::min(st.next_dt, dt_cap);
   // Step onto the failure rather than over it, and also when it is within
-  // kFailureReach steps: the creep rate diverges there, the error control
-  // would shrink the steps in proportion to the time left and never arrive,
-  // and the failing step's creep is not kept (the contact becomes frictional).
-  if (failure_step < dt || (failure_step <= kFailureReach * dt && failure_step <= dt_cap))
+  // kFailureReach steps (the creep rate diverges there: the error control
+  // would shrink the steps in proportion to the time left and never arrive),
+  // but never beyond dt_max: a longer step would integrate the stress changes
+  // before the failure over one step. The failing step keeps the creep up to
+  // the failure (ContactSystem::fail_law).
+  const bool within_dt_max = s.dt_max <= 0.0 || failure_step <= s.dt_max;
+  if (failure_step < dt || (failure_step <= kFailureReach * dt && failure_step <= dt_cap && within_dt_max))
     dt = failure_step;
   double allowed = g2_now() * w0;
   const bool watch = s.collapse_dt > 0.0;  // collapse stages (docs/engine.md, "Collapse stages")

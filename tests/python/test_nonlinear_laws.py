@@ -55,3 +55,16 @@ def test_a_curve_with_a_tolerance_is_accurate_and_without_one_never_returns_nan(
         assert np.max(np.abs(c["force"] - c["exact"])) <= 10 * 1e-6 * c["force"][0]
     with pytest.raises(rheodda.LawError, match="tolerance"):
         rheodda.creep_curve(law, 0.1, t_end=1.0, dt=1.0, tolerance=0.5)
+
+
+def test_the_shipped_slope_steps_onto_its_failure_within_dt_max(root):
+    # examples/creeping-slope-failure.yaml: adaptive creep steps of at most dt_max, the
+    # one that reaches the failure too (docs/rheology-in-dda.md, "Failure"; issue 43: it
+    # was 0.731 d against a dt_max of 0.1 d).
+    steps = []  # (dt, end time) of every accepted step [d]
+    sim = rheodda.Simulation(str(root / "examples" / "creeping-slope-failure.yaml"),
+                             callback=lambda s, r: steps.append((r.dt, r.time)))
+    dt_max = sim.settings["dt_max"]
+    assert dt_max == 0.1
+    sim.run()
+    assert len(steps) > 100 and max(dt for dt, _ in steps) <= dt_max * (1 + 1e-12)

@@ -307,3 +307,15 @@ def test_a_failing_run_raises_run_error_with_the_command_line_message(rheodda_bi
     assert cli.returncode == 1
     assert cli.stderr.strip().endswith("rheodda: error: " + str(from_run.value))
     assert str(from_run.value) == str(from_sim.value)
+
+
+def test_residual_strength_keys_from_a_dict():
+    # joint_sets.*.residual_friction_angle / residual_cohesion (docs/scene-format.md): read as
+    # from a file, refused above the peak with the key path.
+    d = copy.deepcopy(SHEAR_TEST)
+    d["joint_sets"]["plane"].update(residual_friction_angle=30, cohesion=0.1, residual_cohesion=0.05)
+    assert "residual_friction_angle 30 deg, residual_cohesion 0.05" in rheodda.scene_from_dict(d).describe()
+    d["joint_sets"]["plane"]["residual_friction_angle"] = 45
+    with pytest.raises(rheodda.SceneError) as e:
+        rheodda.scene_from_dict(d)
+    assert e.value.key == "joint_sets.plane.residual_friction_angle" and "peak friction_angle 40" in str(e.value)

@@ -64,6 +64,37 @@ double normal01(std::mt19937_64& g) {
   return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * 3.14159265358979323846 * u2);
 }
 
+/// The correlation of the identifiable parameters must be one: numbers in [-1, 1], 1 on
+/// the diagonal, symmetric, positive semidefinite (to rounding: eigenvalues >= -1e-9 n).
+/// A matrix that is not would be sampled from another covariance than the fit's
+/// (draw_samples clips negative eigenvalues), silently.
+void check_correlation(const FittedLaw& r, const std::string& path) {
+  const std::size_t n = r.names.size();
+  std::vector<std::size_t> id;
+  for (std::size_t i = 0; i < n; ++i)
+    if (r.identifiable[i]) id.push_back(i);
+  const auto key = [&](std::size_t i, std::size_t k) { return fmt::format("fits[{}].correlation[{}][{}]", r.law, i, k); };
+  constexpr double kRounding = 1e-9;
+  Eigen::MatrixXd m(static_cast<Eigen::Index>(id.size()), static_cast<Eigen::Index>(id.size()));
+  for (std::size_t a = 0; a < id.size(); ++a)
+    for (std::size_t b = 0; b < id.size(); ++b) {
+      const std::size_t i = id[a], k = id[b];
+      const double v = r.correlation[i * n + k];
+      if (!std::isfinite(v) || std::abs(v) > 1.0 + kRounding)
+        bad(path, key(i, k),
+            fmt::format("the correlation of {} and {} (both identifiable) must be a number in [-1, 1]", r.names[i], r.names[k]));
+      if (i == k && std::abs(v - 1.0) > kRounding) bad(path, key(i, k), fmt::format("a correlation's diagonal is 1, not {}", v));
+      if (std::abs(v - r.correlation[k * n + i]) > kRounding)
+        bad(path, key(i, k), fmt::format("the correlation is not symmetric ({} and {} at [{}][{}])", v, r.correlation[k * n + i], k, i));
+      m(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b)) = v;
+    }
+  if (id.empty()) return;
+  const double smallest = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(m, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
+  if (smallest < -kRounding * static_cast<double>(id.size()))
+    bad(path, fmt::format("fits[{}].correlation", r.law),
+        fmt::format("is not a correlation matrix: not positive semidefinite (smallest eigenvalue {:.3g})", smallest));
+}
+
 }  // namespace
 
 FittedLaw read_fit_report(const std::string& path, const std::string& law) {
@@ -114,6 +145,11 @@ FittedLaw read_fit_report(const std::string& path, const std::string& law) {
         r.identifiable.back() = false;
         r.log_std.back() = 0.0;
       }
+      // An identifiable parameter's spread must be known: no standard error (null), a
+      // negative one or one that is not finite would sample nothing, or garbage.
+      if (r.identifiable.back() && !(se.is_number() && std::isfinite(se.get<double>()) && se.get<double>() >= 0.0))
+        bad(path, fmt::format("fits[{}].parameters.{}.std_error", r.law, r.names.back()),
+            fmt::format("an identifiable parameter needs a standard error >= 0, got {}", se.dump()));
     }
     const std::size_t n = r.names.size();
     const auto& c = f->at("correlation");
@@ -124,6 +160,7 @@ FittedLaw read_fit_report(const std::string& path, const std::string& law) {
       for (std::size_t k = 0; k < n; ++k)
         if (c[i][k].is_number()) r.correlation[i * n + k] = c[i][k].get<double>();
     }
+    check_correlation(r, path);
     const auto& u = j.at("units");
     r.stress_unit = u.value("stress", std::string());
     r.length_unit = u.value("length", std::string());

@@ -1,6 +1,8 @@
 // Joint trace generation (generate.hpp).
 #include "rheodda/rockmass/generate.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -119,6 +121,10 @@ std::vector<Trace> generate_traces(const JointSetGeneration& set, const Box& box
       a = turn(a), b = turn(b);
     }
     if (clip(a, b, big)) out.push_back({a, b, set.tag});
+    if (out.size() > kMaxTraces)
+      throw std::invalid_argument(fmt::format("the set draws more than {:g} traces across the region: a larger "
+                                              "spacing, longer traces or a smaller gap",
+                                              static_cast<double>(kMaxTraces)));
   };
   const double umid = 0.5 * (umin + umax);
   for (const double t : lines) {

@@ -206,6 +206,8 @@ BuiltScene build_scene(const SceneDescription& s) {
     j.friction_angle = js.friction_angle;
     j.cohesion = js.cohesion;
     j.tensile_strength = js.tensile_strength;
+    j.residual_friction_angle = js.residual_friction_angle;
+    j.residual_cohesion = js.residual_cohesion;
     j.normal_stiffness = js.normal_stiffness;
     j.shear_stiffness = js.shear_stiffness;
     j.restitution = js.restitution;

@@ -148,6 +148,9 @@ std::string describe_scene(const SceneDescription& s) {
     };
     line(fmt::format("  {}: friction_angle {:g} deg, cohesion {:g} {}, tensile_strength {:g} {}", j.name,
                      j.friction_angle, j.cohesion, stress, j.tensile_strength, stress));
+    line(fmt::format("    once slid, opened or failed: residual_friction_angle {:g} deg, residual_cohesion {:g} {}, "
+                     "tensile_strength 0",
+                     j.residual_friction_angle.value_or(j.friction_angle), j.residual_cohesion, stress));
     line(fmt::format("    normal_stiffness {}, shear_stiffness {}{}",
                      stiff(j.normal_stiffness, "penalty"),
                      j.law && j.law->parameters.count("E1")

@@ -78,7 +78,7 @@ const std::vector<std::string> settle{"until", "dt", "max_displacement_ratio", "
                                       "rest_tolerance", "open_close_limit"};
 const std::vector<std::string> material{"density", "young_modulus", "poisson_ratio", "plane", "damping_ratio"};
 const std::vector<std::string> joint_set{"friction_angle", "cohesion", "tensile_strength",
-                                         "normal_stiffness", "shear_stiffness", "restitution", "law", "record"};
+                                         "residual_friction_angle", "residual_cohesion", "normal_stiffness", "shear_stiffness", "restitution", "law", "record"};
 /// And the parameters of the law named, which only the registry knows.
 const std::vector<std::string> law{"name"};
 const std::vector<std::string> block{"name", "material", "polygon", "rectangle", "grid",
@@ -647,6 +647,21 @@ std::vector<JointSetDescription> read_joint_sets(const Ctx& ctx, const YAML::Nod
       js.cohesion = number(ctx, v, m.child("cohesion"), non_negative("stress"));
     if (YAML::Node v = m.find("tensile_strength"); v.IsDefined())
       js.tensile_strength = number(ctx, v, m.child("tensile_strength"), non_negative("stress"));
+    // Residual strength (UDEC/3DEC): once a contact slid, opened or its damage law failed.
+    if (YAML::Node v = m.find("residual_friction_angle"); v.IsDefined()) {
+      js.residual_friction_angle = number(ctx, v, m.child("residual_friction_angle"), non_negative("deg"));
+      if (*js.residual_friction_angle > js.friction_angle)
+        ctx.fail(v, m.child("residual_friction_angle"),
+                 fmt::format("{:g} deg is above the peak friction_angle {:g} deg: a residual strength is at most the peak",
+                             *js.residual_friction_angle, js.friction_angle));
+    }
+    if (YAML::Node v = m.find("residual_cohesion"); v.IsDefined()) {
+      js.residual_cohesion = number(ctx, v, m.child("residual_cohesion"), non_negative("stress"));
+      if (js.residual_cohesion > js.cohesion)
+        ctx.fail(v, m.child("residual_cohesion"),
+                 fmt::format("{:g} is above the peak cohesion {:g}: a residual strength is at most the peak",
+                             js.residual_cohesion, js.cohesion));
+    }
     if (YAML::Node v = m.find("normal_stiffness"); v.IsDefined())
       js.normal_stiffness = number(ctx, v, m.child("normal_stiffness"), positive("stress/length"));
     if (YAML::Node v = m.find("shear_stiffness"); v.IsDefined())
@@ -914,7 +929,7 @@ void read_rock_mass(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, st
       } catch (const std::invalid_argument& e) {
         ctx.fail(j.node(), j.child("spacing"), e.what());
       }
-      if (traces.size() + t.size() > 2'000'000)
+      if (traces.size() + t.size() > rockmass::kMaxTraces)
         ctx.fail(j.node(), j.child("spacing"), "the joint sets give more than 2e6 traces: larger spacing or fewer sets");
       set_traces.push_back({traces.size(), traces.size() + t.size()});
       traces.insert(traces.end(), t.begin(), t.end());

@@ -94,7 +94,9 @@ json scene_json(const SceneDescription& s) {
   for (const auto& js : s.joint_sets) {
     json o = {{"friction_angle", js.friction_angle},
               {"cohesion", js.cohesion},
-              {"tensile_strength", js.tensile_strength}};
+              {"tensile_strength", js.tensile_strength},
+              {"residual_friction_angle", js.residual_friction_angle.value_or(js.friction_angle)},
+              {"residual_cohesion", js.residual_cohesion}};
     o["normal_stiffness"] = js.normal_stiffness ? json(*js.normal_stiffness) : json(nullptr);
     o["shear_stiffness"] = js.shear_stiffness ? json(*js.shear_stiffness) : json(nullptr);
     if (js.law) {

@@ -419,6 +419,12 @@ StudyDescription parse_study(const std::string& text, const std::string& file) {
     s.cases.push_back(std::move(sc));
   }
   if (!s.parameters.empty()) {
+    if (s.method == SweepMethod::grid) {  // the product counted before it is built (two counts of 1e5: 1e10 rows)
+      double product = 1.0;
+      for (const auto& p : s.parameters) product *= static_cast<double>(p.values.size());
+      if (product > 100000)
+        fail(file, root["sweep"], "sweep", fmt::format("the grid makes {:g} cases (more than 100000)", product));
+    }
     const auto rows = sweep_values(s.parameters, s.method, s.samples, s.seed);
     if (rows.size() > 100000) fail(file, root["sweep"], "sweep", fmt::format("the grid makes {} cases (more than 100000)", rows.size()));
     for (std::size_t k = 0; k < rows.size(); ++k) {

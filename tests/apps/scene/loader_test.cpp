@@ -80,6 +80,34 @@ BOOST_AUTO_TEST_CASE(unknown_key_names_line_column_and_nearest_valid_key) {
                   "did you mean 'friction_angle'?");
 }
 
+BOOST_AUTO_TEST_CASE(residual_strength_defaults_to_the_peak_friction_and_no_cohesion_and_is_at_most_the_peak) {
+  // Default: the peak friction angle, no cohesion (what a contact kept before the keys
+  // existed: results unchanged); given: read, and refused above the peak or below 0.
+  const auto d = scene::parse_scene(kBaseScene, "base.yaml");
+  BOOST_TEST(!d.joint_sets[0].residual_friction_angle.has_value());
+  BOOST_TEST(d.joint_sets[0].residual_cohesion == 0.0);
+  const auto b = scene::build_scene(d);
+  BOOST_TEST(b.joint_sets[0].friction_angle_of(false) == 30.0);
+  BOOST_TEST(b.joint_sets[0].cohesion_of(false) == 0.0);
+  const std::string given = with("{friction_angle: 30}",
+                                 "{friction_angle: 30, cohesion: 5, residual_friction_angle: 22, residual_cohesion: 1}");
+  const auto g = scene::build_scene(scene::parse_scene(given, "base.yaml"));
+  BOOST_TEST(g.joint_sets[0].friction_angle_of(true) == 30.0);
+  BOOST_TEST(g.joint_sets[0].friction_angle_of(false) == 22.0);
+  BOOST_TEST(g.joint_sets[0].cohesion_of(true) == 5.0);
+  BOOST_TEST(g.joint_sets[0].cohesion_of(false) == 1.0);
+  BOOST_TEST(scene::describe_scene(scene::parse_scene(given, "base.yaml")).find(
+                 "residual_friction_angle 22 deg, residual_cohesion 1 N/m^2") != std::string::npos);
+  expect_error_at(with("{friction_angle: 30}", "{friction_angle: 30, residual_friction_angle: 31}"), 9, "31",
+                  "joint_sets.bedding.residual_friction_angle", "above the peak friction_angle 30 deg");
+  expect_error_at(with("{friction_angle: 30}", "{friction_angle: 30, residual_friction_angle: -1}"), 9, "-1",
+                  "joint_sets.bedding.residual_friction_angle", "out of range");
+  expect_error_at(with("{friction_angle: 30}", "{friction_angle: 30, cohesion: 2, residual_cohesion: 3}"), 9, "3}",
+                  "joint_sets.bedding.residual_cohesion", "above the peak cohesion 2");
+  expect_error_at(with("{friction_angle: 30}", "{friction_angle: 30, residual_cohesion: .nan}"), 9, ".nan",
+                  "joint_sets.bedding.residual_cohesion", "not a finite number");
+}
+
 BOOST_AUTO_TEST_CASE(law_parameters_use_the_registry_names) {
   expect_error_at(with("eta1: 3", "eta_1: 3"), 10, "eta_1", "joint_sets.fault.law.eta_1", "did you mean 'eta1'?");
   expect_error_at(with("name: burgers", "name: burger"), 10, "burger", "law.name", "did you mean 'burgers'?");

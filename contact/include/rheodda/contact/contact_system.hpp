@@ -329,6 +329,8 @@ class ContactSystem {
     int refinements = 0;  ///< friction refinements of this contact in this step
     int newton = 0;       ///< Newton iterates a nonlinear law asked for in this step
     bool law_failed = false;  ///< its law failed in this step (damage 1): counted in end_step
+    /// Creep of this step up to the failure, kept by end_step (fail_law) [length].
+    double failure_creep = 0.0;
     double assembled_normal_force = 0.0;  ///< normal_force as the last solve's assembly used it
                                           ///< (set by check; energy balance) [force/length]
   };
@@ -362,8 +364,10 @@ class ContactSystem {
   void start_laws(double dt);
   /// Sets seams_[c] from the law's affine form at a guessed end stress [stress].
   void linearize(size_t c, double tau_guess);
-  /// Contact c's damage law failed: residual frictional joint (no creep, cohesion, tension).
-  void fail_law(size_t c);
+  /// Contact c's damage law failed: residual frictional joint (no creep, cohesion, tension)
+  /// from now on; `creep` [length], the law's creep of this step up to the failure, still
+  /// moves its locking point in this step (0 where it is not finite).
+  void fail_law(size_t c, double creep);
 
   std::vector<JointSet> joint_sets_;
   ContactSettings settings_;

@@ -43,6 +43,20 @@ struct JointSet {
   double friction_angle = 0.0;    ///< Mohr-Coulomb friction angle phi [deg]
   double cohesion = 0.0;          ///< cohesion c [stress]; acts on contact length, until the contact first fails
   double tensile_strength = 0.0;  ///< tensile strength [stress]; acts on contact length, until the contact first fails
+  /// Residual friction angle phi_r [deg], in [0, friction_angle]: a contact's friction once
+  /// it is no longer intact (it slid or opened, or its damage law failed), UDEC's and
+  /// 3DEC's residual strength (Itasca, UDEC Constitutive Models, "Coulomb slip with
+  /// residual strength"); unset: friction_angle.
+  std::optional<double> residual_friction_angle;
+  /// Residual cohesion c_r [stress], in [0, cohesion]: a contact's cohesion once it is no
+  /// longer intact (as residual_friction_angle); 0 by default (the cohesion is lost).
+  double residual_cohesion = 0.0;
+  /// The friction angle [deg] of a contact intact or not.
+  double friction_angle_of(bool intact) const {
+    return intact ? friction_angle : residual_friction_angle.value_or(friction_angle);
+  }
+  /// The cohesion [stress] of a contact intact or not.
+  double cohesion_of(bool intact) const { return intact ? cohesion : residual_cohesion; }
   /// Joint normal stiffness per unit joint area [stress/length]; unset: penalty spring.
   std::optional<double> normal_stiffness;
   /// Joint shear stiffness per unit joint area [stress/length]; unset: the

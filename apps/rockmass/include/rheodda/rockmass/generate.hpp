@@ -54,6 +54,11 @@ struct Box {
   double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0;
 };
 
+/// Most traces a rock mass may draw (all its sets together): beyond, generate_traces
+/// throws before its memory and time run away (a gap of millimetres along a line of
+/// kilometres would draw 1e10 traces).
+inline constexpr std::size_t kMaxTraces = 2'000'000;
+
 /// The traces of `set` over `box` (clipped to it), drawn from std::mt19937_64
 /// seeded with `seed` mixed with the set's position `index` in the scene (so
 /// adding a set leaves the others' traces unchanged).
@@ -65,7 +70,7 @@ struct Box {
 /// phase in [0, trace_length + gap). Each line, with all its traces, is turned
 /// about its middle by a normal deviate of standard deviation dip_spread (traces
 /// of one line stay collinear: turned one by one they would cross each other at
-/// grazing angles and leave needles).
+/// grazing angles and leave needles). Throws std::invalid_argument beyond kMaxTraces.
 std::vector<Trace> generate_traces(const JointSetGeneration& set, const Box& box, std::uint64_t seed,
                                    int index);
 

@@ -168,6 +168,8 @@ struct JointSetDescription {
   double friction_angle = 0.0;    ///< phi [deg]; required, in [0, 90)
   double cohesion = 0.0;          ///< c [stress], >= 0
   double tensile_strength = 0.0;  ///< [stress], >= 0
+  std::optional<double> residual_friction_angle;  ///< phi_r [deg] in [0, friction_angle]; unset: friction_angle
+  double residual_cohesion = 0.0;  ///< c_r [stress] in [0, cohesion]
   std::optional<double> normal_stiffness;  ///< per unit joint area [stress/length]; unset: penalty
   std::optional<double> shear_stiffness;   ///< per unit joint area [stress/length]; unset: penalty / shear_normal_ratio
   std::optional<double> restitution;       ///< coefficient of restitution e [-] in [0, 1] (contact dashpots); unset: none
