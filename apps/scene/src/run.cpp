@@ -12,9 +12,9 @@
 #include "checkpoint.hpp"
 #include "checkpoint_state.hpp"
 #include "rheodda/contact/contact_system.hpp"
-#include "rheodda/core/contact_adapter.hpp"
 #include "rheodda/core/engine.hpp"
 #include "rheodda/core/solver.hpp"
+#include "rheodda/scene/assemble.hpp"
 #include "rheodda/scene/build.hpp"
 #include "rheodda/scene/describe.hpp"
 #include "rheodda/scene/memory.hpp"
@@ -201,36 +201,9 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
   }
   BuiltScene built = build_scene(s);
   result.warnings = built.warnings;
-  std::unique_ptr<contact::ContactSystem> contacts_ptr;
-  try {
-    contacts_ptr = std::make_unique<contact::ContactSystem>(built.joint_sets, built.contact_settings);
-  } catch (const std::invalid_argument& e) {
-    // The contact layer names the joint set by index ("joint set 2 ..."): point at it in the scene.
-    SourceLocation where = a.where;
-    std::string key = "analysis";
-    int index = -1;
-    if (std::sscanf(e.what(), "joint set %d", &index) == 1 && index >= 0 &&
-        index < static_cast<int>(s.joint_sets.size())) {
-      where = s.joint_sets[index].where;
-      key = "joint_sets." + s.joint_sets[index].name;
-    }
-    throw SceneError(s.file, where, key, e.what());
-  }
-  contact::ContactSystem& contacts = *contacts_ptr;
-  core::ContactAdapter adapter(contacts);
-  std::unique_ptr<core::Engine> engine_ptr;
-  try {
-    engine_ptr = std::make_unique<core::Engine>(built.model, adapter);
-  } catch (const core::ModelError& e) {
-    // The engine's key names a block ("blocks[3]...") or a setting: point at the scene's entry.
-    SourceLocation where = a.where;
-    int index = -1;
-    if (std::sscanf(e.key().c_str(), "blocks[%d]", &index) == 1 && index >= 0 &&
-        index < static_cast<int>(s.blocks.size()))
-      where = s.blocks[index].where;
-    throw SceneError(s.file, where, e.key(), e.what());
-  }
-  core::Engine& engine = *engine_ptr;
+  const AssembledScene assembled = assemble_scene(s, built);
+  contact::ContactSystem& contacts = *assembled.contacts;
+  core::Engine& engine = *assembled.engine;
   const std::string checkpoint_path = (fs::path(out) / "checkpoint.json").string();
   if (opt.resume) {
     // Refuse before anything is created or changed.
