@@ -17,6 +17,7 @@
 #include <rheodda/core/contact_adapter.hpp>
 #include <rheodda/core/engine.hpp>
 #include <rheodda/laws/registry.hpp>
+#include <rheodda/scene/assemble.hpp>
 #include <rheodda/scene/build.hpp>
 #include <rheodda/scene/describe.hpp>
 #include <rheodda/scene/loader.hpp>
@@ -52,31 +53,11 @@ class Simulation {
       const laws::ContactRheology& law = *built_.joint_sets[j].law;
       scene_.joint_sets[j].law = scene::LawChoice{std::string(law.name()), law.parameters()};
     }
-    try {
-      contacts_ = std::make_unique<contact::ContactSystem>(built_.joint_sets, built_.contact_settings);
-    } catch (const std::invalid_argument& e) {
-      // As run_scene: the contact layer names the joint set by index; point at it in the scene.
-      scene::SourceLocation where = scene_.analysis.where;
-      std::string key = "analysis";
-      int index = -1;
-      if (std::sscanf(e.what(), "joint set %d", &index) == 1 && index >= 0 &&
-          index < static_cast<int>(scene_.joint_sets.size())) {
-        where = scene_.joint_sets[index].where;
-        key = "joint_sets." + scene_.joint_sets[index].name;
-      }
-      throw scene::SceneError(scene_.file, where, key, e.what());
-    }
-    adapter_ = std::make_unique<core::ContactAdapter>(*contacts_);
-    try {
-      engine_ = make_engine(built_.model);
-    } catch (const core::ModelError& e) {
-      scene::SourceLocation where = scene_.analysis.where;
-      int index = -1;
-      if (std::sscanf(e.key().c_str(), "blocks[%d]", &index) == 1 && index >= 0 &&
-          index < static_cast<int>(scene_.blocks.size()))
-        where = scene_.blocks[index].where;
-      throw scene::SceneError(scene_.file, where, e.key(), e.what());
-    }
+    scene::AssembledScene assembled = scene::assemble_scene(scene_, built_);
+    contacts_ = std::move(assembled.contacts);
+    adapter_ = std::move(assembled.adapter);
+    engine_ = std::move(assembled.engine);
+    observe(*engine_);
     for (std::size_t j = 0; j < scene_.joint_sets.size(); ++j)
       if (scene_.joint_sets[j].record) recorded_.push_back(static_cast<int>(j));
     columns_ = {"time", "step", "dt", "cuts", "iterations"};
@@ -401,10 +382,15 @@ class Simulation {
  private:
   std::unique_ptr<core::Engine> make_engine(core::Model m) {
     auto e = std::make_unique<core::Engine>(std::move(m), *adapter_);
-    e->add_observer([this](const core::Engine&, const core::StepReport& r) {
+    observe(*e);
+    return e;
+  }
+
+  /// Passes the engine's accepted steps to observer_.
+  void observe(core::Engine& e) {
+    e.add_observer([this](const core::Engine&, const core::StepReport& r) {
       if (observer_) observer_(r);
     });
-    return e;
   }
 
   core::Model next_model() const { return (pending_engine_ ? pending_engine_ : engine_)->model(); }

@@ -1,0 +1,142 @@
+// What the parts of `rheodda run` (run.cpp) share: the state of one run, and
+// the steps run_scene takes over it, each in the file of its concern:
+// scene_json.cpp (the scene as summary.json's "inputs"), run_guards.cpp (the
+// memory check, non-finite values, max_travel_ratio and max_output_size),
+// run_writer.cpp (history.csv rows, contacts.csv and the VTK frames),
+// run_checkpoint.cpp (checkpoint.json and --resume), run_summary.cpp
+// (summary.json, RunResult's totals, the end-of-run warnings).
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "checkpoint_state.hpp"
+#include "rheodda/contact/contact_system.hpp"
+#include "rheodda/core/engine.hpp"
+#include "rheodda/scene/output.hpp"
+#include "rheodda/scene/run.hpp"
+#include "run_totals.hpp"
+
+namespace rheodda::scene {
+
+using Clock = std::chrono::steady_clock;
+
+/// Thrown by the step observer to leave Engine::run_until between two steps.
+struct StopAfterStep {};
+
+/// Thrown by the step observer when the state or an output row is no longer finite:
+/// nothing of that step is written, and the last checkpoint stays the one to resume from.
+struct NonFinite : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Thrown by the step observer when a run guard (max_travel_ratio, max_output_size) trips.
+struct GuardTripped : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// One run of a scene into its output folder: what the steps of run_scene read and change.
+struct Run {
+  Run(const SceneDescription& scene, const RunOptions& options, RunResult& result, contact::ContactSystem& contacts,
+      core::Engine& engine, const std::string& scene_text, Clock::time_point wall_start);
+
+  const SceneDescription& s;
+  const Analysis& a;
+  const RunOptions& opt;
+  RunResult& result;
+  contact::ContactSystem& contacts;
+  core::Engine& engine;
+  const std::string out;              ///< the output folder
+  const std::string scene_hash;       ///< FNV-1a of the scene text (hex)
+  const std::string checkpoint_path;  ///< out/checkpoint.json
+  const Clock::time_point wall_start;
+
+  /// Initial vertex positions, for the displacement field of the frames and max_travel_ratio.
+  std::vector<std::vector<core::Vec2>> initial;
+  /// Output frame times: k * output_interval, the last one landing on duration.
+  std::vector<double> frame_times;
+  std::vector<int> recorded;   ///< the joint sets with `record` (history.csv columns)
+  std::string history_header;  ///< history.csv's column line
+  double model_size = 0.0;     ///< the larger side of the initial bounding box [length]
+
+  CsvAppender history, contacts_csv;
+  std::vector<std::pair<double, std::string>> pvd;  ///< (time, blocks file) of each frame written
+  std::vector<std::uint64_t> frame_hash;  ///< FNV-1a of each frame file, in pvd order
+  std::uint64_t frames_bytes = 0;         ///< total size of the frames written by this process [byte]
+  int frames_done = 0;
+  double earlier_wall = 0.0;  ///< wall time of earlier (resumed) sessions [s]
+
+  /// Steps run again without writing (a resume writing a lost frame again), up to the checkpoint's.
+  enum class Mode { replay, record } mode = Mode::record;
+  int replay_target = 0;
+  Clock::time_point last_progress{};
+  RunTotals run_totals;
+  int recorded_step;     ///< the last step whose outputs are written [-]
+  StateFile state_file;  ///< the state file the last checkpoint names
+  Clock::time_point last_checkpoint{};
+  bool frame_open = false;  ///< a frame is being written (its rows may be in contacts.csv already)
+  std::string inputs_text;      ///< scene_json_text of the scene, spliced into summary.json
+  std::string scene_text_json;  ///< the scene text as a JSON string
+
+  /// The index of the first output time after t, the engine's round-off sliver counting as reached.
+  std::size_t next_output(double t) const;
+};
+
+// scene_json.cpp
+/// The scene as summary.json's "inputs" (one line of JSON).
+std::string scene_json_text(const SceneDescription& s);
+
+// run_guards.cpp
+/// Fails early when the run will not fit in memory (docs/performance.md, "Memory").
+void check_memory(const SceneDescription& s);
+/// The first non-finite quantity of the engine's state ("velocity of block 'b3'"), or "".
+std::string nonfinite_state(const core::Engine& e, const SceneDescription& s);
+/// The name of the first column of a CSV row holding nan or inf, or "".
+std::string nonfinite_column(const std::string& header, const std::string& row);
+/// The larger side of the bounding box of `vertices` [length].
+double model_size(const std::vector<std::vector<core::Vec2>>& vertices);
+/// Throws GuardTripped when analysis.max_travel_ratio or max_output_size is exceeded.
+void check_guards(const Run& run, const core::Engine& e);
+
+// run_writer.cpp
+/// history.csv's column line for the scene's measurement points and recorded joint sets.
+std::string make_history_header(const SceneDescription& s, const std::vector<int>& recorded);
+/// history.csv's row of the engine's state after the step `r` (nullptr: the initial state).
+std::string history_row(const Run& run, const core::StepReport* r);
+/// A new run's history.csv and contacts.csv: units, headers and the initial row.
+void create_csv_files(Run& run);
+/// A frame's blocks file: the blocks at the engine's current state.
+std::string frame_text(const Run& run);
+/// A frame's contacts file: each contact at its vertex with the fields of contacts.csv.
+std::string contacts_frame_text(const Run& run);
+/// The contacts file of the frame whose blocks file is `blocks_file`.
+std::string contacts_file(const std::string& blocks_file);
+/// The hash a checkpoint keeps of a frame's two files.
+std::uint64_t frame_pair_hash(const std::string& blocks_text, const std::string& contacts_text);
+/// blocks.pvd and contacts.pvd, listing the frames of run.pvd.
+void write_collections(const Run& run);
+/// The next frame: contacts.csv rows, the two frame files, the collections, a
+/// checkpoint (at most one a second) and summary.json "running".
+void write_frame(Run& run);
+
+// run_checkpoint.cpp
+/// checkpoint.json and the state file it names, after syncing the CSVs it counts.
+void write_checkpoint(Run& run);
+/// Takes the run up from its checkpoint (--resume), writing lost frames again.
+void resume_run(Run& run);
+
+// run_summary.cpp
+/// RunResult's totals as of now.
+void collect_totals(Run& run);
+/// summary.json with `status` ("running", "interrupted", "failed", "completed") and `error`.
+void write_summary(Run& run, const std::string& status, const std::string& error);
+/// The warnings of a completed run: creep laws that never acted, static mechanisms.
+void add_end_warnings(Run& run);
+/// The message of a run that failed on `e`: what failed, and of a singular system, which block.
+std::string failure_text(const Run& run, const std::exception& e);
+
+}  // namespace rheodda::scene

@@ -1,0 +1,185 @@
+// What a run writes as it goes (docs/outputs.md): a row of history.csv per
+// accepted step, and at each output time a frame: the contacts' rows of
+// contacts.csv, the VTK files frames/blocks_NNNNNN.vtp and
+// frames/contacts_NNNNNN.vtp, and the collections blocks.pvd and contacts.pvd
+// that list them.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "run_internal.hpp"
+
+namespace rheodda::scene {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string units_comment(const Units& u) {
+  return fmt::format("# units: length={} force={} time={} stress={}\n", u.length, u.force, u.time, u.stress());
+}
+
+const std::string contacts_header =
+    "time,step,id,joint_set,state,kind,vertex_block,vertex,edge_block,edge,x,y,"
+    "normal_force,shear_force,shear_displacement,penetration,length,creep_displacement,creep_state\n";
+
+std::string contacts_collection(const Run& run) {
+  std::vector<std::pair<double, std::string>> files;
+  for (const auto& [t, f] : run.pvd) files.emplace_back(t, contacts_file(f));
+  return vtk_collection(files);
+}
+
+}  // namespace
+
+std::string make_history_header(const SceneDescription& s, const std::vector<int>& recorded) {
+  std::string history_header = "time,step,dt,cuts,iterations";
+  for (const auto& mp : s.measurement_points) history_header += fmt::format(",{0}.u,{0}.v", mp.name);
+  for (int j : recorded)
+    history_header += fmt::format(",{0}.contacts,{0}.shear_displacement,{0}.shear_force,{0}.shear_displacement_magnitude",
+                                  s.joint_sets[j].name);
+  for (const char* column : kHistoryEnergyColumns) history_header += fmt::format(",{}", column);
+  history_header += '\n';
+  return history_header;
+}
+
+std::string history_row(const Run& run, const core::StepReport* r) {
+  const SceneDescription& s = run.s;
+  const core::Engine& engine = run.engine;
+  std::string row = fmt::format("{:.10g},{},{:.10g},{},{}", engine.time(), engine.step_count(),
+                                r ? r->dt : 0.0, r ? r->cuts : 0, r ? r->iterations : 0);
+  for (const auto& mp : s.measurement_points) {
+    const core::Vec2 d = engine.point_displacement(mp.at.block, {mp.at.point[0], mp.at.point[1]});
+    row += fmt::format(",{:.10g},{:.10g}", d.x(), d.y());
+  }
+  for (int j : run.recorded) {
+    int n = 0;
+    double shear = 0.0, force = 0.0, magnitude = 0.0;
+    for (const auto& c : run.contacts.contacts())
+      if (c.joint_set == j && c.state != contact::ContactState::open) {
+        ++n;
+        shear += c.shear_displacement;
+        force += c.shear_force;
+        magnitude += std::abs(c.shear_displacement);
+      }
+    row += n ? fmt::format(",{},{:.10g},{:.10g},{:.10g}", n, shear / n, force / n, magnitude / n)
+             : fmt::format(",0,,,");
+  }
+  // Energy balance (docs/engine.md, "Energy balance"): stored energies now, flows since t = 0.
+  for (const double v : history_energy_values(engine.energy())) row += fmt::format(",{:.10g}", v);
+  return row + '\n';
+}
+
+void create_csv_files(Run& run) {
+  run.history.create((fs::path(run.out) / "history.csv").string());
+  run.contacts_csv.create((fs::path(run.out) / "contacts.csv").string());
+  run.history.append(units_comment(run.s.units) + run.history_header);
+  run.contacts_csv.append(units_comment(run.s.units) + contacts_header);
+  run.history.append(history_row(run, nullptr));
+}
+
+std::string frame_text(const Run& run) {
+  const core::Engine& engine = run.engine;
+  std::vector<FrameBlock> blocks;
+  for (int b = 0; b < engine.block_count(); ++b) {
+    const core::BlockState& st = engine.block(b);
+    FrameBlock fb;
+    for (std::size_t v = 0; v < st.vertices.size(); ++v) {
+      fb.vertices.push_back({st.vertices[v].x(), st.vertices[v].y()});
+      const core::Vec2 d = st.vertices[v] - run.initial[b][v];
+      fb.displacement.push_back({d.x(), d.y()});
+    }
+    fb.stress = {st.stress[0], st.stress[1], st.stress[2]};
+    fb.velocity = {st.velocity[0], st.velocity[1], st.velocity[2]};
+    fb.material = st.material;
+    fb.fixed = run.s.blocks[b].fixed;
+    blocks.push_back(std::move(fb));
+  }
+  return vtk_polydata(blocks);
+}
+
+std::string contacts_frame_text(const Run& run) {
+  std::vector<FrameContact> layer;
+  for (const auto& c : run.contacts.contacts()) {
+    const core::Vec2 p = run.engine.vertices(c.key.vblock)[c.key.vertex];
+    FrameContact fc;
+    fc.point = {p.x(), p.y()};
+    fc.id = static_cast<int>(c.id);
+    fc.joint_set = c.joint_set;
+    fc.state = static_cast<int>(c.state);
+    fc.kind = static_cast<int>(c.kind);
+    fc.normal_force = c.normal_force;
+    fc.shear_force = c.shear_force;
+    fc.shear_displacement = c.shear_displacement;
+    fc.creep_displacement = c.creep_displacement;
+    fc.penetration = c.penetration;
+    fc.length = c.length;
+    layer.push_back(fc);
+  }
+  return vtk_contacts(layer);
+}
+
+// A frame is two files, frames/blocks_NNNNNN.vtp and frames/contacts_NNNNNN.vtp;
+// the checkpoint keeps one hash of both.
+std::string contacts_file(const std::string& blocks_file) {
+  std::string f = blocks_file;
+  const std::size_t at = f.rfind("blocks_");
+  if (at != std::string::npos) f.replace(at, 7, "contacts_");
+  return f;
+}
+
+std::uint64_t frame_pair_hash(const std::string& blocks_text, const std::string& contacts_text) {
+  return fnv1a(contacts_text.data(), contacts_text.size(), fnv1a(blocks_text.data(), blocks_text.size()));
+}
+
+void write_collections(const Run& run) {
+  write_file_atomic((fs::path(run.out) / "blocks.pvd").string(), vtk_collection(run.pvd));
+  write_file_atomic((fs::path(run.out) / "contacts.pvd").string(), contacts_collection(run));
+}
+
+void write_frame(Run& run) {
+  const SceneDescription& s = run.s;
+  const core::Engine& engine = run.engine;
+  const std::string& out = run.out;
+  run.frame_open = true;
+  const int k = run.frames_done;
+  std::string rows;
+  for (const auto& c : run.contacts.contacts()) {
+    const core::Vec2 p = engine.vertices(c.key.vblock)[c.key.vertex];
+    rows += fmt::format("{:.10g},{},{},{},{},{},{},{},{},{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},"
+                        "{:.10g},{}\n",
+                        engine.time(), engine.step_count(), c.id, s.joint_sets[c.joint_set].name,
+                        contact::contact_state_name(c.state), contact::contact_kind_name(c.kind),
+                        s.blocks[c.key.vblock].name, c.key.vertex, s.blocks[c.key.eblock].name, c.key.edge,
+                        p.x(), p.y(), c.normal_force, c.shear_force, c.shear_displacement, c.penetration,
+                        c.length, c.creep_displacement, contact::creep_state_name(c.creep_state));
+  }
+  for (const auto& c : run.contacts.contacts())
+    for (const auto& [name, v] : {std::pair<const char*, double>{"normal_force", c.normal_force},
+                                  {"shear_force", c.shear_force},
+                                  {"shear_displacement", c.shear_displacement},
+                                  {"penetration", c.penetration},
+                                  {"length", c.length},
+                                  {"creep_displacement", c.creep_displacement}})
+      if (!std::isfinite(v))
+        throw NonFinite(fmt::format("contacts.csv column '{}' of contact {} is not finite at step {} (t = {:g} {})",
+                                    name, c.id, engine.step_count(), engine.time(), s.units.time));
+  if (!rows.empty()) run.contacts_csv.append(rows);
+  const std::string file = fmt::format("frames/blocks_{:06d}.vtp", k);
+  const std::string text = frame_text(run), layer = contacts_frame_text(run);
+  write_file_atomic((fs::path(out) / file).string(), text);
+  write_file_atomic((fs::path(out) / contacts_file(file)).string(), layer);
+  run.frames_bytes += text.size() + layer.size();
+  run.pvd.emplace_back(engine.time(), file);
+  run.frame_hash.push_back(frame_pair_hash(text, layer));
+  write_collections(run);
+  ++run.frames_done;
+  run.frame_open = false;
+  // A checkpoint costs a few fsyncs (~10 ms here) and the state file: at most one
+  // per second of wall time at frames; always on a stop, a failure and at the end.
+  // A resume after a crash continues from the last one (and writes the later
+  // frames again).
+  if (run.frames_done == 1 || Clock::now() - run.last_checkpoint > std::chrono::seconds(1)) write_checkpoint(run);
+  write_summary(run, "running", "");
+}
+
+}  // namespace rheodda::scene
