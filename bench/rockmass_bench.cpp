@@ -276,8 +276,11 @@ int main(int argc, char** argv) {
       text.insert(at + 9, fmt::format("rest_tolerance: {:g}, ", rest));
     }
     if (duration > 0.0) {
-      const std::regex d("(\\n  duration: )([0-9.eE+-]+)");
-      text = std::regex_replace(text, d, fmt::format("$1{:g}", duration), std::regex_constants::format_first_only);
+      const std::regex d("\\n  duration: [0-9.eE+-]+");
+      std::smatch m;
+      if (std::regex_search(text, m, d))
+        text.replace(static_cast<std::size_t>(m.position()), static_cast<std::size_t>(m.length()),
+                     fmt::format("\n  duration: {:g}", duration));
     }
     if (!write_dir.empty()) {
       std::filesystem::create_directories(write_dir);
