@@ -313,10 +313,12 @@ int main(int argc, char** argv) {
       continue;
     }
     arm(false);
-    fmt::print("creep: {}{}, lengths x {:.3f}: {} blocks, solver {} (scene loaded and cut in {:.2f} s); "
+    fmt::print("creep: {}, lengths x {:.3f}: {} blocks, solver {} (scene loaded and cut in {:.2f} s); "
                "{} at t = {:g} of {:g} d: {} steps, {} cuts, {} redone, wall {:.1f} s, CPU {:.1f} s{}; "
                "dynamic stages: {}; first measurement point displaced {:.6g}\n",
-               example, halve ? " (static controls halved)" : "", f, s.rock_mass->block_count,
+               example + std::string(halve ? " (static controls halved)" : "") +
+                   (rest > 0.0 ? fmt::format(" (settling stage ended at rest, rest_tolerance {:g})", rest) : ""),
+               f, s.rock_mass->block_count,
                solver.empty() ? "of the scene" : solver, load_s,
                r.status == scene::RunStatus::completed ? "completed" : "stopped", r.time, s.analysis.duration, r.steps,
                r.cuts, r.redone, r.wall_seconds, cpu_seconds() - cpu0,

@@ -6,7 +6,7 @@
 # at rest by rest_tolerance 1e-5) at about 1e3 blocks,
 # 100 days of creep each, stopped after the budget of CPU time (slope
 # 600 s, tunnel 300 s); then the slope's convergence check: the first CHECK_DAYS
-# days (default 10) as shipped and with every static step control halved, the
+# days (default 5) as shipped and with every static step control halved, the
 # toe's displacement compared. One core each (bench/rockmass_bench.cpp, CPU
 # time, so that a loaded machine gives the same figures). Prints the figures
 # and splices a Markdown table between the rock-masses-run markers of
@@ -20,7 +20,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/build.sh" >/dev/null
 bench="$root/build/bench/rockmass_bench"
 budget="${BUDGET:-1}"
-days="${CHECK_DAYS:-10}"
+days="${CHECK_DAYS:-5}"
 cpu() { python3 -c "print(int($1 * $budget))"; }
 slope="$root/bench/scenes/jointed-slope-cohesionless.yaml"
 log="$(mktemp)"
