@@ -205,7 +205,16 @@ def test_an_exception_in_the_callback_stops_between_steps_and_the_run_can_go_on(
     assert same(sim.run().history(), rheodda.Simulation(yaml_scene).run().history())
 
 
-def test_ctrl_c_interrupts_between_steps(yaml_scene):
+@pytest.fixture
+def sigint_raises():
+    """Ctrl-C raises KeyboardInterrupt here even when the suite was started in the
+    background of a non-interactive shell, which starts it with SIGINT ignored."""
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, previous)
+
+
+def test_ctrl_c_interrupts_between_steps(yaml_scene, sigint_raises):
     def interrupt_at_10(sim, report):
         if report.step == 9:
             os.kill(os.getpid(), signal.SIGINT)
@@ -218,7 +227,7 @@ def test_ctrl_c_interrupts_between_steps(yaml_scene):
     assert same(sim.run().history(), rheodda.Simulation(yaml_scene).run().history())
 
 
-def test_run_stops_on_ctrl_c_with_a_checkpoint(tmp_path):
+def test_run_stops_on_ctrl_c_with_a_checkpoint(tmp_path, sigint_raises):
     import json
     import threading
     # 200 000 steps of the shear test (4.5 s here), interrupted after 0.3 s
