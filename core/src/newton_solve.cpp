@@ -31,31 +31,11 @@ namespace {
 class NewtonSolve final : public ContactSolve {
  public:
   ContactSolveResult solve(StepProblem& p, Eigen::VectorXd& D) override {
-    const Settings& s = p.settings();
-    ContactSolveResult out;
     prepare_weights(p);
-    const bool may_loosen = s.pcg_iterate_tolerance > s.pcg_tolerance && p.iterative_solver();
-    bool tight_next = false;
-    int loose_iterates = 0;
-    const int limit = p.iteration_limit();
-    while (out.iterations - loose_iterates < limit) {
-      // Inexact iterates as in the open-close solve (docs/notes/contact-solves.md, "Inexact iterates").
-      const bool loose = may_loosen && !tight_next && 3 * loose_iterates < limit;
-      if (loose) ++loose_iterates;
-      D = p.solve_system(loose);
-      ++out.iterations;
-      out.check = p.check(D);
-      if (loose) {
-        tight_next = out.check.state_changes == 0;
-        continue;  // an inexact solve is never accepted
-      }
-      tight_next = false;
-      if (out.check.state_changes == 0 || converged(p, D, s.contact_residual_tolerance)) {
-        out.converged = true;
-        break;
-      }
-    }
-    return out;
+    const double tolerance = p.settings().contact_residual_tolerance;
+    return iterate_contacts(p, D, [&](const ContactCheck& c) {
+      return c.state_changes == 0 || converged(p, D, tolerance);
+    });
   }
 
  private:
