@@ -26,6 +26,7 @@ packages=(
   libopenmpi-dev         # studies across machines (mpirun rheodda study)
   openmpi-bin            # mpirun, used by the MPI study tests
   time                   # /usr/bin/time -v: peak memory in scripts/memory-report.sh
+  ccache                 # compiler cache: a clean clone or work tree compiles only what changed
 )
 
 missing=()
