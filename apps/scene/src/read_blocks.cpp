@@ -1,0 +1,123 @@
+// The `blocks:` section of a scene file: polygons, rectangles, grids and their edges' joint sets.
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <unordered_set>
+
+#include "scene_readers.hpp"
+#include "rheodda/scene/geometry.hpp"
+#include "rheodda/scene/memory.hpp"
+
+namespace rheodda::scene::detail {
+
+std::vector<int> edge_sets(const Ctx& ctx, const MapReader& m, const SceneDescription& s,
+                           std::size_t edges, const char* order) {
+  YAML::Node all = m.find("joint_set");
+  YAML::Node each = m.find("edge_joint_sets");
+  if (all.IsDefined() && each.IsDefined())
+    ctx.fail(each, m.child("edge_joint_sets"), "give either joint_set (every edge) or edge_joint_sets, not both");
+  if (each.IsDefined()) {
+    if (!each.IsSequence() || each.size() != edges)
+      ctx.fail(each, m.child("edge_joint_sets"),
+               fmt::format("expected a list of {} joint set names, one per edge ({})", edges, order));
+    std::vector<int> out;
+    for (std::size_t k = 0; k < edges; ++k)
+      out.push_back(resolve(ctx, each[k], fmt::format("{}[{}]", m.child("edge_joint_sets"), k),
+                            s.joint_sets, "joint set"));
+    return out;
+  }
+  int js = 0;
+  if (all.IsDefined())
+    js = resolve(ctx, all, m.child("joint_set"), s.joint_sets, "joint set");
+  else if (s.joint_sets.size() != 1)
+    ctx.fail(m.node(), m.child("joint_set"),
+             "missing key 'joint_set' (or edge_joint_sets): the scene has several joint sets");
+  return std::vector<int>(edges, js);
+}
+
+void read_blocks(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, std::vector<RawBlock>& raw) {
+  if (!n.IsSequence() || n.size() == 0)
+    ctx.fail(n, "blocks", "expected a list of blocks, e.g. `- {rectangle: {x: 0, y: 0, width: 1, height: 1}}`");
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    const std::string path = fmt::format("blocks[{}]", i);
+    MapReader m(ctx, n[i], path, keys::block);
+    BlockDescription b;
+    b.where = m.where();
+    if (YAML::Node v = m.find("material"); v.IsDefined())
+      b.material = resolve(ctx, v, m.child("material"), s.materials, "material");
+    else if (s.materials.size() != 1)
+      ctx.fail(m.node(), m.child("material"), "missing key 'material': the scene has several materials");
+    if (YAML::Node v = m.find("fixed"); v.IsDefined()) b.fixed = flag(ctx, v, m.child("fixed"));
+    if (YAML::Node v = m.find("initial_stress"); v.IsDefined()) {
+      const auto x = numbers(ctx, v, m.child("initial_stress"), 3, any("stress"));
+      b.initial_stress = {x[0], x[1], x[2]};
+    }
+    if (YAML::Node v = m.find("initial_velocity"); v.IsDefined()) {
+      const auto x = numbers(ctx, v, m.child("initial_velocity"), 3, any("length/time, 1/time"));
+      if (s.analysis.type == AnalysisType::static_analysis && (x[0] != 0 || x[1] != 0 || x[2] != 0))
+        ctx.fail(v, m.child("initial_velocity"),
+                 "a static analysis carries no velocity; initial_velocity needs `analysis: {type: dynamic}`");
+      b.initial_velocity = {x[0], x[1], x[2]};
+    }
+    std::string name;
+    if (YAML::Node v = m.find("name"); v.IsDefined()) name = name_text(ctx, v, m.child("name"));
+
+    const int shapes = int(m.has("polygon")) + int(m.has("rectangle")) + int(m.has("grid"));
+    if (shapes != 1)
+      ctx.fail(m.node(), path, shapes == 0 ? "missing the shape: give one of polygon, rectangle, grid"
+                                           : "give only one of polygon, rectangle, grid");
+    if (YAML::Node v = m.find("polygon"); v.IsDefined()) {
+      if (!v.IsSequence())
+        ctx.fail(v, m.child("polygon"), fmt::format("expected a list of [x, y] vertices, got {}", type_word(v)));
+      if (v.size() > kMaxVertices)
+        ctx.fail(v, m.child("polygon"), fmt::format("more than {} vertices", kMaxVertices));
+      for (std::size_t k = 0; k < v.size(); ++k)
+        b.polygon.push_back(point(ctx, v[k], fmt::format("{}[{}]", m.child("polygon"), k)));
+      if (b.polygon.size() < 3)
+        ctx.fail(v, m.child("polygon"), fmt::format("has {} vertices; a polygon needs at least 3", b.polygon.size()));
+      b.edge_joint_set = edge_sets(ctx, m, s, b.polygon.size(), "edge k runs from vertex k to k+1");
+      b.name = name;
+      raw.push_back({b, path, n[i], v});
+      continue;
+    }
+    const bool grid = m.has("grid");
+    const std::string key = grid ? "grid" : "rectangle";
+    YAML::Node g = m.find(key);
+    MapReader r(ctx, g, m.child(key), grid ? keys::grid : keys::rectangle);
+    const double x = number(ctx, r.required("x", "x of the lower-left corner [length]"), r.child("x"), any("length"));
+    const double y = number(ctx, r.required("y", "y of the lower-left corner [length]"), r.child("y"), any("length"));
+    const double w = number(ctx, r.required("width", "[length]"), r.child("width"), positive("length"));
+    const double h = number(ctx, r.required("height", "[length]"), r.child("height"), positive("length"));
+    double angle = 0.0;  // counter-clockwise rotation about (x, y) [deg]
+    if (YAML::Node v = r.find("angle"); v.IsDefined())
+      angle = number(ctx, v, r.child("angle"), {-360.0, false, 360.0, false, "deg"});
+    const double ca = std::cos(angle * std::numbers::pi / 180.0), sa = std::sin(angle * std::numbers::pi / 180.0);
+    auto place = [&](double ls, double lt) -> Point { return {x + ca * ls - sa * lt, y + sa * ls + ca * lt}; };
+    int cols = 1, rows = 1;
+    if (grid) {
+      cols = integer(ctx, r.required("columns", "number of blocks along x"), r.child("columns"), 1, int(kMaxBlocks));
+      rows = integer(ctx, r.required("rows", "number of blocks along y"), r.child("rows"), 1, int(kMaxBlocks));
+      if (std::size_t(cols) * std::size_t(rows) + raw.size() > kMaxBlocks)
+        ctx.fail(g, m.child(key), fmt::format("more than {} blocks in the scene", kMaxBlocks));
+    }
+    b.edge_joint_set = edge_sets(ctx, m, s, 4, "bottom, right, top, left");
+    for (int row = 0; row < rows; ++row)
+      for (int col = 0; col < cols; ++col) {
+        BlockDescription c = b;
+        const double s0 = col * w, t0 = row * h;
+        c.polygon = {place(s0, t0), place(s0 + w, t0), place(s0 + w, t0 + h), place(s0, t0 + h)};
+        c.name = grid ? fmt::format("{}.r{}.c{}", name.empty() ? fmt::format("grid{}", i + 1) : name,
+                                    row + 1, col + 1)
+                      : name;
+        raw.push_back({c, path, n[i], g});
+      }
+  }
+}
+
+}  // namespace rheodda::scene::detail

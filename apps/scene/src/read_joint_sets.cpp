@@ -1,0 +1,152 @@
+// The `materials:` and `joint_sets:` sections of a scene file, with each joint set's `law:`.
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <unordered_set>
+
+#include "scene_readers.hpp"
+
+namespace rheodda::scene::detail {
+
+std::vector<Material> read_materials(const Ctx& ctx, const YAML::Node& n, bool dynamic_steps) {
+  if (!n.IsMap() || n.size() == 0)
+    ctx.fail(n, "materials", "expected a map of named materials, e.g. `rock: {density: ..., ...}`");
+  std::vector<Material> out;
+  std::vector<std::string> names;  // every name is a valid key of this map
+  for (auto it = n.begin(); it != n.end(); ++it) names.push_back(it->first.IsScalar() ? it->first.Scalar() : "");
+  MapReader all(ctx, n, "materials", names);
+  for (const auto& e : all.entries()) {
+    Material mat;
+    mat.name = name_text(ctx, e.key_node, "materials");
+    const std::string path = all.child(e.key);
+    MapReader m(ctx, e.value, path, keys::material);
+    mat.where = location(e.key_node);
+    mat.density = number(ctx, m.required("density", "[mass/length^3]"), m.child("density"),
+                         positive("mass/length^3"));
+    mat.young_modulus = number(ctx, m.required("young_modulus", "E [stress]"),
+                               m.child("young_modulus"), positive("stress"));
+    mat.poisson_ratio = number(ctx, m.required("poisson_ratio", "nu [-]"), m.child("poisson_ratio"),
+                               {0.0, false, 0.5, true, ""});
+    if (YAML::Node v = m.find("plane"); v.IsDefined())
+      mat.plane = choice(ctx, v, m.child("plane"), {"strain", "stress"}) == "strain" ? PlaneKind::strain
+                                                                                   : PlaneKind::stress;
+    if (YAML::Node v = m.find("damping_ratio"); v.IsDefined()) {
+      // Block damping damps velocities; a static analysis carries none.
+      if (!dynamic_steps)
+        ctx.fail(v, m.child("damping_ratio"),
+                 "a static analysis carries no velocity; damping_ratio needs `analysis: {type: dynamic}` "
+                 "or a dynamic settling stage (`settle: {type: dynamic, ...}`)");
+      mat.damping_ratio = number(ctx, v, m.child("damping_ratio"), {0.0, false, 1.0, false, ""});
+    }
+    out.push_back(std::move(mat));
+  }
+  return out;
+}
+
+LawChoice read_law(const Ctx& ctx, const YAML::Node& n, const std::string& path) {
+  const auto& registry = laws::LawRegistry::builtin();
+  if (!n.IsMap()) ctx.fail(n, path, fmt::format("expected a map `{{name: LAW, PARAM: value, ...}}`, got {}", type_word(n)));
+  YAML::Node name_node = n["name"];
+  if (!name_node.IsDefined())
+    ctx.fail(n, path + ".name", "missing required key 'name' (the law: see `rheodda law list`)");
+  const std::string name = text(ctx, name_node, path + ".name");
+  const laws::LawInfo* info = registry.find(name);
+  if (!info) {
+    std::vector<std::string> names;
+    for (const auto& l : registry.laws()) names.push_back(l.name);
+    const std::string hint = laws::nearest_name(name, names);
+    ctx.fail(name_node, path + ".name",
+             fmt::format("unknown law '{}'{}; known laws: {}", name,
+                         hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint), join(names)));
+  }
+  std::vector<std::string> allowed = keys::law;
+  for (const auto& p : info->parameters) allowed.push_back(p.name);
+  MapReader m(ctx, n, path, allowed);
+  LawChoice law;
+  law.name = name;
+  laws::ParameterValues given;
+  for (const auto& e : m.entries())
+    if (e.key != "name") given[e.key] = number(ctx, e.value, m.child(e.key), any(""));
+  try {
+    law.parameters = laws::validate_parameters(name, info->parameters, given);
+  } catch (const laws::LawError& err) {
+    YAML::Node at = m.find(err.key());
+    ctx.fail(at.IsDefined() ? at : n, m.child(err.key()), err.what());
+  }
+  // The law must also build (a law may check relations between its parameters).
+  try {
+    (void)registry.create(name, law.parameters);
+  } catch (const laws::LawError& err) {
+    YAML::Node at = m.find(err.key());
+    ctx.fail(at.IsDefined() ? at : n, m.child(err.key()), err.what());
+  }
+  return law;
+}
+
+std::vector<JointSetDescription> read_joint_sets(const Ctx& ctx, const YAML::Node& n, bool dynamic_steps) {
+  if (!n.IsMap() || n.size() == 0)
+    ctx.fail(n, "joint_sets", "expected a map of named joint sets, e.g. `bedding: {friction_angle: 30}`");
+  std::vector<std::string> names;  // every name is a valid key of this map
+  for (auto it = n.begin(); it != n.end(); ++it) names.push_back(it->first.IsScalar() ? it->first.Scalar() : "");
+  MapReader all(ctx, n, "joint_sets", names);
+  std::vector<JointSetDescription> out;
+  for (const auto& e : all.entries()) {
+    JointSetDescription js;
+    js.name = name_text(ctx, e.key_node, "joint_sets");
+    js.where = location(e.key_node);
+    MapReader m(ctx, e.value, all.child(e.key), keys::joint_set);
+    js.friction_angle = number(ctx, m.required("friction_angle", "phi [deg], 0 <= phi < 90"),
+                               m.child("friction_angle"), {0.0, false, 90.0, true, "deg"});
+    if (YAML::Node v = m.find("cohesion"); v.IsDefined())
+      js.cohesion = number(ctx, v, m.child("cohesion"), non_negative("stress"));
+    if (YAML::Node v = m.find("tensile_strength"); v.IsDefined())
+      js.tensile_strength = number(ctx, v, m.child("tensile_strength"), non_negative("stress"));
+    // Residual strength (UDEC/3DEC): once a contact slid, opened or its damage law failed.
+    if (YAML::Node v = m.find("residual_friction_angle"); v.IsDefined()) {
+      js.residual_friction_angle = number(ctx, v, m.child("residual_friction_angle"), non_negative("deg"));
+      if (*js.residual_friction_angle > js.friction_angle)
+        ctx.fail(v, m.child("residual_friction_angle"),
+                 fmt::format("{:g} deg is above the peak friction_angle {:g} deg: a residual strength is at most the peak",
+                             *js.residual_friction_angle, js.friction_angle));
+    }
+    if (YAML::Node v = m.find("residual_cohesion"); v.IsDefined()) {
+      js.residual_cohesion = number(ctx, v, m.child("residual_cohesion"), non_negative("stress"));
+      if (js.residual_cohesion > js.cohesion)
+        ctx.fail(v, m.child("residual_cohesion"),
+                 fmt::format("{:g} is above the peak cohesion {:g}: a residual strength is at most the peak",
+                             js.residual_cohesion, js.cohesion));
+    }
+    if (YAML::Node v = m.find("normal_stiffness"); v.IsDefined())
+      js.normal_stiffness = number(ctx, v, m.child("normal_stiffness"), positive("stress/length"));
+    if (YAML::Node v = m.find("shear_stiffness"); v.IsDefined())
+      js.shear_stiffness = number(ctx, v, m.child("shear_stiffness"), positive("stress/length"));
+    if (YAML::Node v = m.find("restitution"); v.IsDefined()) {
+      // Contact dashpots damp motion; a static analysis has none to damp.
+      if (!dynamic_steps)
+        ctx.fail(v, m.child("restitution"),
+                 "a static analysis carries no velocity; restitution needs `analysis: {type: dynamic}` "
+                 "or a dynamic settling stage (`settle: {type: dynamic, ...}`)");
+      js.restitution = number(ctx, v, m.child("restitution"), {0.0, false, 1.0, false, ""});
+    }
+    if (YAML::Node v = m.find("law"); v.IsDefined()) {
+      js.law = read_law(ctx, v, m.child("law"));
+      // A law with an instantaneous spring E1 (burgers, maxwell, nishihara) is the
+      // joint's elastic shear spring, k_s = E1 l: one value, given once.
+      if (js.shear_stiffness && js.law->parameters.count("E1"))
+        ctx.fail(m.find("shear_stiffness"), m.child("shear_stiffness"),
+                 fmt::format("law '{}' sets the joint's elastic shear stiffness with its E1; "
+                             "remove shear_stiffness (or use a law without E1)", js.law->name));
+    }
+    if (YAML::Node v = m.find("record"); v.IsDefined()) js.record = flag(ctx, v, m.child("record"));
+    out.push_back(std::move(js));
+  }
+  return out;
+}
+
+}  // namespace rheodda::scene::detail

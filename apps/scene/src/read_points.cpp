@@ -1,0 +1,105 @@
+// The `fixed_points:`, `loads:` and `measurement_points:` sections of a scene file.
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <unordered_set>
+
+#include "scene_readers.hpp"
+#include "rheodda/scene/geometry.hpp"
+
+namespace rheodda::scene::detail {
+
+/// Tolerance for "same place": a billionth of the model size [length].
+double geometry_tolerance(const std::vector<BlockDescription>& blocks) {
+  return std::max(1e-9 * 2.0 * half_model_size(blocks), std::numeric_limits<double>::min());
+}
+
+BlockPoint read_block_point(const Ctx& ctx, const MapReader& m, const SceneDescription& s, double tol) {
+  BlockPoint bp;
+  bp.where = m.where();
+  YAML::Node p = m.required("point", "[x, y] [length]");
+  bp.point = point(ctx, p, m.child("point"));
+  if (YAML::Node v = m.find("block"); v.IsDefined()) {
+    bp.block = resolve(ctx, v, m.child("block"), s.blocks, "block");
+    if (!contains(s.blocks[bp.block].polygon, bp.point, tol))
+      ctx.fail(p, m.child("point"),
+               fmt::format("({:g}, {:g}) is not on block '{}'", bp.point[0], bp.point[1], s.blocks[bp.block].name));
+    return bp;
+  }
+  std::vector<int> hits;
+  for (std::size_t i = 0; i < s.blocks.size(); ++i)
+    if (contains(s.blocks[i].polygon, bp.point, tol)) hits.push_back(static_cast<int>(i));
+  if (hits.empty())
+    ctx.fail(p, m.child("point"), fmt::format("({:g}, {:g}) lies on no block", bp.point[0], bp.point[1]));
+  if (hits.size() > 1) {
+    std::vector<std::string> names;
+    for (int h : hits) names.push_back(s.blocks[h].name);
+    ctx.fail(p, m.child("point"),
+             fmt::format("({:g}, {:g}) lies on the boundary of several blocks ({}); say which with `block:`",
+                         bp.point[0], bp.point[1], join(names)));
+  }
+  bp.block = hits.front();
+  return bp;
+}
+
+void read_points(const Ctx& ctx, const MapReader& top, SceneDescription& s) {
+  const double tol = geometry_tolerance(s.blocks);
+  auto list = [&](const char* key) {
+    YAML::Node n = top.find(key);
+    if (n.IsDefined() && !n.IsSequence() && !n.IsNull())
+      ctx.fail(n, key, fmt::format("expected a list, got {}", type_word(n)));
+    return n;
+  };
+  if (YAML::Node n = list("fixed_points"); n.IsSequence())
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      MapReader m(ctx, n[i], fmt::format("fixed_points[{}]", i), keys::fixed_point);
+      s.fixed_points.push_back(read_block_point(ctx, m, s, tol));
+    }
+  if (YAML::Node n = list("loads"); n.IsSequence())
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      MapReader m(ctx, n[i], fmt::format("loads[{}]", i), keys::load);
+      LoadDescription load;
+      load.at = read_block_point(ctx, m, s, tol);
+      YAML::Node f = m.find("force"), h = m.find("history");
+      if (f.IsDefined() == h.IsDefined())
+        ctx.fail(m.node(), m.child("force"),
+                 "give exactly one of force: [fx, fy] or history: [[t, fx, fy], ...]");
+      if (f.IsDefined()) {
+        const auto v = numbers(ctx, f, m.child("force"), 2, any("force"));
+        load.history.push_back({0.0, v[0], v[1]});
+      } else {
+        if (!h.IsSequence() || h.size() == 0 || h.size() > kMaxSamples)
+          ctx.fail(h, m.child("history"), "expected a list of [t, fx, fy] samples");
+        for (std::size_t k = 0; k < h.size(); ++k) {
+          const std::string key = fmt::format("{}[{}]", m.child("history"), k);
+          const auto v = numbers(ctx, h[k], key, 3, any("time, force, force"));
+          if (v[0] < 0.0) ctx.fail(h[k], key, fmt::format("time {:g} is negative", v[0]));
+          if (!load.history.empty() && v[0] <= load.history.back()[0])
+            ctx.fail(h[k], key, fmt::format("times must increase strictly: {:g} after {:g}", v[0],
+                                            load.history.back()[0]));
+          load.history.push_back({v[0], v[1], v[2]});
+        }
+      }
+      s.loads.push_back(std::move(load));
+    }
+  if (YAML::Node n = list("measurement_points"); n.IsSequence())
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      MapReader m(ctx, n[i], fmt::format("measurement_points[{}]", i), keys::measurement_point);
+      MeasurementPoint mp;
+      YAML::Node name = m.required("name", "column prefix in history.csv");
+      mp.name = name_text(ctx, name, m.child("name"));
+      for (const auto& other : s.measurement_points)
+        if (other.name == mp.name)
+          ctx.fail(name, m.child("name"), fmt::format("measurement point '{}' is defined twice", mp.name));
+      mp.at = read_block_point(ctx, m, s, tol);
+      s.measurement_points.push_back(std::move(mp));
+    }
+}
+
+}  // namespace rheodda::scene::detail

@@ -1,0 +1,223 @@
+// The `rock_mass:` section of a scene file: joint sets generated and cut into blocks (docs/rockmass.md).
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <unordered_set>
+
+#include "scene_readers.hpp"
+#include "rheodda/scene/geometry.hpp"
+#include "rheodda/scene/memory.hpp"
+
+namespace rheodda::scene::detail {
+
+/// `rock_mass:` (docs/rockmass.md): reads the region, the joint sets' statistics and the
+/// explicit traces, generates and cuts (rockmass::generate_traces, cut_blocks) and
+/// appends the blocks to `raw`; they are checked with the hand-written ones.
+void read_rock_mass(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, std::vector<RawBlock>& raw) {
+  MapReader m(ctx, n, "rock_mass", keys::rock_mass);
+  RockMassDescription rm;
+  rm.where = m.where();
+  if (YAML::Node v = m.find("name"); v.IsDefined()) rm.name = name_text(ctx, v, m.child("name"));
+  if (YAML::Node v = m.find("material"); v.IsDefined())
+    rm.material = resolve(ctx, v, m.child("material"), s.materials, "material");
+  else if (s.materials.size() != 1)
+    ctx.fail(m.node(), m.child("material"), "missing key 'material': the scene has several materials");
+  const YAML::Node region = m.required("region", "the polygon to cut, [[x, y], ...] [length]");
+  rm.region.outer = polygon_points(ctx, region, m.child("region"));
+  if (auto defect = coordinate_defect(rm.region.outer)) ctx.fail(region, m.child("region"), "the region " + *defect);
+  rockmass::Box box{rm.region.outer[0][0], rm.region.outer[0][1], rm.region.outer[0][0], rm.region.outer[0][1]};
+  for (const Point& p : rm.region.outer)
+    box = {std::min(box.x0, p[0]), std::min(box.y0, p[1]), std::max(box.x1, p[0]), std::max(box.y1, p[1])};
+  const double tol = std::max(1e-9 * std::hypot(box.x1 - box.x0, box.y1 - box.y0), std::numeric_limits<double>::min());
+  if (auto defect = polygon_defect(rm.region.outer, tol)) ctx.fail(region, m.child("region"), "the region " + *defect);
+  if (YAML::Node h = m.find("holes"); h.IsDefined()) {
+    if (!h.IsSequence()) ctx.fail(h, m.child("holes"), fmt::format("expected a list of polygons, got {}", type_word(h)));
+    for (std::size_t k = 0; k < h.size(); ++k) {
+      const std::string key = fmt::format("{}[{}]", m.child("holes"), k);
+      auto hole = polygon_points(ctx, h[k], key);
+      if (auto defect = polygon_defect(hole, tol)) ctx.fail(h[k], key, "the hole " + *defect);
+      for (const Point& p : hole)
+        if (!contains(rm.region.outer, p, tol) || boundary_distance(rm.region.outer, p) <= tol)
+          ctx.fail(h[k], key, fmt::format("vertex ({:g}, {:g}) of the hole is not strictly inside the region", p[0], p[1]));
+      for (const Point& p : rm.region.outer)
+        if (contains(hole, p, tol))
+          ctx.fail(h[k], key, fmt::format("the hole covers the region's vertex ({:g}, {:g})", p[0], p[1]));
+      for (std::size_t j = 0; j < rm.region.holes.size(); ++j) {
+        bool touch = interiors_overlap(hole, rm.region.holes[j], tol);
+        for (const Point& p : hole) touch = touch || contains(rm.region.holes[j], p, tol);
+        for (const Point& p : rm.region.holes[j]) touch = touch || contains(hole, p, tol);
+        if (touch) ctx.fail(h[k], key, fmt::format("holes {} and {} overlap or touch", j, k));
+      }
+      rm.region.holes.push_back(std::move(hole));
+    }
+  }
+  if (YAML::Node v = m.find("boundary_joint_set"); v.IsDefined())
+    rm.boundary_joint_set = resolve(ctx, v, m.child("boundary_joint_set"), s.joint_sets, "joint set");
+  else if (s.joint_sets.size() != 1)
+    ctx.fail(m.node(), m.child("boundary_joint_set"),
+             "missing key 'boundary_joint_set' (the joint set of the edges on the region's boundary): the scene "
+             "has several joint sets");
+  if (YAML::Node v = m.find("seed"); v.IsDefined()) {
+    const double seed = number(ctx, v, m.child("seed"), {0.0, false, 9007199254740992.0, false, ""});
+    if (seed != std::floor(seed)) ctx.fail(v, m.child("seed"), fmt::format("{:g} is not a whole number", seed));
+    rm.seed = static_cast<std::uint64_t>(seed);
+  }
+  if (YAML::Node v = m.find("sliver_area"); v.IsDefined())
+    rm.sliver_area = number(ctx, v, m.child("sliver_area"), non_negative("length^2"));
+  auto list = [&](const char* key) {
+    YAML::Node v = m.find(key);
+    if (v.IsDefined() && !v.IsSequence())
+      ctx.fail(v, m.child(key), fmt::format("expected a list of maps, got {}", type_word(v)));
+    return v;
+  };
+  std::vector<rockmass::Trace> traces;
+  std::vector<std::pair<std::size_t, std::size_t>> set_traces;  // per joint set: its range in `traces`
+  if (YAML::Node sets = list("joint_sets"); sets.IsDefined())
+    for (std::size_t i = 0; i < sets.size(); ++i) {
+      MapReader j(ctx, sets[i], fmt::format("{}[{}]", m.child("joint_sets"), i), keys::rock_mass_joint_set);
+      rockmass::JointSetGeneration g;
+      g.tag = resolve(ctx, j.required("joint_set", "a name of the scene's joint_sets"), j.child("joint_set"),
+                      s.joint_sets, "joint set");
+      g.dip = number(ctx, j.required("dip", "angle below the horizontal [deg], 0 to 90"), j.child("dip"),
+                     {0.0, false, 90.0, false, "deg"});
+      if (YAML::Node v = j.find("dip_direction"); v.IsDefined())
+        g.dips_right = choice(ctx, v, j.child("dip_direction"), {"right", "left"}) == "right";
+      g.spacing = number(ctx, j.required("spacing", "mean spacing normal to the joints [length]"),
+                         j.child("spacing"), positive("length"));
+      if (YAML::Node v = j.find("spacing_distribution"); v.IsDefined()) {
+        const std::string d = choice(ctx, v, j.child("spacing_distribution"),
+                                     {"constant", "normal", "exponential", "log-normal"});
+        for (auto k : {rockmass::SpacingDistribution::constant, rockmass::SpacingDistribution::normal,
+                       rockmass::SpacingDistribution::exponential, rockmass::SpacingDistribution::log_normal})
+          if (d == rockmass::spacing_distribution_name(k)) g.spacing_distribution = k;
+      }
+      const bool deviation = g.spacing_distribution == rockmass::SpacingDistribution::normal ||
+                             g.spacing_distribution == rockmass::SpacingDistribution::log_normal;
+      if (YAML::Node v = j.find("spacing_deviation"); v.IsDefined()) {
+        if (!deviation)
+          ctx.fail(v, j.child("spacing_deviation"),
+                   fmt::format("a {} spacing has no deviation; spacing_deviation applies to spacing_distribution "
+                               "normal or log-normal",
+                               rockmass::spacing_distribution_name(g.spacing_distribution)));
+        g.spacing_deviation = number(ctx, v, j.child("spacing_deviation"), positive("length"));
+      } else if (deviation) {
+        ctx.fail(j.node(), j.child("spacing_deviation"),
+                 fmt::format("missing key 'spacing_deviation' (standard deviation of a {} spacing [length])",
+                             rockmass::spacing_distribution_name(g.spacing_distribution)));
+      }
+      YAML::Node length = j.find("trace_length"), gap = j.find("gap");
+      if (length.IsDefined() != gap.IsDefined())
+        ctx.fail(length.IsDefined() ? length : gap, j.child(length.IsDefined() ? "gap" : "trace_length"),
+                 "give trace_length and gap together (non-persistent joints), or neither (persistent joints)");
+      if (length.IsDefined()) {
+        g.trace_length = number(ctx, length, j.child("trace_length"), positive("length"));
+        g.gap = number(ctx, gap, j.child("gap"), non_negative("length"));
+      }
+      if (YAML::Node v = j.find("dip_spread"); v.IsDefined())
+        g.dip_spread = number(ctx, v, j.child("dip_spread"), {0.0, false, 45.0, false, "deg"});
+      if (YAML::Node v = j.find("origin"); v.IsDefined()) g.origin = point(ctx, v, j.child("origin"));
+      // Lines across the region: its box's diagonal over the smallest likely spacing.
+      const double lines = std::hypot(box.x1 - box.x0, box.y1 - box.y0) / g.spacing;
+      if (lines > 1e6)
+        ctx.fail(j.find("spacing"), j.child("spacing"),
+                 fmt::format("spacing {:g} gives about {:.3g} joints across the region (more than 1e6)", g.spacing, lines));
+      std::vector<rockmass::Trace> t;
+      try {
+        t = rockmass::generate_traces(g, {box.x0, box.y0, box.x1, box.y1}, rm.seed, static_cast<int>(i));
+      } catch (const std::invalid_argument& e) {
+        ctx.fail(j.node(), j.child("spacing"), e.what());
+      }
+      if (traces.size() + t.size() > rockmass::kMaxTraces)
+        ctx.fail(j.node(), j.child("spacing"), "the joint sets give more than 2e6 traces: larger spacing or fewer sets");
+      set_traces.push_back({traces.size(), traces.size() + t.size()});
+      traces.insert(traces.end(), t.begin(), t.end());
+      rm.joint_sets.push_back(g);
+    }
+  if (YAML::Node list_t = list("traces"); list_t.IsDefined())
+    for (std::size_t i = 0; i < list_t.size(); ++i) {
+      MapReader j(ctx, list_t[i], fmt::format("{}[{}]", m.child("traces"), i), keys::rock_mass_trace);
+      rockmass::Trace t;
+      t.tag = resolve(ctx, j.required("joint_set", "a name of the scene's joint_sets"), j.child("joint_set"),
+                      s.joint_sets, "joint set");
+      t.a = point(ctx, j.required("from", "[x, y] [length]"), j.child("from"));
+      YAML::Node to = j.required("to", "[x, y] [length]");
+      t.b = point(ctx, to, j.child("to"));
+      if (t.a == t.b) ctx.fail(to, j.child("to"), "the trace ends where it starts");
+      rm.traces.push_back(t);
+      traces.push_back(t);
+    }
+  // What the cut will cost, before cutting: a spacing of millimetres over a slope
+  // would ask for 1e9 blocks and more memory than the machine has.
+  {
+    const rockmass::CutEstimate e = rm.estimate = rockmass::estimate_cut(rm.region, traces);
+    // Located at the joint set that draws the most traces (or the explicit traces).
+    YAML::Node at = m.find("traces");
+    std::string key = m.child("traces");
+    std::size_t most = 0;
+    for (std::size_t i = 0; i < set_traces.size(); ++i)
+      if (const std::size_t k = set_traces[i].second - set_traces[i].first; k >= most) {
+        most = k;
+        at = list("joint_sets")[i]["spacing"];
+        key = fmt::format("{}[{}].spacing", m.child("joint_sets"), i);
+      }
+    if (!at.IsDefined()) at = n, key = "rock_mass";
+    const std::string what =
+        fmt::format("the traces ({} of them) cross about {:.3g} times and would cut the region into up to {:.3g} "
+                    "blocks",
+                    traces.size(), e.crossings, e.pieces);
+    if (e.pieces > 10.0 * static_cast<double>(kMaxBlocks))
+      ctx.fail(at, key, fmt::format("{}; a scene holds at most {} blocks: a larger spacing, shorter traces or a "
+                                    "smaller region",
+                                    what, kMaxBlocks));
+    if (const auto available = available_memory(); available && e.bytes > *available)
+      ctx.fail(at, key, fmt::format("{}; the cut would need about {} of memory, {} is available: a larger spacing, "
+                                    "shorter traces or a smaller region",
+                                    what, format_bytes(e.bytes), format_bytes(*available)));
+  }
+  rockmass::CutResult cut;
+  try {
+    cut = rockmass::cut_blocks(rm.region, traces, {rm.sliver_area});
+  } catch (const rockmass::CutError& e) {
+    ctx.fail(region, m.child("region"), e.what());
+  }
+  for (const auto& [first, last] : set_traces)
+    rm.traces_generated.push_back(static_cast<std::size_t>(
+        std::count(cut.trace_in_region.begin() + static_cast<long>(first),
+                   cut.trace_in_region.begin() + static_cast<long>(last), 1)));
+  if (cut.blocks.size() + raw.size() > kMaxBlocks)
+    ctx.fail(n, "rock_mass", fmt::format("the cut gives {} blocks; more than {} blocks in the scene",
+                                         cut.blocks.size(), kMaxBlocks));
+  rm.first_block = raw.size();
+  rm.block_count = cut.blocks.size();
+  rm.joint_length = cut.joint_length;
+  rm.merged_slivers = cut.merged_slivers;
+  rm.dangling_removed = cut.dangling_removed;
+  rm.extended_traces = cut.extended_traces;
+  rm.added_traces = cut.added_traces;
+  rm.collapsed_blocks = cut.collapsed_blocks;
+  rm.area_error = cut.area_error;
+  for (std::size_t k = 0; k < cut.blocks.size(); ++k) {
+    rockmass::Block& c = cut.blocks[k];
+    BlockDescription b;
+    b.name = fmt::format("{}.{}", rm.name, k + 1);
+    b.material = rm.material;
+    b.where = rm.where;
+    std::vector<bool> on_boundary;
+    for (std::size_t e = 0; e < c.polygon.size(); ++e) {
+      b.polygon.push_back({c.polygon[e][0], c.polygon[e][1]});
+      on_boundary.push_back(c.edge_tag[e] == rockmass::kBoundaryTag);
+      b.edge_joint_set.push_back(on_boundary.back() ? rm.boundary_joint_set : c.edge_tag[e]);
+    }
+    rm.edge_on_boundary.push_back(std::move(on_boundary));
+    raw.push_back({std::move(b), "rock_mass", n, region});
+  }
+  s.rock_mass = std::move(rm);
+}
+
+}  // namespace rheodda::scene::detail

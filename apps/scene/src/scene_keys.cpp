@@ -1,0 +1,72 @@
+// The valid keys of every map of a scene file and the schema that publishes them.
+#include "scene_keys.hpp"
+
+#include "rheodda/scene/loader.hpp"
+
+namespace rheodda::scene {
+namespace detail {
+
+// The valid keys of every map of a scene file, each list defined once: the
+// MapReader of that map reads it through the list, and scene_schema() publishes
+// the same lists, so what the loader accepts and what the schema (and the test of
+// docs/scene-format.md against it) says cannot diverge. Order: that of the docs.
+namespace keys {
+const std::vector<std::string> top{"title", "units", "analysis", "materials", "joint_sets",
+                                   "blocks", "rock_mass", "fixed_points", "loads", "measurement_points"};
+const std::vector<std::string> units{"length", "force", "time"};
+const std::vector<std::string> analysis{
+    "type", "duration", "dt", "dt_growth", "dt_cut", "max_cuts", "max_displacement_ratio", "settle",
+    "dynamic_ratio", "time_integration", "scheme", "creep_tolerance", "step_tolerance",
+    "step_extrapolation", "dt_max", "creep_restart_on_contact_change", "penalty",
+    "shear_normal_ratio", "search_factor", "angle_tolerance", "penetration_ratio",
+    "stick_keeps_force", "friction_tolerance", "force_resolution", "max_flips", "max_refinements",
+    "penalty_raise", "penalty_max_factor", "open_close_limit", "fixed_point_stiffness", "solver", "solver_tolerance",
+    "solver_max_iterations", "solver_iterate_tolerance", "contact_solver", "contact_residual_tolerance", "output_interval", "max_travel_ratio", "max_output_size", "gravity"};
+const std::vector<std::string> settle{"until", "dt", "max_displacement_ratio", "type", "collapse_dt", "gravity_ramp",
+                                      "rest_tolerance", "open_close_limit"};
+const std::vector<std::string> material{"density", "young_modulus", "poisson_ratio", "plane", "damping_ratio"};
+const std::vector<std::string> joint_set{"friction_angle", "cohesion", "tensile_strength",
+                                         "residual_friction_angle", "residual_cohesion", "normal_stiffness", "shear_stiffness", "restitution", "law", "record"};
+/// And the parameters of the law named, which only the registry knows.
+const std::vector<std::string> law{"name"};
+const std::vector<std::string> block{"name", "material", "polygon", "rectangle", "grid",
+                                     "joint_set", "edge_joint_sets", "fixed", "initial_stress",
+                                     "initial_velocity"};
+const std::vector<std::string> rectangle{"x", "y", "width", "height", "angle"};
+const std::vector<std::string> grid{"x", "y", "width", "height", "columns", "rows", "angle"};
+const std::vector<std::string> rock_mass{"name", "material", "region", "holes", "boundary_joint_set",
+                                         "seed", "sliver_area", "joint_sets", "traces"};
+const std::vector<std::string> rock_mass_joint_set{"joint_set", "dip", "dip_direction", "spacing",
+                                                   "spacing_distribution", "spacing_deviation",
+                                                   "trace_length", "gap", "dip_spread", "origin"};
+const std::vector<std::string> rock_mass_trace{"joint_set", "from", "to"};
+const std::vector<std::string> fixed_point{"point", "block"};
+const std::vector<std::string> load{"point", "block", "force", "history"};
+const std::vector<std::string> measurement_point{"name", "point", "block"};
+}  // namespace keys
+
+}  // namespace detail
+
+const std::vector<SceneMapKeys>& scene_schema() {
+  static const std::vector<SceneMapKeys> schema{
+      {"", detail::keys::top},
+      {"units", detail::keys::units},
+      {"analysis", detail::keys::analysis},
+      {"analysis.settle", detail::keys::settle},
+      {"materials.*", detail::keys::material},
+      {"joint_sets.*", detail::keys::joint_set},
+      {"joint_sets.*.law", detail::keys::law},
+      {"blocks[*]", detail::keys::block},
+      {"blocks[*].rectangle", detail::keys::rectangle},
+      {"blocks[*].grid", detail::keys::grid},
+      {"rock_mass", detail::keys::rock_mass},
+      {"rock_mass.joint_sets[*]", detail::keys::rock_mass_joint_set},
+      {"rock_mass.traces[*]", detail::keys::rock_mass_trace},
+      {"fixed_points[*]", detail::keys::fixed_point},
+      {"loads[*]", detail::keys::load},
+      {"measurement_points[*]", detail::keys::measurement_point},
+  };
+  return schema;
+}
+
+}  // namespace rheodda::scene

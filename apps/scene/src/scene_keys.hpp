@@ -1,0 +1,24 @@
+// The valid keys of every map of a scene file (scene_keys.cpp).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace rheodda::scene::detail::keys {
+extern const std::vector<std::string> top;
+extern const std::vector<std::string> units;
+extern const std::vector<std::string> analysis;
+extern const std::vector<std::string> settle;
+extern const std::vector<std::string> material;
+extern const std::vector<std::string> joint_set;
+extern const std::vector<std::string> law;
+extern const std::vector<std::string> block;
+extern const std::vector<std::string> rectangle;
+extern const std::vector<std::string> grid;
+extern const std::vector<std::string> rock_mass;
+extern const std::vector<std::string> rock_mass_joint_set;
+extern const std::vector<std::string> rock_mass_trace;
+extern const std::vector<std::string> fixed_point;
+extern const std::vector<std::string> load;
+extern const std::vector<std::string> measurement_point;
+}  // namespace rheodda::scene::detail::keys

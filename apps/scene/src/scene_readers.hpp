@@ -1,0 +1,46 @@
+// The readers of a scene file's sections, one file each (read_*.cpp), and the
+// geometry checks (scene_checks.cpp); parse_scene (loader.cpp) calls them in order.
+// Internal to the loader; not installed.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "rheodda/scene/scene.hpp"
+#include "scene_keys.hpp"
+#include "yaml_reader.hpp"
+
+namespace rheodda::scene::detail {
+
+/// A block entry before the geometry checks: one or many blocks (grid).
+struct RawBlock {
+  BlockDescription block;
+  std::string path;
+  YAML::Node node;
+  YAML::Node geometry_node;
+};
+
+/// `units:` (read_analysis.cpp).
+Units read_units(const Ctx& ctx, const YAML::Node& n);
+/// `analysis:` with its `settle:` (read_analysis.cpp).
+Analysis read_analysis(const Ctx& ctx, const YAML::Node& n);
+/// `materials:` (read_joint_sets.cpp).
+std::vector<Material> read_materials(const Ctx& ctx, const YAML::Node& n, bool dynamic_steps);
+/// A joint set's `law:` (read_joint_sets.cpp).
+LawChoice read_law(const Ctx& ctx, const YAML::Node& n, const std::string& path);
+/// `joint_sets:` (read_joint_sets.cpp).
+std::vector<JointSetDescription> read_joint_sets(const Ctx& ctx, const YAML::Node& n, bool dynamic_steps);
+/// `blocks:` (read_blocks.cpp).
+void read_blocks(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, std::vector<RawBlock>& raw);
+/// `rock_mass:` (read_rock_mass.cpp).
+void read_rock_mass(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, std::vector<RawBlock>& raw);
+/// Tolerance for "same place": a billionth of the model size [length] (read_points.cpp).
+double geometry_tolerance(const std::vector<BlockDescription>& blocks);
+/// `{point, block}` of a fixed point, load or measurement point (read_points.cpp).
+BlockPoint read_block_point(const Ctx& ctx, const MapReader& m, const SceneDescription& s, double tol);
+/// `fixed_points:`, `loads:`, `measurement_points:` (read_points.cpp).
+void read_points(const Ctx& ctx, const MapReader& top, SceneDescription& s);
+/// Every block a simple polygon, no two overlapping, edges' joint sets (scene_checks.cpp).
+void check_geometry(const Ctx& ctx, std::vector<RawBlock>& raw, SceneDescription& s);
+
+}  // namespace rheodda::scene::detail
