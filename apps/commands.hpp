@@ -57,6 +57,9 @@ inline void require_readable(const std::string& path) {
 /// `rheodda law list`, `rheodda law curve`.
 void add_law_commands(CLI::App& app);
 
+/// `rheodda keys` (apps/keys_command.cpp): the declared scene keys, as text or Markdown tables.
+void add_keys_command(CLI::App& app);
+
 /// `rheodda check` (apps/check_command.cpp): a scene validated and described; with
 /// --refine, its step controls measured by a refinement study.
 void add_check_command(CLI::App& app);

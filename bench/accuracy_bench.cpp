@@ -39,6 +39,7 @@
 #include "rheodda/laws/seed_table1.hpp"
 #include "rheodda/scene/build.hpp"
 #include "rheodda/scene/loader.hpp"
+#include "two_block.hpp"  // tests/models
 
 using namespace rheodda;
 
@@ -71,27 +72,13 @@ double staged_exact(double tau, double E1, double E2, double eta1, double eta2, 
   return tau * J(t) + s * (I(t - kStage2) - I(t - kRamp2)) + s3 * (I(t - kStage3) - I(t - kRamp3));
 }
 
-std::vector<core::Vec2> rect(double x0, double y0, double x1, double y1) {
-  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-}
-
 /// Block A (100 x 100 mm) on block B (fixed); normal load sigma w and shear load
 /// tau(t) w on A at the joint line (bench/shear_creep_table1.cpp). `staged`:
 /// tau, ramp to 2 tau over kStage2-kRamp2, ramp to 0 over kStage3-kRamp3.
 core::Model scene(const Row& r, double dt, bool staged, double tolerance) {
   const double w = kWidth;
-  core::Model m;
-  m.materials[0].young_modulus = 1e7;  // blocks 1e6 x stiffer than the joint [MPa]
-  m.materials[0].density = 1e-12;      // no inertia at creep time scales
-  m.settings.dt = dt;
-  m.settings.dynamic_ratio = 0.0;  // static analysis
-  m.settings.gravity = {0.0, 0.0};
+  core::Model m = models::two_block_model(w, dt);  // tests/models/two_block.hpp
   m.settings.creep_tolerance = tolerance;
-  core::BlockDef b, a;
-  b.vertices = rect(-w, -w, 2 * w, 0.0);
-  a.vertices = rect(0.0, 0.0, w, w);
-  m.blocks = {b, a};
-  for (int k = 0; k < 3; ++k) m.fixed_points.push_back({0, b.vertices[k]});
   m.point_loads.push_back({1, {0.5 * w, 0.0}, {{0.0, {0.0, -r.sigma * w}}}});
   std::vector<core::LoadSample> shear{{0.0, {r.tau * w, 0.0}}};
   if (staged) {
@@ -103,14 +90,7 @@ core::Model scene(const Row& r, double dt, bool staged, double tolerance) {
   return m;
 }
 
-/// Joint's relative shear displacement along the shear load: mean over A's base contacts [mm].
-double joint_shear(const contact::ContactSystem& cs) {
-  double sum = 0.0;
-  int n = 0;
-  for (const auto& c : cs.contacts())
-    if (c.key.vblock == 1) sum -= c.shear_displacement, ++n;
-  return n ? sum / n : 0.0;
-}
+using models::joint_shear;  // mean over A's base contacts [mm]
 
 struct Result {
   long steps = 0;

@@ -55,7 +55,7 @@
 #include "rheodda/laws/history.hpp"
 #include "rheodda/laws/registry.hpp"
 #include "rheodda/laws/seed_table1.hpp"
-#include "two_block.hpp"
+#include "two_block.hpp"  // tests/models
 
 using namespace rheodda;
 
@@ -113,7 +113,7 @@ DdaRun dda_run(bool relaxation, laws::Scheme scheme, double x, double y) {
   const laws::SeedTable1Row& row = laws::kSeedTable1[0];
   const double w = kWidth, dt = x * kEta2 / kE2, k = y * kE2;  // [mm], [h], [MPa/mm]
   const double delta = row.tau / k, closure = row.sigma / kNormalStiffness;  // [mm]
-  core::Model m = bench::two_block_model(w, dt);
+  core::Model m = models::two_block_model(w, dt);
   if (relaxation) {
     // A fixed point of stiffness K loaded by K u imposes u through K (core/model.hpp):
     // A's joint line is held at (delta, -closure); K >> k w, so the joint sees k.
@@ -140,30 +140,19 @@ DdaRun dda_run(bool relaxation, laws::Scheme scheme, double x, double y) {
   core::ContactAdapter adapter(contacts);
   core::Engine engine(m, adapter);
   DdaRun run;
+  models::GrowthWatch watch;
   double scale = relaxation ? k * delta : 0.0;  // stress the growth is relative to [MPa]
-  double previous = 0.0;  // joint shear force of the previous step [N/mm]
   for (int n = 1; n <= kDdaSteps; ++n) {
     engine.step();
-    double largest = 0.0, sum = 0.0, length = 0.0;  // [MPa], [N/mm], [mm]
-    for (const contact::Contact& c : contacts.contacts())
-      if (c.key.vblock == 1) {
-        largest = std::max(largest, std::abs(c.shear_force) / c.length);
-        sum -= c.shear_force;  // along +x (B's top edge runs in -x)
-        length += c.length;
-      }
-    if (!relaxation && n == 1) scale = largest;
+    const models::JointForces f = models::joint_forces(contacts);
+    if (!relaxation && n == 1) scale = f.largest_stress;
     if (relaxation)
-      run.end_error =
-          std::abs(sum / length / (k * delta) / relaxation_closed_form(y, engine.time()) - 1.0);
-    if (largest > kStop * scale) {
-      run.growth = largest / scale;
-      run.diverged_at = n;
-      run.amplification = std::abs(sum / previous);
-      return run;
-    }
-    previous = sum;
-    if (n > kDdaSteps / 2) run.growth = std::max(run.growth, largest / scale);
+      run.end_error = std::abs(f.shear_force / f.length / (k * delta) / relaxation_closed_form(y, engine.time()) - 1.0);
+    if (watch.diverged(n, kDdaSteps, f, scale, kStop)) break;
   }
+  run.growth = watch.growth;
+  run.diverged_at = watch.diverged_at;
+  run.amplification = watch.amplification;
   return run;
 }
 

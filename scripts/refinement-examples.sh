@@ -6,11 +6,7 @@
 # failure time of each level. Puts the table into docs/speed-accuracy.md between
 # the refinement-examples markers. About 25 min on 2 cores.
 # Usage: scripts/refinement-examples.sh   (uses $RHEODDA_BUILD_DIR or build/)
-set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${RHEODDA_BUILD_DIR:-$root/build}"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # strict mode; root, build, work (removed at exit)
 # example | refine options (levels, --until: before a joint fails, where that is the headline)
 # (paths from the repository's root: the shipped examples, then the bench scenes
 # of issue "Steps that converge": the brick wall, the incline drop undamped and

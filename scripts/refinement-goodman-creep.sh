@@ -10,11 +10,7 @@
 # docs/speed-accuracy.md between the refinement-goodman-creep markers. About
 # 40 s on 2 cores.
 # Usage: scripts/refinement-goodman-creep.sh   (uses $RHEODDA_BUILD_DIR or build/)
-set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${RHEODDA_BUILD_DIR:-$root/build}"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # strict mode; root, build, work (removed at exit)
 times=(1 2 5 10 20)
 {
   echo "scene: $root/bench/scenes/goodman-toppling-seed-steps.yaml"

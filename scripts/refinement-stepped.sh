@@ -11,11 +11,7 @@
 # its energy-balance residual, and puts it between the refinement-stepped
 # markers of docs/notes/contact-solves.md. About 3 min on 2 cores.
 # Usage: scripts/refinement-stepped.sh   (uses $RHEODDA_BUILD_DIR or build/)
-set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${RHEODDA_BUILD_DIR:-$root/build}"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # strict mode; root, build, work (removed at exit)
 dts=(0.005 0.002 0.001 0.0005 0.00025 0.0001 0.00005)
 {
   echo "scene: $root/bench/scenes/stepped-toppling.yaml"

@@ -6,11 +6,7 @@
 # docs/speed-accuracy.md between the refinement-toppling-creep markers. About
 # 10 s on 2 cores.
 # Usage: scripts/refinement-toppling-creep.sh   (uses $RHEODDA_BUILD_DIR or build/)
-set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${RHEODDA_BUILD_DIR:-$root/build}"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # strict mode; root, build, work (removed at exit)
 dts=(0.5 0.25 0.125 0.0625 0.03125 0.015625 0.0078125)
 {
   echo "scene: $root/examples/goodman-toppling-creep.yaml"

@@ -11,11 +11,7 @@
 # mechanism. Puts the table into docs/engine.md between the static-mechanisms
 # markers. About 10 s.
 # Usage: scripts/static-mechanisms.sh   (uses $RHEODDA_BUILD_DIR or build/)
-set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${RHEODDA_BUILD_DIR:-$root/build}"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # strict mode; root, build, work (removed at exit)
 ex="$root/examples"
 # variant NAME SOURCE SED-SCRIPT: a copy of SOURCE edited by SED-SCRIPT
 variant() { sed -e "$3" "$2" >"$work/$1.yaml"; echo "$work/$1.yaml"; }

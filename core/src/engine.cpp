@@ -13,18 +13,16 @@
 
 #include "block_terms.hpp"
 #include "engine_impl.hpp"
+#include "rheodda/core/defaults.hpp"
 
 namespace rheodda::core {
 
 void Engine::Impl::initialise() {
   const Settings& s = model.settings;
-  double e_max = 0.0;
-  for (const auto& mat : model.materials) {
-    elastic.push_back(elastic_matrix(mat));
-    e_max = std::max(e_max, mat.young_modulus);
-  }
-  // Fixed points: Shi's code uses a penalty of the order of 10-100 E (dda.md).
-  fixed_k = s.fixed_point_stiffness > 0.0 ? s.fixed_point_stiffness : 100.0 * e_max;
+  for (const auto& mat : model.materials) elastic.push_back(elastic_matrix(mat));
+  // Fixed points: Shi's code uses a penalty of the order of 10-100 E (dda.md; defaults.hpp).
+  fixed_k = s.fixed_point_stiffness > 0.0 ? s.fixed_point_stiffness
+                                          : default_fixed_point_stiffness(largest_young_modulus(model.materials));
 
   Eigen::AlignedBox2d box;
   st.blocks.resize(model.blocks.size());
@@ -48,7 +46,7 @@ void Engine::Impl::initialise() {
         0.0, 0.0, 0.0;
     for (const auto& v : b.vertices) box.extend(v);
   }
-  w0 = 0.5 * std::max(box.sizes().x(), box.sizes().y());
+  w0 = core::half_model_size(box.sizes().x(), box.sizes().y());
   {
     // Median block size sqrt(area) [length]: the contact search never reaches
     // less than kSearchFloor of it (docs/engine.md, "Contact search reach").

@@ -20,6 +20,7 @@
 #include <rheodda/scene/assemble.hpp>
 #include <rheodda/scene/build.hpp>
 #include <rheodda/scene/describe.hpp>
+#include <rheodda/scene/keys.hpp>
 #include <rheodda/scene/loader.hpp>
 #include <rheodda/scene/output.hpp>
 
@@ -476,6 +477,31 @@ py::dict units_dict(const scene::Units& u) {
   return d;
 }
 
+/// The declared keys of one map (rheodda/scene/keys.hpp) with their values: None where a
+/// key does not apply, a nested dict for a sub-map (`settle`), None for one not given.
+py::object analysis_dict(const scene::Analysis& a, const std::string& map) {
+  py::dict d;
+  bool applies = false;
+  for (const scene::KeySpec& k : scene::analysis_keys()) {
+    if (k.map != map) continue;
+    py::object v = k.type == scene::KeyType::map
+                       ? analysis_dict(a, map + "." + k.name)
+                       : std::visit(
+                             [](const auto& x) -> py::object {
+                               if constexpr (std::is_same_v<std::decay_t<decltype(x)>, std::monostate>)
+                                 return py::none();
+                               else if constexpr (std::is_same_v<std::decay_t<decltype(x)>, scene::Point>)
+                                 return py::make_tuple(x[0], x[1]);
+                               else
+                                 return py::cast(x);
+                             },
+                             k.get(a));
+    applies = applies || !v.is_none();
+    d[py::str(k.name)] = v;
+  }
+  return applies ? py::object(d) : py::object(py::none());
+}
+
 }  // namespace
 
 void bind_simulation(py::module_& m) {
@@ -487,6 +513,11 @@ void bind_simulation(py::module_& m) {
       .def_property_readonly("units", [](const Scene& s) { return units_dict(s.description.units); })
       .def_property_readonly("duration", [](const Scene& s) { return s.description.analysis.duration; })
       .def_property_readonly("dt", [](const Scene& s) { return s.description.analysis.dt; })
+      .def_property_readonly(
+          "analysis", [](const Scene& s) { return analysis_dict(s.description.analysis, "analysis"); },
+          "Every `analysis:` key with its value, defaults filled in, by the scene file's names (`settle` a "
+          "dict, or None without a settling stage); the same keys and values as summary.json's inputs "
+          "(docs/scene-format.md). A copy: change a scene through its text or scene_from_dict.")
       .def_property_readonly("joint_sets",
                              [](const Scene& s) {
                                std::vector<std::string> r;

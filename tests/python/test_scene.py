@@ -55,6 +55,31 @@ def test_dict_scene_gives_the_yaml_scene_history_to_the_last_digit(yaml_scene):
     assert np.max(np.abs(d - exact) / exact) < 2e-5
 
 
+def test_scene_analysis_holds_every_declared_key_as_summary_json_does(yaml_scene, rheodda_binary, tmp_path):
+    # The keys are declared once (apps/scene/src/keys.cpp): `rheodda keys` lists them,
+    # Scene.analysis and summary.json's inputs hold each with the same value.
+    listed = subprocess.run([rheodda_binary, "keys"], capture_output=True, text=True, check=True).stdout
+    declared = [line.split(" ", 1)[0] for line in listed.splitlines()]
+    analysis = yaml_scene.analysis
+    assert [k for k in declared if k.startswith("analysis.") and k.count(".") == 1] == [
+        "analysis." + k for k in analysis
+    ]
+    assert analysis["dt"] == yaml_scene.dt and analysis["duration"] == yaml_scene.duration
+    assert analysis["type"] == "static" and analysis["settle"] is None
+    assert analysis["gravity"] == (0.0, 0.0)
+    few_frames = copy.deepcopy(SHEAR_TEST)
+    few_frames["analysis"]["output_interval"] = 100
+    few_frames["analysis"]["settle"] = {"until": 1.0, "dt": 0.1}
+    scene = rheodda.scene_from_dict(few_frames)
+    path = tmp_path / "scene.yaml"
+    path.write_text(scene.text)
+    subprocess.run([rheodda_binary, "run", str(path), "-o", str(tmp_path / "out")], capture_output=True, check=True)
+    inputs = json.loads((tmp_path / "out" / "summary.json").read_text())["inputs"]["analysis"]
+    expected = {k: list(v) if isinstance(v, tuple) else v for k, v in scene.analysis.items()}
+    assert inputs == expected
+    assert scene.analysis["settle"]["until"] == 1.0 and scene.analysis["settle"]["type"] == "static"
+
+
 def test_history_equals_rheodda_run(tmp_path):
     few_frames = copy.deepcopy(SHEAR_TEST)
     few_frames["analysis"]["output_interval"] = 50  # each frame is written and synced: keep the test fast

@@ -1,4 +1,6 @@
 #include "rheodda/scene/describe.hpp"
+
+#include "rheodda/scene/keys.hpp"
 #include "rheodda/scene/memory.hpp"
 
 #include <fmt/format.h>
@@ -63,16 +65,26 @@ std::string describe_scene(const SceneDescription& s) {
 
   line(fmt::format("scene: {} ({})", s.title, s.file));
   line(fmt::format("units: length {}, force {}, time {}; stress {}", u.length, u.force, u.time, stress));
-  line(fmt::format("analysis: {}, duration {:g} {}, dt {:g} {} (max_cuts {}, dt_cut {:g}), dynamic_ratio {:g}, "
-                   "time_integration {}",
-                   analysis_type_name(a.type), a.duration, u.time, a.dt, u.time, a.max_cuts, a.dt_cut,
-                   a.dynamic_ratio, time_integration_name(a.time_integration)));
-  line(fmt::format("  gravity ({:g}, {:g}) {}/{}^2, scheme {}, solver {}", a.gravity[0], a.gravity[1],
-                   u.length, u.time, scheme_text(a), solver_text(s)));
-  line(fmt::format("  max_displacement_ratio {:g}, penalty {:g} {}, shear_normal_ratio {:g}, "
-                   "fixed_point_stiffness {:g} {}/{}",
-                   a.max_displacement_ratio, a.penalty, stress, a.shear_normal_ratio,
-                   a.fixed_point_stiffness, u.force, u.length));
+  // Every declared key with its value (keys.hpp), wrapped; what they add up to follows.
+  std::string settings = "analysis:";
+  std::size_t width = settings.size();
+  for (const KeySpec& k : analysis_keys()) {
+    if (k.type == KeyType::map) continue;
+    if (k.map != "analysis" && !a.settle) continue;
+    const std::string name = k.map == "analysis" ? k.name : k.map.substr(std::string("analysis.").size()) + "." + k.name;
+    const std::string item = fmt::format(" {} {}", name, key_value_text(k, a, u));
+    if (width + item.size() > 100) {
+      settings += ",\n ";
+      width = 1;
+    } else if (width > std::string("analysis:").size()) {
+      settings += ",";
+      ++width;
+    }
+    settings += item;
+    width += item.size();
+  }
+  line(settings);
+  line(fmt::format("  solver {}", solver_text(s)));
   if (a.contact_solver == ContactSolverKind::newton)
     line(fmt::format("  contact_solver newton: open-close iterates accepted when the residual of the step's equations "
                      "is at most {:g} of the contact forces (docs/contacts.md, \"Contact solves\")",

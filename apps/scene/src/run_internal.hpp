@@ -7,6 +7,8 @@
 // (summary.json, RunResult's totals, the end-of-run warnings).
 #pragma once
 
+#include "rheodda/scene/describe.hpp"
+
 #include <chrono>
 #include <cstdint>
 #include <stdexcept>
@@ -86,9 +88,7 @@ struct Run {
   std::size_t next_output(double t) const;
 };
 
-// scene_json.cpp
-/// The scene as summary.json's "inputs" (one line of JSON).
-std::string scene_json_text(const SceneDescription& s);
+// scene_json.cpp: scene_json_text (rheodda/scene/describe.hpp).
 
 // run_guards.cpp
 /// Fails early when the run will not fit in memory (docs/performance.md, "Memory").

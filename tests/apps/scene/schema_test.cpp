@@ -23,6 +23,8 @@
 
 #include "../test_support.hpp"
 #include "rheodda/laws/registry.hpp"
+#include "rheodda/scene/describe.hpp"
+#include "rheodda/scene/keys.hpp"
 #include "rheodda/scene/loader.hpp"
 
 using namespace rheodda;
@@ -35,6 +37,7 @@ using KeyTables = std::map<std::string, std::set<std::string>>;  ///< map path -
 /// Schema path of the key table of each section of docs/scene-format.md.
 const std::map<std::string, std::string> kSectionPath{
     {"Top level", ""},           {"Units", "units"},           {"analysis", "analysis"},
+    {"analysis.settle", "analysis.settle"},
     {"materials", "materials.*"}, {"joint_sets", "joint_sets.*"}, {"law", "joint_sets.*.law"},
     {"blocks", "blocks[*]"},
     {"rock_mass", "rock_mass"},   {"rock_mass.joint_sets", "rock_mass.joint_sets[*]"},
@@ -224,6 +227,61 @@ BOOST_AUTO_TEST_CASE(the_schema_is_the_list_each_map_refuses_unknown_keys_with) 
     }
   }
   BOOST_TEST(probes.size() == scene::scene_schema().size(), "a probe for a map the schema does not have");
+}
+
+BOOST_AUTO_TEST_CASE(the_docs_key_tables_are_the_declarations) {
+  // docs/scene-format.md holds, between its keys-MAP markers, what `rheodda keys
+  // --markdown MAP` prints (scripts/scene-format-tables.sh writes it).
+  const std::string doc = read_text(source_path("docs/scene-format.md"));
+  for (const std::string map : {"analysis", "analysis.settle"}) {
+    const std::string begin = "<!-- keys-" + map + ":begin -->\n", end = "<!-- keys-" + map + ":end -->";
+    const auto b = doc.find(begin), e = doc.find(end);
+    BOOST_TEST_REQUIRE((b != std::string::npos && e != std::string::npos), "no markers for " << map);
+    BOOST_TEST(doc.substr(b + begin.size(), e - b - begin.size()) == scene::key_table_markdown(map),
+               "docs/scene-format.md's table of " << map << " is not the declarations': run "
+                                                     "scripts/scene-format-tables.sh");
+  }
+}
+
+BOOST_AUTO_TEST_CASE(a_key_declared_once_reaches_the_loader_the_schema_check_summary_and_docs) {
+  // One declaration, nothing else: the key must then be read (with its range and unit
+  // in the message), be in the schema, in `check`'s description, in summary.json's
+  // inputs and in the docs table.
+  static double dummy = 0.5;
+  scene::KeySpec k;
+  k.map = "analysis";
+  k.name = "dummy_tolerance";
+  k.type = scene::KeyType::number;
+  k.unit = "length";
+  k.range = {0.0, true, 1.0, false};
+  k.default_text = "0.5";
+  k.meaning = "a key only this test declares";
+  k.get = [](const scene::Analysis&) -> scene::KeyValue { return dummy; };
+  k.set = [](scene::Analysis&, const scene::KeyValue& v) { dummy = std::get<double>(v); };
+  auto& keys = scene::analysis_keys();
+  keys.push_back(k);
+  struct Undeclare {
+    ~Undeclare() { scene::analysis_keys().pop_back(); }
+  } undeclare;
+
+  const scene::SceneDescription s = scene::parse_scene(with("  duration: 1\n", "  duration: 1\n  dummy_tolerance: 0.25\n"), "dummy.yaml");
+  BOOST_TEST(dummy == 0.25);
+  try {
+    (void)scene::parse_scene(with("  duration: 1\n", "  duration: 1\n  dummy_tolerance: 1.5\n"), "dummy.yaml");
+    BOOST_ERROR("dummy_tolerance: 1.5 was accepted");
+  } catch (const scene::SceneError& e) {
+    BOOST_TEST(e.key() == "analysis.dummy_tolerance");
+    BOOST_TEST(e.message().find("out of range (0, 1] [length]") != std::string::npos, e.what());
+  }
+  bool in_schema = false;
+  for (const auto& m : scene::scene_schema())
+    if (m.path == "analysis")
+      in_schema = std::find(m.keys.begin(), m.keys.end(), "dummy_tolerance") != m.keys.end();
+  BOOST_TEST(in_schema);
+  BOOST_TEST(scene::describe_scene(s).find("dummy_tolerance 0.25 m") != std::string::npos, scene::describe_scene(s));
+  BOOST_TEST(scene::scene_json_text(s).find("\"dummy_tolerance\":0.25") != std::string::npos);
+  BOOST_TEST(scene::key_table_markdown("analysis").find("| `dummy_tolerance` | length | a key only this test declares | 0.5 |") !=
+             std::string::npos);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

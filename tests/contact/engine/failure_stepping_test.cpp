@@ -15,6 +15,7 @@
 #include <memory>
 #include <vector>
 
+#include "two_block.hpp"  // tests/models
 #include "rheodda/contact/contact_system.hpp"
 #include "rheodda/core/contact_adapter.hpp"
 #include "rheodda/core/engine.hpp"
@@ -28,10 +29,6 @@ namespace {
 
 constexpr double kW = 100.0, kSigma = 1.408, kTau = 0.232;  // [mm], [MPa]
 constexpr double kTauRef = 0.2, kTr = 234.0, kR = 3.0;      // [MPa], [h], [-]
-
-std::vector<core::Vec2> rect(double x0, double y0, double x1, double y1) {
-  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-}
 
 struct Run {
   std::vector<double> t, dt;  ///< end time and size of each accepted step [h]
@@ -51,19 +48,9 @@ laws::ParameterValues damage_law(double A = 3.68e-6, double n = 4.0) {
 /// instead of holding tau from t = 0. dt_max [h]: 0, no limit.
 Run run(double dt, double tolerance, double t_end, bool ramp = false, double tau = kTau,
         const laws::ParameterValues& law = damage_law(), double dt_max = 0.0) {
-  core::Model m;
-  m.materials[0].young_modulus = 1e7;
-  m.materials[0].density = 1e-12;
-  m.settings.dt = dt;
+  core::Model m = models::two_block_model(kW, dt);  // tests/models/two_block.hpp
   m.settings.dt_max = dt_max;
-  m.settings.dynamic_ratio = 0.0;
-  m.settings.gravity = {0.0, 0.0};
   m.settings.creep_tolerance = tolerance;
-  core::BlockDef b, a;
-  b.vertices = rect(-kW, -kW, 2 * kW, 0.0);
-  a.vertices = rect(0.0, 0.0, kW, kW);
-  m.blocks = {b, a};
-  for (int k = 0; k < 3; ++k) m.fixed_points.push_back({0, b.vertices[k]});
   m.point_loads.push_back({1, {0.5 * kW, 0.0}, {{0.0, {0.0, -kSigma * kW}}}});
   if (ramp)
     m.point_loads.push_back({1, {0.5 * kW, 0.0}, {{0.0, {0.0, 0.0}}, {200.0, {2 * tau * kW, 0.0}}}});

@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "creep_scene.hpp"
+#include "two_block.hpp"  // tests/models
 #include "rheodda/laws/history.hpp"
 
 using namespace rheodda;
@@ -146,37 +147,27 @@ DdaRun run_dda(Variant variant, laws::Scheme scheme, Point p) {
   core::Engine engine(scene.model, adapter);
 
   DdaRun run;
-  double scale = 0.0;     // stress the growth is relative to [MPa]
-  double previous = 0.0;  // joint shear force (sum over A's base contacts) of the previous step [N/mm]
+  models::GrowthWatch watch;
+  double scale = 0.0;  // stress the growth is relative to [MPa]
   for (int n = 1; n <= kSteps; ++n) {
     engine.step();
-    double largest = 0.0, sum = 0.0, length = 0.0;  // [MPa], [N/mm], [mm]
-    for (const contact::Contact& c : contacts.contacts())
-      if (c.key.vblock == 1) {
-        largest = std::max(largest, std::abs(c.shear_force) / c.length);  // [MPa]
-        sum -= c.shear_force;  // along +x (B's top edge runs in -x)
-        length += c.length;
-      }
+    const models::JointForces f = models::joint_forces(contacts);
     if (variant == Variant::relaxation) {
       scale = k * delta;  // closed-form stress at t = 0+ [MPa]
       const double closed = relaxation_closed_form(p.y, engine.time());
-      run.end_error = std::abs(sum / length / (k * delta) / closed - 1.0);
+      run.end_error = std::abs(f.shear_force / f.length / (k * delta) / closed - 1.0);
     } else {
-      if (n == 1) scale = largest;
+      if (n == 1) scale = f.largest_stress;
       // Kelvin joint's creep curve d(t) = tau/k + tau/E2 (1 - exp(-E2 t/eta2))
       // (docs/rheology-in-dda.md, "Units"; the Kelvin part of the seed's eqs. 20-21).
       const double closed = kRow.tau / k + law->displacement_closed_form(kRow.tau, engine.time());
       run.creep_error = std::max(run.creep_error, std::abs(joint_shear(contacts) - closed) / closed);
     }
-    if (largest > kStop * scale) {
-      run.growth = largest / scale;
-      run.diverged_at = n;
-      run.amplification = std::abs(sum / previous);
-      return run;
-    }
-    previous = sum;
-    if (n > kSteps / 2) run.growth = std::max(run.growth, largest / scale);
+    if (watch.diverged(n, kSteps, f, scale, kStop)) break;
   }
+  run.growth = watch.growth;
+  run.diverged_at = watch.diverged_at;
+  run.amplification = watch.amplification;
   return run;
 }
 

@@ -21,6 +21,7 @@
 #include <memory>
 #include <numbers>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "rheodda/laws/contact_rheology.hpp"
@@ -36,6 +37,23 @@ inline double restitution_damping_ratio(double e) {
   const double l = std::log(e);
   return -l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
 }
+
+/// A joint set refused by the contact layer (ContactSystem's constructor): which one,
+/// as data (its index in the list given, and the key at fault), so that a reader can
+/// point at its entry in a scene file without parsing the message.
+class JointSetError : public std::invalid_argument {
+ public:
+  JointSetError(std::size_t index, std::string name, std::string key, const std::string& message)
+      : std::invalid_argument("joint set " + std::to_string(index) + " '" + name + "': " + message),
+        index_(index),
+        key_(std::move(key)) {}
+  std::size_t joint_set() const { return index_; }  ///< index into the joint sets given
+  const std::string& key() const { return key_; }    ///< e.g. "cohesion", "shear_stiffness"
+
+ private:
+  std::size_t index_;
+  std::string key_;
+};
 
 /// Mechanical properties of one family of joints.
 struct JointSet {

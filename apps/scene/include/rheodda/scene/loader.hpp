@@ -38,6 +38,6 @@ struct SceneMapKeys {
 /// schema cannot drift from what is read; tests check docs/scene-format.md against it.
 /// A law map (`joint_sets.*.law`) also takes the parameters of its law, by the names
 /// of laws::LawRegistry (`rheodda law list`); they are not listed here.
-const std::vector<SceneMapKeys>& scene_schema();
+std::vector<SceneMapKeys> scene_schema();
 
 }  // namespace rheodda::scene
