@@ -20,7 +20,7 @@ What it does, each step idempotent (a second run changes nothing):
    - `docs/X.md" MARKER` and `docs/X.md MARKER` (the splice calls of the report
      scripts, scripts/splice-doc.sh): to the page that holds the generated
      block <!-- MARKER:begin --> now (MARKERS);
-   - any other `docs/X.md`: to PAGES[X].
+   - any other `docs/X.md`, and `"docs" / "X.md"` (pathlib): to PAGES[X].
 3. Relative Markdown links ([text](target), ![alt](img/...)) in Markdown files
    that no longer resolve are resolved again: from the page's old place in docs/
    (a moved page's `img/x.png` becomes `../img/x.png`) and through PAGES (and
@@ -116,6 +116,8 @@ OLD = "|".join(re.escape(p[:-3]) for p in sorted(PAGES, key=len, reverse=True))
 PATH = re.compile(r"(?<![A-Za-z0-9_.-])docs/(" + OLD + r")\.md(?![A-Za-z0-9_-])")
 TITLE = re.compile(r'(,?\s*(?:section\s+)?\(?)"([^"\n]+)"')
 MARKER = re.compile(r'("?\s+"?)([a-z0-9][a-z0-9-]*)\b')
+# Python's pathlib spelling: ROOT / "docs" / "outputs.md"
+PYPATH = re.compile(r'(["\'])docs\1(\s*/\s*)(["\'])(' + OLD + r')\.md\3')
 LINK = re.compile(r"(!?\[[^\]]*\]\()([^)\s]+)(\))")
 
 
@@ -151,7 +153,13 @@ def rewrite_paths(text):
             if k and (page, k.group(2)) in MARKERS:
                 new = MARKERS[(page, k.group(2))]
         return "docs/" + new
-    return PATH.sub(one, text)
+    text = PATH.sub(one, text)
+
+    def py(m):
+        q, sep, q2 = m.group(1), m.group(2), m.group(3)
+        parts = PAGES[m.group(4) + ".md"].split("/")
+        return q + "docs" + q + sep + sep.join(q2 + p + q2 for p in parts)
+    return PYPATH.sub(py, text)
 
 
 def rewrite_links(path, text):

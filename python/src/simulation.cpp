@@ -479,7 +479,7 @@ py::dict units_dict(const scene::Units& u) {
 }  // namespace
 
 void bind_simulation(py::module_& m) {
-  py::class_<Scene>(m, "Scene", "A validated scene (docs/scene-format.md): rheodda.load_scene(path) or "
+  py::class_<Scene>(m, "Scene", "A validated scene (docs/reference/scene-format.md): rheodda.load_scene(path) or "
                                 "rheodda.parse_scene(text) or rheodda.scene_from_dict(d)")
       .def_property_readonly("file", [](const Scene& s) { return s.description.file; })
       .def_property_readonly("title", [](const Scene& s) { return s.description.title; })

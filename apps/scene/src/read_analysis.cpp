@@ -1,4 +1,4 @@
-// The `units:` and `analysis:` sections of a scene file (docs/scene-format.md).
+// The `units:` and `analysis:` sections of a scene file (docs/reference/scene-format.md).
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
@@ -45,10 +45,10 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   num("dt_cut", a.dt_cut, {0.0, true, 1.0, true, ""});
   num("max_displacement_ratio", a.max_displacement_ratio, {0.0, true, 1.0, false, ""});
   if (YAML::Node v = m.find("settle"); v.IsDefined()) {
-    // The settling stage (docs/engine.md, "Settling stage").
+    // The settling stage (docs/reference/engine.md, "Settling stage").
     MapReader sm(ctx, v, m.child("settle"), keys::settle);
     Analysis::Settle st;
-    // A stage that ends at rest (docs/engine.md, "Dynamic stages") needs no
+    // A stage that ends at rest (docs/reference/engine.md, "Dynamic stages") needs no
     // length: `until` is then its longest, by default the analysis's duration.
     YAML::Node rest = sm.find("rest_tolerance");
     YAML::Node until = rest.IsDefined() ? sm.find("until") : sm.required("until", "end of the settling stage [time]");
@@ -78,7 +78,7 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
     if (YAML::Node g = sm.find("max_displacement_ratio"); g.IsDefined())
       st.max_displacement_ratio = number(ctx, g, sm.child("max_displacement_ratio"), {0.0, true, 1.0, false, ""});
     if (YAML::Node t = sm.find("type"); t.IsDefined()) {
-      // A dynamic settling stage in a static analysis (docs/engine.md, "Settling stage").
+      // A dynamic settling stage in a static analysis (docs/reference/engine.md, "Settling stage").
       st.dynamic = choice(ctx, t, sm.child("type"), {"static", "dynamic"}) == "dynamic";
       if (!st.dynamic && a.type == AnalysisType::dynamic_analysis)
         ctx.fail(t, sm.child("type"),
@@ -86,7 +86,7 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
                  "is not modelled");
     }
     if (YAML::Node c = sm.find("collapse_dt"); c.IsDefined()) {
-      // Collapse stages (docs/engine.md, "Collapse stages").
+      // Collapse stages (docs/reference/engine.md, "Collapse stages").
       st.collapse_dt = number(ctx, c, sm.child("collapse_dt"), positive("time"));
       if (!st.dynamic || a.type != AnalysisType::static_analysis)
         ctx.fail(c, sm.child("collapse_dt"),
@@ -97,7 +97,7 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
                  fmt::format("collapse_dt = {:g} is not below the analysis's dt = {:g}", st.collapse_dt, a.dt));
     }
     if (YAML::Node r = sm.find("gravity_ramp"); r.IsDefined()) {
-      // Gravity ramped up over the stage's start (docs/engine.md, "Gravity ramp").
+      // Gravity ramped up over the stage's start (docs/reference/engine.md, "Gravity ramp").
       st.gravity_ramp = number(ctx, r, sm.child("gravity_ramp"), positive("time"));
       if (st.gravity_ramp > st.until)
         ctx.fail(r, sm.child("gravity_ramp"),
@@ -179,7 +179,7 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   // Default by analysis type (docs/notes/contact-solves.md, "Stick and slip"): in a dynamic
   // analysis Shi's stick rule ratchets a slope that stands down its friction
   // limit, the more the smaller dt; in a static creep analysis the kept force
-  // makes the creep run depend on dt. With collapse stages (docs/engine.md,
+  // makes the creep run depend on dt. With collapse stages (docs/reference/engine.md,
   // "Collapse stages") the static steps keep the stages' rule: with Shi's rule
   // there, the contacts a stage left sliding stuck in the first static step
   // with their friction dropped, and the slope slid again (measured: a stage
@@ -190,7 +190,7 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
     a.stick_keeps_force = flag(ctx, v, m.child("stick_keeps_force"));
     a.stick_keeps_force_given = true;
   }
-  // The open-close iteration's settings (contact::ContactSettings; docs/contacts.md).
+  // The open-close iteration's settings (contact::ContactSettings; docs/reference/contacts.md).
   num("friction_tolerance", a.friction_tolerance, positive(""));
   num("force_resolution", a.force_resolution, {0.0, false, 1.0, true, ""});
   if (YAML::Node v = m.find("max_flips"); v.IsDefined())
@@ -216,7 +216,7 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
     a.solver_max_iterations = integer(ctx, v, m.child("solver_max_iterations"), 1, 1000000000);
   num("solver_iterate_tolerance", a.solver_iterate_tolerance, {0.0, false, 1.0, true, ""});
   if (YAML::Node v = m.find("contact_solver"); v.IsDefined()) {
-    // docs/contacts.md, "Contact solves".
+    // docs/reference/contacts.md, "Contact solves".
     const std::string name = choice(ctx, v, m.child("contact_solver"), {"open-close", "newton"});
     a.contact_solver = name == "newton" ? ContactSolverKind::newton : ContactSolverKind::open_close;
   }
