@@ -1,5 +1,5 @@
 // Speed-accuracy trade of the creep schemes: error against the closed form vs
-// wall time, per scheme and time step (docs/guide/choosing-step-controls.md).
+// wall time, per scheme and time step (docs/notes/step-controls.md).
 //
 // Cases (units MPa, mm, h; Burgers joints of the seed's Table 1, all four rows):
 //   creep      the seed's two-block shear creep test (Section 4) run by the DDA
@@ -296,7 +296,7 @@ CreepRun run_creep(const scene::BuiltScene& built, const Settled& from, const Co
 /// their leading error; |u(kFine) - u(2 kFine)| bounds what is left to well
 /// below it). Fixed steps are also run with the exponential-linear scheme:
 /// equal errors show that the error is not the creep integration's
-/// (docs/guide/choosing-step-controls.md).
+/// (docs/notes/step-controls.md).
 int toppling(const std::string& path, double t_end) {
   const scene::BuiltScene built = scene::build_scene(scene::load_scene(path));
   const Settled settled = settle(built);

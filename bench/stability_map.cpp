@@ -15,7 +15,7 @@
 // stable for dt E2/eta2 < -ln(1 - 2/(k/E2 + 1)) when k > E2, at any dt when
 // k <= E2; for k >> E2 this is dt < 2 eta2 / (k + E2) (docs/reference/rheology-in-dda.md).
 //
-// With --dda: the DDA spot-check of the map instead (docs/guide/choosing-step-controls.md,
+// With --dda: the DDA spot-check of the map instead (docs/notes/step-controls.md,
 // "DDA spot-check"; the same runs as tests/contact/engine/stability_spot_check_test.cpp):
 // the seed's two-block shear creep test (block A on a fixed block B, Table 1
 // row 1's sigma and tau) run by the DDA engine with a kelvin joint (E2, eta2 as

@@ -114,7 +114,8 @@ SELF = {"scripts/docs-paths.py"}     # holds the map itself
 
 OLD = "|".join(re.escape(p[:-3]) for p in sorted(PAGES, key=len, reverse=True))
 PATH = re.compile(r"(?<![A-Za-z0-9_.-])docs/(" + OLD + r")\.md(?![A-Za-z0-9_-])")
-TITLE = re.compile(r'(,?\s*(?:section\s+)?\(?)"([^"\n]+)"')
+TITLE = re.compile(r'(,?\s*(?:section\s+)?\(?\\?)"([^"]{1,160}?)\\?"')
+NEW = re.compile(r"(?<![A-Za-z0-9_.-])docs/((?:guide|reference|design|notes)/[a-z0-9-]+\.md)(?![A-Za-z0-9_-])")
 MARKER = re.compile(r'("?\s+"?)([a-z0-9][a-z0-9-]*)\b')
 # Python's pathlib spelling: ROOT / "docs" / "outputs.md"
 PYPATH = re.compile(r'(["\'])docs\1(\s*/\s*)(["\'])(' + OLD + r')\.md\3')
@@ -122,6 +123,9 @@ LINK = re.compile(r"(!?\[[^\]]*\]\()([^)\s]+)(\))")
 
 
 def norm(title):
+    """A section title as referred to: a title broken over comment lines
+    ('"Step\n  // doubling"') joined, punctuation and case ignored."""
+    title = re.sub(r"\n\s*(?:///|//|#|\*)?", " ", title)
     return re.sub(r"[^a-z0-9]+", " ", title.lower()).strip()
 
 
@@ -133,6 +137,10 @@ def section_page(page, title):
         if p == page and (norm(s).startswith(t) or t.startswith(norm(s))):
             return new
     return None
+
+
+def headings(path):
+    return [m.group(1) for m in re.finditer(r"^#{1,6}\s+(.*?)\s*$", path.read_text(), re.M)]
 
 
 def slug(title):
@@ -154,6 +162,22 @@ def rewrite_paths(text):
                 new = MARKERS[(page, k.group(2))]
         return "docs/" + new
     text = PATH.sub(one, text)
+
+    def moved(m):
+        """docs/KIND/X.md, "Section" where the section is not on that page but left
+        it for another (SECTIONS): to that page."""
+        page = m.group(1)
+        t = TITLE.match(text[m.end():m.end() + 200])
+        if not t or not (ROOT / "docs" / page).is_file():
+            return m.group(0)
+        if any(norm(h).startswith(norm(t.group(2))) or norm(t.group(2)).startswith(norm(h))
+               for h in headings(ROOT / "docs" / page) if norm(h)):
+            return m.group(0)
+        for old, new in PAGES.items():
+            if new == page and section_page(old, t.group(2)):
+                return "docs/" + section_page(old, t.group(2))
+        return m.group(0)
+    text = NEW.sub(moved, text)
 
     def py(m):
         q, sep, q2 = m.group(1), m.group(2), m.group(3)

@@ -11,7 +11,7 @@
 # g2 0.0005, collapse_dt 5e-5 d down to dt 1/4096 d. Puts a table (block 10 at
 # 1, 5, 10, 20, 50 and 100 d, the level-to-level changes, the stages, steps,
 # wall time) and check's verdict into docs/reference/engine.md between the
-# refinement-collapse-stages markers, and into docs/guide/choosing-step-controls.md ("The seed's
+# refinement-collapse-stages markers, and into docs/notes/step-controls.md ("The seed's
 # slope itself, refined"). About 10 min on 2 cores.
 # Usage: scripts/refinement-collapse-stages.sh   (uses $RHEODDA_BUILD_DIR or build/)
 set -euo pipefail

@@ -7,7 +7,7 @@
 # inertia term took (docs/reference/engine.md, "Mechanisms in static analysis"). Level L0
 # (0.001 / 0.5 d) is left out: its steps fall into the static g2 trap (2.3
 # million steps, 8 minutes for 20 d; docs/reference/contacts.md). Puts the table into
-# docs/guide/choosing-step-controls.md between the refinement-goodman-creep markers. About
+# docs/notes/step-controls.md between the refinement-goodman-creep markers. About
 # 40 s on 2 cores.
 # Usage: scripts/refinement-goodman-creep.sh   (uses $RHEODDA_BUILD_DIR or build/)
 set -euo pipefail

@@ -3,7 +3,7 @@
 # settling stage, analysis.settle) and without the stage: blocks 1 and 10 at
 # 100 d for dt = 1/2 ... 1/128 d, with each run's steps and static inertia
 # share (docs/reference/engine.md, "Mechanisms in static analysis"). Puts the table into
-# docs/guide/choosing-step-controls.md between the refinement-toppling-creep markers. About
+# docs/notes/step-controls.md between the refinement-toppling-creep markers. About
 # 10 s on 2 cores.
 # Usage: scripts/refinement-toppling-creep.sh   (uses $RHEODDA_BUILD_DIR or build/)
 set -euo pipefail

@@ -1,4 +1,4 @@
-// The creep error estimate of adaptive creep stepping (docs/guide/choosing-step-controls.md,
+// The creep error estimate of adaptive creep stepping (docs/reference/step-controls.md,
 // "Adaptive creep stepping") and the retraction of a step whose estimate is
 // too large. The step-start records are those the commit replaced (kept by
 // end_step when begin_step was asked for the estimate), so neither the

@@ -28,7 +28,7 @@ inline double seconds_since(Clock::time_point t0) {
 }
 
 /// Adaptive creep stepping rejects a step whose creep error estimate exceeds
-/// this multiple of Settings::creep_tolerance [-] (docs/guide/choosing-step-controls.md).
+/// this multiple of Settings::creep_tolerance [-] (docs/reference/step-controls.md).
 constexpr double kRejectFactor = 2.0;
 /// Adaptive creep stepping steps onto a damage law's failure when it is within
 /// this many steps (docs/reference/rheology-in-dda.md, "Failure") [-].

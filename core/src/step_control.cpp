@@ -1,4 +1,4 @@
-// Step control (docs/reference/engine.md, "A step"; docs/guide/choosing-step-controls.md): the size
+// Step control (docs/reference/engine.md, "A step"; docs/reference/step-controls.md): the size
 // of each step, cuts after a failed attempt, adaptive creep stepping with its
 // rejections, steps onto a damage law's failure, the settling stage and the
 // collapse stages of a static analysis.
@@ -98,7 +98,7 @@ StepReport Engine::Impl::step(double dt_cap) {
       double err = 0.0;
       if (adaptive) {
         // Reject and redo a step whose creep error estimate exceeds the
-        // tolerance by more than kRejectFactor (docs/guide/choosing-step-controls.md, "Adaptive
+        // tolerance by more than kRejectFactor (docs/reference/step-controls.md, "Adaptive
         // creep stepping"), with the step the estimate asks for: dt 0.9
         // sqrt(tol / err) (local error ~ dt^2), at least dt_cut dt. Never below
         // the first step dt (the control cannot stall on an estimate that does

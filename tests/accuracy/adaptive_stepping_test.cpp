@@ -1,4 +1,4 @@
-// Adaptive creep stepping (Settings::creep_tolerance, docs/guide/choosing-step-controls.md)
+// Adaptive creep stepping (Settings::creep_tolerance, docs/reference/step-controls.md)
 // on the seed's two-block shear creep test (Section 4; Burgers joint of
 // Table 1 row 1; MPa, mm, h) under a staged shear load with unloading:
 // tau from 0 h, ramp to 2 tau over 80-85.5 h, ramp to 0 over 140-143.3 h, 0-200 h.

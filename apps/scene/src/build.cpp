@@ -39,7 +39,7 @@ std::vector<std::string> scene_warnings(const SceneDescription& s) {
       if (largest > limit)
         out.push_back(fmt::format(
             "joint set '{}': the lagged scheme is unstable for steps above {:g} {} with this law and a shear "
-            "stiffness of {:g} (docs/guide/choosing-step-controls.md, \"Stability\"), and {} {:g} {}: give "
+            "stiffness of {:g} (docs/reference/step-controls.md, \"Stability of the lagged scheme\"), and {} {:g} {}: give "
             "analysis.scheme implicit or exponential-linear (or leave it automatic), or {} below the limit",
             js.name, limit, s.units.time, *k, adaptive ? "steps may grow to" : "dt is", largest, s.units.time,
             adaptive ? "dt_max" : "dt"));

@@ -297,7 +297,7 @@ BOOST_AUTO_TEST_CASE(a_static_slide_with_collapse_stages_follows_the_dynamics_an
 }
 
 BOOST_AUTO_TEST_CASE(the_toppling_example_settles_in_its_stage_then_converges_with_its_step_controls) {
-  // docs/reference/engine.md, "Settling stage"; docs/guide/choosing-step-controls.md, "The shipped toppling
+  // docs/reference/engine.md, "Settling stage"; docs/notes/step-controls.md, "The shipped toppling
   // example": examples/goodman-toppling-creep.yaml settles in steps of at most
   // 5e-5 d to 0.01 d, then creeps with dt = 1/32 d. Its steps obey the stage; with
   // every step control halved (the stage's too: dt, g2, the stage's dt and g2) it

@@ -67,7 +67,7 @@ BOOST_AUTO_TEST_CASE(reduced_toppling_study_displacement_falls_with_phi_and_cree
 
   // With the seed's Table 3 Burgers joints at phi = 50 deg, 20 days, on levels L3
   // (g2 1.25e-4, dt 1/16 d) and L2 (2.5e-4, 1/8 d) of the same refinement
-  // (scripts/refinement-goodman-creep.sh, docs/guide/choosing-step-controls.md "The seed's
+  // (scripts/refinement-goodman-creep.sh, docs/notes/step-controls.md "The seed's
   // slope itself, refined": levels L2-L4 lie within 5 % of each other at 10 and
   // 20 d, L3 and L4 up to 4.9 % apart). (Coarser controls do not show the
   // trend: at g2 0.01, dt 0.5 d block 1 is at 0.73 m at 5 d and 0.19 m at 10 d.)

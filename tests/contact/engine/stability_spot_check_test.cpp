@@ -1,4 +1,4 @@
-// DDA spot-check of the stability map (docs/guide/choosing-step-controls.md, "Stability
+// DDA spot-check of the stability map (docs/notes/step-controls.md, "Stability
 // map", "DDA spot-check"). The map is measured on the law alone (a spring k in
 // series with a Kelvin element, held displacement, laws::solve_series_force);
 // here the seed's two-block shear creep test (Section 4, Figure 6; the scene of

@@ -39,7 +39,7 @@ namespace {
 
 /// Running-bond wall of `courses` courses of bricks 0.2 m x 0.1 m, `bricks`
 /// long, on a fixed base; E 5 GPa, nu 0.25, critically damped blocks and
-/// plastic impacts (the damped wall of docs/guide/choosing-step-controls.md, smaller), penalty
+/// plastic impacts (the damped wall of docs/notes/step-controls.md, smaller), penalty
 /// 50 E, stick_keeps_force (a dynamic scene's default), dt and g2 from the level (halved per level). Returns the mean over the
 /// closed contacts of |shear displacement| [m] after 20 ms and counts the
 /// contacts sliding then.

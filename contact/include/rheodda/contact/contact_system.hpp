@@ -206,7 +206,7 @@ class ContactSystem {
   /// begin_step was asked for the creep error): back to the step-start
   /// records, as after abandon_step. Returns false when it cannot.
   bool retract_step();
-  /// Richardson extrapolation for step doubling (docs/guide/choosing-step-controls.md, "Step
+  /// Richardson extrapolation for step doubling (docs/reference/step-controls.md, "Step
   /// doubling"): this system holds the records after two steps of dt/2 and
   /// `coarse` those after one step of dt from the same records. Every
   /// continuous quantity x of the committed records (locking point, forces,

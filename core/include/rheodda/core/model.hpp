@@ -123,14 +123,14 @@ struct Settings {
   double dt_growth = 1.5;        ///< after a cut, each accepted step lets dt grow by this factor,
                                  ///< up to dt [-]; >= 1
   double dt_cut = 0.3;           ///< factor applied to dt when a step is cut [-]; in (0, 1)
-  double creep_tolerance = 0.0;  ///< adaptive creep stepping (docs/guide/choosing-step-controls.md): largest
+  double creep_tolerance = 0.0;  ///< adaptive creep stepping (docs/reference/step-controls.md): largest
                                  ///< creep error estimate allowed per step [length]; 0 = off
                                  ///< (fixed dt). When > 0, dt is the first step and the step
                                  ///< after every point-load sample time; steps end on those
                                  ///< times; the next step is dt_n min(2, max(dt_cut,
                                  ///< 0.9 sqrt(tol/err))), err the contacts' estimate; a step
                                  ///< with err > 2 tol is redone smaller (not below dt); >= 0
-  double step_tolerance = 0.0;   ///< adaptive stepping by step doubling (docs/guide/choosing-step-controls.md,
+  double step_tolerance = 0.0;   ///< adaptive stepping by step doubling (docs/reference/step-controls.md,
                                  ///< "Step doubling"): largest difference allowed between one
                                  ///< step of dt and two of dt/2, over every block vertex
                                  ///< [length]; 0 = off. When > 0, dt is the first step and the
