@@ -100,6 +100,7 @@ MARKERS = {
     ("speed-accuracy.md", "stability-table"): "notes/step-controls.md",
     ("speed-accuracy.md", "stability-power"): "notes/step-controls.md",
     ("speed-accuracy.md", "stability-dda"): "notes/step-controls.md",
+    ("contacts.md", "incline-drop"): "notes/contact-rules.md",
     ("engine.md", "gravity-ramp"): "notes/dynamic-stages.md",
     ("engine.md", "refinement-collapse-stages"): "notes/dynamic-stages.md",
     ("engine.md", "static-mechanisms"): "notes/dynamic-stages.md",
