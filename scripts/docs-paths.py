@@ -84,6 +84,7 @@ SECTIONS = {
     ("laws.md", "Adding a law"): "design/law-interface.md",
     ("laws.md", "Adding a nonlinear law"): "design/law-interface.md",
     ("engine.md", "Why `amg`, and how it works"): "design/linear-solvers.md",
+    ("studies.md", "Measured scaling"): "notes/performance.md",
     ("engine.md", "The seed's slope with collapse stages, refined over 100 days"): "notes/dynamic-stages.md",
 }
 
