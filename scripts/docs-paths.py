@@ -85,6 +85,19 @@ SECTIONS = {
     ("laws.md", "Adding a nonlinear law"): "design/law-interface.md",
     ("engine.md", "Why `amg`, and how it works"): "design/linear-solvers.md",
     ("studies.md", "Measured scaling"): "notes/performance.md",
+    # contacts.md's diary, moved to notes/contact-solves.md before this layout
+    ("contacts.md", "Why the iteration does not settle"): "notes/contact-solves.md",
+    ("contacts.md", "The same slope settled dynamically"): "notes/contact-solves.md",
+    ("contacts.md", "Friction that pushed"): "notes/contact-solves.md",
+    ("contacts.md", "Springs of a joint on point contacts"): "notes/contact-solves.md",
+    ("contacts.md", "Contacts that stop"): "notes/contact-solves.md",
+    ("contacts.md", "Stick and slip"): "notes/contact-solves.md",
+    ("contacts.md", "A consistent elastic-plastic joint"): "notes/contact-solves.md",
+    ("contacts.md", "The wall converges when the iteration is not cut"): "notes/contact-solves.md",
+    ("contacts.md", "Inexact iterates"): "notes/contact-solves.md",
+    ("contacts.md", "The iteration limit in static analysis"): "notes/contact-solves.md",
+    ("contacts.md", "A semismooth Newton iteration"): "notes/contact-solves.md",
+    ("contacts.md", "Relaxation to equilibrium in static analysis"): "notes/contact-solves.md",
     ("engine.md", "The seed's slope with collapse stages, refined over 100 days"): "notes/dynamic-stages.md",
 }
 

@@ -6,7 +6,7 @@
 # blocks, dt 1 ms), and every later collapse is located to within collapse_dt
 # and taken dynamically. `rheodda check --refine=9` with the stages' dynamic
 # steps held at 1 ms (--hold settle.dt,settle.max_displacement_ratio: their own
-# refinement converges to 0.05 %, docs/reference/contacts.md "The same slope settled
+# refinement converges to 0.05 %, docs/notes/contact-solves.md "The same slope settled
 # dynamically") and the static controls halved level by level from dt 1/16 d,
 # g2 0.0005, collapse_dt 5e-5 d down to dt 1/4096 d. Puts a table (block 10 at
 # 1, 5, 10, 20, 50 and 100 d, the level-to-level changes, the stages, steps,

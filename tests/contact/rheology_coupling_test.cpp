@@ -451,7 +451,7 @@ BOOST_AUTO_TEST_CASE(an_elastic_joint_keeps_its_springs_per_unit_length_on_a_cor
   // run's at every step. Taking the springs over the contact length (0 for a
   // point contact: the penalty's springs instead) made them jump at each
   // change of kind, and the seed's slope settle where the contact search
-  // reached a lifted corner (docs/reference/contacts.md, "Springs of a joint on point
+  // reached a lifted corner (docs/notes/contact-solves.md, "Springs of a joint on point
   // contacts").
   const double delta = 1e-4, theta = 0.06;
   JointSet j = joint("b", nullptr);

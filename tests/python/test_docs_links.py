@@ -6,6 +6,8 @@ page moved later cannot leave a dangling reference behind:
   #anchor, if any, a heading of that file;
 - every `docs/....md` path named in README.md, docs/** or a source, build, script or
   example file names an existing file (from the root of the tree);
+- every section a docs/ path names after it (`docs/X.md, "Section"`, also over a
+  comment's line break) is a heading or a bold paragraph label of that page;
 - every generated block a report script splices (scripts/splice-doc.sh DOC NAME, and
   the Python writers' DOC and MARK) exists in the page it is spliced into.
 
@@ -103,6 +105,40 @@ def test_docs_paths_named_anywhere_exist():
                 bad.append(f"{f.relative_to(ROOT)}:{n}: {m.group(0)}")
     assert not bad, ("paths to pages that do not exist (moved? add the page to "
                      "scripts/docs-paths.py's map and run it):\n" + "\n".join(bad))
+
+
+SECTION_REF = re.compile(r'(?<![A-Za-z0-9_.-])(docs/[A-Za-z0-9_./-]*[A-Za-z0-9_-]\.md),?\s*'
+                         r'(?:section\s+)?\(?\\?"([A-Za-z`][^"();{}]{0,160}?)\\?"')
+
+
+def norm(title):
+    """A title as referred to: broken over comment lines joined, punctuation and case ignored."""
+    title = re.sub(r"\n\s*(?:///|//|#|\*)?", " ", title)
+    return re.sub(r"[^a-z0-9]+", " ", title.lower()).strip()
+
+
+def test_sections_named_after_a_docs_path_exist():
+    bad = []
+    for f in files():
+        if str(f.relative_to(ROOT)) in OLD_PATHS_ON_PURPOSE:
+            continue
+        try:
+            text = f.read_text()
+        except UnicodeDecodeError:
+            continue
+        for m in SECTION_REF.finditer(text):
+            page = ROOT / m.group(1)
+            title = norm(m.group(2))
+            if not page.is_file() or not title:
+                continue
+            body = page.read_text()
+            labels = [norm(h) for h in re.findall(r"^#{1,6}\s+(.*)$", body, re.M)]
+            labels += [norm(b) for b in re.findall(r"\*\*([^*]+)\*\*", body)]
+            if not any(x and (x.startswith(title) or title.startswith(x)) for x in labels):
+                n = text.count("\n", 0, m.start()) + 1
+                bad.append(f'{f.relative_to(ROOT)}:{n}: {m.group(1)}, "{m.group(2)}"')
+    assert not bad, ("sections named that are not headings (or bold labels) of their page "
+                     "(moved? add it to SECTIONS of scripts/docs-paths.py and run it):\n" + "\n".join(bad))
 
 
 def spliced_blocks():

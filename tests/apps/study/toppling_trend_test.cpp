@@ -107,7 +107,7 @@ BOOST_AUTO_TEST_CASE(seed_slope_settled_dynamically_is_the_same_at_two_steps) {
   // 20 s. Levels L1 and L2 of `scripts/refinement-goodman.sh --dynamic` (dt 1 and
   // 0.5 ms, g2 halved with it): block 10 settles at 1.979 and 1.978 m at 45 deg,
   // and every level from 2 ms down lies within 0.05 % of the next
-  // (docs/reference/contacts.md, "The same slope settled dynamically"). Before the
+  // (docs/notes/contact-solves.md, "The same slope settled dynamically"). Before the
   // slide-reversal fix ("Friction that pushed") the 0.5 ms run never came to
   // rest; before the joint's springs took the tributary length on point
   // contacts too ("Springs of a joint on point contacts") the settled state

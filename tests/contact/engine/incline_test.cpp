@@ -92,7 +92,7 @@ BOOST_AUTO_TEST_CASE(block_thrown_up_a_soft_joint_turns_back_with_friction_rever
   // g (sin(alpha) - cos(alpha) tan(phi)) (closed form below). Friction resists
   // every step of the way (its dissipation never falls), at 1 ms and at 0.1 ms.
   // Before the slide-reversal test took its resolution from the normal spring
-  // (docs/reference/contacts.md, "Friction that pushed"), it was the force resolution over
+  // (docs/notes/contact-solves.md, "Friction that pushed"), it was the force resolution over
   // the soft shear spring, 2e-5 m: near the turn the step's backward slip stayed
   // below it, friction kept pushing the block down the slope, and the smaller
   // step turned back faster (the error grows as dt shrinks).

@@ -75,8 +75,8 @@ struct DetectedContact {
 /// (half the overlap, the seed's section 3.1) when the edge lies on the
 /// entrance edge over its whole length, so a contact whose block tilts off a
 /// face onto its corner keeps its joint length through the change of kind; it
-/// varies continuously as the block rotates (docs/reference/rheology-in-dda.md, "Point
-/// contacts").
+/// varies continuously as the block rotates (docs/reference/rheology-in-dda.md,
+/// "The tributary length of a point contact").
 double point_tributary_length(const BlockView& vb, int v, const Vec2& t);
 
 /// Narrow-phase tolerances.

@@ -144,9 +144,9 @@ struct ContactSettings {
   /// small step, the coarser resolution let a vertex that moved backwards keep
   /// a friction force that pushed it on, step after step; friction did negative
   /// work and the seed's slope settled at 1 ms but never at 0.25 ms and below
-  /// (docs/reference/contacts.md, "Friction that pushed"); without the inertia, contacts
+  /// (docs/notes/contact-solves.md, "Friction that pushed"); without the inertia, contacts
   /// that had stopped stayed sliding, more of them the smaller the step
-  /// (docs/reference/contacts.md, "Contacts that stop"). Off in static analysis, where no
+  /// (docs/notes/contact-solves.md, "Contacts that stop"). Off in static analysis, where no
   /// velocity carries the error to the next step: measured on the toppling
   /// example, the finer resolution made its static iteration fail and cut the
   /// step towards 1e-6 d.
