@@ -29,7 +29,7 @@ inline void on_stop_signals(void (*handler)(int)) {
 inline constexpr int kExitFailure = 1;
 inline constexpr int kExitBadInput = 2;
 /// `rheodda check --refine`: the scene's step controls are coarser than the tolerance,
-/// or its refinement did not converge (docs/speed-accuracy.md).
+/// or its refinement did not converge (docs/guide/choosing-step-controls.md).
 inline constexpr int kExitStepControls = 3;
 
 /// The exit codes as `rheodda --help` prints them; each line says where the code comes from.

@@ -1,4 +1,4 @@
-// `rheodda fit`: fit rheology laws to a laboratory creep curve (docs/fitting.md).
+// `rheodda fit`: fit rheology laws to a laboratory creep curve (docs/guide/fitting.md).
 // Sample runs:
 //   rheodda fit examples/creep-data/table1-row1.csv --law burgers --stress 0.232 --units "MPa, mm, h"
 //   rheodda fit examples/creep-data/table1-row1.csv --law all --stress 0.232 --units "MPa, mm, h"

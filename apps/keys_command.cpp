@@ -1,6 +1,6 @@
 // `rheodda keys`: the declared scene keys (apps/scene/include/rheodda/scene/keys.hpp)
 // with their units, meanings and defaults; `--markdown` prints the key tables that
-// docs/scene-format.md holds (scripts/scene-format-tables.sh splices them in).
+// docs/reference/scene-format.md holds (scripts/scene-format-tables.sh splices them in).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -18,7 +18,7 @@ void add_keys_command(CLI::App& app) {
   auto map = std::make_shared<std::string>();
   auto markdown = std::make_shared<bool>(false);
   cmd->add_option("map", *map, "Only this map: analysis or analysis.settle");
-  cmd->add_flag("--markdown", *markdown, "Print Markdown tables, as docs/scene-format.md holds them");
+  cmd->add_flag("--markdown", *markdown, "Print Markdown tables, as docs/reference/scene-format.md holds them");
   cmd->callback([map, markdown] {
     std::vector<std::string> maps;
     for (const auto& k : scene::analysis_keys())

@@ -1,5 +1,5 @@
 // Speed-accuracy trade of the creep schemes: error against the closed form vs
-// wall time, per scheme and time step (docs/speed-accuracy.md).
+// wall time, per scheme and time step (docs/notes/step-controls.md).
 //
 // Cases (units MPa, mm, h; Burgers joints of the seed's Table 1, all four rows):
 //   creep      the seed's two-block shear creep test (Section 4) run by the DDA
@@ -142,7 +142,7 @@ Result run_relaxation(const Row& r, double dt, laws::Scheme scheme) {
   Result res;
   const auto t0 = std::chrono::steady_clock::now();
   // The first step starts from rest (load applied at t = 0+): implicit constants,
-  // as the contact layer does for a contact that closes (docs/rheology-in-dda.md).
+  // as the contact layer does for a contact that closes (docs/reference/rheology-in-dda.md).
   const laws::StepConstants first = law->step_constants(dt, laws::Scheme::implicit);
   const laws::StepConstants k = law->step_constants(dt, scheme);
   laws::RheologyState q, next;
@@ -171,7 +171,7 @@ std::string fmt_error(double e) {
   return buf;
 }
 
-// ---- The toppling model (docs/speed-accuracy.md, "The toppling model") ----
+// ---- The toppling model (docs/notes/step-controls.md, "The toppling model") ----
 // Every run starts from one settled state: the scene's settling stage
 // (analysis.settle), or, for a scene without one, fixed steps of
 // kSettleStep up to kSettleEnd with g2 = kSettleG2: the columns' settling
@@ -181,7 +181,7 @@ std::string fmt_error(double e) {
 // creep_tolerance, with the scene's g2; error = largest |u - u_ref| of the
 // measurement points at T_END / largest u_ref, u_ref from a fixed step kFine.
 constexpr double kSettleStep = 1e-4, kSettleEnd = 0.01;  // [d]
-constexpr double kSettleG2 = 0.0005;                     // [-] (docs/toppling-study.md)
+constexpr double kSettleG2 = 0.0005;                     // [-] (docs/guide/toppling-study.md)
 constexpr double kFine = 1.0 / 1024;  // reference step [d]; a run at 2 kFine checks it
 
 struct Settled {
@@ -276,7 +276,7 @@ CreepRun run_creep(const scene::BuiltScene& built, const Settled& from, const Co
 /// their leading error; |u(kFine) - u(2 kFine)| bounds what is left to well
 /// below it). Fixed steps are also run with the exponential-linear scheme:
 /// equal errors show that the error is not the creep integration's
-/// (docs/speed-accuracy.md).
+/// (docs/notes/step-controls.md).
 int toppling(const std::string& path, double t_end) {
   const scene::BuiltScene built = scene::build_scene(scene::load_scene(path));
   const Settled settled = settle(built);

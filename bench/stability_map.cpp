@@ -1,4 +1,4 @@
-// Stability map of the creep schemes (docs/speed-accuracy.md, "Stability map").
+// Stability map of the creep schemes (docs/notes/step-controls.md, "Stability map").
 //
 // Model: a shear spring k in series with a Kelvin element (E2, eta2) - the
 // seed's Kelvin part of the Burgers joint, Table 1 row 1 (E2 = 192.43 MPa/mm,
@@ -6,16 +6,16 @@
 // relaxation). Solved with the law alone: laws::solve_series_force gives the end
 // force of each step from the spring and the law's affine creep increment
 // (the same algebra as the DDA contact's k_eff = k / (1 + k c), eq. 2 of
-// docs/rheology-in-dda.md), then ContactRheology::advance.
+// docs/reference/rheology-in-dda.md), then ContactRheology::advance.
 // Growth: largest |F| over steps 100-200 divided by the force at t = 0+ (k delta):
 // at most 1 for a stable run (the exact force decays monotonically to
 // k E2 / (k + E2) delta); > 1 means the step amplifies the force (unstable).
 // The lagged scheme (exact exponential under the start force, the seed's
 // eqs. 12-16) amplifies an error by 1 - b (k + E2)/E2, b = 1 - exp(-dt E2/eta2):
 // stable for dt E2/eta2 < -ln(1 - 2/(k/E2 + 1)) when k > E2, at any dt when
-// k <= E2; for k >> E2 this is dt < 2 eta2 / (k + E2) (docs/rheology-in-dda.md).
+// k <= E2; for k >> E2 this is dt < 2 eta2 / (k + E2) (docs/reference/rheology-in-dda.md).
 //
-// With --dda: the DDA spot-check of the map instead (docs/speed-accuracy.md,
+// With --dda: the DDA spot-check of the map instead (docs/notes/step-controls.md,
 // "DDA spot-check"; the same runs as tests/contact/engine/stability_spot_check_test.cpp):
 // the seed's two-block shear creep test (block A on a fixed block B, Table 1
 // row 1's sigma and tau) run by the DDA engine with a kelvin joint (E2, eta2 as
@@ -30,7 +30,7 @@
 //    contact forces; the map applies to their redistribution).
 // A run whose growth exceeds 1e3 at any step is stopped as diverged.
 //
-// With --power: the map of the nonlinear Norton law (law power-law, docs/laws.md):
+// With --power: the map of the nonlinear Norton law (law power-law, docs/reference/laws.md):
 // the spring E1 = 26.87 MPa/mm in series with a Norton dashpot A (tau/tau_ref)^n
 // (tau_ref = 0.2 MPa, A = tau_ref/34807.72 mm/h), held at delta = tau0/E1, over
 // n = 1..20, tau0/tau_ref = 0.01..100 and dt/t0 = 1e-3..1e6 with t0 = tau0 /
@@ -90,11 +90,11 @@ constexpr double kWidth = 100.0;            // width of A = joint length [mm]
 constexpr double kNormalStiffness = 1e4;    // joint normal stiffness [MPa/mm]
 
 /// Lagged limit dt_lim E2/eta2 = -ln(1 - 2 E2/(k + E2)) for k > E2, none for
-/// k <= E2 (docs/speed-accuracy.md, "Stability map").
+/// k <= E2 (docs/notes/step-controls.md, "Stability map").
 double lagged_limit(double y) { return y <= 1.0 ? INFINITY : -std::log(1.0 - 2.0 / (y + 1.0)); }
 
 /// Closed-form relaxation force relative to k delta, standard linear solid:
-/// [E2 + k exp(-(k + E2) t/eta2)]/(k + E2) (docs/rheology-in-dda.md, Validation).
+/// [E2 + k exp(-(k + E2) t/eta2)]/(k + E2) (docs/reference/rheology-in-dda.md, Validation).
 double relaxation_closed_form(double y, double t) {
   const double k = y * kE2;
   return (kE2 + k * std::exp(-(k + kE2) * t / kEta2)) / (k + kE2);
@@ -208,7 +208,7 @@ int print_dda_table() {
       if (relax.diverged_at) std::snprintf(end, sizeof end, "-");
       else std::snprintf(end, sizeof end, "%.1e", relax.end_error);
       char step[48];
-      if (relax.diverged_at)  // lagged amplification (docs/speed-accuracy.md, "Stability map")
+      if (relax.diverged_at)  // lagged amplification (docs/notes/step-controls.md, "Stability map")
         std::snprintf(step, sizeof step, "%.5g / %.5g", relax.amplification,
                       std::abs(1.0 + std::expm1(-p.x) * (p.y + 1.0)));
       else std::snprintf(step, sizeof step, "-");

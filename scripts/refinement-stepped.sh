@@ -6,7 +6,7 @@
 # (analysis.stick_keeps_force: false, the static default) and with elastic-plastic
 # joints (stick_keeps_force: true, the dynamic default), and the latter with
 # plastic impacts and damped blocks (joint set restitution 0, material
-# damping_ratio 1; docs/contacts.md, "Contact damping"). Prints a Markdown table of the largest
+# damping_ratio 1; docs/reference/contacts.md, "Contact damping"). Prints a Markdown table of the largest
 # displacement of the 16 block tops at 8 s [mm], with the run's cuts of dt and
 # its energy-balance residual, and puts it between the refinement-stepped
 # markers of docs/notes/contact-solves.md. About 3 min on 2 cores.

@@ -1,4 +1,4 @@
-// The DDA engine (Shi 1988; docs/engine.md): its state, the step-start
+// The DDA engine (Shi 1988; docs/reference/engine.md): its state, the step-start
 // geometry, accepting a step (moving the blocks, stresses, velocities) and the
 // public API. The rest of the engine is in the files engine_impl.hpp names.
 
@@ -49,7 +49,7 @@ void Engine::Impl::initialise() {
   w0 = core::half_model_size(box.sizes().x(), box.sizes().y());
   {
     // Median block size sqrt(area) [length]: the contact search never reaches
-    // less than kSearchFloor of it (docs/engine.md, "Contact search reach").
+    // less than kSearchFloor of it (docs/reference/engine.md, "Contact search reach").
     std::vector<double> sizes;
     sizes.reserve(st.blocks.size());
     for (const auto& b : st.blocks) sizes.push_back(std::sqrt(std::abs(polygon_integrals(b.vertices).S)));

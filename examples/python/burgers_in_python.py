@@ -8,7 +8,7 @@ joint set `plane` given this Python law instead of the built-in `burgers`, and
 prints the largest difference between the two joint shear displacements (they
 agree to round-off) and the wall time of each run.
 
-The law (per unit joint area; docs/laws.md): a spring E1 and a dashpot eta1 in
+The law (per unit joint area; docs/reference/laws.md): a spring E1 and a dashpot eta1 in
 series with a Kelvin element E2 || eta2. Creep under constant force F (the seed's
 eqs. 20-21): d(t) = F/E1 + F/E2 (1 - exp(-E2 t/eta2)) + F t/eta1. The DDA host
 asks for the creep increment of a step in the affine form Delta d_c = h + c F_e

@@ -9,7 +9,7 @@ laws) twice: with the built-in `burgers` and with the Python Burgers of
 burgers_in_python.py on both joint sets. Prints the wall time of each (best of
 3), the contact-steps (contacts with a law, summed over the steps), the calls
 into Python per contact-step, the added time per contact-step, and the largest
-difference between the two runs' joint shear displacements. docs/python.md
+difference between the two runs' joint shear displacements. docs/guide/python.md
 quotes its output.
 """
 import os

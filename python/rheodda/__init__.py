@@ -1,4 +1,4 @@
-"""rheodda from Python: contact rheology laws, fits, scenes and runs (docs/python.md).
+"""rheodda from Python: contact rheology laws, fits, scenes and runs (docs/guide/python.md).
 
 Set-up (from the repository root, after ``bash scripts/build.sh``)::
 
@@ -85,7 +85,7 @@ def to_dataframe(columns):
 # --- fitting -------------------------------------------------------------------
 
 class FitResult:
-    """A law fitted to a creep curve (fit::FitResult, docs/fitting.md).
+    """A law fitted to a creep curve (fit::FitResult, docs/guide/fitting.md).
 
     values, errors: dicts by parameter name (registry units); covariance: the
     covariance of the values by the delta method from the fit's log-parameter
@@ -169,7 +169,7 @@ def fit(law_name, data, t=None, stress=None, *, time_column="t", displacement_co
         stress_column=None, restarts=4, max_iterations=500):
     """Fits one registered law (``rheodda fit DATA --law LAW``).
 
-    ``data``: a CSV path (columns as in docs/fitting.md; ``stress`` or
+    ``data``: a CSV path (columns as in docs/guide/fitting.md; ``stress`` or
     ``stress_column`` gives the shear stress), a :class:`CreepData`, or an
     array of displacements with ``t=`` times and ``stress=`` (a number,
     'T:V[,T:V...]' or (t, value) pairs). Returns a :class:`FitResult`.
@@ -191,7 +191,7 @@ def fit_all(data, t=None, stress=None, *, rank_by="bic", time_column="t",
 # --- scenes --------------------------------------------------------------------
 
 def scene_from_dict(scene, file="<dict>"):
-    """A scene from a dict that mirrors the scene file (docs/scene-format.md).
+    """A scene from a dict that mirrors the scene file (docs/reference/scene-format.md).
 
     The dict is written as JSON (which is YAML) and read by the same loader as a
     file, so every check and every error message is the file's; error lines

@@ -1,4 +1,4 @@
-// Shared declarations of the Python module's translation units (docs/python.md).
+// Shared declarations of the Python module's translation units (docs/guide/python.md).
 //
 // The binding is thin on purpose: every call goes to the library function the
 // command line uses (laws::LawRegistry, laws::integrate_curve, fit::fit_law,

@@ -73,7 +73,7 @@ void bind_fit(py::module_& m) {
 
   py::class_<fit::FixedCombination>(m, "FixedCombination",
                                     "A combination of parameters the data fix although some of its parts are "
-                                    "not identifiable (docs/fitting.md, \"Identifiability\")")
+                                    "not identifiable (docs/guide/fitting.md, \"Identifiability\")")
       .def_readonly("expression", &fit::FixedCombination::expression)
       .def_readonly("unit", &fit::FixedCombination::unit)
       .def_readonly("value", &fit::FixedCombination::value)
@@ -125,7 +125,7 @@ void bind_fit(py::module_& m) {
       },
       py::arg("path"), py::arg("time_column") = "t", py::arg("displacement_column") = "displacement",
       py::arg("stress_column") = "", py::arg("stress") = py::none(),
-      "Reads a creep curve CSV as `rheodda fit` does (docs/fitting.md); raises rheodda.DataError");
+      "Reads a creep curve CSV as `rheodda fit` does (docs/guide/fitting.md); raises rheodda.DataError");
   m.def(
       "creep_data",
       [](const std::vector<double>& t, const std::vector<double>& displacement, const py::object& stress,

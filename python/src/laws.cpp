@@ -260,7 +260,7 @@ void bind_laws(py::module_& m) {
             }
             return std::string("?");
           },
-          "'affine', 'piecewise-affine' or 'nonlinear' (linearize returns the tangent; docs/laws.md)")
+          "'affine', 'piecewise-affine' or 'nonlinear' (linearize returns the tangent; docs/reference/laws.md)")
       .def(
           "failure_time",
           [](const ContactRheology& l, double force) {
@@ -401,7 +401,7 @@ void bind_laws(py::module_& m) {
       "The law alone under a staged force (shear stress) from t = 0 to t_end with step dt "
       "(`rheodda law curve --force`): dict of numpy arrays t, force, displacement (total: F/E1 + creep) and "
       "exact (the closed form; NaN where the law has none). tolerance: each dt in substeps of the scheme until "
-      "one step and two half steps agree to it (as the command does; docs/laws.md); None: one step per dt");
+      "one step and two half steps agree to it (as the command does; docs/reference/laws.md); None: one step per dt");
   m.def(
       "relaxation_curve",
       [curve](const ContactRheology& law, const py::object& displacement, double t_end, double dt,

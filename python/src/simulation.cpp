@@ -505,7 +505,7 @@ py::object analysis_dict(const scene::Analysis& a, const std::string& map) {
 }  // namespace
 
 void bind_simulation(py::module_& m) {
-  py::class_<Scene>(m, "Scene", "A validated scene (docs/scene-format.md): rheodda.load_scene(path) or "
+  py::class_<Scene>(m, "Scene", "A validated scene (docs/reference/scene-format.md): rheodda.load_scene(path) or "
                                 "rheodda.parse_scene(text) or rheodda.scene_from_dict(d)")
       .def_property_readonly("file", [](const Scene& s) { return s.description.file; })
       .def_property_readonly("title", [](const Scene& s) { return s.description.title; })
@@ -517,7 +517,7 @@ void bind_simulation(py::module_& m) {
           "analysis", [](const Scene& s) { return analysis_dict(s.description.analysis, "analysis"); },
           "Every `analysis:` key with its value, defaults filled in, by the scene file's names (`settle` a "
           "dict, or None without a settling stage); the same keys and values as summary.json's inputs "
-          "(docs/scene-format.md). A copy: change a scene through its text or scene_from_dict.")
+          "(docs/reference/scene-format.md). A copy: change a scene through its text or scene_from_dict.")
       .def_property_readonly("joint_sets",
                              [](const Scene& s) {
                                std::vector<std::string> r;

@@ -259,7 +259,7 @@ BOOST_AUTO_TEST_CASE(abandon_step_restores_the_step_start_contact_states_exactly
 }
 
 BOOST_AUTO_TEST_CASE(extrapolate_combines_matching_records_and_refuses_different_states) {
-  // Step doubling's Richardson step (docs/speed-accuracy.md): from the same
+  // Step doubling's Richardson step (docs/reference/step-controls.md): from the same
   // records, a "coarse" and a "fine" continuation; the fine records become
   // 2 fine - coarse when both hold the same contacts in the same states.
   Scene s;

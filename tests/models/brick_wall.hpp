@@ -1,5 +1,5 @@
 // The running-bond brick wall: the performance benchmark's scene (bench/contact_bench.cpp,
-// docs/performance.md) and the tests that run it (tests/contact/engine). nx x ny bricks
+// docs/notes/performance.md) and the tests that run it (tests/contact/engine). nx x ny bricks
 // 0.2 m x 0.1 m, every other course offset by half a brick with half bricks at its
 // ends, on a fixed base (block 0, held at three vertices); E = 5 GPa, density
 // 2600 kg/m^3, a dynamic analysis at dt = 1e-3 s. Units: m, N, s, Pa.

@@ -48,7 +48,7 @@ def test_dict_scene_gives_the_yaml_scene_history_to_the_last_digit(yaml_scene):
     from_dict = rheodda.Simulation(SHEAR_TEST).run().history()
     assert len(from_yaml["time"]) == 201 and from_yaml["time"][-1] == 200.0
     assert same(from_yaml, from_dict)
-    # the seed's result: the joint follows the Burgers closed form (docs/outputs.md: 1.1e-5 relative)
+    # the seed's result: the joint follows the Burgers closed form (docs/reference/outputs.md: 1.1e-5 relative)
     law = rheodda.law("burgers", TABLE1)
     d = -from_dict["plane.shear_displacement"][1:]
     exact = law.displacement_closed_form(0.232, from_dict["time"][1:])
@@ -344,7 +344,7 @@ def test_a_failing_run_raises_run_error_with_the_command_line_message(rheodda_bi
 
 
 def test_residual_strength_keys_from_a_dict():
-    # joint_sets.*.residual_friction_angle / residual_cohesion (docs/scene-format.md): read as
+    # joint_sets.*.residual_friction_angle / residual_cohesion (docs/reference/scene-format.md): read as
     # from a file, refused above the peak with the key path.
     d = copy.deepcopy(SHEAR_TEST)
     d["joint_sets"]["plane"].update(residual_friction_angle=30, cohesion=0.1, residual_cohesion=0.05)

@@ -1,7 +1,7 @@
 // The declared keys of `analysis:` and `analysis.settle` (keys.hpp), one entry per key.
 //
 // Each entry: map, key, unit, range (or choices), the field it fills, the default and the
-// meaning as docs/scene-format.md shows them (its tables are generated from here:
+// meaning as docs/reference/scene-format.md shows them (its tables are generated from here:
 // `rheodda schema --markdown`). Checks that tie several keys together stay in the
 // loader (apps/scene/src/read_analysis.cpp).
 #include "rheodda/scene/keys.hpp"
@@ -124,7 +124,7 @@ std::vector<KeySpec> declare_analysis_keys() {
   keys.push_back(map_key("analysis", "settle",
       "none",
       "`{until, dt, max_displacement_ratio, type, collapse_dt, gravity_ramp, rest_tolerance, "
-         "open_close_limit}`: a settling stage at the start of the run (docs/engine.md, \"Settling "
+         "open_close_limit}`: a settling stage at the start of the run (docs/reference/engine.md, \"Settling "
          "stage\"); its keys are in the table `analysis.settle` below. For a static model that "
          "settles as a mechanism when gravity comes on: every run, whatever its `dt`, starts its "
          "creep from the same settled state"));
@@ -135,7 +135,7 @@ std::vector<KeySpec> declare_analysis_keys() {
       [](const Analysis& a) { return std::string(time_integration_name(a.time_integration)); },
       [](Analysis& a, const std::string& v) { a.time_integration = v == "trapezoidal" ? TimeIntegration::trapezoidal : TimeIntegration::shi; },
       "`shi`",
-      "integration of the inertia terms (docs/engine.md, \"Time integration\"): `shi` (Shi's "
+      "integration of the inertia terms (docs/reference/engine.md, \"Time integration\"): `shi` (Shi's "
          "scheme, Newmark β = 1/2, γ = 1: exact for constant acceleration, damps vibrations "
          "numerically, for quasi-static and creep runs) or `trapezoidal` (β = 1/4, γ = 1/2: keeps "
          "the energy of linear vibrations); `trapezoidal` only with `type: dynamic` and "
@@ -145,17 +145,17 @@ std::vector<KeySpec> declare_analysis_keys() {
       [](Analysis& a, const std::string& v) { if (v == "automatic") a.scheme.reset(); else a.scheme = laws::parse_scheme(v); },
       "`automatic`",
       "creep integration scheme of the joint laws: `lagged`, `implicit`, `exponential-linear` "
-         "(docs/laws.md), or `automatic`: per joint set and step, exponential-linear where the "
+         "(docs/reference/laws.md), or `automatic`: per joint set and step, exponential-linear where the "
          "step is below its no-ringing limit, implicit otherwise"));
   keys.push_back(number_key("analysis", "creep_tolerance", "length", {0.0, false, kInf, false}, &Analysis::creep_tolerance,
       "0",
-      "adaptive creep stepping (docs/speed-accuracy.md): the creep error allowed per step; the "
+      "adaptive creep stepping (docs/guide/choosing-step-controls.md): the creep error allowed per step; the "
          "step grows (up to ×2) while the estimate stays below it, restarts from `dt` after a load "
          "change, and a step whose estimate exceeds 2× the tolerance is redone smaller (not below "
          "`dt`); 0 = fixed `dt`"));
   keys.push_back(number_key("analysis", "step_tolerance", "length", {0.0, false, kInf, false}, &Analysis::step_tolerance,
       "0",
-      "adaptive stepping by step doubling (docs/speed-accuracy.md, \"Step doubling\"): each "
+      "adaptive stepping by step doubling (docs/reference/step-controls.md, \"Step doubling\"): each "
          "step is taken once with dt and twice with dt/2 from the same state; the largest "
          "difference over the block vertices must stay below the tolerance; the step grows (up to "
          "×2) while it does, restarts from `dt` after a load change, never falls below `dt`, and a "
@@ -216,7 +216,7 @@ std::vector<KeySpec> declare_analysis_keys() {
   keys.push_back(flag_key("analysis", "stick_keeps_force", "–", &Analysis::stick_keeps_force,
       "`true` in a dynamic analysis (Shi's rule ratchets a slope that stands down its friction "
          "limit at small steps) and in a static one with collapse stages (`settle.collapse_dt`: "
-         "the static steps keep the stages' rule, docs/engine.md \"Collapse stages\"), `false` in "
+         "the static steps keep the stages' rule, docs/reference/engine.md \"Collapse stages\"), `false` in "
          "other static ones",
       "`true`: a sliding contact that sticks keeps the friction force it slid against in its "
          "shear spring (an elastic–plastic joint); `false`: the spring restarts unstretched (Shi's "
@@ -240,7 +240,7 @@ std::vector<KeySpec> declare_analysis_keys() {
       "`automatic` (`cholmod` below 2 000 blocks, `amg` from 2 000), `cholmod` (sparse "
          "Cholesky), `amg` (conjugate gradient with a multigrid V-cycle whose coarse unknowns are "
          "the DDA unknowns of groups of blocks; O(N) per iteration, for large models) or `pcg` "
-         "(block-Jacobi conjugate gradient, a reference); docs/engine.md, \"Solvers\""));
+         "(block-Jacobi conjugate gradient, a reference); docs/reference/engine.md, \"Solvers\""));
   keys.push_back(number_key("analysis", "solver_tolerance", "–", {0.0, true, 1.0, true}, &Analysis::solver_tolerance,
       "1e-10",
       "`amg` and `pcg` stop when ‖F − K D‖ ≤ solver_tolerance ‖F‖ (the true residual); in (0, "
@@ -259,7 +259,7 @@ std::vector<KeySpec> declare_analysis_keys() {
       [](const Analysis& a) { return std::string(a.contact_solver == ContactSolverKind::newton ? "newton" : "open-close"); },
       [](Analysis& a, const std::string& v) { a.contact_solver = v == "newton" ? ContactSolverKind::newton : ContactSolverKind::open_close; },
       "`open-close`",
-      "how a step's contacts are solved (docs/contacts.md, \"Contact solves\"): `open-close` "
+      "how a step's contacts are solved (docs/reference/contacts.md, \"Contact solves\"): `open-close` "
          "(Shi's iteration: solve, check every contact, repeat until none changes its state) or "
          "`newton` (the same iterates, a step accepted once the residual of its equations is "
          "within `contact_residual_tolerance` of the contact forces, a dynamic step starting from "
@@ -288,7 +288,7 @@ std::vector<KeySpec> declare_analysis_keys() {
       "`[gx, gy]`"));
   keys.back().required = "gravity acceleration [gx, gy] [length/time^2]";
 
-  // analysis.settle: the settling stage (docs/engine.md, "Settling stage").
+  // analysis.settle: the settling stage (docs/reference/engine.md, "Settling stage").
   keys.push_back(settle_number("until", "time", {0.0, true, kInf, false}, &Analysis::Settle::until,
       "required; with `rest_tolerance`: `duration`",
       "end of the settling stage, > 0, before `duration`; with `rest_tolerance` optional: the "
@@ -318,7 +318,7 @@ std::vector<KeySpec> declare_analysis_keys() {
   };
   keys.push_back(settle_number("collapse_dt", "time", {0.0, true, kInf, false}, &Analysis::Settle::collapse_dt,
       "0 (none)",
-      "collapse stages (docs/engine.md, \"Collapse stages\"): a later static step that moves as "
+      "collapse stages (docs/reference/engine.md, \"Collapse stages\"): a later static step that moves as "
          "a mechanism (its inertia share above 0.1) is cut down to `collapse_dt`, and there taken "
          "as a dynamic stage as long as this one, with its `dt` and `max_displacement_ratio`; > 0, "
          "below the analysis's `dt`; a dynamic stage in a static analysis only; not with "
@@ -326,22 +326,22 @@ std::vector<KeySpec> declare_analysis_keys() {
   keys.push_back(settle_number("gravity_ramp", "time", {0.0, true, kInf, false}, &Analysis::Settle::gravity_ramp,
       "0 (gravity at once)",
       "gravity rises linearly from zero at t = 0 to its full value at this time, so that a "
-         "model that stands is loaded slowly instead of at once (docs/engine.md, \"Gravity "
+         "model that stands is loaded slowly instead of at once (docs/reference/engine.md, \"Gravity "
          "ramp\"); > 0, ≤ `until`; a physical loading time, not a step control: `check --refine` "
          "keeps it"));
   keys.push_back(settle_number("rest_tolerance", "–", {0.0, true, 1.0, true}, &Analysis::Settle::rest_tolerance,
       "0 (stages last `until`)",
       "the stage, and every collapse stage, ends at rest — after a step whose kinetic energy is "
          "below this fraction of the work gravity and the loads did over the stage, not before "
-         "the gravity ramp has ended (docs/engine.md, \"Dynamic stages\", which also says how to "
-         "choose it); each stage is a row of events.csv (docs/outputs.md); in (0, 1); `type: "
+         "the gravity ramp has ended (docs/reference/engine.md, \"Dynamic stages\", which also says how to "
+         "choose it); each stage is a row of events.csv (docs/reference/outputs.md); in (0, 1); `type: "
          "dynamic` only"));
   keys.push_back(settle_integer("open_close_limit", "–", {1.0, false, 1000.0, false},
       &Analysis::Settle::open_close_limit,
       "the analysis's `open_close_limit`",
       "open–close iterates before a step of the settling stage or a collapse stage is cut, "
          "1–1000 (a dynamic stage of a static analysis needs more than the 8 of its static steps "
-         "where many contacts change at once; docs/contacts.md, \"Contact solves\")"));
+         "where many contacts change at once; docs/reference/contacts.md, \"Contact solves\")"));
   return keys;
 }
 

@@ -1,4 +1,4 @@
-// The `units:` and `analysis:` sections of a scene file (docs/scene-format.md).
+// The `units:` and `analysis:` sections of a scene file (docs/reference/scene-format.md).
 //
 // The keys of `analysis:` and `analysis.settle` are declared once, in keys.cpp: each
 // is read and checked alone from its declaration (type, range, unit); what follows
@@ -48,14 +48,14 @@ void read_declared(const Ctx& ctx, const MapReader& m, const std::string& map, A
   }
 }
 
-/// `settle:` (docs/engine.md, "Settling stage"), after the analysis's own keys.
+/// `settle:` (docs/reference/engine.md, "Settling stage"), after the analysis's own keys.
 void read_settle(const Ctx& ctx, const MapReader& m, Analysis& a) {
   MapReader sm(ctx, m.find("settle"), m.child("settle"), declared_key_names("analysis.settle"));
   a.settle = Analysis::Settle{};
   read_declared(ctx, sm, "analysis.settle", a);
   Analysis::Settle& st = *a.settle;
   if (!sm.has("max_displacement_ratio")) st.max_displacement_ratio = a.max_displacement_ratio;
-  // A stage that ends at rest (docs/engine.md, "Dynamic stages") needs no length:
+  // A stage that ends at rest (docs/reference/engine.md, "Dynamic stages") needs no length:
   // `until` is then its longest, by default the analysis's duration.
   const YAML::Node rest = sm.find("rest_tolerance");
   if (const YAML::Node until = sm.find("until"); until.IsDefined()) {
@@ -79,7 +79,7 @@ void read_settle(const Ctx& ctx, const MapReader& m, Analysis& a) {
              "the settling stage of a dynamic analysis is dynamic; a static stage before dynamic steps "
              "is not modelled");
   if (const YAML::Node c = sm.find("collapse_dt"); c.IsDefined()) {
-    // Collapse stages (docs/engine.md, "Collapse stages").
+    // Collapse stages (docs/reference/engine.md, "Collapse stages").
     if (!st.dynamic || a.type != AnalysisType::static_analysis)
       ctx.fail(c, sm.child("collapse_dt"),
                "collapse stages are dynamic stages within a static analysis: give `type: dynamic` in the "
@@ -89,7 +89,7 @@ void read_settle(const Ctx& ctx, const MapReader& m, Analysis& a) {
                fmt::format("collapse_dt = {:g} is not below the analysis's dt = {:g}", st.collapse_dt, a.dt));
   }
   if (const YAML::Node r = sm.find("gravity_ramp"); r.IsDefined() && st.gravity_ramp > st.until)
-    // Gravity ramped up over the stage's start (docs/engine.md, "Gravity ramp").
+    // Gravity ramped up over the stage's start (docs/reference/engine.md, "Gravity ramp").
     ctx.fail(r, sm.child("gravity_ramp"),
              fmt::format("the gravity ramp ends at {:g}, after the settling stage (until = {:g}): the creep "
                          "would start under part of gravity",
@@ -154,7 +154,7 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   // Default by analysis type (docs/notes/contact-solves.md, "Stick and slip"): in a dynamic
   // analysis Shi's stick rule ratchets a slope that stands down its friction
   // limit, the more the smaller dt; in a static creep analysis the kept force
-  // makes the creep run depend on dt. With collapse stages (docs/engine.md,
+  // makes the creep run depend on dt. With collapse stages (docs/reference/engine.md,
   // "Collapse stages") the static steps keep the stages' rule: with Shi's rule
   // there, the contacts a stage left sliding stuck in the first static step
   // with their friction dropped, and the slope slid again (measured: a stage

@@ -91,7 +91,7 @@ struct Run {
 // scene_json.cpp: scene_json_text (rheodda/scene/describe.hpp).
 
 // run_guards.cpp
-/// Fails early when the run will not fit in memory (docs/performance.md, "Memory").
+/// Fails early when the run will not fit in memory (docs/notes/performance.md, "Memory").
 void check_memory(const SceneDescription& s);
 /// The first non-finite quantity of the engine's state ("velocity of block 'b3'"), or "".
 std::string nonfinite_state(const core::Engine& e, const SceneDescription& s);

@@ -1,4 +1,4 @@
-// What a run writes as it goes (docs/outputs.md): a row of history.csv per
+// What a run writes as it goes (docs/reference/outputs.md): a row of history.csv per
 // accepted step, and at each output time a frame: the contacts' rows of
 // contacts.csv, the VTK files frames/blocks_NNNNNN.vtp and
 // frames/contacts_NNNNNN.vtp, and the collections blocks.pvd and contacts.pvd
@@ -64,7 +64,7 @@ std::string history_row(const Run& run, const core::StepReport* r) {
     row += n ? fmt::format(",{},{:.10g},{:.10g},{:.10g}", n, shear / n, force / n, magnitude / n)
              : fmt::format(",0,,,");
   }
-  // Energy balance (docs/engine.md, "Energy balance"): stored energies now, flows since t = 0.
+  // Energy balance (docs/reference/engine.md, "Energy balance"): stored energies now, flows since t = 0.
   for (const double v : history_energy_values(engine.energy())) row += fmt::format(",{:.10g}", v);
   return row + '\n';
 }

@@ -1,4 +1,4 @@
-// The scene as summary.json's "inputs" (docs/outputs.md, "summary.json"): every
+// The scene as summary.json's "inputs" (docs/reference/outputs.md, "summary.json"): every
 // key the run used, defaults filled in.
 #include <nlohmann/json.hpp>
 

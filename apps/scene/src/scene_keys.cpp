@@ -10,7 +10,7 @@ namespace detail {
 // The valid keys of every map of a scene file, each list defined once: the
 // MapReader of that map reads it through the list, and scene_schema() publishes
 // the same lists, so what the loader accepts and what the schema (and the test of
-// docs/scene-format.md against it) says cannot diverge. Order: that of the docs.
+// docs/reference/scene-format.md against it) says cannot diverge. Order: that of the docs.
 namespace keys {
 const std::vector<std::string> top{"title", "units", "analysis", "materials", "joint_sets",
                                    "blocks", "rock_mass", "fixed_points", "loads", "measurement_points"};

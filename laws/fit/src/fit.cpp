@@ -178,7 +178,7 @@ Search search_minimum(const laws::LawInfo& info, const CreepData& data, Solver& 
   // subsample (every stride-th point of each stage, about kReferenceSample in
   // all), against the best minimum polished on that subsample; a start that
   // finds a lower one there is then polished on all points. (A 100-point
-  // subsample of the 201-point staged Nishihara curves of docs/fitting.md missed
+  // subsample of the 201-point staged Nishihara curves of docs/guide/fitting.md missed
   // the reference's minimum in 10 of 300 draws; 200 points of 1 000 keep a
   // Burgers fit within 1 ms, bench/fit_bench.)
   const int classic = 1 + std::max(options.restarts, 0);
@@ -255,7 +255,7 @@ void add_statistics(FitResult& res, const CreepData& data, const std::vector<dou
   res.bic = nd * log_mse + k * std::log(nd);
 }
 
-// Is the minimum certain? (docs/fitting.md, "When the minimum is not certain")
+// Is the minimum certain? (docs/guide/fitting.md, "When the minimum is not certain")
 void judge_minimum(FitResult& res, const Search& sr, double scale) {
   const double floor = sr.floor;
   res.starts_agreeing = sr.agreeing_sample;
@@ -369,7 +369,7 @@ void warn_data_limits(FitResult& res, const std::optional<SeriesStructure>& stru
 FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOptions& options) {
   if (!info.fittable)
     throw FitError(info.name, fmt::format("law '{}' cannot be fitted yet: its creep is nonlinear in the "
-                                          "stress (docs/laws.md, \"Nonlinear laws\"); compare it with the "
+                                          "stress (docs/reference/laws.md, \"Nonlinear laws\"); compare it with the "
                                           "data through `rheodda law curve {}`",
                                           info.name, info.name));
   const ErrorHandlerOff handler_off;

@@ -1,4 +1,4 @@
-// Residuals of a fit and their Jacobian (residuals.hpp; docs/fitting.md, "What is fitted").
+// Residuals of a fit and their Jacobian (residuals.hpp; docs/guide/fitting.md, "What is fitted").
 #include "residuals.hpp"
 
 #include <gsl/gsl_errno.h>
@@ -18,7 +18,7 @@ void to_values(const gsl_vector* x, Problem& pr) {
 }
 
 // Exact staged response of a series law and its derivatives with respect to
-// the log parameters (docs/fitting.md, "What is fitted"):
+// the log parameters (docs/guide/fitting.md, "What is fitted"):
 //   spring   F(t)/E1                                   d/dlnE1 = -F(t)/E1
 //   Kelvin   sum_i dF_i/E (1 - e^-r_i), r_i = E (t - t_i)/eta
 //            d/dlnE = dF_i/E (r_i e^-r_i - b_i),  d/dlneta = -dF_i/E r_i e^-r_i

@@ -1,4 +1,4 @@
-// The energy balance with contacts (docs/engine.md, "Energy balance"): a block
+// The energy balance with contacts (docs/reference/engine.md, "Energy balance"): a block
 // sliding down an incline dissipates N tan(phi) x slip by friction, a block
 // dropped onto a base loses its impact energy to the integration and the
 // closing contacts, a small brick wall settles, a block dropped on an incline

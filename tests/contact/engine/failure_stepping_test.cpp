@@ -1,5 +1,5 @@
-// A damage-law joint driven by the DDA engine to failure (docs/rheology-in-dda.md,
-// "Failure"; law damage-burgers, docs/laws.md): the seed's two-block shear creep
+// A damage-law joint driven by the DDA engine to failure (docs/reference/rheology-in-dda.md,
+// "Failure"; law damage-burgers, docs/reference/laws.md): the seed's two-block shear creep
 // test (block A 100 x 100 mm on fixed block B, sigma = 1.408 MPa, tau = 0.232 MPa
 // at the joint line; MPa, mm, h) with Kachanov-Rabotnov damage, whose failure
 // time at that stress is t_f = t_r (tau_ref/tau)^r = 149.9 h (closed form).
@@ -81,7 +81,7 @@ Run run(double dt, double tolerance, double t_end, bool ramp = false, double tau
 BOOST_AUTO_TEST_SUITE(failure_stepping)
 
 BOOST_AUTO_TEST_CASE(adaptive_steps_end_on_the_failure_instead_of_stepping_over_it) {
-  // Constant stress: both schemes integrate the law exactly (docs/laws.md), so
+  // Constant stress: both schemes integrate the law exactly (docs/reference/laws.md), so
   // the creep error estimate is zero and the steps grow; the step that reaches
   // t_f is 1 + 1e-3 times the time left at its start (the engine asks
   // ContactModel::time_to_failure), so it ends after t_f by at most 1e-3 of
@@ -110,7 +110,7 @@ BOOST_AUTO_TEST_CASE(adaptive_steps_end_on_the_failure_instead_of_stepping_over_
 
 BOOST_AUTO_TEST_CASE(under_a_rising_load_adaptive_steps_shrink_as_creep_accelerates) {
   // Shear load rising linearly, tau = a t with a = 2 tau/200 h (an intact law
-  // fails at t_f = ((r+1) t_r (tau_ref/a)^r)^(1/(r+1)) = 156.5 h, docs/laws.md (K)):
+  // fails at t_f = ((r+1) t_r (tau_ref/a)^r)^(1/(r+1)) = 156.5 h, docs/reference/laws.md (K)):
   // the implicit scheme errs at first order, the creep error estimate grows
   // with the creep rate and the steps shrink towards the failure, in
   // proportion to the time left; within kFailureReach = 8 steps of it the
@@ -147,7 +147,7 @@ BOOST_AUTO_TEST_CASE(the_displacement_at_failure_is_the_closed_form_and_the_last
   // laws/power_law.hpp), the Norton part about 60 % of it with A = 3e-5 mm/h. At
   // constant stress every step integrates the law exactly (the Norton dashpot and
   // the damage in closed form, (S); the Kelvin element exactly under a constant
-  // force, docs/laws.md "Schemes"), and the step that fails keeps the creep up to
+  // force, docs/reference/laws.md "Schemes"), and the step that fails keeps the creep up to
   // the failure: the Norton dashpot's stops there. What is left: the step ends
   // after t_f (adaptive: 1.001 x the time left at its start; fixed: anywhere in
   // the step), and over that rest of the step the Kelvin element goes on at

@@ -1,4 +1,4 @@
-// The energy balance of a run (docs/engine.md, "Energy balance"): after every
+// The energy balance of a run (docs/reference/engine.md, "Energy balance"): after every
 // accepted step, the energy stored in the blocks (kinetic, elastic), the fixed
 // points and the contact springs, the work of gravity and of the point loads,
 // the energy dissipated by friction, by the creep dashpots, by the time
@@ -8,7 +8,7 @@
 //
 // Every term has its own formula (energy.cpp, contact_energy.cpp); none is
 // defined as "what is left", so the residual measures what the terms do not
-// account for (docs/engine.md lists the mechanisms).
+// account for (docs/reference/engine.md lists the mechanisms).
 //
 // Energies are per unit thickness: [force x length], "force" per unit
 // thickness as everywhere (J/m in SI).
@@ -77,7 +77,7 @@ struct EnergyFlows {
 
 /// The share of a step's work of gravity and loads that its inertia term took,
 /// integration_inertia / scale [-] (0 when the step did no such work). In a static
-/// analysis (docs/engine.md, "Mechanisms in static analysis") a part that stands
+/// analysis (docs/reference/engine.md, "Mechanisms in static analysis") a part that stands
 /// takes its load in springs: the share is about (2M/dt^2) d / F_g, far below 1 %.
 /// A part that moves as a mechanism is held by nothing but the inertia term
 /// 2M/dt^2 of the step: the term takes the unbalanced force's work (about half of
@@ -134,7 +134,7 @@ class EnergyAccount {
   /// and the residual; adds the step to `balance`.
   void end(const EnergyInputs& in, double t_end, const ContactEnergy& contacts,
            EnergyBalance& balance);
-  /// Step doubling (docs/speed-accuracy.md, "Step doubling"): `balance` went from
+  /// Step doubling (docs/reference/step-controls.md, "Step doubling"): `balance` went from
   /// `start` through the two half steps. Makes it one step: the flows of the two
   /// halves summed or, when the step was extrapolated, every flow extrapolated as
   /// the states are, 2 (sum of the halves) - (the single step's `coarse`), and the
@@ -146,7 +146,7 @@ class EnergyAccount {
   /// A static trial step D of dt, before it is taken: the work its inertia term
   /// D^T M D/(beta dt^2) absorbs over the work of gravity and of the point loads
   /// (at t_end, over the displacement T D of their points), as inertia_share
-  /// would find it after the step (docs/engine.md, "Collapse stages") [-].
+  /// would find it after the step (docs/reference/engine.md, "Collapse stages") [-].
   static double static_trial_share(const EnergyInputs& in, const Eigen::VectorXd& D, double dt,
                                    double beta, double t_end);
 

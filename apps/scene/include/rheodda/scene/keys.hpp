@@ -4,7 +4,7 @@
 // loader (which keys a map accepts, how each value is read and checked), the
 // schema (scene_schema()), `rheodda check`'s description, the scene echoed in
 // summary.json, the Python module's `Scene.analysis`, and the key tables of
-// docs/scene-format.md (`rheodda schema --markdown`, checked by a test).
+// docs/reference/scene-format.md (`rheodda schema --markdown`, checked by a test).
 //
 // Why a table of declarations (in the spirit of MOOSE's validParams()): a key
 // written in six places drifts; adding one meant finding all six. Adding a key
@@ -54,8 +54,8 @@ struct KeySpec {
   KeyRange range;            ///< number and integer keys
   std::vector<std::string> choices;  ///< choice keys
   std::string required;      ///< non-empty: the key is required; what to give, for the message
-  std::string default_text;  ///< the default, as docs/scene-format.md states it
-  std::string meaning;       ///< one table cell of docs/scene-format.md
+  std::string default_text;  ///< the default, as docs/reference/scene-format.md states it
+  std::string meaning;       ///< one table cell of docs/reference/scene-format.md
   /// The value of the key in a read scene (std::monostate: not applicable).
   std::function<KeyValue(const Analysis&)> get;
   /// Stores a value read from the file (of the key's type) into its field.
@@ -74,7 +74,7 @@ std::vector<std::string> declared_key_names(const std::string& map);
 std::string key_value_text(const KeySpec& k, const Analysis& a, const Units& u);
 
 /// The Markdown key table of one map (`| key | unit | meaning | default |`), as
-/// docs/scene-format.md holds it between `<!-- keys: MAP -->` markers.
+/// docs/reference/scene-format.md holds it between `<!-- keys: MAP -->` markers.
 std::string key_table_markdown(const std::string& map);
 
 }  // namespace rheodda::scene

@@ -1,8 +1,8 @@
 // Laboratory creep curves read from CSV: time, shear displacement and the
 // applied shear stress, either one value (or staged history) for the whole
-// file or one value per row (a stage column). See docs/fitting.md.
+// file or one value per row (a stage column). See docs/guide/fitting.md.
 //
-// Conventions a fit relies on (docs/fitting.md, "The CSV format"):
+// Conventions a fit relies on (docs/guide/fitting.md, "The CSV format"):
 //   - time is measured from the first loading: the first stage starts at t = 0;
 //   - a row recorded at a stage start holds the displacement just after the
 //     stress change (the instantaneous jump F/E1 included);

@@ -1,6 +1,6 @@
 // Fitting registered laws to creep curves by nonlinear least squares (GSL
 // gsl_multifit_nlinear, trust-region Levenberg-Marquardt), and ranking the
-// laws by information criteria. See docs/fitting.md.
+// laws by information criteria. See docs/guide/fitting.md.
 //
 // What is minimized: RSS = sum_i (d_model(t_i) - d_i)^2 over every point of
 // every stage at once, where d_model is the exact response of the law to the
@@ -14,7 +14,7 @@
 // the Nishihara threshold solved exactly at each node, gives the starts; GSL
 // polishes them on the full parameter set; the classic multi-start search
 // (FitOptions::restarts) runs as a reference. Identifiability comes from the
-// singular value decomposition of the Jacobian (docs/fitting.md).
+// singular value decomposition of the Jacobian (docs/guide/fitting.md).
 #pragma once
 
 #include <cmath>
@@ -45,7 +45,7 @@ struct FitOptions {
   double correlation_limit = 0.99;      ///< |corr| above this: warning
   double relative_error_limit = 1.0;    ///< std. error / value above this: warning
   double retardation_factor = 3.0;      ///< test shorter than this * eta/E: warning
-  /// Starts from the variable-projection grid search (docs/fitting.md, "How the
+  /// Starts from the variable-projection grid search (docs/guide/fitting.md, "How the
   /// minimum is found"); false: only the classic multi-start search.
   bool structured_search = true;
   int grid_per_decade = 10;  ///< grid nodes per decade of retardation time
@@ -61,7 +61,7 @@ struct ParameterEstimate {
   double value = 0.0;
   double std_error = 0.0;  ///< delta method from the log-space covariance; 0 if not identifiable
   /// false when the parameter has a significant weight in a direction of the
-  /// (log) parameters that the data do not fix (docs/fitting.md, "Identifiability")
+  /// (log) parameters that the data do not fix (docs/guide/fitting.md, "Identifiability")
   bool identifiable = true;
   std::string reason;  ///< why it is not identifiable; empty if it is
 };
