@@ -47,7 +47,7 @@ def reference_fit(t, d, start, fixed=None, bounds=None, sigma=None, absolute_sig
         r = model.fit(d, params, t=t, weights=weights, scale_covar=not absolute_sigma,
                       fit_kws={"xtol": 1e-12, "ftol": 1e-12})
         return ({n: r.params[n].value for n in NAMES}, {n: r.params[n].stderr for n in NAMES}, r.chisqr, r)
-    from scipy.optimize import curve_fit  # pragma: no cover
+    curve_fit = pytest.importorskip("scipy.optimize").curve_fit  # pragma: no cover
     assert not bounds, "the scipy fallback compares unbounded fits only"
     free = [n for n in NAMES if n not in fixed]
 
@@ -186,3 +186,11 @@ def test_bad_params_raise_naming_the_parameter(curve):
         rheodda.fit("burgers", d, t=t, stress=F, sigma=np.ones(3))
     with pytest.raises(rheodda.FitError, match="need the measurement sigma"):
         rheodda.fit("burgers", d, t=t, stress=F, absolute_sigma=True)
+
+
+def test_fit_all_applies_params_to_every_law_and_skips_those_without_them(curve):
+    t, d = curve
+    ranked, skipped = rheodda.fit_all(d, t=t, stress=F, params={"eta2": {"min": 100.0, "max": 1e4}})
+    assert ranked and all("eta2" in r.values and r.values["eta2"] <= 1e4 for r in ranked)
+    maxwell = [s for s in skipped if s.startswith("maxwell:")]
+    assert maxwell and "law 'maxwell' has no parameter 'eta2'" in maxwell[0]
