@@ -277,7 +277,9 @@ void write_json(const std::string& path, const CreepData& d, const Units& u,
     for (const auto& p : r.parameters)
       params.push_back({{"name", p.name},
                         {"value", p.value},
-                        {"std_error", p.identifiable && p.vary && p.at_bound.empty() ? json(p.std_error) : json(nullptr)},
+                        // A held parameter (fixed, or on a bound) has no spread: 0, so that `rheodda
+                        // forecast` holds it too; null where the data cannot tell it.
+                        {"std_error", p.identifiable ? json(p.std_error) : json(nullptr)},
                         {"unit", u.of(p.unit)},
                         {"identifiable", p.identifiable},
                         {"reason", p.reason},
@@ -293,10 +295,13 @@ void write_json(const std::string& path, const CreepData& d, const Units& u,
                         {"unit", u.of(c.unit)},
                         {"parameters", c.parameters}});
     auto finite_or_null = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+    // A held parameter is a constant: correlation 0 with the others (1 with itself).
+    auto held = [&](std::size_t i) { return !r.parameters[i].vary || !r.parameters[i].at_bound.empty(); };
     json corr = json::array();
     for (std::size_t i = 0; i < r.parameters.size(); ++i) {
       json row = json::array();
-      for (std::size_t j = 0; j < r.parameters.size(); ++j) row.push_back(finite_or_null(r.correlation_at(i, j)));
+      for (std::size_t j = 0; j < r.parameters.size(); ++j)
+        row.push_back(held(i) || held(j) ? json(i == j ? 1.0 : 0.0) : finite_or_null(r.correlation_at(i, j)));
       corr.push_back(row);
     }
     arr.push_back({{"law", r.law},

@@ -255,7 +255,11 @@ BOOST_AUTO_TEST_CASE(fix_bounds_initial_and_sigma_column_reach_the_library_and_t
   BOOST_TEST(!j["scale_covariance"].get<bool>());
   BOOST_TEST(j["parameters"][0]["vary"].get<bool>() == false);
   BOOST_TEST(j["parameters"][0]["value"].get<double>() == 26.87);
-  BOOST_TEST(j["parameters"][0]["std_error"].is_null());
+  // held: no spread, and no correlation with the others (rheodda forecast holds it)
+  BOOST_TEST(j["parameters"][0]["std_error"].get<double>() == 0.0);
+  BOOST_TEST(j["correlation"][0][0].get<double>() == 1.0);
+  BOOST_TEST(j["correlation"][0][2].get<double>() == 0.0);
+  BOOST_TEST(j["correlation"][2][0].get<double>() == 0.0);
   BOOST_TEST(j["parameters"][3]["min"].get<double>() == 100.0);
   BOOST_TEST(j["parameters"][3]["max"].get<double>() == 1e4);
 
@@ -279,6 +283,33 @@ BOOST_AUTO_TEST_CASE(fix_bounds_initial_and_sigma_column_reach_the_library_and_t
                  boost::test_tools::tolerance(1e-15));
   }
   BOOST_TEST(j["chi_square"].get<double>() == lib.chi_square, boost::test_tools::tolerance(1e-15));
+}
+
+BOOST_AUTO_TEST_CASE(a_fixed_parameter_is_held_by_rheodda_forecast) {
+  // The JSON gives a fixed parameter std_error 0 and correlation 0: `rheodda forecast --fit`
+  // draws the others and holds it (docs/fitting.md). E1 = 26.87 MPa/mm is 26.87e9 N/m^2/m
+  // in the slope's units (examples/studies/forecast-slope.yaml).
+  TempDir dir;
+  const std::string json = (dir / "fit.json").string(), out = (dir / "forecast").string();
+  Run r = run_rheodda("fit '" + kExample + "' --law burgers --stress 0.232 --units 'MPa, mm, h' --fix E1=26.87 --json '" +
+                          json + "'",
+                      dir);
+  BOOST_TEST_REQUIRE(r.code == 0, r.err);
+  r = run_rheodda("forecast '" + std::string(RHEODDA_SOURCE_DIR) + "/examples/studies/forecast-slope.yaml' --fit '" +
+                      json + "' --joint-set plane --samples 3 --threshold 3e-6 --by 100 -o '" + out + "'",
+                  dir);
+  BOOST_TEST_REQUIRE(r.code == 0, r.err);
+  std::istringstream samples(slurp(fs::path(out) / "samples.csv"));
+  std::string line;
+  std::getline(samples, line);  // header: case,E1 [...],E2 [...],...
+  int rows = 0;
+  while (std::getline(samples, line)) {
+    const auto first = line.find(','), second = line.find(',', first + 1);
+    const double e1 = std::stod(line.substr(first + 1, second - first - 1));
+    BOOST_TEST(e1 == 26.87e9, boost::test_tools::tolerance(1e-12));
+    ++rows;
+  }
+  BOOST_TEST(rows == 3);
 }
 
 BOOST_AUTO_TEST_CASE(bad_settings_exit_2_naming_the_option) {
