@@ -459,6 +459,12 @@ void bind_laws(py::module_& m) {
            }),
            py::arg("name"), py::arg("parameters") = py::dict(), py::arg("internal_count") = 1,
            py::arg("instantaneous_stiffness") = py::none(), py::arg("linear") = true)
+      .def("__repr__",
+           [](const py::object& self) {
+             return fmt::format("<PythonLaw '{}' ({}) {}>", self.cast<const PythonLaw&>().name(),
+                                py::str(py::type::of(self).attr("__qualname__")).cast<std::string>(),
+                                py::repr(self.attr("parameters")).cast<std::string>());
+           })
       // The declared parameters, each read from the instance's attribute of that name when it has
       // one: a change of self.eta1 shows here (the names and the others as given to __init__).
       .def_property_readonly(
@@ -546,7 +552,9 @@ void bind_laws(py::module_& m) {
         });
       },
       py::arg("law"), py::arg("force"), py::arg("t"),
-      "Exact total displacement at times t under a staged force (Boltzmann superposition); NaN where none");
+      "Exact total displacement [length] at times t [time] (an array of any shape; the result has it) under a "
+      "staged force [force/length, shear stress] (Boltzmann superposition, the seed's eqs. 4-6); NaN where the "
+      "law has no exact response");
   m.def(
       "exact_force",
       [](const ContactRheology& law, const py::object& displacement, const py::array_t<double, py::array::c_style | py::array::forcecast>& t) {
@@ -557,7 +565,8 @@ void bind_laws(py::module_& m) {
         });
       },
       py::arg("law"), py::arg("displacement"), py::arg("t"),
-      "Exact force at times t under a staged displacement; NaN where the law has no closed form");
+      "Exact force [force/length, shear stress] at times t [time] (an array of any shape) under a staged "
+      "displacement [length]; NaN where the law has no closed form");
   m.def(
       "law_step",
       [](const ContactRheology& law, const py::object& q, double dt, double force_start, double force_end,
@@ -571,7 +580,8 @@ void bind_laws(py::module_& m) {
       },
       py::arg("law"), py::arg("q"), py::arg("dt"), py::arg("force_start"), py::arg("force_end"),
       py::arg("scheme") = "implicit",
-      "One step of the law alone from internal displacements q: (Delta d_c [length], q_new)");
+      "One step of dt [time] of the law alone from internal displacements q [length], the force going from "
+      "force_start to force_end [force/length, shear stress]: (Delta d_c [length], q_new [length])");
 }
 
 }  // namespace rheodda::python

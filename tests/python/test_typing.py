@@ -70,6 +70,12 @@ def test_reprs_say_what_an_object_is(root):
     assert repr(data).endswith("table1-row1.csv: 401 points, 1 stage, t from 0 to 200>")
     assert "object at 0x" not in repr(rheodda.UnitStepConstants())
 
+    class Maxwell(rheodda.PythonLaw):
+        def __init__(self) -> None:
+            super().__init__("my-maxwell", {"E1": 26.87, "eta1": 34807.72}, instantaneous_stiffness=26.87)
+    assert repr(Maxwell()) == "<PythonLaw 'my-maxwell' (test_reprs_say_what_an_object_is.<locals>.Maxwell) " \
+                              "{'E1': 26.87, 'eta1': 34807.72}>"
+
 
 @pytest.mark.skipif(shutil.which("mypy") is None and subprocess.run(
     [sys.executable, "-c", "import mypy"], capture_output=True).returncode != 0,
