@@ -462,7 +462,8 @@ class Simulation:
     block_stresses = property(lambda self: self._sim.block_stresses,
                               doc="(sigma_x, sigma_y, tau_xy) per block, shape (blocks, 3) [stress]")
     settings = property(lambda self: self._sim.settings, doc="the step settings by their scene names")
-    loads = property(lambda self: self._sim.loads, doc="each load's (t, fx, fy) samples")
+    loads = property(lambda self: self._sim.loads,
+                     doc="per load, its samples as a read-only array of rows (t [time], fx, fy [force])")
     units = property(lambda self: self._sim.units,
                      doc="the scene's unit names: dict of length, force, time, stress")
     joint_sets = property(lambda self: self._sim.joint_sets, doc="the joint sets' names, in scene order")
@@ -502,7 +503,8 @@ class Simulation:
         self._sim.set_load(int(index), float(fx), float(fy))
 
     def set_load_history(self, index, samples):
-        """Load ``index`` follows (t, fx, fy) samples from now on (piecewise linear, as in a scene)."""
+        """Load ``index`` follows (t [time], fx, fy [force]) samples from now on (piecewise linear, as in
+        a scene)."""
         self._sim.set_load_history(int(index), [tuple(map(float, s)) for s in samples])
 
     def set_law_parameters(self, joint_set, parameters=None, **kw):
