@@ -37,6 +37,25 @@ inline py::array_t<long> to_numpy(const std::vector<long>& v) {
   return a;
 }
 
+/// `a` made read-only: a property computed from the state (a fresh copy at each
+/// read) refuses writes instead of dropping them silently (docs/guide/python.md,
+/// "numpy conventions").
+template <class Array>
+Array read_only(Array a) {
+  a.attr("setflags")(py::arg("write") = false);
+  return a;
+}
+
+/// A 1-D numpy array of str (numpy's unicode dtype) holding `v`.
+inline py::array str_array(const std::vector<std::string>& v) {
+  return py::module_::import("numpy").attr("array")(py::cast(v), py::arg("dtype") = "str");
+}
+
+/// Raises rheodda.PythonLawError (errors.cpp) for a value a method of a law
+/// written in Python returned: `value` its repr, `expected` what it should be.
+[[noreturn]] void raise_python_law_error(const std::string& law, const std::string& method,
+                                         const std::string& value, const std::string& expected);
+
 /// Raises the pending Python error (KeyboardInterrupt after Ctrl-C) if a signal
 /// handler raised one; call with the GIL held, between steps.
 inline void check_signals() {

@@ -23,6 +23,9 @@
 #include <exception>
 #include <string>
 
+// This project sets no C++ standard: the rheodda targets' cxx_std_20 must have made it C++20.
+static_assert(__cplusplus >= 202002L, "the rheodda targets should require C++20 (cxx_std_20) of their consumers");
+
 namespace {
 
 int failures = 0;

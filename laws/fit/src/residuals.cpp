@@ -174,6 +174,8 @@ int residual_cb(const gsl_vector* x, void* params, gsl_vector* f) {
   } else if (!evaluate_generic(pr, out)) {
     std::fill(out, out + pr.n, 1e100);
   }
+  if (!pr.weight.empty())
+    for (std::size_t j = 0; j < pr.n; ++j) out[j] *= pr.weight[j];
   sanitize(out, pr.n);
   if (out != f->data)
     for (std::size_t j = 0; j < pr.n; ++j) gsl_vector_set(f, j, out[j]);
@@ -193,7 +195,8 @@ int jacobian_cb(const gsl_vector* x, void* params, gsl_matrix* jac) {
   for (std::size_t j = 0; j < pr.n; ++j) {
     const double* src = pr.cached_jac.data() + j * pr.np;
     double* dst = jac->data + j * jac->tda;
-    for (std::size_t k = 0; k < pr.np; ++k) dst[k] = std::isfinite(src[k]) ? src[k] : 0.0;
+    const double w = pr.weight.empty() ? 1.0 : pr.weight[j];
+    for (std::size_t k = 0; k < pr.np; ++k) dst[k] = std::isfinite(src[k]) ? src[k] * w : 0.0;
   }
   return GSL_SUCCESS;
 }
