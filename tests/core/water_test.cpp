@@ -4,6 +4,7 @@
 // the engine, and the model checks.
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -166,6 +167,36 @@ BOOST_AUTO_TEST_CASE(a_submerged_block_fixed_at_its_centroid_sags_by_its_weight_
   BOOST_TEST_MESSAGE("t " << e.time() << ": sag " << -e.point_displacement(0, {1.0, 0.5}).y() << " m, closed form "
                           << sag_t);
   BOOST_TEST(std::abs(e.point_displacement(0, {1.0, 0.5}).y() + sag_t) <= 1e-5 * sag_t);
+}
+
+BOOST_AUTO_TEST_CASE(adaptive_steps_end_on_the_surface_sample_times_and_restart_from_dt_after_them) {
+  // As on point-load sample times (docs/speed-accuracy.md): under step_tolerance
+  // the steps grow while the level stands, end on each sample time where the
+  // level changes its course (0.137, 0.5), and restart from dt after it.
+  Model m;
+  m.settings.dt = 0.01;
+  m.settings.dynamic_ratio = 0.0;
+  m.settings.step_tolerance = 1e-12;
+  m.blocks.push_back(block({{0, 0}, {2, 0}, {2, 1}, {0, 1}}));
+  m.fixed_points.push_back({.block = 0, .point = {1.0, 0.5}});
+  m.water.unit_weight = kGammaW;
+  m.water.history.push_back({0.137, {{-1, 6.0}, {3, 6.0}}});
+  m.water.history.push_back({0.5, {{-1, 0.5}, {3, 0.5}}});
+  Engine e(m);
+  e.run_until(0.8);
+  const auto& reports = e.reports();
+  for (const double t : {0.137, 0.5}) {
+    BOOST_TEST_CONTEXT("sample time " << t) {
+      const auto it = std::find_if(reports.begin(), reports.end(),
+                                   [&](const StepReport& r) { return std::abs(r.time - t) < 1e-12; });
+      BOOST_TEST_REQUIRE((it != reports.end()));
+      BOOST_TEST_REQUIRE((it + 1 != reports.end()));
+      BOOST_TEST((it + 1)->dt == m.settings.dt);
+    }
+  }
+  BOOST_TEST(std::max_element(reports.begin(), reports.end(), [](const StepReport& a, const StepReport& b) {
+               return a.dt < b.dt;
+             })->dt > 2.0 * m.settings.dt);
 }
 
 BOOST_AUTO_TEST_CASE(bad_water_is_refused_with_its_key) {
