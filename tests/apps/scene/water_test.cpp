@@ -6,6 +6,7 @@
 // pressure in contacts.csv.
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <numbers>
@@ -197,6 +198,12 @@ BOOST_AUTO_TEST_CASE(the_plane_failure_example_slides_when_the_crack_water_reach
   BOOST_TEST(first > t_c - 0.05);
   BOOST_TEST(first < t_c + 0.4);
   BOOST_TEST(after > 1e-2);
+  // The energy balance closes with the water's work (booked in work_loads).
+  const std::size_t residual = header.find("energy_residual_relative") == std::string::npos
+                                   ? 0
+                                   : std::count(header.begin(), header.begin() + header.find("energy_residual_relative"), ',');
+  BOOST_TEST_REQUIRE(residual > 0u);
+  BOOST_TEST(std::stod(history.back()[residual]) < 1e-6);
 
   const auto contacts = csv_rows(out / "contacts.csv", &header);
   BOOST_TEST_REQUIRE(header.substr(header.rfind(',') + 1) == "water_pressure");
