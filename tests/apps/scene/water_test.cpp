@@ -223,4 +223,24 @@ BOOST_AUTO_TEST_CASE(the_plane_failure_example_slides_when_the_crack_water_reach
   fs::remove_all(out);
 }
 
+BOOST_AUTO_TEST_CASE(an_interrupted_then_resumed_run_with_water_writes_the_same_files) {
+  // The water depends on time only: a run stopped while the crack fills and
+  // resumed from its checkpoint writes what the uninterrupted run does.
+  auto s = scene::load_scene(source_path("examples/water-plane-failure.yaml"));
+  s.analysis.duration = 2.0;
+  s.analysis.output_interval = 0.25;
+  const fs::path whole = fresh_dir("water-whole"), split = fresh_dir("water-split");
+  BOOST_TEST((run(s, whole).status == scene::RunStatus::completed));
+  BOOST_TEST((run(s, split, 17).status == scene::RunStatus::interrupted));
+  const auto second = run(s, split, -1, true);
+  BOOST_TEST((second.status == scene::RunStatus::completed));
+  BOOST_TEST(second.resumed_from_step == 17);
+  for (const char* f : {"history.csv", "contacts.csv", "frames/contacts_000008.vtp"})
+    BOOST_TEST(read_text((split / f).string()) == read_text((whole / f).string()), f);
+  BOOST_TEST(read_text((whole / "frames/contacts_000008.vtp").string()).find("Name=\"water_pressure\"") !=
+             std::string::npos);
+  fs::remove_all(whole);
+  fs::remove_all(split);
+}
+
 BOOST_AUTO_TEST_SUITE_END()
