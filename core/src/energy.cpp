@@ -58,7 +58,7 @@ void each_flow(EnergyFlows& a, const EnergyFlows& b, F f) {
 Vec2 position(const BlockState& b, const Vec2& p0) { return b.map_A * p0 + b.map_b; }
 
 /// Work of the water pressure over the step D (water.hpp; docs/water.md,
-/// "Energy"): its six load terms at t_end on the step-start geometry, as
+/// "Assumptions"): its six load terms at t_end on the step-start geometry, as
 /// assembled, times the block's step D - the end-force work of the engine's
 /// equations, as for gravity; 0 without water [force x length].
 double water_work(const EnergyInputs& in, const Eigen::VectorXd& D, double t_end) {
