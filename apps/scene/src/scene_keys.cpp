@@ -13,7 +13,8 @@ namespace detail {
 // docs/reference/scene-format.md against it) says cannot diverge. Order: that of the docs.
 namespace keys {
 const std::vector<std::string> top{"title", "units", "analysis", "materials", "joint_sets",
-                                   "blocks", "rock_mass", "fixed_points", "loads", "measurement_points"};
+                                   "blocks", "rock_mass", "fixed_points", "loads", "measurement_points",
+                                   "water"};
 const std::vector<std::string> units{"length", "force", "time"};
 const std::vector<std::string> material{"density", "young_modulus", "poisson_ratio", "plane", "damping_ratio"};
 const std::vector<std::string> joint_set{"friction_angle", "cohesion", "tensile_strength",
@@ -34,6 +35,8 @@ const std::vector<std::string> rock_mass_trace{"joint_set", "from", "to"};
 const std::vector<std::string> fixed_point{"point", "block"};
 const std::vector<std::string> load{"point", "block", "force", "history"};
 const std::vector<std::string> measurement_point{"name", "point", "block"};
+const std::vector<std::string> water{"unit_weight", "level", "surface", "level_history", "surface_history"};
+const std::vector<std::string> water_sample{"time", "surface"};
 }  // namespace keys
 
 }  // namespace detail
@@ -57,6 +60,8 @@ std::vector<SceneMapKeys> scene_schema() {
       {"fixed_points[*]", detail::keys::fixed_point},
       {"loads[*]", detail::keys::load},
       {"measurement_points[*]", detail::keys::measurement_point},
+      {"water", detail::keys::water},
+      {"water.surface_history[*]", detail::keys::water_sample},
   };
 }
 

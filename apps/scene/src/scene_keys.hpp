@@ -20,4 +20,6 @@ extern const std::vector<std::string> rock_mass_trace;
 extern const std::vector<std::string> fixed_point;
 extern const std::vector<std::string> load;
 extern const std::vector<std::string> measurement_point;
+extern const std::vector<std::string> water;
+extern const std::vector<std::string> water_sample;
 }  // namespace rheodda::scene::detail::keys

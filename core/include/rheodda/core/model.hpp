@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "rheodda/core/water.hpp"
+
 namespace rheodda::core {
 
 using Vec2 = Eigen::Vector2d;
@@ -228,6 +230,7 @@ struct Model {
   std::vector<PointLoad> point_loads;
   std::vector<FixedPoint> fixed_points;
   std::vector<MeasurementPoint> measurement_points;
+  Water water;  ///< water in the joints (water.hpp); default none
   Settings settings;
 };
 

@@ -23,6 +23,7 @@
 #include "rheodda/rockmass/cut.hpp"
 #include "rheodda/rockmass/generate.hpp"
 #include "rheodda/scene/error.hpp"
+#include "rheodda/scene/water.hpp"
 
 namespace rheodda::scene {
 
@@ -253,6 +254,7 @@ struct SceneDescription {
   std::vector<LoadDescription> loads;
   std::vector<MeasurementPoint> measurement_points;
   std::optional<RockMassDescription> rock_mass;  ///< `rock_mass:`, if given
+  std::optional<WaterDescription> water;          ///< `water:`, if given (water.hpp)
 };
 
 std::string_view analysis_type_name(AnalysisType t);
