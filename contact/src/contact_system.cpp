@@ -36,8 +36,6 @@ const char* creep_state_name(CreepState s) {
   return "?";
 }
 
-namespace {
-
 void check_joint_set(const JointSet& js, size_t index) {
   auto bad = [&](const char* key, double v) {
     throw std::invalid_argument("joint set " + std::to_string(index) + " '" + js.name + "': " + key +
@@ -71,8 +69,6 @@ void check_joint_set(const JointSet& js, size_t index) {
                                 std::string(js.law->name()) +
                                 "' both set the joint's elastic shear stiffness; give only E1");
 }
-
-}  // namespace
 
 ContactSystem::ContactSystem(std::vector<JointSet> joint_sets, ContactSettings settings)
     : joint_sets_(std::move(joint_sets)), settings_(settings), penalty_(settings.penalty) {

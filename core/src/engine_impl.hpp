@@ -38,6 +38,9 @@ constexpr double kFailureReach = 8.0;
 /// (docs/engine.md, "Contact search reach") [-].
 constexpr double kSearchFloor = 0.1;
 
+/// Is p inside the polygon v or within tol of its boundary (model_checks.cpp)?
+bool inside_or_near(std::span<const Vec2> v, const Vec2& p, double tol);
+
 struct Engine::Impl {
   Model model;
   NullContactModel null_contacts;
@@ -46,6 +49,8 @@ struct Engine::Impl {
   EngineState st;
   std::vector<PolygonIntegrals> moments;  // central integrals of the step-start geometry
   std::vector<char> held;                 // block held by two or more fixed points
+  std::vector<char> removed;              // block removed by an edit (model_edits.cpp); empty: none
+  bool is_removed(std::size_t k) const { return !removed.empty() && removed[k]; }
   std::vector<contact::BlockView> views;
   std::vector<Eigen::Matrix3d> elastic;   // per material
   double w0 = 0.0;                        // half model size [length]
@@ -97,6 +102,7 @@ struct Engine::Impl {
   void validate();
   void initialise();
   void refresh_geometry();
+  void count_held();  // held[k]: block k has two or more fixed points
   void assemble_blocks(double dt, double t_end, std::vector<Mat6>& diag, Eigen::VectorXd& rhs) const;
   double max_vertex_displacement(const Eigen::VectorXd& d) const;
   /// End of the stage the run is in or was last in: the settling stage or a
