@@ -34,7 +34,7 @@ void Engine::Impl::start_stage(StageKind kind, double length, double shortest) {
   g.until = st.time + length;
   g.not_before = st.time + shortest;
   g.open = true;
-  g.opened_by_edit = false;
+  stage_opened_by_edit = false;
   g.event = StageEvent{};
   g.event.kind = kind;
   g.event.start_time = st.time;
@@ -69,7 +69,7 @@ void Engine::Impl::update_stage(const StepReport& rep) {
   // A stage a model edit opened (docs/stages.md) measures the kinetic energy
   // against the larger of that work and what it dissipated: an excavation
   // releases strain energy while gravity does little or negative work.
-  const double reference = g.opened_by_edit ? std::max(e.work, e.energy_dissipated) : e.work;
+  const double reference = stage_opened_by_edit ? std::max(e.work, e.energy_dissipated) : e.work;
   if (settling() && s.settle_rest_tolerance > 0.0 && e.steps >= kMinStageSteps && late_enough &&
       reference > 0.0 && kinetic <= s.settle_rest_tolerance * reference) {
     e.at_rest = true;

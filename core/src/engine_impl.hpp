@@ -51,6 +51,12 @@ struct Engine::Impl {
   std::vector<char> held;                 // block held by two or more fixed points
   std::vector<char> removed;              // block removed by an edit (model_edits.cpp); empty: none
   bool is_removed(std::size_t k) const { return !removed.empty() && removed[k]; }
+  /// The dynamic stage in progress was opened by a model edit (ModelEdit::settle;
+  /// docs/stages.md): it ends at rest relative to the larger of the work done
+  /// on it and the energy it dissipated (an excavation releases strain energy
+  /// while gravity does little or negative work). Set by Engine::edit, reset by
+  /// start_stage; not part of EngineState (a run with stages is not resumed).
+  bool stage_opened_by_edit = false;
   std::vector<contact::BlockView> views;
   std::vector<Eigen::Matrix3d> elastic;   // per material
   double w0 = 0.0;                        // half model size [length]

@@ -189,7 +189,7 @@ EditReport Engine::edit(const ModelEdit& e) {
       g.open = false;
     }
     m.start_stage(StageKind::settling, s.settle_until);
-    g.opened_by_edit = true;
+    m.stage_opened_by_edit = true;
     m.st.next_dt = std::min(s.dt, s.settle_dt);
   }
   m.count_held();

@@ -7,6 +7,7 @@
 // restored from its state steps on bit for bit.
 #include <boost/test/unit_test.hpp>
 
+#include "rheodda/laws/registry.hpp"
 #include "sim.hpp"
 
 using namespace rheodda;
@@ -28,6 +29,14 @@ core::Model stack(bool without_d) {
   m.blocks.push_back(block(rect(-1.25, 0.5, -0.25, 1.0)));
   if (!without_d) m.blocks.push_back(block(rect(0.25, 0.5, 1.25, 1.0)));
   return m;
+}
+
+/// A ModelEdit set up by `set` (the tests give only the fields they use).
+template <class F>
+core::ModelEdit edit_of(F set) {
+  core::ModelEdit e;
+  set(e);
+  return e;
 }
 
 bool touches(const contact::Contact& c, int b) { return c.key.vblock == b || c.key.eblock == b; }
@@ -60,7 +69,7 @@ BOOST_AUTO_TEST_CASE(excavating_a_block_from_a_settled_stack_gives_the_stack_bui
   Sim dug(stack(false), {joint(40.0)});
   dug.engine.run_until(t_cut);
   const Vec2 d_before = dug.engine.centroid(4);
-  const core::EditReport rep = dug.engine.edit({.remove_blocks = {4}});
+  const core::EditReport rep = dug.engine.edit(edit_of([&](core::ModelEdit& e) { e.remove_blocks = {4}; }));
   BOOST_TEST(rep.contacts_dropped > 0);
   for (const contact::Contact& c : dug.contacts.contacts()) BOOST_TEST(!touches(c, 4));
   dug.engine.run_until(t_end);
@@ -106,7 +115,7 @@ BOOST_AUTO_TEST_CASE(lowered_friction_makes_a_held_block_slide_by_the_closed_for
   const Vec2 c0 = sim.engine.block(1).centroid;
   const Vec2 down(-std::cos(alpha), -std::sin(alpha));
   BOOST_TEST(sim.engine.point_displacement(1, sim.engine.centroid(1)).norm() < 1e-4);
-  sim.engine.edit({.joint_sets = {{0, joint(20.0)}}});
+  sim.engine.edit(edit_of([&](core::ModelEdit& e) { e.joint_sets = {{0, joint(20.0)}}; }));
   BOOST_TEST(sim.contacts.joint_sets()[0].friction_angle == 20.0);
   double travelled = 0.0;
   while (travelled < 1.0 && sim.engine.step_count() < 5000) {
@@ -128,7 +137,10 @@ BOOST_AUTO_TEST_CASE(a_static_analysis_switched_to_dynamic_slides_by_the_closed_
   sim.engine.run_until(t0);
   const Vec2 c0 = sim.engine.centroid(1);
   const Vec2 down(-std::cos(alpha), -std::sin(alpha));
-  sim.engine.edit({.joint_sets = {{0, joint(20.0)}}, .dynamic_ratio = 1.0});
+  sim.engine.edit(edit_of([&](core::ModelEdit& e) {
+    e.joint_sets = {{0, joint(20.0)}};
+    e.dynamic_ratio = 1.0;
+  }));
   double travelled = 0.0;
   while (travelled < 1.0 && sim.engine.step_count() < 5000) {
     sim.engine.step();
@@ -154,7 +166,7 @@ BOOST_AUTO_TEST_CASE(fixed_points_added_to_a_sliding_block_hold_it_where_it_is) 
   const Vec2 p0 = v[0], p1 = v[1];
   const double slid = sim.engine.point_displacement(1, incline(alpha, 1.0).blocks[1].vertices[0]).norm();
   BOOST_TEST(slid > 0.05);  // g (sin a - cos a tan phi) t0^2 / 2 = 0.082 m
-  sim.engine.edit({.add_fixed_points = {{1, p0}, {1, p1}}});
+  sim.engine.edit(edit_of([&](core::ModelEdit& e) { e.add_fixed_points = {{1, p0}, {1, p1}}; }));
   BOOST_TEST(sim.engine.model().fixed_points.size() == 5u);
   double worst = 0.0;
   while (sim.engine.time() < t0 + 0.5) {
@@ -180,18 +192,20 @@ BOOST_AUTO_TEST_CASE(invalid_edits_are_refused_with_the_model_unchanged) {
     BOOST_TEST(sim.engine.removed_blocks().empty());
     BOOST_TEST(sim.engine.model().fixed_points.size() == 3u);
   };
-  refused({.remove_blocks = {7}}, "remove_blocks[0]");
-  refused({.remove_blocks = {2, 2}}, "remove_blocks[1]");
-  refused({.remove_blocks = {0}}, "remove_blocks");  // the only fixed block: no support left
-  refused({.remove_fixed_points = {0, 1, 2}}, "remove_fixed_points");
-  refused({.remove_fixed_points = {3}}, "remove_fixed_points[0]");
-  refused({.remove_point_loads = {0}}, "remove_point_loads[0]");
-  refused({.remove_blocks = {0, 1, 2, 3, 4}}, "remove_blocks");
-  refused({.add_fixed_points = {{1, Vec2(5.0, 5.0)}}}, "add_fixed_points[0].point");
-  refused({.settle = true}, "settle");
-  sim.engine.edit({.remove_blocks = {4}});
+  refused(edit_of([&](core::ModelEdit& e) { e.remove_blocks = {7}; }), "remove_blocks[0]");
+  refused(edit_of([&](core::ModelEdit& e) { e.remove_blocks = {2, 2}; }), "remove_blocks[1]");
+  // The only fixed block: no support left.
+  refused(edit_of([&](core::ModelEdit& e) { e.remove_blocks = {0}; }), "remove_blocks");
+  refused(edit_of([&](core::ModelEdit& e) { e.remove_fixed_points = {0, 1, 2}; }), "remove_fixed_points");
+  refused(edit_of([&](core::ModelEdit& e) { e.remove_fixed_points = {3}; }), "remove_fixed_points[0]");
+  refused(edit_of([&](core::ModelEdit& e) { e.remove_point_loads = {0}; }), "remove_point_loads[0]");
+  refused(edit_of([&](core::ModelEdit& e) { e.remove_blocks = {0, 1, 2, 3, 4}; }), "remove_blocks");
+  refused(edit_of([&](core::ModelEdit& e) { e.add_fixed_points = {{1, Vec2(5.0, 5.0)}}; }),
+          "add_fixed_points[0].point");
+  refused(edit_of([&](core::ModelEdit& e) { e.settle = true; }), "settle");
+  sim.engine.edit(edit_of([&](core::ModelEdit& e) { e.remove_blocks = {4}; }));
   try {
-    sim.engine.edit({.remove_blocks = {4}});
+    sim.engine.edit(edit_of([&](core::ModelEdit& e) { e.remove_blocks = {4}; }));
     BOOST_ERROR("a removed block removed again");
   } catch (const core::ModelError& err) {
     BOOST_TEST(err.key() == "remove_blocks[0]");
@@ -203,8 +217,9 @@ BOOST_AUTO_TEST_CASE(an_edited_run_restored_from_its_state_steps_on_bit_for_bit)
   // edit builds the engine, applies the same edit, then restores the state.
   Sim a(stack(false), {joint(40.0)});
   a.engine.run(20);
-  const core::ModelEdit e{.remove_blocks = {4}, .add_fixed_points = {{1, Vec2(-0.5, 0.25)}}};
-  const core::EditReport rep = a.engine.edit(e);
+  const core::ModelEdit change =
+      edit_of([&](core::ModelEdit& e) { e.remove_blocks = {4}; e.add_fixed_points = {{1, Vec2(-0.5, 0.25)}}; });
+  const core::EditReport rep = a.engine.edit(change);
   a.engine.run(5);
   Sim b(stack(false), {joint(40.0)});
   b.engine.edit(rep.replay);
@@ -215,6 +230,36 @@ BOOST_AUTO_TEST_CASE(an_edited_run_restored_from_its_state_steps_on_bit_for_bit)
   for (int k = 0; k < a.engine.block_count(); ++k)
     for (std::size_t i = 0; i < a.engine.vertices(k).size(); ++i)
       BOOST_TEST((a.engine.vertices(k)[i] - b.engine.vertices(k)[i]).norm() == 0.0);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE(joint_set_edit)
+
+BOOST_AUTO_TEST_CASE(a_joint_set_law_changes_its_parameters_but_is_not_added_removed_or_replaced) {
+  const auto& registry = laws::LawRegistry::builtin();
+  contact::JointSet j = joint(30.0);
+  j.law = registry.create("burgers", {{"E1", 1e9}, {"E2", 2e9}, {"eta1", 3e12}, {"eta2", 4e10}});
+  Sim sim(stack(false), {j});
+  sim.engine.run(3);
+  contact::JointSet slower = j;
+  slower.law = registry.create("burgers", {{"E1", 1e9}, {"E2", 2e9}, {"eta1", 6e12}, {"eta2", 4e10}});
+  sim.engine.edit(edit_of([&](core::ModelEdit& e) { e.joint_sets = {{0, slower}}; }));
+  BOOST_TEST(sim.contacts.joint_sets()[0].law->parameters().at("eta1") == 6e12);
+  sim.engine.run(3);
+  contact::JointSet none = j;
+  none.law = nullptr;
+  BOOST_CHECK_THROW(sim.engine.edit(edit_of([&](core::ModelEdit& e) { e.joint_sets = {{0, none}}; })),
+                    std::invalid_argument);
+  contact::JointSet renamed = slower;
+  renamed.name = "other";
+  BOOST_CHECK_THROW(sim.engine.edit(edit_of([&](core::ModelEdit& e) { e.joint_sets = {{0, renamed}}; })),
+                    std::invalid_argument);
+  contact::JointSet steep = slower;
+  steep.friction_angle = 95.0;  // checked as the constructor checks it
+  BOOST_CHECK_THROW(sim.engine.edit(edit_of([&](core::ModelEdit& e) { e.joint_sets = {{0, steep}}; })),
+                    std::invalid_argument);
+  BOOST_TEST(sim.contacts.joint_sets()[0].friction_angle == 30.0);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -162,11 +162,6 @@ struct StageState {
   /// step that found the mechanism (that step's motion is the stage's to take) [time].
   double not_before = 0.0;
   bool open = false;              ///< a stage has started and its event is not yet recorded
-  /// Opened by a model edit (ModelEdit::settle; docs/stages.md): it ends at
-  /// rest relative to the larger of the work done on it and the energy it
-  /// dissipated (an excavation releases strain energy while gravity does
-  /// little or negative work). Not kept by checkpoints (a run with stages is not resumed).
-  bool opened_by_edit = false;
   StageEvent event;               ///< the stage's figures so far
   std::vector<std::vector<Vec2>> start_vertices;  ///< block vertices at its start [length]
 };
