@@ -23,6 +23,7 @@
 #include "rheodda/rockmass/cut.hpp"
 #include "rheodda/rockmass/generate.hpp"
 #include "rheodda/scene/error.hpp"
+#include "rheodda/scene/stages.hpp"
 
 namespace rheodda::scene {
 
@@ -192,6 +193,7 @@ struct BlockDescription {
 
 /// A point attached to a block (fixed, loaded or measured).
 struct BlockPoint {
+  std::string name;       ///< fixed_points, loads: optional `name` a stage removes it by (empty: none)
   Point point{0.0, 0.0};  ///< [length]
   int block = 0;          ///< index into SceneDescription::blocks
   SourceLocation where{};
@@ -253,6 +255,7 @@ struct SceneDescription {
   std::vector<LoadDescription> loads;
   std::vector<MeasurementPoint> measurement_points;
   std::optional<RockMassDescription> rock_mass;  ///< `rock_mass:`, if given
+  std::vector<StageDescription> stages;          ///< `stages:` (docs/stages.md), in order
 };
 
 std::string_view analysis_type_name(AnalysisType t);
