@@ -223,6 +223,33 @@ BOOST_AUTO_TEST_CASE(the_example_excavation_runs_and_leaves_the_wall_built_witho
   BOOST_TEST(std::hypot(du - ru, dv - rv) <= 0.005 * std::hypot(ru, rv));
 }
 
+BOOST_AUTO_TEST_CASE(what_only_the_run_can_check_fails_the_run_at_the_stage_with_its_line) {
+  // A point added where its block does not stand at the stage: the engine
+  // refuses it, the run stops there naming the stage's entry in the file.
+  const fs::path out = fresh_dir("stage-refused");
+  const std::string text = staged("  - {name: late, at: 0.5, add_fixed_points: [{point: [9, 9], block: top}]}\n");
+  try {
+    (void)run_text(text, out);
+    BOOST_ERROR("a fixed point off its block was added");
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    BOOST_TEST(what.find("scene.yaml:21:") != std::string::npos, what);
+    BOOST_TEST(what.find("stages[0].add_fixed_points[0].point") != std::string::npos, what);
+    BOOST_TEST(what.find("stage 'late' at t = 0.5 s") != std::string::npos, what);
+  }
+  // A stage that waits for the settling to end at rest, which ends at its longest.
+  const std::string settles = with("  dt: 0.01\n", "  dt: 0.01\n  settle: {type: dynamic, until: 0.05, dt: 0.01, rest_tolerance: 1e-30}\n",
+                                   staged("  - {name: calm, after: settled, remove_loads: [push]}\n"));
+  try {
+    (void)run_text(settles, fresh_dir("stage-unsettled"));
+    BOOST_ERROR("a stage began after a settling stage that did not end at rest");
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    BOOST_TEST(what.find("stage 'calm' (after: settled) waits for the settling stage") != std::string::npos, what);
+    BOOST_TEST(what.find("ended at its longest") != std::string::npos, what);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(a_scene_without_stages_has_no_stage_column_nor_stages_list) {
   const fs::path out = fresh_dir("no-stages");
   const scene::RunResult r = run_text(kBaseScene, out);
