@@ -49,8 +49,8 @@ void ContactSystem::set_joint_set(int index, JointSet joint_set) {
     throw std::invalid_argument("set_joint_set: no joint set " + std::to_string(index));
   const JointSet& old = joint_sets_[static_cast<std::size_t>(index)];
   if (joint_set.name != old.name)
-    throw std::invalid_argument("set_joint_set: joint set " + std::to_string(index) + " is '" + old.name +
-                                "', not '" + joint_set.name + "'");
+    throw std::invalid_argument("set_joint_set: joint set " + std::to_string(index) + " is '" + old.name + "', not '" +
+                                joint_set.name + "'");
   // The creep histories (laws::RheologyState) belong to the law that wrote
   // them: parameters may change, the law may not.
   const bool had = static_cast<bool>(old.law), has = static_cast<bool>(joint_set.law);

@@ -56,7 +56,8 @@ EditReport Engine::edit(const ModelEdit& e) {
       if (list[k] < 0 || list[k] >= static_cast<int>(size))
         throw ModelError(at(key, k), std::string("no ") + what + " with index " + std::to_string(list[k]));
       for (std::size_t j = 0; j < k; ++j)
-        if (list[j] == list[k]) throw ModelError(at(key, k), std::string(what) + " " + std::to_string(list[k]) + " given twice");
+        if (list[j] == list[k])
+          throw ModelError(at(key, k), std::string(what) + " " + std::to_string(list[k]) + " given twice");
     }
   };
   check_indices(e.remove_fixed_points, m.model.fixed_points.size(), "remove_fixed_points", "fixed point");
@@ -71,7 +72,8 @@ EditReport Engine::edit(const ModelEdit& e) {
   if (std::count(gone.begin(), gone.end(), 1) == n_blocks)
     throw ModelError("remove_blocks", "would remove every block of the model");
   auto check_point = [&](const std::string& key, int block, const Vec2& p) {
-    if (block < 0 || block >= n_blocks) throw ModelError(key + ".block", "no block with index " + std::to_string(block));
+    if (block < 0 || block >= n_blocks)
+      throw ModelError(key + ".block", "no block with index " + std::to_string(block));
     if (gone[static_cast<std::size_t>(block)])
       throw ModelError(key + ".block", "block " + std::to_string(block) + " is removed");
     if (!std::isfinite(p.x()) || !std::isfinite(p.y())) throw ModelError(key + ".point", "must be finite");
@@ -86,7 +88,8 @@ EditReport Engine::edit(const ModelEdit& e) {
     if (!e.material_points)
       check_point(at("add_fixed_points", k), fp.block, fp.point);
     else if (fp.block < 0 || fp.block >= n_blocks || gone[static_cast<std::size_t>(fp.block)] || !fp.material_point)
-      throw ModelError(at("add_fixed_points", k), "a replayed fixed point needs a block that stays and its material point");
+      throw ModelError(at("add_fixed_points", k),
+                       "a replayed fixed point needs a block that stays and its material point");
   }
   for (std::size_t k = 0; k < e.add_point_loads.size(); ++k) {
     const PointLoad& l = e.add_point_loads[k];
@@ -139,9 +142,11 @@ EditReport Engine::edit(const ModelEdit& e) {
   // 2. Blocks removed, and the fixed points and loads on them.
   if (!e.remove_blocks.empty()) {
     for (std::size_t k = 0; k < m.model.fixed_points.size(); ++k)
-      if (gone[static_cast<std::size_t>(m.model.fixed_points[k].block)]) report.fixed_points_removed.push_back(static_cast<int>(k));
+      if (gone[static_cast<std::size_t>(m.model.fixed_points[k].block)])
+        report.fixed_points_removed.push_back(static_cast<int>(k));
     for (std::size_t k = 0; k < m.model.point_loads.size(); ++k)
-      if (gone[static_cast<std::size_t>(m.model.point_loads[k].block)]) report.point_loads_removed.push_back(static_cast<int>(k));
+      if (gone[static_cast<std::size_t>(m.model.point_loads[k].block)])
+        report.point_loads_removed.push_back(static_cast<int>(k));
     erase(m.model.fixed_points, report.fixed_points_removed);
     erase(m.model.point_loads, report.point_loads_removed);
     m.removed = gone;
@@ -156,7 +161,8 @@ EditReport Engine::edit(const ModelEdit& e) {
   // 3. Fixed points and loads added where their material points stand now.
   for (std::size_t k = 0; k < e.add_fixed_points.size(); ++k) {
     FixedPoint fp = e.add_fixed_points[k];
-    if (!e.material_points) fp.material_point = material_point(m.st.blocks[static_cast<std::size_t>(fp.block)], fp.point);
+    if (!e.material_points)
+      fp.material_point = material_point(m.st.blocks[static_cast<std::size_t>(fp.block)], fp.point);
     report.replay.add_fixed_points[k] = fp;
     m.model.fixed_points.push_back(fp);
   }

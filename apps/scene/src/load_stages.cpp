@@ -52,7 +52,8 @@ std::vector<int> read_removed_blocks(const Ctx& ctx, const YAML::Node& n, const 
                                      const SceneDescription& s) {
   MapReader m(ctx, n, path, keys::stage_remove_blocks);
   if (m.entries().empty())
-    ctx.fail(n, path, "give the blocks to remove: names: [...], region: [[x, y], ...] or rock_mass_inside: [[x, y], ...]");
+    ctx.fail(n, path,
+             "give the blocks to remove: names: [...], region: [[x, y], ...] or rock_mass_inside: [[x, y], ...]");
   std::set<int> out;
   if (YAML::Node v = m.find("names"); v.IsDefined())
     for (const auto& [name, node] : name_list(ctx, v, m.child("names")))
@@ -81,8 +82,8 @@ StagePoint read_stage_point(const Ctx& ctx, const MapReader& m, const SceneDescr
   StagePoint p;
   p.where = m.where();
   if (YAML::Node v = m.find("name"); v.IsDefined()) p.name = name_text(ctx, v, m.child("name"));
-  p.point = point(ctx, m.required("point", "[x, y] where the material point stands at the stage [length]"),
-                  m.child("point"));
+  p.point =
+      point(ctx, m.required("point", "[x, y] where the material point stands at the stage [length]"), m.child("point"));
   p.block = resolve(ctx, m.required("block", "the block it is on (required in a stage)"), m.child("block"), s.blocks,
                     "block");
   return p;
@@ -171,7 +172,8 @@ void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s) {
       st.start = StageStart::at;
       st.at = number(ctx, at, m.child("at"), positive("time"));
       if (!(st.at < a.duration))
-        ctx.fail(at, m.child("at"), fmt::format("{:g} is not before the end of the run (duration {:g})", st.at, a.duration));
+        ctx.fail(at, m.child("at"),
+                 fmt::format("{:g} is not before the end of the run (duration {:g})", st.at, a.duration));
       if (!(st.at > last_at))
         ctx.fail(at, m.child("at"),
                  fmt::format("{:g} is not after the stage before ({:g}): stage times must increase", st.at, last_at));
@@ -213,8 +215,8 @@ void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s) {
       for (int b : st.remove_blocks) {
         if (removed[static_cast<std::size_t>(b)])
           ctx.fail(v, m.child("remove_blocks"),
-                   fmt::format("block '{}' was removed by stage '{}' before", s.blocks[static_cast<std::size_t>(b)].name,
-                               removed_by[static_cast<std::size_t>(b)]));
+                   fmt::format("block '{}' was removed by stage '{}' before",
+                               s.blocks[static_cast<std::size_t>(b)].name, removed_by[static_cast<std::size_t>(b)]));
         removed[static_cast<std::size_t>(b)] = 1;
         removed_by[static_cast<std::size_t>(b)] = st.name;
       }
@@ -230,11 +232,13 @@ void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s) {
       where = location(v);
       if (!v.IsSequence() || v.size() == 0) ctx.fail(v, m.child(key), "expected a non-empty list");
       for (std::size_t k = 0; k < v.size(); ++k) {
-        MapReader pm(ctx, v[k], fmt::format("{}[{}]", m.child(key), k), load ? keys::stage_load : keys::stage_fixed_point);
+        MapReader pm(ctx, v[k], fmt::format("{}[{}]", m.child(key), k),
+                     load ? keys::stage_load : keys::stage_fixed_point);
         StagePoint p = read_stage_point(ctx, pm, s);
         if (removed[static_cast<std::size_t>(p.block)])
           ctx.fail(pm.find("block"), pm.child("block"),
-                   fmt::format("block '{}' is removed by then (stage '{}')", s.blocks[static_cast<std::size_t>(p.block)].name,
+                   fmt::format("block '{}' is removed by then (stage '{}')",
+                               s.blocks[static_cast<std::size_t>(p.block)].name,
                                removed_by[static_cast<std::size_t>(p.block)]));
         std::vector<Named>& list = load ? loads : fixed;
         if (!p.name.empty() && find_named(list, p.name) >= 0)
@@ -256,7 +260,8 @@ void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s) {
               const auto hv = numbers(ctx, h[j], hk, 3, any("time, force, force"));
               if (hv[0] < 0.0) ctx.fail(h[j], hk, fmt::format("time {:g} is negative", hv[0]));
               if (!p.history.empty() && hv[0] <= p.history.back()[0])
-                ctx.fail(h[j], hk, fmt::format("times must increase strictly: {:g} after {:g}", hv[0], p.history.back()[0]));
+                ctx.fail(h[j], hk,
+                         fmt::format("times must increase strictly: {:g} after {:g}", hv[0], p.history.back()[0]));
               p.history.push_back({hv[0], hv[1], hv[2]});
             }
           }
@@ -268,13 +273,14 @@ void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s) {
     read_points_of("add_fixed_points", false, st.add_fixed_points, st.add_fixed_points_where);
     read_points_of("add_loads", true, st.add_loads, st.add_loads_where);
     // Support: a model held by fixed points keeps one (Engine::edit checks it again).
-    const bool had_support = !s.fixed_points.empty() ||
-                             std::any_of(s.blocks.begin(), s.blocks.end(), [](const BlockDescription& b) { return b.fixed; });
+    const bool had_support = !s.fixed_points.empty() || std::any_of(s.blocks.begin(), s.blocks.end(),
+                                                                    [](const BlockDescription& b) { return b.fixed; });
     if (had_support && fixed.empty()) {
       YAML::Node at_key = m.find("remove_blocks").IsDefined() ? m.find("remove_blocks") : m.find("remove_fixed_points");
-      ctx.fail(at_key.IsDefined() ? at_key : m.node(),
-               m.child(m.find("remove_blocks").IsDefined() ? "remove_blocks" : "remove_fixed_points"),
-               "would leave no fixed point in the model: nothing would hold it (keep a fixed block, or add_fixed_points)");
+      ctx.fail(
+          at_key.IsDefined() ? at_key : m.node(),
+          m.child(m.find("remove_blocks").IsDefined() ? "remove_blocks" : "remove_fixed_points"),
+          "would leave no fixed point in the model: nothing would hold it (keep a fixed block, or add_fixed_points)");
     }
     if (YAML::Node v = m.find("joint_sets"); v.IsDefined()) {
       st.joint_sets_where = location(v);
@@ -282,7 +288,8 @@ void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s) {
     }
     if (YAML::Node v = m.find("analysis"); v.IsDefined()) {
       MapReader am(ctx, v, m.child("analysis"), keys::stage_analysis);
-      const std::string type = choice(ctx, am.required("type", "static or dynamic"), am.child("type"), {"static", "dynamic"});
+      const std::string type =
+          choice(ctx, am.required("type", "static or dynamic"), am.child("type"), {"static", "dynamic"});
       if (type == "static") {
         if (YAML::Node r = am.find("dynamic_ratio"); r.IsDefined())
           ctx.fail(r, am.child("dynamic_ratio"), "a static analysis carries no velocity (dynamic_ratio 0)");

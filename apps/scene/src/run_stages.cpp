@@ -79,7 +79,8 @@ void apply_stage(Run& run) {
     e.add_point_loads.push_back(std::move(l));
   }
   for (const StageJointSet& c : st.joint_sets)
-    e.joint_sets.emplace_back(c.joint_set, changed_joint_set(run.contacts.joint_sets()[static_cast<std::size_t>(c.joint_set)], c));
+    e.joint_sets.emplace_back(c.joint_set,
+                              changed_joint_set(run.contacts.joint_sets()[static_cast<std::size_t>(c.joint_set)], c));
   e.dynamic_ratio = st.dynamic_ratio;
   e.settle = st.settle;
   const std::string path = fmt::format("stages[{}]", index);
@@ -119,11 +120,13 @@ void apply_stage(Run& run) {
   if (!st.remove_blocks.empty())
     actions.push_back(fmt::format("removed {} blocks ({}) with {} contacts, {} fixed points and {} loads on them",
                                   st.remove_blocks.size(), fmt::join(names(st.remove_blocks), ", "),
-                                  rep.contacts_dropped, rep.fixed_points_removed.size(), rep.point_loads_removed.size()));
+                                  rep.contacts_dropped, rep.fixed_points_removed.size(),
+                                  rep.point_loads_removed.size()));
   if (!st.add_fixed_points.empty()) actions.push_back(fmt::format("added {} fixed points", st.add_fixed_points.size()));
   if (!st.add_loads.empty()) actions.push_back(fmt::format("added {} loads", st.add_loads.size()));
   for (const StageJointSet& c : st.joint_sets)
-    actions.push_back(fmt::format("changed joint set {}", run.s.joint_sets[static_cast<std::size_t>(c.joint_set)].name));
+    actions.push_back(
+        fmt::format("changed joint set {}", run.s.joint_sets[static_cast<std::size_t>(c.joint_set)].name));
   if (st.dynamic_ratio)
     actions.push_back(*st.dynamic_ratio > 0.0 ? fmt::format("dynamic analysis (dynamic_ratio {:g})", *st.dynamic_ratio)
                                               : std::string("static analysis"));

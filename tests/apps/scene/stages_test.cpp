@@ -27,11 +27,11 @@ namespace {
 /// `stages:` (line 20), the stages from line 21 on.
 std::string staged(const std::string& stages) {
   return kBaseScene +
-         "fixed_points:\n"                                                    // 16
-         "  - {name: pin, point: [3.5, 0.5]}\n"                              // 17
-         "loads:\n"                                                           // 18
+         "fixed_points:\n"                                                     // 16
+         "  - {name: pin, point: [3.5, 0.5]}\n"                                // 17
+         "loads:\n"                                                            // 18
          "  - {name: push, point: [1.5, 1.5], block: top, force: [0, -10]}\n"  // 19
-         "stages:\n"                                                          // 20
+         "stages:\n"                                                           // 20
          + stages;
 }
 
@@ -73,10 +73,11 @@ int column(const std::vector<std::string>& header, const std::string& name) {
 BOOST_AUTO_TEST_SUITE(stages)
 
 BOOST_AUTO_TEST_CASE(stages_are_read_with_names_times_and_resolved_references) {
-  const auto s = scene::parse_scene(staged("  - {name: dig, at: 0.5, remove_blocks: {names: [top]}, remove_loads: [push]}\n"
-                                           "  - {name: weaker, at: 0.7, joint_sets: {bedding: {friction_angle: 10}}, "
-                                           "analysis: {type: dynamic}}\n"),
-                                    "ok.yaml");
+  const auto s =
+      scene::parse_scene(staged("  - {name: dig, at: 0.5, remove_blocks: {names: [top]}, remove_loads: [push]}\n"
+                                "  - {name: weaker, at: 0.7, joint_sets: {bedding: {friction_angle: 10}}, "
+                                "analysis: {type: dynamic}}\n"),
+                         "ok.yaml");
   BOOST_TEST_REQUIRE(s.stages.size() == 2u);
   BOOST_TEST(s.stages[0].name == "dig");
   BOOST_TEST(s.stages[0].at == 0.5);
@@ -138,9 +139,10 @@ BOOST_AUTO_TEST_CASE(a_stage_begins_at_the_end_of_a_step_and_names_itself_in_the
   // dt 0.01: 0.255 is no step end of the fixed step; the stage makes one.
   const fs::path out = fresh_dir("stage-time");
   // Stage names with the letters of nan and inf: history.csv's finite check reads the numbers only.
-  const std::string text = staged("  - {name: pinned, at: 0.255, remove_loads: [push], "
-                                  "add_fixed_points: [{name: hold, point: [1.5, 1.5], block: top}]}\n"
-                                  "  - {name: loose, at: 0.5, remove_fixed_points: [hold]}\n");
+  const std::string text = staged(
+      "  - {name: pinned, at: 0.255, remove_loads: [push], "
+      "add_fixed_points: [{name: hold, point: [1.5, 1.5], block: top}]}\n"
+      "  - {name: loose, at: 0.5, remove_fixed_points: [hold]}\n");
   const scene::RunResult r = run_text(text, out);
   BOOST_TEST((r.status == scene::RunStatus::completed));
   const auto rows = csv_rows(out / "run" / "history.csv");
@@ -192,7 +194,8 @@ BOOST_AUTO_TEST_CASE(the_example_excavation_runs_and_leaves_the_wall_built_witho
   }
   BOOST_TEST(after > 0);
   // The frames flag the removed blocks.
-  const std::string last = read_text((out / "dug" / "frames" / fmt::format("blocks_{:06d}.vtp", sum.at("frames").get<int>() - 1)).string());
+  const std::string last =
+      read_text((out / "dug" / "frames" / fmt::format("blocks_{:06d}.vtp", sum.at("frames").get<int>() - 1)).string());
   BOOST_TEST(last.find("Name=\"removed\"") != std::string::npos);
 
   // The same wall built without the column, settled the same way, no stages:
@@ -238,8 +241,9 @@ BOOST_AUTO_TEST_CASE(what_only_the_run_can_check_fails_the_run_at_the_stage_with
     BOOST_TEST(what.find("stage 'late' at t = 0.5 s") != std::string::npos, what);
   }
   // A stage that waits for the settling to end at rest, which ends at its longest.
-  const std::string settles = with("  dt: 0.01\n", "  dt: 0.01\n  settle: {type: dynamic, until: 0.05, dt: 0.01, rest_tolerance: 1e-30}\n",
-                                   staged("  - {name: calm, after: settled, remove_loads: [push]}\n"));
+  const std::string settles =
+      with("  dt: 0.01\n", "  dt: 0.01\n  settle: {type: dynamic, until: 0.05, dt: 0.01, rest_tolerance: 1e-30}\n",
+           staged("  - {name: calm, after: settled, remove_loads: [push]}\n"));
   try {
     (void)run_text(settles, fresh_dir("stage-unsettled"));
     BOOST_ERROR("a stage began after a settling stage that did not end at rest");

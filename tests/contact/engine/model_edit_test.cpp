@@ -97,7 +97,8 @@ BOOST_AUTO_TEST_CASE(excavating_a_block_from_a_settled_stack_gives_the_stack_bui
     ds_fine = std::max(ds_fine, (fine.engine.stress(b) - ref.engine.stress(b)).norm());
   }
   BOOST_TEST(dug.contacts.penalty() == ref.contacts.penalty());
-  BOOST_TEST_MESSAGE("excavated vs built without: displacement " << du / u_scale << ", stress " << ds / s_scale
+  BOOST_TEST_MESSAGE("excavated vs built without: displacement "
+                     << du / u_scale << ", stress " << ds / s_scale
                      << " (relative); reference dt vs dt/2: " << du_fine / u_scale << ", " << ds_fine / s_scale);
   BOOST_TEST(u_scale > 0.0);
   BOOST_TEST(s_scale > 10e3);  // a's vertical stress ~ rho g 0.75 m ~ 19 kPa
@@ -148,8 +149,8 @@ BOOST_AUTO_TEST_CASE(a_static_analysis_switched_to_dynamic_slides_by_the_closed_
   }
   const double t = sim.engine.time() - t0;
   const double closed_form = 0.5 * g * (std::sin(alpha) - std::cos(alpha) * std::tan(deg(20.0))) * t * t;
-  BOOST_TEST_MESSAGE("static -> dynamic at " << t0 << " s: after " << t << " s DDA " << travelled
-                                             << " m, closed form " << closed_form << " m");
+  BOOST_TEST_MESSAGE("static -> dynamic at " << t0 << " s: after " << t << " s DDA " << travelled << " m, closed form "
+                                             << closed_form << " m");
   BOOST_TEST(travelled == closed_form, boost::test_tools::tolerance(0.01));
 }
 
@@ -200,7 +201,9 @@ BOOST_AUTO_TEST_CASE(invalid_edits_are_refused_with_the_model_unchanged) {
   refused(edit_of([&](core::ModelEdit& e) { e.remove_fixed_points = {3}; }), "remove_fixed_points[0]");
   refused(edit_of([&](core::ModelEdit& e) { e.remove_point_loads = {0}; }), "remove_point_loads[0]");
   refused(edit_of([&](core::ModelEdit& e) { e.remove_blocks = {0, 1, 2, 3, 4}; }), "remove_blocks");
-  refused(edit_of([&](core::ModelEdit& e) { e.add_fixed_points = {{1, Vec2(5.0, 5.0)}}; }),
+  refused(edit_of([&](core::ModelEdit& e) {
+            e.add_fixed_points = {{1, Vec2(5.0, 5.0)}};
+          }),
           "add_fixed_points[0].point");
   refused(edit_of([&](core::ModelEdit& e) { e.settle = true; }), "settle");
   sim.engine.edit(edit_of([&](core::ModelEdit& e) { e.remove_blocks = {4}; }));
@@ -217,8 +220,10 @@ BOOST_AUTO_TEST_CASE(an_edited_run_restored_from_its_state_steps_on_bit_for_bit)
   // edit builds the engine, applies the same edit, then restores the state.
   Sim a(stack(false), {joint(40.0)});
   a.engine.run(20);
-  const core::ModelEdit change =
-      edit_of([&](core::ModelEdit& e) { e.remove_blocks = {4}; e.add_fixed_points = {{1, Vec2(-0.5, 0.25)}}; });
+  const core::ModelEdit change = edit_of([&](core::ModelEdit& e) {
+    e.remove_blocks = {4};
+    e.add_fixed_points = {{1, Vec2(-0.5, 0.25)}};
+  });
   const core::EditReport rep = a.engine.edit(change);
   a.engine.run(5);
   Sim b(stack(false), {joint(40.0)});
@@ -249,15 +254,21 @@ BOOST_AUTO_TEST_CASE(a_joint_set_law_changes_its_parameters_but_is_not_added_rem
   sim.engine.run(3);
   contact::JointSet none = j;
   none.law = nullptr;
-  BOOST_CHECK_THROW(sim.engine.edit(edit_of([&](core::ModelEdit& e) { e.joint_sets = {{0, none}}; })),
+  BOOST_CHECK_THROW(sim.engine.edit(edit_of([&](core::ModelEdit& e) {
+    e.joint_sets = {{0, none}};
+  })),
                     std::invalid_argument);
   contact::JointSet renamed = slower;
   renamed.name = "other";
-  BOOST_CHECK_THROW(sim.engine.edit(edit_of([&](core::ModelEdit& e) { e.joint_sets = {{0, renamed}}; })),
+  BOOST_CHECK_THROW(sim.engine.edit(edit_of([&](core::ModelEdit& e) {
+    e.joint_sets = {{0, renamed}};
+  })),
                     std::invalid_argument);
   contact::JointSet steep = slower;
   steep.friction_angle = 95.0;  // checked as the constructor checks it
-  BOOST_CHECK_THROW(sim.engine.edit(edit_of([&](core::ModelEdit& e) { e.joint_sets = {{0, steep}}; })),
+  BOOST_CHECK_THROW(sim.engine.edit(edit_of([&](core::ModelEdit& e) {
+    e.joint_sets = {{0, steep}};
+  })),
                     std::invalid_argument);
   BOOST_TEST(sim.contacts.joint_sets()[0].friction_angle == 30.0);
 }
