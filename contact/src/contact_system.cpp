@@ -36,8 +36,6 @@ const char* creep_state_name(CreepState s) {
   return "?";
 }
 
-namespace {
-
 void check_joint_set(const JointSet& js, size_t index) {
   auto refuse = [&](const char* key, const std::string& message) {
     throw JointSetError(index, js.name, key, message);
@@ -64,8 +62,6 @@ void check_joint_set(const JointSet& js, size_t index) {
     refuse("shear_stiffness", "shear_stiffness and the E1 of law '" + std::string(js.law->name()) +
                                   "' both set the joint's elastic shear stiffness; give only E1");
 }
-
-}  // namespace
 
 ContactSystem::ContactSystem(std::vector<JointSet> joint_sets, ContactSettings settings)
     : joint_sets_(std::move(joint_sets)), settings_(settings), penalty_(settings.penalty) {

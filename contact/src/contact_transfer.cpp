@@ -38,7 +38,15 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
   if (!(d0 > 0.0)) d0 = settings_.search_factor * 0.01 * w0;  // g2 = 0.01 when the host gives none
 
   for (int i = 0; i < nb; ++i) boxes_[i] = bounding_box(blocks[i], 0.5 * d0);
-  const auto& pairs = broad_.find_pairs(boxes_);
+  const std::vector<std::pair<int, int>>* found_pairs = &broad_.find_pairs(boxes_);
+  std::vector<std::pair<int, int>> kept_pairs;
+  if (!removed_.empty()) {  // blocks removed by a stage (contact_edits.cpp) pair with nothing
+    auto gone = [&](int b) { return b < static_cast<int>(removed_.size()) && removed_[b]; };
+    for (const auto& p : *found_pairs)
+      if (!gone(p.first) && !gone(p.second)) kept_pairs.push_back(p);
+    found_pairs = &kept_pairs;
+  }
+  const auto& pairs = *found_pairs;
 
   previous_keys_.resize(committed_.size());
   for (size_t k = 0; k < committed_.size(); ++k) previous_keys_[k] = committed_[k].key;

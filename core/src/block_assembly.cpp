@@ -51,6 +51,10 @@ void Engine::Impl::assemble_blocks(double dt, double t_end, std::vector<Mat6>& d
     // Initial stress: potential S e^T sigma gives F(ex..gxy) -= S sigma.
     F.tail<3>() -= g.S * b.stress;
     if (dynamic_now()) F.noalias() += (1.0 / (nm.beta * dt * dt)) * M * predictor(b, dt, nm);
+    // A block a stage removed (model_edits.cpp) keeps its positive definite
+    // K and no load: nothing couples it (no contact, fixed point or load), so
+    // its six unknowns solve to zero.
+    if (!removed.empty() && removed[k]) F.setZero();
   }
   // Point loads: F += T(p)^T f at the current position p of the material point.
   for (const auto& l : model.point_loads) {
@@ -69,7 +73,7 @@ void Engine::Impl::assemble_blocks(double dt, double t_end, std::vector<Mat6>& d
   // energy p/2 |T D - (x0 - x)|^2.
   for (const auto& fp : model.fixed_points) {
     const BlockState& b = st.blocks[fp.block];
-    const Vec2 x = b.map_A * fp.point + b.map_b;
+    const Vec2 x = b.map_A * fp.material() + b.map_b;
     const contact::Mat26 T = contact::displacement_matrix(b.centroid, x);
     diag[fp.block].noalias() += fixed_k * T.transpose() * T;
     rhs.segment<6>(6 * fp.block).noalias() += fixed_k * T.transpose() * (fp.point - x);

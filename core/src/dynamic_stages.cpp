@@ -34,6 +34,7 @@ void Engine::Impl::start_stage(StageKind kind, double length, double shortest) {
   g.until = st.time + length;
   g.not_before = st.time + shortest;
   g.open = true;
+  stage_opened_by_edit = false;
   g.event = StageEvent{};
   g.event.kind = kind;
   g.event.start_time = st.time;
@@ -65,8 +66,12 @@ void Engine::Impl::update_stage(const StepReport& rep) {
   const double ramp_end = s.settle_gravity_ramp;
   const double not_before = std::max(ramp_end, g.not_before);
   const bool late_enough = st.time >= not_before - 1e-12 * std::max(1.0, std::abs(not_before));
+  // A stage a model edit opened (docs/reference/stages.md) measures the kinetic energy
+  // against the larger of that work and what it dissipated: an excavation
+  // releases strain energy while gravity does little or negative work.
+  const double reference = stage_opened_by_edit ? std::max(e.work, e.energy_dissipated) : e.work;
   if (settling() && s.settle_rest_tolerance > 0.0 && e.steps >= kMinStageSteps && late_enough &&
-      e.work > 0.0 && kinetic <= s.settle_rest_tolerance * e.work) {
+      reference > 0.0 && kinetic <= s.settle_rest_tolerance * reference) {
     e.at_rest = true;
     g.until = st.time;  // the stage is over: the next step is static
   }

@@ -116,7 +116,7 @@ StoredEnergy EnergyAccount::stored_in_blocks(const EnergyInputs& in) {
   }
   // Fixed points: the penalty spring p from the material point to its held position.
   for (const FixedPoint& fp : in.model.fixed_points)
-    e.fixed += 0.5 * in.fixed_k * (position(in.blocks[fp.block], fp.point) - fp.point).squaredNorm();
+    e.fixed += 0.5 * in.fixed_k * (position(in.blocks[fp.block], fp.material()) - fp.point).squaredNorm();
   return e;
 }
 
@@ -177,7 +177,7 @@ void EnergyAccount::begin(const EnergyInputs& in, const Eigen::VectorXd& D, doub
   // Fixed points: (1) with the spring p and the point's step displacement T D.
   for (const FixedPoint& fp : in.model.fixed_points) {
     const BlockState& b = in.blocks[fp.block];
-    const Vec2 u = contact::displacement_matrix(b.centroid, position(b, fp.point)) *
+    const Vec2 u = contact::displacement_matrix(b.centroid, position(b, fp.material())) *
                    D.segment<6>(6 * static_cast<Eigen::Index>(fp.block));
     springs += 0.5 * in.fixed_k * u.squaredNorm();
   }

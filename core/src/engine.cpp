@@ -26,12 +26,7 @@ void Engine::Impl::initialise() {
 
   Eigen::AlignedBox2d box;
   st.blocks.resize(model.blocks.size());
-  held.assign(model.blocks.size(), 0);
-  {
-    std::vector<int> points(model.blocks.size(), 0);
-    for (const FixedPoint& fp : model.fixed_points) ++points[fp.block];
-    for (std::size_t k = 0; k < points.size(); ++k) held[k] = points[k] >= 2;
-  }
+  count_held();
   for (std::size_t k = 0; k < model.blocks.size(); ++k) {
     const BlockDef& def = model.blocks[k];
     BlockState& b = st.blocks[k];
@@ -70,6 +65,13 @@ void Engine::Impl::initialise() {
   record_measurements(-1);
 }
 
+void Engine::Impl::count_held() {
+  held.assign(model.blocks.size(), 0);
+  std::vector<int> points(model.blocks.size(), 0);
+  for (const FixedPoint& fp : model.fixed_points) ++points[fp.block];
+  for (std::size_t k = 0; k < points.size(); ++k) held[k] = points[k] >= 2;
+}
+
 void Engine::Impl::refresh_geometry() {
   const std::size_t n = st.blocks.size();
   moments.resize(n);
@@ -98,7 +100,16 @@ double Engine::Impl::max_vertex_displacement(const Eigen::VectorXd& d) const {
   return std::sqrt(worst);
 }
 
-void Engine::Impl::accept(const Eigen::VectorXd& d, double dt, int step_index, double t_end) {
+void Engine::Impl::accept(const Eigen::VectorXd& d_solved, double dt, int step_index, double t_end) {
+  // Blocks removed by an edit (model_edits.cpp) do not move: their unknowns,
+  // zero to round-off in the solve, are zero exactly here.
+  Eigen::VectorXd d_kept;
+  if (!removed.empty()) {
+    d_kept = d_solved;
+    for (std::size_t k = 0; k < removed.size(); ++k)
+      if (removed[k]) d_kept.segment<6>(6 * static_cast<Eigen::Index>(k)).setZero();
+  }
+  const Eigen::VectorXd& d = removed.empty() ? d_solved : d_kept;
   search_disp = search_reach(d);  // before the blocks move: d is relative to the step start
   const double ratio = ratio_now();
   const bool dynamic = ratio > 0.0;
@@ -106,6 +117,7 @@ void Engine::Impl::accept(const Eigen::VectorXd& d, double dt, int step_index, d
   const Newmark nm = newmark();
   energy.begin(energy_inputs(), d, dt, nm.beta, nm.gamma, t_end);
   for (std::size_t k = 0; k < st.blocks.size(); ++k) {
+    if (is_removed(k)) continue;  // frozen where it was removed, at rest
     BlockState& b = st.blocks[k];
     const Vec6 Dk = d.segment<6>(6 * static_cast<Eigen::Index>(k));
     // Geometry with the exact-rotation post-correction: the first-order T

@@ -38,6 +38,9 @@ constexpr double kFailureReach = 8.0;
 /// (docs/reference/engine.md, "Contact search reach") [-].
 constexpr double kSearchFloor = 0.1;
 
+/// Is p inside the polygon v or within tol of its boundary (model_checks.cpp)?
+bool inside_or_near(std::span<const Vec2> v, const Vec2& p, double tol);
+
 struct Engine::Impl {
   Model model;
   NullContactModel null_contacts;
@@ -46,6 +49,14 @@ struct Engine::Impl {
   EngineState st;
   std::vector<PolygonIntegrals> moments;  // central integrals of the step-start geometry
   std::vector<char> held;                 // block held by two or more fixed points
+  std::vector<char> removed;              // block removed by an edit (model_edits.cpp); empty: none
+  bool is_removed(std::size_t k) const { return !removed.empty() && removed[k]; }
+  /// The dynamic stage in progress was opened by a model edit (ModelEdit::settle;
+  /// docs/reference/stages.md): it ends at rest relative to the larger of the work done
+  /// on it and the energy it dissipated (an excavation releases strain energy
+  /// while gravity does little or negative work). Set by Engine::edit, reset by
+  /// start_stage; not part of EngineState (a run with stages is not resumed).
+  bool stage_opened_by_edit = false;
   std::vector<contact::BlockView> views;
   std::vector<Eigen::Matrix3d> elastic;   // per material
   double w0 = 0.0;                        // half model size [length]
@@ -97,6 +108,7 @@ struct Engine::Impl {
   void validate();
   void initialise();
   void refresh_geometry();
+  void count_held();  // held[k]: block k has two or more fixed points
   void assemble_blocks(double dt, double t_end, std::vector<Mat6>& diag, Eigen::VectorXd& rhs) const;
   double max_vertex_displacement(const Eigen::VectorXd& d) const;
   /// End of the stage the run is in or was last in: the settling stage or a

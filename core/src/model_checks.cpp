@@ -15,7 +15,8 @@ bool finite(const Vec2& v) { return std::isfinite(v.x()) && std::isfinite(v.y())
 
 std::string at(const char* list, std::size_t k) { return std::string(list) + "[" + std::to_string(k) + "]"; }
 
-/// Is p inside the polygon or within tol of its boundary?
+}  // namespace
+
 bool inside_or_near(std::span<const Vec2> v, const Vec2& p, double tol) {
   bool inside = false;
   const std::size_t n = v.size();
@@ -31,8 +32,6 @@ bool inside_or_near(std::span<const Vec2> v, const Vec2& p, double tol) {
   }
   return inside;
 }
-
-}  // namespace
 
 void Engine::Impl::validate() {
   const Model& m = model;

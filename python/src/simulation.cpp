@@ -45,6 +45,8 @@ class Simulation {
  public:
   Simulation(const Scene& s, const py::dict& law_overrides, py::object callback)
       : scene_(s.description), text_(s.text), callback_(std::move(callback)) {
+    if (!scene_.stages.empty())  // not applied here: refused, not ignored (docs/reference/stages.md)
+      throw std::invalid_argument("a scene with stages runs with `rheodda run`; Simulation does not apply stages yet");
     built_ = scene::build_scene(scene_);
     for (auto item : law_overrides) {
       const auto name = item.first.cast<std::string>();

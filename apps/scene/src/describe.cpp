@@ -4,6 +4,7 @@
 #include "rheodda/scene/memory.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -270,6 +271,34 @@ std::string describe_scene(const SceneDescription& s) {
   for (const auto& m : s.measurement_points)
     line(fmt::format("  {}: ({:g}, {:g}) on {}", m.name, m.at.point[0], m.at.point[1], s.blocks[m.at.block].name));
   if (s.water) out += describe_water(*s.water, u);  // water.hpp
+  if (!s.stages.empty()) {  // docs/reference/stages.md
+    line(fmt::format("stages: {}", s.stages.size()));
+    for (const StageDescription& st : s.stages) {
+      std::vector<std::string> did;
+      if (!st.remove_fixed_points.empty())
+        did.push_back(fmt::format("remove fixed points {}", fmt::join(st.remove_fixed_points, ", ")));
+      if (!st.remove_loads.empty()) did.push_back(fmt::format("remove loads {}", fmt::join(st.remove_loads, ", ")));
+      if (!st.remove_blocks.empty()) {
+        std::vector<std::string> names;
+        for (int b : st.remove_blocks) names.push_back(s.blocks[static_cast<std::size_t>(b)].name);
+        did.push_back(names.size() <= 8 ? fmt::format("remove {} blocks ({})", names.size(), fmt::join(names, ", "))
+                                        : fmt::format("remove {} blocks ({}, ...)", names.size(),
+                                                      fmt::join(names.begin(), names.begin() + 8, ", ")));
+      }
+      if (!st.add_fixed_points.empty()) did.push_back(fmt::format("add {} fixed points", st.add_fixed_points.size()));
+      if (!st.add_loads.empty()) did.push_back(fmt::format("add {} loads", st.add_loads.size()));
+      for (const StageJointSet& c : st.joint_sets)
+        did.push_back(fmt::format("change joint set {}", s.joint_sets[static_cast<std::size_t>(c.joint_set)].name));
+      if (st.dynamic_ratio)
+        did.push_back(*st.dynamic_ratio > 0.0 ? fmt::format("dynamic analysis (dynamic_ratio {:g})", *st.dynamic_ratio)
+                                              : std::string("static analysis"));
+      if (st.settle) did.push_back("open a settling stage");
+      line(fmt::format("  {} {}: {}", st.name,
+                       st.start == StageStart::at ? fmt::format("at t = {:g} {}", st.at, u.time)
+                                                  : std::string("after the settling stage ends at rest"),
+                       fmt::join(did, "; ")));
+    }
+  }
 
   // Contacts at the start are the touching vertex-edge pairs: count those within a
   // twentieth of the median block size (or the search distance, if smaller).

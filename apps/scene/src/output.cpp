@@ -171,6 +171,10 @@ std::string vtk_polydata(const std::vector<FrameBlock>& blocks) {
   for (const auto& b : blocks) s += fmt::format("{}\n", b.material);
   s += "</DataArray>\n<DataArray type=\"Int32\" Name=\"fixed\" format=\"ascii\">\n";
   for (const auto& b : blocks) s += fmt::format("{}\n", b.fixed ? 1 : 0);
+  if (std::any_of(blocks.begin(), blocks.end(), [](const FrameBlock& b) { return b.removed.has_value(); })) {
+    s += "</DataArray>\n<DataArray type=\"Int32\" Name=\"removed\" format=\"ascii\">\n";
+    for (const auto& b : blocks) s += fmt::format("{}\n", b.removed.value_or(false) ? 1 : 0);
+  }
   s += "</DataArray>\n<DataArray type=\"Float64\" Name=\"stress\" NumberOfComponents=\"3\" "
        "ComponentName0=\"sigma_x\" ComponentName1=\"sigma_y\" ComponentName2=\"tau_xy\" format=\"ascii\">\n";
   for (const auto& b : blocks) s += fmt::format("{:.17g} {:.17g} {:.17g}\n", b.stress[0], b.stress[1], b.stress[2]);

@@ -56,16 +56,29 @@ void read_points(const Ctx& ctx, const MapReader& top, SceneDescription& s) {
       ctx.fail(n, key, fmt::format("expected a list, got {}", type_word(n)));
     return n;
   };
+  // The optional `name` of a fixed point or load: what a stage removes it by (docs/reference/stages.md).
+  auto read_name = [&](const MapReader& m, const auto& earlier, auto name_of, const char* what) {
+    YAML::Node v = m.find("name");
+    if (!v.IsDefined()) return std::string();
+    std::string name = name_text(ctx, v, m.child("name"));
+    for (const auto& e : earlier)
+      if (name_of(e) == name) ctx.fail(v, m.child("name"), fmt::format("{} '{}' is defined twice", what, name));
+    return name;
+  };
   if (YAML::Node n = list("fixed_points"); n.IsSequence())
     for (std::size_t i = 0; i < n.size(); ++i) {
       MapReader m(ctx, n[i], fmt::format("fixed_points[{}]", i), keys::fixed_point);
+      const std::string name = read_name(m, s.fixed_points, [](const BlockPoint& p) { return p.name; }, "fixed point");
       s.fixed_points.push_back(read_block_point(ctx, m, s, tol));
+      s.fixed_points.back().name = name;
     }
   if (YAML::Node n = list("loads"); n.IsSequence())
     for (std::size_t i = 0; i < n.size(); ++i) {
       MapReader m(ctx, n[i], fmt::format("loads[{}]", i), keys::load);
       LoadDescription load;
+      const std::string name = read_name(m, s.loads, [](const LoadDescription& l) { return l.at.name; }, "load");
       load.at = read_block_point(ctx, m, s, tol);
+      load.at.name = name;
       YAML::Node f = m.find("force"), h = m.find("history");
       if (f.IsDefined() == h.IsDefined())
         ctx.fail(m.node(), m.child("force"),

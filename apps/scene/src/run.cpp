@@ -60,7 +60,9 @@ void record_step(Run& run, const core::Engine& e, const core::StepReport& r) {
     throw NonFinite(fmt::format("{} is not finite after step {} (t = {:g} {})", what, e.step_count(), e.time(),
                                 s.units.time));
   const std::string row = history_row(run, &r);
-  if (const std::string col = nonfinite_column(run.history_header, row); !col.empty())
+  // The numbers of the row: without the `stage` column's name (docs/reference/stages.md), the last.
+  const std::string numbers = s.stages.empty() ? row : row.substr(0, row.rfind(',')) + '\n';
+  if (const std::string col = nonfinite_column(run.history_header, numbers); !col.empty())
     throw NonFinite(fmt::format("history.csv column '{}' is not finite after step {} (t = {:g} {})", col,
                                 e.step_count(), e.time(), s.units.time));
   run.history.append(row);
@@ -168,12 +170,21 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
 
   Run run(s, opt, result, *assembled.contacts, *assembled.engine, scene_text, wall_start);
   run.engine.add_observer([&run](const core::Engine& e, const core::StepReport& r) { record_step(run, e, r); });
+  if (!s.stages.empty()) {  // docs/reference/stages.md
+    if (opt.resume)
+      throw std::invalid_argument("--resume: a scene with stages cannot be resumed yet (docs/reference/stages.md); run it again");
+    start_stages(run);
+    run.engine.add_observer([&run](const core::Engine& e, const core::StepReport&) { watch_settling(run, e); });
+  }
   if (opt.resume)
     resume_run(run);
   else
     create_csv_files(run);
   try {
-    run_to_end(run);
+    if (s.stages.empty())
+      run_to_end(run);
+    else
+      run_staged_to_end(run);
   } catch (const StopAfterStep&) {
     write_checkpoint(run);
     write_summary(run, "interrupted", "");

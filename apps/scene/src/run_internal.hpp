@@ -21,6 +21,7 @@
 #include "rheodda/core/engine.hpp"
 #include "rheodda/scene/output.hpp"
 #include "rheodda/scene/run.hpp"
+#include "run_stages.hpp"
 #include "run_totals.hpp"
 
 namespace rheodda::scene {
@@ -83,6 +84,7 @@ struct Run {
   bool frame_open = false;  ///< a frame is being written (its rows may be in contacts.csv already)
   std::string inputs_text;      ///< scene_json_text of the scene, spliced into summary.json
   std::string scene_text_json;  ///< the scene text as a JSON string
+  StageRun stage_run;           ///< the scene's stages (run_stages.cpp); unused without stages
 
   /// The index of the first output time after t, the engine's round-off sliver counting as reached.
   std::size_t next_output(double t) const;
@@ -128,6 +130,14 @@ void write_frame(Run& run);
 void write_checkpoint(Run& run);
 /// Takes the run up from its checkpoint (--resume), writing lost frames again.
 void resume_run(Run& run);
+
+// run_stages.cpp (docs/reference/stages.md; only for a scene with stages)
+/// The names of the model's fixed points and loads, before the first stage.
+void start_stages(Run& run);
+/// Step observer: throws StageDue when the stage waiting `after: settled` is due.
+void watch_settling(Run& run, const core::Engine& e);
+/// run_to_end with stages: the frames, and each stage at its time.
+void run_staged_to_end(Run& run);
 
 // run_summary.cpp
 /// RunResult's totals as of now.

@@ -137,6 +137,11 @@ void write_summary(Run& run, const std::string& status, const std::string& error
     write_file_atomic((fs::path(run.out) / "events.csv").string(), csv);
     run.result.events = engine.events();
   }
+  if (!s.stages.empty()) {  // docs/reference/stages.md: the stages that have begun
+    j["stages"] = json::array();
+    for (const AppliedStage& st : run.stage_run.applied)
+      j["stages"].push_back({{"name", st.name}, {"time", st.time}, {"step", st.step}, {"actions", st.actions}});
+  }
   j["frames"] = result.frames;
   j["wall_seconds"] = result.wall_seconds;
   j["resumed_from_step"] = result.resumed_from_step;

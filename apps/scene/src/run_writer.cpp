@@ -38,6 +38,7 @@ std::string make_history_header(const SceneDescription& s, const std::vector<int
     history_header += fmt::format(",{0}.contacts,{0}.shear_displacement,{0}.shear_force,{0}.shear_displacement_magnitude",
                                   s.joint_sets[j].name);
   for (const char* column : kHistoryEnergyColumns) history_header += fmt::format(",{}", column);
+  if (!s.stages.empty()) history_header += ",stage";  // docs/reference/stages.md
   history_header += '\n';
   return history_header;
 }
@@ -66,6 +67,7 @@ std::string history_row(const Run& run, const core::StepReport* r) {
   }
   // Energy balance (docs/reference/engine.md, "Energy balance"): stored energies now, flows since t = 0.
   for (const double v : history_energy_values(engine.energy())) row += fmt::format(",{:.10g}", v);
+  if (!s.stages.empty()) row += "," + run.stage_run.current;  // the stage in force (docs/reference/stages.md)
   return row + '\n';
 }
 
@@ -95,6 +97,7 @@ std::string frame_text(const Run& run) {
     fb.velocity = {st.velocity[0], st.velocity[1], st.velocity[2]};
     fb.material = st.material;
     fb.fixed = run.s.blocks[b].fixed;
+    if (!run.s.stages.empty()) fb.removed = engine.removed(b);  // docs/reference/stages.md
     blocks.push_back(std::move(fb));
   }
   return vtk_polydata(blocks);

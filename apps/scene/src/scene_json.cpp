@@ -32,6 +32,55 @@ json section_of(const Analysis& a, const std::string& map) {
   return applies ? o : json(nullptr);
 }
 
+/// `stages:` as read, block and joint set names resolved (docs/reference/stages.md).
+json stages_json(const SceneDescription& s) {
+  json list = json::array();
+  for (const StageDescription& st : s.stages) {
+    json o = {{"name", st.name}};
+    if (st.start == StageStart::at)
+      o["at"] = st.at;
+    else
+      o["after"] = "settled";
+    auto points = [&](const std::vector<StagePoint>& ps, bool load) {
+      json a = json::array();
+      for (const StagePoint& p : ps) {
+        json e = {{"name", p.name}, {"point", p.point}, {"block", s.blocks[static_cast<std::size_t>(p.block)].name}};
+        if (load) e["history"] = p.history;
+        a.push_back(e);
+      }
+      return a;
+    };
+    if (!st.remove_fixed_points.empty()) o["remove_fixed_points"] = st.remove_fixed_points;
+    if (!st.remove_loads.empty()) o["remove_loads"] = st.remove_loads;
+    if (!st.remove_blocks.empty()) {
+      json names = json::array();
+      for (int b : st.remove_blocks) names.push_back(s.blocks[static_cast<std::size_t>(b)].name);
+      o["remove_blocks"] = names;
+    }
+    if (!st.add_fixed_points.empty()) o["add_fixed_points"] = points(st.add_fixed_points, false);
+    if (!st.add_loads.empty()) o["add_loads"] = points(st.add_loads, true);
+    for (const StageJointSet& c : st.joint_sets) {
+      json js = json::object();
+      if (c.friction_angle) js["friction_angle"] = *c.friction_angle;
+      if (c.cohesion) js["cohesion"] = *c.cohesion;
+      if (c.tensile_strength) js["tensile_strength"] = *c.tensile_strength;
+      if (c.residual_friction_angle) js["residual_friction_angle"] = *c.residual_friction_angle;
+      if (c.residual_cohesion) js["residual_cohesion"] = *c.residual_cohesion;
+      if (c.law_name) {
+        json law = {{"name", *c.law_name}};
+        for (const auto& [k, v] : c.law_parameters) law[k] = v;
+        js["law"] = law;
+      }
+      o["joint_sets"][s.joint_sets[static_cast<std::size_t>(c.joint_set)].name] = js;
+    }
+    if (st.dynamic_ratio)
+      o["analysis"] = {{"type", *st.dynamic_ratio > 0.0 ? "dynamic" : "static"}, {"dynamic_ratio", *st.dynamic_ratio}};
+    if (st.settle) o["settle"] = true;
+    list.push_back(o);
+  }
+  return list;
+}
+
 json scene_json(const SceneDescription& s) {
   json j;
   j["file"] = s.file;
@@ -74,14 +123,20 @@ json scene_json(const SceneDescription& s) {
     j["blocks"].push_back(e);
   }
   j["fixed_points"] = json::array();
-  for (const auto& f : s.fixed_points) j["fixed_points"].push_back({{"point", f.point}, {"block", s.blocks[f.block].name}});
+  for (const auto& f : s.fixed_points) {
+    j["fixed_points"].push_back({{"point", f.point}, {"block", s.blocks[f.block].name}});
+    if (!f.name.empty()) j["fixed_points"].back()["name"] = f.name;  // only when given (docs/reference/stages.md)
+  }
   j["loads"] = json::array();
-  for (const auto& l : s.loads)
+  for (const auto& l : s.loads) {
     j["loads"].push_back({{"point", l.at.point}, {"block", s.blocks[l.at.block].name}, {"history", l.history}});
+    if (!l.at.name.empty()) j["loads"].back()["name"] = l.at.name;
+  }
   j["measurement_points"] = json::array();
   for (const auto& m : s.measurement_points)
     j["measurement_points"].push_back({{"name", m.name}, {"point", m.at.point}, {"block", s.blocks[m.at.block].name}});
   if (s.water) j["water"] = json::parse(water_json_text(*s.water));  // only with water (water.hpp)
+  if (!s.stages.empty()) j["stages"] = stages_json(s);
   return j;
 }
 

@@ -14,7 +14,7 @@ namespace detail {
 namespace keys {
 const std::vector<std::string> top{"title", "units", "analysis", "materials", "joint_sets",
                                    "blocks", "rock_mass", "fixed_points", "loads", "measurement_points",
-                                   "water"};
+                                   "water", "stages"};
 const std::vector<std::string> units{"length", "force", "time"};
 const std::vector<std::string> material{"density", "young_modulus", "poisson_ratio", "plane", "damping_ratio"};
 const std::vector<std::string> joint_set{"friction_angle", "cohesion", "tensile_strength",
@@ -32,11 +32,19 @@ const std::vector<std::string> rock_mass_joint_set{"joint_set", "dip", "dip_dire
                                                    "spacing_distribution", "spacing_deviation",
                                                    "trace_length", "gap", "dip_spread", "origin"};
 const std::vector<std::string> rock_mass_trace{"joint_set", "from", "to"};
-const std::vector<std::string> fixed_point{"point", "block"};
-const std::vector<std::string> load{"point", "block", "force", "history"};
+const std::vector<std::string> fixed_point{"name", "point", "block"};
+const std::vector<std::string> load{"name", "point", "block", "force", "history"};
 const std::vector<std::string> measurement_point{"name", "point", "block"};
 const std::vector<std::string> water{"unit_weight", "level", "surface", "level_history", "surface_history"};
 const std::vector<std::string> water_sample{"time", "surface"};
+const std::vector<std::string> stage{"name", "at", "after", "remove_fixed_points", "remove_loads", "remove_blocks",
+                                     "add_fixed_points", "add_loads", "joint_sets", "analysis", "settle"};
+const std::vector<std::string> stage_remove_blocks{"names", "region", "rock_mass_inside"};
+const std::vector<std::string> stage_fixed_point{"name", "point", "block"};
+const std::vector<std::string> stage_load{"name", "point", "block", "force", "history"};
+const std::vector<std::string> stage_joint_set{"friction_angle", "cohesion", "tensile_strength",
+                                               "residual_friction_angle", "residual_cohesion", "law"};
+const std::vector<std::string> stage_analysis{"type", "dynamic_ratio"};
 }  // namespace keys
 
 }  // namespace detail
@@ -62,6 +70,13 @@ std::vector<SceneMapKeys> scene_schema() {
       {"measurement_points[*]", detail::keys::measurement_point},
       {"water", detail::keys::water},
       {"water.surface_history[*]", detail::keys::water_sample},
+      {"stages[*]", detail::keys::stage},
+      {"stages[*].remove_blocks", detail::keys::stage_remove_blocks},
+      {"stages[*].add_fixed_points[*]", detail::keys::stage_fixed_point},
+      {"stages[*].add_loads[*]", detail::keys::stage_load},
+      {"stages[*].joint_sets.*", detail::keys::stage_joint_set},
+      {"stages[*].joint_sets.*.law", detail::keys::law},
+      {"stages[*].analysis", detail::keys::stage_analysis},
   };
 }
 

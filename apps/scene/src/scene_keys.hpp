@@ -22,4 +22,10 @@ extern const std::vector<std::string> load;
 extern const std::vector<std::string> measurement_point;
 extern const std::vector<std::string> water;
 extern const std::vector<std::string> water_sample;
+extern const std::vector<std::string> stage;
+extern const std::vector<std::string> stage_remove_blocks;
+extern const std::vector<std::string> stage_fixed_point;
+extern const std::vector<std::string> stage_load;
+extern const std::vector<std::string> stage_joint_set;
+extern const std::vector<std::string> stage_analysis;
 }  // namespace rheodda::scene::detail::keys

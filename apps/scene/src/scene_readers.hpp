@@ -42,6 +42,8 @@ BlockPoint read_block_point(const Ctx& ctx, const MapReader& m, const SceneDescr
 void read_points(const Ctx& ctx, const MapReader& top, SceneDescription& s);
 /// `water:` (load_water.cpp; after the blocks: its surface must span them).
 WaterDescription read_water(const Ctx& ctx, const YAML::Node& n, const SceneDescription& s);
+/// `stages:` (load_stages.cpp), after every other section.
+void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s);
 /// Every block a simple polygon, no two overlapping, edges' joint sets (scene_checks.cpp).
 void check_geometry(const Ctx& ctx, std::vector<RawBlock>& raw, SceneDescription& s);
 

@@ -109,7 +109,8 @@ std::string mutate(const std::string& text, std::mt19937_64& rng, long long whol
 BOOST_AUTO_TEST_CASE(mutated_examples_load_or_fail_with_a_located_scene_error) {
   constexpr int kMutantsPerExample = 1200;
   int loaded = 0, refused = 0;
-  for (const char* name : {"shear-creep-test.yaml", "sliding-block.yaml", "goodman-toppling.yaml"}) {
+  for (const char* name :
+       {"shear-creep-test.yaml", "sliding-block.yaml", "goodman-toppling.yaml", "excavation-stages.yaml"}) {
     const std::string original = read_text(source_path(std::string("examples/") + name));
     std::mt19937_64 rng(0x5eedULL + std::hash<std::string>{}(name) % 1000);
     for (int i = 0; i < kMutantsPerExample; ++i) {

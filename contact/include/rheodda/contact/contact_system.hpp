@@ -288,6 +288,22 @@ class ContactSystem {
     double creep_error = 0.0;                      ///< creep_error_estimate() [length]
     int creep_changes = 0;                         ///< creep_state_changes() [-]
   };
+  /// Model edits between two steps (stages, docs/reference/stages.md; contact_edits.cpp).
+  /// Removes the blocks whose flags are set (indexed like the views; blocks
+  /// already removed stay removed): their contacts are dropped from the
+  /// committed records with their creep histories, and begin_step never pairs
+  /// them again. The stored energy the next step's balance starts from is that
+  /// of the records left. Costs nothing while no block was removed.
+  void remove_blocks(std::span<const char> removed);
+  /// Replaces joint set `index` by `joint_set` (same name), checked as the
+  /// constructor checks it. The records keep their states, forces and creep
+  /// histories; the next begin_step takes the new friction, cohesion, strength
+  /// and stiffness values and the law's new constants. A law can change its
+  /// parameters, not be added, removed or replaced by another law (the
+  /// histories' meaning). Throws std::invalid_argument.
+  void set_joint_set(int index, JointSet joint_set);
+  /// Blocks removed so far (empty while none was).
+  std::span<const char> removed_blocks() const { return removed_; }
   /// The state between two steps (not within one: no trial records).
   State state() const;
   /// Takes up a state saved from a system with the same joint sets. Throws
@@ -411,6 +427,7 @@ class ContactSystem {
   std::unordered_map<std::uint64_t, double> retract_prev_tau_;  ///< prev_tau_ before the last end_step
   double retract_prev_dt_ = 0.0;                                ///< prev_dt_ before the last end_step [time]
   std::vector<ContactKey> previous_keys_;
+  std::vector<char> removed_;  ///< remove_blocks: 1 for a removed block (empty: none removed)
   std::vector<Box> boxes_;
   BroadPhase broad_;
   DetectionStats stats_;

@@ -54,6 +54,10 @@ class ContactAdapter final : public ContactModel {
   bool extrapolate(const ContactSnapshot& coarse) override;
   /// contact::ContactSystem::energy.
   ContactEnergy energy() const override { return system_.energy(); }
+  /// contact::ContactSystem::remove_blocks (model_edits.cpp).
+  int remove_blocks(std::span<const char> removed) override;
+  /// contact::ContactSystem::set_joint_set (model_edits.cpp).
+  void set_joint_set(int index, const contact::JointSet& joint_set) override;
 
   contact::ContactSystem& system() { return system_; }
   const contact::ContactSystem& system() const { return system_; }

@@ -9,6 +9,7 @@
 #include <span>
 
 #include "rheodda/contact/contact_energy.hpp"
+#include "rheodda/contact/joint_set.hpp"
 #include "rheodda/contact/kinematics.hpp"
 
 namespace rheodda::core {
@@ -124,6 +125,14 @@ class ContactModel {
   /// accepted step and the work the blocks did on them in it [force x length];
   /// all zero for a model that does not account for it.
   virtual ContactEnergy energy() const { return {}; }
+  /// Model edits between two steps (Engine::edit; docs/reference/stages.md). Blocks whose
+  /// flag is set are removed: their contacts are dropped and never detected
+  /// again; returns how many were dropped. The default refuses (throws
+  /// std::logic_error): a model that cannot must not ignore it.
+  virtual int remove_blocks(std::span<const char> removed);
+  /// Joint set `index` takes new values (contact::ContactSystem::set_joint_set).
+  /// The default refuses (throws std::logic_error).
+  virtual void set_joint_set(int index, const contact::JointSet& joint_set);
 };
 
 /// No contacts: every call does nothing.
@@ -141,6 +150,7 @@ class NullContactModel final : public ContactModel {
     return std::make_unique<ContactSnapshot>();
   }
   bool extrapolate(const ContactSnapshot&) override { return true; }
+  int remove_blocks(std::span<const char>) override { return 0; }  // no contacts to drop
 };
 
 }  // namespace rheodda::core

@@ -20,10 +20,12 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
 
+#include "rheodda/contact/joint_set.hpp"
 #include "rheodda/contact/kinematics.hpp"
 #include "rheodda/core/contact_model.hpp"
 #include "rheodda/core/energy.hpp"
@@ -181,6 +183,55 @@ struct EngineState {
   SolverState solver;        ///< the linear solver's memory between solves
 };
 
+/// Changes to the model between two steps: the actions of a scene's stage
+/// (docs/reference/stages.md; model_edits.cpp). Engine::edit applies them in the order
+/// of the fields. Points are in current coordinates (where they are at the
+/// edit); block indices are those of Model::blocks, which never change.
+struct ModelEdit {
+  /// Fixed points to remove, indices into the current model().fixed_points.
+  std::vector<int> remove_fixed_points;
+  /// Point loads to remove, indices into the current model().point_loads.
+  std::vector<int> remove_point_loads;
+  /// Blocks to remove (excavation): each becomes inactive - no contacts (the
+  /// contact model drops them and never pairs them again), no gravity, no
+  /// velocity, no stress, its six unknowns held at zero, its geometry frozen
+  /// where it was. The fixed points and point loads on it are removed with it.
+  std::vector<int> remove_blocks;
+  /// Fixed points to add: `point` is the held position now [length]; the
+  /// material point of `block` standing there is held from now on.
+  std::vector<FixedPoint> add_fixed_points;
+  /// Point loads to add: `point` is the load point now [length] (the material
+  /// point standing there carries it); history times are run times [time].
+  std::vector<PointLoad> add_point_loads;
+  /// Joint sets to change (index, new values; same name): handed to the
+  /// contact model (ContactModel::set_joint_set).
+  std::vector<std::pair<int, contact::JointSet>> joint_sets;
+  /// New Settings::dynamic_ratio (the share of velocity carried): 0 makes the
+  /// analysis static, > 0 dynamic [-]; unset: unchanged.
+  std::optional<double> dynamic_ratio;
+  /// Replay (a resumed run, docs/reference/outputs.md "Interrupting and resuming"): the
+  /// points of add_fixed_points (their material_point, which must be set) and
+  /// of add_point_loads are material points already, as EditReport::replay
+  /// gives them, and are not checked against where the blocks stand now.
+  bool material_points = false;
+  /// Opens a settling stage from now (Settings::settle_until long, with
+  /// settle_dt, settle_g2, settle_dynamic and settle_rest_tolerance; docs/reference/engine.md,
+  /// "Dynamic stages"); a dynamic stage in progress ends here.
+  bool settle = false;
+};
+
+/// What Engine::edit removed with the blocks (indices as they were before the edit).
+struct EditReport {
+  std::vector<int> fixed_points_removed;  ///< fixed points on removed blocks
+  std::vector<int> point_loads_removed;   ///< point loads on removed blocks
+  int contacts_dropped = 0;               ///< contacts of removed blocks [-]
+  /// The edit with its added points resolved to material points
+  /// (ModelEdit::material_points): applied to an engine built anew from the
+  /// same model, then Engine::restore of a state saved after the edit, it
+  /// resumes the run bit for bit.
+  ModelEdit replay;
+};
+
 /// Called after every accepted step.
 using StepObserver = std::function<void(const class Engine&, const StepReport&)>;
 
@@ -244,6 +295,17 @@ class Engine {
   const std::vector<StageEvent>& events() const;
   /// The run is in a dynamic stage (the next step is dynamic).
   bool in_stage() const;
+
+  /// Applies `edit` between two steps (model_edits.cpp; docs/reference/stages.md).
+  /// Validates it first and throws ModelError naming the field ("remove_blocks[0]",
+  /// ...) with the model unchanged when it is invalid: an index out of range,
+  /// a block already removed, every block removed, no fixed point left where
+  /// the model had some, a settling stage without Settings::settle_until.
+  EditReport edit(const ModelEdit& edit);
+  /// Block b was removed by an edit.
+  bool removed(int b) const;
+  /// Blocks removed so far (1 per removed block; empty while none was).
+  std::span<const char> removed_blocks() const;
 
   /// Copy of everything that evolves.
   EngineState save() const;

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -86,6 +87,12 @@ struct PointLoad {
 struct FixedPoint {
   int block = 0;                ///< index into Model::blocks
   Vec2 point = Vec2::Zero();    ///< initial (and held) position [length]
+  /// A point added by a stage (Engine::edit) holds, at `point`, the material
+  /// point that stood there when it was added: this is that material point's
+  /// initial position [length]; unset: `point`.
+  std::optional<Vec2> material_point = std::nullopt;
+  /// Initial position of the held material point [length].
+  const Vec2& material() const { return material_point ? *material_point : point; }
 };
 
 /// A measurement point: the engine records the displacement of this material

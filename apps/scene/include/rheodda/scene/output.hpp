@@ -109,6 +109,9 @@ struct FrameBlock {
   std::array<double, 3> velocity{};                 ///< (vx, vy [length/time], omega [1/time])
   int material = 0;
   bool fixed = false;
+  /// Removed by a stage (docs/reference/stages.md); set for every block of a scene with
+  /// stages (the frames then have a `removed` array), unset otherwise.
+  std::optional<bool> removed;
 };
 
 /// A VTK XML PolyData file (.vtp, ASCII) of the blocks at one time.

@@ -24,6 +24,7 @@
 #include "rheodda/rockmass/generate.hpp"
 #include "rheodda/scene/error.hpp"
 #include "rheodda/scene/water.hpp"
+#include "rheodda/scene/stages.hpp"
 
 namespace rheodda::scene {
 
@@ -193,6 +194,7 @@ struct BlockDescription {
 
 /// A point attached to a block (fixed, loaded or measured).
 struct BlockPoint {
+  std::string name;       ///< fixed_points, loads: optional `name` a stage removes it by (empty: none)
   Point point{0.0, 0.0};  ///< [length]
   int block = 0;          ///< index into SceneDescription::blocks
   SourceLocation where{};
@@ -255,6 +257,7 @@ struct SceneDescription {
   std::vector<MeasurementPoint> measurement_points;
   std::optional<RockMassDescription> rock_mass;  ///< `rock_mass:`, if given
   std::optional<WaterDescription> water;          ///< `water:`, if given (water.hpp)
+  std::vector<StageDescription> stages;          ///< `stages:` (docs/reference/stages.md), in order
 };
 
 std::string_view analysis_type_name(AnalysisType t);

@@ -1,0 +1,77 @@
+// `stages:` of a scene file (docs/reference/stages.md): an ordered list of changes to
+// the model during the run - blocks removed (excavation), fixed points and
+// loads added or removed, joint sets given new strength or law parameters, the
+// analysis switched between static and dynamic, a settling stage opened -
+// each at a time or when the settling stage opened by the stage before it has
+// ended at rest. Read by load_stages.cpp, applied by run_stages.cpp.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rheodda/laws/parameters.hpp"
+#include "rheodda/scene/error.hpp"
+
+namespace rheodda::scene {
+
+/// When a stage begins.
+enum class StageStart {
+  at,       ///< `at: <time>`: a step ends exactly there
+  settled,  ///< `after: settled`: at the end of the step in which the settling stage
+            ///< opened before it (the stage before's `settle: true`, or for the first
+            ///< stage the analysis's `settle:`) ended at rest
+};
+
+/// A fixed point or load a stage adds: `{name, point, block}` (+ force or history for a load).
+struct StagePoint {
+  std::string name;        ///< optional; what a later stage removes it by
+  std::array<double, 2> point{0.0, 0.0};  ///< where the material point stands at the stage [length]
+  int block = 0;           ///< index into SceneDescription::blocks (`block:` is required)
+  /// Loads: (t [time] from the stage's start, fx, fy [force]) samples, strictly
+  /// increasing t; a constant `force` is one sample at 0. Empty for a fixed point.
+  std::vector<std::array<double, 3>> history;
+  SourceLocation where{};
+};
+
+/// `joint_sets: {NAME: {...}}` of a stage: the values given replace the joint
+/// set's; those not given keep theirs.
+struct StageJointSet {
+  int joint_set = 0;                            ///< index into SceneDescription::joint_sets
+  std::optional<double> friction_angle;         ///< [deg] in [0, 90)
+  std::optional<double> cohesion;               ///< [stress] >= 0
+  std::optional<double> tensile_strength;       ///< [stress] >= 0
+  std::optional<double> residual_friction_angle;  ///< [deg] in [0, friction_angle]
+  std::optional<double> residual_cohesion;      ///< [stress] in [0, cohesion]
+  /// `law: {name, parameters...}`: the law given whole (its parameters; its
+  /// name must be the joint set's law: a stage cannot add, remove or replace a law).
+  std::optional<std::string> law_name;
+  laws::ParameterValues law_parameters;  ///< every parameter, defaults filled in
+  SourceLocation where{};
+};
+
+/// One stage.
+struct StageDescription {
+  std::string name;                     ///< required, unique; history.csv's `stage` column
+  StageStart start = StageStart::at;
+  double at = 0.0;                      ///< `at` [time]; in (0, duration), increasing
+  /// `remove_blocks:` resolved to block indices (by `names`, by `region`: initial
+  /// centroid inside the polygon, by `rock_mass_inside`: generated blocks whose
+  /// initial centroid is inside the polygon), in increasing order.
+  std::vector<int> remove_blocks;
+  std::vector<std::string> remove_fixed_points;  ///< by name
+  std::vector<std::string> remove_loads;         ///< by name
+  std::vector<StagePoint> add_fixed_points;
+  std::vector<StagePoint> add_loads;
+  std::vector<StageJointSet> joint_sets;
+  /// `analysis: {type: static|dynamic, dynamic_ratio}`: the share of velocity
+  /// carried from now on (0 static; default 1 for dynamic) [-]; unset: unchanged.
+  std::optional<double> dynamic_ratio;
+  bool settle = false;                  ///< `settle: true`: a settling stage opens (analysis.settle's values)
+  SourceLocation where{};
+  SourceLocation remove_blocks_where{}, remove_fixed_points_where{}, remove_loads_where{}, add_fixed_points_where{},
+      add_loads_where{}, joint_sets_where{}, settle_where{};
+};
+
+}  // namespace rheodda::scene

@@ -1,0 +1,318 @@
+// The `stages:` section of a scene file (docs/reference/stages.md; stages.hpp). Every
+// check that does not need the run is made here, with file:line:col: stage
+// names, times increasing within (0, duration), a settling stage to wait for,
+// blocks, fixed points, loads and joint sets that exist when the stage comes,
+// and a model that keeps a fixed point. What only the run knows (where a
+// block stands when a point is added to it) is checked by the engine at the
+// stage (run_stages.cpp reports it with the stage's file:line:col).
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <set>
+
+#include "rheodda/scene/geometry.hpp"
+#include "scene_readers.hpp"
+
+namespace rheodda::scene::detail {
+
+namespace {
+
+/// Area centroid of a simple polygon (the shoelace moments: c = sum (p_k + p_k+1)
+/// (p_k x p_k+1) / (3 sum p_k x p_k+1)) [length].
+Point polygon_centroid(const std::vector<Point>& v) {
+  double a = 0.0, cx = 0.0, cy = 0.0;
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    const Point& p = v[k];
+    const Point& q = v[(k + 1) % v.size()];
+    const double w = p[0] * q[1] - q[0] * p[1];
+    a += w;
+    cx += w * (p[0] + q[0]);
+    cy += w * (p[1] + q[1]);
+  }
+  return {cx / (3.0 * a), cy / (3.0 * a)};
+}
+
+/// A list of names (`[a, b]`), each a non-empty word.
+std::vector<std::pair<std::string, YAML::Node>> name_list(const Ctx& ctx, const YAML::Node& n, const std::string& key) {
+  if (!n.IsSequence() || n.size() == 0) ctx.fail(n, key, "expected a non-empty list of names, e.g. [a, b]");
+  std::vector<std::pair<std::string, YAML::Node>> out;
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    const std::string k = fmt::format("{}[{}]", key, i);
+    std::string name = text(ctx, n[i], k);
+    for (const auto& [other, node] : out)
+      if (other == name) ctx.fail(n[i], k, fmt::format("'{}' is given twice", name));
+    out.emplace_back(std::move(name), n[i]);
+  }
+  return out;
+}
+
+/// The blocks of `remove_blocks: {names, region, rock_mass_inside}` (their union).
+std::vector<int> read_removed_blocks(const Ctx& ctx, const YAML::Node& n, const std::string& path,
+                                     const SceneDescription& s) {
+  MapReader m(ctx, n, path, keys::stage_remove_blocks);
+  if (m.entries().empty())
+    ctx.fail(n, path,
+             "give the blocks to remove: names: [...], region: [[x, y], ...] or rock_mass_inside: [[x, y], ...]");
+  std::set<int> out;
+  if (YAML::Node v = m.find("names"); v.IsDefined())
+    for (const auto& [name, node] : name_list(ctx, v, m.child("names")))
+      out.insert(resolve(ctx, node, m.child("names"), s.blocks, "block"));
+  // Blocks whose initial centroid lies inside the polygon (of all blocks, or
+  // of the rock mass's generated blocks only).
+  auto inside = [&](const char* key, std::size_t first, std::size_t count) {
+    YAML::Node v = m.find(key);
+    if (!v.IsDefined()) return;
+    const std::vector<Point> poly = polygon_points(ctx, v, m.child(key));
+    int hits = 0;
+    for (std::size_t b = first; b < first + count; ++b)
+      if (contains(poly, polygon_centroid(s.blocks[b].polygon), 0.0)) out.insert(static_cast<int>(b)), ++hits;
+    if (hits == 0) ctx.fail(v, m.child(key), "the polygon holds the centroid of no block: it would remove nothing");
+  };
+  inside("region", 0, s.blocks.size());
+  if (YAML::Node v = m.find("rock_mass_inside"); v.IsDefined() && !s.rock_mass)
+    ctx.fail(v, m.child("rock_mass_inside"), "the scene has no rock_mass: whose blocks?");
+  if (s.rock_mass) inside("rock_mass_inside", s.rock_mass->first_block, s.rock_mass->block_count);
+  return {out.begin(), out.end()};
+}
+
+/// `{name, point, block}` of a point a stage adds (`block:` required: the
+/// point is where the block stands at the stage, which the loader cannot know).
+StagePoint read_stage_point(const Ctx& ctx, const MapReader& m, const SceneDescription& s) {
+  StagePoint p;
+  p.where = m.where();
+  if (YAML::Node v = m.find("name"); v.IsDefined()) p.name = name_text(ctx, v, m.child("name"));
+  p.point =
+      point(ctx, m.required("point", "[x, y] where the material point stands at the stage [length]"), m.child("point"));
+  p.block = resolve(ctx, m.required("block", "the block it is on (required in a stage)"), m.child("block"), s.blocks,
+                    "block");
+  return p;
+}
+
+/// A stage's `joint_sets: {NAME: {...}}`.
+std::vector<StageJointSet> read_stage_joint_sets(const Ctx& ctx, const YAML::Node& n, const std::string& path,
+                                                 const SceneDescription& s) {
+  if (!n.IsMap() || n.size() == 0)
+    ctx.fail(n, path, "expected a map of the joint sets to change, e.g. `bedding: {friction_angle: 20}`");
+  std::vector<std::string> names;
+  for (const auto& js : s.joint_sets) names.push_back(js.name);
+  MapReader all(ctx, n, path, names);
+  std::vector<StageJointSet> out;
+  for (const auto& e : all.entries()) {
+    StageJointSet c;
+    c.joint_set = resolve(ctx, e.key_node, path, s.joint_sets, "joint set");
+    c.where = location(e.key_node);
+    const JointSetDescription& js = s.joint_sets[static_cast<std::size_t>(c.joint_set)];
+    MapReader m(ctx, e.value, all.child(e.key), keys::stage_joint_set);
+    if (m.entries().empty()) ctx.fail(e.value, all.child(e.key), "changes nothing: give the values to change");
+    if (YAML::Node v = m.find("friction_angle"); v.IsDefined())
+      c.friction_angle = number(ctx, v, m.child("friction_angle"), {0.0, false, 90.0, true, "deg"});
+    if (YAML::Node v = m.find("cohesion"); v.IsDefined())
+      c.cohesion = number(ctx, v, m.child("cohesion"), non_negative("stress"));
+    if (YAML::Node v = m.find("tensile_strength"); v.IsDefined())
+      c.tensile_strength = number(ctx, v, m.child("tensile_strength"), non_negative("stress"));
+    if (YAML::Node v = m.find("residual_friction_angle"); v.IsDefined())
+      c.residual_friction_angle = number(ctx, v, m.child("residual_friction_angle"), non_negative("deg"));
+    if (YAML::Node v = m.find("residual_cohesion"); v.IsDefined())
+      c.residual_cohesion = number(ctx, v, m.child("residual_cohesion"), non_negative("stress"));
+    if (YAML::Node v = m.find("law"); v.IsDefined()) {
+      const LawChoice law = read_law(ctx, v, m.child("law"));
+      if (!js.law || js.law->name != law.name)
+        ctx.fail(v, m.child("law"),
+                 fmt::format("joint set '{}' has {}: a stage can change a law's parameters, not add or replace a law",
+                             js.name, js.law ? fmt::format("law '{}'", js.law->name) : std::string("no law")));
+      c.law_name = law.name;
+      c.law_parameters = law.parameters;
+    }
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+}  // namespace
+
+void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s) {
+  if (!n.IsSequence() || n.size() == 0) ctx.fail(n, "stages", "expected a non-empty list of stages");
+  const Analysis& a = s.analysis;
+  // What exists as the stages come, to check their references in order.
+  std::vector<char> removed(s.blocks.size(), 0);
+  std::vector<std::string> removed_by(s.blocks.size());
+  struct Named {
+    std::string name;
+    int block;
+  };
+  std::vector<Named> fixed;  // fixed points (name, block); `fixed: true` vertices unnamed
+  for (std::size_t b = 0; b < s.blocks.size(); ++b)
+    if (s.blocks[b].fixed)
+      for (std::size_t k = 0; k < s.blocks[b].polygon.size(); ++k) fixed.push_back({"", static_cast<int>(b)});
+  for (const auto& f : s.fixed_points) fixed.push_back({f.name, f.block});
+  std::vector<Named> loads;
+  for (const auto& l : s.loads) loads.push_back({l.at.name, l.at.block});
+  auto find_named = [](const std::vector<Named>& list, const std::string& name) {
+    for (std::size_t k = 0; k < list.size(); ++k)
+      if (!name.empty() && list[k].name == name) return static_cast<int>(k);
+    return -1;
+  };
+  // The settling stage a stage `after: settled` waits for: the analysis's at first.
+  bool settling_to_wait_for = a.settle && a.settle->rest_tolerance > 0.0;
+  double last_at = 0.0;
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    const std::string path = fmt::format("stages[{}]", i);
+    MapReader m(ctx, n[i], path, keys::stage);
+    StageDescription st;
+    st.where = m.where();
+    YAML::Node name = m.required("name", "the stage's name (history.csv's stage column)");
+    st.name = name_text(ctx, name, m.child("name"));
+    for (const auto& other : s.stages)
+      if (other.name == st.name) ctx.fail(name, m.child("name"), fmt::format("stage '{}' is defined twice", st.name));
+    YAML::Node at = m.find("at"), after = m.find("after");
+    if (at.IsDefined() == after.IsDefined())
+      ctx.fail(m.node(), m.child("at"), "give exactly one of at: <time> or after: settled");
+    if (at.IsDefined()) {
+      st.start = StageStart::at;
+      st.at = number(ctx, at, m.child("at"), positive("time"));
+      if (!(st.at < a.duration))
+        ctx.fail(at, m.child("at"),
+                 fmt::format("{:g} is not before the end of the run (duration {:g})", st.at, a.duration));
+      if (!(st.at > last_at))
+        ctx.fail(at, m.child("at"),
+                 fmt::format("{:g} is not after the stage before ({:g}): stage times must increase", st.at, last_at));
+      last_at = st.at;
+    } else {
+      st.start = StageStart::settled;
+      (void)choice(ctx, after, m.child("after"), {"settled"});
+      if (!settling_to_wait_for)
+        ctx.fail(after, m.child("after"),
+                 i == 0 ? std::string("no settling stage ends at rest before this stage: give analysis.settle a "
+                                      "rest_tolerance (a dynamic settling stage), or use at: <time>")
+                        : std::string("the stage before opens no settling stage: give it settle: true (with "
+                                      "analysis.settle's rest_tolerance), or use at: <time>"));
+    }
+    if (YAML::Node v = m.find("remove_fixed_points"); v.IsDefined()) {
+      st.remove_fixed_points_where = location(v);
+      for (const auto& [fp, node] : name_list(ctx, v, m.child("remove_fixed_points"))) {
+        const int k = find_named(fixed, fp);
+        if (k < 0)
+          ctx.fail(node, m.child("remove_fixed_points"),
+                   fmt::format("no fixed point named '{}' is in the model at this stage", fp));
+        fixed.erase(fixed.begin() + k);
+        st.remove_fixed_points.push_back(fp);
+      }
+    }
+    if (YAML::Node v = m.find("remove_loads"); v.IsDefined()) {
+      st.remove_loads_where = location(v);
+      for (const auto& [ld, node] : name_list(ctx, v, m.child("remove_loads"))) {
+        const int k = find_named(loads, ld);
+        if (k < 0)
+          ctx.fail(node, m.child("remove_loads"), fmt::format("no load named '{}' is in the model at this stage", ld));
+        loads.erase(loads.begin() + k);
+        st.remove_loads.push_back(ld);
+      }
+    }
+    if (YAML::Node v = m.find("remove_blocks"); v.IsDefined()) {
+      st.remove_blocks_where = location(v);
+      st.remove_blocks = read_removed_blocks(ctx, v, m.child("remove_blocks"), s);
+      for (int b : st.remove_blocks) {
+        if (removed[static_cast<std::size_t>(b)])
+          ctx.fail(v, m.child("remove_blocks"),
+                   fmt::format("block '{}' was removed by stage '{}' before",
+                               s.blocks[static_cast<std::size_t>(b)].name, removed_by[static_cast<std::size_t>(b)]));
+        removed[static_cast<std::size_t>(b)] = 1;
+        removed_by[static_cast<std::size_t>(b)] = st.name;
+      }
+      if (std::all_of(removed.begin(), removed.end(), [](char c) { return c != 0; }))
+        ctx.fail(v, m.child("remove_blocks"), "would remove every block of the model");
+      // Fixed points and loads on removed blocks go with them.
+      std::erase_if(fixed, [&](const Named& f) { return removed[static_cast<std::size_t>(f.block)] != 0; });
+      std::erase_if(loads, [&](const Named& l) { return removed[static_cast<std::size_t>(l.block)] != 0; });
+    }
+    auto read_points_of = [&](const char* key, bool load, std::vector<StagePoint>& into, SourceLocation& where) {
+      YAML::Node v = m.find(key);
+      if (!v.IsDefined()) return;
+      where = location(v);
+      if (!v.IsSequence() || v.size() == 0) ctx.fail(v, m.child(key), "expected a non-empty list");
+      for (std::size_t k = 0; k < v.size(); ++k) {
+        MapReader pm(ctx, v[k], fmt::format("{}[{}]", m.child(key), k),
+                     load ? keys::stage_load : keys::stage_fixed_point);
+        StagePoint p = read_stage_point(ctx, pm, s);
+        if (removed[static_cast<std::size_t>(p.block)])
+          ctx.fail(pm.find("block"), pm.child("block"),
+                   fmt::format("block '{}' is removed by then (stage '{}')",
+                               s.blocks[static_cast<std::size_t>(p.block)].name,
+                               removed_by[static_cast<std::size_t>(p.block)]));
+        std::vector<Named>& list = load ? loads : fixed;
+        if (!p.name.empty() && find_named(list, p.name) >= 0)
+          ctx.fail(pm.find("name"), pm.child("name"),
+                   fmt::format("a {} named '{}' is already in the model", load ? "load" : "fixed point", p.name));
+        if (load) {
+          YAML::Node f = pm.find("force"), h = pm.find("history");
+          if (f.IsDefined() == h.IsDefined())
+            ctx.fail(pm.node(), pm.child("force"),
+                     "give exactly one of force: [fx, fy] or history: [[t, fx, fy], ...] (t from the stage's start)");
+          if (f.IsDefined()) {
+            const auto fv = numbers(ctx, f, pm.child("force"), 2, any("force"));
+            p.history.push_back({0.0, fv[0], fv[1]});
+          } else {
+            if (!h.IsSequence() || h.size() == 0 || h.size() > kMaxSamples)
+              ctx.fail(h, pm.child("history"), "expected a list of [t, fx, fy] samples");
+            for (std::size_t j = 0; j < h.size(); ++j) {
+              const std::string hk = fmt::format("{}[{}]", pm.child("history"), j);
+              const auto hv = numbers(ctx, h[j], hk, 3, any("time, force, force"));
+              if (hv[0] < 0.0) ctx.fail(h[j], hk, fmt::format("time {:g} is negative", hv[0]));
+              if (!p.history.empty() && hv[0] <= p.history.back()[0])
+                ctx.fail(h[j], hk,
+                         fmt::format("times must increase strictly: {:g} after {:g}", hv[0], p.history.back()[0]));
+              p.history.push_back({hv[0], hv[1], hv[2]});
+            }
+          }
+        }
+        list.push_back({p.name, p.block});
+        into.push_back(std::move(p));
+      }
+    };
+    read_points_of("add_fixed_points", false, st.add_fixed_points, st.add_fixed_points_where);
+    read_points_of("add_loads", true, st.add_loads, st.add_loads_where);
+    // Support: a model held by fixed points keeps one (Engine::edit checks it again).
+    const bool had_support = !s.fixed_points.empty() || std::any_of(s.blocks.begin(), s.blocks.end(),
+                                                                    [](const BlockDescription& b) { return b.fixed; });
+    if (had_support && fixed.empty()) {
+      YAML::Node at_key = m.find("remove_blocks").IsDefined() ? m.find("remove_blocks") : m.find("remove_fixed_points");
+      ctx.fail(
+          at_key.IsDefined() ? at_key : m.node(),
+          m.child(m.find("remove_blocks").IsDefined() ? "remove_blocks" : "remove_fixed_points"),
+          "would leave no fixed point in the model: nothing would hold it (keep a fixed block, or add_fixed_points)");
+    }
+    if (YAML::Node v = m.find("joint_sets"); v.IsDefined()) {
+      st.joint_sets_where = location(v);
+      st.joint_sets = read_stage_joint_sets(ctx, v, m.child("joint_sets"), s);
+    }
+    if (YAML::Node v = m.find("analysis"); v.IsDefined()) {
+      MapReader am(ctx, v, m.child("analysis"), keys::stage_analysis);
+      const std::string type =
+          choice(ctx, am.required("type", "static or dynamic"), am.child("type"), {"static", "dynamic"});
+      if (type == "static") {
+        if (YAML::Node r = am.find("dynamic_ratio"); r.IsDefined())
+          ctx.fail(r, am.child("dynamic_ratio"), "a static analysis carries no velocity (dynamic_ratio 0)");
+        st.dynamic_ratio = 0.0;
+      } else {
+        st.dynamic_ratio = 1.0;
+        if (YAML::Node r = am.find("dynamic_ratio"); r.IsDefined())
+          st.dynamic_ratio = number(ctx, r, am.child("dynamic_ratio"), {0.0, true, 1.0, false, ""});
+      }
+      if (a.time_integration == TimeIntegration::trapezoidal && *st.dynamic_ratio == 0.0)
+        ctx.fail(v, am.child("type"), "time_integration: trapezoidal needs a dynamic analysis");
+    }
+    if (YAML::Node v = m.find("settle"); v.IsDefined()) {
+      st.settle_where = location(v);
+      st.settle = flag(ctx, v, m.child("settle"));
+      if (st.settle && !a.settle)
+        ctx.fail(v, m.child("settle"), "a settling stage takes analysis.settle's values: give analysis.settle");
+    }
+    if (m.entries().size() == 2 + (m.has("settle") && !st.settle ? 1 : 0))
+      ctx.fail(m.node(), path, "changes nothing: give what the stage does (remove_blocks, joint_sets, ...)");
+    settling_to_wait_for = st.settle && a.settle && a.settle->rest_tolerance > 0.0;
+    s.stages.push_back(std::move(st));
+  }
+}
+
+}  // namespace rheodda::scene::detail

@@ -1,0 +1,212 @@
+// A run with stages (docs/reference/stages.md): the steps land on each stage's time (or
+// the stage waits for the settling stage before it to end at rest); at each
+// stage its changes go to the engine (Engine::edit), then a frame and a
+// checkpoint are written and the stage is recorded (history.csv's `stage`
+// column, summary.json's `stages`). A scene without stages never comes here.
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "rheodda/laws/registry.hpp"
+#include "run_internal.hpp"
+
+namespace rheodda::scene {
+
+namespace {
+
+/// Where in the scene file the engine's key `key` of stage `st` was given.
+SourceLocation where_of(const StageDescription& st, const std::string& key) {
+  auto starts = [&](const char* prefix) { return key.rfind(prefix, 0) == 0; };
+  auto point_at = [&](const std::vector<StagePoint>& list, SourceLocation whole) {
+    const std::size_t open = key.find('['), close = key.find(']');
+    if (open == std::string::npos || close == std::string::npos) return whole;
+    const std::size_t k = std::stoul(key.substr(open + 1, close - open - 1));
+    return k < list.size() ? list[k].where : whole;
+  };
+  if (starts("remove_blocks")) return st.remove_blocks_where;
+  if (starts("remove_fixed_points")) return st.remove_fixed_points_where;
+  if (starts("remove_point_loads")) return st.remove_loads_where;
+  if (starts("add_fixed_points")) return point_at(st.add_fixed_points, st.add_fixed_points_where);
+  if (starts("add_point_loads")) return point_at(st.add_loads, st.add_loads_where);
+  if (starts("joint_sets")) return st.joint_sets_where;
+  if (starts("settle")) return st.settle_where;
+  return st.where;
+}
+
+/// The scene's word for the engine's key (point loads are `loads` in a scene).
+std::string scene_key(std::string key) {
+  for (const auto& [engine_word, scene_word] :
+       {std::pair<std::string, std::string>{"remove_point_loads", "remove_loads"}, {"add_point_loads", "add_loads"}})
+    if (key.rfind(engine_word, 0) == 0) key.replace(0, engine_word.size(), scene_word);
+  return key;
+}
+
+/// The joint set `c` makes of the contact system's current one.
+contact::JointSet changed_joint_set(const contact::JointSet& now, const StageJointSet& c) {
+  contact::JointSet j = now;
+  if (c.friction_angle) j.friction_angle = *c.friction_angle;
+  if (c.cohesion) j.cohesion = *c.cohesion;
+  if (c.tensile_strength) j.tensile_strength = *c.tensile_strength;
+  if (c.residual_friction_angle) j.residual_friction_angle = *c.residual_friction_angle;
+  if (c.residual_cohesion) j.residual_cohesion = *c.residual_cohesion;
+  if (c.law_name) j.law = laws::LawRegistry::builtin().create(*c.law_name, c.law_parameters);
+  return j;
+}
+
+/// Applies stage run.stage_run.next to the engine and records it.
+void apply_stage(Run& run) {
+  StageRun& g = run.stage_run;
+  const std::size_t index = g.next;
+  const StageDescription& st = run.s.stages[index];
+  core::Engine& engine = run.engine;
+  core::ModelEdit e;
+  std::vector<std::string> actions;
+  auto index_of = [](const std::vector<std::string>& names, const std::string& name) {
+    return static_cast<int>(std::find(names.begin(), names.end(), name) - names.begin());
+  };
+  for (const auto& name : st.remove_fixed_points) e.remove_fixed_points.push_back(index_of(g.fixed_names, name));
+  for (const auto& name : st.remove_loads) e.remove_point_loads.push_back(index_of(g.load_names, name));
+  e.remove_blocks = st.remove_blocks;
+  for (const StagePoint& p : st.add_fixed_points) e.add_fixed_points.push_back({p.block, {p.point[0], p.point[1]}});
+  for (const StagePoint& p : st.add_loads) {
+    core::PointLoad l;
+    l.block = p.block;
+    l.point = {p.point[0], p.point[1]};
+    // Load history times count from the stage's start.
+    for (const auto& h : p.history) l.history.push_back({engine.time() + h[0], {h[1], h[2]}});
+    e.add_point_loads.push_back(std::move(l));
+  }
+  for (const StageJointSet& c : st.joint_sets)
+    e.joint_sets.emplace_back(c.joint_set,
+                              changed_joint_set(run.contacts.joint_sets()[static_cast<std::size_t>(c.joint_set)], c));
+  e.dynamic_ratio = st.dynamic_ratio;
+  e.settle = st.settle;
+  const std::string path = fmt::format("stages[{}]", index);
+  core::EditReport rep;
+  try {
+    rep = engine.edit(e);
+  } catch (const core::ModelError& err) {
+    const std::string what = err.what();
+    throw SceneError(run.s.file, where_of(st, err.key()), path + "." + scene_key(err.key()),
+                     fmt::format("stage '{}' at t = {:g} {}: {}", st.name, engine.time(), run.s.units.time,
+                                 what.substr(std::min(what.size(), err.key().size() + 2))));
+  } catch (const std::invalid_argument& err) {  // a joint set the contact layer refuses
+    throw SceneError(run.s.file, st.joint_sets_where, path + ".joint_sets",
+                     fmt::format("stage '{}': {}", st.name, err.what()));
+  }
+  // The names follow the engine's lists: explicit removals, then those on
+  // removed blocks (indices after the explicit ones), then the added points.
+  auto erase = [](std::vector<std::string>& names, std::vector<int> which) {
+    std::sort(which.rbegin(), which.rend());
+    for (int i : which) names.erase(names.begin() + i);
+  };
+  erase(g.fixed_names, e.remove_fixed_points);
+  erase(g.load_names, e.remove_point_loads);
+  erase(g.fixed_names, rep.fixed_points_removed);
+  erase(g.load_names, rep.point_loads_removed);
+  for (const StagePoint& p : st.add_fixed_points) g.fixed_names.push_back(p.name);
+  for (const StagePoint& p : st.add_loads) g.load_names.push_back(p.name);
+
+  auto names = [&](const std::vector<int>& blocks) {
+    std::vector<std::string> out;
+    for (int b : blocks) out.push_back(run.s.blocks[static_cast<std::size_t>(b)].name);
+    return out;
+  };
+  if (!st.remove_fixed_points.empty())
+    actions.push_back(fmt::format("removed fixed points {}", fmt::join(st.remove_fixed_points, ", ")));
+  if (!st.remove_loads.empty()) actions.push_back(fmt::format("removed loads {}", fmt::join(st.remove_loads, ", ")));
+  if (!st.remove_blocks.empty())
+    actions.push_back(fmt::format("removed {} blocks ({}) with {} contacts, {} fixed points and {} loads on them",
+                                  st.remove_blocks.size(), fmt::join(names(st.remove_blocks), ", "),
+                                  rep.contacts_dropped, rep.fixed_points_removed.size(),
+                                  rep.point_loads_removed.size()));
+  if (!st.add_fixed_points.empty()) actions.push_back(fmt::format("added {} fixed points", st.add_fixed_points.size()));
+  if (!st.add_loads.empty()) actions.push_back(fmt::format("added {} loads", st.add_loads.size()));
+  for (const StageJointSet& c : st.joint_sets)
+    actions.push_back(
+        fmt::format("changed joint set {}", run.s.joint_sets[static_cast<std::size_t>(c.joint_set)].name));
+  if (st.dynamic_ratio)
+    actions.push_back(*st.dynamic_ratio > 0.0 ? fmt::format("dynamic analysis (dynamic_ratio {:g})", *st.dynamic_ratio)
+                                              : std::string("static analysis"));
+  if (st.settle) actions.push_back("opened a settling stage");
+  g.applied.push_back({st.name, engine.time(), engine.step_count(), std::move(actions)});
+  g.current = st.name;
+  g.watch_events = engine.events().size();
+  ++g.next;
+}
+
+/// The stage comes: applied, its frame and its checkpoint.
+void begin_stage(Run& run) {
+  apply_stage(run);
+  write_frame(run);
+  write_checkpoint(run);
+}
+
+}  // namespace
+
+void start_stages(Run& run) {
+  StageRun& g = run.stage_run;
+  // The engine's fixed points: every vertex of a `fixed: true` block (unnamed),
+  // then fixed_points:, as build_scene lists them.
+  for (const auto& b : run.s.blocks)
+    if (b.fixed) g.fixed_names.insert(g.fixed_names.end(), b.polygon.size(), std::string());
+  for (const auto& f : run.s.fixed_points) g.fixed_names.push_back(f.name);
+  for (const auto& l : run.s.loads) g.load_names.push_back(l.at.name);
+}
+
+void watch_settling(Run& run, const core::Engine& e) {
+  StageRun& g = run.stage_run;
+  if (g.next >= run.s.stages.size() || run.s.stages[g.next].start != StageStart::settled) return;
+  const auto& events = e.events();
+  for (std::size_t k = g.watch_events; k < events.size(); ++k) {
+    if (events[k].kind != core::StageKind::settling) continue;
+    if (!events[k].at_rest)
+      throw std::runtime_error(fmt::format(
+          "stage '{}' (after: settled) waits for the settling stage from t = {:g} {} to end at rest, but it ended at "
+          "its longest at t = {:g} {} (analysis.settle.until; raise it or rest_tolerance)",
+          run.s.stages[g.next].name, events[k].start_time, run.s.units.time, events[k].end_time, run.s.units.time));
+    g.due = true;
+    throw StageDue{};
+  }
+}
+
+void run_staged_to_end(Run& run) {
+  StageRun& g = run.stage_run;
+  core::Engine& engine = run.engine;
+  if (run.frames_done == 0) write_frame(run);
+  for (std::size_t k = run.next_output(run.pvd.back().first); k < run.frame_times.size();
+       k = run.next_output(run.pvd.back().first)) {
+    const StageDescription* st = g.next < run.s.stages.size() ? &run.s.stages[g.next] : nullptr;
+    if (st && st->start == StageStart::at) {
+      // Its time is after the time the stage before began: stages after one
+      // that waited for the settling may find the run past their time.
+      if (st->at < engine.time() - 1e-12 * std::max(1.0, std::abs(st->at)))
+        throw SceneError(run.s.file, st->where, fmt::format("stages[{}].at", g.next),
+                         fmt::format("stage '{}' at {:g} {} comes after the run has passed it (t = {:g} {}, the stage "
+                                     "before began later)",
+                                     st->name, st->at, run.s.units.time, engine.time(), run.s.units.time));
+      if (run.frame_times[k] < st->at - 1e-12 * std::max(1.0, std::abs(st->at))) {
+        engine.run_until(run.frame_times[k], st->at);  // never past the stage's time
+        write_frame(run);
+        continue;
+      }
+      engine.run_until(st->at);  // the last step lands on it
+      begin_stage(run);
+      continue;
+    }
+    try {
+      engine.run_until(run.frame_times[k], run.a.duration);
+      write_frame(run);
+    } catch (const StageDue&) {
+      g.due = false;
+      begin_stage(run);
+    }
+  }
+  for (std::size_t i = g.next; i < run.s.stages.size(); ++i)
+    run.result.warnings.push_back(fmt::format("stage '{}' did not begin before the end of the run (t = {:g} {})",
+                                              run.s.stages[i].name, engine.time(), run.s.units.time));
+}
+
+}  // namespace rheodda::scene

@@ -1,0 +1,69 @@
+// Model edits between two steps (stages, docs/reference/stages.md): blocks removed with
+// their contacts, joint sets given new values. Both act on the committed
+// records only: they are called between accepted steps, never within one.
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "contact_geometry.hpp"
+#include "rheodda/contact/contact_system.hpp"
+
+namespace rheodda::contact {
+
+void ContactSystem::remove_blocks(std::span<const char> removed) {
+  if (removed_.size() < removed.size()) removed_.resize(removed.size(), 0);
+  for (std::size_t b = 0; b < removed.size(); ++b)
+    if (removed[b]) removed_[b] = 1;
+  auto gone = [&](int b) { return b >= 0 && b < static_cast<int>(removed_.size()) && removed_[b]; };
+  // Keep the records of contacts between blocks that stay, and the creep
+  // histories they own (slots renumbered in order).
+  std::vector<Contact> contacts;
+  std::vector<laws::RheologyState> rheology;
+  std::vector<double> creep;
+  std::vector<StepWork> work;
+  for (std::size_t c = 0; c < committed_.size(); ++c) {
+    Contact r = committed_[c];
+    if (gone(r.key.vblock) || gone(r.key.eblock)) continue;
+    if (r.rheology >= 0) {
+      rheology.push_back(committed_rheology_[static_cast<std::size_t>(r.rheology)]);
+      r.rheology = static_cast<int>(rheology.size()) - 1;
+    }
+    if (c < committed_creep_.size()) creep.push_back(committed_creep_[c]);
+    if (c < committed_work_.size()) work.push_back(committed_work_[c]);
+    contacts.push_back(r);
+  }
+  committed_ = std::move(contacts);
+  committed_rheology_ = std::move(rheology);
+  committed_creep_ = std::move(creep);
+  committed_work_ = std::move(work);
+  // The next step's restart energy (ContactEnergy::restart) is measured from
+  // what the records left store, not from what the dropped ones stored.
+  stored_before_ = stored_energy(committed_, committed_work_);
+  // Nothing of the last step is left to retract, nor any trial.
+  abandon_step();
+  can_retract_ = false;
+}
+
+void ContactSystem::set_joint_set(int index, JointSet joint_set) {
+  if (index < 0 || index >= static_cast<int>(joint_sets_.size()))
+    throw std::invalid_argument("set_joint_set: no joint set " + std::to_string(index));
+  const JointSet& old = joint_sets_[static_cast<std::size_t>(index)];
+  if (joint_set.name != old.name)
+    throw std::invalid_argument("set_joint_set: joint set " + std::to_string(index) + " is '" + old.name + "', not '" +
+                                joint_set.name + "'");
+  // The creep histories (laws::RheologyState) belong to the law that wrote
+  // them: parameters may change, the law may not.
+  const bool had = static_cast<bool>(old.law), has = static_cast<bool>(joint_set.law);
+  if (had != has || (had && (old.law->name() != joint_set.law->name() ||
+                             old.law->internal_count() != joint_set.law->internal_count())))
+    throw std::invalid_argument("joint set '" + old.name + "': a stage can change its law's parameters, not " +
+                                (had && has ? "replace law '" + std::string(old.law->name()) + "' by '" +
+                                                  std::string(joint_set.law->name()) + "'"
+                                            : std::string(had ? "remove its law" : "add a law")));
+  check_joint_set(joint_set, static_cast<std::size_t>(index));
+  joint_sets_[static_cast<std::size_t>(index)] = std::move(joint_set);
+  abandon_step();
+  can_retract_ = false;
+}
+
+}  // namespace rheodda::contact
