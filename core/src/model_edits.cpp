@@ -10,6 +10,7 @@
 // (block_assembly.cpp) and are set to zero when a step is accepted (engine.cpp).
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -124,6 +125,14 @@ EditReport Engine::edit(const ModelEdit& e) {
     if (e.joint_sets[k].first < 0) throw ModelError(at("joint_sets", k), "no joint set with a negative index");
   if (e.dynamic_ratio && !(*e.dynamic_ratio >= 0.0 && *e.dynamic_ratio <= 1.0))
     throw ModelError("dynamic_ratio", "must be in [0, 1]");
+  if (e.water && (e.water->active() || e.water->unit_weight != 0.0)) {
+    // The new surfaces span the blocks that stay, where they stand now (water.hpp).
+    double x_min = std::numeric_limits<double>::max(), x_max = std::numeric_limits<double>::lowest();
+    for (std::size_t b = 0; b < m.st.blocks.size(); ++b)
+      if (!gone[b])
+        for (const Vec2& v : m.st.blocks[b].vertices) x_min = std::min(x_min, v.x()), x_max = std::max(x_max, v.x());
+    validate_water(*e.water, x_min, x_max);  // keys water.*
+  }
   const Settings& s = m.model.settings;
   if (e.settle && !(s.settle_until > 0.0 && s.settle_dt > 0.0 && s.settle_g2 > 0.0))
     throw ModelError("settle", "a settling stage needs settings.settle_until, settle_dt and settle_g2");
@@ -176,6 +185,8 @@ EditReport Engine::edit(const ModelEdit& e) {
   for (const auto& [index, js] : e.joint_sets) m.contacts->set_joint_set(index, js);
   // 5. Static or dynamic from now on: a static step starts at rest (accept()).
   if (e.dynamic_ratio) m.model.settings.dynamic_ratio = *e.dynamic_ratio;
+  // 5b. The water from now on (the next step's loads and step ends follow it).
+  if (e.water) m.model.water = *e.water;
   // 6. A settling stage from now; one in progress ends here (its event recorded).
   if (e.settle) {
     StageState& g = m.st.stage;

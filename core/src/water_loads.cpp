@@ -62,7 +62,8 @@ SurfaceAt surface_at(const Water& w, double t) {
 double water_level_at(const Water& w, double x, double t) { return surface_at(w, t).height(x); }
 
 double water_pressure(const Water& w, const Vec2& point, double t) {
-  // p = gamma_w (h - y) below the surface (hydrostatic), 0 above [stress].
+  // p = gamma_w (h - y) below the surface (hydrostatic), 0 above [stress]; no water: 0.
+  if (!w.active()) return 0.0;
   return w.unit_weight * std::max(0.0, water_level_at(w, point.x(), t) - point.y());
 }
 

@@ -293,6 +293,7 @@ std::string describe_scene(const SceneDescription& s) {
         did.push_back(*st.dynamic_ratio > 0.0 ? fmt::format("dynamic analysis (dynamic_ratio {:g})", *st.dynamic_ratio)
                                               : std::string("static analysis"));
       if (st.settle) did.push_back("open a settling stage");
+      if (st.water) did.push_back("change the water (times from the stage's start)");
       line(fmt::format("  {} {}: {}", st.name,
                        st.start == StageStart::at ? fmt::format("at t = {:g} {}", st.at, u.time)
                                                   : std::string("after the settling stage ends at rest"),

@@ -308,6 +308,10 @@ void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s) {
       if (st.settle && !a.settle)
         ctx.fail(v, m.child("settle"), "a settling stage takes analysis.settle's values: give analysis.settle");
     }
+    if (YAML::Node v = m.find("water"); v.IsDefined()) {  // docs/reference/water.md
+      st.water_where = location(v);
+      st.water = read_water(ctx, v, s, m.child("water"));
+    }
     if (m.entries().size() == 2 + (m.has("settle") && !st.settle ? 1 : 0))
       ctx.fail(m.node(), path, "changes nothing: give what the stage does (remove_blocks, joint_sets, ...)");
     settling_to_wait_for = st.settle && a.settle && a.settle->rest_tolerance > 0.0;

@@ -65,8 +65,8 @@ double sample_time(const Ctx& ctx, const YAML::Node& n, const std::string& key, 
 
 }  // namespace
 
-WaterDescription read_water(const Ctx& ctx, const YAML::Node& n, const SceneDescription& s) {
-  MapReader m(ctx, n, "water", keys::water);
+WaterDescription read_water(const Ctx& ctx, const YAML::Node& n, const SceneDescription& s, const std::string& path) {
+  MapReader m(ctx, n, path, keys::water);
   WaterDescription w;
   w.where = m.where();
   w.unit_weight = number(ctx, m.required("unit_weight", "the water's unit weight gamma_w [force/length^3]"),
@@ -75,7 +75,7 @@ WaterDescription read_water(const Ctx& ctx, const YAML::Node& n, const SceneDesc
   int given = 0;
   for (const auto& f : forms) given += m.has(f) ? 1 : 0;
   if (given != 1)
-    ctx.fail(m.node(), "water",
+    ctx.fail(m.node(), path,
              given == 0 ? "missing the phreatic surface: give one of level, surface, level_history, surface_history"
                         : "give only one of level, surface, level_history, surface_history");
   if (YAML::Node v = m.find("level"); v.IsDefined()) {

@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "rheodda/laws/registry.hpp"
+#include "rheodda/scene/water.hpp"
 #include "run_internal.hpp"
 
 namespace rheodda::scene {
@@ -32,6 +33,7 @@ SourceLocation where_of(const StageDescription& st, const std::string& key) {
   if (starts("add_point_loads")) return point_at(st.add_loads, st.add_loads_where);
   if (starts("joint_sets")) return st.joint_sets_where;
   if (starts("settle")) return st.settle_where;
+  if (starts("water")) return st.water_where;
   return st.where;
 }
 
@@ -83,6 +85,10 @@ void apply_stage(Run& run) {
                               changed_joint_set(run.contacts.joint_sets()[static_cast<std::size_t>(c.joint_set)], c));
   e.dynamic_ratio = st.dynamic_ratio;
   e.settle = st.settle;
+  if (st.water) {  // its times count from the stage's start (docs/reference/stages.md)
+    e.water = build_water(*st.water, run.s);
+    for (core::WaterSurface& h : e.water->history) h.time += engine.time();
+  }
   const std::string path = fmt::format("stages[{}]", index);
   core::EditReport rep;
   try {
@@ -131,6 +137,7 @@ void apply_stage(Run& run) {
     actions.push_back(*st.dynamic_ratio > 0.0 ? fmt::format("dynamic analysis (dynamic_ratio {:g})", *st.dynamic_ratio)
                                               : std::string("static analysis"));
   if (st.settle) actions.push_back("opened a settling stage");
+  if (st.water) actions.push_back("changed the water");
   g.applied.push_back({st.name, engine.time(), engine.step_count(), std::move(actions)});
   g.current = st.name;
   g.watch_events = engine.events().size();

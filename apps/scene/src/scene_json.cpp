@@ -76,6 +76,7 @@ json stages_json(const SceneDescription& s) {
     if (st.dynamic_ratio)
       o["analysis"] = {{"type", *st.dynamic_ratio > 0.0 ? "dynamic" : "static"}, {"dynamic_ratio", *st.dynamic_ratio}};
     if (st.settle) o["settle"] = true;
+    if (st.water) o["water"] = json::parse(water_json_text(*st.water));
     list.push_back(o);
   }
   return list;

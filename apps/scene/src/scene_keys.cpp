@@ -38,7 +38,7 @@ const std::vector<std::string> measurement_point{"name", "point", "block"};
 const std::vector<std::string> water{"unit_weight", "level", "surface", "level_history", "surface_history"};
 const std::vector<std::string> water_sample{"time", "surface"};
 const std::vector<std::string> stage{"name", "at", "after", "remove_fixed_points", "remove_loads", "remove_blocks",
-                                     "add_fixed_points", "add_loads", "joint_sets", "analysis", "settle"};
+                                     "add_fixed_points", "add_loads", "joint_sets", "analysis", "settle", "water"};
 const std::vector<std::string> stage_remove_blocks{"names", "region", "rock_mass_inside"};
 const std::vector<std::string> stage_fixed_point{"name", "point", "block"};
 const std::vector<std::string> stage_load{"name", "point", "block", "force", "history"};

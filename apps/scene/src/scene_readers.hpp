@@ -41,7 +41,9 @@ BlockPoint read_block_point(const Ctx& ctx, const MapReader& m, const SceneDescr
 /// `fixed_points:`, `loads:`, `measurement_points:` (read_points.cpp).
 void read_points(const Ctx& ctx, const MapReader& top, SceneDescription& s);
 /// `water:` (load_water.cpp; after the blocks: its surface must span them).
-WaterDescription read_water(const Ctx& ctx, const YAML::Node& n, const SceneDescription& s);
+/// `path`: where the map stands ("water", or a stage's "stages[i].water").
+WaterDescription read_water(const Ctx& ctx, const YAML::Node& n, const SceneDescription& s,
+                            const std::string& path = "water");
 /// `stages:` (load_stages.cpp), after every other section.
 void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s);
 /// Every block a simple polygon, no two overlapping, edges' joint sets (scene_checks.cpp).

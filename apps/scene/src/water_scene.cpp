@@ -99,4 +99,11 @@ std::string water_pressure_cell(const core::Water& water, const core::Vec2& p, d
   return fmt::format(",{:.10g}", core::water_pressure(water, p, t));
 }
 
+bool scene_has_water(const SceneDescription& scene) {
+  if (scene.water) return true;
+  for (const StageDescription& st : scene.stages)
+    if (st.water) return true;
+  return false;
+}
+
 }  // namespace rheodda::scene

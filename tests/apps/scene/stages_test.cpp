@@ -167,6 +167,37 @@ BOOST_AUTO_TEST_CASE(a_stage_begins_at_the_end_of_a_step_and_names_itself_in_the
   BOOST_TEST(pvd.find("timestep=\"0.255\"") != std::string::npos, pvd);
 }
 
+BOOST_AUTO_TEST_CASE(a_stage_floods_the_model_and_the_block_presses_on_its_base_with_its_effective_weight) {
+  // Water from a stage on (docs/reference/stages.md): a level above the 1 m x 1 m top block
+  // at t = 0.5 s. Before, the base carries the block's weight and the 10 N load; after, less
+  // the uplift gamma_w A (docs/reference/water.md): N' = rho g A + 10 - gamma_w A.
+  const fs::path out = fresh_dir("stage-water");
+  const std::string text = staged("  - {name: flood, at: 0.5, water: {unit_weight: 9810, level: 5}}\n");
+  BOOST_TEST_REQUIRE((run_text(text, out).status == scene::RunStatus::completed));
+  const auto rows = csv_rows(out / "run" / "contacts.csv");
+  const int t = column(rows[0], "time"), n = column(rows[0], "normal_force"), vb = column(rows[0], "vertex_block"),
+            eb = column(rows[0], "edge_block"), p = column(rows[0], "water_pressure");
+  auto base_force = [&](double time, double& pressure) {
+    double sum = 0.0;
+    pressure = -1.0;
+    for (std::size_t k = 1; k < rows.size(); ++k)
+      if (std::abs(std::stod(rows[k][t]) - time) < 1e-9 && rows[k][vb] != rows[k][eb]) {
+        sum += std::abs(std::stod(rows[k][n]));
+        pressure = std::stod(rows[k][p]);
+      }
+    return sum;
+  };
+  const double w = 2600.0 * 9.81 * 1.0 + 10.0, uplift = 9810.0 * 1.0;  // [N/m]
+  double p_before = 0.0, p_after = 0.0;
+  const double before = base_force(0.4, p_before), after = base_force(1.0, p_after);
+  BOOST_TEST(std::abs(before - w) < 1e-4 * w, "N = " << before << " N/m before, expected " << w);
+  BOOST_TEST(std::abs(after - (w - uplift)) < 1e-4 * w, "N' = " << after << " N/m after, expected " << w - uplift);
+  BOOST_TEST(p_before == 0.0);
+  BOOST_TEST(std::abs(p_after - 9810.0 * (5.0 - 1.0)) < 1e-5 * 9810.0 * 4.0);  // gamma_w (h - y) at y = 1 m
+  const auto sum = nlohmann::json::parse(read_text((out / "run" / "summary.json").string()));
+  BOOST_TEST(sum.at("inputs").at("stages")[0].at("water").at("level").get<double>() == 5.0);
+}
+
 BOOST_AUTO_TEST_CASE(the_example_excavation_runs_and_leaves_the_wall_built_without_the_column) {
   const fs::path out = fresh_dir("excavation");
   const scene::SceneDescription s = scene::load_scene(source_path("examples/excavation-stages.yaml"));

@@ -209,6 +209,10 @@ struct ModelEdit {
   /// New Settings::dynamic_ratio (the share of velocity carried): 0 makes the
   /// analysis static, > 0 dynamic [-]; unset: unchanged.
   std::optional<double> dynamic_ratio;
+  /// New water in the joints from now on (water.hpp): its surfaces' times are
+  /// run times, and it must span the x-range of the blocks that stay, where they
+  /// stand now; a Water without history drains the model; unset: unchanged.
+  std::optional<Water> water;
   /// Replay (a resumed run, docs/reference/outputs.md "Interrupting and resuming"): the
   /// points of add_fixed_points (their material_point, which must be set) and
   /// of add_point_loads are material points already, as EditReport::replay

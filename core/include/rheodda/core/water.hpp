@@ -49,7 +49,7 @@ struct Water {
 /// surface, linear in t between the samples around t).
 double water_level_at(const Water& w, double x, double t);
 
-/// Hydrostatic pressure p = gamma_w max(0, h(x, t) - y) at the point (x, y) [stress].
+/// Hydrostatic pressure p = gamma_w max(0, h(x, t) - y) at the point (x, y) [stress]; 0 without water.
 double water_pressure(const Water& w, const Vec2& point, double t);
 
 /// The six DDA load terms of the pressure on the straight edge a -> b of a

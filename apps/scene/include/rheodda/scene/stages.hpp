@@ -13,6 +13,7 @@
 
 #include "rheodda/laws/parameters.hpp"
 #include "rheodda/scene/error.hpp"
+#include "rheodda/scene/water.hpp"
 
 namespace rheodda::scene {
 
@@ -69,9 +70,12 @@ struct StageDescription {
   /// carried from now on (0 static; default 1 for dynamic) [-]; unset: unchanged.
   std::optional<double> dynamic_ratio;
   bool settle = false;                  ///< `settle: true`: a settling stage opens (analysis.settle's values)
+  /// `water:` from the stage on: the keys of the scene's `water:` (water.hpp), its
+  /// times counted from the stage's start (as a stage's load histories); unset: unchanged.
+  std::optional<WaterDescription> water;
   SourceLocation where{};
   SourceLocation remove_blocks_where{}, remove_fixed_points_where{}, remove_loads_where{}, add_fixed_points_where{},
-      add_loads_where{}, joint_sets_where{}, settle_where{};
+      add_loads_where{}, joint_sets_where{}, settle_where{}, water_where{};
 };
 
 }  // namespace rheodda::scene

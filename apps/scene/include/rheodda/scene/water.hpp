@@ -43,6 +43,10 @@ std::string describe_water(const WaterDescription& water, const Units& units);
 /// summary.json's "water" (docs/reference/outputs.md) as JSON text.
 std::string water_json_text(const WaterDescription& water);
 
+/// The scene has water at some time: a `water:`, or a stage's (docs/reference/stages.md);
+/// its contacts.csv and contact frames then carry water_pressure.
+bool scene_has_water(const SceneDescription& scene);
+
 /// contacts.csv's water_pressure cell at the point p at time t, with its leading comma [stress].
 std::string water_pressure_cell(const core::Water& water, const core::Vec2& p, double t);
 
