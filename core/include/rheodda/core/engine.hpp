@@ -179,6 +179,7 @@ struct EngineState {
   /// docs/engine.md, "Contact search reach") [length].
   double search_displacement = 0.0;
   SolverState solver;        ///< the linear solver's memory between solves
+  std::vector<BoltState> bolts;  ///< per Model::bolts (bolt.hpp); empty without bolts
 };
 
 /// Called after every accepted step.
@@ -244,6 +245,8 @@ class Engine {
   const std::vector<StageEvent>& events() const;
   /// The run is in a dynamic stage (the next step is dynamic).
   bool in_stage() const;
+  /// States of the bolts after the last accepted step, per Model::bolts (docs/bolts.md).
+  const std::vector<BoltState>& bolts() const;
 
   /// Copy of everything that evolves.
   EngineState save() const;

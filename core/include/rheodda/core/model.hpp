@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "rheodda/core/bolt.hpp"
+
 namespace rheodda::core {
 
 using Vec2 = Eigen::Vector2d;
@@ -228,6 +230,7 @@ struct Model {
   std::vector<PointLoad> point_loads;
   std::vector<FixedPoint> fixed_points;
   std::vector<MeasurementPoint> measurement_points;
+  std::vector<Bolt> bolts;  ///< rock bolts (bolt.hpp, docs/bolts.md); none: no bolt work at all
   Settings settings;
 };
 
