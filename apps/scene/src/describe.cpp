@@ -11,6 +11,7 @@
 #include "rheodda/core/solver.hpp"
 #include "rheodda/scene/build.hpp"
 #include "rheodda/scene/geometry.hpp"
+#include "bolts_text.hpp"
 
 namespace rheodda::scene {
 
@@ -257,6 +258,7 @@ std::string describe_scene(const SceneDescription& s) {
   line(fmt::format("measurement points: {}", s.measurement_points.size()));
   for (const auto& m : s.measurement_points)
     line(fmt::format("  {}: ({:g}, {:g}) on {}", m.name, m.at.point[0], m.at.point[1], s.blocks[m.at.block].name));
+  out += describe_bolts(s);  // bolts_text.cpp; nothing without bolts
 
   // Contacts at the start are the touching vertex-edge pairs: count those within a
   // twentieth of the median block size (or the search distance, if smaller).

@@ -82,6 +82,7 @@ SceneDescription parse_scene(const std::string& text_in, const std::string& file
     if (rock_mass.IsDefined()) read_rock_mass(ctx, rock_mass, s, raw);
     check_geometry(ctx, raw, s);
     read_points(ctx, top, s);
+    read_bolts(ctx, top, s);
     if (s.analysis.penalty == 0.0) {
       // Shi's penalty p_n = k1 E with k1 = 10-100 (the seed's eq. 17): k1 = 40.
       for (const auto& m : s.materials) s.analysis.penalty = std::max(s.analysis.penalty, 40.0 * m.young_modulus);

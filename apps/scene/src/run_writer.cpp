@@ -75,6 +75,7 @@ void create_csv_files(Run& run) {
   run.history.append(units_comment(run.s.units) + run.history_header);
   run.contacts_csv.append(units_comment(run.s.units) + contacts_header);
   run.history.append(history_row(run, nullptr));
+  if (!run.s.bolts.empty()) create_bolts_csv(run);
 }
 
 std::string frame_text(const Run& run) {
@@ -169,6 +170,7 @@ void write_frame(Run& run) {
   write_file_atomic((fs::path(out) / file).string(), text);
   write_file_atomic((fs::path(out) / contacts_file(file)).string(), layer);
   run.frames_bytes += text.size() + layer.size();
+  if (!s.bolts.empty()) write_bolts_frame(run, file);
   run.pvd.emplace_back(engine.time(), file);
   run.frame_hash.push_back(frame_pair_hash(text, layer));
   write_collections(run);

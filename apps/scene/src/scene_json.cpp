@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "rheodda/scene/describe.hpp"
+#include "bolts_text.hpp"
 #include "run_internal.hpp"
 
 namespace rheodda::scene {
@@ -107,6 +108,7 @@ json scene_json(const SceneDescription& s) {
   j["measurement_points"] = json::array();
   for (const auto& m : s.measurement_points)
     j["measurement_points"].push_back({{"name", m.name}, {"point", m.at.point}, {"block", s.blocks[m.at.block].name}});
+  add_bolts_json(s, j);  // bolts_text.cpp
   return j;
 }
 

@@ -12,7 +12,8 @@ namespace detail {
 // docs/scene-format.md against it) says cannot diverge. Order: that of the docs.
 namespace keys {
 const std::vector<std::string> top{"title", "units", "analysis", "materials", "joint_sets",
-                                   "blocks", "rock_mass", "fixed_points", "loads", "measurement_points"};
+                                   "blocks", "rock_mass", "fixed_points", "loads", "measurement_points",
+                                   "bolts"};
 const std::vector<std::string> units{"length", "force", "time"};
 const std::vector<std::string> analysis{
     "type", "duration", "dt", "dt_growth", "dt_cut", "max_cuts", "max_displacement_ratio", "settle",
@@ -43,6 +44,10 @@ const std::vector<std::string> rock_mass_trace{"joint_set", "from", "to"};
 const std::vector<std::string> fixed_point{"point", "block"};
 const std::vector<std::string> load{"point", "block", "force", "history"};
 const std::vector<std::string> measurement_point{"name", "point", "block"};
+const std::vector<std::string> bolt{"name", "from", "to", "axial_stiffness", "pretension", "yield_force",
+                                    "rupture_elongation", "law"};
+const std::vector<std::string> bolt_from{"point", "block"};
+const std::vector<std::string> bolt_to{"point", "block", "fixed"};
 }  // namespace keys
 
 }  // namespace detail
@@ -65,6 +70,10 @@ const std::vector<SceneMapKeys>& scene_schema() {
       {"fixed_points[*]", detail::keys::fixed_point},
       {"loads[*]", detail::keys::load},
       {"measurement_points[*]", detail::keys::measurement_point},
+      {"bolts[*]", detail::keys::bolt},
+      {"bolts[*].from", detail::keys::bolt_from},
+      {"bolts[*].to", detail::keys::bolt_to},
+      {"bolts[*].law", detail::keys::law},
   };
   return schema;
 }

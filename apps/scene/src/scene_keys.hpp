@@ -21,4 +21,7 @@ extern const std::vector<std::string> rock_mass_trace;
 extern const std::vector<std::string> fixed_point;
 extern const std::vector<std::string> load;
 extern const std::vector<std::string> measurement_point;
+extern const std::vector<std::string> bolt;       // load_bolts.cpp
+extern const std::vector<std::string> bolt_from;
+extern const std::vector<std::string> bolt_to;
 }  // namespace rheodda::scene::detail::keys

@@ -241,6 +241,12 @@ struct RockMassDescription {
   SourceLocation where{};
 };
 
+}  // namespace rheodda::scene
+
+#include "rheodda/scene/bolts.hpp"  // uses BlockPoint and LawChoice above
+
+namespace rheodda::scene {
+
 struct SceneDescription {
   std::string file;   ///< the scene file's path as given
   std::string title;  ///< `title:`; default: the file name
@@ -253,6 +259,7 @@ struct SceneDescription {
   std::vector<LoadDescription> loads;
   std::vector<MeasurementPoint> measurement_points;
   std::optional<RockMassDescription> rock_mass;  ///< `rock_mass:`, if given
+  std::vector<BoltDescription> bolts;  ///< `bolts:` (bolts.hpp); empty: none
 };
 
 std::string_view analysis_type_name(AnalysisType t);
