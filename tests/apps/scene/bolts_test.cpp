@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -17,6 +18,7 @@
 #include "rheodda/scene/build.hpp"
 #include "rheodda/scene/describe.hpp"
 #include "rheodda/scene/loader.hpp"
+#include "rheodda/scene/plot.hpp"
 
 using namespace rheodda;
 using namespace rheodda::test;
@@ -206,6 +208,12 @@ BOOST_AUTO_TEST_CASE(a_run_writes_bolts_csv_and_bolt_frames_and_refuses_resume) 
   BOOST_TEST(fs::exists(out / "bolts.pvd"));
   BOOST_TEST(fs::exists(out / "frames/bolts_000002.vtp"));
   BOOST_TEST(read_text((out / "frames/bolts_000002.vtp").string()).find("NumberOfLines=\"1\"") != std::string::npos);
+  // `rheodda plot` draws the bolt forces.
+  scene::PlotOptions po;
+  po.out_dir = out.string();
+  const auto pictures = scene::plot_run(po);
+  BOOST_TEST((std::find(pictures.begin(), pictures.end(), (out / "plots" / "bolts.png").string()) != pictures.end()));
+  BOOST_TEST(fs::file_size(out / "plots" / "bolts.png") > 0u);
   // --resume: refused, the outputs untouched.
   BOOST_CHECK_THROW((void)run(s, out, -1, true), std::invalid_argument);
   BOOST_TEST(read_text((out / "bolts.csv").string()) == csv);
