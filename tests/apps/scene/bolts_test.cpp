@@ -205,6 +205,18 @@ BOOST_AUTO_TEST_CASE(a_run_writes_bolts_csv_and_bolt_frames_and_refuses_resume) 
     BOOST_TEST(line.find(",anchor,elastic,") != std::string::npos);
   }
   BOOST_TEST(rows == 3);  // t = 0, 0.1, 0.2
+  // history.csv ends with the bolts' energy columns, and its balance closes with them.
+  {
+    std::istringstream h(read_text((out / "history.csv").string()));
+    std::string l, last;
+    std::getline(h, l);
+    std::getline(h, l);
+    const std::string tail = ",energy_bolt,dissipation_bolt";
+    BOOST_TEST_REQUIRE(l.size() > tail.size());
+    BOOST_TEST(l.substr(l.size() - tail.size()) == tail);
+    while (std::getline(h, l)) last = l;
+    BOOST_TEST(std::stod(last.substr(last.rfind(',', last.rfind(',') - 1) + 1)) > 0.0);  // energy_bolt
+  }
   BOOST_TEST(fs::exists(out / "bolts.pvd"));
   BOOST_TEST(fs::exists(out / "frames/bolts_000002.vtp"));
   BOOST_TEST(read_text((out / "frames/bolts_000002.vtp").string()).find("NumberOfLines=\"1\"") != std::string::npos);
