@@ -1,7 +1,7 @@
 // `rheodda check`: a scene validated and described without running it; with --refine,
 // its step controls measured: the scene run at them and with each of them halved,
 // level after level, as the parallel cases of a study (rheodda/study/refinement.hpp,
-// docs/speed-accuracy.md "Checking a scene's step controls").
+// docs/guide/choosing-step-controls.md "Checking a scene's step controls").
 // Sample runs:
 //   rheodda check examples/shear-creep-test.yaml
 //   rheodda check examples/goodman-toppling-creep.yaml --refine -j 2
@@ -100,11 +100,11 @@ void add_check_command(CLI::App& app) {
   auto* check = app.add_subcommand(
       "check", "Validate a scene file and print what will be modelled, without running it; with --refine, "
                "measure whether its step controls are fine enough");
-  check->add_option("SCENE", args->scene, "Scene file (YAML, docs/scene-format.md)")->required();
+  check->add_option("SCENE", args->scene, "Scene file (YAML, docs/reference/scene-format.md)")->required();
   auto* refine_flag = check->add_flag(
       "--refine{4}", args->levels,
       "Run the scene at its step controls and with them halved, LEVELS levels in all (default 4), and say whether "
-      "its answer is within --tolerance of the finest level and converges (docs/speed-accuracy.md); exit 3 when not");
+      "its answer is within --tolerance of the finest level and converges (docs/guide/choosing-step-controls.md); exit 3 when not");
   refine_flag->type_name("LEVELS");
   check->add_option("-o,--out", args->out, "--refine: output directory (default out/<scene name>-refine)")
       ->type_name("OUTDIR")

@@ -29,7 +29,7 @@ inline void on_stop_signals(void (*handler)(int)) {
 inline constexpr int kExitFailure = 1;
 inline constexpr int kExitBadInput = 2;
 /// `rheodda check --refine`: the scene's step controls are coarser than the tolerance,
-/// or its refinement did not converge (docs/speed-accuracy.md).
+/// or its refinement did not converge (docs/guide/choosing-step-controls.md).
 inline constexpr int kExitStepControls = 3;
 
 /// The exit codes as `rheodda --help` prints them; each line says where the code comes from.
@@ -56,6 +56,9 @@ inline void require_readable(const std::string& path) {
 
 /// `rheodda law list`, `rheodda law curve`.
 void add_law_commands(CLI::App& app);
+
+/// `rheodda keys` (apps/keys_command.cpp): the declared scene keys, as text or Markdown tables.
+void add_keys_command(CLI::App& app);
 
 /// `rheodda check` (apps/check_command.cpp): a scene validated and described; with
 /// --refine, its step controls measured by a refinement study.

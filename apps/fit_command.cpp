@@ -1,17 +1,21 @@
-// `rheodda fit`: fit rheology laws to a laboratory creep curve (docs/fitting.md).
+// `rheodda fit`: fit rheology laws to a laboratory creep curve (docs/guide/fitting.md).
 // Sample runs:
 //   rheodda fit examples/creep-data/table1-row1.csv --law burgers --stress 0.232 --units "MPa, mm, h"
 //   rheodda fit examples/creep-data/table1-row1.csv --law all --stress 0.232 --units "MPa, mm, h"
 //       --json fit.json --yaml law.yaml --plot fit.png
 //   rheodda fit steps.csv --law burgers --stress-column tau
+//   rheodda fit table1-row1.csv --law burgers --stress 0.232 --fix E1=26.87 --bounds eta2=100:1e4
+//       --initial E2=150 --sigma-column sigma --absolute-sigma
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -37,6 +41,10 @@ struct FitArgs {
   std::string rank_by = "bic";
   int restarts = 4;
   std::string json, yaml, plot;
+  // Parameter settings (fit::ParameterSetting), each NAME=...
+  std::vector<std::string> fix, initial, bounds;
+  std::string sigma_column;
+  bool absolute_sigma = false;
 };
 
 /// The user's unit names for the three dimensions of the laws' schemas.
@@ -97,6 +105,63 @@ StagedHistory parse_stress(const std::string& text) {
   return StagedHistory({{0.0, v}});
 }
 
+// A number of an option's text; `what` names it in the message.
+double parse_number(const std::string& text, const std::string& what) {
+  double v = 0.0;
+  const auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || ec != std::errc() || p != text.data() + text.size())
+    throw std::invalid_argument(fmt::format("{}: '{}' is not a number", what, text));
+  return v;
+}
+
+// --fix NAME=VALUE, --initial NAME=VALUE, --bounds NAME=MIN:MAX (either side may
+// be empty) into fit::FitOptions::parameters; the values themselves are
+// checked by fit::fit_law against the law (FitError).
+std::map<std::string, fit::ParameterSetting> parse_settings(const FitArgs& a) {
+  std::map<std::string, fit::ParameterSetting> out;
+  std::map<std::string, std::vector<std::string>> seen;  // name -> the options that set it
+  auto split = [](const std::string& item, const char* flag) {
+    const std::size_t eq = item.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == item.size())
+      throw std::invalid_argument(fmt::format("{} '{}': expected NAME={}", flag, item,
+                                              std::string(flag) == "--bounds" ? "MIN:MAX" : "VALUE"));
+    return std::pair{item.substr(0, eq), item.substr(eq + 1)};
+  };
+  auto claim = [&](const std::string& name, const std::string& flag) {
+    auto& flags = seen[name];
+    if (std::find(flags.begin(), flags.end(), flag) != flags.end())
+      throw std::invalid_argument(fmt::format("{} {} is given twice", flag, name));
+    flags.push_back(flag);
+    if (flags.size() > 1 && std::find(flags.begin(), flags.end(), "--fix") != flags.end())
+      throw std::invalid_argument(fmt::format(
+          "--fix {} holds {} at its value: --initial and --bounds on it would do nothing", name, name));
+  };
+  for (const auto& item : a.fix) {
+    const auto [name, value] = split(item, "--fix");
+    claim(name, "--fix");
+    out[name].value = parse_number(value, "--fix " + name);
+    out[name].vary = false;
+  }
+  for (const auto& item : a.initial) {
+    const auto [name, value] = split(item, "--initial");
+    claim(name, "--initial");
+    out[name].value = parse_number(value, "--initial " + name);
+  }
+  for (const auto& item : a.bounds) {
+    const auto [name, range] = split(item, "--bounds");
+    claim(name, "--bounds");
+    const std::size_t colon = range.find(':');
+    if (colon == std::string::npos || range.find(':', colon + 1) != std::string::npos || range == ":")
+      throw std::invalid_argument(fmt::format("--bounds {}: '{}' is not MIN:MAX (either may be empty, e.g. 100: "
+                                              "or :1e4)",
+                                              name, range));
+    const std::string lo = range.substr(0, colon), hi = range.substr(colon + 1);
+    if (!lo.empty()) out[name].min = parse_number(lo, "--bounds " + name + " MIN");
+    if (!hi.empty()) out[name].max = parse_number(hi, "--bounds " + name + " MAX");
+  }
+  return out;
+}
+
 std::string plot_terminal(const std::string& path) {
   const std::string ext = std::filesystem::path(path).extension().string();
   if (ext == ".png") return "pngcairo size 960,720 enhanced font 'Sans,10'";
@@ -124,22 +189,36 @@ void print_fit(const FitResult& r, const Units& u) {
   fmt::print("\nlaw {}: {}\n  {}\n", r.law, info.summary, info.equation);
   fmt::print("  {:<9} {:>14} {:>14} {:>10}  {}\n", "parameter", "value", "std. error", "rel. error",
              "unit");
-  for (const auto& p : r.parameters)
-    fmt::print("  {:<9} {:>14.7g} {:>14} {:>10}  {}\n", p.name, p.value,
-               p.identifiable ? fmt::format("{:.3g}", p.std_error) : "-",
-               p.identifiable ? fmt::format("{:.3g}%", 100.0 * p.std_error / p.value) : "-",
-               u.of(p.unit));
+  for (const auto& p : r.parameters) {
+    const bool held = !p.vary || !p.at_bound.empty();
+    std::string bounds;
+    if (p.min > 0.0 || std::isfinite(p.max))
+      bounds = fmt::format("  bounds [{:g}, {:g}]", p.min, p.max);
+    fmt::print("  {:<9} {:>14.7g} {:>14} {:>10}  {}{}\n", p.name, p.value,
+               !p.vary ? "fixed" : !p.at_bound.empty() ? "at " + p.at_bound
+                                 : p.identifiable ? fmt::format("{:.3g}", p.std_error) : "-",
+               p.identifiable && !held ? fmt::format("{:.3g}%", 100.0 * p.std_error / p.value) : "-",
+               u.of(p.unit), bounds);
+  }
   for (const auto& c : r.combinations)
     fmt::print("  fixed by the data: {} = {:.7g} +- {:.3g} ({:.3g}%)  {}\n", c.expression, c.value,
                c.std_error, 100.0 * c.std_error / c.value, u.of(c.unit));
   fmt::print("  R^2 {}   RMSE {:.4g} {}   AIC {:.2f}   BIC {:.2f}   (n = {}, k = {})\n",
              r.r2_defined() ? fmt::format("{:.8f}", r.r2) : "undefined (the data have no spread)",
-             r.rmse, u.length, r.aic, r.bic, r.points, r.parameters.size());
+             r.rmse, u.length, r.aic, r.bic, r.points, r.varying);
+  if (r.weighted)
+    fmt::print("  chi-square {:.6g}   reduced chi-square {:.6g}   (sigma: {}; standard errors {})\n", r.chi_square,
+               r.reduced_chi_square, "measurement", r.scale_covariance ? "scaled by sqrt(reduced chi-square)"
+                                                                        : "from sigma as absolute errors");
   fmt::print("  best of {} starts ({} from the variable-projection search; {} reached it), {} "
              "iterations, {}{}\n",
              r.starts, r.structured_starts, r.starts_agreeing, r.iterations,
              r.converged ? "converged" : "NOT converged",
              r.minimum_certain ? "" : ", minimum NOT certain");
+  std::string minima;
+  for (double m : r.start_minima) minima += fmt::format("{}{:.6g}", minima.empty() ? "" : " ", m);
+  fmt::print("  minima of the starts ({}): {}\n", r.weighted ? "chi-square" : fmt::format("RSS [{}^2]", u.length),
+             minima);
   for (const auto& w : r.warnings) fmt::print("  warning: {}\n", w);
 }
 
@@ -164,7 +243,7 @@ void print_ranking(const std::vector<FitResult>& ranked, bool bic, const Units& 
   for (std::size_t i = 0; i < ranked.size(); ++i) {
     const auto& r = ranked[i];
     fmt::print("  {:>4}  {:<20} {:>2} {:>12.4g} {:>12} {:>12.2f} {:>10.2f} {:>12.2f} {:>10.2f} {:>8.4f}\n",
-               i + 1, r.law, r.parameters.size(), r.rmse,
+               i + 1, r.law, r.varying, r.rmse,
                r.r2_defined() ? fmt::format("{:.8f}", r.r2) : "undefined", r.aic, r.aic - ranked.front().aic,
                r.bic, r.bic - ranked.front().bic, w[i]);
   }
@@ -189,6 +268,7 @@ void write_json(const std::string& path, const CreepData& d, const Units& u,
                  {"time_column", d.time_column},
                  {"displacement_column", d.displacement_column},
                  {"stress_column", d.stress_column},
+                 {"sigma_column", d.sigma_column},
                  {"stages", stages}};
   out["units"] = {{"text", u.text}, {"stress", u.stress}, {"length", u.length}, {"time", u.time}};
   json arr = json::array();
@@ -197,10 +277,16 @@ void write_json(const std::string& path, const CreepData& d, const Units& u,
     for (const auto& p : r.parameters)
       params.push_back({{"name", p.name},
                         {"value", p.value},
+                        // A held parameter (fixed, or on a bound) has no spread: 0, so that `rheodda
+                        // forecast` holds it too; null where the data cannot tell it.
                         {"std_error", p.identifiable ? json(p.std_error) : json(nullptr)},
                         {"unit", u.of(p.unit)},
                         {"identifiable", p.identifiable},
-                        {"reason", p.reason}});
+                        {"reason", p.reason},
+                        {"vary", p.vary},
+                        {"at_bound", p.at_bound},
+                        {"min", p.min},
+                        {"max", std::isfinite(p.max) ? json(p.max) : json(nullptr)}});
     json combos = json::array();
     for (const auto& c : r.combinations)
       combos.push_back({{"expression", c.expression},
@@ -209,10 +295,13 @@ void write_json(const std::string& path, const CreepData& d, const Units& u,
                         {"unit", u.of(c.unit)},
                         {"parameters", c.parameters}});
     auto finite_or_null = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+    // A held parameter is a constant: correlation 0 with the others (1 with itself).
+    auto held = [&](std::size_t i) { return !r.parameters[i].vary || !r.parameters[i].at_bound.empty(); };
     json corr = json::array();
     for (std::size_t i = 0; i < r.parameters.size(); ++i) {
       json row = json::array();
-      for (std::size_t j = 0; j < r.parameters.size(); ++j) row.push_back(finite_or_null(r.correlation_at(i, j)));
+      for (std::size_t j = 0; j < r.parameters.size(); ++j)
+        row.push_back(held(i) || held(j) ? json(i == j ? 1.0 : 0.0) : finite_or_null(r.correlation_at(i, j)));
       corr.push_back(row);
     }
     arr.push_back({{"law", r.law},
@@ -220,6 +309,12 @@ void write_json(const std::string& path, const CreepData& d, const Units& u,
                    {"correlation", corr},
                    {"points", r.points},
                    {"rss", r.rss},
+                   {"chi_square", r.chi_square},
+                   {"reduced_chi_square", r.reduced_chi_square},
+                   {"varying", r.varying},
+                   {"weighted", r.weighted},
+                   {"scale_covariance", r.scale_covariance},
+                   {"start_minima", r.start_minima},
                    {"r2", finite_or_null(r.r2)},
                    {"rmse", r.rmse},
                    {"aic", r.aic},
@@ -255,8 +350,11 @@ void write_yaml(const std::string& path, const CreepData& d, const Units& u, con
   f << "law:\n";
   f << fmt::format("  name: {}\n", r.law);
   for (const auto& p : r.parameters)
-    f << fmt::format("  {}: {:.7g}   # +- {} {}\n", p.name, p.value,
-                     p.identifiable ? fmt::format("{:.3g}", p.std_error) : "(not identifiable)",
+    f << fmt::format("  {}: {:.7g}   # {} {}\n", p.name, p.value,
+                     !p.vary                ? std::string("fixed")
+                     : !p.at_bound.empty()  ? "at its bound " + p.at_bound
+                     : p.identifiable       ? fmt::format("+- {:.3g}", p.std_error)
+                                            : std::string("+- (not identifiable)"),
                      u.of(p.unit));
 }
 
@@ -369,11 +467,17 @@ void run_fit(const FitArgs& a) {
   csv.time_column = a.time_column;
   csv.displacement_column = a.displacement_column;
   csv.stress_column = a.stress_column;
+  csv.sigma_column = a.sigma_column;
   if (!a.stress.empty()) csv.stress = parse_stress(a.stress);
-  const CreepData data = fit::read_creep_csv(a.data, csv);
-
+  if (a.absolute_sigma && a.sigma_column.empty())
+    throw std::invalid_argument("--absolute-sigma takes the --sigma-column values as absolute errors; give "
+                                "--sigma-column NAME");
   fit::FitOptions opt;
   opt.restarts = a.restarts;
+  opt.parameters = parse_settings(a);
+  opt.scale_covariance = !a.absolute_sigma;
+  const CreepData data = fit::read_creep_csv(a.data, csv);
+
   std::vector<FitResult> fits;
   std::vector<std::string> skipped;
   if (all) {
@@ -426,6 +530,18 @@ void add_fit_command(CLI::App& app) {
                    ->capture_default_str();
   cmd->add_option("--restarts", a->restarts, "Extra starts besides the one derived from the curve")
       ->capture_default_str();
+  cmd->add_option("--fix", a->fix, "Hold a parameter at a value (repeatable), e.g. --fix E1=26.87")
+      ->type_name("NAME=VALUE");
+  cmd->add_option("--initial", a->initial, "Initial value of a parameter, tried as the first start (repeatable)")
+      ->type_name("NAME=VALUE");
+  cmd->add_option("--bounds", a->bounds,
+                  "Bounds of a parameter (repeatable), either may be empty, e.g. --bounds eta2=100:1e4")
+      ->type_name("NAME=MIN:MAX");
+  cmd->add_option("--sigma-column", a->sigma_column,
+                  "Column of each row's measurement standard deviation: minimizes sum ((model - data)/sigma)^2")
+      ->type_name("NAME");
+  cmd->add_flag("--absolute-sigma", a->absolute_sigma,
+                "Standard errors from sigma as absolute errors (default: scaled by sqrt(reduced chi-square))");
   cmd->add_option("--json", a->json, "Write the full report as JSON")->type_name("FILE");
   cmd->add_option("--yaml", a->yaml, "Write the (best) law as a YAML block for a joint set")
       ->type_name("FILE");

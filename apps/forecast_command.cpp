@@ -1,4 +1,4 @@
-// `rheodda forecast`: a scene's histories with the uncertainty of a fitted law (docs/forecast.md).
+// `rheodda forecast`: a scene's histories with the uncertainty of a fitted law (docs/guide/forecast.md).
 // Sample runs:
 //   rheodda fit examples/creep-data/table1-row1.csv --law burgers --stress 0.232 --units "MPa, mm, h" --json out/fit.json
 //   rheodda forecast examples/shear-creep-test.yaml --fit out/fit.json --joint-set plane -o out/forecast
@@ -398,7 +398,7 @@ void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
 void add_forecast_command(CLI::App& app) {
   auto a = std::make_shared<ForecastArgs>();
   auto* cmd = app.add_subcommand(
-      "forecast", "Run a scene with the uncertainty of a fitted law: percentile bands, fan chart, exceedance (docs/forecast.md)");
+      "forecast", "Run a scene with the uncertainty of a fitted law: percentile bands, fan chart, exceedance (docs/guide/forecast.md)");
   cmd->add_option("SCENE", a->scene, "Scene file (YAML)")->required();
   cmd->add_option("--fit", a->fit, "Report of `rheodda fit --json` (parameters, standard errors, correlation)")
       ->required()->type_name("FIT.json");

@@ -1,4 +1,4 @@
-// `rheodda generate`: a scene's rock mass (`rock_mass:`, docs/rockmass.md) written
+// `rheodda generate`: a scene's rock mass (`rock_mass:`, docs/guide/rockmass.md) written
 // out as an explicit scene, every generated block a `polygon` with its
 // `edge_joint_sets`, for inspection and editing.
 // Sample runs:

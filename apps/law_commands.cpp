@@ -89,7 +89,7 @@ int run_curve(const CurveOptions& o) {
     any_damage = any_damage || s.damage > 0.0;
   }
   any_damage = any_damage || curve.failure_time.has_value();
-  // A damage law (damage-burgers, docs/laws.md) adds its damage D [-] per sample.
+  // A damage law (damage-burgers, docs/reference/laws.md) adds its damage D [-] per sample.
   std::string out = std::string("t,force,displacement") + (any_exact ? ",exact" : "") +
                     (any_damage ? ",damage" : "") + "\n";
   for (const auto& s : samples) {
@@ -152,12 +152,12 @@ void add_law_commands(CLI::App& app) {
   curve->add_option("--t-end", opts->t_end, "End time [time, e.g. h]")->required();
   curve->add_option("--dt", opts->dt, "Time step [time]; stage starts are added as step ends")
       ->required();
-  curve->add_option("--scheme", opts->scheme, "Integration scheme (docs/laws.md, \"Schemes\")")
+  curve->add_option("--scheme", opts->scheme, "Integration scheme (docs/reference/laws.md, \"Schemes\")")
       ->check(CLI::IsMember({"lagged", "implicit", "exponential-linear"}))
       ->capture_default_str();
   curve->add_option("--tolerance", opts->tolerance,
                     "Largest error of a substep relative to the curve's scale: each --dt is crossed in substeps "
-                    "of the scheme until one step and two half steps agree to this (docs/laws.md)")
+                    "of the scheme until one step and two half steps agree to this (docs/reference/laws.md)")
       ->check(CLI::Range(1e-12, 1e-2))
       ->capture_default_str();
   curve->callback([opts, curve] {

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   app.footer(rheodda::apps::kExitCodesHelp);
   rheodda::apps::add_law_commands(app);
   rheodda::apps::add_check_command(app);
+  rheodda::apps::add_keys_command(app);
   rheodda::apps::add_scene_commands(app);
   rheodda::apps::add_fit_command(app);
   rheodda::apps::add_study_command(app);

@@ -72,7 +72,7 @@ void run_command(const RunArgs& args) {
                                             c.first_failure_time, s.units.time)
                               : std::string());
   if (const auto& cs = r.mechanism.collapse_stages; !cs.empty())
-    fmt::print("  collapse stages (docs/engine.md, \"Collapse stages\"): {}, starting at t = {:.6g} {}\n", cs.size(),
+    fmt::print("  collapse stages (docs/reference/engine.md, \"Collapse stages\"): {}, starting at t = {:.6g} {}\n", cs.size(),
                fmt::join(cs, ", "), s.units.time);
   if (!r.events.empty()) {
     int settling = 0, mechanisms = 0, at_rest = 0;
@@ -82,7 +82,7 @@ void run_command(const RunArgs& args) {
       at_rest += e.at_rest ? 1 : 0;
       dissipated += e.energy_dissipated;
     }
-    fmt::print("  dynamic stages (events.csv; docs/engine.md, \"Dynamic stages\"): {} settling, {} mechanism, {} "
+    fmt::print("  dynamic stages (events.csv; docs/reference/engine.md, \"Dynamic stages\"): {} settling, {} mechanism, {} "
                "ended at rest; {:.4g} {}*{} dissipated in them\n",
                settling, mechanisms, at_rest, dissipated, s.units.force, s.units.length);
   }
@@ -96,8 +96,8 @@ void run_command(const RunArgs& args) {
 
 void add_scene_commands(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
-  auto* run = app.add_subcommand("run", "Run a scene; outputs go to OUTDIR (docs/outputs.md)");
-  run->add_option("SCENE", args->scene, "Scene file (YAML, docs/scene-format.md)")->required();
+  auto* run = app.add_subcommand("run", "Run a scene; outputs go to OUTDIR (docs/reference/outputs.md)");
+  run->add_option("SCENE", args->scene, "Scene file (YAML, docs/reference/scene-format.md)")->required();
   run->add_option("-o,--out", args->out, "Output directory (default out/<scene name>)")->type_name("OUTDIR");
   run->add_flag("--resume", args->resume, "Continue an interrupted run from OUTDIR/checkpoint.json");
   run->callback([args] { run_command(*args); });

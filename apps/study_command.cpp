@@ -1,4 +1,4 @@
-// `rheodda study`: a base scene and its variations run as parallel cases (docs/studies.md).
+// `rheodda study`: a base scene and its variations run as parallel cases (docs/guide/studies.md).
 // Sample runs:
 //   rheodda study examples/studies/toppling-phi.yaml -o out/toppling-phi -j 2
 //   mpirun -np 3 rheodda study examples/studies/toppling-phi.yaml -o out/toppling-phi   (2 worker ranks)
@@ -124,7 +124,7 @@ void study_command(const StudyArgs& args) {
 
 void add_study_command(CLI::App& app) {
   auto args = std::make_shared<StudyArgs>();
-  auto* st = app.add_subcommand("study", "Run a base scene's variations as parallel cases (docs/studies.md)");
+  auto* st = app.add_subcommand("study", "Run a base scene's variations as parallel cases (docs/guide/studies.md)");
   st->add_option("STUDY", args->file, "Study file (YAML)")->required();
   st->add_option("-o,--out", args->out, "Output directory (default out/<study name>)")->type_name("OUTDIR");
   st->add_option("-j,--jobs", args->jobs, "Cases run at once; 0 (the default): the machine's hardware threads")

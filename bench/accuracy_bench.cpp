@@ -1,5 +1,5 @@
 // Speed-accuracy trade of the creep schemes: error against the closed form vs
-// wall time, per scheme and time step (docs/speed-accuracy.md).
+// wall time, per scheme and time step (docs/notes/step-controls.md).
 //
 // Cases (units MPa, mm, h; Burgers joints of the seed's Table 1, all four rows):
 //   creep      the seed's two-block shear creep test (Section 4) run by the DDA
@@ -39,6 +39,7 @@
 #include "rheodda/laws/seed_table1.hpp"
 #include "rheodda/scene/build.hpp"
 #include "rheodda/scene/loader.hpp"
+#include "two_block.hpp"  // tests/models
 
 using namespace rheodda;
 
@@ -71,27 +72,13 @@ double staged_exact(double tau, double E1, double E2, double eta1, double eta2, 
   return tau * J(t) + s * (I(t - kStage2) - I(t - kRamp2)) + s3 * (I(t - kStage3) - I(t - kRamp3));
 }
 
-std::vector<core::Vec2> rect(double x0, double y0, double x1, double y1) {
-  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-}
-
 /// Block A (100 x 100 mm) on block B (fixed); normal load sigma w and shear load
 /// tau(t) w on A at the joint line (bench/shear_creep_table1.cpp). `staged`:
 /// tau, ramp to 2 tau over kStage2-kRamp2, ramp to 0 over kStage3-kRamp3.
 core::Model scene(const Row& r, double dt, bool staged, double tolerance) {
   const double w = kWidth;
-  core::Model m;
-  m.materials[0].young_modulus = 1e7;  // blocks 1e6 x stiffer than the joint [MPa]
-  m.materials[0].density = 1e-12;      // no inertia at creep time scales
-  m.settings.dt = dt;
-  m.settings.dynamic_ratio = 0.0;  // static analysis
-  m.settings.gravity = {0.0, 0.0};
+  core::Model m = models::two_block_model(w, dt);  // tests/models/two_block.hpp
   m.settings.creep_tolerance = tolerance;
-  core::BlockDef b, a;
-  b.vertices = rect(-w, -w, 2 * w, 0.0);
-  a.vertices = rect(0.0, 0.0, w, w);
-  m.blocks = {b, a};
-  for (int k = 0; k < 3; ++k) m.fixed_points.push_back({0, b.vertices[k]});
   m.point_loads.push_back({1, {0.5 * w, 0.0}, {{0.0, {0.0, -r.sigma * w}}}});
   std::vector<core::LoadSample> shear{{0.0, {r.tau * w, 0.0}}};
   if (staged) {
@@ -103,14 +90,7 @@ core::Model scene(const Row& r, double dt, bool staged, double tolerance) {
   return m;
 }
 
-/// Joint's relative shear displacement along the shear load: mean over A's base contacts [mm].
-double joint_shear(const contact::ContactSystem& cs) {
-  double sum = 0.0;
-  int n = 0;
-  for (const auto& c : cs.contacts())
-    if (c.key.vblock == 1) sum -= c.shear_displacement, ++n;
-  return n ? sum / n : 0.0;
-}
+using models::joint_shear;  // mean over A's base contacts [mm]
 
 struct Result {
   long steps = 0;
@@ -162,7 +142,7 @@ Result run_relaxation(const Row& r, double dt, laws::Scheme scheme) {
   Result res;
   const auto t0 = std::chrono::steady_clock::now();
   // The first step starts from rest (load applied at t = 0+): implicit constants,
-  // as the contact layer does for a contact that closes (docs/rheology-in-dda.md).
+  // as the contact layer does for a contact that closes (docs/reference/rheology-in-dda.md).
   const laws::StepConstants first = law->step_constants(dt, laws::Scheme::implicit);
   const laws::StepConstants k = law->step_constants(dt, scheme);
   laws::RheologyState q, next;
@@ -191,7 +171,7 @@ std::string fmt_error(double e) {
   return buf;
 }
 
-// ---- The toppling model (docs/speed-accuracy.md, "The toppling model") ----
+// ---- The toppling model (docs/notes/step-controls.md, "The toppling model") ----
 // Every run starts from one settled state: the scene's settling stage
 // (analysis.settle), or, for a scene without one, fixed steps of
 // kSettleStep up to kSettleEnd with g2 = kSettleG2: the columns' settling
@@ -201,7 +181,7 @@ std::string fmt_error(double e) {
 // creep_tolerance, with the scene's g2; error = largest |u - u_ref| of the
 // measurement points at T_END / largest u_ref, u_ref from a fixed step kFine.
 constexpr double kSettleStep = 1e-4, kSettleEnd = 0.01;  // [d]
-constexpr double kSettleG2 = 0.0005;                     // [-] (docs/toppling-study.md)
+constexpr double kSettleG2 = 0.0005;                     // [-] (docs/guide/toppling-study.md)
 constexpr double kFine = 1.0 / 1024;  // reference step [d]; a run at 2 kFine checks it
 
 struct Settled {
@@ -296,7 +276,7 @@ CreepRun run_creep(const scene::BuiltScene& built, const Settled& from, const Co
 /// their leading error; |u(kFine) - u(2 kFine)| bounds what is left to well
 /// below it). Fixed steps are also run with the exponential-linear scheme:
 /// equal errors show that the error is not the creep integration's
-/// (docs/speed-accuracy.md).
+/// (docs/notes/step-controls.md).
 int toppling(const std::string& path, double t_end) {
   const scene::BuiltScene built = scene::build_scene(scene::load_scene(path));
   const Settled settled = settle(built);

@@ -55,6 +55,7 @@
 #include "rheodda/core/contact_adapter.hpp"
 #include "rheodda/core/engine.hpp"
 #include "rheodda/core/solver.hpp"
+#include "brick_wall.hpp"  // tests/models
 
 using namespace rheodda;
 using core::Vec2;
@@ -62,52 +63,8 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-constexpr double kBrickW = 0.2, kBrickH = 0.1;  // [m]
-
-std::vector<Vec2> rect(double x0, double y0, double x1, double y1) {
-  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-}
-
-core::BlockDef brick(std::vector<Vec2> vertices) {
-  core::BlockDef b;
-  b.vertices = std::move(vertices);
-  return b;
-}
-
-/// NX x NY running-bond wall on a fixed base (block 0).
-core::Model brick_wall(int nx, int ny, double poisson) {
-  core::Model m;
-  core::Material rock;
-  rock.density = 2600.0;     // [kg/m^3]
-  rock.young_modulus = 5e9;  // [Pa]
-  rock.poisson_ratio = poisson;
-  m.materials = {rock};
-  m.settings.dt = 1e-3;
-  m.settings.dynamic_ratio = 1.0;
-  const double width = nx * kBrickW;
-  // Allowed displacement per step g2 w0 = 1 mm (1 % of a brick's height) at
-  // every size, so the contact search distance 2.5 g2 w0 stays below the brick
-  // size (Shi's g2 = 0.01 of a 10 m wall would search 0.26 m around 0.1 m bricks).
-  const double w0 = 0.5 * std::max(width + 1.0, ny * kBrickH + 0.5);
-  m.settings.g2 = 1e-3 / w0;
-  const auto base = rect(-0.5, -0.5, width + 0.5, 0.0);
-  m.blocks.push_back(brick(base));
-  for (int k = 0; k < 3; ++k) m.fixed_points.push_back({0, base[k]});
-  for (int j = 0; j < ny; ++j) {
-    const double y0 = j * kBrickH, y1 = y0 + kBrickH;
-    if (j % 2 == 0) {
-      for (int i = 0; i < nx; ++i)
-        m.blocks.push_back(brick(rect(i * kBrickW, y0, (i + 1) * kBrickW, y1)));
-    } else {
-      m.blocks.push_back(brick(rect(0.0, y0, 0.5 * kBrickW, y1)));
-      for (int i = 0; i + 1 < nx; ++i)
-        m.blocks.push_back(
-            brick(rect((i + 0.5) * kBrickW, y0, (i + 1.5) * kBrickW, y1)));
-      m.blocks.push_back(brick(rect(width - 0.5 * kBrickW, y0, width, y1)));
-    }
-  }
-  return m;
-}
+/// NX x NY running-bond wall on a fixed base (block 0): tests/models/brick_wall.hpp.
+core::Model brick_wall(int nx, int ny, double poisson) { return models::running_bond_wall(nx, ny, poisson); }
 
 double seconds(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();

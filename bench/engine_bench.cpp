@@ -89,7 +89,7 @@ double slope(const std::vector<double>& x, const std::vector<double>& y) {
 int main(int argc, char** argv) {
   CLI::App app{
       "engine_bench: DDA engine assembly and solve time per step of a brick wall without contacts, "
-      "against the number of blocks (docs/performance.md)"};
+      "against the number of blocks (docs/notes/performance.md)"};
   std::vector<int> sizes{100, 1000, 10000, 100000};
   std::string solver_name = "both";
   int steps_given = 0;

@@ -1,4 +1,4 @@
-// Benchmarks of `rheodda fit` (docs/fitting.md). Prints figures, asserts nothing.
+// Benchmarks of `rheodda fit` (docs/guide/fitting.md). Prints figures, asserts nothing.
 //
 // Default: compute time of a Burgers fit on synthetic Table 1 row 1 curves
 // (tau 0.232; E1 26.87, E2 192.43, eta1 34807.72, eta2 2141.23; 200 h) with

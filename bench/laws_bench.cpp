@@ -48,7 +48,7 @@ std::unique_ptr<ContactRheology> make(const std::string& name) {
   if (name == "nishihara") p = {{"E1", e1}, {"E2", e2}, {"eta2", eta2}, {"eta3", eta1}, {"Fs", 0.2}};
   if (name == "generalized-kelvin")
     p = {{"E1", e1}, {"E2", e2}, {"eta2", eta2}, {"E3", 0.5 * e2}, {"eta3", eta1}};
-  // Nonlinear laws (docs/laws.md): Norton A = tau_ref/eta1, n = 4; damage t_r = 234 h, r = 3.
+  // Nonlinear laws (docs/reference/laws.md): Norton A = tau_ref/eta1, n = 4; damage t_r = 234 h, r = 3.
   if (name == "power-law") p = {{"E1", e1}, {"A", 0.2 / eta1}, {"tau_ref", 0.2}, {"n", 4.0}};
   if (name == "power-law-burgers")
     p = {{"E1", e1}, {"E2", e2}, {"eta2", eta2}, {"A", 0.2 / eta1}, {"tau_ref", 0.2}, {"n", 4.0}};

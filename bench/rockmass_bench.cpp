@@ -1,4 +1,4 @@
-// Rock masses from joint sets (docs/rockmass.md, docs/performance.md "Rock masses"):
+// Rock masses from joint sets (docs/guide/rockmass.md, docs/notes/performance.md "Rock masses"):
 //  1. generation: three joint sets (persistent bedding, two non-persistent sets)
 //     cutting a 100 x 100 m square into about 1e3, 1e4, 1e5 blocks: wall time of
 //     the trace generation and of the exact cut (target: 1e5 blocks in <= 10 s);
@@ -14,7 +14,7 @@
 //                                                    # any scene with a rock_mass, scaled the same way
 //   ... --halve          # every static step control halved (dt, dt_max, creep_tolerance,
 //                        # max_displacement_ratio, collapse_dt; the dynamic stages' dt held):
-//                        # the convergence check of docs/performance.md, "Rock masses that run"
+//                        # the convergence check of docs/notes/performance.md, "Rock masses that run"
 //   ... --write-scenes DIR --creep 1000 --max-wall 0   # only write the scaled scene files
 //   ... --max-cpu 600    # stop each run after 600 s of CPU time (not wall time)
 //   ... --duration 10    # the analysis's duration instead of the scene's (the convergence
@@ -121,7 +121,7 @@ std::string scaled_slope(const std::string& text, double f) {
 /// block, two spaces in) and the collapse stages' collapse_dt; the dynamic
 /// stages' own dt and max_displacement_ratio are held, as
 /// `rheodda check --refine --hold settle.dt,settle.max_displacement_ratio`
-/// does (docs/speed-accuracy.md).
+/// does (docs/guide/choosing-step-controls.md).
 std::string halved(const std::string& text) {
   std::string out = text;
   auto halve = [&](const std::regex& re) {
@@ -267,7 +267,7 @@ int main(int argc, char** argv) {
     if (halve) text = halved(text);
     if (rest > 0.0) {
       // The scene's dynamic settling stage ends at rest, its `until` its longest
-      // (docs/engine.md, "Dynamic stages").
+      // (docs/reference/engine.md, "Dynamic stages").
       const std::size_t at = text.find("settle: {");
       if (at == std::string::npos) {
         fmt::print(stderr, "rockmass_bench: --rest-tolerance: {} has no `settle: {{...}}` flow map\n", slope_file);

@@ -16,7 +16,7 @@
 #include "rheodda/core/engine.hpp"
 #include "rheodda/laws/registry.hpp"
 #include "rheodda/laws/seed_table1.hpp"
-#include "two_block.hpp"
+#include "two_block.hpp"  // tests/models
 
 using namespace rheodda;
 
@@ -28,20 +28,13 @@ constexpr const auto& kTable1 = laws::kSeedTable1;
 /// Block A (100 x 100 mm) on block B (fixed), F1 and F2 on A at the joint line.
 core::Model scene(const Row& r, double dt) {
   const double w = 100.0;
-  core::Model m = bench::two_block_model(w, dt);
+  core::Model m = models::two_block_model(w, dt);
   m.point_loads.push_back({1, {0.5 * w, 0.0}, {{0.0, {0.0, -r.sigma * w}}}});
   m.point_loads.push_back({1, {0.5 * w, 0.0}, {{0.0, {r.tau * w, 0.0}}}});
   return m;
 }
 
-/// Joint's relative shear displacement along F2 [mm]: mean over A's base contacts.
-double joint_shear(const contact::ContactSystem& cs) {
-  double sum = 0.0;
-  int n = 0;
-  for (const auto& c : cs.contacts())
-    if (c.key.vblock == 1) sum -= c.shear_displacement, ++n;
-  return n ? sum / n : 0.0;
-}
+using models::joint_shear;  // along F2, mean over A's base contacts [mm]
 
 }  // namespace
 

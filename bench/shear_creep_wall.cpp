@@ -18,6 +18,7 @@
 #include "rheodda/core/contact_adapter.hpp"
 #include "rheodda/core/engine.hpp"
 #include "rheodda/laws/registry.hpp"
+#include "brick_wall.hpp"  // tests/models
 
 using namespace rheodda;
 using core::Vec2;
@@ -25,42 +26,11 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-constexpr double kBrickW = 0.2, kBrickH = 0.1;  // [m]
-
-std::vector<Vec2> rect(double x0, double y0, double x1, double y1) {
-  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-}
-
+/// The benchmark wall (tests/models/brick_wall.hpp, nu = 0.2) as a static analysis of 60 s steps.
 core::Model brick_wall(int nx, int ny) {
-  core::Model m;
-  core::Material rock;
-  rock.density = 2600.0;     // [kg/m^3]
-  rock.young_modulus = 5e9;  // [Pa]
-  rock.poisson_ratio = 0.2;
-  m.materials = {rock};
-  m.settings.dt = 60.0;           // [s]
+  core::Model m = models::running_bond_wall(nx, ny);
+  m.settings.dt = 60.0;            // [s]
   m.settings.dynamic_ratio = 0.0;  // static analysis
-  const double width = nx * kBrickW;
-  const double w0 = 0.5 * std::max(width + 1.0, ny * kBrickH + 0.5);
-  m.settings.g2 = 1e-3 / w0;  // allowed displacement per step 1 mm
-  auto add = [&](std::vector<Vec2> v) {
-    core::BlockDef b;
-    b.vertices = std::move(v);
-    m.blocks.push_back(b);
-  };
-  const auto base = rect(-0.5, -0.5, width + 0.5, 0.0);
-  add(base);
-  for (int k = 0; k < 3; ++k) m.fixed_points.push_back({0, base[k]});
-  for (int j = 0; j < ny; ++j) {
-    const double y0 = j * kBrickH, y1 = y0 + kBrickH;
-    if (j % 2 == 0) {
-      for (int i = 0; i < nx; ++i) add(rect(i * kBrickW, y0, (i + 1) * kBrickW, y1));
-    } else {
-      add(rect(0.0, y0, 0.5 * kBrickW, y1));
-      for (int i = 0; i + 1 < nx; ++i) add(rect((i + 0.5) * kBrickW, y0, (i + 1.5) * kBrickW, y1));
-      add(rect(width - 0.5 * kBrickW, y0, width, y1));
-    }
-  }
   return m;
 }
 

@@ -1,4 +1,4 @@
-// Stability map of the creep schemes (docs/speed-accuracy.md, "Stability map").
+// Stability map of the creep schemes (docs/notes/step-controls.md, "Stability map").
 //
 // Model: a shear spring k in series with a Kelvin element (E2, eta2) - the
 // seed's Kelvin part of the Burgers joint, Table 1 row 1 (E2 = 192.43 MPa/mm,
@@ -6,16 +6,16 @@
 // relaxation). Solved with the law alone: laws::solve_series_force gives the end
 // force of each step from the spring and the law's affine creep increment
 // (the same algebra as the DDA contact's k_eff = k / (1 + k c), eq. 2 of
-// docs/rheology-in-dda.md), then ContactRheology::advance.
+// docs/reference/rheology-in-dda.md), then ContactRheology::advance.
 // Growth: largest |F| over steps 100-200 divided by the force at t = 0+ (k delta):
 // at most 1 for a stable run (the exact force decays monotonically to
 // k E2 / (k + E2) delta); > 1 means the step amplifies the force (unstable).
 // The lagged scheme (exact exponential under the start force, the seed's
 // eqs. 12-16) amplifies an error by 1 - b (k + E2)/E2, b = 1 - exp(-dt E2/eta2):
 // stable for dt E2/eta2 < -ln(1 - 2/(k/E2 + 1)) when k > E2, at any dt when
-// k <= E2; for k >> E2 this is dt < 2 eta2 / (k + E2) (docs/rheology-in-dda.md).
+// k <= E2; for k >> E2 this is dt < 2 eta2 / (k + E2) (docs/reference/rheology-in-dda.md).
 //
-// With --dda: the DDA spot-check of the map instead (docs/speed-accuracy.md,
+// With --dda: the DDA spot-check of the map instead (docs/notes/step-controls.md,
 // "DDA spot-check"; the same runs as tests/contact/engine/stability_spot_check_test.cpp):
 // the seed's two-block shear creep test (block A on a fixed block B, Table 1
 // row 1's sigma and tau) run by the DDA engine with a kelvin joint (E2, eta2 as
@@ -30,7 +30,7 @@
 //    contact forces; the map applies to their redistribution).
 // A run whose growth exceeds 1e3 at any step is stopped as diverged.
 //
-// With --power: the map of the nonlinear Norton law (law power-law, docs/laws.md):
+// With --power: the map of the nonlinear Norton law (law power-law, docs/reference/laws.md):
 // the spring E1 = 26.87 MPa/mm in series with a Norton dashpot A (tau/tau_ref)^n
 // (tau_ref = 0.2 MPa, A = tau_ref/34807.72 mm/h), held at delta = tau0/E1, over
 // n = 1..20, tau0/tau_ref = 0.01..100 and dt/t0 = 1e-3..1e6 with t0 = tau0 /
@@ -55,7 +55,7 @@
 #include "rheodda/laws/history.hpp"
 #include "rheodda/laws/registry.hpp"
 #include "rheodda/laws/seed_table1.hpp"
-#include "two_block.hpp"
+#include "two_block.hpp"  // tests/models
 
 using namespace rheodda;
 
@@ -90,11 +90,11 @@ constexpr double kWidth = 100.0;            // width of A = joint length [mm]
 constexpr double kNormalStiffness = 1e4;    // joint normal stiffness [MPa/mm]
 
 /// Lagged limit dt_lim E2/eta2 = -ln(1 - 2 E2/(k + E2)) for k > E2, none for
-/// k <= E2 (docs/speed-accuracy.md, "Stability map").
+/// k <= E2 (docs/notes/step-controls.md, "Stability map").
 double lagged_limit(double y) { return y <= 1.0 ? INFINITY : -std::log(1.0 - 2.0 / (y + 1.0)); }
 
 /// Closed-form relaxation force relative to k delta, standard linear solid:
-/// [E2 + k exp(-(k + E2) t/eta2)]/(k + E2) (docs/rheology-in-dda.md, Validation).
+/// [E2 + k exp(-(k + E2) t/eta2)]/(k + E2) (docs/reference/rheology-in-dda.md, Validation).
 double relaxation_closed_form(double y, double t) {
   const double k = y * kE2;
   return (kE2 + k * std::exp(-(k + kE2) * t / kEta2)) / (k + kE2);
@@ -113,7 +113,7 @@ DdaRun dda_run(bool relaxation, laws::Scheme scheme, double x, double y) {
   const laws::SeedTable1Row& row = laws::kSeedTable1[0];
   const double w = kWidth, dt = x * kEta2 / kE2, k = y * kE2;  // [mm], [h], [MPa/mm]
   const double delta = row.tau / k, closure = row.sigma / kNormalStiffness;  // [mm]
-  core::Model m = bench::two_block_model(w, dt);
+  core::Model m = models::two_block_model(w, dt);
   if (relaxation) {
     // A fixed point of stiffness K loaded by K u imposes u through K (core/model.hpp):
     // A's joint line is held at (delta, -closure); K >> k w, so the joint sees k.
@@ -140,30 +140,19 @@ DdaRun dda_run(bool relaxation, laws::Scheme scheme, double x, double y) {
   core::ContactAdapter adapter(contacts);
   core::Engine engine(m, adapter);
   DdaRun run;
+  models::GrowthWatch watch;
   double scale = relaxation ? k * delta : 0.0;  // stress the growth is relative to [MPa]
-  double previous = 0.0;  // joint shear force of the previous step [N/mm]
   for (int n = 1; n <= kDdaSteps; ++n) {
     engine.step();
-    double largest = 0.0, sum = 0.0, length = 0.0;  // [MPa], [N/mm], [mm]
-    for (const contact::Contact& c : contacts.contacts())
-      if (c.key.vblock == 1) {
-        largest = std::max(largest, std::abs(c.shear_force) / c.length);
-        sum -= c.shear_force;  // along +x (B's top edge runs in -x)
-        length += c.length;
-      }
-    if (!relaxation && n == 1) scale = largest;
+    const models::JointForces f = models::joint_forces(contacts);
+    if (!relaxation && n == 1) scale = f.largest_stress;
     if (relaxation)
-      run.end_error =
-          std::abs(sum / length / (k * delta) / relaxation_closed_form(y, engine.time()) - 1.0);
-    if (largest > kStop * scale) {
-      run.growth = largest / scale;
-      run.diverged_at = n;
-      run.amplification = std::abs(sum / previous);
-      return run;
-    }
-    previous = sum;
-    if (n > kDdaSteps / 2) run.growth = std::max(run.growth, largest / scale);
+      run.end_error = std::abs(f.shear_force / f.length / (k * delta) / relaxation_closed_form(y, engine.time()) - 1.0);
+    if (watch.diverged(n, kDdaSteps, f, scale, kStop)) break;
   }
+  run.growth = watch.growth;
+  run.diverged_at = watch.diverged_at;
+  run.amplification = watch.amplification;
   return run;
 }
 
@@ -219,7 +208,7 @@ int print_dda_table() {
       if (relax.diverged_at) std::snprintf(end, sizeof end, "-");
       else std::snprintf(end, sizeof end, "%.1e", relax.end_error);
       char step[48];
-      if (relax.diverged_at)  // lagged amplification (docs/speed-accuracy.md, "Stability map")
+      if (relax.diverged_at)  // lagged amplification (docs/notes/step-controls.md, "Stability map")
         std::snprintf(step, sizeof step, "%.5g / %.5g", relax.amplification,
                       std::abs(1.0 + std::expm1(-p.x) * (p.y + 1.0)));
       else std::snprintf(step, sizeof step, "-");

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Scaling of `rheodda study` over MPI ranks (docs/studies.md, "Measured scaling").
+# Scaling of `rheodda study` over MPI ranks (docs/notes/performance.md, "Studies: dispatch and MPI scaling").
 # Prints figures; asserts nothing.
 #
 # Usage: bench/study-mpi.sh [BUILD_DIR] [MAX_RANKS]     (default build/, 64)

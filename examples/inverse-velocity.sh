@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Inverse-velocity forecast of the failure time (Fukuzono 1985) on the run of
-# examples/damage-creep-test.yaml (damage-burgers, docs/laws.md).
+# examples/damage-creep-test.yaml (damage-burgers, docs/reference/laws.md).
 #
 # Sample run:
 #   examples/inverse-velocity.sh [RHEODDA] [OUTDIR]

@@ -2,7 +2,7 @@
 # Regenerates the speed-accuracy report: runs bench/accuracy_bench (also its
 # --toppling comparison on examples/goodman-toppling-creep.yaml) and
 # bench/stability_map (the law-level map, and with --dda its DDA spot-check),
-# puts their tables into docs/speed-accuracy.md (between the "generated"
+# puts their tables into docs/notes/step-controls.md (between the "generated"
 # markers) and draws docs/img/accuracy-error-vs-time.png and
 # docs/img/stability-map.png and docs/img/toppling-error-vs-time.png with gnuplot.
 # Usage: scripts/accuracy-report.sh   (uses $RHEODDA_BUILD_DIR or build/; builds the benches if missing)
@@ -22,8 +22,8 @@ trap 'rm -rf "$work"' EXIT
 "$build/bench/accuracy_bench" --toppling "$root/examples/goodman-toppling-creep.yaml" 100 |
   sed "s|$root/||" >"$work/toppling.md"
 
-# Tables between the <!-- NAME:begin/end --> markers of docs/speed-accuracy.md.
-splice() { "$root/scripts/splice-doc.sh" "$root/docs/speed-accuracy.md" "$1" "$2"; }
+# Tables between the <!-- NAME:begin/end --> markers of docs/notes/step-controls.md.
+splice() { "$root/scripts/splice-doc.sh" "$root/docs/notes/step-controls.md" "$1" "$2"; }
 splice accuracy-table "$work/accuracy.md"
 splice stability-table "$work/stability.md"
 splice stability-dda "$work/stability-dda.md"

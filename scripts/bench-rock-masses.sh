@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The benchmarks of docs/performance.md, "Rock masses that run": the generated
+# The benchmarks of docs/notes/performance.md, "Rock masses that run": the generated
 # slope with every joint set cohesionless and one set oblique
 # (bench/scenes/jointed-slope-cohesionless.yaml) scaled to about 1e3 blocks and
 # the generated tunnel (examples/rockmass/tunnel.yaml, its settling stage ended
@@ -10,7 +10,7 @@
 # toe's displacement compared. One core each (bench/rockmass_bench.cpp, CPU
 # time, so that a loaded machine gives the same figures). Prints the figures
 # and splices a Markdown table between the rock-masses-run markers of
-# docs/performance.md.
+# docs/notes/performance.md.
 #
 #   scripts/bench-rock-masses.sh                  # about 1e3 blocks; about 40 CPU minutes
 #   BUDGET=3 scripts/bench-rock-masses.sh         # budgets x 3 (how far the runs get beyond them)
@@ -54,4 +54,4 @@ for line in open(sys.argv[1]):
           f"{m['cpu']} | {m['stages']} | {float(m['disp']):.4g} | {target} |")
 PY
 cat "$table"
-"$root/scripts/splice-doc.sh" "$root/docs/performance.md" rock-masses-run "$table"
+"$root/scripts/splice-doc.sh" "$root/docs/notes/performance.md" rock-masses-run "$table"

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The shipped examples with the two contact solves (docs/contacts.md, "Contact
+"""The shipped examples with the two contact solves (docs/reference/contacts.md, "Contact
 solves"): runs every example as shipped (analysis.contact_solver open-close,
 the default) and with `contact_solver: newton`, and prints each headline
 result of scripts/example_results.py (the final displacement of each

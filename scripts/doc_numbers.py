@@ -3,7 +3,7 @@
 code that measures it.
 
 A quoted number is a marked span, <!--n:NAME-->TEXT<!--/n-->, in a Markdown file
-(docs/*.md, README.md) or in a comment of a shipped example (examples/*.yaml,
+(docs/**/*.md, README.md) or in a comment of a shipped example (examples/*.yaml,
 examples/rockmass/*.yaml, examples/*.sh); NUMBERS below maps each NAME to the
 function that produces its TEXT from the shipped examples' runs (history.csv,
 contacts.csv, summary.json) or from a `rheodda` command. With --write the spans are
@@ -32,7 +32,7 @@ MARK = re.compile(r"<!--n:([A-Za-z0-9_.-]+)-->(.*?)<!--/n-->", re.S)
 
 def files():
     """Every file that may quote a number."""
-    found = sorted((ROOT / "docs").glob("*.md")) + [ROOT / "README.md"]
+    found = sorted((ROOT / "docs").rglob("*.md")) + [ROOT / "README.md"]
     found += sorted((ROOT / "examples").glob("*.yaml")) + sorted((ROOT / "examples" / "rockmass").glob("*.yaml"))
     found += sorted((ROOT / "examples").glob("*.sh"))
     return [p for p in found if not p.name.startswith(".")]
@@ -40,7 +40,7 @@ def files():
 
 def spans():
     """[(file, name, text)] of every marked span; not one in code quotes (`<!--n:NAME-->...`,
-    how docs/outputs.md shows the mark itself)."""
+    how docs/reference/outputs.md shows the mark itself)."""
     out = []
     for p in files():
         text = p.read_text()
@@ -204,7 +204,7 @@ def _(s):
     return f"{-a / b:.1f}"
 
 
-# --- rheodda law curve (docs/laws.md) --------------------------------------------------
+# --- rheodda law curve (docs/reference/laws.md) --------------------------------------------------
 POWER_LAW_RELAXATION = ["law", "curve", "power-law", "--param", "E1=20", "--param", "tau_ref=0.2", "--param",
                         "A=1e-3", "--param", "n=20", "--displacement", "0:0.02", "--t-end", "100", "--dt", "10"]
 
@@ -247,7 +247,7 @@ def _(s):
     return "`" + next(l for l in err.splitlines() if l.startswith("law curve: damage-burgers")) + "`"
 
 
-# --- docs/rockmass.md ------------------------------------------------------------------
+# --- docs/guide/rockmass.md ------------------------------------------------------------------
 @number("rockmass-tunnel-check")
 def _(s):
     code, out, err = s.rheodda("check", str(ROOT / "examples" / "rockmass" / "tunnel.yaml"))

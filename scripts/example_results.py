@@ -1,11 +1,11 @@
 #!/usr/bin/python3
-"""Headline results of the shipped examples (docs/outputs.md, "Shipped examples:
+"""Headline results of the shipped examples (docs/reference/outputs.md, "Shipped examples:
 headline results"): runs `rheodda run` on every examples/*.yaml and
 examples/rockmass/*.yaml and reports, per
 example, the final displacement magnitude |(u, v)| of each measurement point
 [length] and, for a joint set whose damage law failed, the time of the first
 failure [time] (summary.json). With --write the table is spliced into
-docs/outputs.md between <!-- example-results:begin/end -->; the test
+docs/reference/outputs.md between <!-- example-results:begin/end -->; the test
 tests/python/test_example_results.py reruns the examples and fails when a
 value drifts from the documented one by more than its tolerance.
 
@@ -22,7 +22,7 @@ import sys
 import tempfile
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-DOC = ROOT / "docs" / "outputs.md"
+DOC = ROOT / "docs" / "reference" / "outputs.md"
 MARK = "example-results"
 # Relative tolerance of a documented value: the runs are deterministic on one
 # machine; 1e-4 leaves room for another BLAS kernel's rounding, not for a change
@@ -114,7 +114,7 @@ def table():
 
 
 def documented():
-    """{(example, quantity): (value, tolerance)} from the table in docs/outputs.md."""
+    """{(example, quantity): (value, tolerance)} from the table in docs/reference/outputs.md."""
     text = DOC.read_text()
     body = text.split(f"<!-- {MARK}:begin -->")[1].split(f"<!-- {MARK}:end -->")[0]
     rows = {}

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the measured tables of docs/fitting.md: runs bench/fit_bench (the
+# Regenerates the measured tables of docs/guide/fitting.md: runs bench/fit_bench (the
 # speed of a Burgers fit on 1e3, 1e5 and 1e6 points) and
 # `fit_bench --global --draws 300 --reference-starts 100` (the default fit
 # against a 100-start reference over 300 seeded noise draws per law and
@@ -21,5 +21,5 @@ trap 'rm -rf "$work"' EXIT
   echo '```'
 } >"$work/speed.md"
 "$build/bench/fit_bench" --global --draws 300 --reference-starts 100 >"$work/global.md"
-"$root/scripts/splice-doc.sh" "$root/docs/fitting.md" fit-speed "$work/speed.md"
-"$root/scripts/splice-doc.sh" "$root/docs/fitting.md" fit-global "$work/global.md"
+"$root/scripts/splice-doc.sh" "$root/docs/guide/fitting.md" fit-speed "$work/speed.md"
+"$root/scripts/splice-doc.sh" "$root/docs/guide/fitting.md" fit-global "$work/global.md"

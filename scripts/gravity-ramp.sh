@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # The settling stage of examples/rockmass/jointed-slope.yaml with gravity at
-# once and with its gravity ramp (docs/engine.md, "Gravity ramp"): the stage
+# once and with its gravity ramp (docs/reference/engine.md, "Gravity ramp"): the stage
 # alone (26 s: the 20 s stage and one static step), refined by `rheodda check
 # --refine=5` (the stage's dt halved from 1 ms down to 62.5 us, its g2 halved
-# with it or held). Puts the four refinement tables into docs/engine.md between
+# with it or held). Puts the four refinement tables into docs/reference/engine.md between
 # the gravity-ramp markers. About 30 min on 2 cores.
 # Usage: scripts/gravity-ramp.sh   (uses $RHEODDA_BUILD_DIR or build/)
 set -euo pipefail
@@ -51,4 +51,4 @@ cases=(
   done
 } >"$work/table.md"
 cat "$work/table.md"
-"$root/scripts/splice-doc.sh" "$root/docs/engine.md" gravity-ramp "$work/table.md"
+"$root/scripts/splice-doc.sh" "$root/docs/notes/dynamic-stages.md" gravity-ramp "$work/table.md"

@@ -22,6 +22,11 @@ packages=(
   python3-pytest         # the Python tests
   python3-pandas         # histories as DataFrames (optional at run time, tested)
   python3-matplotlib     # examples/python pictures
+  python3-lmfit          # tests/python/test_fit_lmfit.py: the reference fits of rheodda.fit(params=, sigma=)
+  python3-nbclient       # tests/python/test_notebook.py: executes examples/python's notebook headless
+  python3-nbformat       # the notebook's file format, read and written by that test
+  python3-ipykernel      # the notebook's Python 3 kernel
+  python3-mypy           # tests/python/test_typing.py: mypy --strict on the examples against the .pyi stubs
   libcgal-dev            # exact 2D arrangements: cutting rock masses from joint sets
   libopenmpi-dev         # studies across machines (mpirun rheodda study)
   openmpi-bin            # mpirun, used by the MPI study tests

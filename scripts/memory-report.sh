@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Peak resident memory and wall time of `rheodda run` on stacked walls of
-# N x N blocks (docs/performance.md, "Memory at 1e5 blocks"), beside the
+# N x N blocks (docs/notes/performance.md, "Memory at 1e5 blocks"), beside the
 # estimate `rheodda check` prints. Each run is stopped (SIGINT, a clean stop)
 # after LIMIT seconds of wall time; the peak is reached in the first step.
 # Usage: scripts/memory-report.sh [LIMIT_SECONDS [N ...]]   (default: 120 s, N = 100 316)

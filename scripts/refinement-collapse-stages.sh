@@ -1,17 +1,17 @@
 #!/usr/bin/env bash
 # The seed's slope with its Burgers creep (bench/scenes/goodman-toppling-seed-steps.yaml: base
 # 50 deg, planes 25 deg, static) run for 100 d with collapse stages
-# (analysis.settle with type dynamic and collapse_dt; docs/engine.md, "Collapse
+# (analysis.settle with type dynamic and collapse_dt; docs/reference/engine.md, "Collapse
 # stages"): the columns settle in a 20 s dynamic stage (plastic impacts, damped
 # blocks, dt 1 ms), and every later collapse is located to within collapse_dt
 # and taken dynamically. `rheodda check --refine=9` with the stages' dynamic
 # steps held at 1 ms (--hold settle.dt,settle.max_displacement_ratio: their own
-# refinement converges to 0.05 %, docs/contacts.md "The same slope settled
+# refinement converges to 0.05 %, docs/notes/contact-solves.md "The same slope settled
 # dynamically") and the static controls halved level by level from dt 1/16 d,
 # g2 0.0005, collapse_dt 5e-5 d down to dt 1/4096 d. Puts a table (block 10 at
 # 1, 5, 10, 20, 50 and 100 d, the level-to-level changes, the stages, steps,
-# wall time) and check's verdict into docs/engine.md between the
-# refinement-collapse-stages markers, and into docs/speed-accuracy.md ("The seed's
+# wall time) and check's verdict into docs/reference/engine.md between the
+# refinement-collapse-stages markers, and into docs/notes/step-controls.md ("The seed's
 # slope itself, refined"). About 10 min on 2 cores.
 # Usage: scripts/refinement-collapse-stages.sh   (uses $RHEODDA_BUILD_DIR or build/)
 set -euo pipefail
@@ -74,5 +74,5 @@ print(f"`rheodda check --refine=9 --hold settle.dt,settle.max_displacement_ratio
       + (f" ({ref['message']})" if ref.get("message") else "") + ".")
 PY
 cat "$work/table.md"
-"$root/scripts/splice-doc.sh" "$root/docs/engine.md" refinement-collapse-stages "$work/table.md"
-"$root/scripts/splice-doc.sh" "$root/docs/speed-accuracy.md" refinement-collapse-stages "$work/table.md"
+"$root/scripts/splice-doc.sh" "$root/docs/notes/dynamic-stages.md" refinement-collapse-stages "$work/table.md"
+"$root/scripts/splice-doc.sh" "$root/docs/notes/step-controls.md" refinement-collapse-stages "$work/table.md"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Step-size studies of the open-close iteration, spliced into docs/contacts.md (incline-drop)
+# Step-size studies of the open-close iteration, spliced into docs/notes/contact-rules.md (incline-drop)
 # and docs/notes/contact-solves.md (walls; "Why the iteration does not settle"):
 #   - incline-drop: bench/scenes/incline-drop.yaml (a block dropped 2 mm on a
 #     30 deg incline, friction 40 deg) and incline-drop-damped.yaml (the same
@@ -104,6 +104,6 @@ wall() {
 } >"$work/walls.md"
 
 splice() { "$root/scripts/splice-doc.sh" "$root/$1" "$2" "$3"; }
-splice docs/contacts.md incline-drop "$work/drop.md"
+splice docs/notes/contact-rules.md incline-drop "$work/drop.md"
 splice docs/notes/contact-solves.md walls "$work/walls.md"
 cat "$work/drop.md" "$work/walls.md"

@@ -3,14 +3,10 @@
 # controls (L0) and with every step control halved, level by level, and the
 # verdict (fine / coarse / not converged) with L0's error, the last two levels'
 # difference, the largest static inertia share and, where a joint fails, the
-# failure time of each level. Puts the table into docs/speed-accuracy.md between
+# failure time of each level. Puts the table into docs/guide/choosing-step-controls.md between
 # the refinement-examples markers. About 25 min on 2 cores.
 # Usage: scripts/refinement-examples.sh   (uses $RHEODDA_BUILD_DIR or build/)
-set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${RHEODDA_BUILD_DIR:-$root/build}"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # strict mode; root, build, work (removed at exit)
 # example | refine options (levels, --until: before a joint fails, where that is the headline)
 # (paths from the repository's root: the shipped examples, then the bench scenes
 # of issue "Steps that converge": the brick wall, the incline drop undamped and
@@ -45,7 +41,7 @@ for e in "${examples[@]}"; do
   if [[ -n "$extra" ]]; then  # a variant, in a copy beside the original
     file="$(dirname "$root/$scene")/.refine-variant-$i.yaml"
     if [[ "$extra" == "restitution: 0, damping_ratio: 1"* ]]; then
-      # plastic impacts on every joint set, critically damped blocks (docs/contacts.md, "Contact damping");
+      # plastic impacts on every joint set, critically damped blocks (docs/reference/contacts.md, "Contact damping");
       # optionally with the scene's dt and g2 replaced (", dt DT, g2 G2": finer levels)
       dt_g2=()
       if [[ "$extra" =~ dt\ ([0-9.e-]+),\ g2\ ([0-9.e-]+) ]]; then
@@ -85,12 +81,12 @@ for line in open(sys.argv[1]):
           f"{100 * last:.2g} % | {share:.2g} | {steps} | {', '.join(failures) if failures else '–'} |")
 PY
 cat "$work/table.md"
-"$root/scripts/splice-doc.sh" "$root/docs/speed-accuracy.md" refinement-examples "$work/table.md"
+"$root/scripts/splice-doc.sh" "$root/docs/guide/choosing-step-controls.md" refinement-examples "$work/table.md"
 # The toppling example's levels in full (its refinement.txt, as `check` prints it).
 n=$(grep -n '^examples/goodman-toppling-creep.yaml|' "$work/list" | head -n 1 | cut -d: -f1)
 { echo '```'; cat "$work/$n/refinement.txt"; echo '```'; } >"$work/toppling.md"
-"$root/scripts/splice-doc.sh" "$root/docs/speed-accuracy.md" refinement-toppling-creep-levels "$work/toppling.md"
+"$root/scripts/splice-doc.sh" "$root/docs/notes/step-controls.md" refinement-toppling-creep-levels "$work/toppling.md"
 # The damped wall refined past its contact period, its levels in full.
 n=$(grep -n '^bench/scenes/brick-wall.yaml with restitution: 0, damping_ratio: 1, dt ' "$work/list" | head -n 1 | cut -d: -f1)
 { echo '```'; cat "$work/$n/refinement.txt"; echo '```'; } >"$work/wall.md"
-"$root/scripts/splice-doc.sh" "$root/docs/speed-accuracy.md" refinement-damped-wall-levels "$work/wall.md"
+"$root/scripts/splice-doc.sh" "$root/docs/notes/step-controls.md" refinement-damped-wall-levels "$work/wall.md"

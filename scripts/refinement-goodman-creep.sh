@@ -4,17 +4,13 @@
 # 2, 5, 10 and 20 d with max_displacement_ratio (g2) and dt halved together from
 # 0.0005 / 0.25 d (level L1 of scripts/refinement-goodman.sh) to 6.25e-5 /
 # 1/32 d (L4), with each level's steps and the share of the work the static
-# inertia term took (docs/engine.md, "Mechanisms in static analysis"). Level L0
+# inertia term took (docs/reference/engine.md, "Mechanisms in static analysis"). Level L0
 # (0.001 / 0.5 d) is left out: its steps fall into the static g2 trap (2.3
-# million steps, 8 minutes for 20 d; docs/contacts.md). Puts the table into
-# docs/speed-accuracy.md between the refinement-goodman-creep markers. About
+# million steps, 8 minutes for 20 d; docs/reference/contacts.md). Puts the table into
+# docs/notes/step-controls.md between the refinement-goodman-creep markers. About
 # 40 s on 2 cores.
 # Usage: scripts/refinement-goodman-creep.sh   (uses $RHEODDA_BUILD_DIR or build/)
-set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${RHEODDA_BUILD_DIR:-$root/build}"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # strict mode; root, build, work (removed at exit)
 times=(1 2 5 10 20)
 {
   echo "scene: $root/bench/scenes/goodman-toppling-seed-steps.yaml"
@@ -45,4 +41,4 @@ print("| | steps | " + " | ".join(rows[l]["steps"] for l in levels) + " | |")
 print("| | inertia share | " + " | ".join(f"{float(rows[l]['inertia_share']):.3f}" for l in levels) + " | |")
 PY
 cat "$work/table.md"
-"$root/scripts/splice-doc.sh" "$root/docs/speed-accuracy.md" refinement-goodman-creep "$work/table.md"
+"$root/scripts/splice-doc.sh" "$root/docs/notes/step-controls.md" refinement-goodman-creep "$work/table.md"

@@ -11,7 +11,7 @@
 #                        refinement-goodman-stick markers;
 #   --dynamic            settled dynamically with plastic impacts and damped blocks
 #                        (joint sets restitution 0, material damping_ratio 1;
-#                        docs/contacts.md, "Contact damping"): gravity on at t = 0,
+#                        docs/reference/contacts.md, "Contact damping"): gravity on at t = 0,
 #                        20 s of motion (2.315e-4 d), g2 / dt from 0.001 / 2 ms over
 #                        five levels, refinement-goodman-dynamic markers; about 1 min.
 set -euo pipefail

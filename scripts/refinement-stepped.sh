@@ -6,16 +6,12 @@
 # (analysis.stick_keeps_force: false, the static default) and with elastic-plastic
 # joints (stick_keeps_force: true, the dynamic default), and the latter with
 # plastic impacts and damped blocks (joint set restitution 0, material
-# damping_ratio 1; docs/contacts.md, "Contact damping"). Prints a Markdown table of the largest
+# damping_ratio 1; docs/reference/contacts.md, "Contact damping"). Prints a Markdown table of the largest
 # displacement of the 16 block tops at 8 s [mm], with the run's cuts of dt and
 # its energy-balance residual, and puts it between the refinement-stepped
 # markers of docs/notes/contact-solves.md. About 3 min on 2 cores.
 # Usage: scripts/refinement-stepped.sh   (uses $RHEODDA_BUILD_DIR or build/)
-set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${RHEODDA_BUILD_DIR:-$root/build}"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # strict mode; root, build, work (removed at exit)
 dts=(0.005 0.002 0.001 0.0005 0.00025 0.0001 0.00005)
 {
   echo "scene: $root/bench/scenes/stepped-toppling.yaml"

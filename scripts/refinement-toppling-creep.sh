@@ -2,15 +2,11 @@
 # Step refinement of examples/goodman-toppling-creep.yaml as shipped (with its
 # settling stage, analysis.settle) and without the stage: blocks 1 and 10 at
 # 100 d for dt = 1/2 ... 1/128 d, with each run's steps and static inertia
-# share (docs/engine.md, "Mechanisms in static analysis"). Puts the table into
-# docs/speed-accuracy.md between the refinement-toppling-creep markers. About
+# share (docs/reference/engine.md, "Mechanisms in static analysis"). Puts the table into
+# docs/notes/step-controls.md between the refinement-toppling-creep markers. About
 # 10 s on 2 cores.
 # Usage: scripts/refinement-toppling-creep.sh   (uses $RHEODDA_BUILD_DIR or build/)
-set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${RHEODDA_BUILD_DIR:-$root/build}"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # strict mode; root, build, work (removed at exit)
 dts=(0.5 0.25 0.125 0.0625 0.03125 0.015625 0.0078125)
 {
   echo "scene: $root/examples/goodman-toppling-creep.yaml"
@@ -37,4 +33,4 @@ for dt in dts:
           f"{float(u['block10_top.displacement@100']):.3f} | {float(u['inertia_share']):.2g} |")
 PY
 cat "$work/table.md"
-"$root/scripts/splice-doc.sh" "$root/docs/speed-accuracy.md" refinement-toppling-creep "$work/table.md"
+"$root/scripts/splice-doc.sh" "$root/docs/notes/step-controls.md" refinement-toppling-creep "$work/table.md"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs the rock-mass examples (docs/rockmass.md) and draws their pictures into docs/img/:
+# Runs the rock-mass examples (docs/guide/rockmass.md) and draws their pictures into docs/img/:
 #   rockmass-<name>-cut.png      the generated blocks, edges coloured by joint set (rheodda generate --plot)
 #   rockmass-<name>-blocks.png   the blocks after 100 days (rheodda plot of the run, last frame)
 #   rockmass-<name>-history.png  the history curves of the run

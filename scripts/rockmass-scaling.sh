@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Rock masses at scale (docs/rockmass.md, "Performance"): two persistent joint sets at right
+# Rock masses at scale (docs/guide/rockmass.md, "Performance"): two persistent joint sets at right
 # angles cut a 100 x 100 m square at spacings 1, 0.5, 0.33 and 0.25 m (10 000 to 160 000
 # blocks). For each: the estimate made before cutting (rockmass::estimate_cut: crossings and
 # blocks, as `rheodda check` prints them), the blocks cut, the wall time and peak resident
@@ -7,7 +7,7 @@
 # 20 MB (the figure behind estimate_cut's 2.1 kB), and the wall times of `rheodda generate`
 # and of `rheodda check` on the explicit scene it writes.
 # Usage: scripts/rockmass-scaling.sh [--write]   (build: $RHEODDA_BUILD_DIR or build/;
-#        --write splices the table into docs/rockmass.md between <!-- rockmass-scaling:begin/end -->)
+#        --write splices the table into docs/guide/rockmass.md between <!-- rockmass-scaling:begin/end -->)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bin="${RHEODDA_BUILD_DIR:-$root/build}/apps/rheodda"
@@ -52,6 +52,6 @@ YAML
            s, c, p, b, cs, ck * 1024 / 1e6, (ck * 1024 - 20e6) / c / 1e3, gs, es, ek * 1024 / 1e6 }' >>"$table"
 done
 if [ "${1:-}" = "--write" ]; then
-  bash "$root/scripts/splice-doc.sh" "$root/docs/rockmass.md" rockmass-scaling "$table"
+  bash "$root/scripts/splice-doc.sh" "$root/docs/guide/rockmass.md" rockmass-scaling "$table"
 fi
 cat "$table"

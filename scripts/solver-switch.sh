@@ -2,7 +2,7 @@
 # Where `solver: automatic` should switch from CHOLMOD to amg: the running-bond
 # brick wall of bench/contact_bench (penalty 50 E, nu 0.25, dynamic, dt 1 ms)
 # over its first 10 ms with each solver, one core. Prints a Markdown table and
-# splices it into docs/performance.md ("Which solver, from how many blocks").
+# splices it into docs/notes/performance.md ("Which solver, from how many blocks").
 # About 2 min on 2 cores. Usage: scripts/solver-switch.sh [--no-splice]
 # (uses $RHEODDA_BUILD_DIR or build/).
 set -euo pipefail
@@ -34,4 +34,4 @@ run() {
   done
 } >"$work/table.md"
 cat "$work/table.md"
-[ "${1:-}" = "--no-splice" ] || "$root/scripts/splice-doc.sh" "$root/docs/performance.md" solver-switch "$work/table.md"
+[ "${1:-}" = "--no-splice" ] || "$root/scripts/splice-doc.sh" "$root/docs/notes/performance.md" solver-switch "$work/table.md"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Mechanism motion of static analyses (docs/engine.md, "Mechanisms in static
+# Mechanism motion of static analyses (docs/reference/engine.md, "Mechanisms in static
 # analysis"): runs every shipped static example, the seed's slope on its
 # own static steps (bench/scenes/goodman-toppling-seed-steps.yaml), the sliding block in static
 # analysis at friction 20 and 40 deg, the Goodman slope without creep (base
@@ -8,14 +8,10 @@
 # slope of bench/scenes/stepped-toppling.yaml in static analysis, and prints
 # summary.json's `static_mechanism` for each: the share of the work of gravity
 # and loads the static steps' inertia terms took, and the steps that moved as a
-# mechanism. Puts the table into docs/engine.md between the static-mechanisms
+# mechanism. Puts the table into docs/reference/engine.md between the static-mechanisms
 # markers. About 10 s.
 # Usage: scripts/static-mechanisms.sh   (uses $RHEODDA_BUILD_DIR or build/)
-set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${RHEODDA_BUILD_DIR:-$root/build}"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # strict mode; root, build, work (removed at exit)
 ex="$root/examples"
 # variant NAME SOURCE SED-SCRIPT: a copy of SOURCE edited by SED-SCRIPT
 variant() { sed -e "$3" "$2" >"$work/$1.yaml"; echo "$work/$1.yaml"; }
@@ -60,4 +56,4 @@ PY
   done
 } >"$work/table.md"
 cat "$work/table.md"
-"$root/scripts/splice-doc.sh" "$root/docs/engine.md" static-mechanisms "$work/table.md"
+"$root/scripts/splice-doc.sh" "$root/docs/notes/dynamic-stages.md" static-mechanisms "$work/table.md"

@@ -14,7 +14,7 @@ cmake -S "$root" -B "$asan" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRHEODDA
   "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DRHEODDA_BUILD_BENCH=OFF >/dev/null
 cmake --build "$asan" -j "$(nproc)" --target scene_fuzz_test
 "$asan/tests/apps/scene_fuzz_test" --report_level=short
-# The rock-mass cutter fuzzed over random joint sets under the same sanitizers (docs/rockmass.md).
+# The rock-mass cutter fuzzed over random joint sets under the same sanitizers (docs/guide/rockmass.md).
 cmake --build "$asan" -j "$(nproc)" --target rockmass_fuzz_test
 "$asan/tests/apps/rockmass/rockmass_fuzz_test" --report_level=short
 # The Python module's tests (pytest, tests/python) against the module of the same build, with

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# Regenerates the figures of docs/toppling-study.md (the seed's section 5):
+# Regenerates the figures of docs/guide/toppling-study.md (the seed's section 5):
 #   bash scripts/toppling-study.sh            # after scripts/build.sh
 # Runs examples/studies/toppling-phi.yaml and toppling-laws.yaml with `rheodda study`
 # into out/toppling-study/, then draws with gnuplot and copies the pictures to
-# docs/img/toppling-*.png, and splices the tables of docs/toppling-study.md
+# docs/img/toppling-*.png, and splices the tables of docs/guide/toppling-study.md
 # (toppling-phi, toppling-creep-history, toppling-laws markers). Environment: RHEODDA (the binary, default
 # build/apps/rheodda), OUT (default out/toppling-study), JOBS (default 2).
 set -euo pipefail
@@ -24,7 +24,7 @@ awk -F, '/^#/ || $1 == "time" { next } { print $1, sqrt($6*$6 + $7*$7), sqrt($8*
 
 # The joints' shear displacement with Burgers creep (the seed discusses it, section 5):
 # per joint set, the mean over its shear-carrying contacts of |shear displacement|
-# (history.csv's JOINTSET.shear_displacement_magnitude, docs/outputs.md).
+# (history.csv's JOINTSET.shear_displacement_magnitude, docs/reference/outputs.md).
 awk -F, '/^#/ { next }
   $1 == "time" { for (i = 1; i <= NF; ++i) col[$i] = i; next }
   { print $1, $col["base.shear_displacement_magnitude"], $col["anti_toppling.shear_displacement_magnitude"] }' \
@@ -73,7 +73,7 @@ done
 cp "$OUT/laws/study.png" docs/img/toppling-laws.png
 ls docs/img/toppling-*.png
 
-# The tables of docs/toppling-study.md from the laws study (its study.csv):
+# The tables of docs/guide/toppling-study.md from the laws study (its study.csv):
 # the Burgers case's displacements at 1, 10, 50 and 100 d, and per law.
 /usr/bin/python3 - "$OUT/laws/study.csv" "$OUT/history.md" "$OUT/laws.md" <<'PY'
 import csv, sys
@@ -99,13 +99,13 @@ with open(sys.argv[3], "w") as f:
             continue
         print(f"| {law} | {v(r, 'block10', 1):.2f} | {v(r, 'block10', 100):.2f} | {v(r, 'block1', 100):.2f} |", file=f)
 PY
-scripts/splice-doc.sh docs/toppling-study.md toppling-creep-history "$OUT/history.md"
-scripts/splice-doc.sh docs/toppling-study.md toppling-laws "$OUT/laws.md"
+scripts/splice-doc.sh docs/guide/toppling-study.md toppling-creep-history "$OUT/history.md"
+scripts/splice-doc.sh docs/guide/toppling-study.md toppling-laws "$OUT/laws.md"
 # The phi sweep's table (phi.dat: phi, block 1, block 10 at 20 s).
 awk 'BEGIN { h = "| φ [deg] |"; s = "|---|"; a = "| block 1 |"; b = "| block 10 |" }
      { h = h " " $1 " |"; s = s "---|"; a = a sprintf(" %#.3g |", $2); b = b sprintf(" %#.3g |", $3) }
      END { print h; print s; print a; print b }' "$OUT/phi.dat" >"$OUT/phi.md"
-scripts/splice-doc.sh docs/toppling-study.md toppling-phi "$OUT/phi.md"
+scripts/splice-doc.sh docs/guide/toppling-study.md toppling-phi "$OUT/phi.md"
 # The joints' mean |shear displacement| of the Burgers case at 1, 10, 50 and 100 d.
 awk 'function near(t,   d) { d = $1 - t; return d < 0 ? -d : d }
      BEGIN { n = split("1 10 50 100", T, " ") }
@@ -113,4 +113,4 @@ awk 'function near(t,   d) { d = $1 - t; return d < 0 ? -d : d }
      END { h = "| time [d] |"; s = "|---|"; x = "| base: mean \\|shear displacement\\| [m] |"; y = "| anti-toppling planes [m] |"
            for (k = 1; k <= n; ++k) { h = h " " T[k] " |"; s = s "---|"; x = x sprintf(" %.3f |", b[k]); y = y sprintf(" %.3f |", a[k]) }
            print h; print s; print x; print y }' "$OUT/joint-shear.dat" >"$OUT/joint-shear.md"
-scripts/splice-doc.sh docs/toppling-study.md toppling-joint-shear "$OUT/joint-shear.md"
+scripts/splice-doc.sh docs/guide/toppling-study.md toppling-joint-shear "$OUT/joint-shear.md"

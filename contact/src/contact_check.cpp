@@ -1,4 +1,4 @@
-// The open-close check of a trial (docs/contacts.md, "States and the
+// The open-close check of a trial (docs/reference/contacts.md, "States and the
 // open-close iteration"): each contact's state against the trial displacements
 // (open, locked, sliding by Mohr-Coulomb), the stick and lock-at-touch rules,
 // anti-chattering, friction refinements and the creep laws' Newton.
@@ -71,7 +71,7 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
     // dashpot (JointSet::restitution) adds its force c rate beside the spring
     // of a closed (normal) or locked (shear) contact, but neither opens, closes,
     // nor makes a contact slide, and friction is N tan(phi) of the spring's N.
-    // Measured (docs/contacts.md, "Contact damping"): deciding on the total
+    // Measured (docs/reference/contacts.md, "Contact damping"): deciding on the total
     // force instead, the dashpot's transient force at an impact (c v, hundreds
     // of times the block's weight) locks the shear spring with a stretch that
     // the weight's friction cannot hold afterwards, and the drop on an incline
@@ -92,7 +92,7 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
           // that, f slip, is flight, not stretch of the spring: the spring locks
           // where the vertex touches. Counting it (Shi's rule: the locking point
           // at the step-start projection) made the outcome of an impact depend
-          // on where in its step the contact was reached (docs/contacts.md,
+          // on where in its step the contact was reached (docs/reference/contacts.md,
           // "Contact damping": a block dropped on an incline slid at the impact
           // at some steps and not at others). Dynamic analysis only
           // (ContactSettings::lock_at_touch).
@@ -191,7 +191,7 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
           shear_stiffness(c) * (h.dt0 + seams_[c].locking_shift + slip) / r.tributary_length;
       const laws::ContactRheology& law = *joint_sets_[r.joint_set].law;
       if (law.failure_in_step(step_constants_of(c), work_rheology_[r.rheology], h.tau_start, tau)) {
-        // The law fails within the step at this stress (damage 1, docs/rheology-in-dda.md,
+        // The law fails within the step at this stress (damage 1, docs/reference/rheology-in-dda.md,
         // "Failure"): the joint's creep strength is gone. It becomes a residual
         // frictional joint - elastic spring, no creep, no cohesion or tensile
         // strength - and the next iterate lets Mohr-Coulomb decide whether its
@@ -205,7 +205,7 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
       }
       linearize(c, tau);
       if (law.linearity() == laws::Linearity::nonlinear) {
-        // Newton (docs/rheology-in-dda.md, "Nonlinear laws"): the iterate was
+        // Newton (docs/reference/rheology-in-dda.md, "Nonlinear laws"): the iterate was
         // solved with the tangent at the last stress; the law's increment at
         // this stress, Delta d_c(tau) = h + c tau of the new tangent, differs
         // from that model by e [length], which moves the stress by about

@@ -1,4 +1,4 @@
-// Accepting a step (docs/contacts.md; docs/rheology-in-dda.md): the records
+// Accepting a step (docs/reference/contacts.md; docs/reference/rheology-in-dda.md): the records
 // of the step become the committed ones, with their forces, accumulated shear,
 // locking points and the creep laws' histories advanced over the step.
 #include "rheodda/contact/contact_system.hpp"

@@ -1,4 +1,4 @@
-// The creep laws on the contacts (docs/rheology-in-dda.md): per joint set and
+// The creep laws on the contacts (docs/reference/rheology-in-dda.md): per joint set and
 // step the law's constants and scheme, per locked contact the affine form of
 // its creep increment (the seam in its shear spring), failures of damage laws.
 #include "rheodda/contact/contact_system.hpp"
@@ -21,7 +21,7 @@ namespace {
 /// Scheme of a joint set when the settings leave it open: exponential-linear
 /// (2nd order) while dt (k + E_i) <= 2 eta_i for every creep element i, where it
 /// neither diverges nor rings under the series spring k [stress/length];
-/// implicit (monotone at any dt) otherwise (docs/rheology-in-dda.md, "Schemes").
+/// implicit (monotone at any dt) otherwise (docs/reference/rheology-in-dda.md, "Schemes").
 laws::Scheme automatic_scheme(const laws::ContactRheology& law, double k, double dt) {
   const auto* series = dynamic_cast<const laws::SeriesLaw*>(&law);
   if (!series) return laws::Scheme::implicit;
@@ -65,7 +65,7 @@ double ContactSystem::time_to_failure() const {
 }
 
 void ContactSystem::fail_law(size_t c, double creep) {
-  // docs/rheology-in-dda.md, "Failure": a residual frictional joint from now on.
+  // docs/reference/rheology-in-dda.md, "Failure": a residual frictional joint from now on.
   // The creep up to the failure is the step's last: a fixed shift of the locking
   // point (compliance 0), as the law's own curve ends its creep at the failure
   // (laws/accurate_curve.cpp). Where the law's creep diverges at failure

@@ -1,4 +1,4 @@
-// The creep error estimate of adaptive creep stepping (docs/speed-accuracy.md,
+// The creep error estimate of adaptive creep stepping (docs/reference/step-controls.md,
 // "Adaptive creep stepping") and the retraction of a step whose estimate is
 // too large. The step-start records are those the commit replaced (kept by
 // end_step when begin_step was asked for the estimate), so neither the
@@ -56,7 +56,7 @@ void ContactSystem::estimate_creep_error() {
   double worst = 0.0;
   for (const Contact& c : committed_) {
     if (c.rheology < 0 || c.tributary_length <= 0.0 || c.state != ContactState::locked ||
-        c.creep_failed)  // a failed damage law no longer creeps (docs/rheology-in-dda.md, "Failure")
+        c.creep_failed)  // a failed damage law no longer creeps (docs/reference/rheology-in-dda.md, "Failure")
       continue;
     const auto it = start_of.find(c.id);
     if (it == start_of.end()) continue;
@@ -72,7 +72,7 @@ void ContactSystem::estimate_creep_error() {
                                      : laws::Scheme::exponential_linear;
       k = Pair{used, law->step_constants(dt, used), law->step_constants(dt, other)};
     }
-    // Stresses tau = F / l at the step's start and end (docs/rheology-in-dda.md, Units).
+    // Stresses tau = F / l at the step's start and end (docs/reference/rheology-in-dda.md, Units).
     const double tau_s = s.shear_force / s.tributary_length, tau_e = c.shear_force / c.tributary_length;
     tau_now[c.id] = tau_s;
     const laws::RheologyState& old = start_rheology[s.rheology];

@@ -1,4 +1,4 @@
-// The contacts' terms of the energy balance (contact_energy.hpp; docs/engine.md,
+// The contacts' terms of the energy balance (contact_energy.hpp; docs/reference/engine.md,
 // "Energy balance"), from the records of the last accepted step and what
 // end_step recorded of it (StepWork: springs, start and end stretches, slip,
 // state at the step start).

@@ -1,5 +1,5 @@
 // Richardson extrapolation of the contact records for step doubling
-// (docs/speed-accuracy.md, "Step doubling").
+// (docs/reference/step-controls.md, "Step doubling").
 #include "rheodda/contact/contact_system.hpp"
 
 #include <algorithm>
@@ -26,7 +26,7 @@ bool ContactSystem::extrapolate(const ContactSystem& coarse) {
       return false;
   }
   // Richardson: y_f - y = C dt^2/2 and y_c - y = C dt^2 to leading order, so
-  // 2 y_f - y_c cancels the leading error (docs/speed-accuracy.md).
+  // 2 y_f - y_c cancels the leading error (docs/reference/step-controls.md).
   auto richardson = [](double& fine, double c) { fine = 2.0 * fine - c; };
   for (size_t k = 0; k < committed_.size(); ++k) {
     Contact& f = committed_[k];

@@ -30,7 +30,7 @@ inline double projection_ratio(const Vec2& a, const Vec2& b, const Vec2& p) {
 /// within the search reach) locks where it is; locking it at the clamped end
 /// attaches the spring already stretched by the overhang, energy from nowhere
 /// (measured on the stepped slope of bench/scenes/stepped-toppling.yaml: the
-/// explosion at dt = 0.1 ms, docs/contacts.md "The locking point").
+/// explosion at dt = 0.1 ms, docs/notes/contact-solves.md "Locking points on the edge's line").
 inline double line_ratio(const Vec2& a, const Vec2& b, const Vec2& p) {
   const Vec2 ab = b - a;
   return ab.dot(p - a) / ab.squaredNorm();

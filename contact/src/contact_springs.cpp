@@ -1,4 +1,4 @@
-// The springs of a contact (the seed's eqs. 17-18, 23-29; docs/contacts.md,
+// The springs of a contact (the seed's eqs. 17-18, 23-29; docs/reference/contacts.md,
 // "Springs"): its linearized geometry on the step-start configuration, normal
 // and shear springs, dashpots, and their terms in the global system.
 #include "rheodda/contact/contact_system.hpp"
@@ -43,7 +43,7 @@ void ContactSystem::prepare(std::span<const BlockView> blocks, const Contact& c,
   // length for an edge-edge contact, point_tributary_length for a point
   // contact), so that the joint's per-area response holds on every contact
   // and a contact's springs do not jump when it changes kind. Measured
-  // (docs/contacts.md, "Springs of a joint on point contacts"): taking the
+  // (docs/notes/contact-solves.md, "Springs of a joint on point contacts"): taking the
   // contact length, a column of the seed's slope that rose 3.4 cm off one base
   // corner turned its other base contact from edge-edge into a point contact,
   // whose shear spring jumped from the joint's 5e8 to the penalty's 1.6e11 N/m
@@ -89,11 +89,11 @@ double ContactSystem::reversal_stiffness(size_t c) const {
   // (ContactSettings::reversal_at_normal_resolution): the normal spring p_n
   // plus the step's inertia on the contact, m_red / (beta dt^2) (the Newmark
   // term the host adds to the block's stiffness; m_red the reduced mass of the
-  // two blocks). Measured (docs/contacts.md, "Friction that pushed"): with a
+  // two blocks). Measured (docs/notes/contact-solves.md, "Friction that pushed"): with a
   // soft joint f_res / k_s was 1e-4 m on the seed's slope, more than a small
   // step's slip, so a vertex moving backwards kept its friction force pushing
   // it on, and the slope settled at 1 ms but never at 0.25 ms. Measured
-  // (docs/contacts.md, "Contacts that stop"): with p_n alone the resolution is
+  // (docs/notes/contact-solves.md, "Contacts that stop"): with p_n alone the resolution is
   // a fixed length while the backward slip of a contact whose friction exceeds
   // its drive shrinks as dt^2 (the inertia holds it): contacts that had
   // stopped stayed sliding, more of them the smaller the step (the damped

@@ -1,5 +1,5 @@
 // The contact system's state between two steps, taken and restored
-// (ContactSystem::State; a resumed run, docs/outputs.md "Interrupting and
+// (ContactSystem::State; a resumed run, docs/reference/outputs.md "Interrupting and
 // resuming"). What begin_step rebuilds from the committed records (the hot
 // data, seams, law constants, the keys of the last step, the broad phase's
 // buffers) and what lives only within a step (the trial records, the

@@ -39,37 +39,30 @@ const char* creep_state_name(CreepState s) {
 namespace {
 
 void check_joint_set(const JointSet& js, size_t index) {
-  auto bad = [&](const char* key, double v) {
-    throw std::invalid_argument("joint set " + std::to_string(index) + " '" + js.name + "': " + key +
-                                " = " + std::to_string(v) + " must be >= 0");
+  auto refuse = [&](const char* key, const std::string& message) {
+    throw JointSetError(index, js.name, key, message);
   };
+  auto bad = [&](const char* key, double v) { refuse(key, std::string(key) + " = " + std::to_string(v) + " must be >= 0"); };
   if (!(js.friction_angle >= 0.0) || !(js.friction_angle < 90.0))
-    throw std::invalid_argument("joint set " + std::to_string(index) + " '" + js.name +
-                                "': friction_angle = " + std::to_string(js.friction_angle) +
-                                " must be in [0, 90) deg");
+    refuse("friction_angle", "friction_angle = " + std::to_string(js.friction_angle) + " must be in [0, 90) deg");
   if (!(js.cohesion >= 0.0)) bad("cohesion", js.cohesion);
   if (js.residual_friction_angle &&
       !(*js.residual_friction_angle >= 0.0 && *js.residual_friction_angle <= js.friction_angle))
-    throw std::invalid_argument("joint set " + std::to_string(index) + " '" + js.name +
-                                "': residual_friction_angle = " + std::to_string(*js.residual_friction_angle) +
-                                " must be in [0, friction_angle = " + std::to_string(js.friction_angle) + "] deg");
+    refuse("residual_friction_angle", "residual_friction_angle = " + std::to_string(*js.residual_friction_angle) +
+                                          " must be in [0, friction_angle = " + std::to_string(js.friction_angle) +
+                                          "] deg");
   if (!(js.residual_cohesion >= 0.0 && js.residual_cohesion <= js.cohesion))
-    throw std::invalid_argument("joint set " + std::to_string(index) + " '" + js.name +
-                                "': residual_cohesion = " + std::to_string(js.residual_cohesion) +
-                                " must be in [0, cohesion = " + std::to_string(js.cohesion) + "]");
+    refuse("residual_cohesion", "residual_cohesion = " + std::to_string(js.residual_cohesion) +
+                                    " must be in [0, cohesion = " + std::to_string(js.cohesion) + "]");
   if (!(js.tensile_strength >= 0.0)) bad("tensile_strength", js.tensile_strength);
   if (js.normal_stiffness && !(*js.normal_stiffness > 0.0)) bad("normal_stiffness", *js.normal_stiffness);
   if (js.shear_stiffness && !(*js.shear_stiffness > 0.0)) bad("shear_stiffness", *js.shear_stiffness);
   if (js.restitution && !(*js.restitution >= 0.0 && *js.restitution <= 1.0))
-    throw std::invalid_argument("joint set " + std::to_string(index) + " '" + js.name +
-                                "': restitution = " + std::to_string(*js.restitution) +
-                                " must be in [0, 1]");
+    refuse("restitution", "restitution = " + std::to_string(*js.restitution) + " must be in [0, 1]");
   // One elastic shear stiffness per joint: a law's instantaneous spring E1 is it.
   if (js.law && js.law->instantaneous_stiffness() && js.shear_stiffness)
-    throw std::invalid_argument("joint set " + std::to_string(index) + " '" + js.name +
-                                "': shear_stiffness and the E1 of law '" +
-                                std::string(js.law->name()) +
-                                "' both set the joint's elastic shear stiffness; give only E1");
+    refuse("shear_stiffness", "shear_stiffness and the E1 of law '" + std::string(js.law->name()) +
+                                  "' both set the joint's elastic shear stiffness; give only E1");
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// Into a step (docs/contacts.md, "Contact identity (transfer)"): contacts
+// Into a step (docs/reference/contacts.md, "Contact identity (transfer)"): contacts
 // detected on the step-start geometry, each given the record of the same
 // physical contact in the last step when there is one (its state, locking
 // point, forces, creep history), new ones starting open or, already touching,

@@ -184,7 +184,7 @@ void detect_pair(std::span<const BlockView> blocks, int ia, int ib, const Detect
         // Only the notch edges the corner still lies along: a corner that has
         // moved on past the notch's vertex along one edge (beyond the other's
         // end by more than the allowed penetration) no longer touches the other,
-        // whose line would hold it with a spring in tension (docs/contacts.md,
+        // whose line would hold it with a spring in tension (docs/reference/contacts.md,
         // "Contact types"; measured on the toppling example's toe block).
         bool any = false;
         for (int c = 0; c < 4; ++c)
@@ -206,7 +206,7 @@ void detect_pair(std::span<const BlockView> blocks, int ia, int ib, const Detect
       // scored edge is one the vertex lies beyond. Its line's distance
       // measures nothing there; a valid candidate the vertex does lie along
       // is its entrance (at a T-junction of a generated rock mass, the edge
-      // the vertex sits on; docs/contacts.md, "Contact types").
+      // the vertex sits on; docs/reference/contacts.md, "Contact types").
       if (chosen < 0)
         for (int c = 0; c < 4; ++c)
           if (score[c] >= -sin_tol && in_range[c] && (chosen < 0 || score[c] > score[chosen])) chosen = c;

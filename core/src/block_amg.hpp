@@ -1,5 +1,5 @@
 // Aggregation multigrid for the DDA block system, used as the preconditioner
-// of a conjugate gradient (the `amg` solver, solver.hpp; docs/engine.md,
+// of a conjugate gradient (the `amg` solver, solver.hpp; docs/reference/engine.md,
 // "Solvers").
 //
 // Why: the global system of a large DDA model is a 2-D graph of 6x6 blocks.

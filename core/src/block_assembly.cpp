@@ -1,4 +1,4 @@
-// The block sub-matrices of one step (Shi 1988; docs/engine.md, "Sub-matrices"):
+// The block sub-matrices of one step (Shi 1988; docs/reference/engine.md, "Sub-matrices"):
 // per step, with D_i = (u0, v0, r0, ex, ey, gxy) the unknowns of block i at
 // its centroid (x0, y0) and T_i(x, y) the first-order displacement matrix
 // (contact/kinematics.hpp, the seed's eq. 27):

@@ -1,6 +1,6 @@
 // Block sub-matrix formulas shared by the engine (engine.cpp) and its energy
 // balance (energy.cpp): the elastic matrix, the unit mass matrix and the value
-// of a point-load history (Shi 1988; docs/engine.md, "Sub-matrices").
+// of a point-load history (Shi 1988; docs/reference/engine.md, "Sub-matrices").
 #pragma once
 
 #include <Eigen/Dense>
@@ -57,7 +57,7 @@ inline Mat6 unit_mass_matrix(const PolygonIntegrals& m) {
 }
 
 /// Retardation time tau [time] of a block's Kelvin-Voigt strain damping
-/// (Material::damping_ratio zeta; docs/engine.md, "Block damping"): the viscous
+/// (Material::damping_ratio zeta; docs/reference/engine.md, "Block damping"): the viscous
 /// stress E_e tau eps_dot is stiffness proportional, so a strain mode of angular
 /// frequency omega has the damping ratio tau omega / 2; tau = 2 zeta / omega_1
 /// gives the block's lowest strain mode the ratio zeta (its higher modes more).

@@ -1,4 +1,4 @@
-// Validation of a model's bolts (bolt.hpp; docs/bolts.md): every refusal names
+// Validation of a model's bolts (bolt.hpp; docs/reference/bolts.md): every refusal names
 // the entry "bolts[k].key" (ModelError::key) so a scene reader can point at
 // its file and line.
 #include <Eigen/Geometry>
@@ -75,11 +75,11 @@ void validate_bolts(const Model& m) {
   if (m.bolts.empty()) return;
   const Settings& s = m.settings;
   if (s.step_tolerance > 0.0)
-    throw ModelError("settings.step_tolerance", "step doubling does not carry bolts (docs/bolts.md, \"Limits\")");
+    throw ModelError("settings.step_tolerance", "step doubling does not carry bolts (docs/reference/bolts.md, \"Limits\")");
   if (s.contact_solver == ContactSolver::newton)
     throw ModelError("settings.contact_solver",
                      "the newton contact solve's residual does not hold the bolts' forces; use open_close "
-                     "(docs/bolts.md, \"Limits\")");
+                     "(docs/reference/bolts.md, \"Limits\")");
 }
 
 }  // namespace rheodda::core

@@ -1,4 +1,4 @@
-// The bolts in a step (bolts.hpp; docs/bolts.md, "Equations"): their terms in
+// The bolts in a step (bolts.hpp; docs/reference/bolts.md, "Equations"): their terms in
 // the block equations, the check of their yield state, and their state update
 // when the step is accepted.
 #include <algorithm>
@@ -30,7 +30,7 @@ double rest_length(const Bolt& bolt) {
 /// The scheme of a bolt's law for a step of dt: exponential-linear (2nd order)
 /// while dt (k + E_i) <= 2 eta_i for every creep element i, where it neither
 /// diverges nor rings under the series spring k, implicit otherwise - the rule
-/// of the joints (docs/rheology-in-dda.md, "Schemes"; contact/src/contact_creep.cpp).
+/// of the joints (docs/reference/rheology-in-dda.md, "Schemes"; contact/src/contact_creep.cpp).
 laws::Scheme bolt_scheme(const laws::ContactRheology& law, double k, double dt) {
   const auto* series = dynamic_cast<const laws::SeriesLaw*>(&law);
   if (!series) return laws::Scheme::implicit;
@@ -101,7 +101,7 @@ void BoltSet::begin_step(const Model& m, const std::vector<BlockState>& blocks,
     if (s.state == BoltMode::ruptured) continue;
     const auto [xa, xb] = ends(bolt, blocks);
     const double L = (xb - xa).norm();
-    if (!(L > 0.0)) continue;  // ends met: no axis this step (docs/bolts.md, "Limits")
+    if (!(L > 0.0)) continue;  // ends met: no axis this step (docs/reference/bolts.md, "Limits")
     const Vec2 n = (xb - xa) / L;
     // (1): g = T^T n at the step-start position of each end.
     t.g_a = contact::displacement_matrix(blocks[bolt.block_a].centroid, xa).transpose() * n;
@@ -215,7 +215,7 @@ BoltEnergy BoltSet::commit(const Model& m, const std::vector<BlockState>& blocks
                           force * (s.plastic_elongation - plastic_start) + force * (creep_now - creep_start);
     if (s.elongation > bolt.rupture_elongation) {
       // Ruptured at the end of this step: its stored energy is released, and it
-      // carries nothing from now on (docs/bolts.md, "Rupture").
+      // carries nothing from now on (docs/reference/bolts.md, "Equations").
       energy.dissipation += 0.5 * force * force / kb;
       s.state = BoltMode::ruptured;
       s.force = 0.0;

@@ -1,4 +1,4 @@
-// The bolts of a model in the engine (docs/bolts.md): their terms in a step's
+// The bolts of a model in the engine (docs/reference/bolts.md): their terms in a step's
 // block equations, the check of their yield state against a trial D, and their
 // state update when the step is accepted. Engine::Impl holds one BoltSet; a
 // model without bolts never calls it (Model::bolts empty: no bolt work at all).
@@ -8,7 +8,7 @@
 // (contact/kinematics.hpp), the elongation increment is, to first order,
 //     Delta = n . (T_b D_b - T_a D_a) = g_b . D_b - g_a . D_a,   g = T^T n     (1)
 // (the axis of the step start, as the contact normals are). The axial force at
-// the end of the step is, elastic (docs/bolts.md, "Equations"),
+// the end of the step is, elastic (docs/reference/bolts.md, "Equations"),
 //     N = k (e0 + Delta - e_p - e_c - Delta e_c),  Delta e_c = h + c N          (2)
 // (e0 the elongation at the step start, e_p the plastic and e_c the creep
 // elongation, h and c the law's affine increment, laws/contact_rheology.hpp eq. 1),
@@ -27,8 +27,8 @@
 
 namespace rheodda::core {
 
-/// The bolts' terms of the energy balance (docs/engine.md, "Energy balance";
-/// docs/bolts.md, "Energy") [force x length].
+/// The bolts' terms of the energy balance (docs/reference/engine.md, "Energy balance";
+/// docs/reference/bolts.md, "Energy") [force x length].
 struct BoltEnergy {
   double stored = 0.0;       ///< sum over intact bolts of N^2 / (2 k)
   double dissipation = 0.0;  ///< of the last step: (N1 - N0)^2/(2k) (integration) + N1 Delta e_p

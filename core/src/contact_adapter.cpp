@@ -1,5 +1,7 @@
 #include "rheodda/core/contact_adapter.hpp"
 
+#include "rheodda/core/defaults.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -8,10 +10,8 @@
 namespace rheodda::core {
 
 contact::ContactSettings contact_settings_for(const Model& model, double penalty_factor) {
-  double e_max = 0.0;
-  for (const Material& m : model.materials) e_max = std::max(e_max, m.young_modulus);
   contact::ContactSettings s;
-  s.penalty = penalty_factor * e_max;
+  s.penalty = penalty_factor * largest_young_modulus(model.materials);  // defaults.hpp
   // Dynamic analysis, or a dynamic settling stage (ContactSettings::lock_at_touch;
   // the steps say which are dynamic: StepContext::dynamic).
   s.lock_at_touch = model.settings.has_dynamic_steps();

@@ -1,4 +1,4 @@
-// Dynamic stages of a static analysis (docs/engine.md, "Dynamic stages"): the
+// Dynamic stages of a static analysis (docs/reference/engine.md, "Dynamic stages"): the
 // settling stage at the start (Settings::settle_until) and the stages that take
 // a collapse dynamically (Settings::collapse_dt). A stage carries velocity with
 // the settling stage's dt and g2; it ends at rest - after a step whose kinetic

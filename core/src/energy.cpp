@@ -1,4 +1,4 @@
-// The energy balance of a run (energy.hpp; docs/engine.md, "Energy balance").
+// The energy balance of a run (energy.hpp; docs/reference/engine.md, "Energy balance").
 //
 // Why the time integration dissipates, and how much (derived, not a remainder).
 // The engine solves, per block, M a' = F(D) with every force F evaluated at the

@@ -1,4 +1,4 @@
-// The DDA engine (Shi 1988; docs/engine.md): its state, the step-start
+// The DDA engine (Shi 1988; docs/reference/engine.md): its state, the step-start
 // geometry, accepting a step (moving the blocks, stresses, velocities) and the
 // public API. The rest of the engine is in the files engine_impl.hpp names.
 
@@ -13,18 +13,16 @@
 
 #include "block_terms.hpp"
 #include "engine_impl.hpp"
+#include "rheodda/core/defaults.hpp"
 
 namespace rheodda::core {
 
 void Engine::Impl::initialise() {
   const Settings& s = model.settings;
-  double e_max = 0.0;
-  for (const auto& mat : model.materials) {
-    elastic.push_back(elastic_matrix(mat));
-    e_max = std::max(e_max, mat.young_modulus);
-  }
-  // Fixed points: Shi's code uses a penalty of the order of 10-100 E (dda.md).
-  fixed_k = s.fixed_point_stiffness > 0.0 ? s.fixed_point_stiffness : 100.0 * e_max;
+  for (const auto& mat : model.materials) elastic.push_back(elastic_matrix(mat));
+  // Fixed points: Shi's code uses a penalty of the order of 10-100 E (dda.md; defaults.hpp).
+  fixed_k = s.fixed_point_stiffness > 0.0 ? s.fixed_point_stiffness
+                                          : default_fixed_point_stiffness(largest_young_modulus(model.materials));
 
   Eigen::AlignedBox2d box;
   st.blocks.resize(model.blocks.size());
@@ -48,10 +46,10 @@ void Engine::Impl::initialise() {
         0.0, 0.0, 0.0;
     for (const auto& v : b.vertices) box.extend(v);
   }
-  w0 = 0.5 * std::max(box.sizes().x(), box.sizes().y());
+  w0 = core::half_model_size(box.sizes().x(), box.sizes().y());
   {
     // Median block size sqrt(area) [length]: the contact search never reaches
-    // less than kSearchFloor of it (docs/engine.md, "Contact search reach").
+    // less than kSearchFloor of it (docs/reference/engine.md, "Contact search reach").
     std::vector<double> sizes;
     sizes.reserve(st.blocks.size());
     for (const auto& b : st.blocks) sizes.push_back(std::sqrt(std::abs(polygon_integrals(b.vertices).S)));
@@ -68,7 +66,7 @@ void Engine::Impl::initialise() {
   D = Eigen::VectorXd::Zero(6 * static_cast<Eigen::Index>(st.blocks.size()));
   refresh_geometry();
   st.energy = EnergyAccount::start(energy_inputs());
-  if (!model.bolts.empty()) {  // docs/bolts.md: the pretension's energy is there at t = 0
+  if (!model.bolts.empty()) {  // docs/reference/bolts.md: the pretension's energy is there at t = 0
     st.bolts = BoltSet::initial_states(model);
     st.energy.initial.bolt = st.energy.stored.bolt = BoltSet::stored_energy(model, st.bolts);
   }

@@ -29,14 +29,14 @@ inline double seconds_since(Clock::time_point t0) {
 }
 
 /// Adaptive creep stepping rejects a step whose creep error estimate exceeds
-/// this multiple of Settings::creep_tolerance [-] (docs/speed-accuracy.md).
+/// this multiple of Settings::creep_tolerance [-] (docs/reference/step-controls.md).
 constexpr double kRejectFactor = 2.0;
 /// Adaptive creep stepping steps onto a damage law's failure when it is within
-/// this many steps (docs/rheology-in-dda.md, "Failure") [-].
+/// this many steps (docs/reference/rheology-in-dda.md, "Failure") [-].
 constexpr double kFailureReach = 8.0;
 /// The contact search of a large model (g2 w0 above this fraction of the median
 /// block size) reaches only as far as the motion needs, not below this fraction
-/// (docs/engine.md, "Contact search reach") [-].
+/// (docs/reference/engine.md, "Contact search reach") [-].
 constexpr double kSearchFloor = 0.1;
 
 struct Engine::Impl {
@@ -53,7 +53,7 @@ struct Engine::Impl {
   /// The displacement per step the contact search covers (StepContext::
   /// max_displacement; contacts are looked for within search_factor x it):
   /// g2 w0 where that is below search_floor, else adapted to the motion
-  /// (search_reach(), docs/engine.md, "Contact search reach") [length].
+  /// (search_reach(), docs/reference/engine.md, "Contact search reach") [length].
   double search_disp = 0.0;
   double search_floor = 0.0;  // kSearchFloor x the median block size [length]
   double search_reach(const Eigen::VectorXd& d) const;
@@ -104,7 +104,7 @@ struct Engine::Impl {
   /// End of the stage the run is in or was last in: the settling stage or a
   /// collapse stage (EngineState::stage; dynamic_stages.cpp) [time].
   double stage_end() const { return st.stage.until; }
-  /// In the settling stage (Settings::settle_until; docs/engine.md, "Settling
+  /// In the settling stage (Settings::settle_until; docs/reference/engine.md, "Settling
   /// stage") or in a collapse stage.
   bool settling() const {
     const double end = stage_end();
@@ -126,7 +126,7 @@ struct Engine::Impl {
   void accept(const Eigen::VectorXd& d, double dt, int step_index, double t_end);
   void record_measurements(int step_index);
   StepReport step(double dt_cap);
-  /// After a static trial of dt that moved as a mechanism (docs/engine.md,
+  /// After a static trial of dt that moved as a mechanism (docs/reference/engine.md,
   /// "Collapse stages"): cuts dt towards collapse_dt and returns false, or, at
   /// collapse_dt, opens a collapse stage from the step's start, sets dt to the
   /// stage's first step and returns true.

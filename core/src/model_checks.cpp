@@ -1,4 +1,4 @@
-// Validation of a Model before a run (docs/engine.md, "Parameters"): every
+// Validation of a Model before a run (docs/reference/engine.md, "Parameters"): every
 // refusal names the offending entry (ModelError::key) so that a scene reader
 // can point at its file and line.
 #include <algorithm>

@@ -1,4 +1,4 @@
-// A semismooth Newton solve of the step (docs/contacts.md, "Contact solves").
+// A semismooth Newton solve of the step (docs/reference/contacts.md, "Contact solves").
 //
 // The step's equations are R(D) = F0 - K0 D - f(D) = 0, with f(D) the forces
 // of the contacts at D (ContactModel::contact_forces): piecewise linear in D,

@@ -1,4 +1,4 @@
-// Shi's open-close iteration (Shi 1988; docs/contacts.md, "States and the
+// Shi's open-close iteration (Shi 1988; docs/reference/contacts.md, "States and the
 // open-close iteration"): solve K(S) D = F(S) for the trial states S, let the
 // contacts check D and update S, repeat until a check changes nothing, at most
 // Settings::max_open_close iterates. The reference contact solve.

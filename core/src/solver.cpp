@@ -20,7 +20,7 @@ namespace {
 // cholmod_core.h), which neither OMP_NUM_THREADS nor omp_set_num_threads
 // overrides. On a machine with fewer free cores than that the threads wait on
 // each other: on two cores the 1 620-block wall's factorisations took 3.3x the
-// time of serial ones (docs/engine.md, "Solvers"). rheodda solves one model per
+// time of serial ones (docs/reference/engine.md, "Solvers"). rheodda solves one model per
 // core (studies run their cases in parallel, `-j`), so CHOLMOD runs serially:
 // no parallel region is active while this guard lives (OpenMP's
 // max-active-levels 0), and the caller's setting comes back after.
@@ -206,7 +206,7 @@ Eigen::VectorXd LinearSolver::solve(const BlockSystem& system, double tolerance)
   if (kind == SolverKind::amg && kind_ == SolverKind::amg) return solve_amg(system, tolerance);
   if (kind == SolverKind::amg && !amg_failed_) {
     // automatic: the V-cycle has been seen to lose definiteness on irregular
-    // block sizes (a generated rock mass of 734 blocks, docs/engine.md
+    // block sizes (a generated rock mass of 734 blocks, docs/reference/engine.md
     // "Solvers"); CHOLMOD, exact, takes over rather than the run failing.
     try {
       return solve_amg(system, tolerance);

@@ -1,4 +1,4 @@
-// Step control (docs/engine.md, "A step"; docs/speed-accuracy.md): the size
+// Step control (docs/reference/engine.md, "A step"; docs/reference/step-controls.md): the size
 // of each step, cuts after a failed attempt, adaptive creep stepping with its
 // rejections, steps onto a damage law's failure, the settling stage and the
 // collapse stages of a static analysis.
@@ -37,7 +37,7 @@ std::string last_changes(const ContactCheck& c) {
 
 StepReport Engine::Impl::step(double dt_cap) {
   const Settings& s = model.settings;
-  // Settling stage (docs/engine.md, "Settling stage"): steps of at most
+  // Settling stage (docs/reference/engine.md, "Settling stage"): steps of at most
   // settle_dt with g2 = settle_g2, ending on settle_until, no adaptive control.
   bool settle = settling();
   if (settle) dt_cap = std::min(dt_cap, stage_end() - st.time);
@@ -50,7 +50,7 @@ StepReport Engine::Impl::step(double dt_cap) {
   if (adaptive) {
     load_break = next_load_break();
     dt_cap = std::min(dt_cap, load_break - st.time);
-    // A damage law's failure ends a step (docs/rheology-in-dda.md, "Failure"):
+    // A damage law's failure ends a step (docs/reference/rheology-in-dda.md, "Failure"):
     // the time left before the first contact fails at its present stress, 1e-3
     // of it beyond, so that it fails in that step even when its stress moves
     // a little within it (a step right to the failure time can leave a sliver
@@ -70,7 +70,7 @@ StepReport Engine::Impl::step(double dt_cap) {
   if (failure_step < dt || (failure_step <= kFailureReach * dt && failure_step <= dt_cap && within_dt_max))
     dt = failure_step;
   double allowed = g2_now() * w0;
-  const bool watch = s.collapse_dt > 0.0;  // collapse stages (docs/engine.md, "Collapse stages")
+  const bool watch = s.collapse_dt > 0.0;  // collapse stages (docs/reference/engine.md, "Collapse stages")
   for (;;) {
     const Trial trial = solve_trial(dt, adaptive, rep);
     if (watch && !settle && trial.singular.empty() &&
@@ -83,7 +83,7 @@ StepReport Engine::Impl::step(double dt_cap) {
       // moves by that force times dt^2 / 2M; and so does an open-close
       // iteration that does not settle at collapse_dt, where the static steps
       // would otherwise go on cutting into a crawl of the mechanism
-      // (docs/engine.md, "Collapse stages").
+      // (docs/reference/engine.md, "Collapse stages").
       contacts->abandon_step();
       if (open_collapse_stage(dt, rep)) {
         settle = true;
@@ -98,7 +98,7 @@ StepReport Engine::Impl::step(double dt_cap) {
       double err = 0.0;
       if (adaptive) {
         // Reject and redo a step whose creep error estimate exceeds the
-        // tolerance by more than kRejectFactor (docs/speed-accuracy.md, "Adaptive
+        // tolerance by more than kRejectFactor (docs/reference/step-controls.md, "Adaptive
         // creep stepping"), with the step the estimate asks for: dt 0.9
         // sqrt(tol / err) (local error ~ dt^2), at least dt_cut dt. Never below
         // the first step dt (the control cannot stall on an estimate that does

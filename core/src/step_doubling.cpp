@@ -1,4 +1,4 @@
-// Step doubling with local (Richardson) extrapolation (docs/speed-accuracy.md,
+// Step doubling with local (Richardson) extrapolation (docs/guide/choosing-step-controls.md,
 // "Step doubling"): the adaptive control of Settings::step_tolerance.
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,7 @@
 namespace rheodda::core {
 
 StepReport Engine::Impl::doubling_step(double dt_cap) {
-  // Step doubling with local extrapolation (docs/speed-accuracy.md, "Step
+  // Step doubling with local extrapolation (docs/reference/step-controls.md, "Step
   // doubling"). The step y_c of dt and two steps y_f of dt/2 from the same
   // state: the DDA step is first order, y_c - y = C dt^2 + O(dt^3) and
   // y_f - y = C dt^2/2 + O(dt^3), so err = max |y_f - y_c| over the block

@@ -1,4 +1,4 @@
-// One attempt at a step (docs/engine.md, "A step"): the contacts are detected
+// One attempt at a step (docs/reference/engine.md, "A step"): the contacts are detected
 // on the step-start geometry (begin_step), the block terms assembled, and the
 // contact solve (Settings::contact_solver; contact_solve.hpp) finds D and the
 // contact states that agree. A step whose motion outran the contact search is
@@ -87,7 +87,7 @@ Engine::Impl::Trial Engine::Impl::solve_trial(double dt, bool creep_error_wanted
   if (trial.converged && trial.max_disp > search_disp && search_disp < g2_now() * w0) {
     // The step moved a vertex further than the contact search reached: a
     // contact beyond the search distance may have closed unseen. Redo the step
-    // (same dt) with the search widened to cover the motion (docs/engine.md,
+    // (same dt) with the search widened to cover the motion (docs/reference/engine.md,
     // "Contact search reach"); beyond g2 w0 the caller cuts dt as before.
     contacts->abandon_step();
     search_disp = std::min(g2_now() * w0, 2.0 * trial.max_disp);

@@ -8,7 +8,7 @@ joint set `plane` given this Python law instead of the built-in `burgers`, and
 prints the largest difference between the two joint shear displacements (they
 agree to round-off) and the wall time of each run.
 
-The law (per unit joint area; docs/laws.md): a spring E1 and a dashpot eta1 in
+The law (per unit joint area; docs/reference/laws.md): a spring E1 and a dashpot eta1 in
 series with a Kelvin element E2 || eta2. Creep under constant force F (the seed's
 eqs. 20-21): d(t) = F/E1 + F/E2 (1 - exp(-E2 t/eta2)) + F t/eta1. The DDA host
 asks for the creep increment of a step in the affine form Delta d_c = h + c F_e
@@ -19,6 +19,7 @@ import math
 import os
 import sys
 import time
+from typing import Sequence
 
 import numpy as np
 
@@ -28,13 +29,13 @@ import rheodda
 class PythonBurgers(rheodda.PythonLaw):
     """Burgers in Python, the same recurrences as the built-in one (laws/src/series_law.cpp)."""
 
-    def __init__(self, E1, E2, eta1, eta2):
+    def __init__(self, E1: float, E2: float, eta1: float, eta2: float) -> None:
         rheodda.PythonLaw.__init__(self, "python-burgers", {"E1": E1, "E2": E2, "eta1": eta1, "eta2": eta2},
                                    internal_count=2, instantaneous_stiffness=E1, linear=True)
         self.E1, self.E2, self.eta1, self.eta2 = E1, E2, eta1, eta2
-        self._units = {}
+        self._units: dict[tuple[float, str], tuple[rheodda.UnitStepConstants, rheodda.UnitStepConstants]] = {}
 
-    def step_constants(self, dt, scheme):
+    def step_constants(self, dt: float, scheme: str) -> rheodda.StepConstants:
         """Once per step: the per-element coefficients of eq. (2) of contact_rheology.hpp,
         Delta q = per_q q + per_start F_s + per_end F_e.
         Kelvin, exact for the scheme's force: b = 1 - exp(-dt E2/eta2), phi = 1 - b/r
@@ -62,25 +63,27 @@ class PythonBurgers(rheodda.PythonLaw):
         self._units[(dt, scheme)] = (kelvin, dashpot)
         return k
 
-    def linearize(self, k, q, force_start, force_end_guess):
+    def linearize(self, k: rheodda.StepConstants, q: Sequence[float], force_start: float,
+                  force_end_guess: float) -> tuple[float, float]:
         """Delta d_c = h + c F_e: h from the old state and F_s, c the step's creep compliance."""
         kel, dash = self._units[(k.dt, k.scheme)]
         h = kel.per_q * q[0] + kel.per_start * force_start + dash.per_start * force_start
         c = kel.per_end + dash.per_end
         return h, c
 
-    def advance(self, k, q, force_start, force_end):
+    def advance(self, k: rheodda.StepConstants, q: Sequence[float], force_start: float,
+                force_end: float) -> tuple[float, tuple[float, float]]:
         """The step's increments of each element; returns (Delta d_c, new q)."""
         kel, dash = self._units[(k.dt, k.scheme)]
         dq0 = kel.per_q * q[0] + kel.per_start * force_start + kel.per_end * force_end
         dq1 = dash.per_start * force_start + dash.per_end * force_end
         return dq0 + dq1, (q[0] + dq0, q[1] + dq1)
 
-    def creep_closed_form(self, force, t):
+    def creep_closed_form(self, force: float, t: float) -> float:
         return force / self.E2 * -math.expm1(-self.E2 * t / self.eta2) + force * t / self.eta1
 
 
-def main():
+def main() -> int:
     root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
     scene = rheodda.load_scene(os.path.join(root, "examples", "shear-creep-test.yaml"))
     p = {"E1": 26.87, "E2": 192.43, "eta1": 34807.72, "eta2": 2141.23}  # Table 1 row 1, as in the scene

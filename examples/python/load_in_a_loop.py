@@ -27,10 +27,10 @@ out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, "docs", "img", "p
 scene = rheodda.load_scene(os.path.join(root, "examples", "shear-creep-test.yaml"))
 length = 60.0   # mm, the joint: a stress tau [MPa] is the force tau * 60 mm [N/mm]
 
-creep = {"t": [], "creep": []}
+creep: dict[str, list[float]] = {"t": [], "creep": []}
 
 
-def record_creep(sim, report):
+def record_creep(sim: rheodda.Simulation, report: rheodda.StepReport) -> None:
     c = sim.contacts()
     creep["t"].append(report.time)
     creep["creep"].append(-c["creep_displacement"].mean())

@@ -9,12 +9,13 @@ laws) twice: with the built-in `burgers` and with the Python Burgers of
 burgers_in_python.py on both joint sets. Prints the wall time of each (best of
 3), the contact-steps (contacts with a law, summed over the steps), the calls
 into Python per contact-step, the added time per contact-step, and the largest
-difference between the two runs' joint shear displacements. docs/python.md
+difference between the two runs' joint shear displacements. docs/guide/python.md
 quotes its output.
 """
 import os
 import sys
 import time
+from typing import Callable, Sequence
 
 import numpy as np
 
@@ -27,25 +28,28 @@ from burgers_in_python import PythonBurgers  # noqa: E402
 class CountingBurgers(PythonBurgers):
     """Counts the calls the host makes (a separate run: counting costs time)."""
 
-    def __init__(self, **p):
+    def __init__(self, **p: float) -> None:
         super().__init__(**p)
         self.calls = {"step_constants": 0, "linearize": 0, "advance": 0}
 
-    def step_constants(self, dt, scheme):
+    def step_constants(self, dt: float, scheme: str) -> rheodda.StepConstants:
         self.calls["step_constants"] += 1
         return super().step_constants(dt, scheme)
 
-    def linearize(self, k, q, fs, fe):
+    def linearize(self, k: rheodda.StepConstants, q: Sequence[float], force_start: float,
+                  force_end_guess: float) -> tuple[float, float]:
         self.calls["linearize"] += 1
-        return super().linearize(k, q, fs, fe)
+        return super().linearize(k, q, force_start, force_end_guess)
 
-    def advance(self, k, q, fs, fe):
+    def advance(self, k: rheodda.StepConstants, q: Sequence[float], force_start: float,
+                force_end: float) -> tuple[float, tuple[float, float]]:
         self.calls["advance"] += 1
-        return super().advance(k, q, fs, fe)
+        return super().advance(k, q, force_start, force_end)
 
 
-def best_time(make, steps, repeats=3):
-    best, sim = float("inf"), None
+def best_time(make: Callable[[], rheodda.Simulation], steps: int,
+              repeats: int = 3) -> tuple[float, rheodda.Simulation]:
+    best, sim = float("inf"), make()
     for _ in range(repeats):
         sim = make()
         start = time.perf_counter()
@@ -54,7 +58,7 @@ def best_time(make, steps, repeats=3):
     return best, sim
 
 
-def main():
+def main() -> None:
     steps = int(sys.argv[1]) if len(sys.argv) > 1 else 300
     root = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
     scene = rheodda.load_scene(os.path.join(root, "examples", "goodman-toppling-creep.yaml"))
@@ -68,7 +72,7 @@ def main():
     # contact-steps: the contacts that carry a law state after each step, summed
     counted = {"contact_steps": 0}
 
-    def count(sim, report):
+    def count(sim: rheodda.Simulation, report: rheodda.StepReport) -> None:
         counted["contact_steps"] += int(np.count_nonzero(sim.contacts()["length"] > 0))
 
     counting_laws = {js: CountingBurgers(**p) for js, p in params.items()}

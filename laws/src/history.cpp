@@ -118,7 +118,7 @@ std::optional<double> exact_displacement(const ContactRheology& law, const Stage
 namespace {
 /// Force at t of `power-law` (spring E1 + Norton dashpot) under a staged displacement.
 /// Within a stage the force obeys F' = -E1 A sign(F) (|F|/tau_ref)^n, whose solution
-/// from F_s at the stage start is (docs/laws.md, "power-law")
+/// from F_s at the stage start is (docs/reference/laws.md, "power-law")
 ///     |F|^(1-n) = |F_s|^(1-n) + (n - 1) E1 A (t - t_s) / tau_ref^n      (n > 1)
 ///     F = F_s exp(-E1 A (t - t_s) / tau_ref)                               (n = 1),
 /// never crossing zero; a stage's displacement jump adds E1 times the jump to F.
@@ -187,7 +187,7 @@ double solve_series_force(const ContactRheology& law, const StepConstants& k_ste
   if (law.linearity() == Linearity::nonlinear) {
     // Newton on R(F) = F - k (base - Delta d_c(F)) with the law's tangent (1')
     // (contact_rheology.hpp): F_{j+1} = k (base - h_j)/(1 + k c_j), the update
-    // the contact layer makes (docs/rheology-in-dda.md, "Nonlinear laws").
+    // the contact layer makes (docs/reference/rheology-in-dda.md, "Nonlinear laws").
     // Converged when the step changes F by <= 1e-14 of |F| (a few ulps), or
     // after 100 iterations (the tangent is monotone, so Newton converges).
     for (int it = 0; it < 100; ++it) {

@@ -242,7 +242,7 @@ LawInfo info_of(std::string name, std::string summary, std::string equation,
     return std::make_unique<Law>(p);
   };
   // rheodda fit's models are the linear series laws'; A and tau_ref would also
-  // enter a fit only as A/tau_ref^n (docs/laws.md).
+  // enter a fit only as A/tau_ref^n (docs/reference/laws.md).
   info.fittable = false;
   return info;
 }

@@ -104,7 +104,7 @@ double SeriesLaw::lagged_step_limit(double k) const {
 
 StepConstants SeriesLaw::step_constants(double dt, Scheme scheme) const {
   // The coefficients of (2) in contact_rheology.hpp, per element and scheme
-  // (rheology.md, "three schemes"; docs/laws.md, "Schemes"):
+  // (rheology.md, "three schemes"; docs/reference/laws.md, "Schemes"):
   //   Kelvin  eta q' + E q = F, exact over the step for the scheme's force:
   //           q' = a q + b F_s/E + (F_e - F_s) phi/E,  a = 1 - b  (exponential-linear)
   //           lagged: F = F_s throughout (the seed's eqs. 12-16 in state form,

@@ -1,4 +1,4 @@
-// Shared declarations of the Python module's translation units (docs/python.md).
+// Shared declarations of the Python module's translation units (docs/guide/python.md).
 //
 // The binding is thin on purpose: every call goes to the library function the
 // command line uses (laws::LawRegistry, laws::integrate_curve, fit::fit_law,
@@ -36,6 +36,25 @@ inline py::array_t<long> to_numpy(const std::vector<long>& v) {
   std::copy(v.begin(), v.end(), a.mutable_data());
   return a;
 }
+
+/// `a` made read-only: a property computed from the state (a fresh copy at each
+/// read) refuses writes instead of dropping them silently (docs/guide/python.md,
+/// "numpy conventions").
+template <class Array>
+Array read_only(Array a) {
+  a.attr("setflags")(py::arg("write") = false);
+  return a;
+}
+
+/// A 1-D numpy array of str (numpy's unicode dtype) holding `v`.
+inline py::array str_array(const std::vector<std::string>& v) {
+  return py::module_::import("numpy").attr("array")(py::cast(v), py::arg("dtype") = "str");
+}
+
+/// Raises rheodda.PythonLawError (errors.cpp) for a value a method of a law
+/// written in Python returned: `value` its repr, `expected` what it should be.
+[[noreturn]] void raise_python_law_error(const std::string& law, const std::string& method,
+                                         const std::string& value, const std::string& expected);
 
 /// Raises the pending Python error (KeyboardInterrupt after Ctrl-C) if a signal
 /// handler raised one; call with the GIL held, between steps.

@@ -7,6 +7,7 @@
 //     rheodda.DataError             fit::DataError: .file .line .column
 //     rheodda.FitError              fit::FitError: .law
 //     rheodda.ModelError            core::ModelError: .key
+//     rheodda.PythonLawError        a law written in Python returned a bad value: .law .method .value .expected
 //   rheodda.RunError (RuntimeError) a run that failed (no convergence after max_cuts ...)
 #include <rheodda/core/model.hpp>
 #include <rheodda/fit/creep_data.hpp>
@@ -27,6 +28,7 @@ PyObject* law_error_type = nullptr;
 PyObject* data_error_type = nullptr;
 PyObject* fit_error_type = nullptr;
 PyObject* model_error_type = nullptr;
+PyObject* python_law_error_type = nullptr;
 
 PyObject* new_type(py::module_& m, const char* name, PyObject* base, const char* doc) {
   const std::string qualified = std::string("rheodda.") + name;
@@ -55,6 +57,10 @@ void bind_errors(py::module_& m) {
   data_error_type = new_type(m, "DataError", error_type, "Bad creep data (CSV): .file .line .column");
   fit_error_type = new_type(m, "FitError", error_type, "A law the data cannot constrain: .law");
   model_error_type = new_type(m, "ModelError", error_type, "A model the engine refuses: .key");
+  python_law_error_type = new_type(
+      m, "PythonLawError", error_type,
+      "A method of a law written in Python returned a value that is not finite, of the wrong type or shape: "
+      ".law .method .value (its repr) .expected");
   PyObject* run_error = new_type(m, "RunError", PyExc_RuntimeError,
                                  "A run that failed (e.g. a step that does not converge after max_cuts cuts)");
 
@@ -96,6 +102,18 @@ void bind_errors(py::module_& m) {
       raise(model_error_type, e.what(), a);
     }
   });
+}
+
+void raise_python_law_error(const std::string& law, const std::string& method, const std::string& value,
+                            const std::string& expected) {
+  const std::string message = "PythonLaw '" + law + "': " + method + " returned " + value + "; expected " + expected;
+  py::dict a;
+  a["law"] = law;
+  a["method"] = method;
+  a["value"] = value;
+  a["expected"] = expected;
+  raise(python_law_error_type, message.c_str(), a);
+  throw py::error_already_set();
 }
 
 }  // namespace rheodda::python

@@ -62,6 +62,40 @@ laws::RheologyState state_from(const py::object& q, const char* what) {
   return s;
 }
 
+// What the Python methods return, checked at every call (docs/guide/python.md, "When a
+// Python law returns a bad value"): a value that is not a finite number, a
+// tuple of the wrong length or a wrong type raises rheodda.PythonLawError
+// naming the law, the method, the value and what was expected.
+std::string short_repr(const py::handle& v) {
+  std::string r = py::repr(v).cast<std::string>();
+  if (r.size() > 200) r = r.substr(0, 197) + "...";
+  return r;
+}
+
+/// `item` as a finite float, or PythonLawError about `whole` (what `method` returned).
+double finite_number(const std::string& law, const char* method, const py::handle& item, const py::handle& whole,
+                     const std::string& expected) {
+  if (py::isinstance<py::str>(item) || py::isinstance<py::bytes>(item) || py::isinstance<py::bool_>(item) ||
+      item.is_none())
+    raise_python_law_error(law, method, short_repr(whole), expected);
+  double x = 0.0;
+  try {
+    x = py::float_(py::reinterpret_borrow<py::object>(item)).cast<double>();
+  } catch (py::error_already_set&) {
+    raise_python_law_error(law, method, short_repr(whole), expected);
+  }
+  if (!std::isfinite(x)) raise_python_law_error(law, method, short_repr(whole), expected);
+  return x;
+}
+
+/// `v` as a sequence (not a text) of `n` items, or PythonLawError.
+py::sequence sized(const std::string& law, const char* method, const py::object& v, std::size_t n,
+                   const std::string& expected) {
+  if (py::isinstance<py::str>(v) || !py::isinstance<py::sequence>(v) || py::len(v) != n)
+    raise_python_law_error(law, method, short_repr(v), expected);
+  return v.cast<py::sequence>();
+}
+
 /// The trampoline: each virtual step function goes to the Python override.
 class PyPythonLaw : public PythonLaw {
  public:
@@ -69,16 +103,23 @@ class PyPythonLaw : public PythonLaw {
 
   laws::StepConstants step_constants(double dt, laws::Scheme scheme) const override {
     py::gil_scoped_acquire gil;
-    if (py::function f = py::get_override(static_cast<const PythonLaw*>(this), "step_constants"))
-      return f(dt, std::string(laws::scheme_name(scheme))).cast<laws::StepConstants>();
+    if (py::function f = py::get_override(static_cast<const PythonLaw*>(this), "step_constants")) {
+      const py::object r = f(dt, std::string(laws::scheme_name(scheme)));
+      if (!py::isinstance<laws::StepConstants>(r))
+        raise_python_law_error(law(), "step_constants", short_repr(r), "a rheodda.StepConstants");
+      return r.cast<laws::StepConstants>();
+    }
     return PythonLaw::step_constants(dt, scheme);
   }
   laws::Linearization linearize(const laws::StepConstants& k, const laws::RheologyState& old, double fs,
                                 double fe) const override {
     py::gil_scoped_acquire gil;
     if (py::function f = py::get_override(static_cast<const PythonLaw*>(this), "linearize")) {
-      const auto hc = f(k, state_tuple(old), fs, fe).cast<std::pair<double, double>>();
-      return {hc.first, hc.second};
+      static const std::string expected = "a tuple (h, c) of two finite numbers: h [length], c [length/force]";
+      const py::object r = f(k, state_tuple(old), fs, fe);
+      const py::sequence hc = sized(law(), "linearize", r, 2, expected);
+      return {finite_number(law(), "linearize", hc[0], r, expected),
+              finite_number(law(), "linearize", hc[1], r, expected)};
     }
     return PythonLaw::linearize(k, old, fs, fe);
   }
@@ -86,27 +127,42 @@ class PyPythonLaw : public PythonLaw {
                  laws::RheologyState& next) const override {
     py::gil_scoped_acquire gil;
     if (py::function f = py::get_override(static_cast<const PythonLaw*>(this), "advance")) {
-      const py::tuple r = f(k, state_tuple(old), fs, fe);
-      if (r.size() != 2)
-        throw std::runtime_error("PythonLaw '" + std::string(name()) +
-                                 "': advance must return (delta_creep, q_new)");
-      next = state_from(r[0 + 1], "advance: q_new");
-      return r[0].cast<double>();
+      const std::size_t n = static_cast<std::size_t>(internal_count());
+      const std::string expected = "a tuple (delta_creep, q_new): a finite number [length] and a sequence of "
+                                   "internal_count = " + std::to_string(n) + " finite numbers [length]";
+      const py::object r = f(k, state_tuple(old), fs, fe);
+      const py::sequence pair = sized(law(), "advance", r, 2, expected);
+      const double dd = finite_number(law(), "advance", pair[0], r, expected);
+      const py::object q = pair[1];
+      if (py::isinstance<py::str>(q) || !py::isinstance<py::sequence>(q) || py::len(q) != n)
+        raise_python_law_error(law(), "advance", short_repr(r), expected);
+      const py::sequence qs = q.cast<py::sequence>();
+      next = laws::RheologyState{};
+      for (std::size_t i = 0; i < n; ++i) next.q[i] = finite_number(law(), "advance", qs[i], r, expected);
+      return dd;
     }
     return PythonLaw::advance(k, old, fs, fe, next);
   }
   double creep_closed_form(double force, double t) const override {
     py::gil_scoped_acquire gil;
-    if (py::function f = py::get_override(static_cast<const PythonLaw*>(this), "creep_closed_form"))
-      return f(force, t).cast<double>();
+    if (py::function f = py::get_override(static_cast<const PythonLaw*>(this), "creep_closed_form")) {
+      const py::object r = f(force, t);
+      return finite_number(law(), "creep_closed_form", r, r, "a finite number [length]");
+    }
     return PythonLaw::creep_closed_form(force, t);
   }
   std::optional<double> relaxation_modulus(double t) const override {
     py::gil_scoped_acquire gil;
-    if (py::function f = py::get_override(static_cast<const PythonLaw*>(this), "relaxation_modulus"))
-      return f(t).cast<std::optional<double>>();
+    if (py::function f = py::get_override(static_cast<const PythonLaw*>(this), "relaxation_modulus")) {
+      const py::object r = f(t);
+      if (r.is_none()) return std::nullopt;
+      return finite_number(law(), "relaxation_modulus", r, r, "a finite number [force/length] or None");
+    }
     return PythonLaw::relaxation_modulus(t);
   }
+
+ private:
+  std::string law() const { return std::string(name()); }
 };
 
 laws::ParameterValues parameter_values(const py::dict& d) {
@@ -161,6 +217,25 @@ py::object map_object(const py::object& t, F f) {
   return map_array(t.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(), f);
 }
 
+/// f(a, b) over numpy's broadcast of a and b (any shapes that broadcast): a
+/// float when both are numbers, else an array of the broadcast shape.
+template <class F>
+py::object map_broadcast(const py::object& a, const py::object& b, F f) {
+  const auto is_number = [](const py::object& x) {
+    return py::isinstance<py::float_>(x) || py::isinstance<py::int_>(x);
+  };
+  if (is_number(a) && is_number(b)) return py::float_(f(a.cast<double>(), b.cast<double>()));
+  const py::module_ np = py::module_::import("numpy");
+  const py::tuple ab = np.attr("broadcast_arrays")(np.attr("asarray")(a, py::arg("dtype") = "float64"),
+                                                   np.attr("asarray")(b, py::arg("dtype") = "float64"));
+  using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+  const Array x = ab[0].cast<Array>(), y = ab[1].cast<Array>();  // contiguous copies of the broadcast views
+  py::array_t<double> r(x.request().shape);
+  double* out = r.mutable_data();
+  for (py::ssize_t i = 0; i < x.size(); ++i) out[i] = f(x.data()[i], y.data()[i]);
+  return r;
+}
+
 py::dict curve_dict(const std::vector<laws::CurveSample>& samples, const char* exact_name) {
   std::vector<double> t, f, d, x;
   for (const auto& s : samples) {
@@ -201,14 +276,25 @@ void bind_laws(py::module_& m) {
   py::class_<laws::UnitStepConstants>(m, "UnitStepConstants",
                                       "Constants of one creep element for one step (laws/contact_rheology.hpp, eq. 2)")
       .def(py::init<>())
-      .def_readwrite("b", &laws::UnitStepConstants::b)
-      .def_readwrite("phi", &laws::UnitStepConstants::phi)
-      .def_readwrite("dt_over_eta", &laws::UnitStepConstants::dt_over_eta)
-      .def_readwrite("per_q", &laws::UnitStepConstants::per_q)
-      .def_readwrite("per_start", &laws::UnitStepConstants::per_start)
-      .def_readwrite("per_end", &laws::UnitStepConstants::per_end)
-      .def_readwrite("threshold", &laws::UnitStepConstants::threshold)
-      .def_readwrite("bingham", &laws::UnitStepConstants::bingham);
+      .def_readwrite("b", &laws::UnitStepConstants::b, "1 - exp(-dt E/eta) of a Kelvin element [-]")
+      .def_readwrite("phi", &laws::UnitStepConstants::phi, "1 - b/r, r = dt E/eta: weight of the force ramp [-]")
+      .def_readwrite("dt_over_eta", &laws::UnitStepConstants::dt_over_eta,
+                     "dt/eta of the element's dashpot [length/force]")
+      .def_readwrite("per_q", &laws::UnitStepConstants::per_q,
+                     "coefficient of the old q in Delta q = per_q q + per_start g(F_s) + per_end g(F_e) [-]")
+      .def_readwrite("per_start", &laws::UnitStepConstants::per_start,
+                     "coefficient of g(F_s), the step's start force [length/force]")
+      .def_readwrite("per_end", &laws::UnitStepConstants::per_end,
+                     "coefficient of g(F_e), the step's end force [length/force]")
+      .def_readwrite("threshold", &laws::UnitStepConstants::threshold,
+                     "the Bingham element's threshold Fs [force/length, stress]")
+      .def_readwrite("bingham", &laws::UnitStepConstants::bingham, "the element is a Bingham (threshold) dashpot")
+      .def("__repr__", [](const laws::UnitStepConstants& u) {
+        return fmt::format("<UnitStepConstants b {:g} phi {:g} dt_over_eta {:g} per_q {:g} per_start {:g} per_end {:g}"
+                           "{}>",
+                           u.b, u.phi, u.dt_over_eta, u.per_q, u.per_start, u.per_end,
+                           u.bingham ? fmt::format(" threshold {:g}", u.threshold) : std::string());
+      });
 
   py::class_<laws::StepConstants>(m, "StepConstants",
                                   "What a law computes once per step size and scheme: dt [time], scheme, and "
@@ -220,11 +306,12 @@ void bind_laws(py::module_& m) {
              return k;
            }),
            py::arg("dt") = 0.0, py::arg("scheme") = "implicit")
-      .def_readwrite("dt", &laws::StepConstants::dt)
+      .def_readwrite("dt", &laws::StepConstants::dt, "the step size [time]")
       .def_property(
           "scheme", [](const laws::StepConstants& k) { return std::string(laws::scheme_name(k.scheme)); },
-          [](laws::StepConstants& k, const std::string& s) { k.scheme = scheme_from(s); })
-      .def_readwrite("count", &laws::StepConstants::count)
+          [](laws::StepConstants& k, const std::string& s) { k.scheme = scheme_from(s); },
+          "the scheme: 'lagged', 'implicit' or 'exponential-linear'")
+      .def_readwrite("count", &laws::StepConstants::count, "number of element constants in unit [-]")
       .def_property(
           "unit",
           [](const laws::StepConstants& k) {
@@ -237,19 +324,31 @@ void bind_laws(py::module_& m) {
             k.unit = {};
             std::copy(u.begin(), u.end(), k.unit.begin());
             k.count = static_cast<int>(u.size());
-          });
+          },
+          "the element constants (UnitStepConstants), at most 4; setting them sets count")
+      .def("__repr__", [](const laws::StepConstants& k) {
+        return fmt::format("<StepConstants dt {:g} scheme '{}' with {} element constant{}>", k.dt,
+                           laws::scheme_name(k.scheme), k.count, k.count == 1 ? "" : "s");
+      });
 
   py::class_<ContactRheology, std::shared_ptr<ContactRheology>>(
       m, "Law",
       "A contact rheology law (laws/contact_rheology.hpp): parameters per unit joint area; force = shear "
       "stress, displacement = shear displacement. Build one with rheodda.law(name, {param: value}).")
-      .def_property_readonly("name", [](const ContactRheology& l) { return std::string(l.name()); })
-      .def_property_readonly("parameters", [](const ContactRheology& l) {
-        return std::map<std::string, double>(l.parameters().begin(), l.parameters().end());
-      })
-      .def_property_readonly("internal_count", &ContactRheology::internal_count)
-      .def_property_readonly("instantaneous_stiffness", &ContactRheology::instantaneous_stiffness)
-      .def_property_readonly("is_linear", &ContactRheology::is_linear)
+      .def_property_readonly("name", [](const ContactRheology& l) { return std::string(l.name()); },
+                             "the law's registry name, e.g. 'burgers'")
+      .def_property_readonly(
+          "parameters",
+          [](const ContactRheology& l) {
+            return std::map<std::string, double>(l.parameters().begin(), l.parameters().end());
+          },
+          "the parameters by name [their units: rheodda.law_info(name)['parameters']]")
+      .def_property_readonly("internal_count", &ContactRheology::internal_count,
+                             "number of internal displacements q the law keeps per contact (1..4)")
+      .def_property_readonly("instantaneous_stiffness", &ContactRheology::instantaneous_stiffness,
+                             "E1, the instantaneous shear stiffness [force/length per length], or None")
+      .def_property_readonly("is_linear", &ContactRheology::is_linear,
+                             "True when the creep increment is affine in the force (not 'nonlinear')")
       .def_property_readonly(
           "linearity",
           [](const ContactRheology& l) {
@@ -260,29 +359,36 @@ void bind_laws(py::module_& m) {
             }
             return std::string("?");
           },
-          "'affine', 'piecewise-affine' or 'nonlinear' (linearize returns the tangent; docs/laws.md)")
+          "'affine', 'piecewise-affine' or 'nonlinear' (linearize returns the tangent; docs/reference/laws.md)")
       .def(
           "failure_time",
-          [](const ContactRheology& l, double force) {
-            const auto t = l.failure_time(force);
-            return t ? *t : std::numeric_limits<double>::infinity();
+          [](const ContactRheology& l, const py::object& force) {
+            return map_object(force, [&](double f) {
+              const auto t = l.failure_time(f);
+              return t ? *t : std::numeric_limits<double>::infinity();
+            });
           },
           py::arg("force"),
-          "Failure time under a constant force from an intact state [time] (damage laws: "
-          "t_f = t_r (tau_ref/|F|)^r); inf for laws that do not fail")
-      .def_property_readonly("linear_limit", &ContactRheology::linear_limit)
+          "Failure time under a constant force [force/length, shear stress] from an intact state [time] "
+          "(damage laws: t_f = t_r (tau_ref/|F|)^r); inf for laws that do not fail. force: a number or an "
+          "array (the result has its shape)")
+      .def_property_readonly("linear_limit", &ContactRheology::linear_limit,
+                             "the force below which the law is linear [force/length, stress]; inf for linear laws")
       .def("creep_closed_form",
-           [](const ContactRheology& l, double force, const py::object& t) {
-             return map_object(t, [&](double x) { return l.creep_closed_form(force, x); });
+           [](const ContactRheology& l, const py::object& force, const py::object& t) {
+             return map_broadcast(force, t, [&](double f, double x) { return l.creep_closed_form(f, x); });
            },
            py::arg("force"), py::arg("t"),
-           "Closed-form creep displacement (without the instantaneous spring) at t under a constant force "
-           "from t = 0 [length]")
+           "Closed-form creep displacement [length] (without the instantaneous spring) at time t [time] under a "
+           "constant force F [force/length, shear stress] from t = 0. force and t: numbers or arrays that "
+           "broadcast together (numpy rules); the result has the broadcast shape, a float for two numbers")
       .def("displacement_closed_form",
-           [](const ContactRheology& l, double force, const py::object& t) {
-             return map_object(t, [&](double x) { return l.displacement_closed_form(force, x); });
+           [](const ContactRheology& l, const py::object& force, const py::object& t) {
+             return map_broadcast(force, t, [&](double f, double x) { return l.displacement_closed_form(f, x); });
            },
-           py::arg("force"), py::arg("t"), "F/E1 + creep_closed_form(F, t) [length]")
+           py::arg("force"), py::arg("t"),
+           "F/E1 + creep_closed_form(F, t) [length]; force [force/length] and t [time] broadcast as in "
+           "creep_closed_form")
       .def("relaxation_modulus",
            [](const ContactRheology& l, const py::object& t) {
              return map_object(t, [&](double x) {
@@ -290,13 +396,16 @@ void bind_laws(py::module_& m) {
                return g ? *g : std::numeric_limits<double>::quiet_NaN();
              });
            },
-           py::arg("t"), "Relaxation modulus G(t) [force/length]; NaN where the law has no closed form")
+           py::arg("t"),
+           "Relaxation modulus G(t) [force/length per length of displacement] at times t [time] (a number or "
+           "an array of any shape); NaN where the law has no closed form")
       .def(
           "step_constants",
           [](const ContactRheology& l, double dt, const std::string& scheme) {
             return l.step_constants(dt, scheme_from(scheme));
           },
-          py::arg("dt"), py::arg("scheme") = "implicit")
+          py::arg("dt"), py::arg("scheme") = "implicit",
+          "The law's constants for a step of dt [time] under a scheme (a StepConstants)")
       .def(
           "linearize",
           [](const ContactRheology& l, const laws::StepConstants& k, const py::object& q, double fs, double fe,
@@ -349,7 +458,27 @@ void bind_laws(py::module_& m) {
                                                   linear);
            }),
            py::arg("name"), py::arg("parameters") = py::dict(), py::arg("internal_count") = 1,
-           py::arg("instantaneous_stiffness") = py::none(), py::arg("linear") = true);
+           py::arg("instantaneous_stiffness") = py::none(), py::arg("linear") = true)
+      .def("__repr__",
+           [](const py::object& self) {
+             return fmt::format("<PythonLaw '{}' ({}) {}>", self.cast<const PythonLaw&>().name(),
+                                py::str(py::type::of(self).attr("__qualname__")).cast<std::string>(),
+                                py::repr(self.attr("parameters")).cast<std::string>());
+           })
+      // The declared parameters, each read from the instance's attribute of that name when it has
+      // one: a change of self.eta1 shows here (the names and the others as given to __init__).
+      .def_property_readonly(
+          "parameters",
+          [](const py::object& self) {
+            py::dict d;
+            for (const auto& [k, v] : self.cast<const PythonLaw&>().parameters()) {
+              const py::object now = py::getattr(self, k.c_str(), py::none());
+              d[py::str(k)] = now.is_none() ? py::cast(v) : py::float_(now);
+            }
+            return d;
+          },
+          "The parameters by name: the instance's attribute of that name where it has one (so changes "
+          "show), else the value given to __init__ [the law's units]");
 
   m.def(
       "laws",
@@ -401,7 +530,7 @@ void bind_laws(py::module_& m) {
       "The law alone under a staged force (shear stress) from t = 0 to t_end with step dt "
       "(`rheodda law curve --force`): dict of numpy arrays t, force, displacement (total: F/E1 + creep) and "
       "exact (the closed form; NaN where the law has none). tolerance: each dt in substeps of the scheme until "
-      "one step and two half steps agree to it (as the command does; docs/laws.md); None: one step per dt");
+      "one step and two half steps agree to it (as the command does; docs/reference/laws.md); None: one step per dt");
   m.def(
       "relaxation_curve",
       [curve](const ContactRheology& law, const py::object& displacement, double t_end, double dt,
@@ -423,7 +552,9 @@ void bind_laws(py::module_& m) {
         });
       },
       py::arg("law"), py::arg("force"), py::arg("t"),
-      "Exact total displacement at times t under a staged force (Boltzmann superposition); NaN where none");
+      "Exact total displacement [length] at times t [time] (an array of any shape; the result has it) under a "
+      "staged force [force/length, shear stress] (Boltzmann superposition, the seed's eqs. 4-6); NaN where the "
+      "law has no exact response");
   m.def(
       "exact_force",
       [](const ContactRheology& law, const py::object& displacement, const py::array_t<double, py::array::c_style | py::array::forcecast>& t) {
@@ -434,7 +565,8 @@ void bind_laws(py::module_& m) {
         });
       },
       py::arg("law"), py::arg("displacement"), py::arg("t"),
-      "Exact force at times t under a staged displacement; NaN where the law has no closed form");
+      "Exact force [force/length, shear stress] at times t [time] (an array of any shape) under a staged "
+      "displacement [length]; NaN where the law has no closed form");
   m.def(
       "law_step",
       [](const ContactRheology& law, const py::object& q, double dt, double force_start, double force_end,
@@ -448,7 +580,8 @@ void bind_laws(py::module_& m) {
       },
       py::arg("law"), py::arg("q"), py::arg("dt"), py::arg("force_start"), py::arg("force_end"),
       py::arg("scheme") = "implicit",
-      "One step of the law alone from internal displacements q: (Delta d_c [length], q_new)");
+      "One step of dt [time] of the law alone from internal displacements q [length], the force going from "
+      "force_start to force_end [force/length, shear stress]: (Delta d_c [length], q_new [length])");
 }
 
 }  // namespace rheodda::python

@@ -13,7 +13,7 @@
 
 namespace rheodda::python {
 
-/// A law whose step functions are written in Python (docs/python.md, "A law
+/// A law whose step functions are written in Python (docs/guide/python.md, "A law
 /// written in Python"). The C++ side stores what the host asks once (name,
 /// parameters, slots, E1, linearity); the trampoline PyPythonLaw sends
 /// step_constants, linearize, advance, creep_closed_form and

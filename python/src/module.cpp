@@ -3,7 +3,7 @@
 #include "common.hpp"
 
 PYBIND11_MODULE(_rheodda, m) {
-  m.doc() = "rheodda: creep of jointed rock (contact rheology laws in a DDA engine); docs/python.md";
+  m.doc() = "rheodda: creep of jointed rock (contact rheology laws in a DDA engine); docs/guide/python.md";
   m.attr("__version__") = "0.1.0";
   rheodda::python::bind_errors(m);
   rheodda::python::bind_laws(m);

@@ -105,7 +105,7 @@ void bind_run(py::module_& m) {
         d["resumed_from_step"] = r.resumed_from_step;
         d["steps_computed"] = r.steps_computed;
         d["warnings"] = r.warnings;
-        // summary.json's static_mechanism (docs/engine.md, "Mechanisms in static analysis"); None if dynamic.
+        // summary.json's static_mechanism (docs/reference/engine.md, "Mechanisms in static analysis"); None if dynamic.
         if (r.mechanism.static_analysis) {
           py::dict m;
           m["inertia_share"] = r.mechanism.inertia_share;
@@ -114,7 +114,7 @@ void bind_run(py::module_& m) {
                                                                 : py::object(py::float_(r.mechanism.first_time));
           m["last_time"] = std::isnan(r.mechanism.last_time) ? py::object(py::none())
                                                               : py::object(py::float_(r.mechanism.last_time));
-          // The start of each collapse stage (docs/engine.md, "Collapse stages").
+          // The start of each collapse stage (docs/reference/engine.md, "Collapse stages").
           m["collapse_stages"] = r.mechanism.collapse_stages;
           d["static_mechanism"] = m;
         } else {

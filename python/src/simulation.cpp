@@ -20,6 +20,7 @@
 #include <rheodda/scene/assemble.hpp>
 #include <rheodda/scene/build.hpp>
 #include <rheodda/scene/describe.hpp>
+#include <rheodda/scene/keys.hpp>
 #include <rheodda/scene/loader.hpp>
 #include <rheodda/scene/output.hpp>
 
@@ -197,14 +198,14 @@ class Simulation {
     std::vector<double> x, y, nf, sf, sd, pen, len, creep, dcreep;
     py::array_t<double> q({n, py::ssize_t{laws::kMaxInternal}});
     auto qr = q.mutable_unchecked<2>();
-    py::list state_names, kind_names;
+    std::vector<std::string> state_names, kind_names;
     for (py::ssize_t i = 0; i < n; ++i) {
       const contact::Contact& c = cs[i];
       id.push_back(static_cast<long>(c.id));
       js.push_back(c.joint_set);
       state.push_back(static_cast<long>(c.state));
-      state_names.append(contact::contact_state_name(c.state));
-      kind_names.append(contact::contact_kind_name(c.kind));
+      state_names.emplace_back(contact::contact_state_name(c.state));
+      kind_names.emplace_back(contact::contact_kind_name(c.kind));
       vb.push_back(c.key.vblock);
       vx.push_back(c.key.vertex);
       eb.push_back(c.key.eblock);
@@ -225,8 +226,8 @@ class Simulation {
     py::dict d;
     d["id"] = to_numpy(id);
     d["joint_set"] = to_numpy(js);
-    d["state"] = state_names;
-    d["kind"] = kind_names;
+    d["state"] = str_array(state_names);
+    d["kind"] = str_array(kind_names);
     d["vertex_block"] = to_numpy(vb);
     d["vertex"] = to_numpy(vx);
     d["edge_block"] = to_numpy(eb);
@@ -241,12 +242,13 @@ class Simulation {
     d["creep_displacement"] = to_numpy(creep);
     d["creep_increment"] = to_numpy(dcreep);
     d["q"] = q;
+    for (auto item : d) read_only(item.second.cast<py::array>());
     return d;
   }
 
   py::dict history() const {
     py::dict d;
-    for (std::size_t i = 0; i < columns_.size(); ++i) d[py::str(columns_[i])] = to_numpy(history_[i]);
+    for (std::size_t i = 0; i < columns_.size(); ++i) d[py::str(columns_[i])] = read_only(to_numpy(history_[i]));
     return d;
   }
   const std::vector<std::string>& columns() const { return columns_; }
@@ -358,9 +360,14 @@ class Simulation {
     py::list r;
     const core::Model& m = (pending_engine_ ? pending_engine_ : engine_)->model();
     for (const auto& l : m.point_loads) {
-      py::list h;
-      for (const auto& s : l.history) h.append(py::make_tuple(s.time, s.force.x(), s.force.y()));
-      r.append(h);
+      py::array_t<double> h({static_cast<py::ssize_t>(l.history.size()), py::ssize_t{3}});
+      auto w = h.mutable_unchecked<2>();
+      for (std::size_t i = 0; i < l.history.size(); ++i) {
+        w(i, 0) = l.history[i].time;
+        w(i, 1) = l.history[i].force.x();
+        w(i, 2) = l.history[i].force.y();
+      }
+      r.append(read_only(h));
     }
     return r;
   }
@@ -476,36 +483,75 @@ py::dict units_dict(const scene::Units& u) {
   return d;
 }
 
+/// The declared keys of one map (rheodda/scene/keys.hpp) with their values: None where a
+/// key does not apply, a nested dict for a sub-map (`settle`), None for one not given.
+py::object analysis_dict(const scene::Analysis& a, const std::string& map) {
+  py::dict d;
+  bool applies = false;
+  for (const scene::KeySpec& k : scene::analysis_keys()) {
+    if (k.map != map) continue;
+    py::object v = k.type == scene::KeyType::map
+                       ? analysis_dict(a, map + "." + k.name)
+                       : std::visit(
+                             [](const auto& x) -> py::object {
+                               if constexpr (std::is_same_v<std::decay_t<decltype(x)>, std::monostate>)
+                                 return py::none();
+                               else if constexpr (std::is_same_v<std::decay_t<decltype(x)>, scene::Point>)
+                                 return py::make_tuple(x[0], x[1]);
+                               else
+                                 return py::cast(x);
+                             },
+                             k.get(a));
+    applies = applies || !v.is_none();
+    d[py::str(k.name)] = v;
+  }
+  return applies ? py::object(d) : py::object(py::none());
+}
+
 }  // namespace
 
 void bind_simulation(py::module_& m) {
-  py::class_<Scene>(m, "Scene", "A validated scene (docs/scene-format.md): rheodda.load_scene(path) or "
+  py::class_<Scene>(m, "Scene", "A validated scene (docs/reference/scene-format.md): rheodda.load_scene(path) or "
                                 "rheodda.parse_scene(text) or rheodda.scene_from_dict(d)")
-      .def_property_readonly("file", [](const Scene& s) { return s.description.file; })
-      .def_property_readonly("title", [](const Scene& s) { return s.description.title; })
-      .def_property_readonly("text", [](const Scene& s) { return s.text; })
-      .def_property_readonly("units", [](const Scene& s) { return units_dict(s.description.units); })
-      .def_property_readonly("duration", [](const Scene& s) { return s.description.analysis.duration; })
-      .def_property_readonly("dt", [](const Scene& s) { return s.description.analysis.dt; })
+      .def_property_readonly("file", [](const Scene& s) { return s.description.file; },
+                             "the file name the scene was read from (or given to parse_scene)")
+      .def_property_readonly("title", [](const Scene& s) { return s.description.title; }, "the scene's title")
+      .def_property_readonly("text", [](const Scene& s) { return s.text; },
+                             "the scene's YAML text (error lines refer to it)")
+      .def_property_readonly("units", [](const Scene& s) { return units_dict(s.description.units); },
+                             "the scene's unit names: length, force, time, stress")
+      .def_property_readonly("duration", [](const Scene& s) { return s.description.analysis.duration; },
+                             "analysis.duration [time]")
+      .def_property_readonly("dt", [](const Scene& s) { return s.description.analysis.dt; },
+                             "analysis.dt, the first step size [time]")
+      .def_property_readonly(
+          "analysis", [](const Scene& s) { return analysis_dict(s.description.analysis, "analysis"); },
+          "Every `analysis:` key with its value, defaults filled in, by the scene file's names (`settle` a "
+          "dict, or None without a settling stage); the same keys and values as summary.json's inputs "
+          "(docs/reference/scene-format.md). A copy: change a scene through its text or scene_from_dict.")
       .def_property_readonly("joint_sets",
                              [](const Scene& s) {
                                std::vector<std::string> r;
                                for (const auto& j : s.description.joint_sets) r.push_back(j.name);
                                return r;
-                             })
+                             },
+                             "the joint sets' names, in scene order")
       .def_property_readonly("blocks",
                              [](const Scene& s) {
                                std::vector<std::string> r;
                                for (const auto& b : s.description.blocks) r.push_back(b.name);
                                return r;
-                             })
+                             },
+                             "the blocks' names, in scene order (the block index of the state arrays)")
       .def_property_readonly("measurement_points",
                              [](const Scene& s) {
                                std::vector<std::string> r;
                                for (const auto& p : s.description.measurement_points) r.push_back(p.name);
                                return r;
-                             })
-      .def_property_readonly("load_count", [](const Scene& s) { return s.description.loads.size(); })
+                             },
+                             "the measurement points' names")
+      .def_property_readonly("load_count", [](const Scene& s) { return s.description.loads.size(); },
+                             "the number of loads (indices of Simulation.set_load)")
       .def("describe", [](const Scene& s) { return scene::describe_scene(s.description); },
            "What `rheodda check` prints: the scene with every default filled in")
       .def("__repr__", [](const Scene& s) {
@@ -534,23 +580,32 @@ void bind_simulation(py::module_& m) {
       "Parses and validates scene text (YAML; JSON is YAML too); `file` names it in error messages");
 
   py::class_<core::StepReport>(m, "StepReport", "What happened in one accepted step (core/engine.hpp)")
-      .def_readonly("step", &core::StepReport::step)
-      .def_readonly("time", &core::StepReport::time)
-      .def_readonly("dt", &core::StepReport::dt)
-      .def_readonly("iterations", &core::StepReport::iterations)
-      .def_readonly("cuts", &core::StepReport::cuts)
-      .def_readonly("max_displacement", &core::StepReport::max_displacement)
-      .def_readonly("max_penetration", &core::StepReport::max_penetration)
-      .def_readonly("creep_error", &core::StepReport::creep_error)
-      .def_readonly("rejections", &core::StepReport::rejections)
-      .def_readonly("step_error", &core::StepReport::step_error)
-      .def_readonly("extrapolated", &core::StepReport::extrapolated)
+      .def_readonly("step", &core::StepReport::step, "index of the step (0-based)")
+      .def_readonly("time", &core::StepReport::time, "time at the end of the step [time]")
+      .def_readonly("dt", &core::StepReport::dt, "step size used [time]")
+      .def_readonly("iterations", &core::StepReport::iterations,
+                    "open-close iterations of the accepted attempt [-]")
+      .def_readonly("cuts", &core::StepReport::cuts, "times dt was cut before acceptance [-]")
+      .def_readonly("max_displacement", &core::StepReport::max_displacement,
+                    "largest vertex displacement of the step [length]")
+      .def_readonly("max_penetration", &core::StepReport::max_penetration,
+                    "largest penetration reported by the contacts [length]")
+      .def_readonly("creep_error", &core::StepReport::creep_error,
+                    "the contacts' creep error estimate of the step, under analysis.creep_tolerance (else 0) "
+                    "[length]")
+      .def_readonly("rejections", &core::StepReport::rejections,
+                    "times the step was redone smaller because its error estimate was too large [-]")
+      .def_readonly("step_error", &core::StepReport::step_error,
+                    "step-doubling error estimate over the block vertices, under analysis.step_tolerance "
+                    "(else 0) [length]")
+      .def_readonly("extrapolated", &core::StepReport::extrapolated,
+                    "under analysis.step_tolerance: the step was extrapolated (2 y(dt/2) - y(dt))")
       .def("__repr__", [](const core::StepReport& r) {
         return fmt::format("<StepReport step {} t {:g} dt {:g} iterations {} cuts {}>", r.step, r.time, r.dt,
                            r.iterations, r.cuts);
       });
 
-  py::class_<Simulation>(m, "_Simulation")
+  py::class_<Simulation>(m, "_Simulation", "The engine side of rheodda.Simulation (python/rheodda/__init__.py)")
       .def(py::init<const Scene&, const py::dict&, py::object>(), py::arg("scene"), py::arg("laws") = py::dict(),
            py::arg("callback") = py::none())
       .def(
@@ -564,11 +619,15 @@ void bind_simulation(py::module_& m) {
       .def_property_readonly("step_count", &Simulation::step_count)
       .def_property_readonly("duration", [](const Simulation& s) { return s.scene().analysis.duration; })
       .def_property_readonly("failed", &Simulation::failed)
-      .def_property_readonly("block_positions", &Simulation::centroids)
-      .def_property_readonly("block_velocities", &Simulation::velocities)
-      .def_property_readonly("block_stresses", &Simulation::stresses)
-      .def("block_vertices", &Simulation::vertices, py::arg("block"))
-      .def("point_displacement", &Simulation::point_displacement, py::arg("block"), py::arg("x"), py::arg("y"))
+      // State read as read-only arrays: a write would not reach the engine (common.hpp, read_only).
+      .def_property_readonly("block_positions", [](const Simulation& s) { return read_only(s.centroids()); })
+      .def_property_readonly("block_velocities", [](const Simulation& s) { return read_only(s.velocities()); })
+      .def_property_readonly("block_stresses", [](const Simulation& s) { return read_only(s.stresses()); })
+      .def("block_vertices", [](const Simulation& s, int b) { return read_only(s.vertices(b)); }, py::arg("block"))
+      .def(
+          "point_displacement",
+          [](const Simulation& s, int b, double x, double y) { return read_only(s.point_displacement(b, x, y)); },
+          py::arg("block"), py::arg("x"), py::arg("y"))
       .def("contacts", &Simulation::contacts)
       .def("_history", &Simulation::history)
       .def_property_readonly("columns", &Simulation::columns)

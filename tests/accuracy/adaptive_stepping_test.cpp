@@ -1,4 +1,4 @@
-// Adaptive creep stepping (Settings::creep_tolerance, docs/speed-accuracy.md)
+// Adaptive creep stepping (Settings::creep_tolerance, docs/reference/step-controls.md)
 // on the seed's two-block shear creep test (Section 4; Burgers joint of
 // Table 1 row 1; MPa, mm, h) under a staged shear load with unloading:
 // tau from 0 h, ramp to 2 tau over 80-85.5 h, ramp to 0 over 140-143.3 h, 0-200 h.
@@ -194,7 +194,7 @@ class ForcedRejection final : public core::ContactModel {
 // A step whose creep error estimate exceeds 2 x the tolerance is redone
 // smaller (Engine::Impl::step), the contacts rolled back exactly by
 // ContactAdapter::retract_step. Under the creep test's constant load every step
-// size integrates the law exactly (docs/speed-accuracy.md), so a rollback that
+// size integrates the law exactly (docs/guide/choosing-step-controls.md), so a rollback that
 // left any trace (creep counted twice, a moved locking point) would show as an
 // error against the closed form (the seed's eqs. 20-21).
 BOOST_AUTO_TEST_CASE(a_step_whose_creep_error_exceeds_twice_the_tolerance_is_redone_smaller) {

@@ -1,4 +1,4 @@
-// Stability map of the creep schemes (docs/speed-accuracy.md, "Stability map"):
+// Stability map of the creep schemes (docs/notes/step-controls.md, "Stability map"):
 // a shear spring k in series with a Kelvin element (E2, eta2; Table 1 row 1)
 // held at a displacement from t = 0, solved by the law alone
 // (laws::solve_series_force, the contact's k_eff algebra). Over the map

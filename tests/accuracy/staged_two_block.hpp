@@ -12,6 +12,7 @@
 
 #include "rheodda/core/model.hpp"
 #include "rheodda/laws/registry.hpp"
+#include "two_block.hpp"  // tests/models
 
 namespace rheodda::test::staged {
 
@@ -35,26 +36,11 @@ inline double exact(double t) {
   return kTau * J(t) + s2 * (I(t - kStage2) - I(t - kRamp2)) + s3 * (I(t - kStage3) - I(t - kRamp3));
 }
 
-inline std::vector<core::Vec2> rect(double x0, double y0, double x1, double y1) {
-  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-}
+using models::rect;
 
 /// Block A (w x w) on block B (3w x w, fixed by three fixed points), static
-/// analysis without gravity, first step dt [h]; no loads yet.
-inline core::Model two_blocks(double w, double dt) {
-  core::Model m;
-  m.materials[0].young_modulus = 1e7;
-  m.materials[0].density = 1e-12;
-  m.settings.dt = dt;
-  m.settings.dynamic_ratio = 0.0;
-  m.settings.gravity = {0.0, 0.0};
-  core::BlockDef b, a;
-  b.vertices = rect(-w, -w, 2 * w, 0.0);
-  a.vertices = rect(0.0, 0.0, w, w);
-  m.blocks = {b, a};
-  for (int k = 0; k < 3; ++k) m.fixed_points.push_back({0, b.vertices[k]});
-  return m;
-}
+/// analysis without gravity, first step dt [h]; no loads yet (tests/models/two_block.hpp).
+inline core::Model two_blocks(double w, double dt) { return models::two_block_model(w, dt); }
 
 /// The normal load sigma w and the staged shear load on A at the joint line [N].
 inline void add_staged_loads(core::Model& m, double w) {

@@ -1,5 +1,5 @@
 // Step doubling with local extrapolation (Settings::step_tolerance,
-// docs/speed-accuracy.md "Step doubling") on the seed's two-block shear creep
+// docs/reference/step-controls.md "Step doubling") on the seed's two-block shear creep
 // test (Section 4; Burgers joint of Table 1 row 1; MPa, mm, h) under the staged
 // shear load with unloading of adaptive_stepping_test.cpp: tau from 0 h, ramp
 // to 2 tau over 80-85.5 h, ramp to 0 over 140-143.3 h, 0-200 h. The joint set

@@ -4,6 +4,7 @@
 #include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "rheodda/contact/contact_system.hpp"
@@ -78,6 +79,35 @@ JointSet joint(double phi_deg) {
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(contact_system)
+
+BOOST_AUTO_TEST_CASE(a_refused_joint_set_is_named_by_index_and_key_as_data) {
+  // The scene layer points at the joint set's entry from these, without reading the message.
+  JointSet good, bad;
+  good.name = "bedding";
+  good.friction_angle = 30.0;
+  bad.name = "cross";
+  bad.friction_angle = 30.0;
+  bad.cohesion = -1.0;
+  ContactSettings settings;
+  settings.penalty = 1e9;
+  try {
+    ContactSystem cs({good, bad}, settings);
+    BOOST_ERROR("a negative cohesion was accepted");
+  } catch (const JointSetError& e) {
+    BOOST_TEST(e.joint_set() == 1u);
+    BOOST_TEST(e.key() == "cohesion");
+    BOOST_TEST(std::string(e.what()).find("'cross'") != std::string::npos, e.what());
+  }
+  bad.cohesion = 0.0;
+  bad.restitution = 2.0;
+  try {
+    ContactSystem cs({bad, good}, settings);
+    BOOST_ERROR("a restitution of 2 was accepted");
+  } catch (const JointSetError& e) {
+    BOOST_TEST(e.joint_set() == 0u);
+    BOOST_TEST(e.key() == "restitution");
+  }
+}
 
 BOOST_AUTO_TEST_CASE(normal_springs_carry_the_weight_of_a_resting_block) {
   Scene s;
@@ -229,7 +259,7 @@ BOOST_AUTO_TEST_CASE(abandon_step_restores_the_step_start_contact_states_exactly
 }
 
 BOOST_AUTO_TEST_CASE(extrapolate_combines_matching_records_and_refuses_different_states) {
-  // Step doubling's Richardson step (docs/speed-accuracy.md): from the same
+  // Step doubling's Richardson step (docs/reference/step-controls.md): from the same
   // records, a "coarse" and a "fine" continuation; the fine records become
   // 2 fine - coarse when both hold the same contacts in the same states.
   Scene s;

@@ -451,7 +451,7 @@ BOOST_AUTO_TEST_CASE(an_elastic_joint_keeps_its_springs_per_unit_length_on_a_cor
   // run's at every step. Taking the springs over the contact length (0 for a
   // point contact: the penalty's springs instead) made them jump at each
   // change of kind, and the seed's slope settle where the contact search
-  // reached a lifted corner (docs/contacts.md, "Springs of a joint on point
+  // reached a lifted corner (docs/notes/contact-solves.md, "Springs of a joint on point
   // contacts").
   const double delta = 1e-4, theta = 0.06;
   JointSet j = joint("b", nullptr);
@@ -772,7 +772,7 @@ BOOST_AUTO_TEST_CASE(the_contact_newton_iterates_converge_quadratically) {
   D(6 * rig.movers[0]) = delta;
   // The stress the next solve gives with the seam of the last check: the
   // spring's stretch along the edge is s = -delta (the base's top edge runs
-  // along -x), so tau = E1 (s - h)/(1 + E1 c) (eq. 2 of docs/rheology-in-dda.md).
+  // along -x), so tau = E1 (s - h)/(1 + E1 c) (eq. 2 of docs/reference/rheology-in-dda.md).
   const double stretch = -delta;
   auto seam_tau = [&] {
     const ShearSeam& z = rig.cs.shear_seams()[0];
@@ -854,7 +854,7 @@ BOOST_AUTO_TEST_CASE(a_damage_law_joint_fails_at_the_law_alone_step_and_becomes_
   BOOST_TEST(rig.cs.creep_counters()[0].failures == 2);
   const double force_at_failure = rig.shear_force(0);
   // The failing step moved the locking point by its creep up to the failure
-  // (docs/rheology-in-dda.md, "Failure"), kept as a ratio along the edge: the next
+  // (docs/reference/rheology-in-dda.md, "Failure"), kept as a ratio along the edge: the next
   // step's force, taken from that ratio, equals it to round-off; from then on exactly.
   held_step(rig, dt, 0.0);
   const double force_after = rig.shear_force(0);

@@ -1,4 +1,4 @@
-// Block damping (Material::damping_ratio; docs/engine.md, "Block damping"): a
+// Block damping (Material::damping_ratio; docs/reference/engine.md, "Block damping"): a
 // free square block released from a hydrostatic initial stress vibrates in its
 // symmetric strain mode; the Kelvin-Voigt damping tau = 2 zeta / omega_1 gives
 // that mode the damping ratio zeta_s = tau omega_s / 2, and its successive

@@ -1,4 +1,4 @@
-// Rock bolts (core/include/rheodda/core/bolt.hpp; docs/bolts.md) against closed
+// Rock bolts (core/include/rheodda/core/bolt.hpp; docs/reference/bolts.md) against closed
 // forms: a block hanging from a bolt, two bolts in parallel of which one yields
 // and ruptures, a Burgers bolt relaxing at constant length, and the refusals of
 // bad bolts. The incline and the pretensioned joint need contacts: they are

@@ -1,4 +1,4 @@
-// The energy balance of blocks without contacts (docs/engine.md, "Energy
+// The energy balance of blocks without contacts (docs/reference/engine.md, "Energy
 // balance"): free fall turns the work of gravity into kinetic energy exactly;
 // a square on a centroid spring (fixed point) and a free block vibrating
 // elastically from an initial stress keep KE + U with the trapezoidal rule and

@@ -207,7 +207,7 @@ BOOST_AUTO_TEST_CASE(a_step_that_cannot_be_made_small_enough_throws_after_max_cu
 }
 
 BOOST_AUTO_TEST_CASE(a_settling_stage_takes_its_own_steps_and_limit_then_hands_over) {
-  // docs/engine.md, "Settling stage": a falling 1 m square (w0 = 0.5 m). Until
+  // docs/reference/engine.md, "Settling stage": a falling 1 m square (w0 = 0.5 m). Until
   // t = 0.03 the steps are at most 0.01 with g2 = 0.01 (5 mm; the 0.01 steps fall
   // less, so none is cut), the stage's last step ends on 0.03; then dt = 0.05 and
   // g2 = 1 (no limit here) apply, the first step after the stage at 0.05.

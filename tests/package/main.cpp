@@ -1,7 +1,7 @@
-// A downstream program of the installed rheodda package (docs/library.md): it
+// A downstream program of the installed rheodda package (docs/guide/library.md): it
 // uses the libraries through find_package(rheodda) only, and checks that they work.
 //   1. rheodda::laws: a Burgers law from the registry, ten creep steps under a
-//      constant force, against the closed form (docs/laws.md, "burgers"):
+//      constant force, against the closed form (docs/reference/laws.md, "burgers"):
 //        d(t) = F/E1 + F/E2 (1 - exp(-E2 t/eta2)) + F t/eta1.
 //   2. rheodda::scene + rheodda::core: a tiny scene file loaded, built and run
 //      step by step by core::Engine; the joint's shear displacement against the
@@ -23,6 +23,9 @@
 #include <exception>
 #include <string>
 
+// This project sets no C++ standard: the rheodda targets' cxx_std_20 must have made it C++20.
+static_assert(__cplusplus >= 202002L, "the rheodda targets should require C++20 (cxx_std_20) of their consumers");
+
 namespace {
 
 int failures = 0;
@@ -35,7 +38,7 @@ void expect_close(const char* what, double got, double expected, double rel_tol)
   if (!ok) ++failures;
 }
 
-/// Burgers creep under a constant force F applied at t = 0 (docs/laws.md, "burgers"):
+/// Burgers creep under a constant force F applied at t = 0 (docs/reference/laws.md, "burgers"):
 /// F/E1 + F/E2 (1 - exp(-E2 t/eta2)) + F t/eta1 [length].
 double burgers_closed_form(double F, double E1, double E2, double eta1, double eta2, double t) {
   return F / E1 + F / E2 * (1.0 - std::exp(-E2 * t / eta2)) + F * t / eta1;
@@ -48,7 +51,7 @@ void law_steps() {
   using namespace rheodda::laws;
   const auto law =
       LawRegistry::builtin().create("burgers", {{"E1", kE1}, {"E2", kE2}, {"eta1", kEta1}, {"eta2", kEta2}});
-  // Exponential-linear steps are exact for a constant force (docs/laws.md, "Schemes").
+  // Exponential-linear steps are exact for a constant force (docs/reference/laws.md, "Schemes").
   const double dt = 2.0;  // h
   const StepConstants k = law->step_constants(dt, Scheme::exponential_linear);
   RheologyState state, next;
@@ -71,7 +74,7 @@ void scene_run(const std::string& file) {
   std::printf("scene %s: %d steps to t = %g h\n", file.c_str(), engine.step_count(), engine.time());
   if (engine.time() != s.analysis.duration) ++failures;
   // Mean shear displacement of the closed contacts of the joint set "plane" (index 0),
-  // as history.csv's plane.shear_displacement (docs/outputs.md).
+  // as history.csv's plane.shear_displacement (docs/reference/outputs.md).
   double sum = 0.0;
   int n = 0;
   for (const auto& c : contacts.contacts())

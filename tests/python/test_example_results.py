@@ -1,4 +1,4 @@
-"""The shipped examples' headline results stay what docs/outputs.md documents
+"""The shipped examples' headline results stay what docs/reference/outputs.md documents
 ("Shipped examples: headline results", written by scripts/example_results.py):
 every examples/*.yaml and examples/rockmass/*.yaml is run again and each documented value must hold within
 its tolerance, and every example must be documented. And every number quoted in a
@@ -49,7 +49,7 @@ def test_headline_results_match_the_documented_values(example, runs):
     for quantity, value, _unit in results:
         key = (name, quantity)
         assert key in DOCUMENTED, (
-            f"{name}: '{quantity}' is not in docs/outputs.md; run "
+            f"{name}: '{quantity}' is not in docs/reference/outputs.md; run "
             "/usr/bin/python3 scripts/example_results.py --write")
         documented, tolerance = DOCUMENTED[key]
         assert abs(value - documented) <= tolerance * abs(documented), (
@@ -60,7 +60,7 @@ def test_headline_results_match_the_documented_values(example, runs):
 def test_every_documented_example_still_exists():
     names = {example_results.label(e) for e in example_results.examples()}
     for example, quantity in DOCUMENTED:
-        assert example in names, f"docs/outputs.md documents {example} ({quantity}), which is not shipped"
+        assert example in names, f"docs/reference/outputs.md documents {example} ({quantity}), which is not shipped"
 
 
 def test_every_quoted_number_is_what_its_generator_gives(runs, work):

@@ -54,7 +54,7 @@ def test_maxwell_relaxation_modulus_is_the_closed_form():
 
 
 def test_exponential_linear_step_is_exact_under_constant_force():
-    # The exponential-linear scheme integrates a force ramp exactly (docs/laws.md, "Schemes"):
+    # The exponential-linear scheme integrates a force ramp exactly (docs/reference/laws.md, "Schemes"):
     # one step from rest under a constant force gives the closed-form creep.
     law = rheodda.law("burgers", TABLE1)
     dd, q = rheodda.law_step(law, [0.0, 0.0], dt=50.0, force_start=0.232, force_end=0.232,

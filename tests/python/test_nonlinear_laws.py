@@ -1,4 +1,4 @@
-"""Nonlinear laws from Python (docs/laws.md, "Nonlinear laws"): power-law
+"""Nonlinear laws from Python (docs/reference/laws.md, "Nonlinear laws"): power-law
 (Norton) creep linear in time, the tangent linearization, and damage-burgers
 stepped to failure with its damage carried by advance()."""
 import numpy as np
@@ -59,7 +59,7 @@ def test_a_curve_with_a_tolerance_is_accurate_and_without_one_never_returns_nan(
 
 def test_the_shipped_slope_steps_onto_its_failure_within_dt_max(root):
     # examples/creeping-slope-failure.yaml: adaptive creep steps of at most dt_max, the
-    # one that reaches the failure too (docs/rheology-in-dda.md, "Failure"; issue 43: it
+    # one that reaches the failure too (docs/reference/rheology-in-dda.md, "Failure"; issue 43: it
     # was 0.731 d against a dt_max of 0.1 d).
     steps = []  # (dt, end time) of every accepted step [d]
     sim = rheodda.Simulation(str(root / "examples" / "creeping-slope-failure.yaml"),

@@ -66,7 +66,7 @@ def test_a_minimal_python_maxwell_matches_the_builtin_maxwell(scene):
     python = rheodda.Simulation(scene, laws={"plane": PythonMaxwell(**p)}).run().history()
     a, b = builtin["plane.shear_displacement"][1:], python["plane.shear_displacement"][1:]
     assert np.max(np.abs(a - b)) <= 1e-10 * np.max(np.abs(a))
-    # Maxwell under constant stress: F/E1 + F t/eta1, to the contact layer's 1e-5 (docs/outputs.md)
+    # Maxwell under constant stress: F/E1 + F t/eta1, to the contact layer's 1e-5 (docs/reference/outputs.md)
     t = builtin["time"][1:]
     np.testing.assert_allclose(-b, 0.232 / p["E1"] + 0.232 * t / p["eta1"], rtol=2e-5)
 

@@ -20,10 +20,10 @@ def test_the_readme_scene_creeps_as_the_burgers_closed_form(root, tmp_path, rheo
         rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
     last = rows[-1]
     t, tau = float(last["time"]), 0.232  # h; MPa (13.92 N on 60 mm)
-    # Burgers creep under constant stress (docs/laws.md; the seed's eq. for the Table 1 test)
+    # Burgers creep under constant stress (docs/reference/laws.md; the seed's eq. for the Table 1 test)
     exact = tau / TABLE1["E1"] + tau * t / TABLE1["eta1"] + tau / TABLE1["E2"] * (
         1.0 - math.exp(-TABLE1["E2"] * t / TABLE1["eta2"]))
     got = abs(float(last["plane.shear_displacement"]))
     assert t == 200.0
-    # The shear creep test's accuracy (docs/outputs.md: 1.1e-5 over 200 h).
+    # The shear creep test's accuracy (docs/reference/outputs.md: 1.1e-5 over 200 h).
     assert abs(got - exact) <= 2e-5 * exact

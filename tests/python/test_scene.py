@@ -48,11 +48,36 @@ def test_dict_scene_gives_the_yaml_scene_history_to_the_last_digit(yaml_scene):
     from_dict = rheodda.Simulation(SHEAR_TEST).run().history()
     assert len(from_yaml["time"]) == 201 and from_yaml["time"][-1] == 200.0
     assert same(from_yaml, from_dict)
-    # the seed's result: the joint follows the Burgers closed form (docs/outputs.md: 1.1e-5 relative)
+    # the seed's result: the joint follows the Burgers closed form (docs/reference/outputs.md: 1.1e-5 relative)
     law = rheodda.law("burgers", TABLE1)
     d = -from_dict["plane.shear_displacement"][1:]
     exact = law.displacement_closed_form(0.232, from_dict["time"][1:])
     assert np.max(np.abs(d - exact) / exact) < 2e-5
+
+
+def test_scene_analysis_holds_every_declared_key_as_summary_json_does(yaml_scene, rheodda_binary, tmp_path):
+    # The keys are declared once (apps/scene/src/keys.cpp): `rheodda keys` lists them,
+    # Scene.analysis and summary.json's inputs hold each with the same value.
+    listed = subprocess.run([rheodda_binary, "keys"], capture_output=True, text=True, check=True).stdout
+    declared = [line.split(" ", 1)[0] for line in listed.splitlines()]
+    analysis = yaml_scene.analysis
+    assert [k for k in declared if k.startswith("analysis.") and k.count(".") == 1] == [
+        "analysis." + k for k in analysis
+    ]
+    assert analysis["dt"] == yaml_scene.dt and analysis["duration"] == yaml_scene.duration
+    assert analysis["type"] == "static" and analysis["settle"] is None
+    assert analysis["gravity"] == (0.0, 0.0)
+    few_frames = copy.deepcopy(SHEAR_TEST)
+    few_frames["analysis"]["output_interval"] = 100
+    few_frames["analysis"]["settle"] = {"until": 1.0, "dt": 0.1}
+    scene = rheodda.scene_from_dict(few_frames)
+    path = tmp_path / "scene.yaml"
+    path.write_text(scene.text)
+    subprocess.run([rheodda_binary, "run", str(path), "-o", str(tmp_path / "out")], capture_output=True, check=True)
+    inputs = json.loads((tmp_path / "out" / "summary.json").read_text())["inputs"]["analysis"]
+    expected = {k: list(v) if isinstance(v, tuple) else v for k, v in scene.analysis.items()}
+    assert inputs == expected
+    assert scene.analysis["settle"]["until"] == 1.0 and scene.analysis["settle"]["type"] == "static"
 
 
 def test_history_equals_rheodda_run(tmp_path):
@@ -144,7 +169,7 @@ def test_state_as_numpy_arrays(yaml_scene):
     assert sim.block_velocities.shape == (2, 6) and not sim.block_velocities.any()  # static
     assert sim.block_vertices("A").shape == (4, 2)
     c = sim.contacts()
-    assert len(c["id"]) == 2 and c["state"] == ["locked", "locked"]
+    assert len(c["id"]) == 2 and list(c["state"]) == ["locked", "locked"]
     assert sim.joint_sets[c["joint_set"][0]] == "plane"
     # the joint's mean shear displacement in the history is the contacts' mean
     assert sim.history()["plane.shear_displacement"][-1] == pytest.approx(c["shear_displacement"].mean(), rel=1e-14)
@@ -319,7 +344,7 @@ def test_a_failing_run_raises_run_error_with_the_command_line_message(rheodda_bi
 
 
 def test_residual_strength_keys_from_a_dict():
-    # joint_sets.*.residual_friction_angle / residual_cohesion (docs/scene-format.md): read as
+    # joint_sets.*.residual_friction_angle / residual_cohesion (docs/reference/scene-format.md): read as
     # from a file, refused above the peak with the key path.
     d = copy.deepcopy(SHEAR_TEST)
     d["joint_sets"]["plane"].update(residual_friction_angle=30, cohesion=0.1, residual_cohesion=0.05)

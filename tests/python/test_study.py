@@ -22,7 +22,7 @@ def test_study_of_eta1_follows_the_burgers_closed_form(root, tmp_path):
     assert [c["name"] for c in result["cases"]] == ["slow", "seed"]
     assert all(c["status"] == "completed" for c in result["cases"])
     # static cases that stand: the static steps' inertia term took next to nothing
-    # (docs/engine.md, "Mechanisms in static analysis")
+    # (docs/reference/engine.md, "Mechanisms in static analysis")
     assert all(c["inertia_share"] is not None and 0.0 <= c["inertia_share"] < 0.01 for c in result["cases"])
     assert result["outputs"] == ["plane.shear_displacement"]
     np.testing.assert_array_equal(result["times"], [100.0, 200.0])

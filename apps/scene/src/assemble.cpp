@@ -12,17 +12,15 @@ AssembledScene assemble_scene(const SceneDescription& s, const BuiltScene& built
   AssembledScene a;
   try {
     a.contacts = std::make_unique<contact::ContactSystem>(built.joint_sets, built.contact_settings);
-  } catch (const std::invalid_argument& e) {
-    // The contact layer names the joint set by index ("joint set 2 ..."): point at it in the scene.
-    SourceLocation where = s.analysis.where;
-    std::string key = "analysis";
-    int index = -1;
-    if (std::sscanf(e.what(), "joint set %d", &index) == 1 && index >= 0 &&
-        index < static_cast<int>(s.joint_sets.size())) {
-      where = s.joint_sets[index].where;
-      key = "joint_sets." + s.joint_sets[index].name;
+  } catch (const contact::JointSetError& e) {
+    // The contact layer says which joint set, as data: point at its entry in the scene.
+    if (e.joint_set() < s.joint_sets.size()) {
+      const JointSetDescription& js = s.joint_sets[e.joint_set()];
+      throw SceneError(s.file, js.where, "joint_sets." + js.name + "." + e.key(), e.what());
     }
-    throw SceneError(s.file, where, key, e.what());
+    throw SceneError(s.file, s.analysis.where, "analysis", e.what());
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(s.file, s.analysis.where, "analysis", e.what());  // the contact settings
   }
   a.adapter = std::make_unique<core::ContactAdapter>(*a.contacts);
   try {

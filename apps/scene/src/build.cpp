@@ -39,7 +39,7 @@ std::vector<std::string> scene_warnings(const SceneDescription& s) {
       if (largest > limit)
         out.push_back(fmt::format(
             "joint set '{}': the lagged scheme is unstable for steps above {:g} {} with this law and a shear "
-            "stiffness of {:g} (docs/speed-accuracy.md, \"Stability\"), and {} {:g} {}: give "
+            "stiffness of {:g} (docs/reference/step-controls.md, \"Stability of the lagged scheme\"), and {} {:g} {}: give "
             "analysis.scheme implicit or exponential-linear (or leave it automatic), or {} below the limit",
             js.name, limit, s.units.time, *k, adaptive ? "steps may grow to" : "dt is", largest, s.units.time,
             adaptive ? "dt_max" : "dt"));
@@ -70,7 +70,7 @@ std::vector<std::string> scene_warnings(const SceneDescription& s) {
   // Contact dashpots act once a step resolves the contact's vibration: its
   // period on the penalty spring is T = 2 pi sqrt(m / p_n), shortest for the
   // lightest free block; at steps above about T/10 an impact is left to the
-  // velocity update (docs/contacts.md, "Contact damping": the drop on an
+  // velocity update (docs/reference/contacts.md, "Contact damping": the drop on an
   // incline converges from T/10 on). Joint sets with a normal stiffness per
   // area have springs that depend on each contact's length: not estimated.
   if (a.has_dynamic_steps() && a.penalty > 0.0) {
@@ -96,7 +96,7 @@ std::vector<std::string> scene_warnings(const SceneDescription& s) {
         out.push_back(fmt::format(
             "joint set '{}': its restitution acts once a step resolves the contacts' vibration, period about "
             "{:.3g} {} (the lightest free block on the penalty spring), and dt is {:g} {}, above a tenth of it: "
-            "impacts are left to the time integration's velocity update (docs/contacts.md, \"Contact damping\"); "
+            "impacts are left to the time integration's velocity update (docs/reference/contacts.md, \"Contact damping\"); "
             "give dt below {:.3g} {} or see what the step changes with `rheodda check --refine`",
             js.name, period, s.units.time, largest, s.units.time, 0.1 * period, s.units.time));
   }
@@ -138,7 +138,7 @@ BuiltScene build_scene(const SceneDescription& s) {
   }
   for (const auto& mp : s.measurement_points)
     m.measurement_points.push_back({mp.at.block, {mp.at.point[0], mp.at.point[1]}});
-  for (const auto& b : s.bolts) {  // docs/bolts.md; core/include/rheodda/core/bolt.hpp
+  for (const auto& b : s.bolts) {  // docs/reference/bolts.md; core/include/rheodda/core/bolt.hpp
     core::Bolt bolt;
     bolt.block_a = b.from.block;
     bolt.point_a = {b.from.point[0], b.from.point[1]};
@@ -169,7 +169,7 @@ BuiltScene build_scene(const SceneDescription& s) {
   st.gravity = {a.gravity[0], a.gravity[1]};
   st.fixed_point_stiffness = a.fixed_point_stiffness;
   st.max_open_close = a.open_close_limit;
-  if (a.settle) {  // docs/engine.md, "Settling stage"
+  if (a.settle) {  // docs/reference/engine.md, "Settling stage"
     st.settle_until = a.settle->until;
     st.settle_dt = a.settle->dt;
     st.settle_g2 = a.settle->max_displacement_ratio;

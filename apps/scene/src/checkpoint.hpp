@@ -1,4 +1,4 @@
-// checkpoint.json (docs/outputs.md, "Interrupting and resuming"): where an
+// checkpoint.json (docs/reference/outputs.md, "Interrupting and resuming"): where an
 // interrupted run stands. Its step and time, how much of history.csv and
 // contacts.csv it had written (length and hash), the frames with a hash of
 // each, and the state file (checkpoint_state.hpp) that holds the engine and

@@ -1,4 +1,4 @@
-// The state file of a checkpoint (docs/outputs.md, "Interrupting and
+// The state file of a checkpoint (docs/reference/outputs.md, "Interrupting and
 // resuming"): the engine, the contacts and the run's totals as they were after
 // the checkpoint's step, so that `rheodda run --resume` carries on from there
 // without computing any step again.

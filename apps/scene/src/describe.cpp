@@ -1,4 +1,6 @@
 #include "rheodda/scene/describe.hpp"
+
+#include "rheodda/scene/keys.hpp"
 #include "rheodda/scene/memory.hpp"
 
 #include <fmt/format.h>
@@ -64,19 +66,29 @@ std::string describe_scene(const SceneDescription& s) {
 
   line(fmt::format("scene: {} ({})", s.title, s.file));
   line(fmt::format("units: length {}, force {}, time {}; stress {}", u.length, u.force, u.time, stress));
-  line(fmt::format("analysis: {}, duration {:g} {}, dt {:g} {} (max_cuts {}, dt_cut {:g}), dynamic_ratio {:g}, "
-                   "time_integration {}",
-                   analysis_type_name(a.type), a.duration, u.time, a.dt, u.time, a.max_cuts, a.dt_cut,
-                   a.dynamic_ratio, time_integration_name(a.time_integration)));
-  line(fmt::format("  gravity ({:g}, {:g}) {}/{}^2, scheme {}, solver {}", a.gravity[0], a.gravity[1],
-                   u.length, u.time, scheme_text(a), solver_text(s)));
-  line(fmt::format("  max_displacement_ratio {:g}, penalty {:g} {}, shear_normal_ratio {:g}, "
-                   "fixed_point_stiffness {:g} {}/{}",
-                   a.max_displacement_ratio, a.penalty, stress, a.shear_normal_ratio,
-                   a.fixed_point_stiffness, u.force, u.length));
+  // Every declared key with its value (keys.hpp), wrapped; what they add up to follows.
+  std::string settings = "analysis:";
+  std::size_t width = settings.size();
+  for (const KeySpec& k : analysis_keys()) {
+    if (k.type == KeyType::map) continue;
+    if (k.map != "analysis" && !a.settle) continue;
+    const std::string name = k.map == "analysis" ? k.name : k.map.substr(std::string("analysis.").size()) + "." + k.name;
+    const std::string item = fmt::format(" {} {}", name, key_value_text(k, a, u));
+    if (width + item.size() > 100) {
+      settings += ",\n ";
+      width = 1;
+    } else if (width > std::string("analysis:").size()) {
+      settings += ",";
+      ++width;
+    }
+    settings += item;
+    width += item.size();
+  }
+  line(settings);
+  line(fmt::format("  solver {}", solver_text(s)));
   if (a.contact_solver == ContactSolverKind::newton)
     line(fmt::format("  contact_solver newton: open-close iterates accepted when the residual of the step's equations "
-                     "is at most {:g} of the contact forces (docs/contacts.md, \"Contact solves\")",
+                     "is at most {:g} of the contact forces (docs/reference/contacts.md, \"Contact solves\")",
                      a.contact_residual_tolerance));
   line(fmt::format("  open_close_limit {}, penetration_ratio {:g}, angle_tolerance {:g} deg, search_factor {:g}",
                    a.open_close_limit, a.penetration_ratio, a.angle_tolerance, a.search_factor));
@@ -103,29 +115,29 @@ std::string describe_scene(const SceneDescription& s) {
   if (a.settle && a.settle->rest_tolerance > 0.0)
     line(fmt::format("  settling stage (dynamic): until at rest (kinetic energy below {:g} of the stage's work of "
                      "gravity and loads), at most {:g} {}, steps of at most {:g} {}, max_displacement_ratio {:g} "
-                     "(docs/engine.md, \"Dynamic stages\")",
+                     "(docs/reference/engine.md, \"Dynamic stages\")",
                      a.settle->rest_tolerance, a.settle->until, u.time, a.settle->dt, u.time,
                      a.settle->max_displacement_ratio));
   else if (a.settle)
     line(fmt::format("  settling stage ({}): until {:g} {}, steps of at most {:g} {}, max_displacement_ratio {:g} "
-                     "(docs/engine.md, \"Settling stage\")",
+                     "(docs/reference/engine.md, \"Settling stage\")",
                      a.settle->dynamic ? "dynamic" : "static", a.settle->until, u.time, a.settle->dt, u.time,
                      a.settle->max_displacement_ratio));
   if (a.settle && a.settle->open_close_limit > 0)
-    line(fmt::format("  stage steps: cut after {} open-close iterates (the analysis's steps after {}; docs/engine.md, "
+    line(fmt::format("  stage steps: cut after {} open-close iterates (the analysis's steps after {}; docs/reference/engine.md, "
                      "\"Dynamic stages\")",
                      a.settle->open_close_limit, a.open_close_limit));
   if (a.settle && a.settle->gravity_ramp > 0.0)
     line(fmt::format("  gravity ramp: gravity rises linearly from zero to its full value over the first {:g} {} of "
-                     "the stage (docs/engine.md, \"Gravity ramp\")",
+                     "the stage (docs/reference/engine.md, \"Gravity ramp\")",
                      a.settle->gravity_ramp, u.time));
   if (a.settle && a.settle->collapse_dt > 0.0 && a.settle->rest_tolerance > 0.0)
     line(fmt::format("  collapse stages: a static step that moves as a mechanism is cut down to {:g} {}, then taken "
-                     "as a dynamic stage until at rest, at most {:g} {} (docs/engine.md, \"Dynamic stages\")",
+                     "as a dynamic stage until at rest, at most {:g} {} (docs/reference/engine.md, \"Dynamic stages\")",
                      a.settle->collapse_dt, u.time, a.settle->until, u.time));
   else if (a.settle && a.settle->collapse_dt > 0.0)
     line(fmt::format("  collapse stages: a static step that moves as a mechanism is cut down to {:g} {}, then taken "
-                     "as a dynamic stage of {:g} {} (docs/engine.md, \"Collapse stages\")",
+                     "as a dynamic stage of {:g} {} (docs/reference/engine.md, \"Collapse stages\")",
                      a.settle->collapse_dt, u.time, a.settle->until, u.time));
   line(fmt::format("  output every {:g} {}: {} frames", a.output_interval, u.time,
                    static_cast<long long>(std::ceil(a.duration / a.output_interval - 1e-9)) + 1));
@@ -189,7 +201,7 @@ std::string describe_scene(const SceneDescription& s) {
   }
   if (s.blocks.size() > kListed) line(fmt::format("  ... and {} more", s.blocks.size() - kListed));
   if (s.rock_mass) {
-    // What the cut gave (docs/rockmass.md): block count, size distribution, joint lengths.
+    // What the cut gave (docs/guide/rockmass.md): block count, size distribution, joint lengths.
     const RockMassDescription& r = *s.rock_mass;
     double region = std::abs(signed_area(r.region.outer));
     for (const auto& h : r.region.holes) region -= std::abs(signed_area(h));
@@ -271,7 +283,7 @@ std::string describe_scene(const SceneDescription& s) {
   line(fmt::format("estimated contacts at the start: {} between {} block pairs (vertex-edge pairs closer than {:g} {})",
                    est.vertex_edge, est.block_pairs, d, u.length));
   line(fmt::format("contact search distance: up to {:g} {} (search_factor x max_displacement_ratio x half model size;"
-                   " in large models as far as the motion needs, docs/engine.md)",
+                   " in large models as far as the motion needs, docs/reference/engine.md)",
                    search, u.length));
   {
     const MemoryEstimate need = estimate_memory(s);

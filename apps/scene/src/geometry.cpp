@@ -1,5 +1,7 @@
 #include "rheodda/scene/geometry.hpp"
 
+#include "rheodda/core/defaults.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -327,7 +329,7 @@ double half_model_size(const std::vector<BlockDescription>& blocks) {
     all = {std::min(all.x0, x.x0), std::min(all.y0, x.y0), std::max(all.x1, x.x1),
            std::max(all.y1, x.y1)};
   }
-  return 0.5 * std::max(all.x1 - all.x0, all.y1 - all.y0);
+  return core::half_model_size(all.x1 - all.x0, all.y1 - all.y0);
 }
 
 }  // namespace rheodda::scene

@@ -1,5 +1,5 @@
-// The `bolts:` section of a scene file (docs/scene-format.md, "bolts";
-// docs/bolts.md): each bolt's ends, stiffness, pretension, yield force, rupture
+// The `bolts:` section of a scene file (docs/reference/scene-format.md, "bolts";
+// docs/reference/bolts.md): each bolt's ends, stiffness, pretension, yield force, rupture
 // elongation and optional creep law, checked here so that the engine never
 // sees a bad one.
 #include <fmt/format.h>
@@ -54,7 +54,7 @@ BoltDescription read_bolt(const Ctx& ctx, const YAML::Node& n, const std::string
     if (built->failure_time(1.0))
       ctx.fail(law, m.child("law"),
                fmt::format("law '{}' fails by damage, which a bolt does not model: give rupture_elongation "
-                           "instead (docs/bolts.md)", b.law->name));
+                           "instead (docs/reference/bolts.md)", b.law->name));
   }
   // The spring: axial_stiffness, or the law's instantaneous stiffness E1 (one spring, one value).
   std::optional<double> e1;

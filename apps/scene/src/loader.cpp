@@ -22,6 +22,7 @@
 
 #include <algorithm>
 
+#include "rheodda/core/defaults.hpp"
 #include "scene_readers.hpp"
 #include "yaml_document.hpp"
 
@@ -83,15 +84,11 @@ SceneDescription parse_scene(const std::string& text_in, const std::string& file
     check_geometry(ctx, raw, s);
     read_points(ctx, top, s);
     read_bolts(ctx, top, s);
-    if (s.analysis.penalty == 0.0) {
-      // Shi's penalty p_n = k1 E with k1 = 10-100 (the seed's eq. 17): k1 = 40.
-      for (const auto& m : s.materials) s.analysis.penalty = std::max(s.analysis.penalty, 40.0 * m.young_modulus);
-    }
-    if (s.analysis.fixed_point_stiffness == 0.0) {
-      // The engine's default: 100 x the largest Young's modulus (core/model.hpp).
-      for (const auto& m : s.materials)
-        s.analysis.fixed_point_stiffness = std::max(s.analysis.fixed_point_stiffness, 100.0 * m.young_modulus);
-    }
+    // The model's defaults, as the engine would take them (core/defaults.hpp): the
+    // penalty k1 E (the seed's eq. 17), the fixed-point spring 100 E.
+    const double e_max = core::largest_young_modulus(s.materials, [](const Material& m) { return m.young_modulus; });
+    if (s.analysis.penalty == 0.0) s.analysis.penalty = core::default_penalty(e_max);
+    if (s.analysis.fixed_point_stiffness == 0.0) s.analysis.fixed_point_stiffness = core::default_fixed_point_stiffness(e_max);
     return s;
   } catch (const YAML::Exception& e) {
     // Anything yaml-cpp raises past parsing is still a fault of the file.

@@ -13,7 +13,7 @@
 namespace rheodda::scene {
 namespace {
 
-// Measured peak RSS of `rheodda run` (release build; docs/performance.md,
+// Measured peak RSS of `rheodda run` (release build; docs/notes/performance.md,
 // "Memory"): stacked walls of 1e4 and 1e5 blocks 140 MB and 1.29 GB with the amg
 // solver (12.9 KB per block), a running-bond wall of 1e5 blocks with outputs
 // 1.67 GB (16.7 KB per block), the 1e4 stacked wall with cholmod 274 MB (27 KB

@@ -1,4 +1,4 @@
-// `rheodda plot` of a run with bolts (docs/outputs.md, "bolts.csv"): the axial
+// `rheodda plot` of a run with bolts (docs/reference/outputs.md, "bolts.csv"): the axial
 // force of every bolt against time, from bolts.csv, into plots/bolts.<format>.
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-// The `rock_mass:` section of a scene file: joint sets generated and cut into blocks (docs/rockmass.md).
+// The `rock_mass:` section of a scene file: joint sets generated and cut into blocks (docs/guide/rockmass.md).
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
@@ -16,7 +16,7 @@
 
 namespace rheodda::scene::detail {
 
-/// `rock_mass:` (docs/rockmass.md): reads the region, the joint sets' statistics and the
+/// `rock_mass:` (docs/guide/rockmass.md): reads the region, the joint sets' statistics and the
 /// explicit traces, generates and cuts (rockmass::generate_traces, cut_blocks) and
 /// appends the blocks to `raw`; they are checked with the hand-written ones.
 void read_rock_mass(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, std::vector<RawBlock>& raw) {

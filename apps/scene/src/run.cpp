@@ -83,7 +83,7 @@ void record_step(Run& run, const core::Engine& e, const core::StepReport& r) {
 /// The frames still due, each at the end of the first step that reaches its
 /// output time: steps are never shortened to land on output times (only on the
 /// end of the run), so output_interval cannot change the steps taken
-/// (docs/outputs.md). A run resumed at an output time whose frame was not
+/// (docs/reference/outputs.md). A run resumed at an output time whose frame was not
 /// written (stopped on that very step) writes it now.
 void run_to_end(Run& run) {
   if (run.frames_done == 0) write_frame(run);
@@ -185,7 +185,7 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     // stays the one to resume from.
     const std::string msg = fmt::format(
         "{}: the run stops with the outputs of the steps before it kept (a step, penalty or parameter at the "
-        "limit of double precision? see docs/outputs.md, \"Runs that stop\")",
+        "limit of double precision? see docs/reference/outputs.md, \"Runs that stop\")",
         e.what());
     try {
       write_summary(run, "failed", msg);

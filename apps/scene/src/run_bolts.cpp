@@ -1,4 +1,4 @@
-// What a run writes of its bolts (docs/outputs.md, "bolts.csv"; docs/bolts.md),
+// What a run writes of its bolts (docs/reference/outputs.md, "bolts.csv"; docs/reference/bolts.md),
 // only when the scene has bolts: a row per bolt at every output time in
 // bolts.csv, and a layer of lines frames/bolts_NNNNNN.vtp listed by bolts.pvd.
 #include <fmt/format.h>
@@ -73,7 +73,7 @@ std::string vtk_bolts(const Run& run) {
 void refuse_resume_with_bolts(const SceneDescription& s, const RunOptions& o) {
   if (o.resume && !s.bolts.empty())
     throw std::invalid_argument(fmt::format(
-        "--resume: {} has bolts, whose states a checkpoint does not hold yet (docs/bolts.md, \"Limits\"); "
+        "--resume: {} has bolts, whose states a checkpoint does not hold yet (docs/reference/bolts.md, \"Limits\"); "
         "nothing was changed: run again without --resume",
         s.file));
 }

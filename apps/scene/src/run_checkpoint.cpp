@@ -1,4 +1,4 @@
-// A run's checkpoint and its resume (docs/outputs.md, "Interrupting and
+// A run's checkpoint and its resume (docs/reference/outputs.md, "Interrupting and
 // resuming"; the file formats are checkpoint.cpp's and checkpoint_state.cpp's):
 // what a checkpoint counts is synced first, and --resume takes the state up,
 // checks every file it continues, and writes lost frames again.

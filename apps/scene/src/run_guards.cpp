@@ -1,4 +1,4 @@
-// The run's guards (docs/outputs.md, "Runs that stop"): a run that will not fit
+// The run's guards (docs/reference/outputs.md, "Runs that stop"): a run that will not fit
 // in memory is refused before it starts; a state or output row that is no
 // longer finite, and unbounded motion or output (analysis.max_travel_ratio,
 // max_output_size), stop it instead of filling the disk.

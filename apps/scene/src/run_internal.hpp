@@ -7,6 +7,8 @@
 // (summary.json, RunResult's totals, the end-of-run warnings).
 #pragma once
 
+#include "rheodda/scene/describe.hpp"
+
 #include <chrono>
 #include <cstdint>
 #include <stdexcept>
@@ -88,12 +90,10 @@ struct Run {
   std::size_t next_output(double t) const;
 };
 
-// scene_json.cpp
-/// The scene as summary.json's "inputs" (one line of JSON).
-std::string scene_json_text(const SceneDescription& s);
+// scene_json.cpp: scene_json_text (rheodda/scene/describe.hpp).
 
 // run_guards.cpp
-/// Fails early when the run will not fit in memory (docs/performance.md, "Memory").
+/// Fails early when the run will not fit in memory (docs/notes/performance.md, "Memory").
 void check_memory(const SceneDescription& s);
 /// The first non-finite quantity of the engine's state ("velocity of block 'b3'"), or "".
 std::string nonfinite_state(const core::Engine& e, const SceneDescription& s);

@@ -1,4 +1,4 @@
-// What a run reports (docs/outputs.md, "summary.json"): RunResult's totals,
+// What a run reports (docs/reference/outputs.md, "summary.json"): RunResult's totals,
 // summary.json (rewritten at every frame and when the run ends), events.csv of
 // a run with a settling stage, the warnings of a completed run, and the
 // message of a failed one.
@@ -71,7 +71,7 @@ void write_summary(Run& run, const std::string& status, const std::string& error
                             {"refinements", c.refinements}};
   }
   {
-    // The energy balance since t = 0 (docs/engine.md, "Energy balance").
+    // The energy balance since t = 0 (docs/reference/engine.md, "Energy balance").
     const core::EnergyBalance& en = engine.energy();
     auto stored = [](const core::StoredEnergy& e) {
       return json{{"kinetic", e.kinetic},       {"strain", e.strain},
@@ -98,7 +98,7 @@ void write_summary(Run& run, const std::string& status, const std::string& error
                    {"max_relative_residual", en.max_relative_residual}};
   }
   if (result.mechanism.static_analysis) {
-    // Mechanism motion of a static analysis (docs/engine.md, "Mechanisms in static analysis").
+    // Mechanism motion of a static analysis (docs/reference/engine.md, "Mechanisms in static analysis").
     const auto& m = result.mechanism;
     auto time_or_null = [](double t) { return std::isnan(t) ? json(nullptr) : json(t); };
     j["static_mechanism"] = {{"inertia_share", m.inertia_share},
@@ -110,7 +110,7 @@ void write_summary(Run& run, const std::string& status, const std::string& error
     j["static_mechanism"] = nullptr;
   }
   if (a.settle) {
-    // Dynamic stages (docs/engine.md, "Dynamic stages"): summary.json's
+    // Dynamic stages (docs/reference/engine.md, "Dynamic stages"): summary.json's
     // "events" and the events table events.csv, rewritten whole each time.
     j["events"] = json::array();
     std::string csv =
@@ -142,7 +142,7 @@ void write_summary(Run& run, const std::string& status, const std::string& error
   j["resumed_from_step"] = result.resumed_from_step;
   j["steps_computed"] = result.steps_computed;
   j["warnings"] = result.warnings;
-  // Where each joint set's law acted (docs/outputs.md, "summary.json").
+  // Where each joint set's law acted (docs/reference/outputs.md, "summary.json").
   j["creep"] = json::object();
   for (const auto& c : result.creep)
     j["creep"][c.joint_set] = {{"contacts", c.contacts},
@@ -197,13 +197,13 @@ void add_end_warnings(Run& run) {
         "step starts at rest and holds a mechanism (or a part whose springs are soft on the step's scale) "
         "by its inertia term alone, so how far and how fast it moves there depends on dt and "
         "max_displacement_ratio: check the results with both halved (`rheodda check {} --refine` does it), or "
-        "run that phase as a dynamic analysis (docs/engine.md, \"Mechanisms in static analysis\"){}",
+        "run that phase as a dynamic analysis (docs/reference/engine.md, \"Mechanisms in static analysis\"){}",
         m.steps, m.first_time, m.last_time, s.units.time, 100.0 * m.inertia_share,
         s.file.empty() ? std::string("SCENE") : s.file,
         // Settling under gravity applied at once: the usual case, with its remedy.
         m.first_step >= 0 && m.first_step < 10 && !s.analysis.settle
             ? ". It began in the first steps: where that is the model settling as gravity comes on, a "
-              "settling stage (analysis.settle, docs/engine.md \"Settling stage\") makes every run start "
+              "settling stage (analysis.settle, docs/reference/engine.md \"Settling stage\") makes every run start "
               "from the same settled state"
             : ""));
 }
@@ -214,7 +214,7 @@ std::string failure_text(const Run& run, const std::exception& e) {
   std::string error = e.what();
   if (dynamic_cast<const std::bad_alloc*>(&e))
     error = fmt::format("out of memory (a model of {} blocks needs more memory than is available to this "
-                        "process; docs/performance.md gives the memory a run needs per block)",
+                        "process; docs/notes/performance.md gives the memory a run needs per block)",
                         engine.block_count());
   if (const auto* se = dynamic_cast<const core::SingularSystemError*>(&e);
       se && se->block >= 0 && se->block < static_cast<int>(s.blocks.size())) {

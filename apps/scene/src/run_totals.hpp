@@ -1,5 +1,5 @@
 // A run's totals over its accepted steps (summary.json, RunResult;
-// docs/outputs.md "summary.json"), added up step by step. They need no list of
+// docs/reference/outputs.md "summary.json"), added up step by step. They need no list of
 // every step's report, and a resumed run takes them up from its checkpoint
 // (checkpoint_state.hpp) rather than from steps it does not compute again.
 #pragma once

@@ -1,4 +1,4 @@
-// What a run writes as it goes (docs/outputs.md): a row of history.csv per
+// What a run writes as it goes (docs/reference/outputs.md): a row of history.csv per
 // accepted step, and at each output time a frame: the contacts' rows of
 // contacts.csv, the VTK files frames/blocks_NNNNNN.vtp and
 // frames/contacts_NNNNNN.vtp, and the collections blocks.pvd and contacts.pvd
@@ -38,7 +38,7 @@ std::string make_history_header(const SceneDescription& s, const std::vector<int
     history_header += fmt::format(",{0}.contacts,{0}.shear_displacement,{0}.shear_force,{0}.shear_displacement_magnitude",
                                   s.joint_sets[j].name);
   for (const char* column : kHistoryEnergyColumns) history_header += fmt::format(",{}", column);
-  if (!s.bolts.empty()) history_header += ",energy_bolt,dissipation_bolt";  // docs/bolts.md, "Energy"
+  if (!s.bolts.empty()) history_header += ",energy_bolt,dissipation_bolt";  // docs/reference/bolts.md, "Energy"
   history_header += '\n';
   return history_header;
 }
@@ -65,7 +65,7 @@ std::string history_row(const Run& run, const core::StepReport* r) {
     row += n ? fmt::format(",{},{:.10g},{:.10g},{:.10g}", n, shear / n, force / n, magnitude / n)
              : fmt::format(",0,,,");
   }
-  // Energy balance (docs/engine.md, "Energy balance"): stored energies now, flows since t = 0.
+  // Energy balance (docs/reference/engine.md, "Energy balance"): stored energies now, flows since t = 0.
   for (const double v : history_energy_values(engine.energy())) row += fmt::format(",{:.10g}", v);
   if (!s.bolts.empty())
     row += fmt::format(",{:.10g},{:.10g}", engine.energy().stored.bolt, engine.energy().total.dissipation_bolt);

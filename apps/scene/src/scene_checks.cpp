@@ -56,7 +56,7 @@ void check_geometry(const Ctx& ctx, std::vector<RawBlock>& raw, SceneDescription
         ctx.fail(raw[i].geometry_node, "rock_mass.region",
                  fmt::format("the cut leaves a needle DDA cannot model at ({:g}, {:g}): the block there {}; two "
                              "traces cross at a grazing angle (below about 1e-7 rad) there: change the seed or the "
-                             "joint sets (docs/rockmass.md, \"Limits\")",
+                             "joint sets (docs/guide/rockmass.md, \"Limits\")",
                              x, y, *defect));
       }
       ctx.fail(raw[i].geometry_node, raw[i].path + ".polygon", fmt::format("block '{}' {}", b.name, *defect));

@@ -1,9 +1,10 @@
-// The scene as summary.json's "inputs" (docs/outputs.md, "summary.json"): every
+// The scene as summary.json's "inputs" (docs/reference/outputs.md, "summary.json"): every
 // key the run used, defaults filled in.
 #include <nlohmann/json.hpp>
 
 #include "rheodda/scene/describe.hpp"
 #include "bolts_text.hpp"
+#include "rheodda/scene/keys.hpp"
 #include "run_internal.hpp"
 
 namespace rheodda::scene {
@@ -11,61 +12,34 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
+/// A declared key's value as JSON: null where it does not apply.
+json key_json(const KeyValue& v) {
+  return std::visit([](const auto& x) -> json {
+    if constexpr (std::is_same_v<std::decay_t<decltype(x)>, std::monostate>) return json(nullptr);
+    else return json(x);
+  }, v);
+}
+
+/// The declared keys of one map (keys.hpp) as a JSON object, in their order; a
+/// sub-map (`settle`) the scene does not give, whose keys all do not apply, is null.
+json section_of(const Analysis& a, const std::string& map) {
+  json o = json::object();
+  bool applies = false;
+  for (const KeySpec& k : analysis_keys()) {
+    if (k.map != map) continue;
+    o[k.name] = k.type == KeyType::map ? section_of(a, map + "." + k.name) : key_json(k.get(a));
+    applies = applies || !o[k.name].is_null();
+  }
+  return applies ? o : json(nullptr);
+}
+
 json scene_json(const SceneDescription& s) {
   json j;
   j["file"] = s.file;
   j["title"] = s.title;
   j["units"] = {{"length", s.units.length}, {"force", s.units.force}, {"time", s.units.time},
                 {"stress", s.units.stress()}};
-  const Analysis& a = s.analysis;
-  j["analysis"] = {{"type", analysis_type_name(a.type)},
-                   {"duration", a.duration},
-                   {"dt", a.dt},
-                   {"dt_growth", a.dt_growth},
-                   {"dt_cut", a.dt_cut},
-                   {"max_cuts", a.max_cuts},
-                   {"creep_tolerance", a.creep_tolerance},
-                   {"step_tolerance", a.step_tolerance},
-                   {"step_extrapolation", a.step_extrapolation},
-                   {"dt_max", a.dt_max},
-                   {"creep_restart_on_contact_change", a.creep_restart_on_contact_change},
-                   {"max_displacement_ratio", a.max_displacement_ratio},
-                   {"settle", a.settle ? json{{"until", a.settle->until},
-                                              {"dt", a.settle->dt},
-                                              {"max_displacement_ratio", a.settle->max_displacement_ratio},
-                                              {"type", a.settle->dynamic ? "dynamic" : "static"},
-                                              {"collapse_dt", a.settle->collapse_dt},
-                                              {"gravity_ramp", a.settle->gravity_ramp},
-                                              {"rest_tolerance", a.settle->rest_tolerance},
-                                              {"open_close_limit", a.settle->open_close_limit}}
-                                       : json(nullptr)},
-                   {"dynamic_ratio", a.dynamic_ratio},
-                   {"time_integration", time_integration_name(a.time_integration)},
-                   {"scheme", scheme_text(a)},
-                   {"penalty", a.penalty},
-                   {"shear_normal_ratio", a.shear_normal_ratio},
-                   {"search_factor", a.search_factor},
-                   {"angle_tolerance", a.angle_tolerance},
-                   {"penetration_ratio", a.penetration_ratio},
-                   {"stick_keeps_force", a.stick_keeps_force},
-                   {"friction_tolerance", a.friction_tolerance},
-                   {"force_resolution", a.force_resolution},
-                   {"max_flips", a.max_flips},
-                   {"max_refinements", a.max_refinements},
-                   {"penalty_raise", a.penalty_raise},
-                   {"penalty_max_factor", a.penalty_max_factor},
-                   {"open_close_limit", a.open_close_limit},
-                   {"fixed_point_stiffness", a.fixed_point_stiffness},
-                   {"solver", solver_name(a.solver)},
-                   {"solver_tolerance", a.solver_tolerance},
-                   {"solver_max_iterations", a.solver_max_iterations},
-                   {"solver_iterate_tolerance", a.solver_iterate_tolerance},
-                   {"contact_solver", a.contact_solver == ContactSolverKind::newton ? "newton" : "open-close"},
-                   {"contact_residual_tolerance", a.contact_residual_tolerance},
-                   {"output_interval", a.output_interval},
-                   {"max_travel_ratio", a.max_travel_ratio},
-                   {"max_output_size", a.max_output_size},
-                   {"gravity", a.gravity}};
+  j["analysis"] = section_of(s.analysis, "analysis");  // every declared key (keys.hpp), in order
   for (const auto& m : s.materials)
     j["materials"][m.name] = {{"density", m.density},
                               {"young_modulus", m.young_modulus},

@@ -1,6 +1,7 @@
 // The valid keys of every map of a scene file and the schema that publishes them.
 #include "scene_keys.hpp"
 
+#include "rheodda/scene/keys.hpp"
 #include "rheodda/scene/loader.hpp"
 
 namespace rheodda::scene {
@@ -9,22 +10,12 @@ namespace detail {
 // The valid keys of every map of a scene file, each list defined once: the
 // MapReader of that map reads it through the list, and scene_schema() publishes
 // the same lists, so what the loader accepts and what the schema (and the test of
-// docs/scene-format.md against it) says cannot diverge. Order: that of the docs.
+// docs/reference/scene-format.md against it) says cannot diverge. Order: that of the docs.
 namespace keys {
 const std::vector<std::string> top{"title", "units", "analysis", "materials", "joint_sets",
                                    "blocks", "rock_mass", "fixed_points", "loads", "measurement_points",
                                    "bolts"};
 const std::vector<std::string> units{"length", "force", "time"};
-const std::vector<std::string> analysis{
-    "type", "duration", "dt", "dt_growth", "dt_cut", "max_cuts", "max_displacement_ratio", "settle",
-    "dynamic_ratio", "time_integration", "scheme", "creep_tolerance", "step_tolerance",
-    "step_extrapolation", "dt_max", "creep_restart_on_contact_change", "penalty",
-    "shear_normal_ratio", "search_factor", "angle_tolerance", "penetration_ratio",
-    "stick_keeps_force", "friction_tolerance", "force_resolution", "max_flips", "max_refinements",
-    "penalty_raise", "penalty_max_factor", "open_close_limit", "fixed_point_stiffness", "solver", "solver_tolerance",
-    "solver_max_iterations", "solver_iterate_tolerance", "contact_solver", "contact_residual_tolerance", "output_interval", "max_travel_ratio", "max_output_size", "gravity"};
-const std::vector<std::string> settle{"until", "dt", "max_displacement_ratio", "type", "collapse_dt", "gravity_ramp",
-                                      "rest_tolerance", "open_close_limit"};
 const std::vector<std::string> material{"density", "young_modulus", "poisson_ratio", "plane", "damping_ratio"};
 const std::vector<std::string> joint_set{"friction_angle", "cohesion", "tensile_strength",
                                          "residual_friction_angle", "residual_cohesion", "normal_stiffness", "shear_stiffness", "restitution", "law", "record"};
@@ -52,12 +43,13 @@ const std::vector<std::string> bolt_to{"point", "block", "fixed"};
 
 }  // namespace detail
 
-const std::vector<SceneMapKeys>& scene_schema() {
-  static const std::vector<SceneMapKeys> schema{
+std::vector<SceneMapKeys> scene_schema() {
+  // Built at each call: a key declared at run time (keys.hpp) is in it.
+  return {
       {"", detail::keys::top},
       {"units", detail::keys::units},
-      {"analysis", detail::keys::analysis},
-      {"analysis.settle", detail::keys::settle},
+      {"analysis", declared_key_names("analysis")},
+      {"analysis.settle", declared_key_names("analysis.settle")},
       {"materials.*", detail::keys::material},
       {"joint_sets.*", detail::keys::joint_set},
       {"joint_sets.*.law", detail::keys::law},
@@ -75,7 +67,6 @@ const std::vector<SceneMapKeys>& scene_schema() {
       {"bolts[*].to", detail::keys::bolt_to},
       {"bolts[*].law", detail::keys::law},
   };
-  return schema;
 }
 
 }  // namespace rheodda::scene

@@ -1,4 +1,5 @@
-// The valid keys of every map of a scene file (scene_keys.cpp).
+// The valid keys of every map of a scene file (scene_keys.cpp); those of `analysis:`
+// and `analysis.settle` are declared with their types in keys.hpp.
 #pragma once
 
 #include <string>
@@ -7,8 +8,6 @@
 namespace rheodda::scene::detail::keys {
 extern const std::vector<std::string> top;
 extern const std::vector<std::string> units;
-extern const std::vector<std::string> analysis;
-extern const std::vector<std::string> settle;
 extern const std::vector<std::string> material;
 extern const std::vector<std::string> joint_set;
 extern const std::vector<std::string> law;

@@ -3,7 +3,7 @@
 //
 // Why: yaml-cpp 0.7's own scanner takes 8 s of the 13 s `rheodda check` spends on
 // an explicit rock mass of 93 000 blocks (24 MB, written by `rheodda generate`),
-// libyaml's 1 s (docs/rockmass.md, "Performance"). The nodes are the ones yaml-cpp's
+// libyaml's 1 s (docs/guide/rockmass.md, "Performance"). The nodes are the ones yaml-cpp's
 // YAML::Load builds (its NodeBuilder, redone here), so the loader reads them as before.
 #pragma once
 

@@ -1,4 +1,4 @@
-// A study's cases spread over MPI ranks (docs/studies.md, "On a cluster: MPI"):
+// A study's cases spread over MPI ranks (docs/guide/studies.md, "On a cluster: MPI"):
 // `mpirun -np N rheodda study STUDY.yaml -o OUT` (or `srun`). Rank 0 prepares the
 // study, hands one case at a time to whichever worker rank is idle (a dynamic queue:
 // a slow case holds only its own rank), gathers the outcomes and writes study.csv;

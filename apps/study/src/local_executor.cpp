@@ -41,7 +41,7 @@ pid_t spawn_case(const std::string& binary, const fs::path& dir, bool resume) {
   // fork and exec rather than posix_spawn, for the parent-death signal: a case must
   // not outlive the study (a SIGKILL of `rheodda study` leaves no case running on, in
   // the folder a `--resume` will use). The signal is SIGKILL: a run killed at any
-  // moment resumes to identical files (docs/outputs.md). A pipe closed by the exec
+  // moment resumes to identical files (docs/reference/outputs.md). A pipe closed by the exec
   // (O_CLOEXEC) brings back the errno of an exec that failed.
   int report[2];
   if (::pipe2(report, O_CLOEXEC) != 0) throw std::runtime_error(fmt::format("cannot start {}: {}", binary, std::strerror(errno)));

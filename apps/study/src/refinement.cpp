@@ -117,7 +117,7 @@ RefinementStudy refinement_study(const std::string& scene_path, const std::strin
 
   // The same study as a file: `rheodda study FILE` reruns it.
   std::string y = fmt::format("# Written by `rheodda check {} --refine {}`: the scene at its own step controls (L0)\n"
-                              "# and with every step control halved, level by level (docs/speed-accuracy.md,\n"
+                              "# and with every step control halved, level by level (docs/guide/choosing-step-controls.md,\n"
                               "# \"Checking a scene's step controls\").\n",
                               scene_path, o.levels);
   std::vector<std::string> times;
@@ -236,7 +236,7 @@ RefinementAssessment assess_refinement(const RefinementStudy& refinement, const 
           ? fmt::format(" Parts of the model moved as a mechanism held only by the static steps' inertia "
                         "(inertia_share up to {:.3g}): how far they move is set by the step controls; a settling "
                         "stage (analysis.settle) or a dynamic analysis may be what the scene needs "
-                        "(docs/engine.md, \"Mechanisms in static analysis\").",
+                        "(docs/reference/engine.md, \"Mechanisms in static analysis\").",
                         as.largest_inertia_share)
           : std::string();
   if (worst_converged) {

@@ -1,6 +1,6 @@
 // Running a study: one case per executor task (local_executor.cpp's child
 // `rheodda run` processes, at most `jobs` at once, or MPI ranks); then study.csv,
-// study.json (study_report.cpp) and the overlay plot (study_plots.cpp) (docs/studies.md).
+// study.json (study_report.cpp) and the overlay plot (study_plots.cpp) (docs/guide/studies.md).
 #include <fmt/format.h>
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Study files (docs/studies.md): reading, checking, and building the case scenes.
+// Study files (docs/guide/studies.md): reading, checking, and building the case scenes.
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
@@ -170,7 +170,7 @@ void apply(YAML::Node root, const Override& o, const std::string& file, const st
   }
 }
 
-/// history.csv columns a scene's run will have (docs/outputs.md), plus the derived POINT.displacement.
+/// history.csv columns a scene's run will have (docs/reference/outputs.md), plus the derived POINT.displacement.
 std::set<std::string> history_columns(const scene::SceneDescription& s) {
   std::set<std::string> c{"time", "step", "dt", "cuts", "iterations"};
   for (const auto& m : s.measurement_points)
@@ -199,7 +199,7 @@ std::uint64_t whole_number(const std::string& file, const YAML::Node& n, const s
   return static_cast<std::uint64_t>(v);
 }
 
-/// `sweep:` (docs/studies.md, "Sweeps"): the method, its draws, and each parameter.
+/// `sweep:` (docs/guide/studies.md, "Sweeps"): the method, its draws, and each parameter.
 void read_sweep(const std::string& file, const YAML::Node& sw, StudyDescription& s) {
   if (!sw.IsMap()) fail(file, sw, "sweep", "expected a map with keys method, parameters (samples, seed)");
   check_keys(file, sw, "sweep", {"method", "parameters", "samples", "seed"});

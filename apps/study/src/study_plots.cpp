@@ -1,6 +1,6 @@
 // A study's pictures: study.png (the `plot` output of every case against time),
 // study_sweep.png and study_map.png (outputs against the swept parameters), drawn
-// from study.json and study.csv by `rheodda plot OUTDIR` too (docs/studies.md).
+// from study.json and study.csv by `rheodda plot OUTDIR` too (docs/guide/studies.md).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -175,7 +175,7 @@ std::vector<std::string> plot_sweep(const StudyDescription& study, const std::ve
   const fs::path gp = out_dir / "study_sweep.gp";
   {
     std::ofstream g(gp);
-    g << "# Drawn by rheodda study: the outputs against the swept parameters (docs/studies.md).\n"
+    g << "# Drawn by rheodda study: the outputs against the swept parameters (docs/guide/studies.md).\n"
       << "set terminal pngcairo size " << 560 * columns + 240 << "," << 380 * rows + 60 << " noenhanced\n"
       << "set output '" << (out_dir / "study_sweep.png").string() << "'\n"
       << "set grid\nset key outside right\n"

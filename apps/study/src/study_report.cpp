@@ -1,4 +1,4 @@
-// A study's record: study.csv (the cases' values) and study.json (what redraws it) (docs/studies.md).
+// A study's record: study.csv (the cases' values) and study.json (what redraws it) (docs/guide/studies.md).
 #include <fmt/format.h>
 
 #include <fstream>

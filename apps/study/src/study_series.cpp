@@ -1,5 +1,5 @@
 // Reading what a case's run wrote: files as text, CSV lines and the series of
-// one history.csv column, with its value at a time (docs/studies.md).
+// one history.csv column, with its value at a time (docs/guide/studies.md).
 #include <fmt/format.h>
 
 #include <algorithm>

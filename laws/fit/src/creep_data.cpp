@@ -64,11 +64,13 @@ CreepData parse_creep_csv(std::istream& in, const std::string& source, const Csv
   data.time_column = options.time_column;
   data.displacement_column = options.displacement_column;
   data.stress_column = options.stress_column;
+  data.sigma_column = options.sigma_column;
+  const bool weighted = !options.sigma_column.empty();
 
   std::string text;
   std::size_t line_no = 0;
   std::vector<std::string> header;
-  std::size_t col_t = 0, col_d = 0, col_s = 0;
+  std::size_t col_t = 0, col_d = 0, col_s = 0, col_sigma = 0;
   std::vector<double> row_stress;
 
   auto find_column = [&](const std::string& name, const char* flag) {
@@ -90,6 +92,7 @@ CreepData parse_creep_csv(std::istream& in, const std::string& source, const Csv
       col_t = find_column(options.time_column, "--time-column");
       col_d = find_column(options.displacement_column, "--displacement-column");
       if (per_row) col_s = find_column(options.stress_column, "--stress-column");
+      if (weighted) col_sigma = find_column(options.sigma_column, "--sigma-column");
       continue;
     }
     if (cells.size() != header.size())
@@ -129,6 +132,13 @@ CreepData parse_creep_csv(std::istream& in, const std::string& source, const Csv
     data.displacement.push_back(d);
     data.line.push_back(line_no);
     if (per_row) row_stress.push_back(number(col_s));
+    if (weighted) {
+      const double sigma = number(col_sigma);
+      if (!(sigma > 0.0))
+        throw DataError(source, line_no, header[col_sigma],
+                        fmt::format("sigma {:g} is not positive; a measurement standard deviation is > 0", sigma));
+      data.sigma.push_back(sigma);
+    }
   }
   if (header.empty()) throw DataError(source, 0, "", "empty file: no header row and no data");
   if (data.t.empty()) throw DataError(source, 0, "", "no data rows after the header");

@@ -53,6 +53,7 @@ using detail::ErrorHandlerOff;
 using detail::generic_start;
 using detail::GslFree;
 using detail::identify;
+using detail::Mapping;
 using detail::probe_structure;
 using detail::Problem;
 using detail::restart_start;
@@ -68,16 +69,111 @@ std::vector<double> logs(const std::vector<double>& v) {
   return l;
 }
 
+// ---- 0. The user's settings: fixed parameters, bounds, initial values, weights ----
+struct Constraints {
+  bool active = false;              // any setting or sigma: GSL works through `mapping`
+  std::optional<Mapping> mapping;   // the free parameters and their log bounds
+  std::vector<char> fixed;          // per parameter: vary = false
+  std::vector<std::optional<double>> initial;  // per parameter: the user's value
+  std::vector<double> min, max;     // per parameter [its unit]
+  std::vector<double> weight;       // 1/sigma per point; empty without sigma [1/length]
+  std::size_t varying = 0;          // k
+};
+
+std::string names_of(const laws::LawInfo& info) {
+  std::string out;
+  for (const auto& p : info.parameters) out += (out.empty() ? "" : ", ") + p.name;
+  return out;
+}
+
+// Every setting checked against the law and itself (fit.hpp, fit_law).
+Constraints read_settings(const laws::LawInfo& info, const CreepData& data, const FitOptions& options) {
+  const std::size_t np = info.parameters.size();
+  Constraints c;
+  c.fixed.assign(np, 0);
+  c.initial.assign(np, std::nullopt);
+  c.min.assign(np, 0.0);
+  c.max.assign(np, std::numeric_limits<double>::infinity());
+  for (const auto& [name, set] : options.parameters) {
+    std::size_t k = np;
+    for (std::size_t i = 0; i < np; ++i)
+      if (info.parameters[i].name == name) k = i;
+    if (k == np)
+      throw FitError(info.name, fmt::format("law '{}' has no parameter '{}' (its parameters: {})", info.name,
+                                            name, names_of(info)));
+    if (std::isnan(set.min) || set.min < 0.0 || std::isinf(set.min))
+      throw FitError(info.name, fmt::format("law '{}': {}: min {:g} is not a finite number >= 0 (fits work on "
+                                            "positive parameters)",
+                                            info.name, name, set.min));
+    if (std::isnan(set.max) || !(set.max > set.min))
+      throw FitError(info.name, fmt::format("law '{}': {}: the bounds [{:g}, {:g}] are empty: max must be above "
+                                            "min",
+                                            info.name, name, set.min, set.max));
+    if (set.value) {
+      const double v = *set.value;
+      if (!std::isfinite(v) || v <= 0.0)
+        throw FitError(info.name, fmt::format("law '{}': {}: value {:g} is not a finite positive number (fits "
+                                              "work on positive parameters)",
+                                              info.name, name, v));
+      if (v < set.min || v > set.max)
+        throw FitError(info.name, fmt::format("law '{}': {}: value {:g} is outside its bounds [{:g}, {:g}]",
+                                              info.name, name, v, set.min, set.max));
+    }
+    if (!set.vary && !set.value)
+      throw FitError(info.name, fmt::format("law '{}': {} is fixed (vary = false) but has no value", info.name,
+                                            name));
+    c.fixed[k] = !set.vary;
+    c.initial[k] = set.value;
+    c.min[k] = set.min;
+    c.max[k] = set.max;
+    c.active = c.active || !set.is_default();
+  }
+  if (!data.sigma.empty()) {
+    if (data.sigma.size() != data.t.size())
+      throw FitError(info.name, fmt::format("{}: {} sigma values for {} points", data.source, data.sigma.size(),
+                                            data.t.size()));
+    for (std::size_t j = 0; j < data.sigma.size(); ++j) {
+      if (!(data.sigma[j] > 0.0) || !std::isfinite(data.sigma[j]))
+        throw FitError(info.name, fmt::format("{}: sigma {:g} of point {} is not a finite positive number",
+                                              data.source, data.sigma[j], j + 1));
+      c.weight.push_back(1.0 / data.sigma[j]);
+    }
+    c.active = true;
+  } else if (!options.scale_covariance) {
+    throw FitError(info.name, "absolute standard errors (--absolute-sigma, scale_covariance = false) need the "
+                              "measurement sigma of each point (--sigma-column, sigma=)");
+  }
+  Mapping m;
+  m.x.assign(np, 0.0);
+  for (std::size_t k = 0; k < np; ++k) {
+    if (c.fixed[k]) {
+      m.x[k] = std::log(*c.initial[k]);
+      continue;
+    }
+    m.free.push_back(k);
+    m.lo.push_back(c.min[k] > 0.0 ? std::log(c.min[k]) : -std::numeric_limits<double>::infinity());
+    m.hi.push_back(std::isfinite(c.max[k]) ? std::log(c.max[k]) : std::numeric_limits<double>::infinity());
+  }
+  c.varying = m.free.size();
+  if (c.varying == 0)
+    throw FitError(info.name, fmt::format("law '{}': every parameter is fixed (vary = false): nothing to fit",
+                                          info.name));
+  if (c.active) c.mapping = std::move(m);
+  return c;
+}
+
 // ---- 1. The input: what the fit can work on ----------------------------------
 struct DataScale {
-  double dmax = 0.0;  // largest |displacement|: residuals are scaled by 1/dmax
+  double dmax = 0.0;  // largest |displacement|
   double mean = 0.0;  // mean displacement (for R^2)
+  // residuals are divided by this: dmax, with sigma max|d/sigma|
+  double scale = 1.0, inv_scale = 1.0;
 };
 
 // The law must be fittable with positive parameters, the data hold more points
-// than parameters, stages that cover them, a load and a displacement.
-DataScale check_input(const laws::LawInfo& info, const CreepData& data) {
-  const std::size_t n = data.t.size(), np = info.parameters.size();
+// than varying parameters, stages that cover them, a load and a displacement.
+DataScale check_input(const laws::LawInfo& info, const CreepData& data, const Constraints& c) {
+  const std::size_t n = data.t.size(), np = c.varying;
   for (const auto& spec : info.parameters)
     if (spec.min < 0.0)
       throw FitError(info.name, fmt::format("law '{}': parameter {} may be negative (range {}); fits "
@@ -85,9 +181,9 @@ DataScale check_input(const laws::LawInfo& info, const CreepData& data) {
                                             info.name, spec.name, spec.range_text()));
   if (n < np + 1)
     throw FitError(info.name,
-                   fmt::format("{}: too few points for law '{}': {} parameters need at least {} "
+                   fmt::format("{}: too few points for law '{}': {} {}parameters need at least {} "
                                "points, the data has {}",
-                               data.source, info.name, np, np + 1, n));
+                               data.source, info.name, np, np < info.parameters.size() ? "varying " : "", np + 1, n));
   // CreepData built in code (not by parse_creep_csv) must hold the same invariants.
   std::size_t covered = 0;
   for (const auto& s : data.stages) {
@@ -110,6 +206,12 @@ DataScale check_input(const laws::LawInfo& info, const CreepData& data) {
   if (sc.dmax == 0.0)
     throw FitError(info.name,
                    fmt::format("{}: the displacement is zero everywhere; nothing to fit", data.source));
+  sc.scale = sc.dmax;
+  if (!c.weight.empty()) {
+    sc.scale = 0.0;
+    for (std::size_t j = 0; j < n; ++j) sc.scale = std::max(sc.scale, std::abs(data.displacement[j] * c.weight[j]));
+  }
+  sc.inv_scale = 1.0 / sc.scale;
   return sc;
 }
 
@@ -141,7 +243,8 @@ struct Search {
 // The starts of the variable-projection search, then the classic starts as a
 // reference, each polished by `full` (all points) or on a subsample.
 Search search_minimum(const laws::LawInfo& info, const CreepData& data, Solver& full,
-                      const CurveFeatures& features, double dmax, const FitOptions& options) {
+                      const CurveFeatures& features, double dmax, const FitOptions& options,
+                      const Constraints& constraints) {
   const Problem& pr = full.pr;
   const std::size_t n = pr.n, np = pr.np;
   const std::vector<double> base = pr.structure ? series_start(*pr.structure, np, features)
@@ -152,7 +255,8 @@ Search search_minimum(const laws::LawInfo& info, const CreepData& data, Solver& 
   bool has_bingham = false;
   if (pr.structure)
     for (const auto& el : pr.structure->elements) has_bingham = has_bingham || el.kind == Kind::bingham;
-  const bool refine = options.structured_search && has_bingham;
+  // (Not with constraints: the exact re-solve knows neither fixed values, bounds nor weights.)
+  const bool refine = options.structured_search && has_bingham && !constraints.active;
   const bool structured_search = pr.structure && options.structured_search;
 
   Search sr;
@@ -164,7 +268,7 @@ Search search_minimum(const laws::LawInfo& info, const CreepData& data, Solver& 
   if (structured_search) {
     detail::VarProSettings vs;
     vs.per_decade = std::max(options.grid_per_decade, 1);
-    for (auto& v : detail::varpro_starts(*pr.structure, np, data, pr.inv_scale, vs)) {
+    for (auto& v : detail::varpro_starts(*pr.structure, np, data, 1.0 / dmax, vs)) {
       const auto o = full.polish(logs(v.values), sr.starts_total > 0 ? sr.best_rss : -1.0, floor, options, refine);
       sr.consider(o, sr.starts_total == 0);
       ++sr.starts_total;
@@ -178,15 +282,24 @@ Search search_minimum(const laws::LawInfo& info, const CreepData& data, Solver& 
   // subsample (every stride-th point of each stage, about kReferenceSample in
   // all), against the best minimum polished on that subsample; a start that
   // finds a lower one there is then polished on all points. (A 100-point
-  // subsample of the 201-point staged Nishihara curves of docs/fitting.md missed
+  // subsample of the 201-point staged Nishihara curves of docs/guide/fitting.md missed
   // the reference's minimum in 10 of 300 draws; 200 points of 1 000 keep a
   // Burgers fit within 1 ms, bench/fit_bench.)
   const int classic = 1 + std::max(options.restarts, 0);
   std::vector<std::vector<double>> classic_starts;
+  // The user's initial values (ParameterSetting::value), the others from the curve: tried first.
+  std::vector<double> given = base;
+  bool any_given = false;
+  for (std::size_t k = 0; k < np; ++k)
+    if (constraints.initial[k] && !constraints.fixed[k]) {
+      given[k] = *constraints.initial[k];
+      any_given = true;
+    }
+  if (any_given) classic_starts.push_back(logs(given));
   for (int r = 0; r < classic; ++r)
     classic_starts.push_back(logs(r == 0 ? base : restart_start(base, pr.structure, r, features.f_max)));
   constexpr std::size_t kReferencePoints = 500, kReferenceSample = 200;
-  if (sr.structured > 0 && std::isfinite(sr.best_rss) && n > kReferencePoints) {
+  if (sr.structured > 0 && std::isfinite(sr.best_rss) && n > kReferencePoints && !constraints.active) {
     const CreepData sub = subsample(data, kReferenceSample);
     Solver small(info, sub, pr.structure, 1.0 / dmax);
     const double floor_sub = static_cast<double>(sub.t.size()) * 1e-20;
@@ -234,14 +347,18 @@ void order_kelvins(const SeriesStructure& s, std::vector<double>& x) {
 }
 
 // ---- 3. The result: goodness of fit and how certain the minimum is ------------
+// `best_rss`: the scaled sum of squares at the reported point; `weight` 1/sigma or empty.
 void add_statistics(FitResult& res, const CreepData& data, const std::vector<double>& fitted_scaled,
-                    const Search& sr, const DataScale& ds, std::size_t np) {
+                    double best_rss, const DataScale& ds, const std::vector<double>& weight, std::size_t np) {
   const std::size_t n = data.t.size();
-  const double scale = ds.dmax, mean = ds.mean, dmax = ds.dmax;
-  res.rss = sr.best_rss * scale * scale;
+  const double scale = ds.scale, mean = ds.mean, dmax = ds.dmax;
+  res.chi_square = best_rss * scale * scale;
+  res.rss = weight.empty() ? res.chi_square : 0.0;
   double tss = 0.0;
   for (std::size_t j = 0; j < n; ++j) {
-    res.fitted.push_back(data.displacement[j] + fitted_scaled[j] * scale);
+    // scaled residual f = (d_model - d) * weight / scale
+    res.fitted.push_back(data.displacement[j] + fitted_scaled[j] * scale / (weight.empty() ? 1.0 : weight[j]));
+    if (!weight.empty()) res.rss += (res.fitted[j] - data.displacement[j]) * (res.fitted[j] - data.displacement[j]);
     tss += (data.displacement[j] - mean) * (data.displacement[j] - mean);
   }
   // R^2 = 1 - RSS/TSS is undefined when the data have no spread: TSS at the
@@ -250,12 +367,16 @@ void add_statistics(FitResult& res, const CreepData& data, const std::vector<dou
   res.r2 = tss > nd * (1e-10 * dmax) * (1e-10 * dmax) ? 1.0 - res.rss / tss
                                                       : std::numeric_limits<double>::quiet_NaN();
   res.rmse = std::sqrt(res.rss / nd);
-  const double log_mse = std::log(std::max(res.rss / nd, std::numeric_limits<double>::min()));
+  res.reduced_chi_square = res.chi_square / (nd - k);
+  // Akaike and Bayesian information criteria of a least-squares fit with
+  // Gaussian errors (Burnham & Anderson, Model Selection and Multimodel
+  // Inference, 2nd ed. 2002, sec. 2.2; lmfit's aic and bic): n ln(chi^2/n) + 2k, + k ln n.
+  const double log_mse = std::log(std::max(res.chi_square / nd, std::numeric_limits<double>::min()));
   res.aic = nd * log_mse + 2.0 * k;
   res.bic = nd * log_mse + k * std::log(nd);
 }
 
-// Is the minimum certain? (docs/fitting.md, "When the minimum is not certain")
+// Is the minimum certain? (docs/guide/fitting.md, "When the minimum is not certain")
 void judge_minimum(FitResult& res, const Search& sr, double scale) {
   const double floor = sr.floor;
   res.starts_agreeing = sr.agreeing_sample;
@@ -264,8 +385,8 @@ void judge_minimum(FitResult& res, const Search& sr, double scale) {
     res.minimum_certain = false;
     res.minimum_note = fmt::format(
         "the multi-start reference found a lower sum of squares than the variable-projection "
-        "search (RSS {:.6g} < {:.6g}): other minima may exist",
-        res.rss, sr.structured_rss * scale * scale);
+        "search ({} {:.6g} < {:.6g}): other minima may exist",
+        res.weighted ? "chi-square" : "RSS", res.chi_square, sr.structured_rss * scale * scale);
   } else if (res.starts_agreeing < 2) {
     res.minimum_certain = false;
     res.minimum_note = res.starts > 1 ? fmt::format("it was reached from one start only (of {})", res.starts)
@@ -280,35 +401,57 @@ void judge_minimum(FitResult& res, const Search& sr, double scale) {
 }
 
 // ---- 4. The parameters: values, identifiability, standard errors, correlations ----
-void add_parameters(FitResult& res, const laws::LawInfo& info, gsl_multifit_nlinear_workspace* w,
-                    const Search& sr, const std::optional<SeriesStructure>& structure, const CreepData& data,
+// `jac`: the Jacobian of the scaled residuals with respect to the log of the
+// parameters `cols` (those the errors are for: every parameter, or with
+// constraints the varying ones not on a bound); `s` the residual standard
+// deviation (scaled).
+void add_parameters(FitResult& res, const laws::LawInfo& info, const gsl_matrix* jac,
+                    const std::vector<std::size_t>& cols, double s, const std::vector<double>& best_x,
+                    const std::optional<SeriesStructure>& structure, const CreepData& data,
                     const FitOptions& options) {
-  const std::size_t n = data.t.size(), np = info.parameters.size();
-  const double nd = static_cast<double>(n), k = static_cast<double>(np);
+  const std::size_t n = data.t.size(), np = info.parameters.size(), m = cols.size();
   for (std::size_t i = 0; i < np; ++i) {
     ParameterEstimate e;
     e.name = info.parameters[i].name;
     e.unit = info.parameters[i].unit;
-    e.value = std::exp(sr.best_x[i]);
+    e.value = std::exp(best_x[i]);
     res.parameters.push_back(e);
   }
-  // Identifiability and standard errors from the SVD of the Jacobian (identify()).
+  res.correlation.assign(np * np, std::numeric_limits<double>::quiet_NaN());
+  if (m == 0) return;
+  // Identifiability and standard errors from the SVD of the Jacobian (identify()),
+  // on the parameters of `cols` only: the others are held.
+  FitResult sub;
+  for (std::size_t a = 0; a < m; ++a) sub.parameters.push_back(res.parameters[cols[a]]);
   std::vector<double> cov;
   {
-    const gsl_matrix* J = gsl_multifit_nlinear_jac(w);
-    std::unique_ptr<gsl_matrix, GslFree> jc(gsl_matrix_alloc(n, np));
-    gsl_matrix_memcpy(jc.get(), J);
-    const double s = std::sqrt(sr.best_rss / (nd - k));  // residual standard deviation (scaled)
-    const auto candidates = structure ? combination_candidates(*structure, res.parameters, data)
-                                      : std::vector<Candidate>{};
-    identify(res, jc.get(), s, candidates, options, cov);
+    std::unique_ptr<gsl_matrix, GslFree> jc(gsl_matrix_alloc(n, m));
+    gsl_matrix_memcpy(jc.get(), jac);
+    std::vector<Candidate> candidates;
+    if (structure)
+      for (auto& c : combination_candidates(*structure, res.parameters, data)) {
+        std::vector<double> g(m);
+        for (std::size_t a = 0; a < m; ++a) g[a] = c.grad[cols[a]];
+        c.grad = std::move(g);
+        candidates.push_back(std::move(c));
+      }
+    identify(sub, jc.get(), s, candidates, options, cov);
   }
-  res.correlation.assign(np * np, std::numeric_limits<double>::quiet_NaN());
-  for (std::size_t i = 0; i < np; ++i)
-    for (std::size_t j = 0; j < np; ++j) {
+  for (std::size_t a = 0; a < m; ++a) {
+    auto& e = res.parameters[cols[a]];
+    e.std_error = sub.parameters[a].std_error;
+    e.identifiable = sub.parameters[a].identifiable;
+    e.reason = sub.parameters[a].reason;
+  }
+  res.singular_values = sub.singular_values;
+  res.combinations = sub.combinations;
+  res.warnings.insert(res.warnings.end(), sub.warnings.begin(), sub.warnings.end());
+  for (std::size_t a = 0; a < m; ++a)
+    for (std::size_t b = 0; b < m; ++b) {
+      const std::size_t i = cols[a], j = cols[b];
       if (!res.parameters[i].identifiable || !res.parameters[j].identifiable) continue;
-      const double d = cov[i * np + i] * cov[j * np + j];
-      res.correlation[i * np + j] = i == j ? 1.0 : (d > 0 ? cov[i * np + j] / std::sqrt(d) : 0.0);
+      const double d = cov[a * m + a] * cov[b * m + b];
+      res.correlation[i * np + j] = a == b ? 1.0 : (d > 0 ? cov[a * m + b] / std::sqrt(d) : 0.0);
     }
 }
 
@@ -369,25 +512,43 @@ void warn_data_limits(FitResult& res, const std::optional<SeriesStructure>& stru
 FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOptions& options) {
   if (!info.fittable)
     throw FitError(info.name, fmt::format("law '{}' cannot be fitted yet: its creep is nonlinear in the "
-                                          "stress (docs/laws.md, \"Nonlinear laws\"); compare it with the "
+                                          "stress (docs/reference/laws.md, \"Nonlinear laws\"); compare it with the "
                                           "data through `rheodda law curve {}`",
                                           info.name, info.name));
   const ErrorHandlerOff handler_off;
-  const std::size_t n = data.t.size();
-  const DataScale ds = check_input(info, data);
+  const std::size_t n = data.t.size(), np = info.parameters.size();
+  const Constraints cons = read_settings(info, data, options);
+  const DataScale ds = check_input(info, data, cons);
 
   const std::optional<SeriesStructure> structure = probe_structure(info);
-  Solver full(info, data, structure, 1.0 / ds.dmax);
+  Solver full(info, data, structure, ds.inv_scale, cons.weight, cons.mapping);
   const CurveFeatures features = analyse_curve(data);
-  Search sr = search_minimum(info, data, full, features, ds.dmax, options);
-  if (structure) order_kelvins(*structure, sr.best_x);
+  Search sr = search_minimum(info, data, full, features, ds.dmax, options, cons);
+  // (With settings the labels are the user's: a swap would move a setting to another element.)
+  if (structure && options.parameters.empty()) order_kelvins(*structure, sr.best_x);
 
   // The model saw exp(clamp(x, -700, 700)) (to_values): report that.
   for (double& v : sr.best_x) v = std::clamp(v, -700.0, 700.0);
+  // A parameter within 1e-6 (relative) of a bound is on it: MINUIT's transforms
+  // reach a bound only in the limit.
+  std::vector<std::string> at_bound(np);
+  if (cons.mapping) {
+    const auto& m = *cons.mapping;
+    for (std::size_t a = 0; a < m.free.size(); ++a) {
+      double& x = sr.best_x[m.free[a]];
+      if (x - m.lo[a] < 1e-6) x = m.lo[a], at_bound[m.free[a]] = "min";
+      else if (m.hi[a] - x < 1e-6) x = m.hi[a], at_bound[m.free[a]] = "max";
+    }
+  }
   // Residuals and Jacobian at the best point.
   gsl_multifit_nlinear_workspace* w = full.at(sr.best_x);
   std::vector<double> fitted_scaled(gsl_multifit_nlinear_residual(w)->data,
                                     gsl_multifit_nlinear_residual(w)->data + n);
+  double best_rss = sr.best_rss;
+  if (cons.active) {  // at the point reported (a bound snapped to)
+    best_rss = 0.0;
+    for (double f : fitted_scaled) best_rss += f * f;
+  }
 
   FitResult res;
   res.law = info.name;
@@ -396,10 +557,52 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
   res.structured_starts = sr.structured;
   res.iterations = sr.best_iter;
   res.converged = sr.best_status == GSL_SUCCESS || sr.best_status == GSL_ENOPROG;
-  add_statistics(res, data, fitted_scaled, sr, ds, info.parameters.size());
-  judge_minimum(res, sr, ds.dmax);
-  add_parameters(res, info, w, sr, structure, data, options);
+  res.varying = static_cast<int>(cons.varying);
+  res.weighted = !cons.weight.empty();
+  res.scale_covariance = options.scale_covariance;
+  const double scale = ds.scale;
+  for (double r : sr.rss_full) res.start_minima.push_back(r * scale * scale);
+  add_statistics(res, data, fitted_scaled, best_rss, ds, cons.weight, cons.varying);
+  judge_minimum(res, sr, scale);
+
+  // Standard errors: residual standard deviation sqrt(chi^2/(n - k)) (scaled),
+  // or with absolute sigma the scale itself (the Jacobian of chi = f/inv_scale).
+  const double s = options.scale_covariance
+                       ? std::sqrt(best_rss / (static_cast<double>(n) - static_cast<double>(cons.varying)))
+                       : ds.inv_scale;
+  if (!cons.active) {
+    std::vector<std::size_t> cols(np);
+    for (std::size_t k = 0; k < np; ++k) cols[k] = k;
+    add_parameters(res, info, gsl_multifit_nlinear_jac(w), cols, s, sr.best_x, structure, data, options);
+  } else {
+    // The Jacobian in the log of the varying parameters not on a bound (the others held).
+    Mapping held;
+    held.x = sr.best_x;
+    for (std::size_t k = 0; k < np; ++k)
+      if (!cons.fixed[k] && at_bound[k].empty()) {
+        held.free.push_back(k);
+        held.lo.push_back(-std::numeric_limits<double>::infinity());
+        held.hi.push_back(std::numeric_limits<double>::infinity());
+      }
+    std::vector<std::size_t> cols = held.free;
+    Solver js(info, data, structure, ds.inv_scale, cons.weight, std::move(held));
+    add_parameters(res, info, gsl_multifit_nlinear_jac(js.at(sr.best_x)), cols, s, sr.best_x, structure, data,
+                   options);
+  }
+  for (std::size_t k = 0; k < np; ++k) {
+    auto& e = res.parameters[k];
+    e.vary = !cons.fixed[k];
+    e.at_bound = at_bound[k];
+    e.min = cons.min[k];
+    e.max = cons.max[k];
+    if (!e.vary || !e.at_bound.empty()) e.value = !e.vary ? *cons.initial[k] : e.at_bound == "min" ? e.min : e.max;
+  }
   warn_data_limits(res, structure, data, features, options);
+  for (const auto& e : res.parameters)
+    if (!e.at_bound.empty())
+      res.warnings.push_back(fmt::format("{} ended on its bound {} = {:g}: it is held there for the standard "
+                                         "errors, which do not include it",
+                                         e.name, e.at_bound, e.at_bound == "min" ? e.min : e.max));
   return res;
 }
 

@@ -22,6 +22,7 @@ CreepData subsample(const CreepData& d, std::size_t max_points) {
   s.time_column = d.time_column;
   s.displacement_column = d.displacement_column;
   s.stress_column = d.stress_column;
+  s.sigma_column = d.sigma_column;
   for (const auto& st : d.stages) {
     StageInfo si{st.t, st.stress, s.t.size(), 0};
     for (std::size_t j = st.first; j < st.first + st.count; ++j)
@@ -29,6 +30,7 @@ CreepData subsample(const CreepData& d, std::size_t max_points) {
         s.t.push_back(d.t[j]);
         s.displacement.push_back(d.displacement[j]);
         s.line.push_back(j < d.line.size() ? d.line[j] : 0);
+        if (!d.sigma.empty()) s.sigma.push_back(d.sigma[j]);
       }
     si.count = s.t.size() - si.first;
     s.stages.push_back(si);
@@ -36,10 +38,77 @@ CreepData subsample(const CreepData& d, std::size_t max_points) {
   return s;
 }
 
+// ---- Mapping (gsl_solver.hpp): MINUIT's bound transforms --------------------------
+std::vector<double> Mapping::to_full(const double* z) const {
+  std::vector<double> out = x;
+  for (std::size_t a = 0; a < free.size(); ++a) {
+    const double l = lo[a], h = hi[a], za = z[a];
+    double v = za;
+    if (std::isfinite(l) && std::isfinite(h)) v = l + (std::sin(za) + 1.0) * 0.5 * (h - l);
+    else if (std::isfinite(l)) v = l - 1.0 + std::sqrt(za * za + 1.0);
+    else if (std::isfinite(h)) v = h + 1.0 - std::sqrt(za * za + 1.0);
+    out[free[a]] = v;
+  }
+  return out;
+}
+
+std::vector<double> Mapping::to_free(const std::vector<double>& xs, bool inside) const {
+  std::vector<double> z(free.size());
+  for (std::size_t a = 0; a < free.size(); ++a) {
+    const double l = lo[a], h = hi[a];
+    const double margin =
+        !inside ? 0.0 : std::isfinite(l) && std::isfinite(h) ? std::min(1e-3 * (h - l), 1e-3) : 1e-3;
+    double v = xs[free[a]];
+    if (std::isfinite(l)) v = std::max(v, l + margin);
+    if (std::isfinite(h)) v = std::min(v, h - margin);
+    if (std::isfinite(l) && std::isfinite(h)) z[a] = std::asin(std::clamp(2.0 * (v - l) / (h - l) - 1.0, -1.0, 1.0));
+    else if (std::isfinite(l)) z[a] = std::sqrt((v - l + 1.0) * (v - l + 1.0) - 1.0);
+    else if (std::isfinite(h)) z[a] = std::sqrt((h - v + 1.0) * (h - v + 1.0) - 1.0);
+    else z[a] = v;
+  }
+  return z;
+}
+
+double Mapping::derivative(std::size_t a, double z) const {
+  const double l = lo[a], h = hi[a];
+  if (std::isfinite(l) && std::isfinite(h)) return std::cos(z) * 0.5 * (h - l);
+  if (std::isfinite(l)) return z / std::sqrt(z * z + 1.0);
+  if (std::isfinite(h)) return -z / std::sqrt(z * z + 1.0);
+  return 1.0;
+}
+
+void Solver::set_full(const gsl_vector* z) {
+  std::vector<double> zz(z->size);
+  for (std::size_t a = 0; a < z->size; ++a) zz[a] = gsl_vector_get(z, a);
+  const auto xs = mapping_->to_full(zz.data());
+  for (std::size_t k = 0; k < xs.size(); ++k) gsl_vector_set(x_full_.get(), k, xs[k]);
+}
+
+int Solver::mapped_residual_cb(const gsl_vector* z, void* params, gsl_vector* f) {
+  auto& s = *static_cast<Solver*>(params);
+  s.set_full(z);
+  return residual_cb(s.x_full_.get(), &s.pr, f);
+}
+
+// Chain rule: dr/dz_a = dr/dx_k dx_k/dz_a for free parameter a = parameter k.
+int Solver::mapped_jacobian_cb(const gsl_vector* z, void* params, gsl_matrix* jac) {
+  auto& s = *static_cast<Solver*>(params);
+  s.set_full(z);
+  jacobian_cb(s.x_full_.get(), &s.pr, s.jac_full_.get());
+  const auto& m = *s.mapping_;
+  for (std::size_t a = 0; a < m.free.size(); ++a) {
+    const double d = m.derivative(a, gsl_vector_get(z, a));
+    for (std::size_t j = 0; j < s.pr.n; ++j) gsl_matrix_set(jac, j, a, gsl_matrix_get(s.jac_full_.get(), j, m.free[a]) * d);
+  }
+  return GSL_SUCCESS;
+}
+
 // ---- Solver (gsl_solver.hpp) ----------------------------------------------------
 Solver::Solver(const laws::LawInfo& info, const CreepData& data, const std::optional<SeriesStructure>& structure,
-               double inv_scale) {
+               double inv_scale, std::vector<double> weight, std::optional<Mapping> mapping)
+    : mapping_(std::move(mapping)) {
   const std::size_t n = data.t.size(), np = info.parameters.size();
+  pr.weight = std::move(weight);
   pr.info = &info;
   pr.data = &data;
   pr.structure = structure;
@@ -63,22 +132,32 @@ Solver::Solver(const laws::LawInfo& info, const CreepData& data, const std::opti
   fdf_.n = n;
   fdf_.p = np;
   fdf_.params = &pr;
+  if (mapping_) {
+    fdf_.f = mapped_residual_cb;
+    fdf_.df = pr.structure ? mapped_jacobian_cb : nullptr;
+    fdf_.p = mapping_->free.size();
+    fdf_.params = this;
+    x_full_.reset(gsl_vector_alloc(np));
+    jac_full_.reset(gsl_matrix_alloc(n, np));
+  }
+  const std::size_t p = fdf_.p;
   gsl_multifit_nlinear_parameters params = gsl_multifit_nlinear_default_parameters();
   params.trs = gsl_multifit_nlinear_trs_lm;
   // Modified Cholesky on the normal equations: a quarter faster than QR here,
   // and robust when a parameter is unidentifiable (J^T J near singular). The
   // covariance comes from an SVD of J (identify()).
   params.solver = gsl_multifit_nlinear_solver_mcholesky;
-  w_.reset(gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &params, n, np));
-  x_.reset(gsl_vector_alloc(np));
+  w_.reset(gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &params, n, p));
+  x_.reset(gsl_vector_alloc(p));
   fv_.reset(gsl_vector_alloc(n));
 }
 
 // The loop of gsl_multifit_nlinear_driver with an early stop, then varpro_refine (gsl_solver.hpp).
 Solver::Outcome Solver::polish(const std::vector<double>& start, double stop_at, double floor,
                                const FitOptions& options, bool refine) {
-  const std::size_t np = pr.np;
-  for (std::size_t k = 0; k < np; ++k) gsl_vector_set(x_.get(), k, start[k]);
+  const std::size_t np = fdf_.p;  // GSL's parameters: z with a mapping, else the log parameters
+  const std::vector<double> z = mapping_ ? mapping_->to_free(start) : start;
+  for (std::size_t k = 0; k < np; ++k) gsl_vector_set(x_.get(), k, z[k]);
   gsl_multifit_nlinear_init(x_.get(), &fdf_, w_.get());
   auto rss_now = [&] {
     const gsl_vector* f = w_->f;  // contiguous: allocated by GSL
@@ -120,6 +199,7 @@ Solver::Outcome Solver::polish(const std::vector<double>& start, double stop_at,
   const gsl_vector* xs = gsl_multifit_nlinear_position(w_.get());
   o.position.resize(np);
   for (std::size_t k = 0; k < np; ++k) o.position[k] = gsl_vector_get(xs, k);
+  if (mapping_) return o.position = mapping_->to_full(o.position.data()), o;  // no refine: it ignores the mapping
   if (refine && pr.structure) {
     std::vector<double> v(np);
     for (std::size_t k = 0; k < np; ++k) v[k] = std::exp(o.position[k]);
@@ -138,7 +218,8 @@ Solver::Outcome Solver::polish(const std::vector<double>& start, double stop_at,
 }
 
 gsl_multifit_nlinear_workspace* Solver::at(const std::vector<double>& position) {
-  for (std::size_t k = 0; k < pr.np; ++k) gsl_vector_set(x_.get(), k, position[k]);
+  const std::vector<double> z = mapping_ ? mapping_->to_free(position, false) : position;
+  for (std::size_t k = 0; k < fdf_.p; ++k) gsl_vector_set(x_.get(), k, z[k]);
   gsl_multifit_nlinear_init(x_.get(), &fdf_, w_.get());
   return w_.get();
 }

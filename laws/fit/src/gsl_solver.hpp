@@ -33,14 +33,41 @@ struct GslFree {
 /// about max_points in all.
 CreepData subsample(const CreepData& d, std::size_t max_points);
 
+// Which log parameters GSL varies and how bounds are kept (docs/guide/fitting.md,
+// "Initial values, bounds, fixed parameters and weights"): GSL works on z, one
+// entry per free parameter, and the log parameter x = ln p is
+//   both bounds  x = lo + (sin z + 1)(hi - lo)/2
+//   lo only      x = lo - 1 + sqrt(z^2 + 1)
+//   hi only      x = hi + 1 - sqrt(z^2 + 1)
+//   none         x = z
+// (the transforms of MINUIT, F. James, MINUIT Reference Manual, CERN D506,
+// sec. 1.3, as lmfit uses them), so every z is inside the bounds. The
+// parameters that are not free keep their entry of `x`.
+struct Mapping {
+  std::vector<std::size_t> free;  // registry indices of the free parameters
+  std::vector<double> x;          // log value of every parameter (the fixed ones are used)
+  std::vector<double> lo, hi;     // log bounds of each free parameter (-inf, +inf: none)
+
+  /// Every log parameter at free values z.
+  std::vector<double> to_full(const double* z) const;
+  /// The free values z of the log parameters `x`, clamped into the bounds;
+  /// with `margin`, moved inside them by 1e-3 of the range (at most 1e-3):
+  /// a start on a bound has no gradient in z.
+  std::vector<double> to_free(const std::vector<double>& x, bool margin = true) const;
+  /// dx/dz of free parameter a at z.
+  double derivative(std::size_t a, double z) const;
+};
+
 // GSL's trust-region solver (Levenberg-Marquardt steps, modified Cholesky)
 // set up for one data set; not copyable (GSL holds a pointer to the problem).
 class Solver {
  public:
   Problem pr;
 
+  /// `weight`: per point (1/sigma), empty for none; `mapping`: GSL varies
+  /// the free parameters of it only (none: every log parameter, unbounded).
   Solver(const laws::LawInfo& info, const CreepData& data, const std::optional<SeriesStructure>& structure,
-         double inv_scale);
+         double inv_scale, std::vector<double> weight = {}, std::optional<Mapping> mapping = std::nullopt);
   Solver(const Solver&) = delete;
   Solver& operator=(const Solver&) = delete;
 
@@ -61,10 +88,20 @@ class Solver {
   Outcome polish(const std::vector<double>& start, double stop_at, double floor, const FitOptions& options,
                  bool refine);
 
-  // The workspace initialised at `position` (log parameters): residuals and Jacobian there.
+  // The workspace initialised at `position` (log parameters): residuals and
+  // Jacobian there (with a mapping: with respect to its z).
   gsl_multifit_nlinear_workspace* at(const std::vector<double>& position);
 
+  const std::optional<Mapping>& mapping() const { return mapping_; }
+
  private:
+  static int mapped_residual_cb(const gsl_vector* z, void* params, gsl_vector* f);
+  static int mapped_jacobian_cb(const gsl_vector* z, void* params, gsl_matrix* jac);
+  void set_full(const gsl_vector* z);
+
+  std::optional<Mapping> mapping_;
+  std::unique_ptr<gsl_vector, GslFree> x_full_;   // with a mapping: the log parameters
+  std::unique_ptr<gsl_matrix, GslFree> jac_full_;  // with a mapping: the Jacobian in them
   gsl_multifit_nlinear_fdf fdf_{};
   std::unique_ptr<gsl_multifit_nlinear_workspace, GslFree> w_;
   std::unique_ptr<gsl_vector, GslFree> x_, fv_;

@@ -1,4 +1,4 @@
-// Identifiability of a fit's parameters (identifiability.hpp; docs/fitting.md, "Identifiability").
+// Identifiability of a fit's parameters (identifiability.hpp; docs/guide/fitting.md, "Identifiability").
 #include "identifiability.hpp"
 
 #include <gsl/gsl_linalg.h>
@@ -15,7 +15,7 @@
 namespace rheodda::fit::detail {
 
 // The combinations that a series law's curve can depend on when single
-// parameters drop out (docs/fitting.md, "Identifiability"):
+// parameters drop out (docs/guide/fitting.md, "Identifiability"):
 //   (L - Fs)/eta3 for each stress level L > Fs [length/time]: the Bingham rate under L
 //     (d/dln eta3 = -q, d/dln Fs = -Fs/eta3);
 //   1/E1 + 1/E (spring and a fast Kelvin element merge into one jump), 1/E2 + 1/E3

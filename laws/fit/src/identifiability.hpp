@@ -1,6 +1,6 @@
 // Internal to rheodda_fit: which parameters the data fix, with their standard
 // errors and correlations, from the SVD of the Jacobian at the fit
-// (identifiability.cpp; docs/fitting.md, "Identifiability").
+// (identifiability.cpp; docs/guide/fitting.md, "Identifiability").
 #pragma once
 
 #include <gsl/gsl_matrix.h>

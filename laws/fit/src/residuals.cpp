@@ -1,4 +1,4 @@
-// Residuals of a fit and their Jacobian (residuals.hpp; docs/fitting.md, "What is fitted").
+// Residuals of a fit and their Jacobian (residuals.hpp; docs/guide/fitting.md, "What is fitted").
 #include "residuals.hpp"
 
 #include <gsl/gsl_errno.h>
@@ -18,7 +18,7 @@ void to_values(const gsl_vector* x, Problem& pr) {
 }
 
 // Exact staged response of a series law and its derivatives with respect to
-// the log parameters (docs/fitting.md, "What is fitted"):
+// the log parameters (docs/guide/fitting.md, "What is fitted"):
 //   spring   F(t)/E1                                   d/dlnE1 = -F(t)/E1
 //   Kelvin   sum_i dF_i/E (1 - e^-r_i), r_i = E (t - t_i)/eta
 //            d/dlnE = dF_i/E (r_i e^-r_i - b_i),  d/dlneta = -dF_i/E r_i e^-r_i
@@ -174,6 +174,8 @@ int residual_cb(const gsl_vector* x, void* params, gsl_vector* f) {
   } else if (!evaluate_generic(pr, out)) {
     std::fill(out, out + pr.n, 1e100);
   }
+  if (!pr.weight.empty())
+    for (std::size_t j = 0; j < pr.n; ++j) out[j] *= pr.weight[j];
   sanitize(out, pr.n);
   if (out != f->data)
     for (std::size_t j = 0; j < pr.n; ++j) gsl_vector_set(f, j, out[j]);
@@ -193,7 +195,8 @@ int jacobian_cb(const gsl_vector* x, void* params, gsl_matrix* jac) {
   for (std::size_t j = 0; j < pr.n; ++j) {
     const double* src = pr.cached_jac.data() + j * pr.np;
     double* dst = jac->data + j * jac->tda;
-    for (std::size_t k = 0; k < pr.np; ++k) dst[k] = std::isfinite(src[k]) ? src[k] : 0.0;
+    const double w = pr.weight.empty() ? 1.0 : pr.weight[j];
+    for (std::size_t k = 0; k < pr.np; ++k) dst[k] = std::isfinite(src[k]) ? src[k] * w : 0.0;
   }
   return GSL_SUCCESS;
 }

@@ -23,7 +23,9 @@ struct Problem {
   const CreepData* data = nullptr;
   std::optional<SeriesStructure> structure;
   std::size_t n = 0, np = 0;
-  double inv_scale = 1.0;  // residuals are (model - data) / max|data|, so that they are O(1)
+  // residuals are (model - data) * weight * inv_scale, inv_scale = 1/max|data * weight|, so that they are O(1)
+  double inv_scale = 1.0;
+  std::vector<double> weight;  // per point, 1/sigma (CreepData::sigma); empty: 1 for every point
   std::vector<double> stage_t, stage_f, flow_before;  // flow_before[k] = sum_{i<k} F_i (t_{i+1} - t_i)
   // Cache: the analytic Jacobian is computed with the residuals, at no extra exp() cost.
   std::vector<double> cached_x, cached_jac;
@@ -31,7 +33,7 @@ struct Problem {
   std::vector<double> scratch_f;  // residuals when GSL's f is not contiguous
 };
 
-/// GSL's residual callback (gsl_multifit_nlinear_fdf::f): f = (model - data) * inv_scale
+/// GSL's residual callback (gsl_multifit_nlinear_fdf::f): f = (model - data) * weight * inv_scale
 /// at the parameters exp(x); `params` is the Problem.
 int residual_cb(const gsl_vector* x, void* params, gsl_vector* f);
 /// GSL's Jacobian callback (gsl_multifit_nlinear_fdf::df) for a series law,

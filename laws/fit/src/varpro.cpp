@@ -1,4 +1,4 @@
-// Variable-projection search for the starts of a fit (varpro.hpp; docs/fitting.md, "How the
+// Variable-projection search for the starts of a fit (varpro.hpp; docs/guide/fitting.md, "How the
 // minimum is found"). Golub & Pereyra, SIAM J. Numer. Anal. 10 (1973) 413-432 and Inverse
 // Problems 19 (2003) R1-R26: for fixed nonlinear parameters the optimal linear ones are the
 // solution of a linear least-squares problem, so the sum of squares is searched over the

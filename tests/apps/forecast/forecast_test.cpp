@@ -1,4 +1,4 @@
-// `rheodda forecast` (docs/forecast.md): the draws follow the fit's covariance on ln p,
+// `rheodda forecast` (docs/guide/forecast.md): the draws follow the fit's covariance on ln p,
 // unidentified parameters are handled as asked, non-physical draws are rejected and
 // counted, units convert, and on the two-block creep test the ensemble's bands equal
 // the Burgers closed form evaluated with the same parameter samples.
@@ -221,7 +221,7 @@ BOOST_AUTO_TEST_CASE(on_the_two_block_creep_test_the_bands_equal_the_closed_form
       for (double p : {5.0, 50.0, 95.0}) {
         auto d = closed(t);
         const double expected = fc::percentile(d, p);
-        // The two-block test follows the closed form to 1.1e-5 (docs/outputs.md; measured here
+        // The two-block test follows the closed form to 1.1e-5 (docs/reference/outputs.md; measured here
         // 1.14e-5 at most), inside the sampling error of a 24-member percentile (a fraction
         // of the 5-95 % band's width, 2.5e-4 to 1.8e-3 of the median here).
         BOOST_TEST(std::stod(row.at(fmt::format("plane.shear_displacement_magnitude.p{:g}", p))) == expected,

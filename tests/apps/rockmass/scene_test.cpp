@@ -1,4 +1,4 @@
-// The scene's `rock_mass:` section (docs/rockmass.md): generated blocks join the
+// The scene's `rock_mass:` section (docs/guide/rockmass.md): generated blocks join the
 // scene with their edges' joint sets, bad keys fail with file:line:column, a
 // generated scene runs and its joint sets' laws act on the generated edges, and
 // `rheodda generate` writes an explicit scene that loads to the same blocks.
@@ -154,7 +154,7 @@ BOOST_AUTO_TEST_CASE(small_blocks_at_map_coordinates_keep_their_area) {
 
 BOOST_AUTO_TEST_CASE(a_needle_a_flat_region_and_traces_outside_are_named_as_such) {
   // Two traces crossing at 4e-9 rad leave a needle: named by where it lies (the block has
-  // no place in the file), with docs/rockmass.md's wording.
+  // no place in the file), with docs/guide/rockmass.md's wording.
   const std::string needle = rock_with("  boundary_joint_set: base\n",
                                        "  boundary_joint_set: base\n  traces: [{joint_set: joints, from: [-1, 2.999999976], "
                                        "to: [11, 3.000000024]}, {joint_set: joints, from: [-1, 3], to: [11, 3]}]\n");

@@ -1,4 +1,4 @@
-// Bolts in scene files (docs/bolts.md, docs/scene-format.md "bolts"): the loader
+// Bolts in scene files (docs/reference/bolts.md, docs/reference/scene-format.md "bolts"): the loader
 // reads them and refuses bad ones with file:line:col and the key; scenes with
 // contacts against closed forms (a block on an incline steeper than its
 // friction angle held by a bolt, examples/bolted-block.yaml; a pretensioned

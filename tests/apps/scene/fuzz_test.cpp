@@ -47,7 +47,7 @@ const char* kNumbers[] = {"0", "-1", "1e308", "-1e308", "1e-308", "nan", ".nan",
 
 /// A mutant of `text`; a number is replaced by one of kNumbers or, one time in three, by
 /// a random whole number of magnitude below `whole` (a rock mass keeps it small: a
-/// region of kilometres with metre spacings is a legitimate cut of minutes, docs/rockmass.md).
+/// region of kilometres with metre spacings is a legitimate cut of minutes, docs/guide/rockmass.md).
 std::string mutate(const std::string& text, std::mt19937_64& rng, long long whole = 1000000) {
   auto pick = [&rng](std::size_t n) { return static_cast<std::size_t>(rng() % std::max<std::size_t>(n, 1)); };
   std::vector<std::string> lines = lines_of(text);

@@ -161,7 +161,7 @@ BOOST_AUTO_TEST_CASE(creep_tolerance_and_dt_max_reach_the_engine_settings_and_ne
 }
 
 BOOST_AUTO_TEST_CASE(a_settling_stage_reaches_the_engine_settings_and_bad_ones_are_refused) {
-  // docs/engine.md, "Settling stage".
+  // docs/reference/engine.md, "Settling stage".
   const auto text = with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, max_displacement_ratio: 0.0005}");
   const scene::SceneDescription s = scene::parse_scene(text, "settle.yaml");
   BOOST_TEST_REQUIRE(s.analysis.settle.has_value());
@@ -187,7 +187,7 @@ BOOST_AUTO_TEST_CASE(a_settling_stage_reaches_the_engine_settings_and_bad_ones_a
 }
 
 BOOST_AUTO_TEST_CASE(a_dynamic_settling_stage_admits_the_damping_keys_in_a_static_analysis) {
-  // docs/engine.md, "Settling stage": `settle: {type: dynamic}` makes the
+  // docs/reference/engine.md, "Settling stage": `settle: {type: dynamic}` makes the
   // stage's steps carry velocity in a static analysis; the damping keys are
   // then accepted (they act in the stage), the stage keeps a sticking
   // contact's force unless the scene says otherwise, and its static steps
@@ -226,7 +226,7 @@ BOOST_AUTO_TEST_CASE(a_dynamic_settling_stage_admits_the_damping_keys_in_a_stati
 }
 
 BOOST_AUTO_TEST_CASE(collapse_dt_reaches_the_engine_with_a_dynamic_stage_of_a_static_analysis_only) {
-  // docs/engine.md, "Collapse stages".
+  // docs/reference/engine.md, "Collapse stages".
   const auto text = with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, type: dynamic, collapse_dt: 0.002}");
   const auto s = scene::parse_scene(text, "collapse.yaml");
   BOOST_TEST_REQUIRE(s.analysis.settle.has_value());
@@ -253,7 +253,7 @@ BOOST_AUTO_TEST_CASE(collapse_dt_reaches_the_engine_with_a_dynamic_stage_of_a_st
 }
 
 BOOST_AUTO_TEST_CASE(gravity_ramp_reaches_the_engine_and_must_end_within_the_settling_stage) {
-  // docs/engine.md, "Gravity ramp".
+  // docs/reference/engine.md, "Gravity ramp".
   const auto text = with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, type: dynamic, gravity_ramp: 0.05}");
   const auto s = scene::parse_scene(text, "ramp.yaml");
   BOOST_TEST_REQUIRE(s.analysis.settle.has_value());
@@ -275,7 +275,7 @@ BOOST_AUTO_TEST_CASE(gravity_ramp_reaches_the_engine_and_must_end_within_the_set
 }
 
 BOOST_AUTO_TEST_CASE(rest_tolerance_ends_stages_at_rest_and_makes_until_their_longest) {
-  // docs/engine.md, "Dynamic stages".
+  // docs/reference/engine.md, "Dynamic stages".
   const auto text = with("  dt: 0.01", "  dt: 0.01\n  settle: {dt: 0.001, type: dynamic, rest_tolerance: 1.0e-5}");
   const auto s = scene::parse_scene(text, "rest.yaml");
   BOOST_TEST_REQUIRE(s.analysis.settle.has_value());
@@ -300,7 +300,7 @@ BOOST_AUTO_TEST_CASE(rest_tolerance_ends_stages_at_rest_and_makes_until_their_lo
 }
 
 BOOST_AUTO_TEST_CASE(a_stage_takes_its_own_open_close_limit) {
-  // docs/engine.md, "Dynamic stages": the stage's steps are cut after this many
+  // docs/reference/engine.md, "Dynamic stages": the stage's steps are cut after this many
   // iterates; without it they take the analysis's (8 in a static analysis).
   const auto text = with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, type: dynamic, open_close_limit: 30}");
   const auto s = scene::parse_scene(text, "limit.yaml");

@@ -1,6 +1,6 @@
 // A run's outputs under faults: a rerun killed before its first checkpoint, files
 // cut or changed after a checkpoint, a deleted frame, two runs in one folder,
-// values that are no longer finite, unbounded motion (docs/outputs.md,
+// values that are no longer finite, unbounded motion (docs/reference/outputs.md,
 // "Interrupting and resuming" and "Runs that stop").
 #include <boost/test/unit_test.hpp>
 

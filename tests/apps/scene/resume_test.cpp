@@ -1,4 +1,4 @@
-// Resuming from the saved state (docs/outputs.md, "Interrupting and resuming"):
+// Resuming from the saved state (docs/reference/outputs.md, "Interrupting and resuming"):
 // a run stopped at 90 % and resumed computes only the steps after its
 // checkpoint and writes the files an uninterrupted run writes, byte for byte
 // (a creeping run with adaptive steps and a damage law, a static run with

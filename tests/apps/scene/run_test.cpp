@@ -201,7 +201,7 @@ BOOST_AUTO_TEST_CASE(sliding_block_example_follows_the_incline_closed_form) {
 }
 
 BOOST_AUTO_TEST_CASE(a_static_block_that_slides_is_reported_as_a_mechanism_and_one_that_stands_is_not) {
-  // docs/engine.md, "Mechanisms in static analysis": the sliding-block example in
+  // docs/reference/engine.md, "Mechanisms in static analysis": the sliding-block example in
   // static analysis. At friction 20 deg on the 30 deg incline nothing but the
   // inertia term of each static step holds the block: it takes the unbalanced
   // force's work, a share (tan 30 - tan 20) / tan 30 = 0.37 of gravity's along the
@@ -260,7 +260,7 @@ BOOST_AUTO_TEST_CASE(a_static_block_that_slides_is_reported_as_a_mechanism_and_o
 }
 
 BOOST_AUTO_TEST_CASE(a_static_slide_with_collapse_stages_follows_the_dynamics_and_lists_its_stages) {
-  // docs/engine.md, "Collapse stages": the static sliding block of the test
+  // docs/reference/engine.md, "Collapse stages": the static sliding block of the test
   // above (phi 20 deg on the 30 deg incline, dt 0.01 s), with a dynamic
   // settling stage of 0.01 s and collapse_dt 0.002 s. Every static step would
   // move as a mechanism, so the slide is taken in stages end to end: the slip
@@ -297,7 +297,7 @@ BOOST_AUTO_TEST_CASE(a_static_slide_with_collapse_stages_follows_the_dynamics_an
 }
 
 BOOST_AUTO_TEST_CASE(the_toppling_example_settles_in_its_stage_then_converges_with_its_step_controls) {
-  // docs/engine.md, "Settling stage"; docs/speed-accuracy.md, "The shipped toppling
+  // docs/reference/engine.md, "Settling stage"; docs/notes/step-controls.md, "The shipped toppling
   // example": examples/goodman-toppling-creep.yaml settles in steps of at most
   // 5e-5 d to 0.01 d, then creeps with dt = 1/32 d. Its steps obey the stage; with
   // every step control halved (the stage's too: dt, g2, the stage's dt and g2) it
@@ -375,7 +375,7 @@ BOOST_AUTO_TEST_CASE(step_tolerance_runs_the_shear_creep_example_on_the_closed_f
   // Constant load: the doubled and the halved steps agree, the step doubles
   // from dt = 0.1 h; every step is extrapolated; the joint follows eqs. 20-21
   // as a fixed-step run does (to ~1e-5 at any step: the model's own
-  // departure, docs/outputs.md) and ends where a fixed-step run ends.
+  // departure, docs/reference/outputs.md) and ends where a fixed-step run ends.
   const auto fixed_scene = example("shear-creep-test.yaml", 200.0, 50.0);
   const fs::path fixed_out = fresh_dir("shear-fixed");
   BOOST_TEST_REQUIRE((run(fixed_scene, fixed_out).status == scene::RunStatus::completed));

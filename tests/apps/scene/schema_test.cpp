@@ -1,4 +1,4 @@
-// docs/scene-format.md against the loader's schema, both ways: every key the
+// docs/reference/scene-format.md against the loader's schema, both ways: every key the
 // loader reads is in a key table of the docs, every key a table documents is
 // read. And the schema against the loader itself: each map's "valid keys here"
 // (the list its MapReader refuses unknown keys with) is the schema's list.
@@ -23,6 +23,8 @@
 
 #include "../test_support.hpp"
 #include "rheodda/laws/registry.hpp"
+#include "rheodda/scene/describe.hpp"
+#include "rheodda/scene/keys.hpp"
 #include "rheodda/scene/loader.hpp"
 
 using namespace rheodda;
@@ -32,9 +34,10 @@ namespace {
 
 using KeyTables = std::map<std::string, std::set<std::string>>;  ///< map path -> keys
 
-/// Schema path of the key table of each section of docs/scene-format.md.
+/// Schema path of the key table of each section of docs/reference/scene-format.md.
 const std::map<std::string, std::string> kSectionPath{
     {"Top level", ""},           {"Units", "units"},           {"analysis", "analysis"},
+    {"analysis.settle", "analysis.settle"},
     {"materials", "materials.*"}, {"joint_sets", "joint_sets.*"}, {"law", "joint_sets.*.law"},
     {"blocks", "blocks[*]"},
     {"rock_mass", "rock_mass"},   {"rock_mass.joint_sets", "rock_mass.joint_sets[*]"},
@@ -91,7 +94,7 @@ KeyTables documented_keys(const std::string& text) {
       continue;
     }
     if (!row.empty() && row[0].find_first_not_of("-: ") == std::string::npos) continue;  // |---|---|
-    BOOST_TEST_INFO("docs/scene-format.md, section '" << section << "', row: " << line);
+    BOOST_TEST_INFO("docs/reference/scene-format.md, section '" << section << "', row: " << line);
     if (header[0] == "key") {
       const auto path = kSectionPath.find(section);
       BOOST_TEST_REQUIRE((path != kSectionPath.end()), "a key table in a section the test does not know");
@@ -167,25 +170,25 @@ std::vector<std::string> valid_keys_reported(const std::string& text) {
 BOOST_AUTO_TEST_SUITE(scene_schema)
 
 BOOST_AUTO_TEST_CASE(every_key_the_loader_reads_is_documented_and_every_documented_key_is_read) {
-  const KeyTables doc = documented_keys(read_text(source_path("docs/scene-format.md")));
+  const KeyTables doc = documented_keys(read_text(source_path("docs/reference/scene-format.md")));
   const KeyTables schema = schema_keys();
-  BOOST_TEST_REQUIRE(doc.size() >= 10u, "docs/scene-format.md: key tables not found");
+  BOOST_TEST_REQUIRE(doc.size() >= 10u, "docs/reference/scene-format.md: key tables not found");
   for (const auto& [path, keys] : schema) {
     const auto d = doc.find(path);
     BOOST_TEST((d != doc.end()), "the loader reads the map '" << path
-                                   << "' but docs/scene-format.md has no key table for it");
+                                   << "' but docs/reference/scene-format.md has no key table for it");
     if (d == doc.end()) continue;
     for (const auto& k : keys)
       BOOST_TEST(d->second.count(k) == 1u,
-                 "the loader reads '" << dotted(path, k) << "' but docs/scene-format.md does not document it");
+                 "the loader reads '" << dotted(path, k) << "' but docs/reference/scene-format.md does not document it");
   }
   for (const auto& [path, keys] : doc) {
     const auto s = schema.find(path);
-    BOOST_TEST((s != schema.end()), "docs/scene-format.md documents a map '" << path << "' the loader does not read");
+    BOOST_TEST((s != schema.end()), "docs/reference/scene-format.md documents a map '" << path << "' the loader does not read");
     if (s == schema.end()) continue;
     for (const auto& k : keys)
       BOOST_TEST(s->second.count(k) == 1u,
-                 "docs/scene-format.md documents '" << dotted(path, k) << "' but the loader refuses it");
+                 "docs/reference/scene-format.md documents '" << dotted(path, k) << "' but the loader refuses it");
   }
 }
 
@@ -229,6 +232,61 @@ BOOST_AUTO_TEST_CASE(the_schema_is_the_list_each_map_refuses_unknown_keys_with) 
     }
   }
   BOOST_TEST(probes.size() == scene::scene_schema().size(), "a probe for a map the schema does not have");
+}
+
+BOOST_AUTO_TEST_CASE(the_docs_key_tables_are_the_declarations) {
+  // docs/reference/scene-format.md holds, between its keys-MAP markers, what `rheodda keys
+  // --markdown MAP` prints (scripts/scene-format-tables.sh writes it).
+  const std::string doc = read_text(source_path("docs/reference/scene-format.md"));
+  for (const std::string map : {"analysis", "analysis.settle"}) {
+    const std::string begin = "<!-- keys-" + map + ":begin -->\n", end = "<!-- keys-" + map + ":end -->";
+    const auto b = doc.find(begin), e = doc.find(end);
+    BOOST_TEST_REQUIRE((b != std::string::npos && e != std::string::npos), "no markers for " << map);
+    BOOST_TEST(doc.substr(b + begin.size(), e - b - begin.size()) == scene::key_table_markdown(map),
+               "docs/reference/scene-format.md's table of " << map << " is not the declarations': run "
+                                                     "scripts/scene-format-tables.sh");
+  }
+}
+
+BOOST_AUTO_TEST_CASE(a_key_declared_once_reaches_the_loader_the_schema_check_summary_and_docs) {
+  // One declaration, nothing else: the key must then be read (with its range and unit
+  // in the message), be in the schema, in `check`'s description, in summary.json's
+  // inputs and in the docs table.
+  static double dummy = 0.5;
+  scene::KeySpec k;
+  k.map = "analysis";
+  k.name = "dummy_tolerance";
+  k.type = scene::KeyType::number;
+  k.unit = "length";
+  k.range = {0.0, true, 1.0, false};
+  k.default_text = "0.5";
+  k.meaning = "a key only this test declares";
+  k.get = [](const scene::Analysis&) -> scene::KeyValue { return dummy; };
+  k.set = [](scene::Analysis&, const scene::KeyValue& v) { dummy = std::get<double>(v); };
+  auto& keys = scene::analysis_keys();
+  keys.push_back(k);
+  struct Undeclare {
+    ~Undeclare() { scene::analysis_keys().pop_back(); }
+  } undeclare;
+
+  const scene::SceneDescription s = scene::parse_scene(with("  duration: 1\n", "  duration: 1\n  dummy_tolerance: 0.25\n"), "dummy.yaml");
+  BOOST_TEST(dummy == 0.25);
+  try {
+    (void)scene::parse_scene(with("  duration: 1\n", "  duration: 1\n  dummy_tolerance: 1.5\n"), "dummy.yaml");
+    BOOST_ERROR("dummy_tolerance: 1.5 was accepted");
+  } catch (const scene::SceneError& e) {
+    BOOST_TEST(e.key() == "analysis.dummy_tolerance");
+    BOOST_TEST(e.message().find("out of range (0, 1] [length]") != std::string::npos, e.what());
+  }
+  bool in_schema = false;
+  for (const auto& m : scene::scene_schema())
+    if (m.path == "analysis")
+      in_schema = std::find(m.keys.begin(), m.keys.end(), "dummy_tolerance") != m.keys.end();
+  BOOST_TEST(in_schema);
+  BOOST_TEST(scene::describe_scene(s).find("dummy_tolerance 0.25 m") != std::string::npos, scene::describe_scene(s));
+  BOOST_TEST(scene::scene_json_text(s).find("\"dummy_tolerance\":0.25") != std::string::npos);
+  BOOST_TEST(scene::key_table_markdown("analysis").find("| `dummy_tolerance` | length | a key only this test declares | 0.5 |") !=
+             std::string::npos);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -1,12 +1,12 @@
 // A block dropped 2 mm onto a 30 deg incline (friction 40 deg), dynamic
-// (issue "Steps that converge", items 3 and 4; docs/contacts.md, "Contact
+// (issue "Steps that converge", items 3 and 4; docs/reference/contacts.md, "Contact
 // damping"):
 //  - with Shi's undamped contact (bench/scenes/incline-drop.yaml), at steps from
 //    1 ms to 0.05 ms, after it lands it never rises higher than it fell: Shi's
 //    velocity update gives an impact a restitution between 0 and 1, and the
 //    resolved penalty spring is elastic. Its slip is not asserted: it grows as
 //    the step shrinks (the undamped model's limit is a block that bounces and
-//    walks down the slope on its own vibration; docs/contacts.md);
+//    walks down the slope on its own vibration; docs/reference/contacts.md);
 //  - with plastic impacts and damped blocks (bench/scenes/incline-drop-damped.yaml:
 //    joint set restitution 0, material damping_ratio 1), halving the step from
 //    0.1 ms to 6.25 us, the slip does not grow as the step shrinks, the last
@@ -108,7 +108,7 @@ BOOST_AUTO_TEST_CASE(with_plastic_impacts_and_damped_blocks_the_slip_converges_a
       BOOST_TEST(levels[k].highest < 0.0);
       BOOST_TEST(std::abs(levels[k].rest + kFall) < 0.01 * kFall);
       // A smaller step never gives a larger slip (beyond 0.5 %: the levels from
-      // 0.05 ms on agree to 0.2 %; docs/contacts.md, "Contact damping").
+      // 0.05 ms on agree to 0.2 %; docs/reference/contacts.md, "Contact damping").
       if (k > 0) BOOST_TEST(levels[k].slip <= 1.005 * levels[k - 1].slip);
     }
   }

@@ -1,4 +1,4 @@
-// `mpirun --oversubscribe -np 3 rheodda study ...` (docs/studies.md, "On a cluster: MPI"):
+// `mpirun --oversubscribe -np 3 rheodda study ...` (docs/guide/studies.md, "On a cluster: MPI"):
 // rank 0 dispatches, ranks 1 and 2 run the cases; a failing and a crashing case are
 // isolated and reported, the others give what the single-machine path gives; a resumed
 // study skips its completed cases; a forecast over ranks gives the local one's bands.

@@ -62,7 +62,7 @@ BOOST_AUTO_TEST_CASE(a_slope_5_deg_above_limit_equilibrium_stands_at_every_step_
     BOOST_TEST_CONTEXT(row.at("case")) {
       BOOST_TEST(row.at("status") == "completed");
       const double largest = largest_top(row);
-      // Standing: settling of 1-14 mm (docs/contacts.md); toppling: metres.
+      // Standing: settling of 1-14 mm (docs/reference/contacts.md); toppling: metres.
       if (row.at("case") == "below_limit")
         BOOST_TEST(largest > 0.5);
       else
@@ -70,7 +70,7 @@ BOOST_AUTO_TEST_CASE(a_slope_5_deg_above_limit_equilibrium_stands_at_every_step_
       // study.csv's inertia_share is the case's summary.json static_mechanism
       // share: empty for a dynamic case. The static cases settle by rotating
       // their columns, which a static step holds by its inertia term alone
-      // (docs/engine.md, "Mechanisms in static analysis": 0.39 at 10 ms, 0.67 at
+      // (docs/reference/engine.md, "Mechanisms in static analysis": 0.39 at 10 ms, 0.67 at
       // 0.1 ms, and 4.5 against 1.2 mm of settling), so they are flagged.
       const auto summary = nlohmann::json::parse(
           read_text((dir / "out" / "cases" / row.at("case") / "summary.json").string()));
@@ -88,7 +88,7 @@ BOOST_AUTO_TEST_CASE(a_slope_5_deg_above_limit_equilibrium_stands_at_every_step_
 }
 
 BOOST_AUTO_TEST_CASE(with_plastic_impacts_and_damped_blocks_the_settling_does_not_depend_on_the_step) {
-  // Joint set restitution 0, material damping_ratio 1 (docs/contacts.md, "Contact
+  // Joint set restitution 0, material damping_ratio 1 (docs/reference/contacts.md, "Contact
   // damping", and docs/notes/contact-solves.md, "Stick and slip"): 6.1-6.4 mm at 8 s from 5 ms to 0.05 ms, where
   // the undamped default settles 7.7-14.3 mm, more at every smaller step.
   const fs::path dir = fresh_dir("stepped-damped");

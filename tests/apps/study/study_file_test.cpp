@@ -137,7 +137,7 @@ BOOST_AUTO_TEST_CASE(rheodda_study_exits_2_on_a_bad_study_and_runs_nothing) {
 }
 
 BOOST_AUTO_TEST_CASE(every_shipped_study_loads_and_each_of_its_cases_is_a_valid_scene) {
-  // examples/studies/*.yaml: what docs/studies.md tells users to run (the folder also
+  // examples/studies/*.yaml: what docs/guide/studies.md tells users to run (the folder also
   // holds forecast-slope.yaml, a scene for `rheodda forecast`: no `scene:` line).
   int studies = 0;
   for (const auto& e : fs::directory_iterator(source_path("examples/studies"))) {

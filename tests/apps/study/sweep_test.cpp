@@ -1,4 +1,4 @@
-// Sweeps in a study file (docs/studies.md, "Sweeps"): grids of listed and spaced
+// Sweeps in a study file (docs/guide/studies.md, "Sweeps"): grids of listed and spaced
 // values, random and Latin-hypercube draws with a seed; cases named and titled by
 // their values; study.csv with a column per swept parameter; the sweep pictures and
 // `rheodda plot` of a study's folder.

@@ -1,4 +1,4 @@
-// Collapse stages (core::Settings::collapse_dt; docs/engine.md, "Collapse
+// Collapse stages (core::Settings::collapse_dt; docs/reference/engine.md, "Collapse
 // stages"): in a static analysis a step that moves as a mechanism is located
 // to within collapse_dt and taken as a dynamic stage, so the collapse follows
 // the dynamics whatever the static step, and a model that stands takes none.

@@ -1,4 +1,4 @@
-// Contact damping (JointSet::restitution; docs/contacts.md, "Contact damping"):
+// Contact damping (JointSet::restitution; docs/reference/contacts.md, "Contact damping"):
 // a block that lands on one vertex rebounds with the joint set's coefficient of
 // restitution e (the linear spring-dashpot contact of Cundall & Strack 1979:
 // a free damped half-oscillation returns e = exp(-zeta pi / sqrt(1 - zeta^2)));

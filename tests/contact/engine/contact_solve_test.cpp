@@ -1,4 +1,4 @@
-// The two contact solves of a step (docs/contacts.md, "Contact solves"): the
+// The two contact solves of a step (docs/reference/contacts.md, "Contact solves"): the
 // Newton solve, converged on the residual of the step's equations
 // (Settings::contact_residual_tolerance), runs the settling brick wall of the
 // performance benchmark as Shi's open-close iteration does, in fewer iterates;

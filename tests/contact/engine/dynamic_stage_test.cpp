@@ -1,5 +1,5 @@
 // Dynamic stages that end at rest (core::Settings::settle_rest_tolerance;
-// docs/engine.md, "Dynamic stages"): a mechanism a static step finds is taken
+// docs/reference/engine.md, "Dynamic stages"): a mechanism a static step finds is taken
 // dynamically until its kinetic energy has decayed, then the static steps go
 // on; the settling stage ends the same way; each stage is an event.
 #include <boost/test/unit_test.hpp>

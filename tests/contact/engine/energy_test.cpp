@@ -1,4 +1,4 @@
-// The energy balance with contacts (docs/engine.md, "Energy balance"): a block
+// The energy balance with contacts (docs/reference/engine.md, "Energy balance"): a block
 // sliding down an incline dissipates N tan(phi) x slip by friction, a block
 // dropped onto a base loses its impact energy to the integration and the
 // closing contacts, a small brick wall settles, a block dropped on an incline
@@ -11,6 +11,7 @@
 #include <string>
 
 #include "creep_scene.hpp"
+#include "brick_wall.hpp"
 #include "sim.hpp"
 
 using namespace rheodda;
@@ -31,30 +32,8 @@ core::Model incline_scene(double alpha, double b, double h, double x0, double ga
   return m;
 }
 
-/// The running-bond brick wall of bench/contact_bench.cpp (brick_wall): nx x ny
-/// bricks 0.2 m x 0.1 m on a fixed base, E = 5 GPa, nu = 0.2, g2 w0 = 1 mm.
-core::Model brick_wall(int nx, int ny) {
-  constexpr double W = 0.2, H = 0.1;
-  core::Model m;
-  m.materials[0].young_modulus = 5e9;
-  m.materials[0].poisson_ratio = 0.2;
-  m.settings.dt = 1e-3;
-  const double width = nx * W;
-  m.settings.g2 = 1e-3 / (0.5 * std::max(width + 1.0, ny * H + 0.5));
-  add_fixed(m, rect(-0.5, -0.5, width + 0.5, 0.0));
-  for (int j = 0; j < ny; ++j) {
-    const double y0 = j * H, y1 = y0 + H;
-    if (j % 2 == 0) {
-      for (int i = 0; i < nx; ++i) m.blocks.push_back(block(rect(i * W, y0, (i + 1) * W, y1)));
-    } else {
-      m.blocks.push_back(block(rect(0.0, y0, 0.5 * W, y1)));
-      for (int i = 0; i + 1 < nx; ++i)
-        m.blocks.push_back(block(rect((i + 0.5) * W, y0, (i + 1.5) * W, y1)));
-      m.blocks.push_back(block(rect(width - 0.5 * W, y0, width, y1)));
-    }
-  }
-  return m;
-}
+/// The running-bond brick wall of the benchmarks (tests/models/brick_wall.hpp).
+core::Model brick_wall(int nx, int ny) { return models::running_bond_wall(nx, ny); }
 
 /// One line with every term of the balance since t = 0, for the test log.
 std::string summary(const core::Engine& e) {

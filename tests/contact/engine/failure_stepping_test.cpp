@@ -1,5 +1,5 @@
-// A damage-law joint driven by the DDA engine to failure (docs/rheology-in-dda.md,
-// "Failure"; law damage-burgers, docs/laws.md): the seed's two-block shear creep
+// A damage-law joint driven by the DDA engine to failure (docs/reference/rheology-in-dda.md,
+// "Failure"; law damage-burgers, docs/reference/laws.md): the seed's two-block shear creep
 // test (block A 100 x 100 mm on fixed block B, sigma = 1.408 MPa, tau = 0.232 MPa
 // at the joint line; MPa, mm, h) with Kachanov-Rabotnov damage, whose failure
 // time at that stress is t_f = t_r (tau_ref/tau)^r = 149.9 h (closed form).
@@ -15,6 +15,7 @@
 #include <memory>
 #include <vector>
 
+#include "two_block.hpp"  // tests/models
 #include "rheodda/contact/contact_system.hpp"
 #include "rheodda/core/contact_adapter.hpp"
 #include "rheodda/core/engine.hpp"
@@ -28,10 +29,6 @@ namespace {
 
 constexpr double kW = 100.0, kSigma = 1.408, kTau = 0.232;  // [mm], [MPa]
 constexpr double kTauRef = 0.2, kTr = 234.0, kR = 3.0;      // [MPa], [h], [-]
-
-std::vector<core::Vec2> rect(double x0, double y0, double x1, double y1) {
-  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-}
 
 struct Run {
   std::vector<double> t, dt;  ///< end time and size of each accepted step [h]
@@ -51,19 +48,9 @@ laws::ParameterValues damage_law(double A = 3.68e-6, double n = 4.0) {
 /// instead of holding tau from t = 0. dt_max [h]: 0, no limit.
 Run run(double dt, double tolerance, double t_end, bool ramp = false, double tau = kTau,
         const laws::ParameterValues& law = damage_law(), double dt_max = 0.0) {
-  core::Model m;
-  m.materials[0].young_modulus = 1e7;
-  m.materials[0].density = 1e-12;
-  m.settings.dt = dt;
+  core::Model m = models::two_block_model(kW, dt);  // tests/models/two_block.hpp
   m.settings.dt_max = dt_max;
-  m.settings.dynamic_ratio = 0.0;
-  m.settings.gravity = {0.0, 0.0};
   m.settings.creep_tolerance = tolerance;
-  core::BlockDef b, a;
-  b.vertices = rect(-kW, -kW, 2 * kW, 0.0);
-  a.vertices = rect(0.0, 0.0, kW, kW);
-  m.blocks = {b, a};
-  for (int k = 0; k < 3; ++k) m.fixed_points.push_back({0, b.vertices[k]});
   m.point_loads.push_back({1, {0.5 * kW, 0.0}, {{0.0, {0.0, -kSigma * kW}}}});
   if (ramp)
     m.point_loads.push_back({1, {0.5 * kW, 0.0}, {{0.0, {0.0, 0.0}}, {200.0, {2 * tau * kW, 0.0}}}});
@@ -94,7 +81,7 @@ Run run(double dt, double tolerance, double t_end, bool ramp = false, double tau
 BOOST_AUTO_TEST_SUITE(failure_stepping)
 
 BOOST_AUTO_TEST_CASE(adaptive_steps_end_on_the_failure_instead_of_stepping_over_it) {
-  // Constant stress: both schemes integrate the law exactly (docs/laws.md), so
+  // Constant stress: both schemes integrate the law exactly (docs/reference/laws.md), so
   // the creep error estimate is zero and the steps grow; the step that reaches
   // t_f is 1 + 1e-3 times the time left at its start (the engine asks
   // ContactModel::time_to_failure), so it ends after t_f by at most 1e-3 of
@@ -123,7 +110,7 @@ BOOST_AUTO_TEST_CASE(adaptive_steps_end_on_the_failure_instead_of_stepping_over_
 
 BOOST_AUTO_TEST_CASE(under_a_rising_load_adaptive_steps_shrink_as_creep_accelerates) {
   // Shear load rising linearly, tau = a t with a = 2 tau/200 h (an intact law
-  // fails at t_f = ((r+1) t_r (tau_ref/a)^r)^(1/(r+1)) = 156.5 h, docs/laws.md (K)):
+  // fails at t_f = ((r+1) t_r (tau_ref/a)^r)^(1/(r+1)) = 156.5 h, docs/reference/laws.md (K)):
   // the implicit scheme errs at first order, the creep error estimate grows
   // with the creep rate and the steps shrink towards the failure, in
   // proportion to the time left; within kFailureReach = 8 steps of it the
@@ -160,7 +147,7 @@ BOOST_AUTO_TEST_CASE(the_displacement_at_failure_is_the_closed_form_and_the_last
   // laws/power_law.hpp), the Norton part about 60 % of it with A = 3e-5 mm/h. At
   // constant stress every step integrates the law exactly (the Norton dashpot and
   // the damage in closed form, (S); the Kelvin element exactly under a constant
-  // force, docs/laws.md "Schemes"), and the step that fails keeps the creep up to
+  // force, docs/reference/laws.md "Schemes"), and the step that fails keeps the creep up to
   // the failure: the Norton dashpot's stops there. What is left: the step ends
   // after t_f (adaptive: 1.001 x the time left at its start; fixed: anywhere in
   // the step), and over that rest of the step the Kelvin element goes on at

@@ -1,5 +1,5 @@
 // Gravity ramp of the settling stage (core::Settings::settle_gravity_ramp;
-// docs/engine.md, "Gravity ramp"): gravity that comes on at once sets a block
+// docs/reference/engine.md, "Gravity ramp"): gravity that comes on at once sets a block
 // resting on its support vibrating about its static position, the first swing
 // reaching twice the static settlement (a suddenly applied load), and the work
 // of gravity is twice the energy stored at rest; ramped up slowly on the scale

@@ -31,7 +31,7 @@ BOOST_AUTO_TEST_SUITE(incline)
 
 BOOST_AUTO_TEST_CASE(sliding_block_follows_half_g_sin_minus_cos_tan_phi_t_squared) {
   // Error < 1 % once the block has travelled 1 m, for two slope angles, with
-  // either contact solve (docs/contacts.md, "Contact solves").
+  // either contact solve (docs/reference/contacts.md, "Contact solves").
   for (const auto solver : {core::ContactSolver::open_close, core::ContactSolver::newton})
   for (auto [alpha_deg, phi_deg] : {std::pair{30.0, 20.0}, std::pair{45.0, 30.0}}) {
     const double alpha = deg(alpha_deg), phi = deg(phi_deg), g = 9.81;
@@ -54,7 +54,7 @@ BOOST_AUTO_TEST_CASE(sliding_block_follows_half_g_sin_minus_cos_tan_phi_t_square
 
 BOOST_AUTO_TEST_CASE(a_block_that_slipped_slides_on_with_the_residual_friction_angle) {
   // Peak friction 20 deg on a 30 deg slope: the block slips in its first step, which
-  // breaks the contacts' intact state (docs/contacts.md, "Friction, cohesion,
+  // breaks the contacts' intact state (docs/reference/contacts.md, "Friction, cohesion,
   // tension"); from then on they hold only the residual strength (UDEC/3DEC),
   // residual_friction_angle 10 deg and residual_cohesion 0. The first step's
   // acceleration is the peak's, g (sin(alpha) - cos(alpha) tan(phi)), over dt =
@@ -92,7 +92,7 @@ BOOST_AUTO_TEST_CASE(block_thrown_up_a_soft_joint_turns_back_with_friction_rever
   // g (sin(alpha) - cos(alpha) tan(phi)) (closed form below). Friction resists
   // every step of the way (its dissipation never falls), at 1 ms and at 0.1 ms.
   // Before the slide-reversal test took its resolution from the normal spring
-  // (docs/contacts.md, "Friction that pushed"), it was the force resolution over
+  // (docs/notes/contact-solves.md, "Friction that pushed"), it was the force resolution over
   // the soft shear spring, 2e-5 m: near the turn the step's backward slip stayed
   // below it, friction kept pushing the block down the slope, and the smaller
   // step turned back faster (the error grows as dt shrinks).

@@ -1,5 +1,5 @@
 // The contact search of a large model reaches only as far as the motion needs
-// (docs/engine.md, "Contact search reach"): the answer is the one the full
+// (docs/reference/engine.md, "Contact search reach"): the answer is the one the full
 // reach (search_factor x g2 x w0) gives, and a step that moves a block beyond
 // the reach is redone with a wider search instead of missing a contact.
 #include <boost/test/unit_test.hpp>

@@ -67,7 +67,7 @@ BOOST_AUTO_TEST_CASE(a_block_tilted_onto_its_corner_follows_the_closed_form_over
   // The same test with A tilted by 10 deg onto its corner: one vertex-edge
   // contact, whose tributary length is l_t = (w/2) cos 10 deg = 49.24 mm (the
   // projection on the joint of the longer-projecting half edge at the corner,
-  // docs/rheology-in-dda.md). The joint's shear displacement follows the
+  // docs/reference/rheology-in-dda.md). The joint's shear displacement follows the
   // closed form at the stress tau_c = F2 / l_t = tau w / l_t within 0.5 % at
   // every step, every row of Table 1, implicit and exponential-linear; the
   // joint set's counters say one contact crept for the whole run.

@@ -10,6 +10,7 @@
 #include "rheodda/contact/contact_system.hpp"
 #include "rheodda/core/contact_adapter.hpp"
 #include "rheodda/core/engine.hpp"
+#include "brick_wall.hpp"  // tests/models
 
 namespace rheodda::testing {
 
@@ -46,34 +47,14 @@ inline int add_fixed(core::Model& m, std::vector<Vec2> vertices) {
   return b;
 }
 
-/// nx x ny running-bond wall of 0.2 m x 0.1 m bricks on a fixed base (the
-/// performance benchmark's scene, bench/contact_bench.cpp; E = 5 GPa, dynamic,
-/// dt = 1e-3 s, g2 w0 = 1 mm), every open-close iterate solved to the full
-/// tolerance unless `iterate_tolerance`.
+/// The benchmarks' running-bond wall (tests/models/brick_wall.hpp) with the solver
+/// `solver`, every open-close iterate solved to the full tolerance unless `iterate_tolerance`.
 inline core::Model running_bond_wall(int nx, int ny, core::SolverKind solver, double dynamic_ratio = 1.0,
                                      double iterate_tolerance = 0.0) {
-  core::Model m;
+  core::Model m = models::running_bond_wall(nx, ny);
   m.settings.pcg_iterate_tolerance = iterate_tolerance;
   m.settings.dynamic_ratio = dynamic_ratio;
-  m.materials[0].density = 2600.0;
-  m.materials[0].young_modulus = 5e9;
-  m.materials[0].poisson_ratio = 0.2;
-  m.settings.dt = 1e-3;
   m.settings.solver = solver;
-  const double w = 0.2, h = 0.1, width = nx * w;
-  m.settings.g2 = 1e-3 / (0.5 * std::max(width + 1.0, ny * h + 0.5));
-  add_fixed(m, rect(-0.5, -0.5, width + 0.5, 0.0));
-  for (int j = 0; j < ny; ++j) {
-    const double y0 = j * h, y1 = y0 + h;
-    if (j % 2 == 0) {
-      for (int i = 0; i < nx; ++i) m.blocks.push_back(block(rect(i * w, y0, (i + 1) * w, y1)));
-    } else {
-      m.blocks.push_back(block(rect(0.0, y0, 0.5 * w, y1)));
-      for (int i = 0; i + 1 < nx; ++i)
-        m.blocks.push_back(block(rect((i + 0.5) * w, y0, (i + 1.5) * w, y1)));
-      m.blocks.push_back(block(rect(width - 0.5 * w, y0, width, y1)));
-    }
-  }
   return m;
 }
 

@@ -1,4 +1,4 @@
-// DDA spot-check of the stability map (docs/speed-accuracy.md, "Stability
+// DDA spot-check of the stability map (docs/notes/step-controls.md, "Stability
 // map", "DDA spot-check"). The map is measured on the law alone (a spring k in
 // series with a Kelvin element, held displacement, laws::solve_series_force);
 // here the seed's two-block shear creep test (Section 4, Figure 6; the scene of
@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "creep_scene.hpp"
+#include "two_block.hpp"  // tests/models
 #include "rheodda/laws/history.hpp"
 
 using namespace rheodda;
@@ -46,7 +47,7 @@ constexpr double kStop = 1e3;  // growth at which a run is stopped as diverged [
 constexpr double kFixedStiffness = 1e12;  // fixed-point penalty spring [N/mm per mm]
 
 /// Lagged stability limit dt_lim E2/eta2 = -ln(1 - 2 E2/(k + E2)) for k > E2,
-/// none for k <= E2 (docs/speed-accuracy.md, "Stability map").
+/// none for k <= E2 (docs/notes/step-controls.md, "Stability map").
 double lagged_limit(double y) { return y <= 1.0 ? INFINITY : -std::log(1.0 - 2.0 / (y + 1.0)); }
 
 struct Point {
@@ -74,7 +75,7 @@ std::shared_ptr<const laws::ContactRheology> kelvin() {
 /// laws::solve_series_force per step; largest |F| over steps 101-200 / (k delta).
 /// With `closing_step_implicit` the first step is integrated with the implicit
 /// constants whatever the scheme, as the DDA contact integrates the step in
-/// which it closes (docs/rheology-in-dda.md, "Schemes").
+/// which it closes (docs/reference/rheology-in-dda.md, "Schemes").
 double law_growth(laws::Scheme scheme, Point p, bool closing_step_implicit = false,
                   double* end_ratio = nullptr) {
   const auto law = kelvin();
@@ -99,7 +100,7 @@ double law_growth(laws::Scheme scheme, Point p, bool closing_step_implicit = fal
 
 /// Closed-form force of the relaxation, relative to k delta: standard linear
 /// solid F(t)/(k delta) = [E2 + k exp(-(k + E2) t/eta2)]/(k + E2)
-/// (docs/rheology-in-dda.md, Validation: a Kelvin joint under held displacement).
+/// (docs/reference/rheology-in-dda.md, Validation: a Kelvin joint under held displacement).
 double relaxation_closed_form(double y, double t) {
   const double k = y * kE2;
   return (kE2 + k * std::exp(-(k + kE2) * t / kEta2)) / (k + kE2);
@@ -146,37 +147,27 @@ DdaRun run_dda(Variant variant, laws::Scheme scheme, Point p) {
   core::Engine engine(scene.model, adapter);
 
   DdaRun run;
-  double scale = 0.0;     // stress the growth is relative to [MPa]
-  double previous = 0.0;  // joint shear force (sum over A's base contacts) of the previous step [N/mm]
+  models::GrowthWatch watch;
+  double scale = 0.0;  // stress the growth is relative to [MPa]
   for (int n = 1; n <= kSteps; ++n) {
     engine.step();
-    double largest = 0.0, sum = 0.0, length = 0.0;  // [MPa], [N/mm], [mm]
-    for (const contact::Contact& c : contacts.contacts())
-      if (c.key.vblock == 1) {
-        largest = std::max(largest, std::abs(c.shear_force) / c.length);  // [MPa]
-        sum -= c.shear_force;  // along +x (B's top edge runs in -x)
-        length += c.length;
-      }
+    const models::JointForces f = models::joint_forces(contacts);
     if (variant == Variant::relaxation) {
       scale = k * delta;  // closed-form stress at t = 0+ [MPa]
       const double closed = relaxation_closed_form(p.y, engine.time());
-      run.end_error = std::abs(sum / length / (k * delta) / closed - 1.0);
+      run.end_error = std::abs(f.shear_force / f.length / (k * delta) / closed - 1.0);
     } else {
-      if (n == 1) scale = largest;
+      if (n == 1) scale = f.largest_stress;
       // Kelvin joint's creep curve d(t) = tau/k + tau/E2 (1 - exp(-E2 t/eta2))
-      // (docs/rheology-in-dda.md, "Units"; the Kelvin part of the seed's eqs. 20-21).
+      // (docs/reference/rheology-in-dda.md, "Units"; the Kelvin part of the seed's eqs. 20-21).
       const double closed = kRow.tau / k + law->displacement_closed_form(kRow.tau, engine.time());
       run.creep_error = std::max(run.creep_error, std::abs(joint_shear(contacts) - closed) / closed);
     }
-    if (largest > kStop * scale) {
-      run.growth = largest / scale;
-      run.diverged_at = n;
-      run.amplification = std::abs(sum / previous);
-      return run;
-    }
-    previous = sum;
-    if (n > kSteps / 2) run.growth = std::max(run.growth, largest / scale);
+    if (watch.diverged(n, kSteps, f, scale, kStop)) break;
   }
+  run.growth = watch.growth;
+  run.diverged_at = watch.diverged_at;
+  run.amplification = watch.amplification;
   return run;
 }
 
@@ -229,7 +220,7 @@ BOOST_AUTO_TEST_CASE(implicit_and_exponential_linear_are_stable_at_every_point_a
 // The lagged scheme (the seed's eqs. 12-16) amplifies an error by
 // 1 - b (k + E2)/E2 per step, b = 1 - exp(-dt E2/eta2): stable for
 // dt E2/eta2 < -ln(1 - 2 E2/(k + E2)) when k > E2, at any dt when k <= E2
-// (docs/speed-accuracy.md, "Stability map"). At each point the closed-form
+// (docs/notes/step-controls.md, "Stability map"). At each point the closed-form
 // limit, the law-level map and both DDA variants must give the same verdict.
 // A stable DDA run meets the same bounds as above (relaxation growth = the
 // law-level one with the closing-step rule to 1e-5, end force within 1e-5 of

@@ -39,7 +39,7 @@ namespace {
 
 /// Running-bond wall of `courses` courses of bricks 0.2 m x 0.1 m, `bricks`
 /// long, on a fixed base; E 5 GPa, nu 0.25, critically damped blocks and
-/// plastic impacts (the damped wall of docs/speed-accuracy.md, smaller), penalty
+/// plastic impacts (the damped wall of docs/notes/step-controls.md, smaller), penalty
 /// 50 E, stick_keeps_force (a dynamic scene's default), dt and g2 from the level (halved per level). Returns the mean over the
 /// closed contacts of |shear displacement| [m] after 20 ms and counts the
 /// contacts sliding then.
@@ -89,7 +89,7 @@ BOOST_AUTO_TEST_CASE(damped_wall_at_rest_has_no_more_sliding_joints_the_smaller_
   // 3.9 us (g2 halved with it), the contacts still sliding - at their
   // friction limit - are a few, and no more at the finer steps than at the
   // coarser ones. Before the slide-reversal test counted the step's inertia
-  // (ContactSettings::reversal_at_normal_resolution; docs/contacts.md,
+  // (ContactSettings::reversal_at_normal_resolution; docs/reference/contacts.md,
   // "Contacts that stop") the counts were 0, 2, 8, 14: a contact whose
   // friction exceeded its drive moved backwards by less than the fixed
   // resolution f_res / p_n once dt was small (its backward slip shrinks as

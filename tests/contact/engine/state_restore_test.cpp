@@ -1,4 +1,4 @@
-// Engine::save/restore with ContactSystem::state/restore (docs/engine.md, "A
+// Engine::save/restore with ContactSystem::state/restore (docs/reference/engine.md, "A
 // step"; the state a resumed `rheodda run` takes up): an engine and a contact
 // system built anew and restored from a run's state after some steps take the
 // next steps bit for bit as the run itself does: a settling brick wall with
@@ -71,7 +71,7 @@ BOOST_AUTO_TEST_CASE(a_restored_brick_wall_steps_on_bit_for_bit_with_cholmod_and
 }
 
 BOOST_AUTO_TEST_CASE(a_restored_falling_block_searches_as_far_as_its_motion_needs) {
-  // A block thrown down at 10 m/s onto a base 200 m wide (docs/engine.md,
+  // A block thrown down at 10 m/s onto a base 200 m wide (docs/reference/engine.md,
   // "Contact search reach"; search_reach_test.cpp): the search's reach follows
   // the motion, 0.4 m after the first steps, where a new engine would start
   // from the floor (0.1 m) and widen its first step's search again.

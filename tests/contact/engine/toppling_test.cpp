@@ -63,7 +63,7 @@ BOOST_AUTO_TEST_CASE(dda_critical_friction_angle_is_within_2_deg_of_limit_equili
   const double phi_le = goodman_bray::critical_friction_angle(s);
   // 3 s of motion: a failing slope moves metres, a stable one centimetres
   // (elastic and penalty settling of 40 m high blocks).
-  // Either contact solve (docs/contacts.md, "Contact solves").
+  // Either contact solve (docs/reference/contacts.md, "Contact solves").
   for (const auto solver : {core::ContactSolver::open_close, core::ContactSolver::newton}) {
     const double below = largest_displacement(s, phi_le - 2.0, 3.0, solver);
     const double above = largest_displacement(s, phi_le + 2.0, 3.0, solver);

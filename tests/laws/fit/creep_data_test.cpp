@@ -66,7 +66,7 @@ BOOST_AUTO_TEST_CASE(byte_order_mark_and_spaces_around_cells_are_accepted) {
 
 BOOST_AUTO_TEST_CASE(stress_column_starts_a_stage_at_each_new_value) {
   const auto d = parse("time,tau,u\n0,0.2,1\n5,0.2,2\n10,0.4,3\n15,0.4,4\n20,0,2\n",
-                       fit::CsvOptions{"time", "u", "tau", std::nullopt});
+                       fit::CsvOptions{"time", "u", "tau", std::nullopt, ""});
   BOOST_TEST(d.stages.size() == 3u);
   BOOST_TEST(d.stages[1].t == 10.0);
   BOOST_TEST(d.stages[1].stress == 0.4);

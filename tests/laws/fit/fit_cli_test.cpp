@@ -17,6 +17,7 @@
 #include <sstream>
 #include <string>
 
+#include "rheodda/fit/fit.hpp"
 #include "rheodda/laws/registry.hpp"
 #include "synthetic.hpp"
 
@@ -224,6 +225,111 @@ BOOST_AUTO_TEST_CASE(flat_curve_reports_r2_undefined) {
   const auto j = nlohmann::json::parse(slurp(json));
   BOOST_TEST(j["fits"][0]["r2"].is_null());
   BOOST_TEST(j["fits"][0]["parameters"][1]["identifiable"].get<bool>() == false);  // eta1
+}
+
+BOOST_AUTO_TEST_CASE(fix_bounds_initial_and_sigma_column_reach_the_library_and_the_json) {
+  // The example with a sigma column (its noise, 2e-5 mm): --fix, --bounds,
+  // --initial and --sigma-column give what fit::fit_law gives with the same
+  // settings (the library is tested in settings_test.cpp).
+  TempDir dir;
+  std::ifstream in(kExample);
+  std::string line, text;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    text += line + (line.rfind("t,", 0) == 0 ? ",sigma\n" : ",2e-5\n");
+  }
+  const std::string csv = (dir / "sigma.csv").string(), json = (dir / "fit.json").string();
+  write(csv, text);
+  const Run r = run_rheodda("fit '" + csv + "' --law burgers --stress 0.232 --fix E1=26.87 --bounds eta2=100:1e4 "
+                            "--initial E2=150 --sigma-column sigma --absolute-sigma --json '" + json + "'",
+                            dir);
+  BOOST_TEST_REQUIRE(r.code == 0, r.err);
+  BOOST_TEST(r.out.find("fixed") != std::string::npos, r.out);
+  BOOST_TEST(r.out.find("bounds [100, 10000]") != std::string::npos, r.out);
+  BOOST_TEST(r.out.find("chi-square") != std::string::npos, r.out);
+  BOOST_TEST(r.out.find("from sigma as absolute errors") != std::string::npos, r.out);
+  BOOST_TEST(r.out.find("minima of the starts (chi-square)") != std::string::npos, r.out);
+  const auto j = nlohmann::json::parse(slurp(json))["fits"][0];
+  BOOST_TEST(j["varying"].get<int>() == 3);
+  BOOST_TEST(j["weighted"].get<bool>());
+  BOOST_TEST(!j["scale_covariance"].get<bool>());
+  BOOST_TEST(j["parameters"][0]["vary"].get<bool>() == false);
+  BOOST_TEST(j["parameters"][0]["value"].get<double>() == 26.87);
+  // held: no spread, and no correlation with the others (rheodda forecast holds it)
+  BOOST_TEST(j["parameters"][0]["std_error"].get<double>() == 0.0);
+  BOOST_TEST(j["correlation"][0][0].get<double>() == 1.0);
+  BOOST_TEST(j["correlation"][0][2].get<double>() == 0.0);
+  BOOST_TEST(j["correlation"][2][0].get<double>() == 0.0);
+  BOOST_TEST(j["parameters"][3]["min"].get<double>() == 100.0);
+  BOOST_TEST(j["parameters"][3]["max"].get<double>() == 1e4);
+
+  rheodda::fit::CsvOptions o;
+  o.stress = rheodda::laws::StagedHistory({{0.0, 0.232}});
+  o.sigma_column = "sigma";
+  const auto data = rheodda::fit::read_creep_csv(csv, o);
+  rheodda::fit::FitOptions opt;
+  opt.parameters["E1"].value = 26.87;
+  opt.parameters["E1"].vary = false;
+  opt.parameters["eta2"].min = 100.0;
+  opt.parameters["eta2"].max = 1e4;
+  opt.parameters["E2"].value = 150.0;
+  opt.scale_covariance = false;
+  const auto lib = rheodda::fit::fit_law(rheodda::laws::LawRegistry::builtin().get("burgers"), data, opt);
+  for (std::size_t k = 0; k < 4; ++k) {
+    BOOST_TEST(j["parameters"][k]["value"].get<double>() == lib.parameters[k].value,
+               boost::test_tools::tolerance(1e-15));
+    if (k > 0)
+      BOOST_TEST(j["parameters"][k]["std_error"].get<double>() == lib.parameters[k].std_error,
+                 boost::test_tools::tolerance(1e-15));
+  }
+  BOOST_TEST(j["chi_square"].get<double>() == lib.chi_square, boost::test_tools::tolerance(1e-15));
+}
+
+BOOST_AUTO_TEST_CASE(a_fixed_parameter_is_held_by_rheodda_forecast) {
+  // The JSON gives a fixed parameter std_error 0 and correlation 0: `rheodda forecast --fit`
+  // draws the others and holds it (docs/guide/fitting.md). E1 = 26.87 MPa/mm is 26.87e9 N/m^2/m
+  // in the slope's units (examples/studies/forecast-slope.yaml).
+  TempDir dir;
+  const std::string json = (dir / "fit.json").string(), out = (dir / "forecast").string();
+  Run r = run_rheodda("fit '" + kExample + "' --law burgers --stress 0.232 --units 'MPa, mm, h' --fix E1=26.87 --json '" +
+                          json + "'",
+                      dir);
+  BOOST_TEST_REQUIRE(r.code == 0, r.err);
+  r = run_rheodda("forecast '" + std::string(RHEODDA_SOURCE_DIR) + "/examples/studies/forecast-slope.yaml' --fit '" +
+                      json + "' --joint-set plane --samples 3 --threshold 3e-6 --by 100 -o '" + out + "'",
+                  dir);
+  BOOST_TEST_REQUIRE(r.code == 0, r.err);
+  std::istringstream samples(slurp(fs::path(out) / "samples.csv"));
+  std::string line;
+  std::getline(samples, line);  // header: case,E1 [...],E2 [...],...
+  int rows = 0;
+  while (std::getline(samples, line)) {
+    const auto first = line.find(','), second = line.find(',', first + 1);
+    const double e1 = std::stod(line.substr(first + 1, second - first - 1));
+    BOOST_TEST(e1 == 26.87e9, boost::test_tools::tolerance(1e-12));
+    ++rows;
+  }
+  BOOST_TEST(rows == 3);
+}
+
+BOOST_AUTO_TEST_CASE(bad_settings_exit_2_naming_the_option) {
+  TempDir dir;
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--fix E1", "--fix 'E1': expected NAME=VALUE"},
+      {"--fix E1=abc", "--fix E1: 'abc' is not a number"},
+      {"--fix E1=20 --fix E1=30", "--fix E1 is given twice"},
+      {"--fix E1=20 --bounds E1=1:100", "--fix E1 holds E1 at its value"},
+      {"--bounds eta2=100", "--bounds eta2: '100' is not MIN:MAX"},
+      {"--bounds eta2=1e4:100", "eta2: the bounds [10000, 100] are empty"},
+      {"--initial E9=3", "law 'burgers' has no parameter 'E9'"},
+      {"--absolute-sigma", "--absolute-sigma takes the --sigma-column values"},
+      {"--sigma-column err", "column 'err': no such column"},
+  };
+  for (const auto& [args, words] : cases) {
+    const Run r = run_rheodda("fit '" + kExample + "' --law burgers --stress 0.232 " + args, dir);
+    BOOST_TEST(r.code == 2, args);
+    BOOST_TEST(r.err.find(words) != std::string::npos, args << ": " << r.err);
+  }
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -1,4 +1,4 @@
-// The global minimum and honest error bars (issue 18; docs/fitting.md, "How the
+// The global minimum and honest error bars (issue 18; docs/guide/fitting.md, "How the
 // minimum is found" and "Identifiability"): the variable-projection search
 // never ends in a local minimum where a 20-start classic search finds a lower
 // one; parameters the data cannot fix get no standard error, and the

@@ -1,5 +1,5 @@
-// The contacts' terms of the energy balance of a run (docs/engine.md, "Energy
-// balance"; docs/contacts.md, "Energy"): what the contact springs store after
+// The contacts' terms of the energy balance of a run (docs/reference/engine.md, "Energy
+// balance"; docs/reference/contacts.md, "Energy"): what the contact springs store after
 // an accepted step and where the work the blocks did on them went during it.
 //
 // Energies are per unit thickness: [force x length], with "force" per unit

@@ -11,7 +11,7 @@
 // from the working records of the step being solved, so abandon_step restores
 // the step-start states exactly (by discarding the working copy).
 //
-// Rheology (docs/rheology-in-dda.md). A contact on a joint set with a law owns
+// Rheology (docs/reference/rheology-in-dda.md). A contact on a joint set with a law owns
 // a slot in a separate array of laws::RheologyState (with its committed copy
 // for rollback); other contacts have none (rheology == -1). Every locked
 // contact on such a joint set creeps, edge-edge and point contacts alike. The
@@ -101,7 +101,7 @@ struct Contact {
   double creep_displacement = 0.0;
   CreepState creep_state = CreepState::none;  ///< in the last accepted step
   bool has_crept = false;     ///< the law advanced it in at least one accepted step
-  /// Its damage law reached failure (docs/rheology-in-dda.md, "Failure"): from
+  /// Its damage law reached failure (docs/reference/rheology-in-dda.md, "Failure"): from
   /// then on a residual frictional joint (no cohesion, no tensile strength, no creep).
   bool creep_failed = false;
 };
@@ -140,7 +140,7 @@ struct DetectionStats {
   double search_distance = 0.0;  ///< d0 [length]
   /// Spring energy contacts start the step with beyond what their records
   /// stored at the end of the last step (the energy balance's
-  /// work_contact_restart, docs/engine.md), by cause: how many contacts, and
+  /// work_contact_restart, docs/reference/engine.md), by cause: how many contacts, and
   /// the energy [force x length] (docs/notes/rock-mass-steps.md).
   struct Restart {
     int contacts = 0;
@@ -182,7 +182,7 @@ class ContactSystem {
   /// sliding one from its normal force at D (not the last iterate's, as
   /// assemble takes it). A D that solves the assembled system with states that
   /// check finds consistent leaves F0 - K0 D - f near zero: the residual of
-  /// the step's equations (docs/contacts.md, "Contact solves").
+  /// the step's equations (docs/reference/contacts.md, "Contact solves").
   void contact_forces(const Eigen::VectorXd& D, Eigen::VectorXd& f) const;
   /// Accepts the step: locking points, forces, accumulated shear; may raise the penalty.
   void end_step(std::span<const BlockView> blocks, const Eigen::VectorXd& D);
@@ -206,7 +206,7 @@ class ContactSystem {
   /// begin_step was asked for the creep error): back to the step-start
   /// records, as after abandon_step. Returns false when it cannot.
   bool retract_step();
-  /// Richardson extrapolation for step doubling (docs/speed-accuracy.md, "Step
+  /// Richardson extrapolation for step doubling (docs/reference/step-controls.md, "Step
   /// doubling"): this system holds the records after two steps of dt/2 and
   /// `coarse` those after one step of dt from the same records. Every
   /// continuous quantity x of the committed records (locking point, forces,
@@ -241,7 +241,7 @@ class ContactSystem {
   double time_to_failure() const;
   /// The contacts' terms of the energy balance: stored energies of the records
   /// of the last accepted step and the flows of that step (contact_energy.cpp;
-  /// docs/engine.md, "Energy balance").
+  /// docs/reference/engine.md, "Energy balance").
   ContactEnergy energy() const;
 
   const std::vector<JointSet>& joint_sets() const { return joint_sets_; }
@@ -270,7 +270,7 @@ class ContactSystem {
   /// their creep histories and energy terms, the counters, the penalty as
   /// raised so far, the next contact id, and the stresses the creep error
   /// estimate remembers. A system restored from it steps on bit for bit as
-  /// the one it was taken from (a resumed run, docs/outputs.md).
+  /// the one it was taken from (a resumed run, docs/reference/outputs.md).
   struct State {
     std::vector<Contact> contacts;                 ///< contacts(), sorted by key
     std::vector<laws::RheologyState> rheology;     ///< rheology_states()

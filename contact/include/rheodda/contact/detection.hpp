@@ -75,8 +75,8 @@ struct DetectedContact {
 /// (half the overlap, the seed's section 3.1) when the edge lies on the
 /// entrance edge over its whole length, so a contact whose block tilts off a
 /// face onto its corner keeps its joint length through the change of kind; it
-/// varies continuously as the block rotates (docs/rheology-in-dda.md, "Point
-/// contacts").
+/// varies continuously as the block rotates (docs/reference/rheology-in-dda.md,
+/// "The tributary length of a point contact").
 double point_tributary_length(const BlockView& vb, int v, const Vec2& t);
 
 /// Narrow-phase tolerances.
@@ -84,7 +84,7 @@ struct DetectionParams {
   double search_distance = 0.0;  ///< d0 = 2.5 g2 w0 [length]
   double angle_tolerance = 3.0;  ///< [deg]
   /// A corner in a notch touches a notch edge while its projection lies on the
-  /// edge or beyond the notch's vertex by at most this much (docs/contacts.md,
+  /// edge or beyond the notch's vertex by at most this much (docs/reference/contacts.md,
   /// "Contact types"); the contact system passes the allowed penetration [length].
   /// Negative: no limit (both notch edges whatever the projection).
   double notch_reach = -1.0;

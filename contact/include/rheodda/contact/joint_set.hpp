@@ -21,6 +21,7 @@
 #include <memory>
 #include <numbers>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "rheodda/laws/contact_rheology.hpp"
@@ -36,6 +37,23 @@ inline double restitution_damping_ratio(double e) {
   const double l = std::log(e);
   return -l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
 }
+
+/// A joint set refused by the contact layer (ContactSystem's constructor): which one,
+/// as data (its index in the list given, and the key at fault), so that a reader can
+/// point at its entry in a scene file without parsing the message.
+class JointSetError : public std::invalid_argument {
+ public:
+  JointSetError(std::size_t index, std::string name, std::string key, const std::string& message)
+      : std::invalid_argument("joint set " + std::to_string(index) + " '" + name + "': " + message),
+        index_(index),
+        key_(std::move(key)) {}
+  std::size_t joint_set() const { return index_; }  ///< index into the joint sets given
+  const std::string& key() const { return key_; }    ///< e.g. "cohesion", "shear_stiffness"
+
+ private:
+  std::size_t index_;
+  std::string key_;
+};
 
 /// Mechanical properties of one family of joints.
 struct JointSet {
@@ -62,7 +80,7 @@ struct JointSet {
   /// Joint shear stiffness per unit joint area [stress/length]; unset: the
   /// penalty's shear spring p_n / shear_normal_ratio (the seed's eqs. 17-18).
   std::optional<double> shear_stiffness;
-  /// Creep law of the joint's shear spring, or none (docs/rheology-in-dda.md).
+  /// Creep law of the joint's shear spring, or none (docs/reference/rheology-in-dda.md).
   /// Contacts on a joint set with a law get a laws::RheologyState slot that
   /// follows the contact (transfer, change of kind, rollback); the creep
   /// increment of every locked contact enters through ShearSeam
@@ -78,7 +96,7 @@ struct JointSet {
   /// Cundall & Strack (1979), a dashpot beside each spring (normal, and shear
   /// while locked) of damping ratio zeta = -ln e / sqrt(pi^2 + ln^2 e)
   /// (zeta = 1 at e = 0), c = 2 zeta sqrt(k m) with m the reduced mass of the
-  /// two blocks (docs/contacts.md, "Contact damping"). Dynamic analysis only.
+  /// two blocks (docs/reference/contacts.md, "Contact damping"). Dynamic analysis only.
   std::optional<double> restitution;
 };
 
@@ -121,7 +139,7 @@ struct ContactSettings {
   /// (docs/notes/contact-solves.md, "Why the iteration does not settle").
   bool stick_keeps_force = false;
   /// The rule of stick_keeps_force in the dynamic steps of a static analysis
-  /// (a dynamic settling stage, docs/engine.md "Settling stage") when set;
+  /// (a dynamic settling stage, docs/reference/engine.md "Settling stage") when set;
   /// unset: stick_keeps_force in every step [-]. The scene sets it true there
   /// unless the scene gives `stick_keeps_force`: a dynamic step keeps the
   /// force (the dynamic default), the static steps after it follow Shi.
@@ -133,7 +151,7 @@ struct ContactSettings {
   /// impact independent of where in its step the contact is reached. Off in
   /// static analysis, where a step has no flight: measured on the toppling
   /// example, it cost a level of `check --refine` ten times the steps and
-  /// took the refinement from fine (0.46 %) to 0.75 % (docs/contacts.md,
+  /// took the refinement from fine (0.46 %) to 0.75 % (docs/reference/contacts.md,
   /// "Contact damping").
   bool lock_at_touch = false;
   /// A sliding contact turns back (sticks) once its backward slip in the step
@@ -144,9 +162,9 @@ struct ContactSettings {
   /// small step, the coarser resolution let a vertex that moved backwards keep
   /// a friction force that pushed it on, step after step; friction did negative
   /// work and the seed's slope settled at 1 ms but never at 0.25 ms and below
-  /// (docs/contacts.md, "Friction that pushed"); without the inertia, contacts
+  /// (docs/notes/contact-solves.md, "Friction that pushed"); without the inertia, contacts
   /// that had stopped stayed sliding, more of them the smaller the step
-  /// (docs/contacts.md, "Contacts that stop"). Off in static analysis, where no
+  /// (docs/notes/contact-solves.md, "Contacts that stop"). Off in static analysis, where no
   /// velocity carries the error to the next step: measured on the toppling
   /// example, the finer resolution made its static iteration fail and cut the
   /// step towards 1e-6 d.
@@ -155,13 +173,13 @@ struct ContactSettings {
   double penalty_raise = 2.0;
   /// Upper bound of the penalty as a multiple of the initial one [-].
   double penalty_max_factor = 64.0;
-  /// Scheme of the creep laws (docs/rheology-in-dda.md, "Schemes"). Unset
+  /// Scheme of the creep laws (docs/reference/rheology-in-dda.md, "Schemes"). Unset
   /// (default): per joint set and step, exponential-linear (2nd order) where
   /// the step is below its no-ringing limit dt (k + E_i) <= 2 eta_i for every
   /// creep element i (k the joint's elastic shear stiffness per unit area),
   /// implicit (1st order, monotone at any dt) otherwise.
   std::optional<laws::Scheme> scheme;
-  /// Newton on a nonlinear law's force (docs/rheology-in-dda.md, "Nonlinear laws:
+  /// Newton on a nonlinear law's force (docs/reference/rheology-in-dda.md, "Nonlinear laws:
   /// Newton in the open-close iteration"): a locked contact asks for another
   /// iterate while its law's creep increment at the iterate's stress differs
   /// from the tangent model the iterate was solved with by more than this

@@ -1,4 +1,4 @@
-// Rock bolts (docs/bolts.md): an axial bar joining a material point of one
+// Rock bolts (docs/reference/bolts.md): an axial bar joining a material point of one
 // block to a material point of another block, or to a fixed point in space.
 //
 // The bolt is a spring along its current axis, elastic-perfectly plastic

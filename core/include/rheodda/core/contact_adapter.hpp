@@ -11,6 +11,8 @@
 //   for (const auto& c : contacts.contacts()) ...   // forces, shear, state, joint set
 #pragma once
 
+#include "rheodda/core/defaults.hpp"
+
 #include "rheodda/contact/contact_system.hpp"
 #include "rheodda/core/contact_model.hpp"
 #include "rheodda/core/model.hpp"
@@ -21,7 +23,7 @@ namespace rheodda::core {
 /// Contact settings for a model: the normal penalty is `penalty_factor` times
 /// the largest Young's modulus of the model's materials (the seed's eq. 17,
 /// k1 = 10-100; default 40) [stress]; the other settings keep their defaults.
-contact::ContactSettings contact_settings_for(const Model& model, double penalty_factor = 40.0);
+contact::ContactSettings contact_settings_for(const Model& model, double penalty_factor = kPenaltyFactor);
 
 class ContactAdapter final : public ContactModel {
  public:

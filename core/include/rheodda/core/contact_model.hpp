@@ -14,7 +14,7 @@
 namespace rheodda::core {
 
 /// The contacts' terms of the energy balance (stored energies after the last
-/// accepted step and its flows; docs/engine.md, "Energy balance").
+/// accepted step and its flows; docs/reference/engine.md, "Energy balance").
 using ContactEnergy = contact::ContactEnergy;
 
 /// Facts of the step being solved.
@@ -33,7 +33,7 @@ struct StepContext {
   double inertia = 0.0;
 };
 
-/// What the open-close iteration changed, by kind (docs/contacts.md, "States and
+/// What the open-close iteration changed, by kind (docs/reference/contacts.md, "States and
 /// the open-close iteration") [contacts].
 struct ContactChanges {
   int closed = 0;       ///< open -> locked or sliding
@@ -105,7 +105,7 @@ class ContactModel {
   /// locked) (asked only when StepContext::creep_error_wanted was set) [-].
   virtual int creep_state_changes() const { return 0; }
   /// Time left [time] before a creep law of a contact fails at its present stress
-  /// (damage laws; docs/rheology-in-dda.md, "Failure"); infinity when none can.
+  /// (damage laws; docs/reference/rheology-in-dda.md, "Failure"); infinity when none can.
   /// Adaptive creep stepping ends a step there, so it does not step over a failure.
   virtual double time_to_failure() const { return std::numeric_limits<double>::infinity(); }
   /// Step doubling (Settings::step_tolerance; asked between steps only): a copy of
@@ -119,7 +119,7 @@ class ContactModel {
   /// changes nothing, when the two differ in their discrete parts (which
   /// contacts exist, their states).
   virtual bool extrapolate(const ContactSnapshot& /*coarse*/) { return false; }
-  /// Energy balance (docs/engine.md, "Energy balance"; asked after end_step and
+  /// Energy balance (docs/reference/engine.md, "Energy balance"; asked after end_step and
   /// after extrapolate): the energy the contact springs store after the last
   /// accepted step and the work the blocks did on them in it [force x length];
   /// all zero for a model that does not account for it.

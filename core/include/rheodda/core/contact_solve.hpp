@@ -1,5 +1,5 @@
 // Contact solves: how the host finds one step's displacements and contact
-// states (docs/contacts.md, "Contact solves").
+// states (docs/reference/contacts.md, "Contact solves").
 //
 // A DDA step is the linear system K(S) D = F(S) of the seed's eq. 30 for a set
 // S of contact states (open, locked, sliding) that the contacts find

@@ -1,4 +1,4 @@
-// The energy balance of a run (docs/engine.md, "Energy balance"): after every
+// The energy balance of a run (docs/reference/engine.md, "Energy balance"): after every
 // accepted step, the energy stored in the blocks (kinetic, elastic), the fixed
 // points and the contact springs, the work of gravity and of the point loads,
 // the energy dissipated by friction, by the creep dashpots, by the time
@@ -8,7 +8,7 @@
 //
 // Every term has its own formula (energy.cpp, contact_energy.cpp); none is
 // defined as "what is left", so the residual measures what the terms do not
-// account for (docs/engine.md lists the mechanisms).
+// account for (docs/reference/engine.md lists the mechanisms).
 //
 // Energies are per unit thickness: [force x length], "force" per unit
 // thickness as everywhere (J/m in SI).
@@ -39,7 +39,7 @@ struct StoredEnergy {
   double fixed = 0.0;           ///< sum over fixed points of p |x - x0|^2 / 2
   double contact_normal = 0.0;  ///< sum over closed contacts of p_n d_n^2 / 2
   double contact_shear = 0.0;   ///< sum over locked contacts of F^2 / (2 k_s), k_s elastic
-  double bolt = 0.0;            ///< sum over intact bolts of N^2 / (2 k) (docs/bolts.md, "Energy")
+  double bolt = 0.0;            ///< sum over intact bolts of N^2 / (2 k) (docs/reference/bolts.md, "Energy")
   double total() const { return kinetic + strain + fixed + contact_normal + contact_shear + bolt; }
 };
 
@@ -67,7 +67,7 @@ struct EnergyFlows {
                                              ///< (ContactEnergy::closing)
   double dissipation_contact_release = 0.0;  ///< contact springs detached during the step
                                              ///< (ContactEnergy::release)
-  double dissipation_bolt = 0.0;  ///< bolts (docs/bolts.md, "Energy"): their springs' integration
+  double dissipation_bolt = 0.0;  ///< bolts (docs/reference/bolts.md, "Energy"): their springs' integration
                                   ///< (N1 - N0)^2/(2k), plastic N_y Delta e_p, creep N Delta e_c,
                                   ///< and the stored energy of a bolt that ruptured
   double residual = 0.0;  ///< (change of the stored energy) - works + dissipations: > 0 is
@@ -81,7 +81,7 @@ struct EnergyFlows {
 
 /// The share of a step's work of gravity and loads that its inertia term took,
 /// integration_inertia / scale [-] (0 when the step did no such work). In a static
-/// analysis (docs/engine.md, "Mechanisms in static analysis") a part that stands
+/// analysis (docs/reference/engine.md, "Mechanisms in static analysis") a part that stands
 /// takes its load in springs: the share is about (2M/dt^2) d / F_g, far below 1 %.
 /// A part that moves as a mechanism is held by nothing but the inertia term
 /// 2M/dt^2 of the step: the term takes the unbalanced force's work (about half of
@@ -144,7 +144,7 @@ class EnergyAccount {
     bolt_stored_ = stored;
     bolt_dissipation_ = dissipation;
   }
-  /// Step doubling (docs/speed-accuracy.md, "Step doubling"): `balance` went from
+  /// Step doubling (docs/reference/step-controls.md, "Step doubling"): `balance` went from
   /// `start` through the two half steps. Makes it one step: the flows of the two
   /// halves summed or, when the step was extrapolated, every flow extrapolated as
   /// the states are, 2 (sum of the halves) - (the single step's `coarse`), and the
@@ -156,7 +156,7 @@ class EnergyAccount {
   /// A static trial step D of dt, before it is taken: the work its inertia term
   /// D^T M D/(beta dt^2) absorbs over the work of gravity and of the point loads
   /// (at t_end, over the displacement T D of their points), as inertia_share
-  /// would find it after the step (docs/engine.md, "Collapse stages") [-].
+  /// would find it after the step (docs/reference/engine.md, "Collapse stages") [-].
   static double static_trial_share(const EnergyInputs& in, const Eigen::VectorXd& D, double dt,
                                    double beta, double t_end);
 

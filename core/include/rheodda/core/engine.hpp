@@ -42,7 +42,7 @@ struct StepReport {
                               ///< Settings::step_tolerance: of its three solves) [-]
   int cuts = 0;               ///< times dt was cut before acceptance [-]
   int search_widenings = 0;   ///< times the step was redone with a wider contact search
-                              ///< because a vertex moved beyond its reach (docs/engine.md,
+                              ///< because a vertex moved beyond its reach (docs/reference/engine.md,
                               ///< "Contact search reach") [-]
   double max_displacement = 0.0;  ///< largest vertex displacement of the step [length]
   double max_penetration = 0.0;   ///< largest penetration reported by the contacts [length]
@@ -79,7 +79,7 @@ struct SolverStats {
 
 /// What the linear solver carries from one solve to the next (solver.hpp):
 /// enough for a solver restored from it to solve the next systems bit for bit
-/// as the one it was taken from (a resumed run, docs/outputs.md "Interrupting
+/// as the one it was taken from (a resumed run, docs/reference/outputs.md "Interrupting
 /// and resuming"). CHOLMOD keeps nothing that a fresh analysis of the same
 /// pattern would not give again; amg keeps its warm start and the part of its
 /// hierarchy that depends on earlier systems (block_amg.hpp, "Reuse").
@@ -121,7 +121,7 @@ struct MeasurementSample {
   Vec2 displacement = Vec2::Zero();  ///< position minus initial position [length]
 };
 
-/// What kind of dynamic stage (docs/engine.md, "Dynamic stages").
+/// What kind of dynamic stage (docs/reference/engine.md, "Dynamic stages").
 enum class StageKind {
   settling,   ///< the settling stage at the start of a static analysis (Settings::settle_until)
   mechanism,  ///< a part a static step found without equilibrium, taken dynamically (Settings::collapse_dt)
@@ -131,7 +131,7 @@ enum class StageKind {
 const char* stage_kind_name(StageKind k);
 
 /// One dynamic stage of a static analysis, from its start to its end (the
-/// events table, docs/outputs.md).
+/// events table, docs/reference/outputs.md).
 struct StageEvent {
   StageKind kind = StageKind::settling;
   double start_time = 0.0;           ///< [time]
@@ -151,7 +151,7 @@ struct StageEvent {
                                      ///< integration, dashpots, springs attached or detached) [force x length]
 };
 
-/// The dynamic stage in progress (docs/engine.md, "Dynamic stages").
+/// The dynamic stage in progress (docs/reference/engine.md, "Dynamic stages").
 struct StageState {
   /// Latest end of the stage in progress or of the last one; the run is in a
   /// stage while time < until (0: none yet) [time].
@@ -176,7 +176,7 @@ struct EngineState {
   StageState stage;          ///< the dynamic stage in progress, or the last one
   std::vector<StageEvent> events;  ///< dynamic stages that have ended, in order
   /// Reach of the next step's contact search (StepContext::max_displacement;
-  /// docs/engine.md, "Contact search reach") [length].
+  /// docs/reference/engine.md, "Contact search reach") [length].
   double search_displacement = 0.0;
   SolverState solver;        ///< the linear solver's memory between solves
   std::vector<BoltState> bolts;  ///< per Model::bolts (bolt.hpp); empty without bolts
@@ -239,13 +239,13 @@ class Engine {
   const std::vector<std::vector<MeasurementSample>>& measurements() const;
   const SolverStats& solver_stats() const;
   /// Energy balance: stored energies, the last step's flows and the sums since
-  /// t = 0 (docs/engine.md, "Energy balance").
+  /// t = 0 (docs/reference/engine.md, "Energy balance").
   const EnergyBalance& energy() const;
-  /// Dynamic stages that have ended (docs/engine.md, "Dynamic stages").
+  /// Dynamic stages that have ended (docs/reference/engine.md, "Dynamic stages").
   const std::vector<StageEvent>& events() const;
   /// The run is in a dynamic stage (the next step is dynamic).
   bool in_stage() const;
-  /// States of the bolts after the last accepted step, per Model::bolts (docs/bolts.md).
+  /// States of the bolts after the last accepted step, per Model::bolts (docs/reference/bolts.md).
   const std::vector<BoltState>& bolts() const;
 
   /// Copy of everything that evolves.

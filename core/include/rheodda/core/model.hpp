@@ -48,7 +48,7 @@ struct Material {
   /// material [-], in [0, 1]; dynamic analysis only (0: none, Shi's DDA).
   /// Kelvin-Voigt strain damping sigma = E_e (eps + tau eps_dot), stiffness
   /// proportional, tau = 2 zeta / omega_1 per block (block_terms.hpp,
-  /// strain_damping_time; docs/engine.md, "Block damping").
+  /// strain_damping_time; docs/reference/engine.md, "Block damping").
   double damping_ratio = 0.0;
 };
 
@@ -104,7 +104,7 @@ enum class SolverKind {
             ///< coarse unknowns are the six DDA unknowns of groups of blocks (O(N) per solve)
 };
 
-/// How a step's contact problem is solved (contact_solve.hpp; docs/contacts.md,
+/// How a step's contact problem is solved (contact_solve.hpp; docs/reference/contacts.md,
 /// "Contact solves").
 enum class ContactSolver {
   open_close,  ///< Shi's open-close iteration: solve, check every contact, repeat until no
@@ -113,7 +113,7 @@ enum class ContactSolver {
                ///< equations (Settings::contact_residual_tolerance)
 };
 
-/// Time integration of the inertia terms (Newmark family; docs/engine.md).
+/// Time integration of the inertia terms (Newmark family; docs/reference/engine.md).
 enum class TimeIntegration {
   shi,          ///< beta = 1/2, gamma = 1 (Shi 1988): exact for constant acceleration, dissipative
   trapezoidal,  ///< beta = 1/4, gamma = 1/2: keeps the energy of linear vibrations (dynamic only)
@@ -125,14 +125,14 @@ struct Settings {
   double dt_growth = 1.5;        ///< after a cut, each accepted step lets dt grow by this factor,
                                  ///< up to dt [-]; >= 1
   double dt_cut = 0.3;           ///< factor applied to dt when a step is cut [-]; in (0, 1)
-  double creep_tolerance = 0.0;  ///< adaptive creep stepping (docs/speed-accuracy.md): largest
+  double creep_tolerance = 0.0;  ///< adaptive creep stepping (docs/reference/step-controls.md): largest
                                  ///< creep error estimate allowed per step [length]; 0 = off
                                  ///< (fixed dt). When > 0, dt is the first step and the step
                                  ///< after every point-load sample time; steps end on those
                                  ///< times; the next step is dt_n min(2, max(dt_cut,
                                  ///< 0.9 sqrt(tol/err))), err the contacts' estimate; a step
                                  ///< with err > 2 tol is redone smaller (not below dt); >= 0
-  double step_tolerance = 0.0;   ///< adaptive stepping by step doubling (docs/speed-accuracy.md,
+  double step_tolerance = 0.0;   ///< adaptive stepping by step doubling (docs/reference/step-controls.md,
                                  ///< "Step doubling"): largest difference allowed between one
                                  ///< step of dt and two of dt/2, over every block vertex
                                  ///< [length]; 0 = off. When > 0, dt is the first step and the
@@ -151,28 +151,28 @@ struct Settings {
   int max_cuts = 30;             ///< cuts allowed in one step before the engine gives up [-]; >= 0
   double g2 = 0.01;              ///< allowed displacement per step as a fraction of the half
                                  ///< model size (Shi's g2) [-]; > 0
-  /// Settling stage (docs/engine.md, "Settling stage"): until this time the
+  /// Settling stage (docs/reference/engine.md, "Settling stage"): until this time the
   /// steps are at most settle_dt, with the displacement limit settle_g2 and
   /// without the adaptive controls; from it on, dt and g2 (the next step
   /// starts at dt) [time]; 0 = no settling stage; >= 0
   double settle_until = 0.0;
   double settle_dt = 0.0;        ///< largest step of the settling stage [time]; > 0 with settle_until
   double settle_g2 = 0.0;        ///< g2 of the settling stage [-]; > 0 with settle_until
-  /// The settling stage is dynamic (docs/engine.md, "Settling stage"): its
+  /// The settling stage is dynamic (docs/reference/engine.md, "Settling stage"): its
   /// steps carry the whole velocity (dynamic_ratio 1, with the materials'
   /// damping_ratio and the joint sets' restitution), whatever the analysis's
   /// dynamic_ratio; a static analysis then starts its first step after the
   /// stage at rest (the kinetic energy left is booked as dissipated by the
   /// time integration) [-]
   bool settle_dynamic = false;
-  /// Collapse stages (docs/engine.md, "Collapse stages"): with a dynamic
+  /// Collapse stages (docs/reference/engine.md, "Collapse stages"): with a dynamic
   /// settling stage, a later static step that moves as a mechanism (its
   /// inertia share above kMechanismStepShare) is cut down to this size; one
   /// that still does at it is not taken, and a dynamic stage as long as the
   /// settling stage (settle_until, with settle_dt and settle_g2) carries the
   /// collapse from the step's start [time]; 0 = off; >= 0, < dt
   double collapse_dt = 0.0;
-  /// Dynamic stages end at rest (docs/engine.md, "Dynamic stages"): a settling
+  /// Dynamic stages end at rest (docs/reference/engine.md, "Dynamic stages"): a settling
   /// or collapse stage ends after a step whose kinetic energy is below this
   /// fraction of the work gravity and the loads did over the stage (not before
   /// the gravity ramp has ended, Settings::settle_gravity_ramp), else at its
@@ -185,7 +185,7 @@ struct Settings {
   /// analysis"); its dynamic stages are dynamic steps, which a dynamic analysis
   /// gives 30.
   int settle_max_open_close = 0;
-  /// Gravity ramp of the settling stage (docs/engine.md, "Gravity ramp"): the
+  /// Gravity ramp of the settling stage (docs/reference/engine.md, "Gravity ramp"): the
   /// body force rises linearly from zero at t = 0 to its full value at this
   /// time, which lies within the stage (0 < settle_gravity_ramp <= settle_until),
   /// so that the model is loaded slowly on the scale of its vibration instead of
@@ -209,7 +209,7 @@ struct Settings {
   ContactSolver contact_solver = ContactSolver::open_close;  ///< default open_close
   /// ContactSolver::newton accepts a step when the residual of its equations,
   /// |F0 - K0 D - f(D)|, is at most this fraction of the contact forces |f(D)|
-  /// (docs/contacts.md, "Contact solves") [-]; in (0, 1)
+  /// (docs/reference/contacts.md, "Contact solves") [-]; in (0, 1)
   double contact_residual_tolerance = 1.0e-4;
   double pcg_tolerance = 1.0e-10;  ///< stop of the iterative solvers (pcg, amg):
                                    ///< ||F - K D|| <= tol ||F|| [-]; > 0. 1e-10: what double
@@ -230,7 +230,7 @@ struct Model {
   std::vector<PointLoad> point_loads;
   std::vector<FixedPoint> fixed_points;
   std::vector<MeasurementPoint> measurement_points;
-  std::vector<Bolt> bolts;  ///< rock bolts (bolt.hpp, docs/bolts.md); none: no bolt work at all
+  std::vector<Bolt> bolts;  ///< rock bolts (bolt.hpp, docs/reference/bolts.md); none: no bolt work at all
   Settings settings;
 };
 

@@ -3,7 +3,7 @@
 // DDA needs, per block, the area S, the first moments Sx, Sy and the second
 // moments Sxx, Syy, Sxy (Shi 1988, "simplex integration"). For a polygon they
 // are exact sums over a fan of triangles (origin, v_k, v_k+1); see
-// docs/engine.md. The fan works for concave polygons too, because triangles
+// docs/reference/engine.md. The fan works for concave polygons too, because triangles
 // of a clockwise sweep enter with negative signed area.
 #pragma once
 

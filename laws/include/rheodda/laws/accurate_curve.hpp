@@ -1,5 +1,5 @@
 // A law curve that is accurate or refused: the layer behind `rheodda law curve`
-// (docs/laws.md, "Accuracy of a curve").
+// (docs/reference/laws.md, "Accuracy of a curve").
 //
 // Why. integrate_curve (history.hpp) takes one step of the scheme per output
 // step, which is what the scheme tests need but not what a user reading a curve

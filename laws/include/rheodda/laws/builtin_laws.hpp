@@ -1,6 +1,6 @@
 // The built-in laws: Maxwell, Kelvin (Kelvin-Voigt), Burgers, Nishihara and the
 // generalized Kelvin law. Each is a SeriesLaw configuration plus its closed
-// forms; see docs/laws.md.
+// forms; see docs/reference/laws.md.
 #pragma once
 
 #include "rheodda/laws/registry.hpp"
@@ -47,7 +47,7 @@ class Nishihara final : public SeriesLaw {
 
 /// Generalized Kelvin: spring E1 + Kelvin (E2, eta2) + Kelvin (E3, eta3) in series.
 /// d(t) = F/E1 + F/E2 (1 - exp(-E2 t/eta2)) + F/E3 (1 - exp(-E3 t/eta3)).
-/// Two retardation times, no steady creep (docs/laws.md, "Adding a law").
+/// Two retardation times, no steady creep (docs/design/law-interface.md, "Adding a law").
 class GeneralizedKelvin final : public SeriesLaw {
  public:
   explicit GeneralizedKelvin(const ParameterValues& p);

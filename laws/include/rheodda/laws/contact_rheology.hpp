@@ -13,7 +13,7 @@
 //
 // The creep increment over a step is affine in the end-of-step force F_e:
 //     Delta d_c = h + c * F_e                                   (1)
-// (docs/laws.md; ../shared/reference/rheology.md "three schemes"). For the
+// (docs/reference/laws.md; ../shared/reference/rheology.md "three schemes"). For the
 // lagged scheme c = 0 and h is the seed's increment, eq. (12)/(22). For the
 // implicit scheme c is the step's creep compliance, which the host folds into
 // the shear spring: k_eff = k / (1 + k c), and h is the history term that goes
@@ -26,7 +26,7 @@
 //     c = dDelta d_c/dF_e (F_g),   h = Delta d_c(F_g) - c F_g          (1')
 // so that (1) is the Newton model of the increment. The host re-linearizes at
 // every open-close iterate and stops when the model's error at the iterate is
-// below its tolerance (docs/rheology-in-dda.md, "Nonlinear laws: Newton in the
+// below its tolerance (docs/reference/rheology-in-dda.md, "Nonlinear laws: Newton in the
 // open-close iteration"); an affine law's (1) is exact, so the host never
 // re-linearizes it and affine laws cost what they did.
 #pragma once
@@ -39,7 +39,7 @@
 
 namespace rheodda::laws {
 
-/// How the force that drives a step's creep is chosen (docs/laws.md, "Schemes").
+/// How the force that drives a step's creep is chosen (docs/reference/laws.md, "Schemes").
 enum class Scheme {
   lagged,             ///< F = force at the start of the step (the seed's eqs. 12-16); explicit,
                       ///< 1st order; with a series spring k stable only for dt < 2 eta/k
@@ -62,7 +62,7 @@ inline constexpr int kMaxInternal = 4;
 /// The total creep displacement d_c is the sum of the used slots.
 struct RheologyState {
   std::array<double, kMaxInternal> q{};
-  /// Damage D of a damage-coupled law (docs/laws.md, "damage-burgers") [-]:
+  /// Damage D of a damage-coupled law (docs/reference/laws.md, "damage-burgers") [-]:
   /// 0 intact, 1 failed; always 0 for laws without damage.
   double damage = 0.0;
   double creep() const { return q[0] + q[1] + q[2] + q[3]; }
@@ -83,7 +83,7 @@ enum class Linearity {
 /// The element's increment over the step is written as
 ///     Delta q = per_q q + per_start g(F_s) + per_end g(F_e)            (2)
 /// with g(F) = F for a Kelvin element or a dashpot and g(F) = sign(F)<|F| - Fs>
-/// for a Bingham element (docs/laws.md, "Schemes"), so that advance() costs a
+/// for a Bingham element (docs/reference/laws.md, "Schemes"), so that advance() costs a
 /// few multiply-adds per element whatever the element or the scheme.
 struct UnitStepConstants {
   double b = 0.0;    ///< 1 - exp(-dt E/eta) for a Kelvin element [-]

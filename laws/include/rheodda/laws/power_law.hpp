@@ -1,6 +1,6 @@
 // Nonlinear laws: power-law (Norton) creep of the joint shear, alone or in
 // series with a Kelvin element, and with Kachanov-Rabotnov damage that makes
-// creep accelerate to failure in finite time (docs/laws.md, "power-law",
+// creep accelerate to failure in finite time (docs/reference/laws.md, "power-law",
 // "power-law-burgers", "damage-burgers").
 //
 // Why one class. The three laws are the same series: a spring E1, an optional

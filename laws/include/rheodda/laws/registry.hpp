@@ -1,6 +1,6 @@
 // The law registry: every law by name with its parameter schema and a factory.
 // Adding a law = one class in laws/ plus one line in register_builtin_laws()
-// (laws/src/registry.cpp); docs/laws.md walks through an example.
+// (laws/src/registry.cpp); docs/reference/laws.md walks through an example.
 #pragma once
 
 #include <functional>

@@ -1,7 +1,7 @@
 // A law built from creep elements in series with an optional instantaneous
 // spring: the shape of all five built-in laws (Burgers = spring + Kelvin +
 // dashpot, and so on). Each element's step math lives here once; a law is a
-// configuration of elements (docs/laws.md, "Adding a law").
+// configuration of elements (docs/design/law-interface.md, "Adding a law").
 #pragma once
 
 #include <optional>
@@ -49,7 +49,7 @@ class SeriesLaw : public ContactRheology {
 
   /// Largest step [time] at which the lagged scheme stays stable when the law acts
   /// in series with a shear spring of stiffness k (same unit as E): the smallest of
-  /// its elements' limits (docs/speed-accuracy.md, "Stability"): a Kelvin element
+  /// its elements' limits (docs/notes/step-controls.md, "Stability"): a Kelvin element
   /// (E, eta) is stable at any step when k <= E, otherwise for
   ///   dt < -(eta/E) ln(1 - 2E/(k + E));
   /// a dashpot or a Bingham element above its threshold for dt < 2 eta/k.

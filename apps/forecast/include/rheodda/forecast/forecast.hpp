@@ -1,4 +1,4 @@
-// `rheodda forecast` (docs/forecast.md): a scene's histories with the uncertainty of
+// `rheodda forecast` (docs/guide/forecast.md): a scene's histories with the uncertainty of
 // a fitted law. The law parameters of one joint set are sampled from the covariance
 // that `rheodda fit --json` reports (a multivariate normal on their logarithms), the
 // ensemble runs as a study, and the percentiles of every history column are taken
@@ -15,7 +15,7 @@
 
 namespace rheodda::forecast {
 
-/// One law of a `rheodda fit --json` report (docs/fitting.md).
+/// One law of a `rheodda fit --json` report (docs/guide/fitting.md).
 struct FittedLaw {
   std::string file;                 ///< the report's path
   std::string law;                  ///< registry name, e.g. "burgers"
@@ -23,7 +23,7 @@ struct FittedLaw {
   std::vector<std::string> units;   ///< each parameter's unit as the report spells it, e.g. "MPa/mm"
   std::vector<std::string> dimensions;  ///< registry dimension, e.g. "stress/length"
   std::vector<double> values;       ///< fitted values [units]
-  std::vector<bool> identifiable;   ///< false: the data do not fix it (docs/fitting.md, "Identifiability")
+  std::vector<bool> identifiable;   ///< false: the data do not fix it (docs/guide/fitting.md, "Identifiability")
   /// Standard error of ln p (std_error / value, the delta method the fit used) [-]; 0 when not identifiable.
   std::vector<double> log_std;
   std::vector<double> correlation;  ///< of the ln p, row-major; NaN in rows/columns of unidentified parameters

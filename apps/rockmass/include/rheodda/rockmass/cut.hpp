@@ -98,7 +98,7 @@ struct CutEstimate {
 /// L. A. Santalo, "Integral Geometry and Geometric Probability", 1976, ch. 8),
 /// exact in expectation for persistent sets and an upper bound of the blocks for
 /// non-persistent ones (their dead ends make no block), and the memory of the exact
-/// arrangement per vertex measured on the benchmark cuts (docs/rockmass.md, "Performance").
+/// arrangement per vertex measured on the benchmark cuts (docs/guide/rockmass.md, "Performance").
 CutEstimate estimate_cut(const Region& region, const std::vector<Trace>& traces);
 
 /// What went wrong in a cut, for people: `where` is a point of the region near the fault.

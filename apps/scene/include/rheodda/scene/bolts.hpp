@@ -1,4 +1,4 @@
-// `bolts:` of a scene file (docs/bolts.md, docs/scene-format.md): rock bolts
+// `bolts:` of a scene file (docs/reference/bolts.md, docs/reference/scene-format.md): rock bolts
 // joining a point of one block to a point of another block, or to a fixed
 // point in space. Included by scene.hpp after the types it uses (BlockPoint,
 // LawChoice); include scene.hpp, not this.

@@ -1,7 +1,7 @@
 // From a validated SceneDescription to the objects a run needs: the engine's
 // core::Model and the contact layer's joint sets and settings. One field of the
 // scene maps to one field of the model; the mapping is listed in
-// docs/scene-format.md.
+// docs/reference/scene-format.md.
 #pragma once
 
 #include <string>
@@ -24,7 +24,7 @@ struct BuiltScene {
 
 /// What is legal in a scene but suspect, one sentence each with the way out:
 /// a fixed step beyond the lagged scheme's stability limit of a joint set's law
-/// (docs/speed-accuracy.md, "Stability"), a block that is a sliver or has an
+/// (docs/notes/step-controls.md, "Stability"), a block that is a sliver or has an
 /// extreme aspect ratio. `check` prints them, `run` prints them and summary.json
 /// lists them.
 std::vector<std::string> scene_warnings(const SceneDescription& scene);

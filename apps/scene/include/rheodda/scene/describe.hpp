@@ -11,6 +11,10 @@ namespace rheodda::scene {
 /// Human-readable account of the scene (units spelled out); ends with a newline.
 std::string describe_scene(const SceneDescription& scene);
 
+/// The scene as summary.json's "inputs" (one line of JSON; apps/scene/src/scene_json.cpp):
+/// every key the run used, defaults filled in.
+std::string scene_json_text(const SceneDescription& scene);
+
 /// The scheme's name, "automatic" when unset.
 std::string scheme_text(const Analysis& analysis);
 

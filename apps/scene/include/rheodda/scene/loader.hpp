@@ -1,4 +1,4 @@
-// Reading a scene file (docs/scene-format.md) into a validated SceneDescription.
+// Reading a scene file (docs/reference/scene-format.md) into a validated SceneDescription.
 //
 // Every key is known (an unknown one is an error with the nearest valid name),
 // every value is type- and range-checked, NaN/inf are refused anywhere, names
@@ -30,14 +30,14 @@ struct SceneMapKeys {
   /// Dotted path as in error keys, `*` standing for a user's name or a list index:
   /// "" (the top level), "analysis", "materials.*", "joint_sets.*.law", "blocks[*].grid", ...
   std::string path;
-  std::vector<std::string> keys;  ///< every valid key, in the order of docs/scene-format.md
+  std::vector<std::string> keys;  ///< every valid key, in the order of docs/reference/scene-format.md
 };
 
 /// The scene file's schema: every map with its valid keys. These are the very lists
 /// the loader reads each map through (an unknown key is refused with them), so the
-/// schema cannot drift from what is read; tests check docs/scene-format.md against it.
+/// schema cannot drift from what is read; tests check docs/reference/scene-format.md against it.
 /// A law map (`joint_sets.*.law`) also takes the parameters of its law, by the names
 /// of laws::LawRegistry (`rheodda law list`); they are not listed here.
-const std::vector<SceneMapKeys>& scene_schema();
+std::vector<SceneMapKeys> scene_schema();
 
 }  // namespace rheodda::scene

@@ -1,6 +1,6 @@
 // The memory a run of a scene will need, estimated before it starts, and the
 // memory this process may use: `rheodda check` prints both, `rheodda run`
-// refuses a scene that will not fit (docs/performance.md, "Memory").
+// refuses a scene that will not fit (docs/notes/performance.md, "Memory").
 #pragma once
 
 #include <optional>
@@ -17,7 +17,7 @@ struct MemoryEstimate {
 
 /// Peak resident memory of a run of `scene`, from its block count and solver:
 /// a per-block cost measured on running-bond and stacked walls of 1e4 and 1e5
-/// blocks (docs/performance.md, "Memory"), an upper estimate within about 1.5x.
+/// blocks (docs/notes/performance.md, "Memory"), an upper estimate within about 1.5x.
 MemoryEstimate estimate_memory(const SceneDescription& scene);
 
 /// The memory this process may still use [bytes]: the smallest of the system's

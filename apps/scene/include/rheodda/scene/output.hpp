@@ -1,4 +1,4 @@
-// Output files of a run (docs/outputs.md). Every file is either written whole
+// Output files of a run (docs/reference/outputs.md). Every file is either written whole
 // (temporary file + rename, so a reader never sees half a file) or appended to
 // line by line, each line complete and flushed before the next step, so an
 // interrupted run leaves every file consistent.
@@ -14,8 +14,8 @@
 
 namespace rheodda::scene {
 
-/// The energy-balance columns that end every history.csv row, in order (docs/outputs.md;
-/// docs/engine.md, "Energy balance"): stored energies now, flows since t = 0, the
+/// The energy-balance columns that end every history.csv row, in order (docs/reference/outputs.md;
+/// docs/reference/engine.md, "Energy balance"): stored energies now, flows since t = 0, the
 /// residual and the step's inertia share.
 inline constexpr std::array<const char*, 18> kHistoryEnergyColumns{
     "energy_kinetic",          "energy_strain",           "energy_fixed",
@@ -114,7 +114,7 @@ struct FrameBlock {
 std::string vtk_polydata(const std::vector<FrameBlock>& blocks);
 
 /// One contact of a VTK contact frame: a point at the contact vertex with the
-/// fields of contacts.csv (docs/outputs.md, "VTK frames").
+/// fields of contacts.csv (docs/reference/outputs.md, "VTK frames").
 struct FrameContact {
   std::array<double, 2> point{};  ///< the contact vertex, current [length]
   int id = 0;                     ///< as contacts.csv's id

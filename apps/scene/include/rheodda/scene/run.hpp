@@ -1,5 +1,5 @@
 // `rheodda run`: a scene through the DDA engine with contacts, writing the
-// outputs (docs/outputs.md) as it goes, stoppable between steps and resumable.
+// outputs (docs/reference/outputs.md) as it goes, stoppable between steps and resumable.
 //
 // Resume. A checkpoint (checkpoint.json, rewritten whole at output frames at
 // most once a second, and when a run stops) records the accepted steps, the
@@ -66,7 +66,7 @@ struct RunResult {
                        ///< which the first of them failed; NaN if none [time]
   };
   std::vector<JointCreep> creep;
-  /// A static analysis's mechanism motion (docs/engine.md, "Mechanisms in static
+  /// A static analysis's mechanism motion (docs/reference/engine.md, "Mechanisms in static
   /// analysis"; core::inertia_share): how much of the work of gravity and loads the
   /// static steps' inertia terms took, and which steps moved as a mechanism.
   struct StaticMechanism {
@@ -76,12 +76,12 @@ struct RunResult {
     double first_time = std::numeric_limits<double>::quiet_NaN();  ///< end of the first of them [time]
     int first_step = -1;           ///< index of the first of them (-1: none) [-]
     double last_time = std::numeric_limits<double>::quiet_NaN();   ///< end of the last of them [time]
-    /// Start of each collapse stage (analysis.settle.collapse_dt; docs/engine.md,
+    /// Start of each collapse stage (analysis.settle.collapse_dt; docs/reference/engine.md,
     /// "Collapse stages") [time].
     std::vector<double> collapse_stages;
   };
   StaticMechanism mechanism;
-  /// The dynamic stages that have ended (analysis.settle; docs/engine.md,
+  /// The dynamic stages that have ended (analysis.settle; docs/reference/engine.md,
   /// "Dynamic stages"), as in events.csv.
   std::vector<core::StageEvent> events;
 };

@@ -1,4 +1,4 @@
-// SceneDescription: a scene file (docs/scene-format.md) as plain structs.
+// SceneDescription: a scene file (docs/reference/scene-format.md) as plain structs.
 //
 // Why plain structs. The loader (loader.hpp) turns YAML into these, checks every
 // value and the geometry, and fills in every default; after that nothing in the
@@ -40,7 +40,7 @@ struct Units {
 enum class AnalysisType { static_analysis, dynamic_analysis };
 enum class PlaneKind { strain, stress };
 enum class SolverKind { automatic, cholmod, pcg, amg };
-/// `contact_solver`: how a step's contact problem is solved (docs/contacts.md, "Contact solves").
+/// `contact_solver`: how a step's contact problem is solved (docs/reference/contacts.md, "Contact solves").
 enum class ContactSolverKind { open_close, newton };
 enum class TimeIntegration { shi, trapezoidal };
 
@@ -55,7 +55,7 @@ struct Analysis {
   int max_cuts = 30;                   ///< cuts of dt (x dt_cut each) allowed in one step before the run fails [-]
   double max_displacement_ratio = 0.01;  ///< g2: allowed step displacement / half model size [-]
   /// `settle: {until, dt, max_displacement_ratio, type, collapse_dt, gravity_ramp, rest_tolerance}`: a settling stage at the start
-  /// (docs/engine.md, "Settling stage"): steps of at most `dt` with the displacement
+  /// (docs/reference/engine.md, "Settling stage"): steps of at most `dt` with the displacement
   /// limit `max_displacement_ratio` until `until`, then the analysis's own.
   struct Settle {
     double until = 0.0;                   ///< end of the stage [time]; > 0, < duration
@@ -65,17 +65,17 @@ struct Analysis {
     /// damping_ratio and the joint sets' restitution), and a static analysis
     /// goes on from rest after it; default `static` (the analysis's own kind).
     bool dynamic = false;
-    /// Collapse stages (docs/engine.md, "Collapse stages"): a later static step
+    /// Collapse stages (docs/reference/engine.md, "Collapse stages"): a later static step
     /// that moves as a mechanism is cut down to this size, then taken as a
     /// dynamic stage as long as this one [time]; 0 = none; dynamic stage only.
     double collapse_dt = 0.0;
     /// `gravity_ramp`: gravity rises linearly from zero at t = 0 to its full value
-    /// at this time, within the stage (docs/engine.md, "Gravity ramp") [time];
+    /// at this time, within the stage (docs/reference/engine.md, "Gravity ramp") [time];
     /// 0 = gravity at once; > 0, <= until.
     double gravity_ramp = 0.0;
     /// `rest_tolerance`: the stage, and every collapse stage, ends at rest:
     /// after a step whose kinetic energy is below this fraction of the work
-    /// gravity and the loads did over the stage (docs/engine.md, "Dynamic
+    /// gravity and the loads did over the stage (docs/reference/engine.md, "Dynamic
     /// stages"); `until` is then the longest a stage may last (default: the
     /// duration) [-]; 0 = stages last `until`; in (0, 1); dynamic stage only.
     double rest_tolerance = 0.0;
@@ -89,7 +89,7 @@ struct Analysis {
   }
   std::optional<Settle> settle;
   double dynamic_ratio = 0.0;          ///< share of velocity carried to the next step [-]; default 1 dynamic, 0 static
-  /// Inertia terms `time_integration: shi|trapezoidal` (docs/engine.md); trapezoidal needs
+  /// Inertia terms `time_integration: shi|trapezoidal` (docs/reference/engine.md); trapezoidal needs
   /// a dynamic analysis with dynamic_ratio > 0.
   TimeIntegration time_integration = TimeIntegration::shi;
   /// Rheology scheme `lagged|implicit|exponential-linear`; unset (`automatic`, the default):
@@ -129,7 +129,7 @@ struct Analysis {
   double solver_iterate_tolerance = 1e-4;  ///< the same in open-close iterates whose states still change [-]
   /// `contact_solver`: `open-close` (Shi's iteration, until no contact changes its
   /// state) or `newton` (the same iterates, accepted on the residual of the step's
-  /// equations; docs/contacts.md, "Contact solves")
+  /// equations; docs/reference/contacts.md, "Contact solves")
   ContactSolverKind contact_solver = ContactSolverKind::open_close;
   /// `contact_residual_tolerance`: under `newton`, a step is accepted when the
   /// residual of its equations is at most this fraction of the contact forces [-]; in (0, 1)
@@ -211,7 +211,7 @@ struct MeasurementPoint {
   BlockPoint at;
 };
 
-/// `rock_mass:` — blocks cut from a region by joint sets (docs/rockmass.md). The loader
+/// `rock_mass:` — blocks cut from a region by joint sets (docs/guide/rockmass.md). The loader
 /// generates the traces, cuts the region (rockmass::cut_blocks) and appends the blocks
 /// to SceneDescription::blocks; this keeps what was asked and what came out.
 struct RockMassDescription {

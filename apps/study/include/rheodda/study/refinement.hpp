@@ -1,6 +1,6 @@
 // `rheodda check SCENE --refine`: is a scene's answer a result of the model or of
 // its step controls? The scene is run at its own step controls and with every
-// step control halved, again and again (a refinement study, docs/speed-accuracy.md
+// step control halved, again and again (a refinement study, docs/guide/choosing-step-controls.md
 // "Checking a scene's step controls"), and the outputs of the levels are compared:
 // they should converge (successive differences shrink, the last three agree within
 // `converged`), and the scene's own level should lie within `tolerance` of the
@@ -24,7 +24,7 @@ struct RefinementOptions {
   /// Step controls kept at the scene's value on every level, by their scene key under
   /// `analysis` ("settle.dt", "settle.max_displacement_ratio", ...): a control whose own
   /// refinement is shown converged elsewhere, so that the study refines the others
-  /// without paying for it (a settling stage's dynamic steps, docs/speed-accuracy.md).
+  /// without paying for it (a settling stage's dynamic steps, docs/guide/choosing-step-controls.md).
   std::vector<std::string> hold;
 };
 

@@ -1,6 +1,6 @@
 // `rheodda study`: one base scene plus a list of variations, run as independent
 // cases in parallel, their results gathered into one table and one plot
-// (docs/studies.md).
+// (docs/guide/studies.md).
 //
 // A study file (YAML) names a base scene and a list of cases; each case changes
 // scene keys by dotted paths (`set: {joint_sets.base.friction_angle: 40}`). Every
@@ -45,7 +45,7 @@ struct StudyCase {
   std::string sweep_label;
 };
 
-/// How a sweep turns its parameters into cases (docs/studies.md, "Sweeps").
+/// How a sweep turns its parameters into cases (docs/guide/studies.md, "Sweeps").
 enum class SweepMethod {
   grid,             ///< every combination of the parameters' values (product)
   random,           ///< `samples` independent draws, uniform in each range (or in its logarithm)
@@ -117,7 +117,7 @@ std::string case_scene_body(const std::string& text);
 std::string drawn_case_name(std::size_t k, std::size_t count);
 
 /// The title of a case scene: "BASE [case NAME: key = value, key removed, ...]", listing
-/// the case's own overrides first, then the study's common ones (docs/studies.md).
+/// the case's own overrides first, then the study's common ones (docs/guide/studies.md).
 std::string case_title(const std::string& base_title, const StudyCase& c, std::size_t common_count);
 
 /// A case handed to an executor: its index in the study and its folder (scene.yaml in it).
@@ -185,7 +185,7 @@ struct CaseResult {
   int steps = 0;         ///< accepted steps (summary.json)
   double wall_seconds = 0.0;  ///< the case process's wall time [s]
   /// Static analyses: the share of the work of gravity and loads the static steps'
-  /// inertia term took (summary.json static_mechanism.inertia_share; docs/engine.md,
+  /// inertia term took (summary.json static_mechanism.inertia_share; docs/reference/engine.md,
   /// "Mechanisms in static analysis") [-]; empty for a dynamic case or without a summary.
   std::optional<double> inertia_share;
   /// values[i * times.size() + j]: output i at times[j]; empty when the run did not reach the time.

@@ -1,8 +1,8 @@
 // Laboratory creep curves read from CSV: time, shear displacement and the
 // applied shear stress, either one value (or staged history) for the whole
-// file or one value per row (a stage column). See docs/fitting.md.
+// file or one value per row (a stage column). See docs/guide/fitting.md.
 //
-// Conventions a fit relies on (docs/fitting.md, "The CSV format"):
+// Conventions a fit relies on (docs/guide/fitting.md, "The CSV format"):
 //   - time is measured from the first loading: the first stage starts at t = 0;
 //   - a row recorded at a stage start holds the displacement just after the
 //     stress change (the instantaneous jump F/E1 included);
@@ -46,6 +46,10 @@ struct CsvOptions {
   /// Shear stress of the whole file [stress]: one stage "0:VALUE" or a staged
   /// history "T:V[,T:V...]" (laws::StagedHistory). Used when stress_column is empty.
   std::optional<laws::StagedHistory> stress;
+  /// Measurement standard deviation of each row's displacement [length]
+  /// (`--sigma-column`): the fit then minimizes sum ((d_model - d)/sigma)^2.
+  /// Empty: every point weighs the same. Each cell must be finite and > 0.
+  std::string sigma_column;
 };
 
 /// One stage of constant stress and the rows measured during it.
@@ -64,7 +68,10 @@ struct CreepData {
   std::vector<std::size_t> line;    ///< file line of each point (1-based)
   laws::StagedHistory history;      ///< applied shear stress [stress]
   std::vector<StageInfo> stages;    ///< one per history stage, with its points
-  std::string time_column, displacement_column, stress_column;  ///< as read
+  /// Measurement standard deviation of each point [length]; empty when not
+  /// given (all points weigh the same). Same size as t otherwise, all > 0.
+  std::vector<double> sigma;
+  std::string time_column, displacement_column, stress_column, sigma_column;  ///< as read
 };
 
 /// Parses comma-separated text: a header row naming the columns, then one row

@@ -1,6 +1,6 @@
 // Fitting registered laws to creep curves by nonlinear least squares (GSL
 // gsl_multifit_nlinear, trust-region Levenberg-Marquardt), and ranking the
-// laws by information criteria. See docs/fitting.md.
+// laws by information criteria. See docs/guide/fitting.md.
 //
 // What is minimized: RSS = sum_i (d_model(t_i) - d_i)^2 over every point of
 // every stage at once, where d_model is the exact response of the law to the
@@ -14,11 +14,14 @@
 // the Nishihara threshold solved exactly at each node, gives the starts; GSL
 // polishes them on the full parameter set; the classic multi-start search
 // (FitOptions::restarts) runs as a reference. Identifiability comes from the
-// singular value decomposition of the Jacobian (docs/fitting.md).
+// singular value decomposition of the Jacobian (docs/guide/fitting.md).
 #pragma once
 
 #include <cmath>
 #include <cstddef>
+#include <limits>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +41,22 @@ class FitError : public std::runtime_error {
   std::string law_;
 };
 
+/// What the user sets on one parameter of a fit, as lmfit's Parameter
+/// (docs/guide/fitting.md, "Initial values, bounds, fixed parameters and weights").
+/// All in the parameter's registry unit.
+struct ParameterSetting {
+  /// Initial value (an extra start, tried first); with vary = false the value
+  /// the parameter is held at. Must lie within [min, max].
+  std::optional<double> value;
+  bool vary = true;  ///< false: held at `value` (`--fix NAME=VALUE`)
+  /// Lower bound (`--bounds NAME=MIN:MAX`); 0: none beyond positivity.
+  double min = 0.0;
+  double max = std::numeric_limits<double>::infinity();  ///< upper bound; inf: none
+
+  /// Nothing set: the parameter is fitted as without a setting.
+  bool is_default() const { return !value && vary && min == 0.0 && max == std::numeric_limits<double>::infinity(); }
+};
+
 /// Knobs of a fit; the defaults are what `rheodda fit` uses.
 struct FitOptions {
   int restarts = 4;               ///< extra starts besides the one derived from the curve
@@ -45,13 +64,23 @@ struct FitOptions {
   double correlation_limit = 0.99;      ///< |corr| above this: warning
   double relative_error_limit = 1.0;    ///< std. error / value above this: warning
   double retardation_factor = 3.0;      ///< test shorter than this * eta/E: warning
-  /// Starts from the variable-projection grid search (docs/fitting.md, "How the
+  /// Starts from the variable-projection grid search (docs/guide/fitting.md, "How the
   /// minimum is found"); false: only the classic multi-start search.
   bool structured_search = true;
   int grid_per_decade = 10;  ///< grid nodes per decade of retardation time
   /// A singular value of the Jacobian below this fraction of the largest: the
   /// curve does not depend on that direction of the (log) parameters.
   double null_tolerance = 1e-7;
+  /// Settings by parameter name (registry names of the law fitted); a name the
+  /// law does not have is a FitError. Bounds act in the log of the parameter
+  /// through the transforms of MINUIT/lmfit (docs/guide/fitting.md).
+  std::map<std::string, ParameterSetting> parameters;
+  /// true (lmfit's scale_covar, curve_fit's absolute_sigma=False): standard
+  /// errors scaled by the residual standard deviation sqrt(chi^2/(n - k));
+  /// false (`--absolute-sigma`): sigma is the measurement error in absolute
+  /// terms and the covariance is (J^T J)^-1 of the residuals divided by sigma.
+  /// false needs sigma in the data.
+  bool scale_covariance = true;
 };
 
 /// One fitted parameter.
@@ -61,9 +90,16 @@ struct ParameterEstimate {
   double value = 0.0;
   double std_error = 0.0;  ///< delta method from the log-space covariance; 0 if not identifiable
   /// false when the parameter has a significant weight in a direction of the
-  /// (log) parameters that the data do not fix (docs/fitting.md, "Identifiability")
+  /// (log) parameters that the data do not fix (docs/guide/fitting.md, "Identifiability")
   bool identifiable = true;
   std::string reason;  ///< why it is not identifiable; empty if it is
+  bool vary = true;      ///< false: held at its given value (ParameterSetting::vary); std_error 0
+  /// The fit ended on a bound ("min" or "max"; empty if not): the value is the
+  /// bound and, as for a fixed parameter, std_error is 0 and the others'
+  /// errors are those with it held there.
+  std::string at_bound;
+  double min = 0.0;  ///< lower bound of the fit [unit]
+  double max = std::numeric_limits<double>::infinity();  ///< upper bound of the fit [unit]
 };
 
 /// A combination of parameters that the data fix although some of its parts
@@ -85,10 +121,17 @@ struct FitResult {
   std::vector<double> correlation;
   std::size_t points = 0;  ///< n
   double rss = 0.0;        ///< residual sum of squares [length^2]
+  /// sum ((d_model - d)/sigma)^2 [-] with measurement sigma (CreepData::sigma);
+  /// equal to rss [length^2] without. AIC and BIC are computed from it.
+  double chi_square = 0.0;
+  double reduced_chi_square = 0.0;  ///< chi_square / (n - k)
+  int varying = 0;          ///< k: parameters fitted (not held by vary = false)
+  bool weighted = false;    ///< the data carried sigma
+  bool scale_covariance = true;  ///< as FitOptions::scale_covariance
   double r2 = 0.0;         ///< 1 - RSS/TSS [-]; NaN (undefined) when the data have no spread (TSS ~ 0)
   double rmse = 0.0;       ///< sqrt(RSS/n) [length]
-  double aic = 0.0;        ///< n ln(RSS/n) + 2k [-]
-  double bic = 0.0;        ///< n ln(RSS/n) + k ln n [-]
+  double aic = 0.0;        ///< n ln(chi_square/n) + 2k [-] (k = varying)
+  double bic = 0.0;        ///< n ln(chi_square/n) + k ln n [-]
   int iterations = 0;      ///< of the best start
   int starts = 0;          ///< starts tried
   int starts_agreeing = 0; ///< starts that reached the best RSS (relative 1e-6)
@@ -105,6 +148,9 @@ struct FitResult {
   std::vector<FixedCombination> combinations;  ///< combinations fixed by the data
   std::vector<std::string> warnings;  ///< identifiability and convergence warnings
   std::vector<double> fitted;         ///< d_model at each data point [length]
+  /// chi_square reached by each start polished on all points, in the order
+  /// tried (variable-projection starts first) [as chi_square].
+  std::vector<double> start_minima;
 
   laws::ParameterValues values() const;
   bool r2_defined() const { return std::isfinite(r2); }
@@ -118,8 +164,10 @@ std::vector<double> predict(const laws::ContactRheology& law, const laws::Staged
                             const std::vector<double>& times);
 
 /// Fits one registered law. Throws FitError when the data cannot constrain
-/// the law at all (fewer points than parameters + 1, a parameter that may be
-/// negative, no nonzero stress, a displacement that is zero everywhere).
+/// the law at all (fewer points than varying parameters + 1, a parameter that
+/// may be negative, no nonzero stress, a displacement that is zero everywhere)
+/// or when options.parameters is wrong (an unknown name, a value outside its
+/// bounds, min >= max, vary = false without a value, nothing left to vary).
 FitResult fit_law(const laws::LawInfo& law, const CreepData& data, const FitOptions& options = {});
 
 /// Model comparison criterion.

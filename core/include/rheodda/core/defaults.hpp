@@ -1,0 +1,41 @@
+// The defaults that depend on the model, in one place: the scene loader fills them
+// into a scene (apps/scene/src/loader.cpp), the contact adapter and the engine apply
+// them to a Model that leaves them at 0 (a test's hand-written model).
+#pragma once
+
+#include <algorithm>
+#include <vector>
+
+#include "rheodda/core/model.hpp"
+
+namespace rheodda::core {
+
+/// k1 of Shi's normal penalty p_n = k1 E (the seed's eq. 17, k1 = 10-100) [-].
+inline constexpr double kPenaltyFactor = 40.0;
+/// Fixed-point spring / E: Shi's code holds fixed points with 10-100 E (dda.md) [-].
+inline constexpr double kFixedPointFactor = 100.0;
+
+/// The largest Young's modulus of `materials`, each read by `young_modulus` [stress]; 0 for none.
+template <class Range, class Modulus>
+double largest_young_modulus(const Range& materials, Modulus young_modulus) {
+  double e = 0.0;
+  for (const auto& m : materials) e = std::max(e, young_modulus(m));
+  return e;
+}
+inline double largest_young_modulus(const std::vector<Material>& materials) {
+  return largest_young_modulus(materials, [](const Material& m) { return m.young_modulus; });
+}
+
+/// The normal contact penalty p_n = k1 E_max [stress].
+inline double default_penalty(double largest_young_modulus) { return kPenaltyFactor * largest_young_modulus; }
+
+/// The fixed-point spring 100 E_max [force/length].
+inline double default_fixed_point_stiffness(double largest_young_modulus) {
+  return kFixedPointFactor * largest_young_modulus;
+}
+
+/// Shi's half model size w0: half the larger side of the model's bounding box [length];
+/// the step limit is g2 w0 and the contact search reaches search_factor g2 w0.
+inline double half_model_size(double width, double height) { return 0.5 * std::max(width, height); }
+
+}  // namespace rheodda::core

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Regenerates the key tables of docs/reference/scene-format.md from the keys' declarations
+# (apps/scene/src/keys.cpp) through `rheodda keys --markdown MAP`, between the
+# <!-- keys-MAP:begin/end --> markers. tests/apps/scene/schema_test.cpp checks that
+# the doc holds what this writes.
+# Usage: scripts/scene-format-tables.sh     (RHEODDA_BUILD_DIR: the build to use, default build/)
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${RHEODDA_BUILD_DIR:-$root/build}"
+doc="$root/docs/reference/scene-format.md"
+tmp="$(mktemp)"
+trap 'rm -f "$tmp"' EXIT
+for map in analysis analysis.settle; do
+  "$build/apps/rheodda" keys --markdown "$map" >"$tmp"
+  "$root/scripts/splice-doc.sh" "$doc" "keys-$map" "$tmp"
+done
+echo "scene-format-tables: docs/reference/scene-format.md key tables regenerated"
