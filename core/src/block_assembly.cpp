@@ -8,6 +8,7 @@
 //   F_i  += rho S (gx, gy, 0, 0, 0, 0)         body force
 //   K_ii += 2/dt^2 M_i,  F_i += 2/dt M_i v_i   inertia, M_i = rho int T^T T dA
 //   K_ii += p T^T T,     F_i += p T^T (x0 - x) fixed point (penalty spring)
+//   F_i  += int T_i^T (-p n) ds                water pressure on the edges (water.hpp)
 // No term couples two blocks: the contacts add those (step_trial.cpp).
 #include "block_terms.hpp"
 #include "engine_impl.hpp"
@@ -58,6 +59,12 @@ void Engine::Impl::assemble_blocks(double dt, double t_end, std::vector<Mat6>& d
     const Vec2 f = load_at(l.history, t_end);
     rhs.segment<6>(6 * l.block) += contact::displacement_matrix(b.centroid, p).transpose() * f;
   }
+  // Water in the joints (water.hpp): the pressure at the step's end time on the
+  // step-start edges, as the point loads.
+  if (model.water.active())
+    for (std::size_t k = 0; k < n; ++k)
+      rhs.segment<6>(6 * static_cast<Eigen::Index>(k)) +=
+          water_block_load(model.water, st.blocks[k].vertices, st.blocks[k].centroid, t_end);
   // Fixed points: spring p between the material point x and its held position x0,
   // energy p/2 |T D - (x0 - x)|^2.
   for (const auto& fp : model.fixed_points) {

@@ -58,6 +58,19 @@ void each_flow(EnergyFlows& a, const EnergyFlows& b, F f) {
 /// Current position of the material point whose initial position was p0 [length].
 Vec2 position(const BlockState& b, const Vec2& p0) { return b.map_A * p0 + b.map_b; }
 
+/// Work of the water pressure over the step D (water.hpp; docs/reference/water.md,
+/// "Assumptions"): its six load terms at t_end on the step-start geometry, as
+/// assembled, times the block's step D - the end-force work of the engine's
+/// equations, as for gravity; 0 without water [force x length].
+double water_work(const EnergyInputs& in, const Eigen::VectorXd& D, double t_end) {
+  if (!in.model.water.active()) return 0.0;
+  double work = 0.0;
+  for (std::size_t k = 0; k < in.blocks.size(); ++k)
+    work += water_block_load(in.model.water, in.blocks[k].vertices, in.blocks[k].centroid, t_end)
+                .dot(D.segment<6>(6 * static_cast<Eigen::Index>(k)));
+  return work;
+}
+
 /// Closes a step's flows against the stored energies before and after it.
 void settle(EnergyFlows& f, const StoredEnergy& before, const StoredEnergy& after) {
   f.scale = std::abs(f.work_gravity) + std::abs(f.work_loads);
@@ -170,6 +183,7 @@ void EnergyAccount::begin(const EnergyInputs& in, const Eigen::VectorXd& D, doub
     springs += 0.5 * in.fixed_k * u.squaredNorm();
   }
   flows_.dissipation_integration = springs + flows_.integration_inertia;
+  flows_.work_loads = water_work(in, D, t_end);
   load_start_.clear();
   for (const PointLoad& l : in.model.point_loads)
     load_start_.push_back(position(in.blocks[l.block], l.point));
@@ -197,6 +211,7 @@ double EnergyAccount::static_trial_share(const EnergyInputs& in, const Eigen::Ve
                    D.segment<6>(6 * static_cast<Eigen::Index>(l.block));
     loads += load_at(l.history, t_end).dot(u);
   }
+  loads += water_work(in, D, t_end);
   const double scale = std::abs(gravity) + std::abs(loads);
   return scale > 0.0 ? inertia / scale : 0.0;
 }

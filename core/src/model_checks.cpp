@@ -105,6 +105,12 @@ void Engine::Impl::validate() {
         throw ModelError(key + ".history", "times must increase strictly");
     }
   }
+  if (m.water.active() || m.water.unit_weight != 0.0) {  // water.hpp: the surfaces span the blocks at the start
+    Eigen::AlignedBox2d box;
+    for (const BlockDef& b : m.blocks)
+      for (const Vec2& v : b.vertices) box.extend(v);
+    validate_water(m.water, box.min().x(), box.max().x());
+  }
   for (std::size_t k = 0; k < m.fixed_points.size(); ++k)
     check_point(at("fixed_points", k), m.fixed_points[k].block, m.fixed_points[k].point);
   for (std::size_t k = 0; k < m.measurement_points.size(); ++k)

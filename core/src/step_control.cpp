@@ -169,6 +169,7 @@ double Engine::Impl::next_load_break() const {
   for (const auto& pl : model.point_loads)
     for (const auto& ls : pl.history)
       if (ls.time > st.time + eps) t = std::min(t, ls.time);
+  if (model.water.active()) t = std::min(t, next_water_break(model.water, st.time + eps));  // water.hpp
   return t;
 }
 

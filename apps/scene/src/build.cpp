@@ -138,6 +138,7 @@ BuiltScene build_scene(const SceneDescription& s) {
   }
   for (const auto& mp : s.measurement_points)
     m.measurement_points.push_back({mp.at.block, {mp.at.point[0], mp.at.point[1]}});
+  if (s.water) m.water = build_water(*s.water, s);  // water.hpp
   for (const auto& b : s.bolts) {  // docs/reference/bolts.md; core/include/rheodda/core/bolt.hpp
     core::Bolt bolt;
     bolt.block_a = b.from.block;

@@ -270,6 +270,7 @@ std::string describe_scene(const SceneDescription& s) {
   line(fmt::format("measurement points: {}", s.measurement_points.size()));
   for (const auto& m : s.measurement_points)
     line(fmt::format("  {}: ({:g}, {:g}) on {}", m.name, m.at.point[0], m.at.point[1], s.blocks[m.at.block].name));
+  if (s.water) out += describe_water(*s.water, u);  // water.hpp
   out += describe_bolts(s);  // bolts_text.cpp; nothing without bolts
 
   // Contacts at the start are the touching vertex-edge pairs: count those within a

@@ -9,6 +9,7 @@
 //   read_joint_sets.cpp `materials:`, `joint_sets:` and their laws
 //   read_blocks.cpp     `blocks:`; read_rock_mass.cpp `rock_mass:`
 //   read_points.cpp     `fixed_points:`, `loads:`, `measurement_points:`
+//   load_water.cpp      `water:`
 //   scene_checks.cpp    the blocks' geometry checks
 //   this file           parse_scene: the sections in order, then the defaults
 // Each YAML map is read through a MapReader that knows the map's valid keys, so
@@ -83,6 +84,7 @@ SceneDescription parse_scene(const std::string& text_in, const std::string& file
     if (rock_mass.IsDefined()) read_rock_mass(ctx, rock_mass, s, raw);
     check_geometry(ctx, raw, s);
     read_points(ctx, top, s);
+    if (YAML::Node v = top.find("water"); v.IsDefined()) s.water = read_water(ctx, v, s);
     read_bolts(ctx, top, s);
     // The model's defaults, as the engine would take them (core/defaults.hpp): the
     // penalty k1 E (the seed's eq. 17), the fixed-point spring 100 E.

@@ -223,6 +223,8 @@ std::string vtk_contacts(const std::vector<FrameContact>& contacts) {
   reals("creep_displacement", [](const FrameContact& c) { return c.creep_displacement; });
   reals("penetration", [](const FrameContact& c) { return c.penetration; });
   reals("length", [](const FrameContact& c) { return c.length; });
+  if (!contacts.empty() && contacts.front().water_pressure)  // scenes with water (docs/reference/water.md)
+    reals("water_pressure", [](const FrameContact& c) { return c.water_pressure.value_or(0.0); });
   s += "</PointData>\n<Verts>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
   for (std::size_t i = 0; i < n; ++i) s += fmt::format("{}\n", i);
   s += "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";

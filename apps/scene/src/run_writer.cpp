@@ -76,7 +76,10 @@ void create_csv_files(Run& run) {
   run.history.create((fs::path(run.out) / "history.csv").string());
   run.contacts_csv.create((fs::path(run.out) / "contacts.csv").string());
   run.history.append(units_comment(run.s.units) + run.history_header);
-  run.contacts_csv.append(units_comment(run.s.units) + contacts_header);
+  // With water (docs/reference/water.md) a last column, water_pressure.
+  run.contacts_csv.append(units_comment(run.s.units) +
+                          (run.s.water ? contacts_header.substr(0, contacts_header.size() - 1) + ",water_pressure\n"
+                                       : contacts_header));
   run.history.append(history_row(run, nullptr));
   if (!run.s.bolts.empty()) create_bolts_csv(run);
 }
@@ -117,6 +120,7 @@ std::string contacts_frame_text(const Run& run) {
     fc.creep_displacement = c.creep_displacement;
     fc.penetration = c.penetration;
     fc.length = c.length;
+    if (run.s.water) fc.water_pressure = core::water_pressure(run.engine.model().water, p, run.engine.time());
     layer.push_back(fc);
   }
   return vtk_contacts(layer);
@@ -150,12 +154,13 @@ void write_frame(Run& run) {
   for (const auto& c : run.contacts.contacts()) {
     const core::Vec2 p = engine.vertices(c.key.vblock)[c.key.vertex];
     rows += fmt::format("{:.10g},{},{},{},{},{},{},{},{},{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},"
-                        "{:.10g},{}\n",
+                        "{:.10g},{}{}\n",
                         engine.time(), engine.step_count(), c.id, s.joint_sets[c.joint_set].name,
                         contact::contact_state_name(c.state), contact::contact_kind_name(c.kind),
                         s.blocks[c.key.vblock].name, c.key.vertex, s.blocks[c.key.eblock].name, c.key.edge,
                         p.x(), p.y(), c.normal_force, c.shear_force, c.shear_displacement, c.penetration,
-                        c.length, c.creep_displacement, contact::creep_state_name(c.creep_state));
+                        c.length, c.creep_displacement, contact::creep_state_name(c.creep_state),
+                        s.water ? water_pressure_cell(engine.model().water, p, engine.time()) : std::string());
   }
   for (const auto& c : run.contacts.contacts())
     for (const auto& [name, v] : {std::pair<const char*, double>{"normal_force", c.normal_force},

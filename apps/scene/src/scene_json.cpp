@@ -82,6 +82,7 @@ json scene_json(const SceneDescription& s) {
   j["measurement_points"] = json::array();
   for (const auto& m : s.measurement_points)
     j["measurement_points"].push_back({{"name", m.name}, {"point", m.at.point}, {"block", s.blocks[m.at.block].name}});
+  if (s.water) j["water"] = json::parse(water_json_text(*s.water));  // only with water (water.hpp)
   add_bolts_json(s, j);  // bolts_text.cpp
   return j;
 }

@@ -14,7 +14,7 @@ namespace detail {
 namespace keys {
 const std::vector<std::string> top{"title", "units", "analysis", "materials", "joint_sets",
                                    "blocks", "rock_mass", "fixed_points", "loads", "measurement_points",
-                                   "bolts"};
+                                   "water", "bolts"};
 const std::vector<std::string> units{"length", "force", "time"};
 const std::vector<std::string> material{"density", "young_modulus", "poisson_ratio", "plane", "damping_ratio"};
 const std::vector<std::string> joint_set{"friction_angle", "cohesion", "tensile_strength",
@@ -35,6 +35,8 @@ const std::vector<std::string> rock_mass_trace{"joint_set", "from", "to"};
 const std::vector<std::string> fixed_point{"point", "block"};
 const std::vector<std::string> load{"point", "block", "force", "history"};
 const std::vector<std::string> measurement_point{"name", "point", "block"};
+const std::vector<std::string> water{"unit_weight", "level", "surface", "level_history", "surface_history"};
+const std::vector<std::string> water_sample{"time", "surface"};
 const std::vector<std::string> bolt{"name", "from", "to", "axial_stiffness", "pretension", "yield_force",
                                     "rupture_elongation", "law"};
 const std::vector<std::string> bolt_from{"point", "block"};
@@ -62,6 +64,8 @@ std::vector<SceneMapKeys> scene_schema() {
       {"fixed_points[*]", detail::keys::fixed_point},
       {"loads[*]", detail::keys::load},
       {"measurement_points[*]", detail::keys::measurement_point},
+      {"water", detail::keys::water},
+      {"water.surface_history[*]", detail::keys::water_sample},
       {"bolts[*]", detail::keys::bolt},
       {"bolts[*].from", detail::keys::bolt_from},
       {"bolts[*].to", detail::keys::bolt_to},

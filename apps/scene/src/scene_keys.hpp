@@ -20,6 +20,8 @@ extern const std::vector<std::string> rock_mass_trace;
 extern const std::vector<std::string> fixed_point;
 extern const std::vector<std::string> load;
 extern const std::vector<std::string> measurement_point;
+extern const std::vector<std::string> water;
+extern const std::vector<std::string> water_sample;
 extern const std::vector<std::string> bolt;       // load_bolts.cpp
 extern const std::vector<std::string> bolt_from;
 extern const std::vector<std::string> bolt_to;

@@ -40,6 +40,8 @@ double geometry_tolerance(const std::vector<BlockDescription>& blocks);
 BlockPoint read_block_point(const Ctx& ctx, const MapReader& m, const SceneDescription& s, double tol);
 /// `fixed_points:`, `loads:`, `measurement_points:` (read_points.cpp).
 void read_points(const Ctx& ctx, const MapReader& top, SceneDescription& s);
+/// `water:` (load_water.cpp; after the blocks: its surface must span them).
+WaterDescription read_water(const Ctx& ctx, const YAML::Node& n, const SceneDescription& s);
 /// `bolts:` (load_bolts.cpp).
 void read_bolts(const Ctx& ctx, const MapReader& top, SceneDescription& s);
 /// Every block a simple polygon, no two overlapping, edges' joint sets (scene_checks.cpp).

@@ -41,7 +41,8 @@ const std::map<std::string, std::string> kSectionPath{
     {"materials", "materials.*"}, {"joint_sets", "joint_sets.*"}, {"law", "joint_sets.*.law"},
     {"blocks", "blocks[*]"},
     {"rock_mass", "rock_mass"},   {"rock_mass.joint_sets", "rock_mass.joint_sets[*]"},
-    {"rock_mass.traces", "rock_mass.traces[*]"}, {"bolts", "bolts[*]"},
+    {"rock_mass.traces", "rock_mass.traces[*]"},
+    {"water", "water"},           {"water.surface_history", "water.surface_history[*]"}, {"bolts", "bolts[*]"},
 };
 /// The section whose `list` table documents the keys of each point list.
 const std::string kPointsSection = "fixed_points, loads, measurement_points";
@@ -220,6 +221,8 @@ BOOST_AUTO_TEST_CASE(the_schema_is_the_list_each_map_refuses_unknown_keys_with) 
                                                 "boundary_joint_set: bedding, joint_sets: [{bogus_key: 1}]}\n"},
       {"rock_mass.traces[*]", kBaseScene + "rock_mass: {region: [[0, 5], [4, 5], [4, 8], [0, 8]], "
                                             "boundary_joint_set: bedding, traces: [{bogus_key: 1}]}\n"},
+      {"water", kBaseScene + "water: {bogus_key: 1, unit_weight: 9810, level: 1}\n"},
+      {"water.surface_history[*]", kBaseScene + "water: {unit_weight: 9810, surface_history: [{bogus_key: 1}]}\n"},
   };
   for (const auto& m : scene::scene_schema()) {
     BOOST_TEST_CONTEXT("schema path '" << m.path << "'") {

@@ -47,7 +47,8 @@ struct StoredEnergy {
 /// Works are energy put into the model (> 0), dissipations energy taken out (> 0).
 struct EnergyFlows {
   double work_gravity = 0.0;          ///< sum of rho S g . (centroid displacement)
-  double work_loads = 0.0;            ///< sum of f(t_end) . (displacement of the load point)
+  double work_loads = 0.0;            ///< sum of f(t_end) . (displacement of the load point), plus
+                                      ///< the water pressure's load terms . D (water.hpp)
   double work_contact_restart = 0.0;  ///< energy the contact springs gained between steps
                                       ///< without work (ContactEnergy::restart)
   double dissipation_friction = 0.0;  ///< friction force x slip of sliding contacts (signed)

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "rheodda/core/water.hpp"
 #include "rheodda/core/bolt.hpp"
 
 namespace rheodda::core {
@@ -230,6 +231,7 @@ struct Model {
   std::vector<PointLoad> point_loads;
   std::vector<FixedPoint> fixed_points;
   std::vector<MeasurementPoint> measurement_points;
+  Water water;  ///< water in the joints (water.hpp); default none
   std::vector<Bolt> bolts;  ///< rock bolts (bolt.hpp, docs/reference/bolts.md); none: no bolt work at all
   Settings settings;
 };

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -127,6 +128,7 @@ struct FrameContact {
   double creep_displacement = 0.0; ///< accumulated by the joint set's law [length]
   double penetration = 0.0;        ///< [length]
   double length = 0.0;             ///< contact (tributary) length [length]
+  std::optional<double> water_pressure;  ///< at the point, scenes with water only [stress] (docs/reference/water.md)
 };
 
 /// A VTK XML PolyData file (.vtp, ASCII) of the contacts at one time: one vertex

@@ -23,6 +23,7 @@
 #include "rheodda/rockmass/cut.hpp"
 #include "rheodda/rockmass/generate.hpp"
 #include "rheodda/scene/error.hpp"
+#include "rheodda/scene/water.hpp"
 
 namespace rheodda::scene {
 
@@ -259,6 +260,7 @@ struct SceneDescription {
   std::vector<LoadDescription> loads;
   std::vector<MeasurementPoint> measurement_points;
   std::optional<RockMassDescription> rock_mass;  ///< `rock_mass:`, if given
+  std::optional<WaterDescription> water;          ///< `water:`, if given (water.hpp)
   std::vector<BoltDescription> bolts;  ///< `bolts:` (bolts.hpp); empty: none
 };
 

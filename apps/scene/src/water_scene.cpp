@@ -1,0 +1,102 @@
+// A scene's `water:` into the engine's model, `rheodda check`, summary.json and
+// contacts.csv (water.hpp; docs/reference/water.md).
+#include "rheodda/scene/water.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include "rheodda/scene/scene.hpp"
+
+namespace rheodda::scene {
+
+namespace {
+
+const char* form_name(WaterDescription::Form f) {
+  switch (f) {
+    case WaterDescription::Form::level: return "level";
+    case WaterDescription::Form::surface: return "surface";
+    case WaterDescription::Form::level_history: return "level_history";
+    case WaterDescription::Form::surface_history: return "surface_history";
+  }
+  return "?";
+}
+
+bool is_level(WaterDescription::Form f) {
+  return f == WaterDescription::Form::level || f == WaterDescription::Form::level_history;
+}
+
+}  // namespace
+
+core::Water build_water(const WaterDescription& water, const SceneDescription& scene) {
+  core::Water w;
+  w.unit_weight = water.unit_weight;
+  // A level: the horizontal line over the blocks' x-range (the engine holds it
+  // level beyond, wherever the blocks move).
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const auto& b : scene.blocks)
+    for (const auto& p : b.polygon) lo = std::min(lo, p[0]), hi = std::max(hi, p[0]);
+  for (const auto& smp : water.history) {
+    core::WaterSurface s;
+    s.time = smp.time;
+    if (is_level(water.form)) {
+      s.points = {{lo, smp.level}, {hi, smp.level}};
+    } else {
+      for (const auto& p : smp.surface) s.points.emplace_back(p[0], p[1]);
+    }
+    w.history.push_back(std::move(s));
+  }
+  return w;
+}
+
+std::string describe_water(const WaterDescription& water, const Units& u) {
+  std::string out = fmt::format("water: unit_weight {:g} {}/{}^3, {}", water.unit_weight, u.force, u.length,
+                                form_name(water.form));
+  const auto& h = water.history;
+  switch (water.form) {
+    case WaterDescription::Form::level:
+      out += fmt::format(" {:g} {}\n", h[0].level, u.length);
+      break;
+    case WaterDescription::Form::surface:
+      out += fmt::format(" of {} points, x = {:g} .. {:g} {}\n", h[0].surface.size(), h[0].surface.front()[0],
+                         h[0].surface.back()[0], u.length);
+      break;
+    case WaterDescription::Form::level_history:
+      out += fmt::format(" of {} samples, t = {:g} .. {:g} {}, level {:g} .. {:g} {}\n", h.size(), h.front().time,
+                         h.back().time, u.time, h.front().level, h.back().level, u.length);
+      break;
+    case WaterDescription::Form::surface_history:
+      out += fmt::format(" of {} surfaces, t = {:g} .. {:g} {}\n", h.size(), h.front().time, h.back().time, u.time);
+      break;
+  }
+  out += "  pressure gamma_w (h - y) on every block edge below the surface; contacts carry the effective normal force "
+         "(docs/reference/water.md)\n";
+  return out;
+}
+
+std::string water_json_text(const WaterDescription& water) {
+  nlohmann::ordered_json j;
+  j["unit_weight"] = water.unit_weight;
+  const auto& h = water.history;
+  switch (water.form) {
+    case WaterDescription::Form::level: j["level"] = h[0].level; break;
+    case WaterDescription::Form::surface: j["surface"] = h[0].surface; break;
+    case WaterDescription::Form::level_history:
+      j["level_history"] = nlohmann::ordered_json::array();
+      for (const auto& s : h) j["level_history"].push_back({s.time, s.level});
+      break;
+    case WaterDescription::Form::surface_history:
+      j["surface_history"] = nlohmann::ordered_json::array();
+      for (const auto& s : h) j["surface_history"].push_back({{"time", s.time}, {"surface", s.surface}});
+      break;
+  }
+  return j.dump();
+}
+
+std::string water_pressure_cell(const core::Water& water, const core::Vec2& p, double t) {
+  return fmt::format(",{:.10g}", core::water_pressure(water, p, t));
+}
+
+}  // namespace rheodda::scene
