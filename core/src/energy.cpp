@@ -50,6 +50,7 @@ void each_flow(EnergyFlows& a, const EnergyFlows& b, F f) {
   f(a.dissipation_block_damping, b.dissipation_block_damping);
   f(a.dissipation_contact_closing, b.dissipation_contact_closing);
   f(a.dissipation_contact_release, b.dissipation_contact_release);
+  f(a.dissipation_bolt, b.dissipation_bolt);
   f(a.residual, b.residual);
   f(a.scale, b.scale);
 }
@@ -83,7 +84,7 @@ double EnergyFlows::net_input() const {
          dissipation_creep - dissipation_integration - dissipation_contact_damping -
          dissipation_block_damping -
          dissipation_contact_closing -
-         dissipation_contact_release;
+         dissipation_contact_release - dissipation_bolt;
 }
 
 EnergyFlows& EnergyFlows::operator+=(const EnergyFlows& o) {
@@ -234,6 +235,9 @@ void EnergyAccount::end(const EnergyInputs& in, double t_end, const ContactEnerg
   StoredEnergy now = stored_in_blocks(in);
   now.contact_normal = contacts.normal;
   now.contact_shear = contacts.shear;
+  now.bolt = bolt_stored_;
+  flows_.dissipation_bolt = bolt_dissipation_;
+  bolt_dissipation_ = 0.0;
   settle(flows_, balance.stored, now);
   balance.stored = now;
   balance.step = flows_;

@@ -61,6 +61,10 @@ void Engine::Impl::initialise() {
   D = Eigen::VectorXd::Zero(6 * static_cast<Eigen::Index>(st.blocks.size()));
   refresh_geometry();
   st.energy = EnergyAccount::start(energy_inputs());
+  if (!model.bolts.empty()) {  // docs/reference/bolts.md: the pretension's energy is there at t = 0
+    st.bolts = BoltSet::initial_states(model);
+    st.energy.initial.bolt = st.energy.stored.bolt = BoltSet::stored_energy(model, st.bolts);
+  }
   st.measurements.assign(model.measurement_points.size(), {});
   record_measurements(-1);
 }
@@ -153,6 +157,10 @@ void Engine::Impl::accept(const Eigen::VectorXd& d_solved, double dt, int step_i
   st.step = step_index + 1;
   st.time = t_end;
   refresh_geometry();
+  if (!model.bolts.empty()) {  // on the moved geometry (bolt_step.cpp)
+    const BoltEnergy b = bolt_set.commit(model, st.blocks, t_end, st.bolts);
+    energy.set_bolts(b.stored, b.dissipation);
+  }
   energy.end(energy_inputs(), t_end, contacts->energy(), st.energy);
   record_measurements(step_index);
 }
@@ -227,6 +235,7 @@ const SolverStats& Engine::solver_stats() const { return impl_->solver->stats();
 const EnergyBalance& Engine::energy() const { return impl_->st.energy; }
 const std::vector<StageEvent>& Engine::events() const { return impl_->st.events; }
 bool Engine::in_stage() const { return impl_->settling(); }
+const std::vector<BoltState>& Engine::bolts() const { return impl_->st.bolts; }
 
 EngineState Engine::save() const {
   EngineState s = impl_->st;
@@ -249,6 +258,8 @@ void Engine::restore(const EngineState& state) {
       throw std::invalid_argument("Engine::restore: the state belongs to a different model (block " +
                                   std::to_string(k) + ")");
   }
+  if (state.bolts.size() != impl_->model.bolts.size())
+    throw std::invalid_argument("Engine::restore: the state belongs to a different model (bolts)");
   for (const auto& m : state.measurements)
     if (m.empty()) throw std::invalid_argument("Engine::restore: a measurement point has no sample");
   impl_->solver->restore(state.solver);  // first: it may refuse

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "bolts.hpp"
 #include "rheodda/core/block_system.hpp"
 #include "rheodda/core/contact_solve.hpp"
 #include "rheodda/core/engine.hpp"
@@ -101,6 +102,7 @@ struct Engine::Impl {
   std::vector<StepReport> reports;
   std::vector<StepObserver> observers;
   EnergyAccount energy;  // the balance itself is st.energy (energy.hpp)
+  BoltSet bolt_set;      // the bolts' step terms (bolts.hpp); idle without Model::bolts
   EnergyInputs energy_inputs() const {
     return {model, st.blocks, moments, elastic, fixed_k, ratio_now()};
   }

@@ -178,6 +178,7 @@ void Engine::Impl::validate() {
   if (s.time_integration == TimeIntegration::trapezoidal && s.dynamic_ratio == 0.0)
     throw ModelError("settings.time_integration",
                      "the trapezoidal rule needs a dynamic analysis (settings.dynamic_ratio > 0)");
+  validate_bolts(m);  // bolt_checks.cpp
 }
 
 }  // namespace rheodda::core

@@ -27,6 +27,7 @@ class Engine::Impl::Problem final : public StepProblem {
     e_.system.reset(e_.base_diag, e_.base_rhs);
     e_.system.set_centroids(e_.views);  // the points the unknowns refer to (the amg solver's coarse spaces)
     e_.contacts->assemble(e_.views, e_.system);
+    if (!e_.model.bolts.empty()) e_.bolt_set.assemble(e_.system);  // bolts.hpp, (3) and (4)
     e_.system.finalize();
     rep_.assembly_seconds += seconds_since(t0);
     t0 = Clock::now();
@@ -41,8 +42,11 @@ class Engine::Impl::Problem final : public StepProblem {
     return e_.settling() && s.settle_max_open_close > 0 ? s.settle_max_open_close : s.max_open_close;
   }
   ContactCheck check(const Eigen::VectorXd& d) override {
-    const ContactCheck c = e_.contacts->check(e_.views, d);
+    ContactCheck c = e_.contacts->check(e_.views, d);
     rep_.changes += c.changes;
+    // A bolt that started or stopped yielding asks for another iterate as a
+    // contact that changed its state does (bolts.hpp).
+    if (!e_.model.bolts.empty()) c.state_changes += e_.bolt_set.check(d);
     return c;
   }
 
@@ -58,6 +62,7 @@ Engine::Impl::Trial Engine::Impl::solve_trial(double dt, bool creep_error_wanted
   ctx.dynamic = dynamic_now();
   ctx.inertia = 1.0 / (newmark().beta * dt * dt);  // as assemble_blocks adds M/(beta dt^2)
   contacts->begin_step(views, ctx);
+  if (!model.bolts.empty()) bolt_set.begin_step(model, st.blocks, st.bolts, dt);
   auto t0 = Clock::now();
   assemble_blocks(dt, st.time + dt, base_diag, base_rhs);
   rep.assembly_seconds += seconds_since(t0);

@@ -39,12 +39,13 @@ constexpr std::size_t field_count() {
 
 // A structure that gains a member must have it written here too (and
 // kStateFormat raised): these fail to compile until it is.
-static_assert(field_count<core::StoredEnergy>() == 5);
-static_assert(field_count<core::EnergyFlows>() == 13);
+static_assert(field_count<core::StoredEnergy>() == 6);
+static_assert(field_count<core::EnergyFlows>() == 14);
 static_assert(field_count<core::EnergyBalance>() == 5);
 static_assert(field_count<core::StageEvent>() == 12);
 static_assert(field_count<core::StageState>() == 5);
-static_assert(field_count<core::EngineState>() == 10);
+static_assert(field_count<core::EngineState>() == 11);
+static_assert(field_count<core::BoltState>() == 7);
 static_assert(field_count<core::SolverState>() == 8);
 static_assert(field_count<core::BlockState>() == 9);
 static_assert(field_count<core::MeasurementSample>() == 4);
@@ -130,12 +131,12 @@ void io(auto& ar, Is<core::BlockState> auto& b) {
 }
 void io(auto& ar, Is<core::MeasurementSample> auto& m) { ar(m.step, m.time, m.position, m.displacement); }
 void io(auto& ar, Is<core::StoredEnergy> auto& e) {
-  ar(e.kinetic, e.strain, e.fixed, e.contact_normal, e.contact_shear);
+  ar(e.kinetic, e.strain, e.fixed, e.contact_normal, e.contact_shear, e.bolt);
 }
 void io(auto& ar, Is<core::EnergyFlows> auto& f) {
   ar(f.work_gravity, f.work_loads, f.work_contact_restart, f.dissipation_friction, f.dissipation_creep,
      f.dissipation_integration, f.integration_inertia, f.dissipation_contact_damping, f.dissipation_block_damping,
-     f.dissipation_contact_closing, f.dissipation_contact_release, f.residual, f.scale);
+     f.dissipation_contact_closing, f.dissipation_contact_release, f.dissipation_bolt, f.residual, f.scale);
 }
 void io(auto& ar, Is<core::EnergyBalance> auto& e) {
   ar(e.initial, e.stored, e.step, e.total, e.max_relative_residual);
@@ -160,7 +161,10 @@ void io(auto& ar, Is<core::EngineState> auto& s) {
     s.measurements.clear();
     for (const auto& m : last) s.measurements.push_back({m});
   }
-  ar(s.energy, s.stage, s.events, s.search_displacement, s.solver);
+  ar(s.energy, s.stage, s.events, s.search_displacement, s.solver, s.bolts);
+}
+void io(auto& ar, Is<core::BoltState> auto& b) {
+  ar(b.state, b.force, b.length, b.elongation, b.plastic_elongation, b.rheology, b.rupture_time);
 }
 void io(auto& ar, Is<contact::ContactKey> auto& k) { ar(k.vblock, k.vertex, k.eblock, k.edge); }
 void io(auto& ar, Is<contact::Contact> auto& c) {

@@ -14,6 +14,7 @@
 #include "rheodda/core/solver.hpp"
 #include "rheodda/scene/build.hpp"
 #include "rheodda/scene/geometry.hpp"
+#include "bolts_text.hpp"
 
 namespace rheodda::scene {
 
@@ -300,6 +301,7 @@ std::string describe_scene(const SceneDescription& s) {
                        fmt::join(did, "; ")));
     }
   }
+  out += describe_bolts(s);  // bolts_text.cpp; nothing without bolts
 
   // Contacts at the start are the touching vertex-edge pairs: count those within a
   // twentieth of the median block size (or the search distance, if smaller).

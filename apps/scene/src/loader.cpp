@@ -85,6 +85,7 @@ SceneDescription parse_scene(const std::string& text_in, const std::string& file
     check_geometry(ctx, raw, s);
     read_points(ctx, top, s);
     if (YAML::Node v = top.find("water"); v.IsDefined()) s.water = read_water(ctx, v, s);
+    read_bolts(ctx, top, s);
     if (YAML::Node v = top.find("stages"); v.IsDefined()) read_stages(ctx, v, s);  // docs/reference/stages.md
     // The model's defaults, as the engine would take them (core/defaults.hpp): the
     // penalty k1 E (the seed's eq. 17), the fixed-point spring 100 E.

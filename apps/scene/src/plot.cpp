@@ -15,6 +15,7 @@
 
 #include "rheodda/scene/loader.hpp"
 #include "rheodda/scene/output.hpp"
+#include "plot_bolts.hpp"
 
 extern char** environ;
 
@@ -290,6 +291,8 @@ std::vector<std::string> plot_run(const PlotOptions& o) {
     run_gnuplot(gp.string());
     written.push_back(picture.string());
   }
+  // A run with bolts: their forces (plot_bolts.cpp).
+  if (fs::exists(dir / "bolts.csv")) written.push_back(plot_bolts(o.out_dir, o.format, title, T, F, L));
   return written;
 }
 

@@ -163,6 +163,7 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
   const AssembledScene assembled = assemble_scene(s, built);
   const std::string checkpoint_path = (fs::path(out) / "checkpoint.json").string();
   if (opt.resume) check_resumable(out, checkpoint_path);
+  refuse_resume_with_bolts(s, opt);
   // Only now that the model is accepted: a refused scene leaves nothing behind.
   make_output_folder(out);
   const FolderLock lock(out);  // one run per folder at a time (held until this function returns)

@@ -67,6 +67,8 @@ struct Run {
   double model_size = 0.0;     ///< the larger side of the initial bounding box [length]
 
   CsvAppender history, contacts_csv;
+  CsvAppender bolts_csv;  ///< bolts.csv, with bolts only (run_bolts.cpp)
+  std::vector<std::pair<double, std::string>> bolt_frames;  ///< (time, bolts layer file) of each frame, with bolts
   std::vector<std::pair<double, std::string>> pvd;  ///< (time, blocks file) of each frame written
   std::vector<std::uint64_t> frame_hash;  ///< FNV-1a of each frame file, in pvd order
   std::uint64_t frames_bytes = 0;         ///< total size of the frames written by this process [byte]
@@ -124,6 +126,14 @@ void write_collections(const Run& run);
 /// The next frame: contacts.csv rows, the two frame files, the collections, a
 /// checkpoint (at most one a second) and summary.json "running".
 void write_frame(Run& run);
+
+// run_bolts.cpp (scenes with bolts only)
+/// Refuses --resume of a scene with bolts (their states are not in a checkpoint yet).
+void refuse_resume_with_bolts(const SceneDescription& s, const RunOptions& o);
+/// bolts.csv: units and header.
+void create_bolts_csv(Run& run);
+/// A frame's bolts: their rows of bolts.csv, frames/bolts_NNNNNN.vtp, bolts.pvd.
+void write_bolts_frame(Run& run, const std::string& blocks_file);
 
 // run_checkpoint.cpp
 /// checkpoint.json and the state file it names, after syncing the CSVs it counts.

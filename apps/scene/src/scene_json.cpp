@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "rheodda/scene/describe.hpp"
+#include "bolts_text.hpp"
 #include "rheodda/scene/keys.hpp"
 #include "run_internal.hpp"
 
@@ -138,6 +139,7 @@ json scene_json(const SceneDescription& s) {
     j["measurement_points"].push_back({{"name", m.name}, {"point", m.at.point}, {"block", s.blocks[m.at.block].name}});
   if (s.water) j["water"] = json::parse(water_json_text(*s.water));  // only with water (water.hpp)
   if (!s.stages.empty()) j["stages"] = stages_json(s);
+  add_bolts_json(s, j);  // bolts_text.cpp
   return j;
 }
 

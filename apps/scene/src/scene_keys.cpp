@@ -14,7 +14,7 @@ namespace detail {
 namespace keys {
 const std::vector<std::string> top{"title", "units", "analysis", "materials", "joint_sets",
                                    "blocks", "rock_mass", "fixed_points", "loads", "measurement_points",
-                                   "water", "stages"};
+                                   "water", "bolts", "stages"};
 const std::vector<std::string> units{"length", "force", "time"};
 const std::vector<std::string> material{"density", "young_modulus", "poisson_ratio", "plane", "damping_ratio"};
 const std::vector<std::string> joint_set{"friction_angle", "cohesion", "tensile_strength",
@@ -45,6 +45,10 @@ const std::vector<std::string> stage_load{"name", "point", "block", "force", "hi
 const std::vector<std::string> stage_joint_set{"friction_angle", "cohesion", "tensile_strength",
                                                "residual_friction_angle", "residual_cohesion", "law"};
 const std::vector<std::string> stage_analysis{"type", "dynamic_ratio"};
+const std::vector<std::string> bolt{"name", "from", "to", "axial_stiffness", "pretension", "yield_force",
+                                    "rupture_elongation", "law"};
+const std::vector<std::string> bolt_from{"point", "block"};
+const std::vector<std::string> bolt_to{"point", "block", "fixed"};
 }  // namespace keys
 
 }  // namespace detail
@@ -77,6 +81,10 @@ std::vector<SceneMapKeys> scene_schema() {
       {"stages[*].joint_sets.*", detail::keys::stage_joint_set},
       {"stages[*].joint_sets.*.law", detail::keys::law},
       {"stages[*].analysis", detail::keys::stage_analysis},
+      {"bolts[*]", detail::keys::bolt},
+      {"bolts[*].from", detail::keys::bolt_from},
+      {"bolts[*].to", detail::keys::bolt_to},
+      {"bolts[*].law", detail::keys::law},
   };
 }
 

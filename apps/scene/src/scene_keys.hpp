@@ -28,4 +28,7 @@ extern const std::vector<std::string> stage_fixed_point;
 extern const std::vector<std::string> stage_load;
 extern const std::vector<std::string> stage_joint_set;
 extern const std::vector<std::string> stage_analysis;
+extern const std::vector<std::string> bolt;       // load_bolts.cpp
+extern const std::vector<std::string> bolt_from;
+extern const std::vector<std::string> bolt_to;
 }  // namespace rheodda::scene::detail::keys

@@ -46,6 +46,8 @@ WaterDescription read_water(const Ctx& ctx, const YAML::Node& n, const SceneDesc
                             const std::string& path = "water");
 /// `stages:` (load_stages.cpp), after every other section.
 void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s);
+/// `bolts:` (load_bolts.cpp).
+void read_bolts(const Ctx& ctx, const MapReader& top, SceneDescription& s);
 /// Every block a simple polygon, no two overlapping, edges' joint sets (scene_checks.cpp).
 void check_geometry(const Ctx& ctx, std::vector<RawBlock>& raw, SceneDescription& s);
 

@@ -45,7 +45,7 @@ const std::map<std::string, std::string> kSectionPath{
     {"water", "water"},           {"water.surface_history", "water.surface_history[*]"},
     {"stages", "stages[*]"},      {"stages.add_fixed_points", "stages[*].add_fixed_points[*]"},
     {"stages.add_loads", "stages[*].add_loads[*]"}, {"stages.joint_sets", "stages[*].joint_sets.*"},
-    {"stages.joint_sets.law", "stages[*].joint_sets.*.law"},
+    {"stages.joint_sets.law", "stages[*].joint_sets.*.law"}, {"bolts", "bolts[*]"},
 };
 /// The section whose `list` table documents the keys of each point list.
 const std::string kPointsSection = "fixed_points, loads, measurement_points";
@@ -214,6 +214,11 @@ BOOST_AUTO_TEST_CASE(the_schema_is_the_list_each_map_refuses_unknown_keys_with) 
       {"fixed_points[*]", kBaseScene + "fixed_points:\n  - {bogus_key: 1, point: [0, 0]}\n"},
       {"loads[*]", kBaseScene + "loads:\n  - {bogus_key: 1, point: [1.5, 2], force: [0, 0]}\n"},
       {"measurement_points[*]", with("{name: p,", "{bogus_key: 1, name: p,")},
+      {"bolts[*]", kBaseScene + "bolts:\n  - {bogus_key: 1, name: b}\n"},
+      {"bolts[*].from", kBaseScene + "bolts:\n  - {name: b, from: {bogus_key: 1}}\n"},
+      {"bolts[*].to", kBaseScene + "bolts:\n  - {name: b, from: {point: [1.5, 2]}, to: {bogus_key: 1}}\n"},
+      {"bolts[*].law", kBaseScene + "bolts:\n  - {name: b, from: {point: [1.5, 2]}, to: {fixed: [1.5, 4]}, "
+                                    "law: {name: burgers, bogus_key: 1}}\n"},
       {"rock_mass", kBaseScene + "rock_mass: {bogus_key: 1, region: [[0, 5], [4, 5], [4, 8], [0, 8]]}\n"},
       {"rock_mass.joint_sets[*]", kBaseScene + "rock_mass: {region: [[0, 5], [4, 5], [4, 8], [0, 8]], "
                                                 "boundary_joint_set: bedding, joint_sets: [{bogus_key: 1}]}\n"},
@@ -237,7 +242,7 @@ BOOST_AUTO_TEST_CASE(the_schema_is_the_list_each_map_refuses_unknown_keys_with) 
       const auto probe = probes.find(m.path);
       BOOST_TEST_REQUIRE((probe != probes.end()), "no probe scene for this map: add one above");
       std::vector<std::string> expected = m.keys;
-      if (m.path.ends_with("joint_sets.*.law"))  // the law map also takes the law's parameters
+      if (m.path.ends_with("joint_sets.*.law") || m.path == "bolts[*].law")  // the law map also takes the law's parameters
         for (const auto& p : laws::LawRegistry::builtin().find("burgers")->parameters) expected.push_back(p.name);
       BOOST_TEST(valid_keys_reported(probe->second) == expected, boost::test_tools::per_element());
     }

@@ -39,7 +39,8 @@ struct StoredEnergy {
   double fixed = 0.0;           ///< sum over fixed points of p |x - x0|^2 / 2
   double contact_normal = 0.0;  ///< sum over closed contacts of p_n d_n^2 / 2
   double contact_shear = 0.0;   ///< sum over locked contacts of F^2 / (2 k_s), k_s elastic
-  double total() const { return kinetic + strain + fixed + contact_normal + contact_shear; }
+  double bolt = 0.0;            ///< sum over intact bolts of N^2 / (2 k) (docs/reference/bolts.md, "Energy")
+  double total() const { return kinetic + strain + fixed + contact_normal + contact_shear + bolt; }
 };
 
 /// Energy flows of one step, or their sums over steps [force x length].
@@ -67,6 +68,9 @@ struct EnergyFlows {
                                              ///< (ContactEnergy::closing)
   double dissipation_contact_release = 0.0;  ///< contact springs detached during the step
                                              ///< (ContactEnergy::release)
+  double dissipation_bolt = 0.0;  ///< bolts (docs/reference/bolts.md, "Energy"): their springs' integration
+                                  ///< (N1 - N0)^2/(2k), plastic N_y Delta e_p, creep N Delta e_c,
+                                  ///< and the stored energy of a bolt that ruptured
   double residual = 0.0;  ///< (change of the stored energy) - works + dissipations: > 0 is
                           ///< energy the terms do not account for that the model gained
   double scale = 0.0;     ///< |work_gravity| + |work_loads| (summed: of every step)
@@ -135,6 +139,12 @@ class EnergyAccount {
   /// and the residual; adds the step to `balance`.
   void end(const EnergyInputs& in, double t_end, const ContactEnergy& contacts,
            EnergyBalance& balance);
+  /// Before end(), in a model with bolts: their stored energy after the step and
+  /// the step's bolt dissipation [force x length] (core/src/bolts.hpp, BoltEnergy).
+  void set_bolts(double stored, double dissipation) {
+    bolt_stored_ = stored;
+    bolt_dissipation_ = dissipation;
+  }
   /// Step doubling (docs/reference/step-controls.md, "Step doubling"): `balance` went from
   /// `start` through the two half steps. Makes it one step: the flows of the two
   /// halves summed or, when the step was extrapolated, every flow extrapolated as
@@ -154,6 +164,8 @@ class EnergyAccount {
  private:
   EnergyFlows flows_;             ///< of the step in progress
   std::vector<Vec2> load_start_;  ///< load points at the step start [length]
+  double bolt_stored_ = 0.0;       ///< set_bolts [force x length]
+  double bolt_dissipation_ = 0.0;  ///< set_bolts [force x length]
 };
 
 }  // namespace rheodda::core

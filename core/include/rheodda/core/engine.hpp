@@ -181,6 +181,7 @@ struct EngineState {
   /// docs/reference/engine.md, "Contact search reach") [length].
   double search_displacement = 0.0;
   SolverState solver;        ///< the linear solver's memory between solves
+  std::vector<BoltState> bolts;  ///< per Model::bolts (bolt.hpp); empty without bolts
 };
 
 /// Changes to the model between two steps: the actions of a scene's stage
@@ -299,6 +300,8 @@ class Engine {
   const std::vector<StageEvent>& events() const;
   /// The run is in a dynamic stage (the next step is dynamic).
   bool in_stage() const;
+  /// States of the bolts after the last accepted step, per Model::bolts (docs/reference/bolts.md).
+  const std::vector<BoltState>& bolts() const;
 
   /// Applies `edit` between two steps (model_edits.cpp; docs/reference/stages.md).
   /// Validates it first and throws ModelError naming the field ("remove_blocks[0]",

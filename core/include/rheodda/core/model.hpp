@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "rheodda/core/water.hpp"
+#include "rheodda/core/bolt.hpp"
 
 namespace rheodda::core {
 
@@ -238,6 +239,7 @@ struct Model {
   std::vector<FixedPoint> fixed_points;
   std::vector<MeasurementPoint> measurement_points;
   Water water;  ///< water in the joints (water.hpp); default none
+  std::vector<Bolt> bolts;  ///< rock bolts (bolt.hpp, docs/reference/bolts.md); none: no bolt work at all
   Settings settings;
 };
 

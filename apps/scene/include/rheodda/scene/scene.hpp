@@ -244,6 +244,12 @@ struct RockMassDescription {
   SourceLocation where{};
 };
 
+}  // namespace rheodda::scene
+
+#include "rheodda/scene/bolts.hpp"  // uses BlockPoint and LawChoice above
+
+namespace rheodda::scene {
+
 struct SceneDescription {
   std::string file;   ///< the scene file's path as given
   std::string title;  ///< `title:`; default: the file name
@@ -258,6 +264,7 @@ struct SceneDescription {
   std::optional<RockMassDescription> rock_mass;  ///< `rock_mass:`, if given
   std::optional<WaterDescription> water;          ///< `water:`, if given (water.hpp)
   std::vector<StageDescription> stages;          ///< `stages:` (docs/reference/stages.md), in order
+  std::vector<BoltDescription> bolts;  ///< `bolts:` (bolts.hpp); empty: none
 };
 
 std::string_view analysis_type_name(AnalysisType t);

@@ -1,0 +1,102 @@
+// The `bolts:` section of a scene file (docs/reference/scene-format.md, "bolts";
+// docs/reference/bolts.md): each bolt's ends, stiffness, pretension, yield force, rupture
+// elongation and optional creep law, checked here so that the engine never
+// sees a bad one.
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <optional>
+
+#include "scene_readers.hpp"
+
+namespace rheodda::scene::detail {
+
+namespace {
+
+BoltDescription read_bolt(const Ctx& ctx, const YAML::Node& n, const std::string& path, const SceneDescription& s,
+                          double tol) {
+  const MapReader m(ctx, n, path, keys::bolt);
+  BoltDescription b;
+  b.where = m.where();
+  const YAML::Node name = m.required("name", "the bolt's name in bolts.csv");
+  b.name = name_text(ctx, name, m.child("name"));
+  for (const auto& other : s.bolts)
+    if (other.name == b.name) ctx.fail(name, m.child("name"), fmt::format("bolt '{}' is defined twice", b.name));
+
+  const MapReader from(ctx, m.required("from", "the first end: {point: [x, y], block: NAME}"), m.child("from"),
+                       keys::bolt_from);
+  b.from = read_block_point(ctx, from, s, tol);
+
+  const MapReader to(ctx, m.required("to", "the second end: {point: [x, y], block: NAME} or {fixed: [x, y]}"),
+                     m.child("to"), keys::bolt_to);
+  if (const YAML::Node fixed = to.find("fixed"); fixed.IsDefined()) {
+    if (to.has("point") || to.has("block"))
+      ctx.fail(to.node(), to.child("fixed"),
+               "give either {fixed: [x, y]} (an anchor fixed in space) or {point: [x, y], block: NAME}, not both");
+    b.to_fixed = true;
+    b.to.point = point(ctx, fixed, to.child("fixed"));
+    b.to.block = -1;
+    b.to.where = location(fixed);
+  } else {
+    b.to = read_block_point(ctx, to, s, tol);
+    if (b.to.block == b.from.block)
+      ctx.fail(to.node(), to.child("block"),
+               fmt::format("both ends are on block '{}': a bolt joins two blocks, or a block and a fixed point",
+                           s.blocks[b.to.block].name));
+  }
+  if (std::hypot(b.to.point[0] - b.from.point[0], b.to.point[1] - b.from.point[1]) <= tol)
+    ctx.fail(to.node(), to.child(b.to_fixed ? "fixed" : "point"), "the two ends coincide: a bolt needs a length");
+
+  if (const YAML::Node law = m.find("law"); law.IsDefined()) {
+    b.law = read_law(ctx, law, m.child("law"));
+    const auto built = laws::LawRegistry::builtin().create(b.law->name, b.law->parameters);
+    if (built->failure_time(1.0))
+      ctx.fail(law, m.child("law"),
+               fmt::format("law '{}' fails by damage, which a bolt does not model: give rupture_elongation "
+                           "instead (docs/reference/bolts.md)", b.law->name));
+  }
+  // The spring: axial_stiffness, or the law's instantaneous stiffness E1 (one spring, one value).
+  std::optional<double> e1;
+  if (b.law)
+    if (const auto it = b.law->parameters.find("E1"); it != b.law->parameters.end()) e1 = it->second;
+  if (const YAML::Node k = m.find("axial_stiffness"); k.IsDefined()) {
+    b.axial_stiffness = number(ctx, k, m.child("axial_stiffness"), positive("force/length"));
+    if (e1 && std::abs(*e1 - b.axial_stiffness) > 1e-12 * b.axial_stiffness)
+      ctx.fail(k, m.child("axial_stiffness"),
+               fmt::format("{:g} differs from the law's instantaneous stiffness E1 = {:g}, which is the bolt's "
+                           "spring: give one of them", b.axial_stiffness, *e1));
+  } else if (e1) {
+    b.axial_stiffness = *e1;
+  } else {
+    m.required("axial_stiffness", "axial force per unit elongation [force/length]");
+  }
+  if (const YAML::Node v = m.find("yield_force"); v.IsDefined())
+    b.yield_force = number(ctx, v, m.child("yield_force"), positive("force"));
+  if (const YAML::Node v = m.find("rupture_elongation"); v.IsDefined())
+    b.rupture_elongation = number(ctx, v, m.child("rupture_elongation"), positive("length"));
+  if (const YAML::Node v = m.find("pretension"); v.IsDefined()) {
+    b.pretension = number(ctx, v, m.child("pretension"), any("force"));
+    if (b.yield_force && std::abs(b.pretension) > *b.yield_force)
+      ctx.fail(v, m.child("pretension"),
+               fmt::format("{:g} exceeds the yield force {:g}", b.pretension, *b.yield_force));
+    if (b.rupture_elongation && b.pretension / b.axial_stiffness >= *b.rupture_elongation)
+      ctx.fail(v, m.child("pretension"),
+               fmt::format("stretches the bolt by {:g} at t = 0, not below its rupture_elongation {:g}",
+                           b.pretension / b.axial_stiffness, *b.rupture_elongation));
+  }
+  return b;
+}
+
+}  // namespace
+
+void read_bolts(const Ctx& ctx, const MapReader& top, SceneDescription& s) {
+  const YAML::Node n = top.find("bolts");
+  if (!n.IsDefined() || n.IsNull()) return;
+  if (!n.IsSequence()) ctx.fail(n, "bolts", fmt::format("expected a list of bolts, got {}", type_word(n)));
+  const double tol = geometry_tolerance(s.blocks);
+  for (std::size_t i = 0; i < n.size(); ++i)
+    s.bolts.push_back(read_bolt(ctx, n[i], fmt::format("bolts[{}]", i), s, tol));
+}
+
+}  // namespace rheodda::scene::detail

@@ -1,0 +1,85 @@
+// Validation of a model's bolts (bolt.hpp; docs/reference/bolts.md): every refusal names
+// the entry "bolts[k].key" (ModelError::key) so a scene reader can point at
+// its file and line.
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "bolts.hpp"
+
+namespace rheodda::core {
+
+namespace {
+
+/// Is p inside the polygon or within tol of its boundary? (As the checks of
+/// the other block points, model_checks.cpp.)
+bool on_block(const std::vector<Vec2>& v, const Vec2& p) {
+  Eigen::AlignedBox2d box;
+  for (const auto& q : v) box.extend(q);
+  const double tol = 1e-9 * box.diagonal().norm();
+  bool inside = false;
+  const std::size_t n = v.size();
+  for (std::size_t k = 0, j = n - 1; k < n; j = k++) {
+    const Vec2& a = v[k];
+    const Vec2& b = v[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) &&
+        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
+      inside = !inside;
+    const Vec2 e = b - a;
+    const double s = std::clamp((p - a).dot(e) / e.squaredNorm(), 0.0, 1.0);
+    if ((a + s * e - p).norm() <= tol) return true;
+  }
+  return inside;
+}
+
+}  // namespace
+
+void validate_bolts(const Model& m) {
+  const int blocks = static_cast<int>(m.blocks.size());
+  for (std::size_t k = 0; k < m.bolts.size(); ++k) {
+    const Bolt& b = m.bolts[k];
+    const std::string key = "bolts[" + std::to_string(k) + "]";
+    auto end = [&](const char* which, int block, const Vec2& p, bool may_be_fixed) {
+      const std::string at = key + "." + which;
+      if (!(std::isfinite(p.x()) && std::isfinite(p.y()))) throw ModelError(at + ".point", "must be finite");
+      if (block < 0 && may_be_fixed) return;
+      if (block < 0 || block >= blocks) throw ModelError(at + ".block", "no block with index " + std::to_string(block));
+      if (!on_block(m.blocks[block].vertices, p))
+        throw ModelError(at + ".point", "lies outside block " + std::to_string(block));
+    };
+    end("a", b.block_a, b.point_a, false);
+    end("b", b.block_b, b.point_b, true);
+    if (b.block_a == b.block_b) throw ModelError(key + ".block_b", "a bolt joins two blocks, not a block to itself");
+    if (!((b.point_b - b.point_a).norm() > 0.0))
+      throw ModelError(key + ".point_b", "the two ends coincide: a bolt needs a length");
+    if (!(b.axial_stiffness > 0.0 && std::isfinite(b.axial_stiffness)))
+      throw ModelError(key + ".axial_stiffness", "must be > 0 (force/length)");
+    if (!(b.yield_force > 0.0)) throw ModelError(key + ".yield_force", "must be > 0 (force)");
+    if (!(b.rupture_elongation > 0.0))
+      throw ModelError(key + ".rupture_elongation", "must be > 0 (length)");
+    if (!std::isfinite(b.pretension) || std::abs(b.pretension) > b.yield_force)
+      throw ModelError(key + ".pretension", "must be finite and within the yield force (force)");
+    if (b.pretension / b.axial_stiffness >= b.rupture_elongation)
+      throw ModelError(key + ".pretension", "stretches the bolt beyond its rupture elongation at t = 0");
+    if (b.law) {
+      if (const auto e1 = b.law->instantaneous_stiffness();
+          e1 && std::abs(*e1 - b.axial_stiffness) > 1e-12 * b.axial_stiffness)
+        throw ModelError(key + ".law", "the law's instantaneous stiffness E1 (" + std::to_string(*e1) +
+                                           ") is the bolt's spring and must equal axial_stiffness (" +
+                                           std::to_string(b.axial_stiffness) + ")");
+      if (b.law->failure_time(1.0))
+        throw ModelError(key + ".law", "a damage law's failure is not modelled on a bolt; use rupture_elongation");
+    }
+  }
+  if (m.bolts.empty()) return;
+  const Settings& s = m.settings;
+  if (s.step_tolerance > 0.0)
+    throw ModelError("settings.step_tolerance", "step doubling does not carry bolts (docs/reference/bolts.md, \"Limits\")");
+  if (s.contact_solver == ContactSolver::newton)
+    throw ModelError("settings.contact_solver",
+                     "the newton contact solve's residual does not hold the bolts' forces; use open_close "
+                     "(docs/reference/bolts.md, \"Limits\")");
+}
+
+}  // namespace rheodda::core

@@ -1,0 +1,235 @@
+// Rock bolts (core/include/rheodda/core/bolt.hpp; docs/reference/bolts.md) against closed
+// forms: a block hanging from a bolt, two bolts in parallel of which one yields
+// and ruptures, a Burgers bolt relaxing at constant length, and the refusals of
+// bad bolts. The incline and the pretensioned joint need contacts: they are
+// scene-level tests (tests/apps/scene/bolts_test.cpp).
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <memory>
+
+#include "rheodda/core/engine.hpp"
+#include "rheodda/laws/registry.hpp"
+#include "test_support.hpp"
+
+using namespace rheodda::core;
+using rheodda::core::test::block;
+
+namespace {
+
+/// A static model without gravity of one block of the default material.
+Model static_model(double dt) {
+  Model m;
+  m.settings.dt = dt;
+  m.settings.dynamic_ratio = 0.0;
+  m.settings.gravity = {0.0, 0.0};
+  return m;
+}
+
+/// The key of the ModelError `m` raises, or "" if it builds.
+std::string refusal(const Model& m) {
+  try {
+    Engine e(m);
+  } catch (const ModelError& err) {
+    return err.key();
+  }
+  return "";
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(bolts)
+
+BOOST_AUTO_TEST_CASE(block_hanging_from_a_bolt_carries_its_weight) {
+  // A 1 m x 1 m block (rho 2600 kg/m^3) hangs from a vertical bolt at the
+  // middle of its top edge: at rest, N = W = rho g S and the elongation is W/k
+  // (Hooke), whichever end the bolt is anchored at: a fixed point, or a block
+  // held by fixed points.
+  for (const bool anchor_block : {false, true}) {
+    Model m = static_model(0.1);
+    m.settings.gravity = {0.0, -9.81};
+    m.blocks.push_back(block({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));
+    Bolt b;
+    b.block_a = 0;
+    b.point_a = {0.5, 1.0};
+    b.point_b = {0.5, 3.0};
+    b.axial_stiffness = 1.0e7;  // N/m
+    if (anchor_block) {
+      m.blocks.push_back(block({{0, 3}, {1, 3}, {1, 4}, {0, 4}}));
+      for (const Vec2& p : {Vec2(0, 4), Vec2(1, 4)}) m.fixed_points.push_back({.block = 1, .point = p});
+      b.block_b = 1;
+    }
+    m.bolts.push_back(b);
+    Engine e(m);
+    e.run(60);
+    // N per m of thickness; DDA's body force acts on the current area S, which the
+    // bolt's pull has stretched by sigma_y/E ~ 1e-6.
+    const double W = 2600.0 * 9.81 * e.area(0);
+    const BoltState& s = e.bolts().at(0);
+    BOOST_TEST_CONTEXT("anchored on a block: " << anchor_block) {
+      BOOST_TEST(std::abs(s.force - W) <= 1e-9 * W);
+      BOOST_TEST(std::abs(s.elongation - W / b.axial_stiffness) <= 1e-6 * W / b.axial_stiffness);
+      BOOST_TEST((s.state == BoltMode::elastic));
+      // The energy balance closes with the bolt's stored energy and dissipation.
+      BOOST_TEST(e.energy().max_relative_residual <= 1e-6);
+      BOOST_TEST(std::abs(e.energy().stored.bolt - 0.5 * W * W / b.axial_stiffness) <= 1e-6 * W * W / b.axial_stiffness);
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(bolt_yields_then_ruptures_at_its_elongation) {
+  // A block pulled by F(t) = F_rate t to the right, held by two bolts to a fixed
+  // anchor on its left, on the line of the pull through its centroid: bolt 1 (k1, yield
+  // N_y, rupture elongation e_r) and bolt 2 (k2, elastic). Statically (a light
+  // block: the inertia term 2M/dt^2 = 32 N/m lags the springs' 3e6 N/m by 1e-5) with e the
+  // common elongation:
+  //   elastic:   e = F / (k1 + k2),   N1 = k1 e,    while k1 e <= N_y
+  //   yielding:  e = (F - N_y) / k2,  N1 = N_y,     while e <= e_r
+  //   ruptured:  e = F / k2,          N1 = 0.
+  const double k1 = 2.0e6, k2 = 1.0e6, ny = 2.0e3, er = 5.0e-3, rate = 100.0;  // N/m, N, m, N/s
+  Model m = static_model(0.25);
+  m.materials[0].density = 1.0;
+  m.blocks.push_back(block({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));
+  m.point_loads.push_back({.block = 0, .point = {1.0, 0.5}, .history = {{0.0, {0.0, 0.0}}, {1000.0, {rate * 1000.0, 0.0}}}});
+  Bolt b1;
+  b1.point_a = {0.0, 0.5};
+  b1.point_b = {-1.0, 0.5};
+  b1.axial_stiffness = k1;
+  b1.yield_force = ny;
+  b1.rupture_elongation = er;
+  Bolt b2 = b1;
+  b2.axial_stiffness = k2;
+  b2.yield_force = std::numeric_limits<double>::infinity();
+  b2.rupture_elongation = std::numeric_limits<double>::infinity();
+  m.bolts = {b1, b2};
+  Engine e(m);
+  const double t_yield = ny * (k1 + k2) / k1 / rate;  // k1 F/(k1 + k2) = N_y: 30 s
+  const double t_rupture = (er * k2 + ny) / rate;     // (F - N_y)/k2 = e_r: 70 s
+  int checked[3] = {0, 0, 0};
+  while (e.time() < 100.0 - 1e-9) {
+    e.step();
+    const double t = e.time(), F = rate * t;
+    const BoltState& s1 = e.bolts()[0];
+    const BoltState& s2 = e.bolts()[1];
+    if (t < t_yield - 0.5) {
+      const double el = F / (k1 + k2);
+      BOOST_TEST((s1.state == BoltMode::elastic));
+      BOOST_TEST(std::abs(s1.elongation - el) <= 3e-5 * el);
+      BOOST_TEST(std::abs(s1.force - k1 * el) <= 3e-5 * k1 * el);
+      ++checked[0];
+    } else if (t > t_yield + 0.5 && t < t_rupture - 0.5) {
+      const double el = (F - ny) / k2;
+      BOOST_TEST((s1.state == BoltMode::yielding));
+      BOOST_TEST(s1.force == ny);
+      BOOST_TEST(std::abs(s2.force - (F - ny)) <= 3e-5 * F);
+      BOOST_TEST(std::abs(s1.elongation - el) <= 3e-5 * el);
+      BOOST_TEST(std::abs(s1.plastic_elongation - (el - ny / k1)) <= 3e-5 * el);
+      ++checked[1];
+    } else if (t > t_rupture + 0.5) {
+      BOOST_TEST((s1.state == BoltMode::ruptured));
+      BOOST_TEST(s1.force == 0.0);
+      BOOST_TEST(std::abs(s2.force - F) <= 3e-5 * F);
+      BOOST_TEST(std::abs(s2.elongation - F / k2) <= 3e-5 * F / k2);
+      ++checked[2];
+    }
+  }
+  BOOST_TEST(checked[0] > 10);
+  BOOST_TEST(checked[1] > 10);
+  BOOST_TEST(checked[2] > 10);
+  // It ruptured at the end of the step in which its elongation passed e_r.
+  BOOST_TEST(e.bolts()[0].rupture_time >= t_rupture);
+  BOOST_TEST(e.bolts()[0].rupture_time <= t_rupture + 0.25 + 1e-9);
+  BOOST_TEST(e.energy().max_relative_residual <= 1e-4);
+}
+
+namespace {
+
+/// Burgers relaxation at constant elongation e0 = P/E1 from t = 0 (derivation):
+/// Maxwell (E1, eta1) in series with Kelvin (E2 || eta2), e = N/E1 + e_d + e_k,
+/// eta1 e_d' = N, eta2 e_k' + E2 e_k = N. With e constant (e' = 0),
+/// e_k' = -N'/E1 - N/eta1 and eliminating e_k gives the 2nd-order linear ODE
+///   N'' + (E1/eta1 + E1/eta2 + E2/eta2) N' + (E1 E2/(eta1 eta2)) N = 0
+/// (Findley, Lai & Onaran, "Creep and relaxation of nonlinear viscoelastic
+/// materials", 1976, ch. 5, the four-parameter model; p1/p2 and 1/p2 there),
+/// with N(0) = P and, as e_k(0) = e_d(0) = 0, N'(0) = -E1 P (1/eta1 + 1/eta2).
+/// Its roots -r1, -r2 are real and negative: N = A e^-r1 t + B e^-r2 t.
+double burgers_relaxation(double P, double E1, double E2, double eta1, double eta2, double t) {
+  const double sum = E1 / eta1 + E1 / eta2 + E2 / eta2;
+  const double prod = E1 * E2 / (eta1 * eta2);
+  const double disc = std::sqrt(sum * sum - 4.0 * prod);
+  const double r1 = 0.5 * (sum + disc), r2 = 0.5 * (sum - disc);
+  const double n0 = P, dn0 = -E1 * P * (1.0 / eta1 + 1.0 / eta2);
+  // A + B = n0, -r1 A - r2 B = dn0.
+  const double A = (-dn0 - r2 * n0) / (r1 - r2);
+  const double B = n0 - A;
+  return A * std::exp(-r1 * t) + B * std::exp(-r2 * t);
+}
+
+/// Largest relative error of a Burgers bolt's force against the closed form
+/// over 20 s at steps of dt.
+double burgers_bolt_error(double dt) {
+  const double E1 = 1.0e6, E2 = 5.0e5, eta1 = 1.0e7, eta2 = 2.0e6, P = 1.0e4;  // N/m, N s/m, N
+  Model m = static_model(dt);
+  m.blocks.push_back(block({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));
+  for (const Vec2& p : {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)}) m.fixed_points.push_back({.block = 0, .point = p});
+  Bolt b;
+  b.point_a = {1.0, 0.5};
+  b.point_b = {3.0, 0.5};
+  b.axial_stiffness = E1;
+  b.pretension = P;
+  b.law = rheodda::laws::LawRegistry::builtin().create("burgers", {{"E1", E1}, {"E2", E2}, {"eta1", eta1}, {"eta2", eta2}});
+  m.bolts.push_back(b);
+  Engine e(m);
+  double worst = 0.0;
+  while (e.time() < 20.0 - 1e-9) {
+    e.step();
+    const double exact = burgers_relaxation(P, E1, E2, eta1, eta2, e.time());
+    worst = std::max(worst, std::abs(e.bolts()[0].force - exact) / exact);
+  }
+  // The length held (fixed points of 100 E): the force fell to a third.
+  BOOST_TEST(e.bolts()[0].force < 0.5 * P);
+  return worst;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(burgers_bolt_relaxes_at_constant_length_as_the_closed_form) {
+  const double e1 = burgers_bolt_error(0.1), e2 = burgers_bolt_error(0.05), e3 = burgers_bolt_error(0.025);
+  BOOST_TEST_MESSAGE("Burgers bolt relaxation, max relative error at dt 0.1, 0.05, 0.025 s: " << e1 << ", " << e2
+                                                                                            << ", " << e3);
+  BOOST_TEST(e3 <= 1e-4);
+  // Second order (the exponential-linear scheme): each halving divides the error by ~4.
+  BOOST_TEST(e1 / e2 > 3.0);
+  BOOST_TEST(e2 / e3 > 3.0);
+}
+
+BOOST_AUTO_TEST_CASE(bad_bolts_are_refused_naming_the_key) {
+  Model base = static_model(0.1);
+  base.blocks.push_back(block({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));
+  Bolt b;
+  b.point_a = {0.5, 1.0};
+  b.point_b = {0.5, 3.0};
+  b.axial_stiffness = 1.0e7;
+  auto with = [&](auto change) {
+    Model m = base;
+    Bolt x = b;
+    change(x, m);
+    m.bolts.push_back(x);
+    return refusal(m);
+  };
+  BOOST_TEST(with([](Bolt&, Model&) {}) == "");
+  BOOST_TEST(with([](Bolt& x, Model&) { x.axial_stiffness = -1.0; }) == "bolts[0].axial_stiffness");
+  BOOST_TEST(with([](Bolt& x, Model&) { x.point_a = {2.0, 2.0}; }) == "bolts[0].a.point");
+  BOOST_TEST(with([](Bolt& x, Model&) { x.block_b = 0; }) == "bolts[0].b.point");
+  BOOST_TEST(with([](Bolt& x, Model&) { x.block_a = 3; }) == "bolts[0].a.block");
+  BOOST_TEST(with([](Bolt& x, Model&) { x.point_b = x.point_a; }) == "bolts[0].point_b");
+  BOOST_TEST(with([](Bolt& x, Model&) { x.yield_force = 0.0; }) == "bolts[0].yield_force");
+  BOOST_TEST(with([](Bolt& x, Model&) { x.rupture_elongation = -1.0; }) == "bolts[0].rupture_elongation");
+  BOOST_TEST(with([](Bolt& x, Model&) { x.yield_force = 10.0, x.pretension = 20.0; }) == "bolts[0].pretension");
+  BOOST_TEST(with([](Bolt& x, Model&) {
+               x.law = rheodda::laws::LawRegistry::builtin().create("maxwell", {{"E1", 5.0}, {"eta1", 1.0}});
+             }) == "bolts[0].law");
+  BOOST_TEST(with([](Bolt&, Model& m) { m.settings.step_tolerance = 1e-3; }) == "settings.step_tolerance");
+}
+
+BOOST_AUTO_TEST_SUITE_END()
