@@ -1,6 +1,7 @@
 // The creep laws on the contacts (docs/reference/rheology-in-dda.md): per joint set and
 // step the law's constants and scheme, per locked contact the affine form of
 // its creep increment (the seam in its shear spring), failures of damage laws.
+#include "rheodda/laws/automatic_scheme.hpp"
 #include "rheodda/contact/contact_system.hpp"
 
 #include <algorithm>
@@ -15,24 +16,6 @@
 #include "rheodda/laws/series_law.hpp"
 
 namespace rheodda::contact {
-
-namespace {
-
-/// Scheme of a joint set when the settings leave it open: exponential-linear
-/// (2nd order) while dt (k + E_i) <= 2 eta_i for every creep element i, where it
-/// neither diverges nor rings under the series spring k [stress/length];
-/// implicit (monotone at any dt) otherwise (docs/reference/rheology-in-dda.md, "Schemes").
-laws::Scheme automatic_scheme(const laws::ContactRheology& law, double k, double dt) {
-  const auto* series = dynamic_cast<const laws::SeriesLaw*>(&law);
-  if (!series) return laws::Scheme::implicit;
-  for (const laws::CreepElement& e : series->elements()) {
-    const double E = e.kind == laws::CreepElement::Kind::kelvin ? e.E : 0.0;
-    if (dt * (k + E) > 2.0 * e.eta) return laws::Scheme::implicit;
-  }
-  return laws::Scheme::exponential_linear;
-}
-
-}  // namespace
 
 std::optional<laws::Scheme> ContactSystem::scheme_used(int js) const {
   if (js < 0 || js >= static_cast<int>(law_steps_.size()) || !law_steps_[js].active)
@@ -101,7 +84,7 @@ void ContactSystem::start_laws(double dt) {
       if (!law) continue;
       LawStep& ls = law_steps_[j];
       ls.active = true;
-      ls.scheme = settings_.scheme ? *settings_.scheme : automatic_scheme(*law, k_area[j], dt);
+      ls.scheme = settings_.scheme ? *settings_.scheme : laws::automatic_scheme(*law, k_area[j], dt);
       ls.main = law->step_constants(dt, ls.scheme);
       ls.from_rest = law->step_constants(dt, laws::Scheme::implicit);
     }

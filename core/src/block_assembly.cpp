@@ -64,11 +64,15 @@ void Engine::Impl::assemble_blocks(double dt, double t_end, std::vector<Mat6>& d
     rhs.segment<6>(6 * l.block) += contact::displacement_matrix(b.centroid, p).transpose() * f;
   }
   // Water in the joints (water.hpp): the pressure at the step's end time on the
-  // step-start edges, as the point loads.
-  if (model.water.active())
+  // step-start edges, as the point loads; its weight ramps with gravity's
+  // (Settings::gravity_factor: gamma_w = rho_w g).
+  if (model.water.active()) {
+    const double share = model.settings.gravity_factor(t_end);
     for (std::size_t k = 0; k < n; ++k)
-      rhs.segment<6>(6 * static_cast<Eigen::Index>(k)) +=
-          water_block_load(model.water, st.blocks[k].vertices, st.blocks[k].centroid, t_end);
+      if (removed.empty() || !removed[k])  // a removed block carries no load
+        rhs.segment<6>(6 * static_cast<Eigen::Index>(k)) +=
+            share * water_block_load(model.water, st.blocks[k].vertices, st.blocks[k].centroid, t_end);
+  }
   // Fixed points: spring p between the material point x and its held position x0,
   // energy p/2 |T D - (x0 - x)|^2.
   for (const auto& fp : model.fixed_points) {

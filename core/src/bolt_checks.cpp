@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 
+#include "engine_impl.hpp"
 #include "bolts.hpp"
 
 namespace rheodda::core {
@@ -17,20 +18,7 @@ namespace {
 bool on_block(const std::vector<Vec2>& v, const Vec2& p) {
   Eigen::AlignedBox2d box;
   for (const auto& q : v) box.extend(q);
-  const double tol = 1e-9 * box.diagonal().norm();
-  bool inside = false;
-  const std::size_t n = v.size();
-  for (std::size_t k = 0, j = n - 1; k < n; j = k++) {
-    const Vec2& a = v[k];
-    const Vec2& b = v[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) &&
-        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
-      inside = !inside;
-    const Vec2 e = b - a;
-    const double s = std::clamp((p - a).dot(e) / e.squaredNorm(), 0.0, 1.0);
-    if ((a + s * e - p).norm() <= tol) return true;
-  }
-  return inside;
+  return inside_or_near(v, p, 1e-9 * box.diagonal().norm());  // engine_impl.hpp
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "bolts.hpp"
+#include "rheodda/laws/automatic_scheme.hpp"
 #include "rheodda/laws/series_law.hpp"
 
 namespace rheodda::core {
@@ -25,20 +26,6 @@ std::pair<Vec2, Vec2> ends(const Bolt& bolt, const std::vector<BlockState>& bloc
 /// Unstressed length L_rest = L0 - pretension / k (bolt.hpp) [length].
 double rest_length(const Bolt& bolt) {
   return (bolt.point_b - bolt.point_a).norm() - bolt.pretension / bolt.axial_stiffness;
-}
-
-/// The scheme of a bolt's law for a step of dt: exponential-linear (2nd order)
-/// while dt (k + E_i) <= 2 eta_i for every creep element i, where it neither
-/// diverges nor rings under the series spring k, implicit otherwise - the rule
-/// of the joints (docs/reference/rheology-in-dda.md, "Schemes"; contact/src/contact_creep.cpp).
-laws::Scheme bolt_scheme(const laws::ContactRheology& law, double k, double dt) {
-  const auto* series = dynamic_cast<const laws::SeriesLaw*>(&law);
-  if (!series) return laws::Scheme::implicit;
-  for (const laws::CreepElement& e : series->elements()) {
-    const double E = e.kind == laws::CreepElement::Kind::kelvin ? e.E : 0.0;
-    if (dt * (k + E) > 2.0 * e.eta) return laws::Scheme::implicit;
-  }
-  return laws::Scheme::exponential_linear;
 }
 
 /// Relative margin of the yield checks, so that a force at N_y to round-off
@@ -108,7 +95,7 @@ void BoltSet::begin_step(const Model& m, const std::vector<BlockState>& blocks,
     if (bolt.block_b >= 0) t.g_b = contact::displacement_matrix(blocks[bolt.block_b].centroid, xb).transpose() * n;
     t.active = true;
     t.force_start = s.force;
-    if (bolt.law) t.constants = bolt.law->step_constants(dt, bolt_scheme(*bolt.law, bolt.axial_stiffness, dt));
+    if (bolt.law) t.constants = bolt.law->step_constants(dt, laws::automatic_scheme(*bolt.law, bolt.axial_stiffness, dt));
     linearize(k, s.force);
     t.sign = s.state == BoltMode::yielding ? (s.force >= 0.0 ? 1 : -1) : 0;
   }

@@ -68,7 +68,7 @@ double water_work(const EnergyInputs& in, const Eigen::VectorXd& D, double t_end
   for (std::size_t k = 0; k < in.blocks.size(); ++k)
     work += water_block_load(in.model.water, in.blocks[k].vertices, in.blocks[k].centroid, t_end)
                 .dot(D.segment<6>(6 * static_cast<Eigen::Index>(k)));
-  return work;
+  return in.model.settings.gravity_factor(t_end) * work;  // ramped as assembled
 }
 
 /// Closes a step's flows against the stored energies before and after it.

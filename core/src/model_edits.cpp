@@ -166,6 +166,18 @@ EditReport Engine::edit(const ModelEdit& e) {
       st.stress.setZero();
     }
     report.contacts_dropped = m.contacts->remove_blocks(m.removed);
+    // A bolt with an end on a removed block goes with it (docs/reference/stages.md).
+    for (std::size_t k = 0; k < m.model.bolts.size(); ++k) {
+      const Bolt& b = m.model.bolts[k];
+      BoltState& bs = m.st.bolts[k];
+      const bool on_removed = gone[static_cast<std::size_t>(b.block_a)] ||
+                              (b.block_b >= 0 && gone[static_cast<std::size_t>(b.block_b)]);
+      if (!on_removed || bs.state == BoltMode::ruptured) continue;
+      bs.state = BoltMode::ruptured;
+      bs.force = 0.0;
+      bs.rupture_time = m.st.time;
+      report.bolts_removed.push_back(static_cast<int>(k));
+    }
   }
   // 3. Fixed points and loads added where their material points stand now.
   for (std::size_t k = 0; k < e.add_fixed_points.size(); ++k) {
@@ -220,6 +232,7 @@ EditReport Engine::edit(const ModelEdit& e) {
   now.kinetic = blocks.kinetic;
   now.strain = blocks.strain;
   now.fixed = blocks.fixed;
+  if (!report.bolts_removed.empty()) now.bolt = BoltSet::stored_energy(m.model, m.st.bolts);
   if (report.contacts_dropped > 0) {
     now.contact_normal = c.normal;
     now.contact_shear = c.shear;

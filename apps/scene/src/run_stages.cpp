@@ -128,6 +128,8 @@ void apply_stage(Run& run) {
                                   st.remove_blocks.size(), fmt::join(names(st.remove_blocks), ", "),
                                   rep.contacts_dropped, rep.fixed_points_removed.size(),
                                   rep.point_loads_removed.size()));
+  if (!rep.bolts_removed.empty())
+    actions.push_back(fmt::format("removed {} bolts on the removed blocks", rep.bolts_removed.size()));
   if (!st.add_fixed_points.empty()) actions.push_back(fmt::format("added {} fixed points", st.add_fixed_points.size()));
   if (!st.add_loads.empty()) actions.push_back(fmt::format("added {} loads", st.add_loads.size()));
   for (const StageJointSet& c : st.joint_sets)

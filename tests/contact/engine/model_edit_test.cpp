@@ -134,6 +134,35 @@ BOOST_AUTO_TEST_CASE(a_block_falls_through_where_a_removed_block_stood) {
   BOOST_TEST(std::abs(lowest) < 1e-3);
 }
 
+BOOST_AUTO_TEST_CASE(a_bolt_on_an_excavated_block_goes_with_it_and_the_block_below_carries_the_rest) {
+  // Block c (3) hangs on a bolt to an anchor above it, its weight shared with a below;
+  // removing c removes the bolt (docs/reference/stages.md): it carries nothing from
+  // then on, and a carries its own weight again (N = rho g A_a).
+  core::Model m = stack(true);
+  core::Bolt bolt;
+  bolt.block_a = 3;
+  bolt.point_a = {-0.75, 1.0};
+  bolt.block_b = -1;
+  bolt.point_b = {-0.75, 2.0};
+  bolt.axial_stiffness = 1e8;  // [N/m]
+  bolt.pretension = 2000.0;    // [N]: part of c's 12 753 N/m weight
+  m.bolts.push_back(bolt);
+  Sim sim(m, {joint(30.0)});
+  sim.engine.run_until(0.05);
+  BOOST_TEST(sim.engine.bolts()[0].force > 1000.0);
+  const core::EditReport rep = sim.engine.edit(edit_of([](core::ModelEdit& e) { e.remove_blocks = {3}; }));
+  BOOST_TEST(rep.bolts_removed == std::vector<int>{0}, boost::test_tools::per_element());
+  BOOST_TEST((sim.engine.bolts()[0].state == core::BoltMode::ruptured));
+  sim.engine.run_until(0.1);
+  BOOST_TEST(sim.engine.bolts()[0].force == 0.0);
+  double n = 0.0;  // a's base contacts [N/m]
+  for (const contact::Contact& c : sim.contacts.contacts())
+    if (c.key.vblock == 1 && c.key.eblock == 0) n += std::abs(c.normal_force);
+    else if (c.key.vblock == 0 && c.key.eblock == 1) n += std::abs(c.normal_force);
+  const double weight = 2600.0 * 9.81 * 0.5;  // a: 1 m x 0.5 m [N/m]
+  BOOST_TEST(std::abs(n - weight) < 1e-3 * weight, "N = " << n << ", rho g A = " << weight);
+}
+
 BOOST_AUTO_TEST_CASE(lowered_friction_makes_a_held_block_slide_by_the_closed_form) {
   // Dynamic analysis, alpha = 30 deg: phi = 40 deg holds the block until
   // t0 = 0.2 s; phi = 20 deg from then on: x = g (sin a - cos a tan phi) (t - t0)^2 / 2,

@@ -115,6 +115,53 @@ BOOST_AUTO_TEST_CASE(a_submerged_block_presses_on_its_base_with_its_weight_less_
   BOOST_TEST(n == W - kGammaW * b * h, boost::test_tools::tolerance(1e-6));
 }
 
+BOOST_AUTO_TEST_CASE(under_a_gravity_ramp_the_water_weighs_with_gravity_and_a_submerged_block_stays_down) {
+  // Gravity rises over the first second (Settings::settle_gravity_ramp) and the
+  // water's pressure (gamma_w = rho_w g) with it: the submerged block then presses
+  // on its base at every step as the same block in air under the gravity its
+  // buoyancy leaves, g' = g - gamma_w / rho, ramped alike (same mass, so the same
+  // quasi-static lag of each static step), and N' = (rho g - gamma_w) A once the
+  // ramp is over. A water not ramped would lift the block off at t < 0.38 s.
+  auto model = [](bool water) {
+    core::Model m;
+    m.settings.dt = 0.01;
+    m.settings.dynamic_ratio = 0.0;
+    m.settings.settle_until = 1.0;
+    m.settings.settle_dt = 0.01;
+    m.settings.settle_g2 = 0.01;
+    m.settings.settle_gravity_ramp = 1.0;
+    m.settings.gravity = {0.0, water ? -kG : -(kG - kGammaW / 2600.0)};
+    // A base that does not move: under water its exposed top is loaded too, and a
+    // base yielding on its fixed points would change the top block's steps (and
+    // with them the inertia lag of each static step) between the two runs.
+    m.settings.fixed_point_stiffness = 1e17;  // [N/m], 1e7 E
+    add_fixed(m, rect(-1.0, -1.0, 3.0, 0.0));
+    m.blocks.push_back(block(rect(0.0, 0.0, 2.0, 1.0)));
+    if (water) {
+      m.water.unit_weight = kGammaW;
+      m.water.history.push_back(surface({{-2, 3.0}, {4, 3.0}}));
+    }
+    return m;
+  };
+  Sim wet(model(true), {joint(30.0)}), dry(model(false), {joint(30.0)});
+  const double full = (2600.0 * kG - kGammaW) * 2.0;  // N' after the ramp [N]
+  for (const double t : {0.1, 0.5, 1.0, 1.5}) {
+    wet.engine.run_until(t);
+    dry.engine.run_until(t);
+    const double n = contact_forces(wet, 1).first, n_dry = contact_forces(dry, 1).first;
+    BOOST_TEST_MESSAGE("t = " << t << " s: N' " << n << " N, in air under g' " << n_dry << " N");
+    // While the load rises, each static step keeps DDA's inertia term M/(beta dt^2)
+    // on the step's motion; under water the block is also squeezed all round as the
+    // pressure rises, so its steps (and that lag) differ by a constant 1.1 N here
+    // (3.5e-5 of N'); once the ramp is over they agree to 3e-6 (the area the
+    // all-round pressure takes from the block), and N' is the closed form below.
+    BOOST_TEST(n > 0.0);
+    BOOST_TEST(std::abs(n - n_dry) <= (t < 1.0 + 1e-9 ? 1e-4 : 1e-5) * full);
+  }
+  const double A = wet.engine.area(1);
+  BOOST_TEST(contact_forces(wet, 1).first == (2600.0 * kG - kGammaW) * A, boost::test_tools::tolerance(1e-6));
+}
+
 BOOST_AUTO_TEST_CASE(hoek_bray_plane_failure_the_block_holds_above_the_critical_angle_and_slides_below) {
   // As the water in the crack rises, the critical friction angle
   // atan((W sin psi + V cos psi) / (W cos psi - U - V sin psi)) rises (Hoek &

@@ -230,6 +230,9 @@ struct EditReport {
   std::vector<int> fixed_points_removed;  ///< fixed points on removed blocks
   std::vector<int> point_loads_removed;   ///< point loads on removed blocks
   int contacts_dropped = 0;               ///< contacts of removed blocks [-]
+  /// Bolts with an end on a removed block (indices into Model::bolts): removed with it,
+  /// they carry nothing from now on (state `ruptured` at the edit's time; bolt.hpp).
+  std::vector<int> bolts_removed;
   /// The edit with its added points resolved to material points
   /// (ModelEdit::material_points): applied to an engine built anew from the
   /// same model, then Engine::restore of a state saved after the edit, it

@@ -201,8 +201,11 @@ struct Settings {
   double settle_gravity_ramp = 0.0;
   /// The body acceleration at time t: gravity times min(1, t / settle_gravity_ramp)
   /// [length/time^2].
-  Vec2 gravity_at(double t) const {
-    return settle_gravity_ramp > 0.0 && t < settle_gravity_ramp ? (t / settle_gravity_ramp) * gravity : gravity;
+  Vec2 gravity_at(double t) const { return gravity_factor(t) * gravity; }
+  /// The share of gravity on at time t: min(1, t / settle_gravity_ramp) [-]; the
+  /// water's weight (its unit weight, water.hpp) ramps with it.
+  double gravity_factor(double t) const {
+    return settle_gravity_ramp > 0.0 && t < settle_gravity_ramp ? t / settle_gravity_ramp : 1.0;
   }
   /// Some steps carry velocity: a dynamic analysis, or a dynamic settling stage.
   bool has_dynamic_steps() const { return dynamic_ratio > 0.0 || (settle_until > 0.0 && settle_dynamic); }
