@@ -33,11 +33,15 @@ bool is_level(WaterDescription::Form f) {
 core::Water build_water(const WaterDescription& water, const SceneDescription& scene) {
   core::Water w;
   w.unit_weight = water.unit_weight;
-  // A level: the horizontal line over the blocks' x-range (the engine holds it
-  // level beyond, wherever the blocks move).
+  // A level: a horizontal line over the blocks' x-range widened by that range on
+  // each side (the engine holds it level beyond its ends anyway), so that it still
+  // spans the blocks where they have moved when a stage brings it in.
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const auto& b : scene.blocks)
     for (const auto& p : b.polygon) lo = std::min(lo, p[0]), hi = std::max(hi, p[0]);
+  const double margin = std::max(hi - lo, 1.0);
+  lo -= margin;
+  hi += margin;
   for (const auto& smp : water.history) {
     core::WaterSurface s;
     s.time = smp.time;
