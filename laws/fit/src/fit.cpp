@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 
+#include "fit_settings.hpp"
 #include "gsl_solver.hpp"
 #include "identifiability.hpp"
 #include "rheodda/laws/series_law.hpp"
@@ -42,6 +43,7 @@ std::vector<double> predict(const laws::ContactRheology& law, const laws::Staged
 
 namespace {
 
+using detail::Constraints;
 using detail::Element;
 using detail::Kind;
 using detail::SeriesStructure;
@@ -55,6 +57,7 @@ using detail::GslFree;
 using detail::identify;
 using detail::Mapping;
 using detail::probe_structure;
+using detail::read_settings;
 using detail::Problem;
 using detail::restart_start;
 using detail::series_start;
@@ -67,99 +70,6 @@ std::vector<double> logs(const std::vector<double>& v) {
   std::vector<double> l(v.size());
   for (std::size_t k = 0; k < v.size(); ++k) l[k] = std::log(v[k]);
   return l;
-}
-
-// ---- 0. The user's settings: fixed parameters, bounds, initial values, weights ----
-struct Constraints {
-  bool active = false;              // any setting or sigma: GSL works through `mapping`
-  std::optional<Mapping> mapping;   // the free parameters and their log bounds
-  std::vector<char> fixed;          // per parameter: vary = false
-  std::vector<std::optional<double>> initial;  // per parameter: the user's value
-  std::vector<double> min, max;     // per parameter [its unit]
-  std::vector<double> weight;       // 1/sigma per point; empty without sigma [1/length]
-  std::size_t varying = 0;          // k
-};
-
-std::string names_of(const laws::LawInfo& info) {
-  std::string out;
-  for (const auto& p : info.parameters) out += (out.empty() ? "" : ", ") + p.name;
-  return out;
-}
-
-// Every setting checked against the law and itself (fit.hpp, fit_law).
-Constraints read_settings(const laws::LawInfo& info, const CreepData& data, const FitOptions& options) {
-  const std::size_t np = info.parameters.size();
-  Constraints c;
-  c.fixed.assign(np, 0);
-  c.initial.assign(np, std::nullopt);
-  c.min.assign(np, 0.0);
-  c.max.assign(np, std::numeric_limits<double>::infinity());
-  for (const auto& [name, set] : options.parameters) {
-    std::size_t k = np;
-    for (std::size_t i = 0; i < np; ++i)
-      if (info.parameters[i].name == name) k = i;
-    if (k == np)
-      throw FitError(info.name, fmt::format("law '{}' has no parameter '{}' (its parameters: {})", info.name,
-                                            name, names_of(info)));
-    if (std::isnan(set.min) || set.min < 0.0 || std::isinf(set.min))
-      throw FitError(info.name, fmt::format("law '{}': {}: min {:g} is not a finite number >= 0 (fits work on "
-                                            "positive parameters)",
-                                            info.name, name, set.min));
-    if (std::isnan(set.max) || !(set.max > set.min))
-      throw FitError(info.name, fmt::format("law '{}': {}: the bounds [{:g}, {:g}] are empty: max must be above "
-                                            "min",
-                                            info.name, name, set.min, set.max));
-    if (set.value) {
-      const double v = *set.value;
-      if (!std::isfinite(v) || v <= 0.0)
-        throw FitError(info.name, fmt::format("law '{}': {}: value {:g} is not a finite positive number (fits "
-                                              "work on positive parameters)",
-                                              info.name, name, v));
-      if (v < set.min || v > set.max)
-        throw FitError(info.name, fmt::format("law '{}': {}: value {:g} is outside its bounds [{:g}, {:g}]",
-                                              info.name, name, v, set.min, set.max));
-    }
-    if (!set.vary && !set.value)
-      throw FitError(info.name, fmt::format("law '{}': {} is fixed (vary = false) but has no value", info.name,
-                                            name));
-    c.fixed[k] = !set.vary;
-    c.initial[k] = set.value;
-    c.min[k] = set.min;
-    c.max[k] = set.max;
-    c.active = c.active || !set.is_default();
-  }
-  if (!data.sigma.empty()) {
-    if (data.sigma.size() != data.t.size())
-      throw FitError(info.name, fmt::format("{}: {} sigma values for {} points", data.source, data.sigma.size(),
-                                            data.t.size()));
-    for (std::size_t j = 0; j < data.sigma.size(); ++j) {
-      if (!(data.sigma[j] > 0.0) || !std::isfinite(data.sigma[j]))
-        throw FitError(info.name, fmt::format("{}: sigma {:g} of point {} is not a finite positive number",
-                                              data.source, data.sigma[j], j + 1));
-      c.weight.push_back(1.0 / data.sigma[j]);
-    }
-    c.active = true;
-  } else if (!options.scale_covariance) {
-    throw FitError(info.name, "absolute standard errors (--absolute-sigma, scale_covariance = false) need the "
-                              "measurement sigma of each point (--sigma-column, sigma=)");
-  }
-  Mapping m;
-  m.x.assign(np, 0.0);
-  for (std::size_t k = 0; k < np; ++k) {
-    if (c.fixed[k]) {
-      m.x[k] = std::log(*c.initial[k]);
-      continue;
-    }
-    m.free.push_back(k);
-    m.lo.push_back(c.min[k] > 0.0 ? std::log(c.min[k]) : -std::numeric_limits<double>::infinity());
-    m.hi.push_back(std::isfinite(c.max[k]) ? std::log(c.max[k]) : std::numeric_limits<double>::infinity());
-  }
-  c.varying = m.free.size();
-  if (c.varying == 0)
-    throw FitError(info.name, fmt::format("law '{}': every parameter is fixed (vary = false): nothing to fit",
-                                          info.name));
-  if (c.active) c.mapping = std::move(m);
-  return c;
 }
 
 // ---- 1. The input: what the fit can work on ----------------------------------
