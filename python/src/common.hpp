@@ -20,6 +20,7 @@ namespace py = pybind11;
 void bind_errors(py::module_& m);
 void bind_laws(py::module_& m);
 void bind_fit(py::module_& m);
+void bind_scene(py::module_& m);
 void bind_simulation(py::module_& m);
 void bind_run(py::module_& m);
 

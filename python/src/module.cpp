@@ -8,6 +8,7 @@ PYBIND11_MODULE(_rheodda, m) {
   rheodda::python::bind_errors(m);
   rheodda::python::bind_laws(m);
   rheodda::python::bind_fit(m);
+  rheodda::python::bind_scene(m);
   rheodda::python::bind_simulation(m);
   rheodda::python::bind_run(m);
 }

@@ -20,7 +20,6 @@
 #include <rheodda/scene/assemble.hpp>
 #include <rheodda/scene/build.hpp>
 #include <rheodda/scene/describe.hpp>
-#include <rheodda/scene/keys.hpp>
 #include <rheodda/scene/loader.hpp>
 #include <rheodda/scene/output.hpp>
 
@@ -476,111 +475,9 @@ class Simulation {
   std::vector<std::vector<double>> history_;
 };
 
-py::dict units_dict(const scene::Units& u) {
-  py::dict d;
-  d["length"] = u.length;
-  d["force"] = u.force;
-  d["time"] = u.time;
-  d["stress"] = u.stress();
-  return d;
-}
-
-/// The declared keys of one map (rheodda/scene/keys.hpp) with their values: None where a
-/// key does not apply, a nested dict for a sub-map (`settle`), None for one not given.
-py::object analysis_dict(const scene::Analysis& a, const std::string& map) {
-  py::dict d;
-  bool applies = false;
-  for (const scene::KeySpec& k : scene::analysis_keys()) {
-    if (k.map != map) continue;
-    py::object v = k.type == scene::KeyType::map
-                       ? analysis_dict(a, map + "." + k.name)
-                       : std::visit(
-                             [](const auto& x) -> py::object {
-                               if constexpr (std::is_same_v<std::decay_t<decltype(x)>, std::monostate>)
-                                 return py::none();
-                               else if constexpr (std::is_same_v<std::decay_t<decltype(x)>, scene::Point>)
-                                 return py::make_tuple(x[0], x[1]);
-                               else
-                                 return py::cast(x);
-                             },
-                             k.get(a));
-    applies = applies || !v.is_none();
-    d[py::str(k.name)] = v;
-  }
-  return applies ? py::object(d) : py::object(py::none());
-}
-
 }  // namespace
 
 void bind_simulation(py::module_& m) {
-  py::class_<Scene>(m, "Scene", "A validated scene (docs/reference/scene-format.md): rheodda.load_scene(path) or "
-                                "rheodda.parse_scene(text) or rheodda.scene_from_dict(d)")
-      .def_property_readonly("file", [](const Scene& s) { return s.description.file; },
-                             "the file name the scene was read from (or given to parse_scene)")
-      .def_property_readonly("title", [](const Scene& s) { return s.description.title; }, "the scene's title")
-      .def_property_readonly("text", [](const Scene& s) { return s.text; },
-                             "the scene's YAML text (error lines refer to it)")
-      .def_property_readonly("units", [](const Scene& s) { return units_dict(s.description.units); },
-                             "the scene's unit names: length, force, time, stress")
-      .def_property_readonly("duration", [](const Scene& s) { return s.description.analysis.duration; },
-                             "analysis.duration [time]")
-      .def_property_readonly("dt", [](const Scene& s) { return s.description.analysis.dt; },
-                             "analysis.dt, the first step size [time]")
-      .def_property_readonly(
-          "analysis", [](const Scene& s) { return analysis_dict(s.description.analysis, "analysis"); },
-          "Every `analysis:` key with its value, defaults filled in, by the scene file's names (`settle` a "
-          "dict, or None without a settling stage); the same keys and values as summary.json's inputs "
-          "(docs/reference/scene-format.md). A copy: change a scene through its text or scene_from_dict.")
-      .def_property_readonly("joint_sets",
-                             [](const Scene& s) {
-                               std::vector<std::string> r;
-                               for (const auto& j : s.description.joint_sets) r.push_back(j.name);
-                               return r;
-                             },
-                             "the joint sets' names, in scene order")
-      .def_property_readonly("blocks",
-                             [](const Scene& s) {
-                               std::vector<std::string> r;
-                               for (const auto& b : s.description.blocks) r.push_back(b.name);
-                               return r;
-                             },
-                             "the blocks' names, in scene order (the block index of the state arrays)")
-      .def_property_readonly("measurement_points",
-                             [](const Scene& s) {
-                               std::vector<std::string> r;
-                               for (const auto& p : s.description.measurement_points) r.push_back(p.name);
-                               return r;
-                             },
-                             "the measurement points' names")
-      .def_property_readonly("load_count", [](const Scene& s) { return s.description.loads.size(); },
-                             "the number of loads (indices of Simulation.set_load)")
-      .def("describe", [](const Scene& s) { return scene::describe_scene(s.description); },
-           "What `rheodda check` prints: the scene with every default filled in")
-      .def("__repr__", [](const Scene& s) {
-        return fmt::format("<rheodda.Scene '{}' from {}: {} blocks, {} joint sets>", s.description.title,
-                           s.description.file, s.description.blocks.size(), s.description.joint_sets.size());
-      });
-
-  m.def(
-      "load_scene",
-      [](const std::string& path) {
-        Scene s;
-        s.text = scene::read_scene_text(path);
-        s.description = scene::parse_scene(s.text, path);
-        return s;
-      },
-      py::arg("path"), "Reads and validates a scene file; raises rheodda.SceneError (file:line:column: key: ...)");
-  m.def(
-      "parse_scene",
-      [](const std::string& text, const std::string& file) {
-        Scene s;
-        s.text = text;
-        s.description = scene::parse_scene(text, file);
-        return s;
-      },
-      py::arg("text"), py::arg("file") = "<text>",
-      "Parses and validates scene text (YAML; JSON is YAML too); `file` names it in error messages");
-
   py::class_<core::StepReport>(m, "StepReport", "What happened in one accepted step (core/engine.hpp)")
       .def_readonly("step", &core::StepReport::step, "index of the step (0-based)")
       .def_readonly("time", &core::StepReport::time, "time at the end of the step [time]")
