@@ -1,5 +1,6 @@
 // The bolts of a scene as `rheodda check` prints them (describe.cpp) and as
-// summary.json's "inputs" hold them (scene_json.cpp); scenes with bolts only.
+// summary.json's "inputs" hold them (scene_json.cpp), with a stage's bolts;
+// scenes with bolts only.
 #include <fmt/format.h>
 
 #include <nlohmann/json.hpp>
@@ -12,59 +13,80 @@ namespace {
 
 /// "block 'B' at (x, y)" or "fixed at (x, y)".
 std::string end_text(const SceneDescription& s, const BlockPoint& p, bool fixed) {
-  return fixed ? fmt::format("fixed at ({:g}, {:g})", p.point[0], p.point[1])
-               : fmt::format("({:g}, {:g}) on {}", p.point[0], p.point[1], s.blocks[p.block].name);
+  if (fixed) return fmt::format("fixed at ({:g}, {:g})", p.point[0], p.point[1]);
+  if (p.block < 0)  // a stage's end without `block:` (stages.hpp)
+    return fmt::format("({:g}, {:g}) on the block standing there", p.point[0], p.point[1]);
+  return fmt::format("({:g}, {:g}) on {}", p.point[0], p.point[1], s.blocks[p.block].name);
 }
 
 }  // namespace
 
 std::string describe_bolts(const SceneDescription& s) {
   if (s.bolts.empty()) return "";
-  const Units& u = s.units;
   std::string out = fmt::format("bolts: {}\n", s.bolts.size());
-  for (const auto& b : s.bolts) {
-    out += fmt::format("  {}: {} to {}, axial_stiffness {:g} {}/{}, pretension {:g} {}", b.name,
-                       end_text(s, b.from, false), end_text(s, b.to, b.to_fixed), b.axial_stiffness, u.force,
-                       u.length, b.pretension, u.force);
-    out += b.yield_force ? fmt::format(", yield_force {:g} {}", *b.yield_force, u.force) : ", never yields";
-    out += b.rupture_elongation ? fmt::format(", rupture_elongation {:g} {}", *b.rupture_elongation, u.length)
-                                : ", never ruptures";
-    if (b.law) {
-      out += fmt::format(", law {}", b.law->name);
-      for (const auto& [k, v] : b.law->parameters) out += fmt::format(" {}={:g}", k, v);
-    } else {
-      out += ", no creep";
-    }
-    out += '\n';
+  for (const auto& b : s.bolts) out += "  " + bolt_text(s, b) + '\n';
+  return out;
+}
+
+std::string bolt_text(const SceneDescription& s, const BoltDescription& b) {
+  const Units& u = s.units;
+  std::string out = fmt::format("{}: {} to {}, axial_stiffness {:g} {}/{}, pretension {:g} {}", b.name,
+                                end_text(s, b.from, false), end_text(s, b.to, b.to_fixed), b.axial_stiffness, u.force,
+                                u.length, b.pretension, u.force);
+  out += b.yield_force ? fmt::format(", yield_force {:g} {}", *b.yield_force, u.force) : ", never yields";
+  out += b.rupture_elongation ? fmt::format(", rupture_elongation {:g} {}", *b.rupture_elongation, u.length)
+                              : ", never ruptures";
+  if (b.law) {
+    out += fmt::format(", law {}", b.law->name);
+    for (const auto& [k, v] : b.law->parameters) out += fmt::format(" {}={:g}", k, v);
+  } else {
+    out += ", no creep";
   }
   return out;
+}
+
+nlohmann::ordered_json bolt_json(const SceneDescription& s, const BoltDescription& b) {
+  nlohmann::ordered_json e;
+  e["name"] = b.name;
+  auto end = [&](const BlockPoint& p) {
+    nlohmann::ordered_json j = {{"point", p.point}};
+    if (p.block >= 0) j["block"] = s.blocks[p.block].name;  // left out: a stage's end found where it stands
+    return j;
+  };
+  e["from"] = end(b.from);
+  if (b.to_fixed)
+    e["to"] = {{"fixed", b.to.point}};
+  else
+    e["to"] = end(b.to);
+  e["axial_stiffness"] = b.axial_stiffness;
+  e["pretension"] = b.pretension;
+  e["yield_force"] = b.yield_force ? nlohmann::ordered_json(*b.yield_force) : nlohmann::ordered_json(nullptr);
+  e["rupture_elongation"] =
+      b.rupture_elongation ? nlohmann::ordered_json(*b.rupture_elongation) : nlohmann::ordered_json(nullptr);
+  if (b.law) {
+    nlohmann::ordered_json law = {{"name", b.law->name}};
+    for (const auto& [k, v] : b.law->parameters) law[k] = v;
+    e["law"] = law;
+  } else {
+    e["law"] = nullptr;
+  }
+  return e;
 }
 
 void add_bolts_json(const SceneDescription& s, nlohmann::ordered_json& j) {
   if (s.bolts.empty()) return;  // a scene without bolts: its "inputs" as before
   j["bolts"] = nlohmann::ordered_json::array();
-  for (const auto& b : s.bolts) {
-    nlohmann::ordered_json e;
-    e["name"] = b.name;
-    e["from"] = {{"point", b.from.point}, {"block", s.blocks[b.from.block].name}};
-    if (b.to_fixed)
-      e["to"] = {{"fixed", b.to.point}};
-    else
-      e["to"] = {{"point", b.to.point}, {"block", s.blocks[b.to.block].name}};
-    e["axial_stiffness"] = b.axial_stiffness;
-    e["pretension"] = b.pretension;
-    e["yield_force"] = b.yield_force ? nlohmann::ordered_json(*b.yield_force) : nlohmann::ordered_json(nullptr);
-    e["rupture_elongation"] =
-        b.rupture_elongation ? nlohmann::ordered_json(*b.rupture_elongation) : nlohmann::ordered_json(nullptr);
-    if (b.law) {
-      nlohmann::ordered_json law = {{"name", b.law->name}};
-      for (const auto& [k, v] : b.law->parameters) law[k] = v;
-      e["law"] = law;
-    } else {
-      e["law"] = nullptr;
-    }
-    j["bolts"].push_back(e);
-  }
+  for (const auto& b : s.bolts) j["bolts"].push_back(bolt_json(s, b));
 }
+
+std::vector<const BoltDescription*> all_bolts(const SceneDescription& s) {
+  std::vector<const BoltDescription*> out;
+  for (const auto& b : s.bolts) out.push_back(&b);
+  for (const auto& st : s.stages)
+    for (const auto& b : st.add_bolts) out.push_back(&b);
+  return out;
+}
+
+bool has_bolts(const SceneDescription& s) { return !all_bolts(s).empty(); }
 
 }  // namespace rheodda::scene

@@ -38,7 +38,8 @@ const std::vector<std::string> measurement_point{"name", "point", "block"};
 const std::vector<std::string> water{"unit_weight", "level", "surface", "level_history", "surface_history"};
 const std::vector<std::string> water_sample{"time", "surface"};
 const std::vector<std::string> stage{"name", "at", "after", "remove_fixed_points", "remove_loads", "remove_blocks",
-                                     "add_fixed_points", "add_loads", "joint_sets", "analysis", "settle", "water"};
+                                     "add_fixed_points", "add_loads", "add_bolts", "joint_sets", "analysis", "settle",
+                                     "water"};
 const std::vector<std::string> stage_remove_blocks{"names", "region", "rock_mass_inside"};
 const std::vector<std::string> stage_fixed_point{"name", "point", "block"};
 const std::vector<std::string> stage_load{"name", "point", "block", "force", "history"};
@@ -81,6 +82,10 @@ std::vector<SceneMapKeys> scene_schema() {
       {"stages[*].joint_sets.*", detail::keys::stage_joint_set},
       {"stages[*].joint_sets.*.law", detail::keys::law},
       {"stages[*].analysis", detail::keys::stage_analysis},
+      {"stages[*].add_bolts[*]", detail::keys::bolt},
+      {"stages[*].add_bolts[*].from", detail::keys::bolt_from},
+      {"stages[*].add_bolts[*].to", detail::keys::bolt_to},
+      {"stages[*].add_bolts[*].law", detail::keys::law},
       {"bolts[*]", detail::keys::bolt},
       {"bolts[*].from", detail::keys::bolt_from},
       {"bolts[*].to", detail::keys::bolt_to},
