@@ -104,11 +104,7 @@ Result run_dda(const Row& r, double dt, bool staged, std::optional<laws::Scheme>
                double tolerance) {
   const auto law = burgers(r);
   const core::Model m = scene(r, dt, staged, tolerance);
-  contact::JointSet j;
-  j.name = "joint";
-  j.friction_angle = 60.0;
-  j.normal_stiffness = 1e4;
-  j.law = law;
+  const contact::JointSet j = models::seed_joint(law);
   contact::ContactSettings s = core::contact_settings_for(m);
   s.scheme = scheme;
   contact::ContactSystem contacts({j}, s);

@@ -53,11 +53,7 @@ int main(int argc, char** argv) {
         "burgers", {{"E1", r.E1}, {"E2", r.E2}, {"eta1", r.eta1}, {"eta2", r.eta2}});
     for (const auto& scheme : schemes) {
       const core::Model m = scene(r, dt);
-      contact::JointSet j;
-      j.name = "joint";
-      j.friction_angle = 60.0;
-      j.normal_stiffness = 1e4;
-      j.law = law;
+      const contact::JointSet j = models::seed_joint(law);
       contact::ContactSettings s = core::contact_settings_for(m);
       s.scheme = scheme;
       contact::ContactSystem contacts({j}, s);

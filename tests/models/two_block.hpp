@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include "rheodda/contact/contact_system.hpp"
@@ -33,6 +34,18 @@ inline core::Model two_block_model(double w, double dt) {
   m.blocks = {b, a};
   for (int i = 0; i < 3; ++i) m.fixed_points.push_back({0, b.vertices[i]});
   return m;
+}
+
+/// The seed's joint between A and B: friction 60 deg (tan 60 = 1.73 exceeds tau/sigma of
+/// every Table 1 row, so it never slides), normal stiffness 1e4 MPa/mm, the given law
+/// (its E1 the shear spring).
+inline contact::JointSet seed_joint(std::shared_ptr<const laws::ContactRheology> law) {
+  contact::JointSet j;
+  j.name = "joint";
+  j.friction_angle = 60.0;    // [deg]
+  j.normal_stiffness = 1e4;   // [MPa/mm]
+  j.law = std::move(law);
+  return j;
 }
 
 /// The joint's relative shear displacement along +x: mean over A's base contacts [mm].

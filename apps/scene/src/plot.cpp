@@ -189,7 +189,8 @@ std::vector<std::string> plot_run(const PlotOptions& o) {
     data.push_back(read_vtk_polydata((dir / frames[k].second).string()));
     for (const auto& b : data.back())
       for (std::size_t v = 0; v < b.vertices.size(); ++v) {
-        dmax = std::max(dmax, std::hypot(b.displacement[v][0], b.displacement[v][1]));
+        if (!b.removed.value_or(false))  // an excavated block is not drawn moved (below)
+          dmax = std::max(dmax, std::hypot(b.displacement[v][0], b.displacement[v][1]));
         x0 = std::min(x0, b.vertices[v][0] - b.displacement[v][0]);
         x1 = std::max(x1, b.vertices[v][0] - b.displacement[v][0]);
         y0 = std::min(y0, b.vertices[v][1] - b.displacement[v][1]);
@@ -205,15 +206,19 @@ std::vector<std::string> plot_run(const PlotOptions& o) {
     const std::string stem = fmt::format("blocks_{:06d}", k);
     std::string initial, deformed;
     for (const auto& b : data[i]) {
+      // A block a stage removed (docs/reference/stages.md) is drawn where it was only: the
+      // dashed outline of the initial blocks shows the excavation.
+      const bool drawn = !b.removed.value_or(false);
       for (std::size_t v = 0; v <= b.vertices.size(); ++v) {
         const std::size_t w = v % b.vertices.size();
         const double ix = b.vertices[w][0] - b.displacement[w][0], iy = b.vertices[w][1] - b.displacement[w][1];
         initial += fmt::format("{:.10g} {:.10g}\n", ix, iy);
-        deformed += fmt::format("{:.10g} {:.10g} {}\n", ix + scale * b.displacement[w][0],
-                                iy + scale * b.displacement[w][1], b.fixed ? 1 : 0);
+        if (drawn)
+          deformed += fmt::format("{:.10g} {:.10g} {}\n", ix + scale * b.displacement[w][0],
+                                  iy + scale * b.displacement[w][1], b.fixed ? 1 : 0);
       }
       initial += "\n";
-      deformed += "\n";
+      if (drawn) deformed += "\n";
     }
     const fs::path dat_i = dir / "plots" / (stem + "_initial.dat");
     const fs::path dat_d = dir / "plots" / (stem + "_deformed.dat");

@@ -15,6 +15,7 @@
 #include "../test_support.hpp"
 #include "rheodda/scene/describe.hpp"
 #include "rheodda/scene/loader.hpp"
+#include "rheodda/scene/plot.hpp"
 #include "rheodda/scene/run.hpp"
 
 using namespace rheodda;
@@ -228,6 +229,21 @@ BOOST_AUTO_TEST_CASE(the_example_excavation_runs_and_leaves_the_wall_built_witho
   const std::string last =
       read_text((out / "dug" / "frames" / fmt::format("blocks_{:06d}.vtp", sum.at("frames").get<int>() - 1)).string());
   BOOST_TEST(last.find("Name=\"removed\"") != std::string::npos);
+  // `rheodda plot` draws the 3 removed blocks in the initial outline only: 13 blocks
+  // (the base and 12 of the wall) dashed, 10 solid.
+  scene::PlotOptions po;
+  po.out_dir = (out / "dug").string();
+  po.times = {1.5};
+  (void)scene::plot_run(po);
+  auto polygons = [&](const std::string& name) {
+    const std::string dat = read_text(fs::path(out / "dug" / "plots" / name).string());
+    std::size_t n = 0;
+    for (std::size_t at = dat.find("\n\n"); at != std::string::npos; at = dat.find("\n\n", at + 1)) ++n;
+    return n;
+  };
+  const std::string stem = fmt::format("blocks_{:06d}", sum.at("frames").get<int>() - 1);
+  BOOST_TEST(polygons(stem + "_initial.dat") == 13u);
+  BOOST_TEST(polygons(stem + "_deformed.dat") == 10u);
 
   // The same wall built without the column, settled the same way, no stages:
   // the blocks left stand where it stands. Measured 0.1 % apart (top_left's

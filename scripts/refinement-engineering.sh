@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# `rheodda check --refine=3` on the tunnel and reservoir examples
+# (examples/rockmass/tunnel-stages.yaml, reservoir-slope.yaml; docs/guide/tunnels-and-slopes.md):
+# each at its own step controls (L0) and with every step control halved twice,
+# and puts each refinement table, as `check` prints it, into
+# docs/notes/engineering-examples.md between its refinement-NAME markers.
+# About 40 min on 2 cores (the reservoir's finest level is 4 runs of a minute).
+# Usage: scripts/refinement-engineering.sh   (uses $RHEODDA_BUILD_DIR or build/)
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # strict mode; root, build, work (removed at exit)
+for name in tunnel-stages reservoir-slope; do
+  # exit 3: the verdict is not "fine"; the table says what did not converge
+  "$build/apps/rheodda" check "$root/examples/rockmass/$name.yaml" --refine=3 -j "$(nproc)" -o "$work/$name" \
+    >/dev/null 2>&1 || [[ $? -eq 3 ]]
+  { echo '```'; cat "$work/$name/refinement.txt"; echo '```'; } >"$work/$name.md"
+  "$root/scripts/splice-doc.sh" "$root/docs/notes/engineering-examples.md" "refinement-$name" "$work/$name.md"
+  echo "refinement-engineering: $name: $(grep "^step controls:" "$work/$name/refinement.txt")"
+done
