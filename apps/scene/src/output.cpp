@@ -267,6 +267,9 @@ std::vector<FrameBlock> read_vtk_polydata(const std::string& path) {
   const auto offsets = data_array(text, "offsets", path);
   const auto conn = data_array(text, "connectivity", path);
   const auto fixed = data_array(text, "fixed", path);
+  // A scene with stages flags its removed blocks (docs/reference/stages.md); the others have no such array.
+  const bool staged = text.find("Name=\"removed\"") != std::string::npos;
+  const auto removed = staged ? data_array(text, "removed", path) : std::vector<double>{};
   std::vector<FrameBlock> out;
   std::size_t begin = 0;
   for (std::size_t b = 0; b < offsets.size(); ++b) {
@@ -280,6 +283,7 @@ std::vector<FrameBlock> read_vtk_polydata(const std::string& path) {
       fb.displacement.push_back({disp[3 * p], disp[3 * p + 1]});
     }
     fb.fixed = b < fixed.size() && fixed[b] != 0.0;
+    if (staged) fb.removed = b < removed.size() && removed[b] != 0.0;
     out.push_back(std::move(fb));
     begin = end;
   }
