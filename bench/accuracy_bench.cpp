@@ -104,12 +104,8 @@ Result run_dda(const Row& r, double dt, bool staged, std::optional<laws::Scheme>
                double tolerance) {
   const auto law = burgers(r);
   const core::Model m = scene(r, dt, staged, tolerance);
-  const contact::JointSet j = models::seed_joint(law);
-  contact::ContactSettings s = core::contact_settings_for(m);
-  s.scheme = scheme;
-  contact::ContactSystem contacts({j}, s);
-  core::ContactAdapter adapter(contacts);
-  core::Engine engine(m, adapter);
+  models::SeedJointRun run(m, law, scheme);  // tests/models/two_block.hpp
+  auto& [contacts, adapter, engine] = run;
   double worst = 0.0, peak = 0.0;
   engine.add_observer([&](const core::Engine& e, const core::StepReport&) {
     const double exact = staged ? staged_exact(r.tau, r.E1, r.E2, r.eta1, r.eta2, e.time())

@@ -53,12 +53,8 @@ int main(int argc, char** argv) {
         "burgers", {{"E1", r.E1}, {"E2", r.E2}, {"eta1", r.eta1}, {"eta2", r.eta2}});
     for (const auto& scheme : schemes) {
       const core::Model m = scene(r, dt);
-      const contact::JointSet j = models::seed_joint(law);
-      contact::ContactSettings s = core::contact_settings_for(m);
-      s.scheme = scheme;
-      contact::ContactSystem contacts({j}, s);
-      core::ContactAdapter adapter(contacts);
-      core::Engine engine(m, adapter);
+      models::SeedJointRun run(m, law, scheme);  // tests/models/two_block.hpp
+      auto& [contacts, adapter, engine] = run;
       FILE* out = nullptr;
       if (csv_dir && !scheme) {
         out = std::fopen((*csv_dir + "/row" + std::to_string(i) + ".csv").c_str(), "w");

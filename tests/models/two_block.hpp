@@ -8,9 +8,12 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "rheodda/contact/contact_system.hpp"
+#include "rheodda/core/contact_adapter.hpp"
+#include "rheodda/core/engine.hpp"
 #include "rheodda/core/model.hpp"
 
 namespace rheodda::models {
@@ -47,6 +50,22 @@ inline contact::JointSet seed_joint(std::shared_ptr<const laws::ContactRheology>
   j.law = std::move(law);
   return j;
 }
+
+/// The engine on a two-block model with the seed's joint and `law`, each step's creep
+/// integrated by `scheme` (unset: the law's automatic choice).
+struct SeedJointRun {
+  contact::ContactSystem contacts;
+  core::ContactAdapter adapter;
+  core::Engine engine;
+  SeedJointRun(const core::Model& m, std::shared_ptr<const laws::ContactRheology> law,
+               std::optional<laws::Scheme> scheme)
+      : contacts({seed_joint(std::move(law))}, settings(m, scheme)), adapter(contacts), engine(m, adapter) {}
+  static contact::ContactSettings settings(const core::Model& m, std::optional<laws::Scheme> scheme) {
+    contact::ContactSettings s = core::contact_settings_for(m);
+    s.scheme = scheme;
+    return s;
+  }
+};
 
 /// The joint's relative shear displacement along +x: mean over A's base contacts [mm].
 inline double joint_shear(const contact::ContactSystem& cs) {
