@@ -288,7 +288,11 @@ std::string describe_scene(const SceneDescription& s) {
       }
       if (!st.add_fixed_points.empty()) did.push_back(fmt::format("add {} fixed points", st.add_fixed_points.size()));
       if (!st.add_loads.empty()) did.push_back(fmt::format("add {} loads", st.add_loads.size()));
-      for (const BoltDescription& b : st.add_bolts) did.push_back("install bolt " + bolt_text(s, b));
+      if (!st.add_bolts.empty()) {
+        std::vector<std::string> names;
+        for (const BoltDescription& b : st.add_bolts) names.push_back(b.name);
+        did.push_back(fmt::format("install {} bolts ({})", names.size(), fmt::join(names, ", ")));
+      }
       for (const StageJointSet& c : st.joint_sets)
         did.push_back(fmt::format("change joint set {}", s.joint_sets[static_cast<std::size_t>(c.joint_set)].name));
       if (st.dynamic_ratio)
@@ -300,6 +304,7 @@ std::string describe_scene(const SceneDescription& s) {
                        st.start == StageStart::at ? fmt::format("at t = {:g} {}", st.at, u.time)
                                                   : std::string("after the settling stage ends at rest"),
                        fmt::join(did, "; ")));
+      for (const BoltDescription& b : st.add_bolts) line("    " + bolt_text(s, b));  // bolts_text.cpp
     }
   }
   out += describe_bolts(s);  // bolts_text.cpp; nothing without bolts

@@ -353,8 +353,9 @@ BOOST_AUTO_TEST_CASE(bad_stage_bolts_are_refused_with_file_line_column_and_key) 
   // An end without its block is found where it stands at the stage (block -1 until then).
   const auto found = scene::parse_scene(hanging_scene(with("[1.5, 2.8], block: top", "[1.5, 2.8]", kHanger)), "ok.yaml");
   BOOST_TEST(found.stages.at(0).add_bolts.at(0).from.block == -1);
-  BOOST_TEST(scene::describe_scene(found).find("install bolt hanger: (1.5, 2.8) on the block standing there to fixed "
-                                               "at (1.5, 5)") != std::string::npos);
+  const std::string described = scene::describe_scene(found);
+  BOOST_TEST(described.find("bolt at t = 0.3 s: install 1 bolts (hanger)\n    hanger: (1.5, 2.8) on the block standing "
+                            "there to fixed at (1.5, 5)") != std::string::npos, described);
   // On a block removed by then.
   const std::string late = with("  - {name: dig, at: 0.6, remove_blocks: {names: [prop]}}\n",
                                 "  - {name: dig, at: 0.6, remove_blocks: {names: [prop]}}\n"
