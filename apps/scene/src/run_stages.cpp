@@ -9,7 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "rheodda/laws/registry.hpp"
+#include "rheodda/scene/edits.hpp"
 #include "rheodda/scene/water.hpp"
 #include "run_internal.hpp"
 
@@ -43,18 +43,6 @@ std::string scene_key(std::string key) {
        {std::pair<std::string, std::string>{"remove_point_loads", "remove_loads"}, {"add_point_loads", "add_loads"}})
     if (key.rfind(engine_word, 0) == 0) key.replace(0, engine_word.size(), scene_word);
   return key;
-}
-
-/// The joint set `c` makes of the contact system's current one.
-contact::JointSet changed_joint_set(const contact::JointSet& now, const StageJointSet& c) {
-  contact::JointSet j = now;
-  if (c.friction_angle) j.friction_angle = *c.friction_angle;
-  if (c.cohesion) j.cohesion = *c.cohesion;
-  if (c.tensile_strength) j.tensile_strength = *c.tensile_strength;
-  if (c.residual_friction_angle) j.residual_friction_angle = *c.residual_friction_angle;
-  if (c.residual_cohesion) j.residual_cohesion = *c.residual_cohesion;
-  if (c.law_name) j.law = laws::LawRegistry::builtin().create(*c.law_name, c.law_parameters);
-  return j;
 }
 
 /// Applies stage run.stage_run.next to the engine and records it.
