@@ -166,7 +166,11 @@ def test_blocks_are_fixed_freed_removed_and_loaded_between_steps():
         sim.blocks["base"].remove()
     with pytest.raises(rheodda.ModelError, match="was removed before"):
         block.remove()
+    # a removed block stays removed when a step setting builds a new engine, frozen where it was
+    where = block.vertices
+    sim.set_settings(dt=0.002)
     sim.run(0.5)
+    assert block.removed and np.array_equal(block.vertices, where) and not block.velocity.any()
     assert "removed" in repr(block)
 
 
@@ -196,6 +200,20 @@ def test_contacts_are_an_object_of_read_only_columns_and_stay_callable():
     with pytest.raises(AttributeError, match="no column 'nromal_force'"):
         c.nromal_force
     assert len(sim.bolts) == 0
+
+
+def test_bolts_are_read_only_columns_and_the_bolt_carries_what_friction_cannot(root):
+    sim = rheodda.Simulation(root / "examples" / "bolted-block.yaml").run()
+    bolts = sim.bolts
+    assert len(bolts) == 1 and list(bolts.name) == ["anchor"] and list(bolts.state) == ["elastic"]
+    assert not bolts.force.flags.writeable and "1 bolts" in repr(bolts)
+    # N = W (sin 30 - cos 30 tan 20) with W = m g (docs/reference/bolts.md, "Closed forms"),
+    # the elongation N / k with k = 1e7 N/m (the scene's axial_stiffness)
+    n = sim.blocks["block"].mass * G * (math.sin(math.radians(30)) - math.cos(math.radians(30))
+                                        * math.tan(math.radians(20)))
+    assert bolts.force[0] == pytest.approx(n, rel=1e-6)
+    assert bolts.elongation[0] == pytest.approx(n / 1.0e7, rel=1e-6)
+    assert bolts.rupture_time[0] == -1
 
 
 # --- joint sets ------------------------------------------------------------------------
@@ -352,6 +370,36 @@ def test_a_restored_simulation_continues_bit_for_bit(tmp_path):
         rheodda.Simulation.restore(b"not a state")
 
 
+class Maxwell(rheodda.PythonLaw):
+    """Spring E1 and dashpot eta1, implicit: Delta d_c = dt F_e / eta1 (tests/python/test_python_law.py)."""
+
+    def __init__(self, E1, eta1):
+        super().__init__("python-maxwell", {"E1": E1, "eta1": eta1}, internal_count=1, instantaneous_stiffness=E1)
+        self.eta1 = eta1
+
+    def linearize(self, k, q, force_start, force_end_guess):
+        return 0.0, k.dt / self.eta1
+
+    def advance(self, k, q, force_start, force_end):
+        dd = k.dt * force_end / self.eta1
+        return dd, (q[0] + dd,)
+
+
+def test_a_state_with_a_law_written_in_python_keeps_it_in_memory_not_in_a_file(tmp_path):
+    law = Maxwell(TABLE1["E1"], TABLE1["eta1"])
+    a = rheodda.Simulation(SHEAR_TEST, laws={"plane": law}).run(50)
+    state = a.save()
+    assert state.laws == {"plane": law}
+    b = rheodda.Simulation.restore(state)
+    assert same(a.run(100).history(), b.run(100).history())
+    with pytest.raises(rheodda.Error, match="laws written in Python .*plane.*which a file cannot hold"):
+        a.save(tmp_path / "x.state")
+    with pytest.raises(rheodda.Error, match="joint set 'plane' had a law written in Python"):
+        rheodda.Simulation.restore(state.data)
+    c = rheodda.Simulation.restore(state.data, laws={"plane": law})
+    assert same(c.run(100).history(), b.history())
+
+
 def test_what_if_branches_from_one_settled_state():
     settled = rheodda.Simulation(incline(40)).run(0.2)
     state = settled.save()
@@ -419,3 +467,8 @@ def test_run_accepts_what_simulation_accepts(tmp_path, root):
     assert (tmp_path / "dict" / "history.csv").read_text() == (tmp_path / "scene" / "history.csv").read_text()
     with pytest.raises(TypeError, match="a scene is a rheodda.Scene, a path or a dict"):
         rheodda.run(42, tmp_path / "x")
+
+
+def test_a_scene_with_stages_is_refused_not_run_without_them(root):
+    with pytest.raises(ValueError, match="a scene with stages runs with `rheodda run`; Simulation does not apply"):
+        rheodda.Simulation(root / "examples" / "excavation-stages.yaml")
