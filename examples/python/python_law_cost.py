@@ -63,7 +63,7 @@ def main() -> None:
     root = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
     scene = rheodda.load_scene(os.path.join(root, "examples", "goodman-toppling-creep.yaml"))
     probe = rheodda.Simulation(scene)
-    params = {js: probe.law_parameters(js) for js in probe.joint_sets}
+    params = {js: probe.law_parameters(js) for js in probe.joint_sets.names}
 
     t_builtin, builtin = best_time(lambda: rheodda.Simulation(scene), steps)
     t_python, python = best_time(
@@ -81,7 +81,7 @@ def main() -> None:
     contact_steps = counted["contact_steps"]
 
     diffs = []
-    for js in probe.joint_sets:
+    for js in probe.joint_sets.names:
         a = builtin.history()[js + ".shear_displacement"]
         b = python.history()[js + ".shear_displacement"]
         diffs.append(np.nanmax(np.abs(a - b)) / np.nanmax(np.abs(a)))

@@ -48,9 +48,19 @@ from ._rheodda import (  # noqa: F401  (re-exported API)
     creep_data,
     load_scene,
     parse_scene,
-    run,
 )
 from . import _rheodda
+from ._scripting import (  # noqa: F401  (re-exported API)
+    Block,
+    Blocks,
+    Bolts,
+    Callback,
+    Contacts,
+    JointSet,
+    JointSets,
+    Load,
+    SimulationState,
+)
 
 __all__ = [
     "Error", "SceneError", "LawError", "DataError", "FitError", "ModelError", "PythonLawError", "RunError",
@@ -59,6 +69,7 @@ __all__ = [
     "CreepData", "read_creep_csv", "creep_data", "FitResult", "FixedCombination", "fit", "fit_all",
     "ranking_frame",
     "Scene", "load_scene", "parse_scene", "scene_from_dict", "Simulation", "StepReport",
+    "Block", "Blocks", "Load", "JointSet", "JointSets", "Contacts", "Bolts", "Callback", "SimulationState",
     "run", "run_study", "rheodda_binary", "to_dataframe",
 ]
 
@@ -405,27 +416,54 @@ def _plain(value):
     return value
 
 
-class Simulation:
-    """A scene driven step by step through the DDA engine.
+def _as_scene(scene):
+    """A :class:`Scene` of what Simulation and run accept: a Scene, a path (str or os.PathLike) or a
+    dict that mirrors the scene file (:func:`scene_from_dict`)."""
+    if isinstance(scene, Scene):
+        return scene
+    if isinstance(scene, dict):
+        return scene_from_dict(scene)
+    if isinstance(scene, (str, _os.PathLike)):
+        return load_scene(_os.fspath(scene))
+    raise TypeError("a scene is a rheodda.Scene, a path or a dict; got {}".format(type(scene).__name__))
 
-    ``Simulation(scene, laws={joint_set: law}, callback=f)``: ``scene`` is a
-    :class:`Scene`, a path or a dict (:func:`scene_from_dict`); ``laws``
-    replaces joint sets' laws by built-in laws (:func:`law`) or laws written in
-    Python (:class:`PythonLaw`); ``callback(sim, report)`` runs after every
-    accepted step and may read the state and call ``set_load``,
-    ``set_law_parameters``, ``set_settings`` (they take effect from the next
-    step). The long calls release the GIL; Ctrl-C raises KeyboardInterrupt
-    between two steps and leaves the simulation usable.
+
+def run(scene, out_dir, resume=False, progress=False):
+    """``rheodda run SCENE -o OUT_DIR [--resume]``: history.csv, contacts.csv, ParaView frames,
+    summary.json; returns the summary as a dict (status, steps, time [time], ...). ``scene``: what
+    :class:`Simulation` accepts (a Scene, a path or a dict). Ctrl-C stops it after the current step
+    (resumable) and raises KeyboardInterrupt."""
+    return _rheodda.run(_as_scene(scene), _os.fspath(out_dir), resume=bool(resume), progress=bool(progress))
+
+
+class Simulation:
+    """A scene driven step by step through the DDA engine (docs/guide/python.md, "Scripting").
+
+    ``Simulation(scene, laws={joint_set: law}, callback=f, every_steps=N | every_time=dt)``:
+    ``scene`` is a :class:`Scene`, a path or a dict (:func:`scene_from_dict`); ``laws``
+    replaces joint sets' laws by built-in laws (:func:`law`) or laws written in Python
+    (:class:`PythonLaw`); ``callback(sim, report)`` runs after accepted steps - every step, every
+    ``every_steps`` steps or after the first step reaching each multiple of ``every_time``
+    [time] - and may read the state and change the model (blocks, loads, joint sets, settings:
+    from the next step on); :meth:`add_callback` adds more. ``sim.blocks``, ``sim.joint_sets``,
+    ``sim.contacts``, ``sim.bolts`` read and change the model; :meth:`save` and :meth:`restore`
+    keep and continue a state bit for bit; a Simulation pickles and copies through them. Values
+    are in the scene's units (``sim.units``). The long calls release the GIL; Ctrl-C raises
+    KeyboardInterrupt between two steps and leaves the simulation usable.
     """
 
-    def __init__(self, scene, laws=None, callback=None):
-        if isinstance(scene, dict):
-            scene = scene_from_dict(scene)
-        elif isinstance(scene, (str, _os.PathLike)):
-            scene = load_scene(_os.fspath(scene))
-        self.scene = scene
-        self._sim = _rheodda._Simulation(scene, dict(laws or {}), None)
-        self.callback = callback
+    def __init__(self, scene, laws=None, callback=None, every_steps=None, every_time=None):
+        self.scene = _as_scene(scene)
+        self._laws = dict(laws or {})
+        self._sim = _rheodda._Simulation(self.scene, self._laws, None)
+        self._callbacks = []
+        self._main = None
+        if callback is not None:
+            self._main = self.add_callback(callback, steps=every_steps, time=every_time)
+        elif every_steps is not None or every_time is not None:
+            raise Error("Simulation: every_steps= and every_time= are the period of callback=, which is missing")
+
+    # --- running -----------------------------------------------------------------
 
     def step(self, n=1):
         """Advances n accepted steps (fewer if the scene's duration is reached)."""
@@ -433,58 +471,113 @@ class Simulation:
         return self
 
     def run(self, until=None):
-        """Advances to time ``until`` [scene time] (default: the scene's duration);
-        the last step is shortened to land on it."""
+        """Advances to time ``until`` [time] (default: the scene's duration); the last step is
+        shortened to land on it."""
         self._run(self.duration if until is None else float(until), -1)
         return self
 
     def _run(self, end_time, max_steps):
-        f = self.callback
+        callbacks = self._callbacks
+
+        def dispatch(_raw, report):
+            for c in list(callbacks):
+                if c in callbacks and c._due(report):
+                    c.function(self, report)
+
         # Set for the call only: a callback holding the simulation would otherwise make a
         # reference cycle through the C++ object, which the garbage collector cannot see.
-        self._sim._callback = None if f is None else (lambda _raw, report: f(self, report))
+        self._sim._callback = dispatch if callbacks else None
         try:
             self._sim._run(end_time, max_steps)
         finally:
             self._sim._callback = None
 
-    # state
+    @property
+    def callback(self):
+        """The callback given to the constructor (or set here), called every step, or with the
+        constructor's every_steps / every_time period; None: none."""
+        return None if self._main is None else self._main.function
+
+    @callback.setter
+    def callback(self, f):
+        steps, time = (None, None) if self._main is None else (self._main.steps, self._main.time)
+        if self._main is not None:
+            self._main.remove()
+            self._main = None
+        if f is not None:
+            self._main = self.add_callback(f, steps=steps, time=time)
+
+    def add_callback(self, function, steps=None, time=None):
+        """Calls ``function(sim, report)`` after accepted steps: every ``steps`` steps (default 1),
+        or after the first step that reaches each multiple of ``time`` [time] counted from now (the
+        steps are not shortened to land on those times: a callback leaves the run as it is). It
+        may change the model (from the next step on). Returns a :class:`Callback` (``.remove()``)."""
+        c = Callback(self, function, steps=steps, time=time)
+        self._callbacks.append(c)
+        return c
+
+    @property
+    def callbacks(self):
+        """The callbacks in the order they run (a copy of the list)."""
+        return list(self._callbacks)
+
+    # --- state -------------------------------------------------------------------
+
     time = property(lambda self: self._sim.time, doc="simulated time [time]")
     step_count = property(lambda self: self._sim.step_count, doc="accepted steps")
     duration = property(lambda self: self._sim.duration, doc="the scene's analysis.duration [time]")
     failed = property(lambda self: self._sim.failed,
                       doc="True after a step failed (no convergence, a Python law raised): build a new one")
-    block_positions = property(lambda self: self._sim.block_positions,
-                               doc="block centroids, shape (blocks, 2) [length]")
-    block_velocities = property(lambda self: self._sim.block_velocities,
-                                doc="(u0, v0, r0, ex, ey, gxy) rates per block, shape (blocks, 6) "
-                                    "[length/time, 1/time]; zero in a static analysis")
-    block_stresses = property(lambda self: self._sim.block_stresses,
-                              doc="(sigma_x, sigma_y, tau_xy) per block, shape (blocks, 3) [stress]")
     settings = property(lambda self: self._sim.settings, doc="the step settings by their scene names")
     loads = property(lambda self: self._sim.loads,
-                     doc="per load, its samples as a read-only array of rows (t [time], fx, fy [force])")
+                     doc="per load now in the model, its samples as a read-only array of rows "
+                         "(t [time], fx, fy [force])")
     units = property(lambda self: self._sim.units,
                      doc="the scene's unit names: dict of length, force, time, stress")
-    joint_sets = property(lambda self: self._sim.joint_sets, doc="the joint sets' names, in scene order")
-    blocks = property(lambda self: self._sim.blocks,
-                      doc="the blocks' names, in scene order (the row index of the block_* arrays)")
     columns = property(lambda self: self._sim.columns, doc="history columns (those of history.csv)")
 
+    @property
+    def blocks(self):
+        """The blocks (:class:`Blocks`): ``sim.blocks[i]`` or ``['name']`` a :class:`Block`,
+        ``sim.blocks.position`` ... read-only arrays of every block [scene units]."""
+        return Blocks(self)
+
+    @property
+    def joint_sets(self):
+        """The joint sets (:class:`JointSets`): ``sim.joint_sets['name']`` or ``[i]`` a
+        :class:`JointSet` whose friction_angle [deg], cohesion [stress] ... are settable."""
+        return JointSets(self)
+
+    @property
+    def contacts(self):
+        """The contacts after the last accepted step (:class:`Contacts`): ``len``, columns as
+        read-only arrays (``sim.contacts.normal_force`` [force/length], ...); ``sim.contacts()``
+        the columns as a dict."""
+        return Contacts(self._sim._contacts())
+
+    @property
+    def bolts(self):
+        """The bolts after the last accepted step (:class:`Bolts`), read-only: name, state, force
+        [force], length, elongation, plastic_elongation, creep_elongation [length], rupture_time
+        [time]; empty without bolts."""
+        return Bolts(self._sim._bolts())
+
+    block_positions = property(lambda self: self.blocks.position,
+                               doc="block centroids, shape (blocks, 2) [length]; = blocks.position")
+    block_velocities = property(lambda self: self.blocks.velocity,
+                                doc="(u0, v0, r0, ex, ey, gxy) rates per block, shape (blocks, 6) "
+                                    "[length/time, 1/time]; zero in a static analysis; = blocks.velocity")
+    block_stresses = property(lambda self: self.blocks.stress,
+                              doc="(sigma_x, sigma_y, tau_xy) per block, shape (blocks, 3) [stress]; "
+                                  "= blocks.stress")
+
     def block_vertices(self, block):
-        """Current vertices of a block (index in scene order), shape (n, 2) [length]."""
-        return self._sim.block_vertices(self._block_index(block))
+        """Current vertices of a block (index or name), shape (n, 2) [length]."""
+        return self.blocks[block].vertices
 
     def point_displacement(self, block, x, y):
         """Displacement (u, v) of the material point initially at (x, y) of a block [length]."""
-        return self._sim.point_displacement(self._block_index(block), x, y)
-
-    def contacts(self):
-        """Each contact as numpy arrays: id, joint_set (index), state, kind, vertex_block,
-        vertex, edge_block, edge, x, y, normal_force, shear_force [force/length],
-        shear_displacement, penetration, length, creep_displacement, creep_increment [length],
-        q (internal displacements of the law, shape (n, 4)) [length]."""
-        return self._sim.contacts()
+        return self.blocks[block].point_displacement(x, y)
 
     def history(self):
         """The history since t = 0 as a dict of numpy arrays, one per column of history.csv
@@ -496,20 +589,29 @@ class Simulation:
         """history() as a pandas DataFrame."""
         return to_dataframe(self.history())
 
-    # changes between steps
+    # --- changes between steps ------------------------------------------------------
+
     def set_load(self, index, force):
-        """Load ``index`` (scene order) holds force (fx, fy) [force] from the next step on."""
+        """Load ``index`` (its index in ``sim.loads``: scene order until a load is removed) holds force
+        (fx, fy) [force] from the next step on."""
         fx, fy = force
         self._sim.set_load(int(index), float(fx), float(fy))
 
     def set_load_history(self, index, samples):
         """Load ``index`` follows (t [time], fx, fy [force]) samples from now on (piecewise linear, as in
-        a scene)."""
+        a scene; t is run time)."""
         self._sim.set_load_history(int(index), [tuple(map(float, s)) for s in samples])
+
+    def load(self, index):
+        """The :class:`Load` at ``index`` in ``sim.loads`` now (to remove it: ``sim.load(i).remove()``)."""
+        ids = list(self._sim._load_ids)
+        if not 0 <= int(index) < len(ids):
+            raise Error("load {} does not exist; the model has {} loads".format(index, len(ids)))
+        return Load(self, ids[int(index)], None)
 
     def set_law_parameters(self, joint_set, parameters=None, **kw):
         """The built-in law of ``joint_set`` takes these parameters (others kept) from the next
-        step on; validated by the registry (LawError)."""
+        step on; validated by the registry (LawError) and as a stage's law change."""
         p = dict(parameters or {})
         p.update(kw)
         self._sim.set_law_parameters(joint_set, p)
@@ -518,11 +620,6 @@ class Simulation:
         """The parameters of the built-in law of ``joint_set`` by name [their registry units]."""
         return self._sim.law_parameters(joint_set)
 
-    def __repr__(self):
-        return "<rheodda.Simulation '{}': t = {:g} of {:g} {}, {} steps{}>".format(
-            self.scene.title, self.time, self.duration, self.units["time"], self.step_count,
-            ", FAILED" if self.failed else "")
-
     def set_settings(self, **settings):
         """Step settings by their scene names: dt, dt_growth, dt_cut, max_cuts,
         max_displacement_ratio, creep_tolerance, step_tolerance, step_extrapolation, dt_max,
@@ -530,13 +627,65 @@ class Simulation:
         solver_iterate_tolerance."""
         self._sim.set_settings(**settings)
 
-    def _block_index(self, block):
-        if isinstance(block, str):
-            names = self.blocks
-            if block not in names:
-                raise Error("block '{}' is not in the scene".format(block))
-            return names.index(block)
-        return int(block)
+    # --- saving and restoring ---------------------------------------------------------
+
+    def save(self, path=None):
+        """The state now as a :class:`SimulationState` (in memory; picklable), or, with ``path``,
+        written to that file as well. :meth:`restore` continues it bit for bit. The callbacks are
+        code, not state: they are not saved."""
+        python_laws = {k: v for k, v in self._laws.items() if isinstance(v, PythonLaw)}
+        state = SimulationState(self._sim._save(), python_laws, self.time, self.step_count)
+        if path is not None:
+            state.write(path)
+        return state
+
+    @classmethod
+    def restore(cls, state, laws=None, callback=None, every_steps=None, every_time=None):
+        """A simulation that continues ``state`` (a :class:`SimulationState`, its bytes, or the path of a
+        file :meth:`save` wrote) as the saved one would have, bit for bit. ``laws``: the laws written in
+        Python of the joint sets that had them (a state in memory carries them); ``callback`` and its
+        period as in the constructor."""
+        if isinstance(state, SimulationState):
+            data, given = state.data, dict(state.laws)
+        elif isinstance(state, (bytes, bytearray)):
+            data, given = bytes(state), {}
+        else:
+            with open(_os.fspath(state), "rb") as f:
+                data, given = f.read(), {}
+        given.update(laws or {})
+        header = _rheodda._Simulation._state_header(data)
+        laws_now = {}
+        for name, saved in header["laws"].items():
+            if saved == "python":
+                if name not in given:
+                    raise Error("Simulation.restore: joint set '{}' had a law written in Python: give it with "
+                                "laws={{'{}': ...}}".format(name, name))
+                laws_now[name] = given[name]
+            else:
+                laws_now[name] = law(saved[0], saved[1])
+        sim = cls(parse_scene(header["scene"], header["file"]), laws=laws_now, callback=callback,
+                  every_steps=every_steps, every_time=every_time)
+        sim._sim._restore(data)
+        return sim
+
+    def __reduce__(self):
+        # pickle and copy: the saved state, and the callbacks with their periods (pickled by
+        # reference: a lambda or a local function cannot be pickled, and says so).
+        return (_unpickle_simulation, (self.save(), self._callbacks, self._main))
+
+    def __repr__(self):
+        return "<rheodda.Simulation '{}': t = {:g} of {:g} {}, {} steps{}>".format(
+            self.scene.title, self.time, self.duration, self.units["time"], self.step_count,
+            ", FAILED" if self.failed else "")
+
+
+def _unpickle_simulation(state, callbacks, main):
+    sim = Simulation.restore(state)
+    for c in callbacks:
+        c._sim = sim
+    sim._callbacks = list(callbacks)
+    sim._main = main
+    return sim
 
 
 def rheodda_binary():

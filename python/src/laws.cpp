@@ -337,6 +337,21 @@ void bind_laws(py::module_& m) {
       "stress, displacement = shear displacement. Build one with rheodda.law(name, {param: value}).")
       .def_property_readonly("name", [](const ContactRheology& l) { return std::string(l.name()); },
                              "the law's registry name, e.g. 'burgers'")
+      // pickle and copy: a built-in law is its name and parameters, made again by rheodda.law.
+      // A law written in Python is its subclass's to pickle (define __reduce__ there).
+      .def("__reduce__",
+           [](const py::object& self) {
+             if (!self.get_type().is(py::type::of<ContactRheology>()))
+               throw py::type_error(fmt::format(
+                   "cannot pickle the law written in Python '{}' ({}): define __reduce__ in its class",
+                   self.cast<const ContactRheology&>().name(),
+                   py::str(self.get_type().attr("__qualname__")).cast<std::string>()));
+             const auto& l = self.cast<const ContactRheology&>();
+             py::dict p;
+             for (const auto& [k, v] : l.parameters()) p[py::str(k)] = v;
+             return py::make_tuple(py::module_::import("rheodda._scripting").attr("_make_law"),
+                                   py::make_tuple(std::string(l.name()), p));
+           })
       .def_property_readonly(
           "parameters",
           [](const ContactRheology& l) {

@@ -96,6 +96,12 @@ void bind_scene(py::module_& m) {
                              "the measurement points' names")
       .def_property_readonly("load_count", [](const Scene& s) { return s.description.loads.size(); },
                              "the number of loads (indices of Simulation.set_load)")
+      // pickle and copy: a scene is its text and file name, parsed again (and so validated again).
+      .def("__reduce__",
+           [](const Scene& s) {
+             return py::make_tuple(py::module_::import("rheodda._scripting").attr("_make_scene"),
+                                   py::make_tuple(s.text, s.description.file));
+           })
       .def("describe", [](const Scene& s) { return scene::describe_scene(s.description); },
            "What `rheodda check` prints: the scene with every default filled in")
       .def("__repr__", [](const Scene& s) {

@@ -5,7 +5,8 @@ import sys
 
 import pytest
 
-EXAMPLES = ["fit_lab_curve.py", "sweep_parameter.py", "load_in_a_loop.py", "burgers_in_python.py"]
+EXAMPLES = ["fit_lab_curve.py", "sweep_parameter.py", "load_in_a_loop.py", "burgers_in_python.py",
+            "what_if_friction.py"]
 
 
 @pytest.mark.parametrize("script", EXAMPLES)

@@ -170,7 +170,7 @@ def test_state_as_numpy_arrays(yaml_scene):
     assert sim.block_vertices("A").shape == (4, 2)
     c = sim.contacts()
     assert len(c["id"]) == 2 and list(c["state"]) == ["locked", "locked"]
-    assert sim.joint_sets[c["joint_set"][0]] == "plane"
+    assert sim.joint_sets[c["joint_set"][0]].name == "plane"
     # the joint's mean shear displacement in the history is the contacts' mean
     assert sim.history()["plane.shear_displacement"][-1] == pytest.approx(c["shear_displacement"].mean(), rel=1e-14)
     # each contact's creep displacement is the sum of its law's internal displacements

@@ -89,6 +89,8 @@ StagePoint read_stage_point(const Ctx& ctx, const MapReader& m, const SceneDescr
   return p;
 }
 
+}  // namespace
+
 /// A stage's `joint_sets: {NAME: {...}}`.
 std::vector<StageJointSet> read_stage_joint_sets(const Ctx& ctx, const YAML::Node& n, const std::string& path,
                                                  const SceneDescription& s) {
@@ -128,8 +130,6 @@ std::vector<StageJointSet> read_stage_joint_sets(const Ctx& ctx, const YAML::Nod
   }
   return out;
 }
-
-}  // namespace
 
 void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s) {
   if (!n.IsSequence() || n.size() == 0) ctx.fail(n, "stages", "expected a non-empty list of stages");

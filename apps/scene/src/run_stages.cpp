@@ -10,8 +10,8 @@
 #include <cmath>
 #include <limits>
 
-#include "rheodda/laws/registry.hpp"
 #include "rheodda/scene/build.hpp"
+#include "rheodda/scene/edits.hpp"
 #include "rheodda/scene/geometry.hpp"
 #include "rheodda/scene/water.hpp"
 #include "run_internal.hpp"
@@ -59,18 +59,6 @@ std::string scene_key(std::string key) {
       if (const std::size_t at = key.find(engine_word); at != std::string::npos)
         key.replace(at, engine_word.size(), scene_word);
   return key;
-}
-
-/// The joint set `c` makes of the contact system's current one.
-contact::JointSet changed_joint_set(const contact::JointSet& now, const StageJointSet& c) {
-  contact::JointSet j = now;
-  if (c.friction_angle) j.friction_angle = *c.friction_angle;
-  if (c.cohesion) j.cohesion = *c.cohesion;
-  if (c.tensile_strength) j.tensile_strength = *c.tensile_strength;
-  if (c.residual_friction_angle) j.residual_friction_angle = *c.residual_friction_angle;
-  if (c.residual_cohesion) j.residual_cohesion = *c.residual_cohesion;
-  if (c.law_name) j.law = laws::LawRegistry::builtin().create(*c.law_name, c.law_parameters);
-  return j;
 }
 
 /// The block on which the point `p` of a stage's bolt end stands now (its `block:`

@@ -28,6 +28,10 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n);
 std::vector<Material> read_materials(const Ctx& ctx, const YAML::Node& n, bool dynamic_steps);
 /// A joint set's `law:` (read_joint_sets.cpp).
 LawChoice read_law(const Ctx& ctx, const YAML::Node& n, const std::string& path);
+/// A stage's `joint_sets: {NAME: {...}}` (load_stages.cpp); also the joint set
+/// changes of the Python scripting API (joint_set_changes.cpp).
+std::vector<StageJointSet> read_stage_joint_sets(const Ctx& ctx, const YAML::Node& n, const std::string& path,
+                                                 const SceneDescription& s);
 /// `joint_sets:` (read_joint_sets.cpp).
 std::vector<JointSetDescription> read_joint_sets(const Ctx& ctx, const YAML::Node& n, bool dynamic_steps);
 /// `blocks:` (read_blocks.cpp).
