@@ -23,6 +23,38 @@ bool on_block(const std::vector<Vec2>& v, const Vec2& p) {
 
 }  // namespace
 
+void validate_bolt_values(const Bolt& b, const std::string& key) {
+  if (b.block_a == b.block_b) throw ModelError(key + ".block_b", "a bolt joins two blocks, not a block to itself");
+  if (!((b.point_b - b.point_a).norm() > 0.0) || !(b.installed_length >= 0.0))
+    throw ModelError(key + ".point_b", "the two ends coincide: a bolt needs a length");
+  if (!(b.axial_stiffness > 0.0 && std::isfinite(b.axial_stiffness)))
+    throw ModelError(key + ".axial_stiffness", "must be > 0 (force/length)");
+  if (!(b.yield_force > 0.0)) throw ModelError(key + ".yield_force", "must be > 0 (force)");
+  if (!(b.rupture_elongation > 0.0)) throw ModelError(key + ".rupture_elongation", "must be > 0 (length)");
+  if (!std::isfinite(b.pretension) || std::abs(b.pretension) > b.yield_force)
+    throw ModelError(key + ".pretension", "must be finite and within the yield force (force)");
+  if (b.pretension / b.axial_stiffness >= b.rupture_elongation)
+    throw ModelError(key + ".pretension", "stretches the bolt beyond its rupture elongation when installed");
+  if (b.law) {
+    if (const auto e1 = b.law->instantaneous_stiffness();
+        e1 && std::abs(*e1 - b.axial_stiffness) > 1e-12 * b.axial_stiffness)
+      throw ModelError(key + ".law", "the law's instantaneous stiffness E1 (" + std::to_string(*e1) +
+                                         ") is the bolt's spring and must equal axial_stiffness (" +
+                                         std::to_string(b.axial_stiffness) + ")");
+    if (b.law->failure_time(1.0))
+      throw ModelError(key + ".law", "a damage law's failure is not modelled on a bolt; use rupture_elongation");
+  }
+}
+
+void validate_bolt_settings(const Settings& s) {
+  if (s.step_tolerance > 0.0)
+    throw ModelError("settings.step_tolerance", "step doubling does not carry bolts (docs/reference/bolts.md, \"Limits\")");
+  if (s.contact_solver == ContactSolver::newton)
+    throw ModelError("settings.contact_solver",
+                     "the newton contact solve's residual does not hold the bolts' forces; use open_close "
+                     "(docs/reference/bolts.md, \"Limits\")");
+}
+
 void validate_bolts(const Model& m) {
   const int blocks = static_cast<int>(m.blocks.size());
   for (std::size_t k = 0; k < m.bolts.size(); ++k) {
@@ -38,36 +70,9 @@ void validate_bolts(const Model& m) {
     };
     end("a", b.block_a, b.point_a, false);
     end("b", b.block_b, b.point_b, true);
-    if (b.block_a == b.block_b) throw ModelError(key + ".block_b", "a bolt joins two blocks, not a block to itself");
-    if (!((b.point_b - b.point_a).norm() > 0.0))
-      throw ModelError(key + ".point_b", "the two ends coincide: a bolt needs a length");
-    if (!(b.axial_stiffness > 0.0 && std::isfinite(b.axial_stiffness)))
-      throw ModelError(key + ".axial_stiffness", "must be > 0 (force/length)");
-    if (!(b.yield_force > 0.0)) throw ModelError(key + ".yield_force", "must be > 0 (force)");
-    if (!(b.rupture_elongation > 0.0))
-      throw ModelError(key + ".rupture_elongation", "must be > 0 (length)");
-    if (!std::isfinite(b.pretension) || std::abs(b.pretension) > b.yield_force)
-      throw ModelError(key + ".pretension", "must be finite and within the yield force (force)");
-    if (b.pretension / b.axial_stiffness >= b.rupture_elongation)
-      throw ModelError(key + ".pretension", "stretches the bolt beyond its rupture elongation at t = 0");
-    if (b.law) {
-      if (const auto e1 = b.law->instantaneous_stiffness();
-          e1 && std::abs(*e1 - b.axial_stiffness) > 1e-12 * b.axial_stiffness)
-        throw ModelError(key + ".law", "the law's instantaneous stiffness E1 (" + std::to_string(*e1) +
-                                           ") is the bolt's spring and must equal axial_stiffness (" +
-                                           std::to_string(b.axial_stiffness) + ")");
-      if (b.law->failure_time(1.0))
-        throw ModelError(key + ".law", "a damage law's failure is not modelled on a bolt; use rupture_elongation");
-    }
+    validate_bolt_values(b, key);
   }
-  if (m.bolts.empty()) return;
-  const Settings& s = m.settings;
-  if (s.step_tolerance > 0.0)
-    throw ModelError("settings.step_tolerance", "step doubling does not carry bolts (docs/reference/bolts.md, \"Limits\")");
-  if (s.contact_solver == ContactSolver::newton)
-    throw ModelError("settings.contact_solver",
-                     "the newton contact solve's residual does not hold the bolts' forces; use open_close "
-                     "(docs/reference/bolts.md, \"Limits\")");
+  if (!m.bolts.empty()) validate_bolt_settings(m.settings);
 }
 
 }  // namespace rheodda::core

@@ -23,10 +23,13 @@ std::pair<Vec2, Vec2> ends(const Bolt& bolt, const std::vector<BlockState>& bloc
   return {a, b};
 }
 
-/// Unstressed length L_rest = L0 - pretension / k (bolt.hpp) [length].
-double rest_length(const Bolt& bolt) {
-  return (bolt.point_b - bolt.point_a).norm() - bolt.pretension / bolt.axial_stiffness;
+/// Length when installed, L0 (Bolt::installed_length) [length].
+double installed_length(const Bolt& bolt) {
+  return bolt.installed_length > 0.0 ? bolt.installed_length : (bolt.point_b - bolt.point_a).norm();
 }
+
+/// Unstressed length L_rest = L0 - pretension / k (bolt.hpp) [length].
+double rest_length(const Bolt& bolt) { return installed_length(bolt) - bolt.pretension / bolt.axial_stiffness; }
 
 /// Relative margin of the yield checks, so that a force at N_y to round-off
 /// does not flip between the modes from one iterate to the next [-].
@@ -43,16 +46,18 @@ const char* bolt_mode_name(BoltMode m) {
   return "?";
 }
 
+BoltState BoltSet::installed_state(const Bolt& bolt) {
+  BoltState s;
+  s.length = installed_length(bolt);
+  s.elongation = s.length - rest_length(bolt);  // = pretension / k
+  s.force = bolt.pretension;
+  s.state = std::abs(s.force) >= bolt.yield_force ? BoltMode::yielding : BoltMode::elastic;
+  return s;
+}
+
 std::vector<BoltState> BoltSet::initial_states(const Model& m) {
-  std::vector<BoltState> out(m.bolts.size());
-  for (std::size_t k = 0; k < m.bolts.size(); ++k) {
-    const Bolt& bolt = m.bolts[k];
-    BoltState& s = out[k];
-    s.length = (bolt.point_b - bolt.point_a).norm();
-    s.elongation = s.length - rest_length(bolt);  // = pretension / k
-    s.force = bolt.pretension;
-    s.state = std::abs(s.force) >= bolt.yield_force ? BoltMode::yielding : BoltMode::elastic;
-  }
+  std::vector<BoltState> out;
+  for (const Bolt& bolt : m.bolts) out.push_back(installed_state(bolt));
   return out;
 }
 

@@ -37,9 +37,10 @@ struct BoltEnergy {
 
 class BoltSet {
  public:
-  /// The bolts' states at t = 0 (force = pretension); throws ModelError on a bolt
-  /// whose ends coincide.
+  /// The bolts' states at t = 0 (force = pretension).
   static std::vector<BoltState> initial_states(const Model& m);
+  /// The state of a bolt where it is installed: length L0, force = pretension.
+  static BoltState installed_state(const Bolt& bolt);
   /// Stored energy of the states [force x length].
   static double stored_energy(const Model& m, const std::vector<BoltState>& states);
 
@@ -81,5 +82,10 @@ class BoltSet {
 /// Refuses a model's bolts that are out of range (ModelError naming
 /// "bolts[k].key"), called by Engine::Impl::validate.
 void validate_bolts(const Model& m);
+/// Refuses a bolt whose values are out of range or whose two ends coincide
+/// (ModelError naming "<key>.field"); its ends' blocks and points are the caller's.
+void validate_bolt_values(const Bolt& b, const std::string& key);
+/// Refuses the settings that do not carry bolts (step doubling, the newton contact solve).
+void validate_bolt_settings(const Settings& s);
 
 }  // namespace rheodda::core

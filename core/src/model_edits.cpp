@@ -15,6 +15,7 @@
 #include <string>
 
 #include "engine_impl.hpp"
+#include "bolts.hpp"
 #include "rheodda/core/contact_adapter.hpp"
 
 namespace rheodda::core {
@@ -108,6 +109,21 @@ EditReport Engine::edit(const ModelEdit& e) {
         throw ModelError(key + ".history", "times must increase strictly");
     }
   }
+  for (std::size_t k = 0; k < e.add_bolts.size(); ++k) {
+    const Bolt& b = e.add_bolts[k];
+    const std::string key = at("add_bolts", k);
+    if (!e.material_points) {
+      check_point(key + ".a", b.block_a, b.point_a);
+      if (b.block_b >= 0) check_point(key + ".b", b.block_b, b.point_b);
+      if (!std::isfinite(b.point_b.x()) || !std::isfinite(b.point_b.y())) throw ModelError(key + ".b.point", "must be finite");
+    } else if (b.block_a < 0 || b.block_a >= n_blocks || gone[static_cast<std::size_t>(b.block_a)] ||
+               b.block_b >= n_blocks || (b.block_b >= 0 && gone[static_cast<std::size_t>(b.block_b)]) ||
+               !(b.installed_length > 0.0)) {
+      throw ModelError(key, "a replayed bolt needs blocks that stay and its installed length");
+    }
+    validate_bolt_values(b, key);  // bolt_checks.cpp
+  }
+  if (!e.add_bolts.empty()) validate_bolt_settings(m.model.settings);
   // Support: a model held by fixed points must keep one on a block that stays.
   {
     std::vector<char> dropped(m.model.fixed_points.size(), 0);
@@ -193,6 +209,20 @@ EditReport Engine::edit(const ModelEdit& e) {
     report.replay.add_point_loads[k] = l;
     m.model.point_loads.push_back(std::move(l));
   }
+  // 3b. Bolts installed where their ends stand now: material points, and the
+  //     length now as the length they are installed at (bolt.hpp).
+  for (std::size_t k = 0; k < e.add_bolts.size(); ++k) {
+    Bolt b = e.add_bolts[k];
+    if (!e.material_points) {
+      const Vec2 a_now = b.point_a, b_now = b.point_b;
+      b.installed_length = (b_now - a_now).norm();
+      b.point_a = material_point(m.st.blocks[static_cast<std::size_t>(b.block_a)], a_now);
+      if (b.block_b >= 0) b.point_b = material_point(m.st.blocks[static_cast<std::size_t>(b.block_b)], b_now);
+    }
+    report.replay.add_bolts[k] = b;
+    m.st.bolts.push_back(BoltSet::installed_state(b));
+    m.model.bolts.push_back(std::move(b));
+  }
   // 4. Joint sets (the contact model checks them and keeps its records).
   for (const auto& [index, js] : e.joint_sets) m.contacts->set_joint_set(index, js);
   // 5. Static or dynamic from now on: a static step starts at rest (accept()).
@@ -232,7 +262,7 @@ EditReport Engine::edit(const ModelEdit& e) {
   now.kinetic = blocks.kinetic;
   now.strain = blocks.strain;
   now.fixed = blocks.fixed;
-  if (!report.bolts_removed.empty()) now.bolt = BoltSet::stored_energy(m.model, m.st.bolts);
+  if (!report.bolts_removed.empty() || !e.add_bolts.empty()) now.bolt = BoltSet::stored_energy(m.model, m.st.bolts);
   if (report.contacts_dropped > 0) {
     now.contact_normal = c.normal;
     now.contact_shear = c.shear;

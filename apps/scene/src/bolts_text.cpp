@@ -1,5 +1,6 @@
 // The bolts of a scene as `rheodda check` prints them (describe.cpp) and as
-// summary.json's "inputs" hold them (scene_json.cpp); scenes with bolts only.
+// summary.json's "inputs" hold them (scene_json.cpp), with a stage's bolts;
+// scenes with bolts only.
 #include <fmt/format.h>
 
 #include <nlohmann/json.hpp>
@@ -14,49 +15,67 @@ namespace {
 
 /// "block 'B' at (x, y)" or "fixed at (x, y)".
 std::string end_text(const SceneDescription& s, const BlockPoint& p, bool fixed) {
-  return fixed ? fmt::format("fixed at ({:g}, {:g})", p.point[0], p.point[1])
-               : fmt::format("({:g}, {:g}) on {}", p.point[0], p.point[1], s.blocks[p.block].name);
+  if (fixed) return fmt::format("fixed at ({:g}, {:g})", p.point[0], p.point[1]);
+  if (p.block < 0)  // a stage's end without `block:` (stages.hpp)
+    return fmt::format("({:g}, {:g}) on the block standing there", p.point[0], p.point[1]);
+  return fmt::format("({:g}, {:g}) on {}", p.point[0], p.point[1], s.blocks[p.block].name);
 }
 
 }  // namespace
 
 std::string describe_bolts(const SceneDescription& s) {
   if (s.bolts.empty()) return "";
-  const Units& u = s.units;
   std::string out = fmt::format("bolts: {}\n", s.bolts.size());
-  for (const auto& b : s.bolts) {
-    out += fmt::format("  {}: {} to {}", b.name, end_text(s, b.from, false), end_text(s, b.to, b.to_fixed));
-    // The declared plain keys (keys_bolts.cpp), in order; one not set as its default says ("never yields").
-    for (const EntryKey<BoltDescription>& k : bolt_keys()) {
-      if (k.map != "bolts" || k.type == KeyType::name || k.type == KeyType::map) continue;
-      const KeyValue v = k.get(b);
-      out += std::holds_alternative<std::monostate>(v) ? ", " + k.default_text
-                                                       : fmt::format(", {} {}", k.name, key_value_text(k, v, u));
-    }
-    if (b.law) {
-      out += fmt::format(", law {}", b.law->name);
-      for (const auto& [k, v] : b.law->parameters) out += fmt::format(" {}={:g}", k, v);
-    } else {
-      out += ", no creep";
-    }
-    out += '\n';
+  for (const auto& b : s.bolts) out += "  " + bolt_text(s, b) + '\n';
+  return out;
+}
+
+std::string bolt_text(const SceneDescription& s, const BoltDescription& b) {
+  const Units& u = s.units;
+  std::string out =
+      fmt::format("{}: {} to {}", b.name, end_text(s, b.from, false), end_text(s, b.to, b.to_fixed));
+  // The declared plain keys (keys_bolts.cpp), in order; one not set as its default says ("never yields").
+  for (const EntryKey<BoltDescription>& k : bolt_keys()) {
+    if (k.map != "bolts" || k.type == KeyType::name || k.type == KeyType::map) continue;
+    const KeyValue v = k.get(b);
+    out += std::holds_alternative<std::monostate>(v) ? ", " + k.default_text
+                                                     : fmt::format(", {} {}", k.name, key_value_text(k, v, u));
+  }
+  if (b.law) {
+    out += fmt::format(", law {}", b.law->name);
+    for (const auto& [k, v] : b.law->parameters) out += fmt::format(" {}={:g}", k, v);
+  } else {
+    out += ", no creep";
   }
   return out;
+}
+
+nlohmann::ordered_json bolt_json(const SceneDescription& s, const BoltDescription& b) {
+  // The declared keys (keys_bolts.cpp); the ends and the law as their readers read them.
+  return detail::entry_json(bolt_keys(), "bolts", b, [&](const KeyInfo& k) -> nlohmann::ordered_json {
+    if (k.name == "law") return detail::law_json(b.law);
+    if (k.name == "to" && b.to_fixed) return {{"fixed", b.to.point}};
+    const BlockPoint& p = k.name == "from" ? b.from : b.to;
+    nlohmann::ordered_json j = {{"point", p.point}};
+    if (p.block >= 0) j["block"] = s.blocks[p.block].name;  // left out: a stage's end found where it stands
+    return j;
+  });
 }
 
 void add_bolts_json(const SceneDescription& s, nlohmann::ordered_json& j) {
   if (s.bolts.empty()) return;  // a scene without bolts: its "inputs" as before
   j["bolts"] = nlohmann::ordered_json::array();
-  for (const auto& b : s.bolts) {
-    // The declared keys (keys_bolts.cpp), the ends and the law as their readers read them.
-    const nlohmann::ordered_json e = detail::entry_json(bolt_keys(), "bolts", b, [&](const KeyInfo& k) {
-      if (k.name == "law") return detail::law_json(b.law);
-      const BlockPoint& p = k.name == "from" ? b.from : b.to;
-      if (k.name == "to" && b.to_fixed) return nlohmann::ordered_json{{"fixed", p.point}};
-      return nlohmann::ordered_json{{"point", p.point}, {"block", s.blocks[p.block].name}};
-    });
-    j["bolts"].push_back(e);
-  }
+  for (const auto& b : s.bolts) j["bolts"].push_back(bolt_json(s, b));
 }
+
+std::vector<const BoltDescription*> all_bolts(const SceneDescription& s) {
+  std::vector<const BoltDescription*> out;
+  for (const auto& b : s.bolts) out.push_back(&b);
+  for (const auto& st : s.stages)
+    for (const auto& b : st.add_bolts) out.push_back(&b);
+  return out;
+}
+
+bool has_bolts(const SceneDescription& s) { return !all_bolts(s).empty(); }
 
 }  // namespace rheodda::scene

@@ -139,19 +139,7 @@ BuiltScene build_scene(const SceneDescription& s) {
   for (const auto& mp : s.measurement_points)
     m.measurement_points.push_back({mp.at.block, {mp.at.point[0], mp.at.point[1]}});
   if (s.water) m.water = build_water(*s.water, s);  // water.hpp
-  for (const auto& b : s.bolts) {  // docs/reference/bolts.md; core/include/rheodda/core/bolt.hpp
-    core::Bolt bolt;
-    bolt.block_a = b.from.block;
-    bolt.point_a = {b.from.point[0], b.from.point[1]};
-    bolt.block_b = b.to_fixed ? -1 : b.to.block;
-    bolt.point_b = {b.to.point[0], b.to.point[1]};
-    bolt.axial_stiffness = b.axial_stiffness;
-    bolt.pretension = b.pretension;
-    if (b.yield_force) bolt.yield_force = *b.yield_force;
-    if (b.rupture_elongation) bolt.rupture_elongation = *b.rupture_elongation;
-    if (b.law) bolt.law = laws::LawRegistry::builtin().create(b.law->name, b.law->parameters);
-    m.bolts.push_back(std::move(bolt));
-  }
+  for (const auto& b : s.bolts) m.bolts.push_back(build_bolt(b));  // docs/reference/bolts.md
 
   core::Settings& st = m.settings;
   st.dt = a.dt;
@@ -230,6 +218,20 @@ BuiltScene build_scene(const SceneDescription& s) {
   }
   out.warnings = scene_warnings(s);
   return out;
+}
+
+core::Bolt build_bolt(const BoltDescription& b) {
+  core::Bolt bolt;
+  bolt.block_a = b.from.block;
+  bolt.point_a = {b.from.point[0], b.from.point[1]};
+  bolt.block_b = b.to_fixed ? -1 : b.to.block;
+  bolt.point_b = {b.to.point[0], b.to.point[1]};
+  bolt.axial_stiffness = b.axial_stiffness;
+  bolt.pretension = b.pretension;
+  if (b.yield_force) bolt.yield_force = *b.yield_force;
+  if (b.rupture_elongation) bolt.rupture_elongation = *b.rupture_elongation;
+  if (b.law) bolt.law = laws::LawRegistry::builtin().create(b.law->name, b.law->parameters);
+  return bolt;
 }
 
 }  // namespace rheodda::scene

@@ -284,6 +284,7 @@ std::string describe_scene(const SceneDescription& s) {
       }
       if (!st.add_fixed_points.empty()) did.push_back(fmt::format("add {} fixed points", st.add_fixed_points.size()));
       if (!st.add_loads.empty()) did.push_back(fmt::format("add {} loads", st.add_loads.size()));
+      for (const BoltDescription& b : st.add_bolts) did.push_back("install bolt " + bolt_text(s, b));
       for (const StageJointSet& c : st.joint_sets)
         did.push_back(fmt::format("change joint set {}", s.joint_sets[static_cast<std::size_t>(c.joint_set)].name));
       if (st.dynamic_ratio)

@@ -32,7 +32,8 @@ const std::vector<DeclaredMap>& declared_maps() {
       declared("analysis.settle", {"analysis.settle"}, &analysis_keys),
       declared("materials", {"materials.*"}, &material_keys),
       declared("joint_sets", {"joint_sets.*"}, &joint_set_keys),
-      declared("law", {"joint_sets.*.law", "bolts[*].law", "stages[*].joint_sets.*.law"}, &law_keys),
+      declared("law", {"joint_sets.*.law", "bolts[*].law", "stages[*].joint_sets.*.law", "stages[*].add_bolts[*].law"},
+               &law_keys),
       declared("blocks", {"blocks[*]"}, &block_keys),
       declared("blocks.rectangle", {"blocks[*].rectangle"}, &rectangle_keys),
       declared("blocks.grid", {"blocks[*].grid"}, &grid_keys),
@@ -44,9 +45,9 @@ const std::vector<DeclaredMap>& declared_maps() {
       declared("measurement_points", {"measurement_points[*]"}, &measurement_point_keys),
       declared("water", {"water"}, &water_keys),
       declared("water.surface_history", {"water.surface_history[*]"}, &water_sample_keys),
-      declared("bolts", {"bolts[*]"}, &bolt_keys),
-      declared("bolts.from", {"bolts[*].from"}, &bolt_end_keys),
-      declared("bolts.to", {"bolts[*].to"}, &bolt_to_keys),
+      declared("bolts", {"bolts[*]", "stages[*].add_bolts[*]"}, &bolt_keys),
+      declared("bolts.from", {"bolts[*].from", "stages[*].add_bolts[*].from"}, &bolt_end_keys),
+      declared("bolts.to", {"bolts[*].to", "stages[*].add_bolts[*].to"}, &bolt_to_keys),
   };
   return maps;
 }

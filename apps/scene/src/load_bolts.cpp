@@ -1,13 +1,16 @@
 // The `bolts:` section of a scene file (docs/reference/scene-format.md, "bolts";
-// docs/reference/bolts.md): each bolt's ends, stiffness, pretension, yield force, rupture
-// elongation and optional creep law, checked here so that the engine never
-// sees a bad one.
+// docs/reference/bolts.md), and the bolts a stage installs (`add_bolts:`,
+// docs/reference/stages.md): each bolt's ends, stiffness, pretension, yield force,
+// rupture elongation and optional creep law, checked here so that the engine
+// never sees a bad one (where a stage's ends stand is checked at the stage).
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
+#include "bolts_text.hpp"
 #include "read_keys.hpp"
 #include "scene_readers.hpp"
 
@@ -15,21 +18,48 @@ namespace rheodda::scene::detail {
 
 namespace {
 
+/// An end on a block of a bolt a stage installs: `{point, block}`; the point is
+/// where the end stands at the stage, which the loader cannot know: the engine
+/// checks it there, and a `block` left out (-1) is the block standing there then
+/// (run_stages.cpp).
+BlockPoint read_stage_end(const Ctx& ctx, const MapReader& m, const SceneDescription& s) {
+  BlockPoint bp;
+  bp.where = m.where();
+  bp.point = point(ctx, m.required("point", "[x, y] where the end stands at the stage [length]"), m.child("point"));
+  bp.block = -1;
+  if (const YAML::Node b = m.find("block"); b.IsDefined()) bp.block = resolve(ctx, b, m.child("block"), s.blocks, "block");
+  return bp;
+}
+
+}  // namespace
+
+std::vector<std::string> bolt_names(const SceneDescription& s) {
+  std::vector<std::string> out;
+  for (const BoltDescription* b : all_bolts(s)) out.push_back(b->name);  // bolts_text.cpp
+  return out;
+}
+
 BoltDescription read_bolt(const Ctx& ctx, const YAML::Node& n, const std::string& path, const SceneDescription& s,
-                          double tol) {
+                          const std::vector<std::string>& taken, bool at_stage) {
+  const double tol = geometry_tolerance(s.blocks);
   const MapReader m(ctx, n, path, key_names(bolt_keys(), "bolts"));
   BoltDescription b;
   b.where = m.where();
   // name, axial_stiffness, pretension, yield_force, rupture_elongation (keys_bolts.cpp).
   read_declared(ctx, m, bolt_keys(), "bolts", b);
-  for (const auto& other : s.bolts)
-    if (other.name == b.name)
-      ctx.fail(m.find("name"), m.child("name"), fmt::format("bolt '{}' is defined twice", b.name));
+  if (std::find(taken.begin(), taken.end(), b.name) != taken.end())
+    ctx.fail(m.find("name"), m.child("name"), fmt::format("bolt '{}' is defined twice", b.name));
+  auto read_end = [&](const MapReader& e) {
+    return at_stage ? read_stage_end(ctx, e, s) : read_block_point(ctx, e, s, tol);
+  };
+  const char* installed = at_stage ? "at the stage" : "at t = 0";
 
-  const MapReader from(ctx, required_key(m, bolt_keys(), "bolts", "from"), m.child("from"), key_names(bolt_end_keys(), "bolts.from"));
-  b.from = read_block_point(ctx, from, s, tol);
+  const MapReader from(ctx, required_key(m, bolt_keys(), "bolts", "from"), m.child("from"),
+                       key_names(bolt_end_keys(), "bolts.from"));
+  b.from = read_end(from);
 
-  const MapReader to(ctx, required_key(m, bolt_keys(), "bolts", "to"), m.child("to"), key_names(bolt_to_keys(), "bolts.to"));
+  const MapReader to(ctx, required_key(m, bolt_keys(), "bolts", "to"), m.child("to"),
+                     key_names(bolt_to_keys(), "bolts.to"));
   if (const YAML::Node fixed = to.find("fixed"); fixed.IsDefined()) {
     if (to.has("point") || to.has("block"))
       ctx.fail(to.node(), to.child("fixed"),
@@ -39,8 +69,8 @@ BoltDescription read_bolt(const Ctx& ctx, const YAML::Node& n, const std::string
     b.to.block = -1;
     b.to.where = location(fixed);
   } else {
-    b.to = read_block_point(ctx, to, s, tol);
-    if (b.to.block == b.from.block)
+    b.to = read_end(to);
+    if (b.to.block >= 0 && b.to.block == b.from.block)
       ctx.fail(to.node(), to.child("block"),
                fmt::format("both ends are on block '{}': a bolt joins two blocks, or a block and a fixed point",
                            s.blocks[b.to.block].name));
@@ -76,21 +106,18 @@ BoltDescription read_bolt(const Ctx& ctx, const YAML::Node& n, const std::string
                fmt::format("{:g} exceeds the yield force {:g}", b.pretension, *b.yield_force));
     if (b.rupture_elongation && b.pretension / b.axial_stiffness >= *b.rupture_elongation)
       ctx.fail(v, m.child("pretension"),
-               fmt::format("stretches the bolt by {:g} at t = 0, not below its rupture_elongation {:g}",
-                           b.pretension / b.axial_stiffness, *b.rupture_elongation));
+               fmt::format("stretches the bolt by {:g} {}, not below its rupture_elongation {:g}",
+                           b.pretension / b.axial_stiffness, installed, *b.rupture_elongation));
   }
   return b;
 }
-
-}  // namespace
 
 void read_bolts(const Ctx& ctx, const MapReader& top, SceneDescription& s) {
   const YAML::Node n = top.find("bolts");
   if (!n.IsDefined() || n.IsNull()) return;
   if (!n.IsSequence()) ctx.fail(n, "bolts", fmt::format("expected a list of bolts, got {}", type_word(n)));
-  const double tol = geometry_tolerance(s.blocks);
   for (std::size_t i = 0; i < n.size(); ++i)
-    s.bolts.push_back(read_bolt(ctx, n[i], fmt::format("bolts[{}]", i), s, tol));
+    s.bolts.push_back(read_bolt(ctx, n[i], fmt::format("bolts[{}]", i), s, bolt_names(s), false));
 }
 
 }  // namespace rheodda::scene::detail

@@ -272,6 +272,31 @@ void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s) {
     };
     read_points_of("add_fixed_points", false, st.add_fixed_points, st.add_fixed_points_where);
     read_points_of("add_loads", true, st.add_loads, st.add_loads_where);
+    if (YAML::Node v = m.find("add_bolts"); v.IsDefined()) {  // docs/reference/stages.md, "Bolts"
+      st.add_bolts_where = location(v);
+      if (!v.IsSequence() || v.size() == 0) ctx.fail(v, m.child("add_bolts"), "expected a non-empty list of bolts");
+      std::vector<std::string> taken = bolt_names(s);
+      for (std::size_t k = 0; k < v.size(); ++k) {
+        const std::string bp = fmt::format("{}[{}]", m.child("add_bolts"), k);
+        BoltDescription b = read_bolt(ctx, v[k], bp, s, taken, true);
+        for (const auto& [end, key] : {std::pair<const BlockPoint*, const char*>{&b.from, "from"}, {&b.to, "to"}})
+          if (end->block >= 0 && removed[static_cast<std::size_t>(end->block)])
+            ctx.fail(v[k][key]["block"], fmt::format("{}.{}.block", bp, key),
+                     fmt::format("block '{}' is removed by then (stage '{}')",
+                                 s.blocks[static_cast<std::size_t>(end->block)].name,
+                                 removed_by[static_cast<std::size_t>(end->block)]));
+        taken.push_back(b.name);
+        st.add_bolts.push_back(std::move(b));
+      }
+      // What the engine refuses for every bolt, refused here at the stage's line (bolt_checks.cpp).
+      if (a.contact_solver == ContactSolverKind::newton)
+        ctx.fail(v, m.child("add_bolts"),
+                 "the newton contact solve's residual does not hold the bolts' forces: give analysis.contact_solver: "
+                 "open_close (docs/reference/bolts.md, \"Limits\")");
+      if (a.step_tolerance > 0.0)
+        ctx.fail(v, m.child("add_bolts"),
+                 "step doubling (analysis.step_tolerance) does not carry bolts (docs/reference/bolts.md, \"Limits\")");
+    }
     // Support: a model held by fixed points keeps one (Engine::edit checks it again).
     const bool had_support = !s.fixed_points.empty() || std::any_of(s.blocks.begin(), s.blocks.end(),
                                                                     [](const BlockDescription& b) { return b.fixed; });

@@ -1,5 +1,6 @@
 // What a run writes of its bolts (docs/reference/outputs.md, "bolts.csv"; docs/reference/bolts.md),
-// only when the scene has bolts: a row per bolt at every output time in
+// only when the scene has bolts: a row per bolt in place (from the stage that
+// installs it, for a stage's bolts) at every output time in
 // bolts.csv, and a layer of lines frames/bolts_NNNNNN.vtp listed by bolts.pvd.
 #include <fmt/format.h>
 
@@ -26,12 +27,11 @@ std::string bolts_file(const std::string& blocks_file) {
   return f;
 }
 
-/// The two ends of bolt k now [length].
+/// The two ends of bolt k now [length] (the engine's bolt: material points, bolt.hpp).
 std::pair<core::Vec2, core::Vec2> bolt_ends(const Run& run, std::size_t k) {
-  const BoltDescription& b = run.s.bolts[k];
-  const core::Vec2 a = run.engine.point_position(b.from.block, {b.from.point[0], b.from.point[1]});
-  const core::Vec2 p{b.to.point[0], b.to.point[1]};
-  return {a, b.to_fixed ? p : run.engine.point_position(b.to.block, p)};
+  const core::Bolt& b = run.engine.model().bolts[k];
+  const core::Vec2 a = run.engine.point_position(b.block_a, b.point_a);
+  return {a, b.block_b < 0 ? b.point_b : run.engine.point_position(b.block_b, b.point_b)};
 }
 
 /// The bolts as VTK PolyData lines, with their force, elongation and state as cell data.
@@ -71,7 +71,7 @@ std::string vtk_bolts(const Run& run) {
 }  // namespace
 
 void refuse_resume_with_bolts(const SceneDescription& s, const RunOptions& o) {
-  if (o.resume && !s.bolts.empty())
+  if (o.resume && has_bolts(s))
     throw std::invalid_argument(fmt::format(
         "--resume: {} has bolts, whose states a checkpoint does not hold yet (docs/reference/bolts.md, \"Limits\"); "
         "nothing was changed: run again without --resume",
@@ -88,6 +88,7 @@ void create_bolts_csv(Run& run) {
 
 void write_bolts_frame(Run& run, const std::string& blocks_file) {
   const core::Engine& e = run.engine;
+  const std::vector<const BoltDescription*> bolts = all_bolts(run.s);  // the engine's order (bolts_text.hpp)
   std::string rows;
   for (std::size_t k = 0; k < e.bolts().size(); ++k) {
     const core::BoltState& b = e.bolts()[k];
@@ -98,9 +99,9 @@ void write_bolts_frame(Run& run, const std::string& blocks_file) {
                                   {"length", b.length}})
       if (!std::isfinite(v))
         throw NonFinite(fmt::format("bolts.csv column '{}' of bolt '{}' is not finite at step {} (t = {:g} {})",
-                                    name, run.s.bolts[k].name, e.step_count(), e.time(), run.s.units.time));
+                                    name, bolts[k]->name, e.step_count(), e.time(), run.s.units.time));
     rows += fmt::format("{:.10g},{},{},{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{}\n", e.time(), e.step_count(),
-                        run.s.bolts[k].name, core::bolt_mode_name(b.state), b.force, b.elongation,
+                        bolts[k]->name, core::bolt_mode_name(b.state), b.force, b.elongation,
                         b.plastic_elongation, b.creep_elongation(), b.length,
                         b.state == core::BoltMode::ruptured ? fmt::format("{:.10g}", b.rupture_time) : "");
   }

@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "bolts_text.hpp"
 #include "checkpoint_state.hpp"
 #include "rheodda/contact/contact_system.hpp"
 #include "rheodda/core/engine.hpp"

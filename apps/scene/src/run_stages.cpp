@@ -8,8 +8,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "rheodda/laws/registry.hpp"
+#include "rheodda/scene/build.hpp"
+#include "rheodda/scene/geometry.hpp"
 #include "rheodda/scene/water.hpp"
 #include "run_internal.hpp"
 
@@ -31,17 +34,30 @@ SourceLocation where_of(const StageDescription& st, const std::string& key) {
   if (starts("remove_point_loads")) return st.remove_loads_where;
   if (starts("add_fixed_points")) return point_at(st.add_fixed_points, st.add_fixed_points_where);
   if (starts("add_point_loads")) return point_at(st.add_loads, st.add_loads_where);
+  if (starts("add_bolts")) {
+    const std::size_t open = key.find('['), close = key.find(']');
+    const std::size_t k = open != std::string::npos && close != std::string::npos
+                              ? std::stoul(key.substr(open + 1, close - open - 1))
+                              : st.add_bolts.size();
+    return k < st.add_bolts.size() ? st.add_bolts[k].where : st.add_bolts_where;
+  }
   if (starts("joint_sets")) return st.joint_sets_where;
   if (starts("settle")) return st.settle_where;
   if (starts("water")) return st.water_where;
   return st.where;
 }
 
-/// The scene's word for the engine's key (point loads are `loads` in a scene).
+/// The scene's word for the engine's key (point loads are `loads` in a scene, a
+/// bolt's ends `from` and `to`).
 std::string scene_key(std::string key) {
   for (const auto& [engine_word, scene_word] :
        {std::pair<std::string, std::string>{"remove_point_loads", "remove_loads"}, {"add_point_loads", "add_loads"}})
     if (key.rfind(engine_word, 0) == 0) key.replace(0, engine_word.size(), scene_word);
+  if (key.rfind("add_bolts[", 0) == 0)
+    for (const auto& [engine_word, scene_word] :
+         {std::pair<std::string, std::string>{"].a.", "].from."}, {"].b.", "].to."}})
+      if (const std::size_t at = key.find(engine_word); at != std::string::npos)
+        key.replace(at, engine_word.size(), scene_word);
   return key;
 }
 
@@ -55,6 +71,40 @@ contact::JointSet changed_joint_set(const contact::JointSet& now, const StageJoi
   if (c.residual_cohesion) j.residual_cohesion = *c.residual_cohesion;
   if (c.law_name) j.law = laws::LawRegistry::builtin().create(*c.law_name, c.law_parameters);
   return j;
+}
+
+/// The block on which the point `p` of a stage's bolt end stands now (its `block:`
+/// left out): the one block that stays whose polygon holds it, to a billionth of
+/// the model; none or several stop the run at the end's line.
+int block_standing_at(const Run& run, const BlockPoint& p, const std::string& key) {
+  const core::Engine& e = run.engine;
+  std::vector<std::vector<Point>> now(static_cast<std::size_t>(e.block_count()));
+  double lo = std::numeric_limits<double>::max(), hi = std::numeric_limits<double>::lowest();
+  for (int b = 0; b < e.block_count(); ++b)
+    for (const core::Vec2& v : e.vertices(b)) {
+      now[static_cast<std::size_t>(b)].push_back({v.x(), v.y()});
+      lo = std::min({lo, v.x(), v.y()});
+      hi = std::max({hi, v.x(), v.y()});
+    }
+  const double tol = 1e-9 * (hi - lo);
+  std::vector<std::string> hits;
+  int found = -1;
+  for (int b = 0; b < e.block_count(); ++b)
+    if (!e.removed(b) && contains(now[static_cast<std::size_t>(b)], p.point, tol)) {
+      found = b;
+      hits.push_back(run.s.blocks[static_cast<std::size_t>(b)].name);
+    }
+  const std::string stage = run.s.stages[run.stage_run.next].name;
+  if (hits.empty())
+    throw SceneError(run.s.file, p.where, key,
+                     fmt::format("stage '{}' at t = {:g} {}: ({:g}, {:g}) lies on no block where the blocks stand now",
+                                 stage, e.time(), run.s.units.time, p.point[0], p.point[1]));
+  if (hits.size() > 1)
+    throw SceneError(run.s.file, p.where, key,
+                     fmt::format("stage '{}' at t = {:g} {}: ({:g}, {:g}) lies on the boundary of several blocks "
+                                 "({}); say which with `block:`",
+                                 stage, e.time(), run.s.units.time, p.point[0], p.point[1], fmt::join(hits, ", ")));
+  return found;
 }
 
 /// Applies stage run.stage_run.next to the engine and records it.
@@ -79,6 +129,18 @@ void apply_stage(Run& run) {
     // Load history times count from the stage's start.
     for (const auto& h : p.history) l.history.push_back({engine.time() + h[0], {h[1], h[2]}});
     e.add_point_loads.push_back(std::move(l));
+  }
+  for (std::size_t k = 0; k < st.add_bolts.size(); ++k) {  // build.hpp
+    BoltDescription b = st.add_bolts[k];
+    const std::string key = fmt::format("stages[{}].add_bolts[{}]", index, k);
+    if (b.from.block < 0) b.from.block = block_standing_at(run, b.from, key + ".from.point");
+    if (!b.to_fixed && b.to.block < 0) b.to.block = block_standing_at(run, b.to, key + ".to.point");
+    if (b.from.block == b.to.block)
+      throw SceneError(run.s.file, b.to.where, key + ".to",
+                       fmt::format("stage '{}': both ends are on block '{}' where they stand now: a bolt joins two "
+                                   "blocks, or a block and a fixed point",
+                                   st.name, run.s.blocks[static_cast<std::size_t>(b.to.block)].name));
+    e.add_bolts.push_back(build_bolt(b));
   }
   for (const StageJointSet& c : st.joint_sets)
     e.joint_sets.emplace_back(c.joint_set,
@@ -132,6 +194,11 @@ void apply_stage(Run& run) {
     actions.push_back(fmt::format("removed {} bolts on the removed blocks", rep.bolts_removed.size()));
   if (!st.add_fixed_points.empty()) actions.push_back(fmt::format("added {} fixed points", st.add_fixed_points.size()));
   if (!st.add_loads.empty()) actions.push_back(fmt::format("added {} loads", st.add_loads.size()));
+  if (!st.add_bolts.empty()) {
+    std::vector<std::string> bolts;
+    for (const BoltDescription& b : st.add_bolts) bolts.push_back(b.name);
+    actions.push_back(fmt::format("installed {} bolts ({})", bolts.size(), fmt::join(bolts, ", ")));
+  }
   for (const StageJointSet& c : st.joint_sets)
     actions.push_back(
         fmt::format("changed joint set {}", run.s.joint_sets[static_cast<std::size_t>(c.joint_set)].name));

@@ -38,7 +38,7 @@ std::string make_history_header(const SceneDescription& s, const std::vector<int
     history_header += fmt::format(",{0}.contacts,{0}.shear_displacement,{0}.shear_force,{0}.shear_displacement_magnitude",
                                   s.joint_sets[j].name);
   for (const char* column : kHistoryEnergyColumns) history_header += fmt::format(",{}", column);
-  if (!s.bolts.empty()) history_header += ",energy_bolt,dissipation_bolt";  // docs/reference/bolts.md, "Energy"
+  if (has_bolts(s)) history_header += ",energy_bolt,dissipation_bolt";  // docs/reference/bolts.md, "Energy"
   if (!s.stages.empty()) history_header += ",stage";  // docs/reference/stages.md
   history_header += '\n';
   return history_header;
@@ -68,7 +68,7 @@ std::string history_row(const Run& run, const core::StepReport* r) {
   }
   // Energy balance (docs/reference/engine.md, "Energy balance"): stored energies now, flows since t = 0.
   for (const double v : history_energy_values(engine.energy())) row += fmt::format(",{:.10g}", v);
-  if (!s.bolts.empty())
+  if (has_bolts(s))
     row += fmt::format(",{:.10g},{:.10g}", engine.energy().stored.bolt, engine.energy().total.dissipation_bolt);
   if (!s.stages.empty()) row += "," + run.stage_run.current;  // the stage in force (docs/reference/stages.md)
   return row + '\n';
@@ -83,7 +83,7 @@ void create_csv_files(Run& run) {
                           (scene_has_water(run.s) ? contacts_header.substr(0, contacts_header.size() - 1) + ",water_pressure\n"
                                        : contacts_header));
   run.history.append(history_row(run, nullptr));
-  if (!run.s.bolts.empty()) create_bolts_csv(run);
+  if (has_bolts(run.s)) create_bolts_csv(run);
 }
 
 std::string frame_text(const Run& run) {
@@ -181,7 +181,7 @@ void write_frame(Run& run) {
   write_file_atomic((fs::path(out) / file).string(), text);
   write_file_atomic((fs::path(out) / contacts_file(file)).string(), layer);
   run.frames_bytes += text.size() + layer.size();
-  if (!s.bolts.empty()) write_bolts_frame(run, file);
+  if (has_bolts(s)) write_bolts_frame(run, file);
   run.pvd.emplace_back(engine.time(), file);
   run.frame_hash.push_back(frame_pair_hash(text, layer));
   write_collections(run);

@@ -56,6 +56,7 @@ json stages_json(const SceneDescription& s) {
     }
     if (!st.add_fixed_points.empty()) o["add_fixed_points"] = points(st.add_fixed_points, false);
     if (!st.add_loads.empty()) o["add_loads"] = points(st.add_loads, true);
+    for (const BoltDescription& b : st.add_bolts) o["add_bolts"].push_back(bolt_json(s, b));  // bolts_text.cpp
     for (const StageJointSet& c : st.joint_sets) {
       json js = json::object();
       if (c.friction_angle) js["friction_angle"] = *c.friction_angle;

@@ -18,7 +18,8 @@ const std::vector<std::string> top{"title", "units", "analysis", "materials", "j
                                    "water", "bolts", "stages"};
 const std::vector<std::string> units{"length", "force", "time"};
 const std::vector<std::string> stage{"name", "at", "after", "remove_fixed_points", "remove_loads", "remove_blocks",
-                                     "add_fixed_points", "add_loads", "joint_sets", "analysis", "settle", "water"};
+                                     "add_fixed_points", "add_loads", "add_bolts", "joint_sets", "analysis", "settle",
+                                     "water"};
 const std::vector<std::string> stage_remove_blocks{"names", "region", "rock_mass_inside"};
 const std::vector<std::string> stage_fixed_point{"name", "point", "block"};
 const std::vector<std::string> stage_load{"name", "point", "block", "force", "history"};
@@ -34,14 +35,13 @@ std::vector<SceneMapKeys> scene_schema() {
   std::vector<SceneMapKeys> schema{{"", detail::keys::top}, {"units", detail::keys::units}};
   for (const DeclaredMap& m : declared_maps())
     for (const std::string& path : m.schema_paths)
-      if (!path.starts_with("stages")) schema.push_back({path, declared_key_names(m.name)});
+      schema.push_back({path, declared_key_names(m.name)});
   const std::vector<SceneMapKeys> stages{
       {"stages[*]", detail::keys::stage},
       {"stages[*].remove_blocks", detail::keys::stage_remove_blocks},
       {"stages[*].add_fixed_points[*]", detail::keys::stage_fixed_point},
       {"stages[*].add_loads[*]", detail::keys::stage_load},
       {"stages[*].joint_sets.*", detail::keys::stage_joint_set},
-      {"stages[*].joint_sets.*.law", declared_key_names("law")},
       {"stages[*].analysis", detail::keys::stage_analysis},
   };
   schema.insert(schema.end(), stages.begin(), stages.end());

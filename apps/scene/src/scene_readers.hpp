@@ -48,6 +48,13 @@ WaterDescription read_water(const Ctx& ctx, const YAML::Node& n, const SceneDesc
 void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s);
 /// `bolts:` (load_bolts.cpp).
 void read_bolts(const Ctx& ctx, const MapReader& top, SceneDescription& s);
+/// One bolt (load_bolts.cpp): of `bolts:`, or installed by a stage (`at_stage`: each
+/// end on a block names its block, its point is where the block stands then);
+/// `taken`: the names of the bolts read before it.
+BoltDescription read_bolt(const Ctx& ctx, const YAML::Node& n, const std::string& path, const SceneDescription& s,
+                          const std::vector<std::string>& taken, bool at_stage);
+/// The names of the scene's bolts and of those its stages read so far install.
+std::vector<std::string> bolt_names(const SceneDescription& s);
 /// Every block a simple polygon, no two overlapping, edges' joint sets (scene_checks.cpp).
 void check_geometry(const Ctx& ctx, std::vector<RawBlock>& raw, SceneDescription& s);
 

@@ -49,6 +49,7 @@ const std::map<std::string, std::string> kSectionPath{
     {"blocks.rectangle", "blocks[*].rectangle"}, {"blocks.grid", "blocks[*].grid"},
     {"fixed_points", "fixed_points[*]"}, {"loads", "loads[*]"}, {"measurement_points", "measurement_points[*]"},
     {"bolts.from", "bolts[*].from"}, {"bolts.to", "bolts[*].to"},
+    {"stages.add_bolts", "stages[*].add_bolts[*]"},
 };
 /// The section whose `list` table documents the keys of each point list.
 const std::string kPointsSection = "fixed_points, loads, measurement_points";
@@ -239,13 +240,21 @@ BOOST_AUTO_TEST_CASE(the_schema_is_the_list_each_map_refuses_unknown_keys_with) 
       {"stages[*].joint_sets.*.law",
        kBaseScene + "stages:\n  - {name: a, at: 0.5, joint_sets: {fault: {law: {name: burgers, bogus_key: 1}}}}\n"},
       {"stages[*].analysis", kBaseScene + "stages:\n  - {name: a, at: 0.5, analysis: {bogus_key: 1}}\n"},
+      {"stages[*].add_bolts[*]", kBaseScene + "stages:\n  - {name: a, at: 0.5, add_bolts: [{bogus_key: 1}]}\n"},
+      {"stages[*].add_bolts[*].from",
+       kBaseScene + "stages:\n  - {name: a, at: 0.5, add_bolts: [{name: b, from: {bogus_key: 1}}]}\n"},
+      {"stages[*].add_bolts[*].to", kBaseScene + "stages:\n  - {name: a, at: 0.5, add_bolts: [{name: b, from: "
+                                                 "{point: [1.5, 2], block: top}, to: {bogus_key: 1}}]}\n"},
+      {"stages[*].add_bolts[*].law",
+       kBaseScene + "stages:\n  - {name: a, at: 0.5, add_bolts: [{name: b, from: {point: [1.5, 2], block: top}, "
+                    "to: {fixed: [1.5, 4]}, law: {name: burgers, bogus_key: 1}}]}\n"},
   };
   for (const auto& m : scene::scene_schema()) {
     BOOST_TEST_CONTEXT("schema path '" << m.path << "'") {
       const auto probe = probes.find(m.path);
       BOOST_TEST_REQUIRE((probe != probes.end()), "no probe scene for this map: add one above");
       std::vector<std::string> expected = m.keys;
-      if (m.path.ends_with("joint_sets.*.law") || m.path == "bolts[*].law")  // the law map also takes the law's parameters
+      if (m.path.ends_with("joint_sets.*.law") || m.path.ends_with("bolts[*].law"))  // the law map also takes the law's parameters
         for (const auto& p : laws::LawRegistry::builtin().find("burgers")->parameters) expected.push_back(p.name);
       BOOST_TEST(valid_keys_reported(probe->second) == expected, boost::test_tools::per_element());
     }

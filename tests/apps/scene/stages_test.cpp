@@ -257,6 +257,131 @@ BOOST_AUTO_TEST_CASE(the_example_excavation_runs_and_leaves_the_wall_built_witho
   BOOST_TEST(std::hypot(du - ru, dv - rv) <= 0.005 * std::hypot(ru, rv));
 }
 
+namespace {
+
+/// A top block on a soft prop on a fixed base: the prop's compression lowers the top
+/// block before the stage `bolt` installs a hanger from it to an anchor above (line 14);
+/// the stage `dig` removes the prop.
+std::string hanging_scene(const std::string& bolt) {
+  return "units: {length: m, force: N, time: s}\n"                                          // 1
+         "analysis: {type: static, duration: 1, dt: 0.05, gravity: [0, -9.81]}\n"          // 2
+         "materials:\n"                                                                     // 3
+         "  rock: {density: 2600, young_modulus: 5.0e10, poisson_ratio: 0.25}\n"            // 4
+         "  soft: {density: 2600, young_modulus: 2.0e7, poisson_ratio: 0.25}\n"             // 5
+         "joint_sets:\n"                                                                    // 6
+         "  joint: {friction_angle: 30}\n"                                                  // 7
+         "blocks:\n"                                                                        // 8
+         "  - {name: base, material: rock, rectangle: {x: 0, y: 0, width: 3, height: 1}, fixed: true}\n"  // 9
+         "  - {name: prop, material: soft, rectangle: {x: 1, y: 1, width: 1, height: 1}}\n"  // 10
+         "  - {name: top, material: rock, rectangle: {x: 1, y: 2, width: 1, height: 1}}\n"  // 11
+         "stages:\n"                                                                        // 12
+         "  - name: bolt\n    at: 0.3\n    add_bolts:\n"                                   // 13-15
+         "      - " + bolt + "\n"                                                           // 16
+         "  - {name: dig, at: 0.6, remove_blocks: {names: [prop]}}\n"                       // 17
+         "measurement_points:\n"                                                            // 18
+         "  - {name: p, point: [1.5, 2.5]}\n";                                              // 19
+}
+
+const std::string kHanger =
+    "{name: hanger, from: {point: [1.5, 2.8], block: top}, to: {fixed: [1.5, 5]}, axial_stiffness: 1.0e7, "
+    "pretension: 5000}";
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(a_bolt_installed_at_a_stage_starts_at_its_pretension_and_carries_what_comes_after) {
+  // The prop's compression has lowered the top block by d ~ 2 mm when the bolt is
+  // installed: installed at its length then (docs/reference/stages.md, "Bolts"), its force
+  // is its pretension P there (a bolt of the scene, installed at t = 0, would be shortened
+  // by d: -k d = -19 kN). Once the prop is dug out, the block hangs from it: N = W and the
+  // elongation W / k (bolt.hpp: N = k (L - L_rest), L_rest = L_install - P / k); its
+  // length grew by (W - P) / k from the stage.
+  const fs::path out = fresh_dir("stage-bolt");
+  BOOST_TEST_REQUIRE((run_text(hanging_scene(kHanger), out).status == scene::RunStatus::completed));
+  const auto rows = csv_rows(out / "run" / "bolts.csv");
+  const int t = column(rows[0], "time"), f = column(rows[0], "force"), e = column(rows[0], "elongation"),
+            len = column(rows[0], "length"), b = column(rows[0], "bolt");
+  BOOST_TEST_REQUIRE(rows.size() > 2u);
+  const double W = 2600.0 * 9.81 * 1.0, k = 1.0e7, P = 5000.0;  // [N/m], [N/m/m], [N/m]
+  // Its first row is the stage's frame at t = 0.3 s: no row before it is installed.
+  BOOST_TEST(std::stod(rows[1][t]) == 0.3, rows[1][t]);
+  BOOST_TEST(rows[1][b] == "hanger");
+  BOOST_TEST(std::abs(std::stod(rows[1][f]) - P) < 1e-9 * P, "N = " << rows[1][f] << " N/m at installation");
+  BOOST_TEST(std::abs(std::stod(rows[1][e]) - P / k) < 1e-12, rows[1][e]);
+  // Installed between the points given, where the ends stood at the stage: 5 - 2.8 m.
+  const double installed = std::stod(rows[1][len]);
+  BOOST_TEST(std::abs(installed - 2.2) < 1e-12, installed);
+  // ... after the top block had come down by d on the prop (a bolt from t = 0 would be d shorter).
+  const auto hist = csv_rows(out / "run" / "history.csv");
+  const int ht = column(hist[0], "time"), pv = column(hist[0], "p.v");
+  double settled = 0.0;
+  for (std::size_t r = 1; r < hist.size(); ++r)
+    if (std::abs(std::stod(hist[r][ht]) - 0.3) < 1e-12) settled = std::stod(hist[r][pv]);
+  BOOST_TEST(settled < -1e-3, "the block came down by " << -settled << " m before the stage");
+  // Before the dig the prop still carries the block: the bolt pulls P (the prop is
+  // unloaded by P, the block rises by P / (prop stiffness) - a micron - and N stays ~P).
+  const auto& last = rows.back();
+  BOOST_TEST(std::stod(last[t]) == 1.0, last[t]);
+  BOOST_TEST(std::abs(std::stod(last[f]) - W) < 1e-6 * W, "N = " << last[f] << " N/m hanging, expected W = " << W);
+  BOOST_TEST(std::abs(std::stod(last[e]) - W / k) < 1e-6 * W / k, "e = " << last[e] << " m, expected W/k");
+  BOOST_TEST(std::abs((std::stod(last[len]) - installed) - (W - P) / k) < 1e-3 * (W - P) / k,
+             "grew by " << std::stod(last[len]) - installed << " m, expected (W - P)/k = " << (W - P) / k);
+  // summary.json names it; history.csv has the bolt energy columns.
+  const auto sum = nlohmann::json::parse(read_text((out / "run" / "summary.json").string()));
+  BOOST_TEST(sum.at("stages")[0].at("actions")[0].get<std::string>() == "installed 1 bolts (hanger)");
+  BOOST_TEST(sum.at("inputs").at("stages")[0].at("add_bolts")[0].at("name").get<std::string>() == "hanger");
+  BOOST_TEST((std::find(hist[0].begin(), hist[0].end(), "energy_bolt") != hist[0].end()));
+  BOOST_TEST(fs::exists(out / "run" / "bolts.pvd"));
+}
+
+BOOST_AUTO_TEST_CASE(bad_stage_bolts_are_refused_with_file_line_column_and_key) {
+  // An end without its block is found where it stands at the stage (block -1 until then).
+  const auto found = scene::parse_scene(hanging_scene(with("[1.5, 2.8], block: top", "[1.5, 2.8]", kHanger)), "ok.yaml");
+  BOOST_TEST(found.stages.at(0).add_bolts.at(0).from.block == -1);
+  BOOST_TEST(scene::describe_scene(found).find("install bolt hanger: (1.5, 2.8) on the block standing there to fixed "
+                                               "at (1.5, 5)") != std::string::npos);
+  // On a block removed by then.
+  const std::string late = with("  - {name: dig, at: 0.6, remove_blocks: {names: [prop]}}\n",
+                                "  - {name: dig, at: 0.6, remove_blocks: {names: [prop]}}\n"
+                                "  - {name: late, at: 0.8, add_bolts: [{name: h2, from: {point: [1.5, 1.5], block: "
+                                "prop}, to: {fixed: [1.5, 5]}, axial_stiffness: 1e7}]}\n",
+                                hanging_scene(kHanger));
+  expect_error_at(late, 18, "prop}", "stages[2].add_bolts[0].from.block", "removed by then (stage 'dig')");
+  // A name another bolt has; an unknown key with its hint.
+  expect_error_at(with("h2, from", "hanger, from", late), 18, "hanger", "stages[2].add_bolts[0].name",
+                  "bolt 'hanger' is defined twice");
+  expect_error_at(hanging_scene(with("axial_stiffness", "axial_stifness", kHanger)), 16, "axial_stifness",
+                  "stages[0].add_bolts[0].axial_stifness", "did you mean 'axial_stiffness'");
+  // The newton contact solve does not carry bolts.
+  expect_error_at(with("dt: 0.05,", "dt: 0.05, contact_solver: newton,", hanging_scene(kHanger)), 16, "- {name",
+                  "stages[0].add_bolts", "newton");
+  // Where the end stands is checked at the stage: a point off its block there, or on no
+  // block for an end without its block, fails the run at the bolt's line.
+  auto run_fails = [](const std::string& text, const std::string& dir, const std::string& message) {
+    try {
+      (void)run_text(text, fresh_dir(dir));
+      BOOST_ERROR("the bolt was installed: " << dir);
+    } catch (const std::runtime_error& e) {
+      const std::string what = e.what();
+      BOOST_TEST(what.find("scene.yaml:16:") != std::string::npos, what);
+      BOOST_TEST(what.find("stages[0].add_bolts[0].from.point") != std::string::npos, what);
+      BOOST_TEST(what.find("stage 'bolt' at t = 0.3 s") != std::string::npos, what);
+      BOOST_TEST(what.find(message) != std::string::npos, what);
+    }
+  };
+  run_fails(hanging_scene(with("[1.5, 2.8]", "[1.5, 3.5]", kHanger)), "stage-bolt-off", "lies outside block 2");
+  run_fails(hanging_scene(with("[1.5, 2.8], block: top", "[1.5, 3.5]", kHanger)), "stage-bolt-none",
+            "lies on no block where the blocks stand now");
+}
+
+BOOST_AUTO_TEST_CASE(a_stage_bolt_end_without_its_block_is_on_the_block_standing_there) {
+  // The hanger of the test above with `block: top` left out: the same bolt, the same forces.
+  const fs::path a = fresh_dir("stage-bolt-named"), b = fresh_dir("stage-bolt-found");
+  BOOST_TEST_REQUIRE((run_text(hanging_scene(kHanger), a).status == scene::RunStatus::completed));
+  BOOST_TEST_REQUIRE((run_text(hanging_scene(with("[1.5, 2.8], block: top", "[1.5, 2.8]", kHanger)), b).status ==
+                      scene::RunStatus::completed));
+  BOOST_TEST(read_text((a / "run" / "bolts.csv").string()) == read_text((b / "run" / "bolts.csv").string()));
+}
+
 BOOST_AUTO_TEST_CASE(what_only_the_run_can_check_fails_the_run_at_the_stage_with_its_line) {
   // A point added where its block does not stand at the stage: the engine
   // refuses it, the run stops there naming the stage's entry in the file.

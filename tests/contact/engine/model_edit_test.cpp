@@ -3,8 +3,9 @@
 // contacts and never get new ones; friction lowered between two steps makes a
 // block on an incline slide from then on by the closed form; a fixed point
 // added between two steps holds its block; a static analysis switched to
-// dynamic; invalid edits refused with the model unchanged; an edited run
-// restored from its state steps on bit for bit.
+// dynamic; a bolt installed between two steps where its ends stand; invalid
+// edits refused with the model unchanged; an edited run restored from its state
+// steps on bit for bit.
 #include <boost/test/unit_test.hpp>
 
 #include "rheodda/laws/registry.hpp"
@@ -263,6 +264,19 @@ BOOST_AUTO_TEST_CASE(invalid_edits_are_refused_with_the_model_unchanged) {
           }),
           "add_fixed_points[0].point");
   refused(edit_of([&](core::ModelEdit& e) { e.settle = true; }), "settle");
+  // A bolt: an end off its block where the block stands, both ends on one block, no stiffness.
+  auto bolt = [](int a, Vec2 pa, int b, Vec2 pb, double k) {
+    core::Bolt x;
+    x.block_a = a, x.point_a = pa, x.block_b = b, x.point_b = pb, x.axial_stiffness = k;
+    return x;
+  };
+  refused(edit_of([&](core::ModelEdit& e) { e.add_bolts = {bolt(3, {-0.75, 3.0}, -1, {-0.75, 4.0}, 1e8)}; }),
+          "add_bolts[0].a.point");
+  refused(edit_of([&](core::ModelEdit& e) { e.add_bolts = {bolt(3, {-0.75, 0.9}, 3, {-0.75, 0.6}, 1e8)}; }),
+          "add_bolts[0].block_b");
+  refused(edit_of([&](core::ModelEdit& e) { e.add_bolts = {bolt(3, {-0.75, 0.9}, -1, {-0.75, 2.0}, 0.0)}; }),
+          "add_bolts[0].axial_stiffness");
+  BOOST_TEST(sim.engine.model().bolts.empty());
   sim.engine.edit(edit_of([&](core::ModelEdit& e) { e.remove_blocks = {4}; }));
   try {
     sim.engine.edit(edit_of([&](core::ModelEdit& e) { e.remove_blocks = {4}; }));
@@ -280,6 +294,10 @@ BOOST_AUTO_TEST_CASE(an_edited_run_restored_from_its_state_steps_on_bit_for_bit)
   const core::ModelEdit change = edit_of([&](core::ModelEdit& e) {
     e.remove_blocks = {4};
     e.add_fixed_points = {{1, Vec2(-0.5, 0.25)}};
+    core::Bolt tie;  // c to b, across the gap, installed where they stand now (pretensioned)
+    tie.block_a = 3, tie.point_a = {-0.3, 0.75}, tie.block_b = 2, tie.point_b = {0.3, 0.25};
+    tie.axial_stiffness = 1e8, tie.pretension = 500.0;
+    e.add_bolts = {tie};
   });
   const core::EditReport rep = a.engine.edit(change);
   a.engine.run(5);
@@ -292,6 +310,37 @@ BOOST_AUTO_TEST_CASE(an_edited_run_restored_from_its_state_steps_on_bit_for_bit)
   for (int k = 0; k < a.engine.block_count(); ++k)
     for (std::size_t i = 0; i < a.engine.vertices(k).size(); ++i)
       BOOST_TEST((a.engine.vertices(k)[i] - b.engine.vertices(k)[i]).norm() == 0.0);
+  BOOST_TEST_REQUIRE(b.engine.bolts().size() == 1u);
+  BOOST_TEST(a.engine.bolts()[0].force == b.engine.bolts()[0].force);
+  BOOST_TEST(rep.replay.add_bolts.at(0).installed_length == std::hypot(0.6, 0.5));
+}
+
+BOOST_AUTO_TEST_CASE(a_bolt_added_between_steps_is_installed_where_its_ends_stand) {
+  // Block c (3) rests on a; a bolt from c to an anchor above it, installed after 50 steps
+  // with pretension P: its force is P there, whatever c has settled before (bolt.hpp,
+  // installed_length); c then presses on a with W - P (W = rho g A_c).
+  Sim sim(stack(true), {joint(30.0)});
+  sim.engine.run_until(0.05);
+  const core::Vec2 p_now = sim.engine.point_position(3, {-0.75, 1.0});
+  BOOST_TEST(p_now.y() < 1.0 - 1e-7, "c has not come down before the bolt: y = " << p_now.y());
+  core::Bolt bolt;
+  bolt.block_a = 3, bolt.point_a = p_now, bolt.block_b = -1, bolt.point_b = {-0.75, 2.0};
+  bolt.axial_stiffness = 1e8, bolt.pretension = 2000.0;  // [N/m], [N/m]
+  const double energy_before = sim.engine.energy().stored.bolt;
+  sim.engine.edit(edit_of([&](core::ModelEdit& e) { e.add_bolts = {bolt}; }));
+  BOOST_TEST_REQUIRE(sim.engine.bolts().size() == 1u);
+  BOOST_TEST(sim.engine.bolts()[0].force == 2000.0);
+  BOOST_TEST(sim.engine.bolts()[0].length == 2.0 - p_now.y());
+  const double pretension_energy = 2000.0 * 2000.0 / (2.0 * 1e8);  // P^2 / 2k [N m/m]
+  BOOST_TEST(std::abs(sim.engine.energy().stored.bolt - energy_before - pretension_energy) < 1e-15);
+  BOOST_TEST(sim.engine.model().bolts[0].point_a.y() == 1.0, "its end is c's material point at (-0.75, 1)");
+  sim.engine.run_until(0.1);
+  double n = 0.0;  // c on a [N/m]
+  for (const contact::Contact& c : sim.contacts.contacts())
+    if ((c.key.vblock == 3 && c.key.eblock == 1) || (c.key.vblock == 1 && c.key.eblock == 3)) n += std::abs(c.normal_force);
+  const double w = 2600.0 * 9.81 * 0.5, f = sim.engine.bolts()[0].force;  // c: 1 m x 0.5 m [N/m]
+  BOOST_TEST(std::abs(f - 2000.0) < 1e-2 * 2000.0, "N = " << f << " N/m: the bolt barely stretches");
+  BOOST_TEST(std::abs(n - (w - f)) < 1e-3 * w, "c on a: " << n << " N/m, W - N = " << w - f);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -34,8 +34,9 @@ struct Bolt {
                                ///< second end is fixed in space at point_b
   Vec2 point_b = Vec2::Zero(); ///< initial position of the second end [length]; != point_a
   double axial_stiffness = 0.0;  ///< k, axial force per unit elongation [force/length]; > 0
-  /// Axial force at t = 0 [force] (tension > 0): the bolt's unstressed length is
-  /// L_rest = L0 - pretension / k, L0 = |point_b - point_a|; |pretension| <= yield_force
+  /// Axial force when installed (t = 0, or the stage that installs it) [force] (tension
+  /// > 0): the bolt's unstressed length is L_rest = L0 - pretension / k, L0 its length
+  /// when installed (installed_length); |pretension| <= yield_force
   double pretension = 0.0;
   /// Yield force N_y [force], > 0: |N| <= N_y; beyond, the bolt stretches plastically
   /// at N_y (elastic-perfectly plastic). Infinity: never yields.
@@ -43,6 +44,11 @@ struct Bolt {
   /// Rupture elongation [length], > 0: when the elongation L - L_rest exceeds it, the
   /// bolt breaks and carries nothing for the rest of the run. Infinity: never.
   double rupture_elongation = std::numeric_limits<double>::infinity();
+  /// Length between the two ends when the bolt was installed [length]; 0: a bolt of
+  /// the model from t = 0, installed at L0 = |point_b - point_a|. A bolt a stage
+  /// installs (ModelEdit::add_bolts) joins blocks that have moved since t = 0: its
+  /// L0 is the distance between its ends then, and L_rest = L0 - pretension / k.
+  double installed_length = 0.0;
   /// Creep of the axial force (bolt relaxation), or none. A law with an instantaneous
   /// stiffness E1 must have E1 == axial_stiffness (the law's spring is the bolt's).
   std::shared_ptr<const laws::ContactRheology> law;

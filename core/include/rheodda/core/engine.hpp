@@ -204,6 +204,12 @@ struct ModelEdit {
   /// Point loads to add: `point` is the load point now [length] (the material
   /// point standing there carries it); history times are run times [time].
   std::vector<PointLoad> add_point_loads;
+  /// Bolts to install (bolt.hpp; docs/reference/stages.md): point_a on block_a and
+  /// point_b on block_b (or fixed in space, block_b = -1) where they stand now
+  /// [length]. Each is installed at the length between its ends now
+  /// (Bolt::installed_length; a given one is replaced), carries its pretension from
+  /// now on, and is appended to Model::bolts (indices after the bolts there).
+  std::vector<Bolt> add_bolts;
   /// Joint sets to change (index, new values; same name): handed to the
   /// contact model (ContactModel::set_joint_set).
   std::vector<std::pair<int, contact::JointSet>> joint_sets;
@@ -215,9 +221,10 @@ struct ModelEdit {
   /// stand now; a Water without history drains the model; unset: unchanged.
   std::optional<Water> water;
   /// Replay (a resumed run, docs/reference/outputs.md "Interrupting and resuming"): the
-  /// points of add_fixed_points (their material_point, which must be set) and
-  /// of add_point_loads are material points already, as EditReport::replay
-  /// gives them, and are not checked against where the blocks stand now.
+  /// points of add_fixed_points (their material_point, which must be set), of
+  /// add_point_loads and of add_bolts (with their installed_length) are material
+  /// points already, as EditReport::replay gives them, and are not checked
+  /// against where the blocks stand now.
   bool material_points = false;
   /// Opens a settling stage from now (Settings::settle_until long, with
   /// settle_dt, settle_g2, settle_dynamic and settle_rest_tolerance; docs/reference/engine.md,

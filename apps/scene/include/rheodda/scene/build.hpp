@@ -32,4 +32,8 @@ std::vector<std::string> scene_warnings(const SceneDescription& scene);
 /// Builds the model; throws SceneError if the engine refuses it (its ModelError key is reported).
 BuiltScene build_scene(const SceneDescription& scene);
 
+/// The engine's bolt of a scene's bolt (core/include/rheodda/core/bolt.hpp): its law
+/// built by the registry; points as the description gives them.
+core::Bolt build_bolt(const BoltDescription& b);
+
 }  // namespace rheodda::scene

@@ -24,7 +24,6 @@
 #include "rheodda/rockmass/generate.hpp"
 #include "rheodda/scene/error.hpp"
 #include "rheodda/scene/water.hpp"
-#include "rheodda/scene/stages.hpp"
 
 namespace rheodda::scene {
 
@@ -246,7 +245,8 @@ struct RockMassDescription {
 
 }  // namespace rheodda::scene
 
-#include "rheodda/scene/bolts.hpp"  // uses BlockPoint and LawChoice above
+#include "rheodda/scene/bolts.hpp"   // uses BlockPoint and LawChoice above
+#include "rheodda/scene/stages.hpp"  // uses BoltDescription
 
 namespace rheodda::scene {
 

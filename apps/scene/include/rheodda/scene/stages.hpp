@@ -3,7 +3,8 @@
 // loads added or removed, joint sets given new strength or law parameters, the
 // analysis switched between static and dynamic, a settling stage opened -
 // each at a time or when the settling stage opened by the stage before it has
-// ended at rest. Read by load_stages.cpp, applied by run_stages.cpp.
+// ended at rest. Read by load_stages.cpp, applied by run_stages.cpp. Included by
+// scene.hpp after the types it uses (BoltDescription); include scene.hpp, not this.
 #pragma once
 
 #include <array>
@@ -66,6 +67,11 @@ struct StageDescription {
   std::vector<StagePoint> add_fixed_points;
   std::vector<StagePoint> add_loads;
   std::vector<StageJointSet> joint_sets;
+  /// `add_bolts:` bolts installed at the stage (the keys of `bolts:`; their end
+  /// points are where the ends stand at the stage; an end whose `block:` is left
+  /// out has block -1: the block standing there at the stage). Installed at the
+  /// length between its ends then.
+  std::vector<BoltDescription> add_bolts;
   /// `analysis: {type: static|dynamic, dynamic_ratio}`: the share of velocity
   /// carried from now on (0 static; default 1 for dynamic) [-]; unset: unchanged.
   std::optional<double> dynamic_ratio;
@@ -75,7 +81,7 @@ struct StageDescription {
   std::optional<WaterDescription> water;
   SourceLocation where{};
   SourceLocation remove_blocks_where{}, remove_fixed_points_where{}, remove_loads_where{}, add_fixed_points_where{},
-      add_loads_where{}, joint_sets_where{}, settle_where{}, water_where{};
+      add_loads_where{}, joint_sets_where{}, settle_where{}, water_where{}, add_bolts_where{};
 };
 
 }  // namespace rheodda::scene
