@@ -2,6 +2,7 @@
 // and how the key reaches its field. Internal to apps/scene; not installed.
 #pragma once
 
+#include <array>
 #include <limits>
 #include <optional>
 #include <utility>
@@ -45,6 +46,22 @@ EntryKey<E> custom_key(KeyInfo info, std::function<KeyValue(const E&)> get, std:
   k.get = std::move(get);
   k.set = std::move(set);
   return k;
+}
+
+/// `force: [fx, fy]` of a load: the one sample (0, fx, fy) of its history `field`
+/// (not set when the history has other samples).
+template <class E>
+EntryKey<E> constant_force_key(KeyInfo info, std::vector<std::array<double, 3>> E::*field) {
+  return custom_key<E>(
+      std::move(info),
+      [field](const E& e) -> KeyValue {
+        if ((e.*field).size() != 1) return std::monostate{};
+        return std::vector<double>{(e.*field)[0][1], (e.*field)[0][2]};
+      },
+      [field](E& e, const KeyValue& v) {
+        const auto& f = std::get<std::vector<double>>(v);
+        e.*field = {{0.0, f[0], f[1]}};
+      });
 }
 
 /// A key its section's reader reads (a map, a list, a reference, a point that must lie

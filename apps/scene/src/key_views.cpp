@@ -43,11 +43,17 @@ const std::vector<DeclaredMap>& declared_maps() {
       declared("fixed_points", {"fixed_points[*]"}, &fixed_point_keys),
       declared("loads", {"loads[*]"}, &load_keys),
       declared("measurement_points", {"measurement_points[*]"}, &measurement_point_keys),
-      declared("water", {"water"}, &water_keys),
+      declared("water", {"water", "stages[*].water"}, &water_keys),
       declared("water.surface_history", {"water.surface_history[*]"}, &water_sample_keys),
       declared("bolts", {"bolts[*]", "stages[*].add_bolts[*]"}, &bolt_keys),
       declared("bolts.from", {"bolts[*].from", "stages[*].add_bolts[*].from"}, &bolt_end_keys),
       declared("bolts.to", {"bolts[*].to", "stages[*].add_bolts[*].to"}, &bolt_to_keys),
+      declared("stages", {"stages[*]"}, &stage_keys),
+      declared("stages.remove_blocks", {"stages[*].remove_blocks"}, &stage_remove_blocks_keys),
+      declared("stages.add_fixed_points", {"stages[*].add_fixed_points[*]"}, &stage_fixed_point_keys),
+      declared("stages.add_loads", {"stages[*].add_loads[*]"}, &stage_load_keys),
+      declared("stages.joint_sets", {"stages[*].joint_sets.*"}, &stage_joint_set_keys),
+      declared("stages.analysis", {"stages[*].analysis"}, &stage_analysis_keys),
   };
   return maps;
 }

@@ -50,17 +50,10 @@ std::vector<EntryKey<LoadDescription>>& load_keys() {
         [](E& l, const KeyValue& v) { l.at.name = std::get<std::string>(v); }));
     k.push_back(point_key<E>("loads"));
     k.push_back(block_key<E>("loads"));
-    k.push_back(detail::custom_key<E>(
+    k.push_back(detail::constant_force_key(
         KeyInfo{.map = "loads", .name = "force", .type = KeyType::numbers, .unit = "force",
                 .default_text = "one of force, history", .meaning = "`[fx, fy]`, constant from t = 0", .count = 2},
-        [](const E& l) -> KeyValue {
-          if (l.history.size() != 1) return std::monostate{};
-          return std::vector<double>{l.history[0][1], l.history[0][2]};
-        },
-        [](E& l, const KeyValue& v) {
-          const auto& f = std::get<std::vector<double>>(v);
-          l.history = {{0.0, f[0], f[1]}};
-        }));
+        &E::history));
     k.push_back(detail::reader_key<E>(
         KeyInfo{.map = "loads", .name = "history", .type = KeyType::list, .unit = "time, force, force",
                 .default_text = "one of force, history",

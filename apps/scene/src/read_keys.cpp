@@ -42,6 +42,7 @@ KeyValue read_value(const Ctx& ctx, const YAML::Node& v, const std::string& path
     case KeyType::name: return name_text(ctx, v, path);
     case KeyType::reference:
     case KeyType::list:
+    case KeyType::named:
     case KeyType::map: break;  // read by the section's reader
   }
   return std::monostate{};

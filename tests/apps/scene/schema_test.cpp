@@ -50,6 +50,7 @@ const std::map<std::string, std::string> kSectionPath{
     {"fixed_points", "fixed_points[*]"}, {"loads", "loads[*]"}, {"measurement_points", "measurement_points[*]"},
     {"bolts.from", "bolts[*].from"}, {"bolts.to", "bolts[*].to"},
     {"stages.add_bolts", "stages[*].add_bolts[*]"},
+    {"stages.remove_blocks", "stages[*].remove_blocks"}, {"stages.analysis", "stages[*].analysis"},
 };
 /// The section whose `list` table documents the keys of each point list.
 const std::string kPointsSection = "fixed_points, loads, measurement_points";
@@ -248,6 +249,8 @@ BOOST_AUTO_TEST_CASE(the_schema_is_the_list_each_map_refuses_unknown_keys_with) 
       {"stages[*].add_bolts[*].law",
        kBaseScene + "stages:\n  - {name: a, at: 0.5, add_bolts: [{name: b, from: {point: [1.5, 2], block: top}, "
                     "to: {fixed: [1.5, 4]}, law: {name: burgers, bogus_key: 1}}]}\n"},
+      {"stages[*].water",
+       kBaseScene + "stages:\n  - {name: a, at: 0.5, water: {bogus_key: 1, unit_weight: 9810, level: 1}}\n"},
   };
   for (const auto& m : scene::scene_schema()) {
     BOOST_TEST_CONTEXT("schema path '" << m.path << "'") {

@@ -43,6 +43,7 @@ enum class KeyType {
   name,       ///< a name: letters, digits, '_', '-', '.'
   reference,  ///< the name of an entry of another section (a material, joint set, block)
   list,       ///< a list (of vertices, polygons, samples or entries), read by its section's reader
+  named,      ///< a map from names (of joint sets, ...) to entries, read by its section's reader
   map,        ///< a map of keys declared in the map `submap`
 };
 
@@ -122,6 +123,12 @@ std::vector<EntryKey<WaterDescription::Sample>>& water_sample_keys();  ///< wate
 std::vector<EntryKey<BoltDescription>>& bolt_keys();                 ///< bolts
 std::vector<EntryKey<BlockPoint>>& bolt_end_keys();                  ///< bolts.from
 std::vector<EntryKey<BlockPoint>>& bolt_to_keys();                   ///< bolts.to
+std::vector<EntryKey<StageDescription>>& stage_keys();               ///< stages
+std::vector<EntryKey<StageDescription>>& stage_remove_blocks_keys();  ///< stages.remove_blocks
+std::vector<EntryKey<StagePoint>>& stage_fixed_point_keys();         ///< stages.add_fixed_points
+std::vector<EntryKey<StagePoint>>& stage_load_keys();                ///< stages.add_loads
+std::vector<EntryKey<StageJointSet>>& stage_joint_set_keys();        ///< stages.joint_sets
+std::vector<EntryKey<StageDescription>>& stage_analysis_keys();      ///< stages.analysis
 
 /// One declared map: its name (as `rheodda keys` and the docs' markers name it), the
 /// schema paths it stands at (a law stands under joint sets, bolts and stages) and its keys.
@@ -159,7 +166,9 @@ std::string key_values_text(const std::vector<EntryKey<E>>& keys, const std::str
                             const Units& u) {
   std::string out;
   for (const EntryKey<E>& k : keys) {
-    if (k.map != map || k.type == KeyType::map || k.type == KeyType::list || k.type == KeyType::reference) continue;
+    if (k.map != map || k.type == KeyType::map || k.type == KeyType::list || k.type == KeyType::reference ||
+        k.type == KeyType::named)
+      continue;
     const KeyValue v = k.get(e);
     if (std::holds_alternative<std::monostate>(v)) continue;
     out += (out.empty() ? "" : ", ") + k.name + " " + key_value_text(k, v, u);
