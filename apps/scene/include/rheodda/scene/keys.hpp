@@ -64,17 +64,19 @@ struct KeyRange {
 /// What one key of a map says, whatever the entry it fills: the view that the schema,
 /// the docs tables and `rheodda keys` read (declared_maps()).
 struct KeyInfo {
-  std::string map;           ///< the declared map: "analysis", "analysis.settle", "materials", "bolts.to", ...
-  std::string name;          ///< the key: also the C++ field, summary.json key and doc word
+  // Every member has an initializer: the declarations name only the members they set
+  // (designated initializers), and -Wextra asks that the others have one.
+  std::string map{};           ///< the declared map: "analysis", "analysis.settle", "materials", "bolts.to", ...
+  std::string name{};          ///< the key: also the C++ field, summary.json key and doc word
   KeyType type = KeyType::number;
-  std::string unit;          ///< dimension in the scene's units ("time", "length", "stress", ...), "–" for none
-  KeyRange range;            ///< number and integer keys
-  std::vector<std::string> choices;  ///< choice keys
-  std::string required;      ///< non-empty: the key is required; what to give, for the message
-  std::string default_text;  ///< the default, as docs/reference/scene-format.md states it
-  std::string meaning;       ///< one table cell of docs/reference/scene-format.md
+  std::string unit{};          ///< dimension in the scene's units ("time", "length", "stress", ...), "–" for none
+  KeyRange range{};            ///< number and integer keys
+  std::vector<std::string> choices{};  ///< choice keys
+  std::string required{};      ///< non-empty: the key is required; what to give, for the message
+  std::string default_text{};  ///< the default, as docs/reference/scene-format.md states it
+  std::string meaning{};       ///< one table cell of docs/reference/scene-format.md
   std::size_t count = 0;     ///< numbers keys: how many
-  std::string submap;        ///< map keys: the declared map of its keys (default `<map>.<name>`)
+  std::string submap{};        ///< map keys: the declared map of its keys (default `<map>.<name>`)
   /// summary.json's inputs echo the key (false only for keys it never echoed, so that
   /// every summary.json stays as it was: materials' damping_ratio, joint sets' restitution).
   bool echoed = true;
