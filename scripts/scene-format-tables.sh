@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates the key tables of docs/reference/scene-format.md from the keys' declarations
-# (apps/scene/src/keys.cpp) through `rheodda keys --markdown MAP`, between the
-# <!-- keys-MAP:begin/end --> markers. tests/apps/scene/schema_test.cpp checks that
+# (apps/scene/src/keys*.cpp) through `rheodda keys --markdown MAP`, between each pair of
+# <!-- keys-MAP:begin/end --> markers the doc holds. tests/apps/scene/schema_test.cpp checks that
 # the doc holds what this writes.
 # Usage: scripts/scene-format-tables.sh     (RHEODDA_BUILD_DIR: the build to use, default build/)
 set -euo pipefail
@@ -10,7 +10,7 @@ build="${RHEODDA_BUILD_DIR:-$root/build}"
 doc="$root/docs/reference/scene-format.md"
 tmp="$(mktemp)"
 trap 'rm -f "$tmp"' EXIT
-for map in analysis analysis.settle; do
+for map in $(sed -n 's/^<!-- keys-\(.*\):begin -->$/\1/p' "$doc"); do
   "$build/apps/rheodda" keys --markdown "$map" >"$tmp"
   "$root/scripts/splice-doc.sh" "$doc" "keys-$map" "$tmp"
 done

@@ -27,6 +27,20 @@ py::dict units_dict(const scene::Units& u) {
 
 namespace {
 
+/// A declared key's value in Python: None where it is not set, a tuple for a point.
+py::object value_object(const scene::KeyValue& v) {
+  return std::visit(
+      [](const auto& x) -> py::object {
+        if constexpr (std::is_same_v<std::decay_t<decltype(x)>, std::monostate>)
+          return py::none();
+        else if constexpr (std::is_same_v<std::decay_t<decltype(x)>, scene::Point>)
+          return py::make_tuple(x[0], x[1]);
+        else
+          return py::cast(x);
+      },
+      v);
+}
+
 /// The declared keys of one map (rheodda/scene/keys.hpp) with their values: None where a
 /// key does not apply, a nested dict for a sub-map (`settle`), None for one not given.
 py::object analysis_dict(const scene::Analysis& a, const std::string& map) {
@@ -34,22 +48,20 @@ py::object analysis_dict(const scene::Analysis& a, const std::string& map) {
   bool applies = false;
   for (const scene::KeySpec& k : scene::analysis_keys()) {
     if (k.map != map) continue;
-    py::object v = k.type == scene::KeyType::map
-                       ? analysis_dict(a, map + "." + k.name)
-                       : std::visit(
-                             [](const auto& x) -> py::object {
-                               if constexpr (std::is_same_v<std::decay_t<decltype(x)>, std::monostate>)
-                                 return py::none();
-                               else if constexpr (std::is_same_v<std::decay_t<decltype(x)>, scene::Point>)
-                                 return py::make_tuple(x[0], x[1]);
-                               else
-                                 return py::cast(x);
-                             },
-                             k.get(a));
+    py::object v = k.type == scene::KeyType::map ? analysis_dict(a, map + "." + k.name) : value_object(k.get(a));
     applies = applies || !v.is_none();
     d[py::str(k.name)] = v;
   }
   return applies ? py::object(d) : py::object(py::none());
+}
+
+/// The declared keys of the map `map` with their values in one entry `e` (None: not set).
+template <class E>
+py::dict entry_dict(const std::vector<scene::EntryKey<E>>& keys, const std::string& map, const E& e) {
+  py::dict d;
+  for (const scene::EntryKey<E>& k : keys)
+    if (k.map == map) d[py::str(k.name)] = value_object(k.get(e));
+  return d;
 }
 
 }  // namespace
@@ -73,6 +85,16 @@ void bind_scene(py::module_& m) {
           "Every `analysis:` key with its value, defaults filled in, by the scene file's names (`settle` a "
           "dict, or None without a settling stage); the same keys and values as summary.json's inputs "
           "(docs/reference/scene-format.md). A copy: change a scene through its text or scene_from_dict.")
+      .def_property_readonly(
+          "materials",
+          [](const Scene& s) {
+            py::dict d;
+            for (const auto& m : s.description.materials)
+              d[py::str(m.name)] = entry_dict(scene::material_keys(), "materials", m);
+            return d;
+          },
+          "Every material by name, with every declared `materials:` key and its value, defaults filled in "
+          "(None: not set, e.g. damping_ratio without damping); docs/reference/scene-format.md. A copy.")
       .def_property_readonly("joint_sets",
                              [](const Scene& s) {
                                std::vector<std::string> r;

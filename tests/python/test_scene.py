@@ -80,6 +80,17 @@ def test_scene_analysis_holds_every_declared_key_as_summary_json_does(yaml_scene
     assert scene.analysis["settle"]["until"] == 1.0 and scene.analysis["settle"]["type"] == "static"
 
 
+def test_scene_materials_hold_every_declared_key(yaml_scene, rheodda_binary):
+    # The materials' keys are declared once (apps/scene/src/keys_joints.cpp): `rheodda keys
+    # materials` lists them, Scene.materials holds each with its value, defaults filled in.
+    listed = subprocess.run([rheodda_binary, "keys", "materials"], capture_output=True, text=True, check=True).stdout
+    declared = [line.split(" ", 1)[0].removeprefix("materials.") for line in listed.splitlines()]
+    rock = yaml_scene.materials["rock"]
+    assert list(rock) == declared
+    assert rock["young_modulus"] == 20000 and rock["poisson_ratio"] == 0.25
+    assert rock["plane"] == "strain" and rock["damping_ratio"] is None
+
+
 def test_history_equals_rheodda_run(tmp_path):
     few_frames = copy.deepcopy(SHEAR_TEST)
     few_frames["analysis"]["output_interval"] = 50  # each frame is written and synced: keep the test fast

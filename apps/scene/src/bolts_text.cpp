@@ -6,6 +6,8 @@
 #include <nlohmann/json.hpp>
 
 #include "bolts_text.hpp"
+#include "key_json.hpp"
+#include "rheodda/scene/keys.hpp"
 
 namespace rheodda::scene {
 
@@ -30,12 +32,15 @@ std::string describe_bolts(const SceneDescription& s) {
 
 std::string bolt_text(const SceneDescription& s, const BoltDescription& b) {
   const Units& u = s.units;
-  std::string out = fmt::format("{}: {} to {}, axial_stiffness {:g} {}/{}, pretension {:g} {}", b.name,
-                                end_text(s, b.from, false), end_text(s, b.to, b.to_fixed), b.axial_stiffness, u.force,
-                                u.length, b.pretension, u.force);
-  out += b.yield_force ? fmt::format(", yield_force {:g} {}", *b.yield_force, u.force) : ", never yields";
-  out += b.rupture_elongation ? fmt::format(", rupture_elongation {:g} {}", *b.rupture_elongation, u.length)
-                              : ", never ruptures";
+  std::string out =
+      fmt::format("{}: {} to {}", b.name, end_text(s, b.from, false), end_text(s, b.to, b.to_fixed));
+  // The declared plain keys (keys_bolts.cpp), in order; one not set as its default says ("never yields").
+  for (const EntryKey<BoltDescription>& k : bolt_keys()) {
+    if (k.map != "bolts" || k.type == KeyType::name || k.type == KeyType::map) continue;
+    const KeyValue v = k.get(b);
+    out += std::holds_alternative<std::monostate>(v) ? ", " + k.default_text
+                                                     : fmt::format(", {} {}", k.name, key_value_text(k, v, u));
+  }
   if (b.law) {
     out += fmt::format(", law {}", b.law->name);
     for (const auto& [k, v] : b.law->parameters) out += fmt::format(" {}={:g}", k, v);
@@ -46,31 +51,15 @@ std::string bolt_text(const SceneDescription& s, const BoltDescription& b) {
 }
 
 nlohmann::ordered_json bolt_json(const SceneDescription& s, const BoltDescription& b) {
-  nlohmann::ordered_json e;
-  e["name"] = b.name;
-  auto end = [&](const BlockPoint& p) {
+  // The declared keys (keys_bolts.cpp); the ends and the law as their readers read them.
+  return detail::entry_json(bolt_keys(), "bolts", b, [&](const KeyInfo& k) -> nlohmann::ordered_json {
+    if (k.name == "law") return detail::law_json(b.law);
+    if (k.name == "to" && b.to_fixed) return {{"fixed", b.to.point}};
+    const BlockPoint& p = k.name == "from" ? b.from : b.to;
     nlohmann::ordered_json j = {{"point", p.point}};
     if (p.block >= 0) j["block"] = s.blocks[p.block].name;  // left out: a stage's end found where it stands
     return j;
-  };
-  e["from"] = end(b.from);
-  if (b.to_fixed)
-    e["to"] = {{"fixed", b.to.point}};
-  else
-    e["to"] = end(b.to);
-  e["axial_stiffness"] = b.axial_stiffness;
-  e["pretension"] = b.pretension;
-  e["yield_force"] = b.yield_force ? nlohmann::ordered_json(*b.yield_force) : nlohmann::ordered_json(nullptr);
-  e["rupture_elongation"] =
-      b.rupture_elongation ? nlohmann::ordered_json(*b.rupture_elongation) : nlohmann::ordered_json(nullptr);
-  if (b.law) {
-    nlohmann::ordered_json law = {{"name", b.law->name}};
-    for (const auto& [k, v] : b.law->parameters) law[k] = v;
-    e["law"] = law;
-  } else {
-    e["law"] = nullptr;
-  }
-  return e;
+  });
 }
 
 void add_bolts_json(const SceneDescription& s, nlohmann::ordered_json& j) {

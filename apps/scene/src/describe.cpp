@@ -149,11 +149,7 @@ std::string describe_scene(const SceneDescription& s) {
 
   line(fmt::format("materials ({}):", s.materials.size()));
   for (const auto& m : s.materials)
-    line(fmt::format("  {}: density {:g} {}*{}^2/{}^4, young_modulus {:g} {}, poisson_ratio {:g}, plane {}{}",
-                     m.name, m.density, u.force, u.time, u.length, m.young_modulus, stress,
-                     m.poisson_ratio, plane_name(m.plane),
-                     m.damping_ratio > 0.0 ? fmt::format(", damping_ratio {:g}", m.damping_ratio)
-                                           : std::string()));
+    line(fmt::format("  {}: {}", m.name, key_values_text(material_keys(), "materials", m, u)));  // keys_joints.cpp
 
   line(fmt::format("joint sets ({}):", s.joint_sets.size()));
   for (const auto& j : s.joint_sets) {

@@ -6,6 +6,8 @@
 // loader (apps/scene/src/read_analysis.cpp).
 #include "rheodda/scene/keys.hpp"
 
+#include "key_builders.hpp"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -14,70 +16,68 @@ namespace rheodda::scene {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::max();
+using detail::kInf;
 
-template <class T>
-KeySpec field_key(const std::string& map, const std::string& name, KeyType type, const std::string& unit,
-                  KeyRange range, T Analysis::*field, std::string default_text, std::string meaning) {
-  KeySpec k{map, name, type, unit, range, {}, {}, std::move(default_text), std::move(meaning), {}, {}};
-  k.get = [field](const Analysis& a) -> KeyValue { return a.*field; };
-  k.set = [field](Analysis& a, const KeyValue& v) { a.*field = std::get<T>(v); };
-  return k;
+KeyInfo info(const std::string& map, const std::string& name, KeyType type, const std::string& unit, KeyRange range,
+             std::string default_text, std::string meaning) {
+  return KeyInfo{.map = map, .name = name, .type = type, .unit = unit, .range = range,
+                 .default_text = std::move(default_text), .meaning = std::move(meaning)};
 }
 
 KeySpec number_key(const std::string& map, const std::string& name, const std::string& unit, KeyRange range,
                    double Analysis::*field, std::string default_text, std::string meaning) {
-  return field_key(map, name, KeyType::number, unit, range, field, std::move(default_text), std::move(meaning));
+  return detail::field_key(info(map, name, KeyType::number, unit, range, std::move(default_text), std::move(meaning)),
+                           field);
 }
 
 KeySpec integer_key(const std::string& map, const std::string& name, const std::string& unit, KeyRange range,
                     int Analysis::*field, std::string default_text, std::string meaning) {
-  return field_key(map, name, KeyType::integer, unit, range, field, std::move(default_text), std::move(meaning));
+  return detail::field_key(info(map, name, KeyType::integer, unit, range, std::move(default_text), std::move(meaning)),
+                           field);
 }
 
 KeySpec flag_key(const std::string& map, const std::string& name, const std::string& unit,
                  bool Analysis::*field, std::string default_text, std::string meaning) {
-  return field_key(map, name, KeyType::flag, unit, KeyRange{}, field, std::move(default_text), std::move(meaning));
+  return detail::field_key(info(map, name, KeyType::flag, unit, {}, std::move(default_text), std::move(meaning)),
+                           field);
 }
 
 KeySpec choice_key(const std::string& map, const std::string& name, const std::string& unit,
                    std::vector<std::string> choices, std::function<std::string(const Analysis&)> get,
                    std::function<void(Analysis&, const std::string&)> set, std::string default_text,
                    std::string meaning) {
-  KeySpec k{map, name, KeyType::choice, unit, {}, std::move(choices), {}, std::move(default_text),
-            std::move(meaning), {}, {}};
-  k.get = [get](const Analysis& a) -> KeyValue { return get(a); };
-  k.set = [set](Analysis& a, const KeyValue& v) { set(a, std::get<std::string>(v)); };
-  return k;
+  KeyInfo i = info(map, name, KeyType::choice, unit, {}, std::move(default_text), std::move(meaning));
+  i.choices = std::move(choices);
+  return detail::custom_key<Analysis>(
+      std::move(i), [get](const Analysis& a) -> KeyValue { return get(a); },
+      [set](Analysis& a, const KeyValue& v) { set(a, std::get<std::string>(v)); });
 }
 
 KeySpec point_key(const std::string& map, const std::string& name, const std::string& unit,
                   std::function<Point(const Analysis&)> get, std::function<void(Analysis&, const Point&)> set,
                   std::string default_text, std::string meaning) {
-  KeySpec k{map, name, KeyType::point, unit, {}, {}, {}, std::move(default_text), std::move(meaning), {}, {}};
-  k.get = [get](const Analysis& a) -> KeyValue { return get(a); };
-  k.set = [set](Analysis& a, const KeyValue& v) { set(a, std::get<Point>(v)); };
-  return k;
+  return detail::custom_key<Analysis>(
+      info(map, name, KeyType::point, unit, {}, std::move(default_text), std::move(meaning)),
+      [get](const Analysis& a) -> KeyValue { return get(a); },
+      [set](Analysis& a, const KeyValue& v) { set(a, std::get<Point>(v)); });
 }
 
+/// A sub-map (`settle`): read by read_analysis.cpp.
 KeySpec map_key(const std::string& map, const std::string& name, std::string default_text, std::string meaning) {
-  KeySpec k{map, name, KeyType::map, "–", {}, {}, {}, std::move(default_text), std::move(meaning), {}, {}};
-  k.get = [](const Analysis&) -> KeyValue { return std::monostate{}; };
-  k.set = [](Analysis&, const KeyValue&) {};
-  return k;
+  return detail::reader_key<Analysis>(info(map, name, KeyType::map, "–", {}, std::move(default_text), std::move(meaning)));
 }
 
 /// A key of `analysis.settle`: its field of Analysis::Settle; not applicable without `settle:`.
 template <class T>
 KeySpec settle_key(const std::string& name, KeyType type, const std::string& unit, KeyRange range,
                    T Analysis::Settle::*field, std::string default_text, std::string meaning) {
-  KeySpec k{"analysis.settle", name, type, unit, range, {}, {}, std::move(default_text), std::move(meaning), {}, {}};
-  k.get = [field](const Analysis& a) -> KeyValue {
-    if (!a.settle) return std::monostate{};
-    return (*a.settle).*field;
-  };
-  k.set = [field](Analysis& a, const KeyValue& v) { (*a.settle).*field = std::get<T>(v); };
-  return k;
+  return detail::custom_key<Analysis>(
+      info("analysis.settle", name, type, unit, range, std::move(default_text), std::move(meaning)),
+      [field](const Analysis& a) -> KeyValue {
+        if (!a.settle) return std::monostate{};
+        return (*a.settle).*field;
+      },
+      [field](Analysis& a, const KeyValue& v) { (*a.settle).*field = std::get<T>(v); });
 }
 
 KeySpec settle_number(const std::string& name, const std::string& unit, KeyRange range,
@@ -123,8 +123,7 @@ std::vector<KeySpec> declare_analysis_keys() {
       "Shi's g2: allowed displacement per step / half model size, (0, 1]"));
   keys.push_back(map_key("analysis", "settle",
       "none",
-      "`{until, dt, max_displacement_ratio, type, collapse_dt, gravity_ramp, rest_tolerance, "
-         "open_close_limit}`: a settling stage at the start of the run (docs/reference/engine.md, \"Settling "
+      "a settling stage at the start of the run (docs/reference/engine.md, \"Settling "
          "stage\"); its keys are in the table `analysis.settle` below. For a static model that "
          "settles as a mechanism when gravity comes on: every run, whatever its `dt`, starts its "
          "creep from the same settled state"));
@@ -345,48 +344,11 @@ std::vector<KeySpec> declare_analysis_keys() {
   return keys;
 }
 
-/// The unit word of a key in the scene's own unit labels.
-std::string unit_text(const std::string& unit, const Units& u) {
-  if (unit == "time") return u.time;
-  if (unit == "length") return u.length;
-  if (unit == "stress") return u.stress();
-  if (unit == "force/length") return u.force + "/" + u.length;
-  if (unit == "length/time²") return u.length + "/" + u.time + "^2";
-  if (unit == "–") return "";
-  return unit;  // deg, MB: the same in every scene
-}
-
 }  // namespace
 
 std::vector<KeySpec>& analysis_keys() {
   static std::vector<KeySpec> keys = declare_analysis_keys();
   return keys;
-}
-
-std::vector<std::string> declared_key_names(const std::string& map) {
-  std::vector<std::string> names;
-  for (const KeySpec& k : analysis_keys())
-    if (k.map == map) names.push_back(k.name);
-  return names;
-}
-
-std::string key_value_text(const KeySpec& k, const Analysis& a, const Units& u) {
-  const KeyValue v = k.get(a);
-  const std::string unit = unit_text(k.unit, u);
-  const std::string suffix = unit.empty() ? "" : " " + unit;
-  if (const auto* d = std::get_if<double>(&v)) return fmt::format("{:g}{}", *d, suffix);
-  if (const auto* i = std::get_if<int>(&v)) return fmt::format("{}{}", *i, suffix);
-  if (const auto* b = std::get_if<bool>(&v)) return *b ? "true" : "false";
-  if (const auto* s = std::get_if<std::string>(&v)) return *s;
-  if (const auto* p = std::get_if<Point>(&v)) return fmt::format("({:g}, {:g}){}", (*p)[0], (*p)[1], suffix);
-  return "none";
-}
-
-std::string key_table_markdown(const std::string& map) {
-  std::string out = "| key | unit | meaning | default |\n|---|---|---|---|\n";
-  for (const KeySpec& k : analysis_keys())
-    if (k.map == map) out += fmt::format("| `{}` | {} | {} | {} |\n", k.name, k.unit, k.meaning, k.default_text);
-  return out;
 }
 
 }  // namespace rheodda::scene

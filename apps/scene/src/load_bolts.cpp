@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "bolts_text.hpp"
+#include "read_keys.hpp"
 #include "scene_readers.hpp"
 
 namespace rheodda::scene::detail {
@@ -41,24 +42,24 @@ std::vector<std::string> bolt_names(const SceneDescription& s) {
 BoltDescription read_bolt(const Ctx& ctx, const YAML::Node& n, const std::string& path, const SceneDescription& s,
                           const std::vector<std::string>& taken, bool at_stage) {
   const double tol = geometry_tolerance(s.blocks);
-  const MapReader m(ctx, n, path, keys::bolt);
+  const MapReader m(ctx, n, path, key_names(bolt_keys(), "bolts"));
   BoltDescription b;
   b.where = m.where();
-  const YAML::Node name = m.required("name", "the bolt's name in bolts.csv");
-  b.name = name_text(ctx, name, m.child("name"));
+  // name, axial_stiffness, pretension, yield_force, rupture_elongation (keys_bolts.cpp).
+  read_declared(ctx, m, bolt_keys(), "bolts", b);
   if (std::find(taken.begin(), taken.end(), b.name) != taken.end())
-    ctx.fail(name, m.child("name"), fmt::format("bolt '{}' is defined twice", b.name));
+    ctx.fail(m.find("name"), m.child("name"), fmt::format("bolt '{}' is defined twice", b.name));
   auto read_end = [&](const MapReader& e) {
     return at_stage ? read_stage_end(ctx, e, s) : read_block_point(ctx, e, s, tol);
   };
   const char* installed = at_stage ? "at the stage" : "at t = 0";
 
-  const MapReader from(ctx, m.required("from", "the first end: {point: [x, y], block: NAME}"), m.child("from"),
-                       keys::bolt_from);
+  const MapReader from(ctx, required_key(m, bolt_keys(), "bolts", "from"), m.child("from"),
+                       key_names(bolt_end_keys(), "bolts.from"));
   b.from = read_end(from);
 
-  const MapReader to(ctx, m.required("to", "the second end: {point: [x, y], block: NAME} or {fixed: [x, y]}"),
-                     m.child("to"), keys::bolt_to);
+  const MapReader to(ctx, required_key(m, bolt_keys(), "bolts", "to"), m.child("to"),
+                     key_names(bolt_to_keys(), "bolts.to"));
   if (const YAML::Node fixed = to.find("fixed"); fixed.IsDefined()) {
     if (to.has("point") || to.has("block"))
       ctx.fail(to.node(), to.child("fixed"),
@@ -90,7 +91,6 @@ BoltDescription read_bolt(const Ctx& ctx, const YAML::Node& n, const std::string
   if (b.law)
     if (const auto it = b.law->parameters.find("E1"); it != b.law->parameters.end()) e1 = it->second;
   if (const YAML::Node k = m.find("axial_stiffness"); k.IsDefined()) {
-    b.axial_stiffness = number(ctx, k, m.child("axial_stiffness"), positive("force/length"));
     if (e1 && std::abs(*e1 - b.axial_stiffness) > 1e-12 * b.axial_stiffness)
       ctx.fail(k, m.child("axial_stiffness"),
                fmt::format("{:g} differs from the law's instantaneous stiffness E1 = {:g}, which is the bolt's "
@@ -100,12 +100,7 @@ BoltDescription read_bolt(const Ctx& ctx, const YAML::Node& n, const std::string
   } else {
     m.required("axial_stiffness", "axial force per unit elongation [force/length]");
   }
-  if (const YAML::Node v = m.find("yield_force"); v.IsDefined())
-    b.yield_force = number(ctx, v, m.child("yield_force"), positive("force"));
-  if (const YAML::Node v = m.find("rupture_elongation"); v.IsDefined())
-    b.rupture_elongation = number(ctx, v, m.child("rupture_elongation"), positive("length"));
   if (const YAML::Node v = m.find("pretension"); v.IsDefined()) {
-    b.pretension = number(ctx, v, m.child("pretension"), any("force"));
     if (b.yield_force && std::abs(b.pretension) > *b.yield_force)
       ctx.fail(v, m.child("pretension"),
                fmt::format("{:g} exceeds the yield force {:g}", b.pretension, *b.yield_force));

@@ -12,6 +12,7 @@
 #include <set>
 
 #include "rheodda/scene/geometry.hpp"
+#include "read_keys.hpp"
 #include "scene_readers.hpp"
 
 namespace rheodda::scene::detail {
@@ -50,7 +51,7 @@ std::vector<std::pair<std::string, YAML::Node>> name_list(const Ctx& ctx, const 
 /// The blocks of `remove_blocks: {names, region, rock_mass_inside}` (their union).
 std::vector<int> read_removed_blocks(const Ctx& ctx, const YAML::Node& n, const std::string& path,
                                      const SceneDescription& s) {
-  MapReader m(ctx, n, path, keys::stage_remove_blocks);
+  MapReader m(ctx, n, path, key_names(stage_remove_blocks_keys(), "stages.remove_blocks"));
   if (m.entries().empty())
     ctx.fail(n, path,
              "give the blocks to remove: names: [...], region: [[x, y], ...] or rock_mass_inside: [[x, y], ...]");
@@ -78,14 +79,12 @@ std::vector<int> read_removed_blocks(const Ctx& ctx, const YAML::Node& n, const 
 
 /// `{name, point, block}` of a point a stage adds (`block:` required: the
 /// point is where the block stands at the stage, which the loader cannot know).
-StagePoint read_stage_point(const Ctx& ctx, const MapReader& m, const SceneDescription& s) {
+StagePoint read_stage_point(const Ctx& ctx, const MapReader& m, const std::vector<EntryKey<StagePoint>>& keys,
+                            const std::string& map, const SceneDescription& s) {
   StagePoint p;
   p.where = m.where();
-  if (YAML::Node v = m.find("name"); v.IsDefined()) p.name = name_text(ctx, v, m.child("name"));
-  p.point =
-      point(ctx, m.required("point", "[x, y] where the material point stands at the stage [length]"), m.child("point"));
-  p.block = resolve(ctx, m.required("block", "the block it is on (required in a stage)"), m.child("block"), s.blocks,
-                    "block");
+  read_declared(ctx, m, keys, map, p);  // name, point (and a load's force): keys_stages.cpp
+  p.block = resolve(ctx, required_key(m, keys, map, "block"), m.child("block"), s.blocks, "block");
   return p;
 }
 
@@ -105,18 +104,9 @@ std::vector<StageJointSet> read_stage_joint_sets(const Ctx& ctx, const YAML::Nod
     c.joint_set = resolve(ctx, e.key_node, path, s.joint_sets, "joint set");
     c.where = location(e.key_node);
     const JointSetDescription& js = s.joint_sets[static_cast<std::size_t>(c.joint_set)];
-    MapReader m(ctx, e.value, all.child(e.key), keys::stage_joint_set);
+    MapReader m(ctx, e.value, all.child(e.key), key_names(stage_joint_set_keys(), "stages.joint_sets"));
     if (m.entries().empty()) ctx.fail(e.value, all.child(e.key), "changes nothing: give the values to change");
-    if (YAML::Node v = m.find("friction_angle"); v.IsDefined())
-      c.friction_angle = number(ctx, v, m.child("friction_angle"), {0.0, false, 90.0, true, "deg"});
-    if (YAML::Node v = m.find("cohesion"); v.IsDefined())
-      c.cohesion = number(ctx, v, m.child("cohesion"), non_negative("stress"));
-    if (YAML::Node v = m.find("tensile_strength"); v.IsDefined())
-      c.tensile_strength = number(ctx, v, m.child("tensile_strength"), non_negative("stress"));
-    if (YAML::Node v = m.find("residual_friction_angle"); v.IsDefined())
-      c.residual_friction_angle = number(ctx, v, m.child("residual_friction_angle"), non_negative("deg"));
-    if (YAML::Node v = m.find("residual_cohesion"); v.IsDefined())
-      c.residual_cohesion = number(ctx, v, m.child("residual_cohesion"), non_negative("stress"));
+    read_declared(ctx, m, stage_joint_set_keys(), "stages.joint_sets", c);  // the strengths (keys_stages.cpp)
     if (YAML::Node v = m.find("law"); v.IsDefined()) {
       const LawChoice law = read_law(ctx, v, m.child("law"));
       if (!js.law || js.law->name != law.name)
@@ -158,19 +148,17 @@ void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s) {
   double last_at = 0.0;
   for (std::size_t i = 0; i < n.size(); ++i) {
     const std::string path = fmt::format("stages[{}]", i);
-    MapReader m(ctx, n[i], path, keys::stage);
+    MapReader m(ctx, n[i], path, key_names(stage_keys(), "stages"));
     StageDescription st;
     st.where = m.where();
-    YAML::Node name = m.required("name", "the stage's name (history.csv's stage column)");
-    st.name = name_text(ctx, name, m.child("name"));
+    read_declared(ctx, m, stage_keys(), "stages", st);  // name, at, after, settle (keys_stages.cpp)
     for (const auto& other : s.stages)
-      if (other.name == st.name) ctx.fail(name, m.child("name"), fmt::format("stage '{}' is defined twice", st.name));
+      if (other.name == st.name)
+        ctx.fail(m.find("name"), m.child("name"), fmt::format("stage '{}' is defined twice", st.name));
     YAML::Node at = m.find("at"), after = m.find("after");
     if (at.IsDefined() == after.IsDefined())
       ctx.fail(m.node(), m.child("at"), "give exactly one of at: <time> or after: settled");
     if (at.IsDefined()) {
-      st.start = StageStart::at;
-      st.at = number(ctx, at, m.child("at"), positive("time"));
       if (!(st.at < a.duration))
         ctx.fail(at, m.child("at"),
                  fmt::format("{:g} is not before the end of the run (duration {:g})", st.at, a.duration));
@@ -179,8 +167,6 @@ void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s) {
                  fmt::format("{:g} is not after the stage before ({:g}): stage times must increase", st.at, last_at));
       last_at = st.at;
     } else {
-      st.start = StageStart::settled;
-      (void)choice(ctx, after, m.child("after"), {"settled"});
       if (!settling_to_wait_for)
         ctx.fail(after, m.child("after"),
                  i == 0 ? std::string("no settling stage ends at rest before this stage: give analysis.settle a "
@@ -232,9 +218,10 @@ void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s) {
       where = location(v);
       if (!v.IsSequence() || v.size() == 0) ctx.fail(v, m.child(key), "expected a non-empty list");
       for (std::size_t k = 0; k < v.size(); ++k) {
-        MapReader pm(ctx, v[k], fmt::format("{}[{}]", m.child(key), k),
-                     load ? keys::stage_load : keys::stage_fixed_point);
-        StagePoint p = read_stage_point(ctx, pm, s);
+        const auto& point_keys = load ? stage_load_keys() : stage_fixed_point_keys();
+        const std::string point_map = load ? "stages.add_loads" : "stages.add_fixed_points";
+        MapReader pm(ctx, v[k], fmt::format("{}[{}]", m.child(key), k), key_names(point_keys, point_map));
+        StagePoint p = read_stage_point(ctx, pm, point_keys, point_map, s);
         if (removed[static_cast<std::size_t>(p.block)])
           ctx.fail(pm.find("block"), pm.child("block"),
                    fmt::format("block '{}' is removed by then (stage '{}')",
@@ -249,10 +236,7 @@ void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s) {
           if (f.IsDefined() == h.IsDefined())
             ctx.fail(pm.node(), pm.child("force"),
                      "give exactly one of force: [fx, fy] or history: [[t, fx, fy], ...] (t from the stage's start)");
-          if (f.IsDefined()) {
-            const auto fv = numbers(ctx, f, pm.child("force"), 2, any("force"));
-            p.history.push_back({0.0, fv[0], fv[1]});
-          } else {
+          if (h.IsDefined()) {  // else `force` gave the one sample
             if (!h.IsSequence() || h.size() == 0 || h.size() > kMaxSamples)
               ctx.fail(h, pm.child("history"), "expected a list of [t, fx, fy] samples");
             for (std::size_t j = 0; j < h.size(); ++j) {
@@ -312,24 +296,15 @@ void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s) {
       st.joint_sets = read_stage_joint_sets(ctx, v, m.child("joint_sets"), s);
     }
     if (YAML::Node v = m.find("analysis"); v.IsDefined()) {
-      MapReader am(ctx, v, m.child("analysis"), keys::stage_analysis);
-      const std::string type =
-          choice(ctx, am.required("type", "static or dynamic"), am.child("type"), {"static", "dynamic"});
-      if (type == "static") {
-        if (YAML::Node r = am.find("dynamic_ratio"); r.IsDefined())
-          ctx.fail(r, am.child("dynamic_ratio"), "a static analysis carries no velocity (dynamic_ratio 0)");
-        st.dynamic_ratio = 0.0;
-      } else {
-        st.dynamic_ratio = 1.0;
-        if (YAML::Node r = am.find("dynamic_ratio"); r.IsDefined())
-          st.dynamic_ratio = number(ctx, r, am.child("dynamic_ratio"), {0.0, true, 1.0, false, ""});
-      }
+      MapReader am(ctx, v, m.child("analysis"), key_names(stage_analysis_keys(), "stages.analysis"));
+      read_declared(ctx, am, stage_analysis_keys(), "stages.analysis", st);  // type, dynamic_ratio (keys_stages.cpp)
+      if (YAML::Node r = am.find("dynamic_ratio"); r.IsDefined() && am.find("type").Scalar() == "static")
+        ctx.fail(r, am.child("dynamic_ratio"), "a static analysis carries no velocity (dynamic_ratio 0)");
       if (a.time_integration == TimeIntegration::trapezoidal && *st.dynamic_ratio == 0.0)
         ctx.fail(v, am.child("type"), "time_integration: trapezoidal needs a dynamic analysis");
     }
     if (YAML::Node v = m.find("settle"); v.IsDefined()) {
       st.settle_where = location(v);
-      st.settle = flag(ctx, v, m.child("settle"));
       if (st.settle && !a.settle)
         ctx.fail(v, m.child("settle"), "a settling stage takes analysis.settle's values: give analysis.settle");
     }

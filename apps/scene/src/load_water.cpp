@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "read_keys.hpp"
 #include "scene_readers.hpp"
 
 namespace rheodda::scene::detail {
@@ -66,11 +67,10 @@ double sample_time(const Ctx& ctx, const YAML::Node& n, const std::string& key, 
 }  // namespace
 
 WaterDescription read_water(const Ctx& ctx, const YAML::Node& n, const SceneDescription& s, const std::string& path) {
-  MapReader m(ctx, n, path, keys::water);
+  MapReader m(ctx, n, path, key_names(water_keys(), "water"));
   WaterDescription w;
   w.where = m.where();
-  w.unit_weight = number(ctx, m.required("unit_weight", "the water's unit weight gamma_w [force/length^3]"),
-                         m.child("unit_weight"), positive("force/length^3"));
+  read_declared(ctx, m, water_keys(), "water", w);  // unit_weight, level (keys_water.cpp)
   const std::vector<std::string> forms{"level", "surface", "level_history", "surface_history"};
   int given = 0;
   for (const auto& f : forms) given += m.has(f) ? 1 : 0;
@@ -79,11 +79,7 @@ WaterDescription read_water(const Ctx& ctx, const YAML::Node& n, const SceneDesc
              given == 0 ? "missing the phreatic surface: give one of level, surface, level_history, surface_history"
                         : "give only one of level, surface, level_history, surface_history");
   if (YAML::Node v = m.find("level"); v.IsDefined()) {
-    w.form = WaterDescription::Form::level;
-    WaterDescription::Sample smp;
-    smp.level = number(ctx, v, m.child("level"), any("length"));
-    smp.where = location(v);
-    w.history.push_back(smp);
+    w.history.front().where = location(v);  // the one sample, read with the declared keys
   } else if (YAML::Node v = m.find("surface"); v.IsDefined()) {
     w.form = WaterDescription::Form::surface;
     WaterDescription::Sample smp;
@@ -109,11 +105,13 @@ WaterDescription read_water(const Ctx& ctx, const YAML::Node& n, const SceneDesc
     if (!h.IsSequence() || h.size() == 0 || h.size() > kMaxSamples)
       ctx.fail(h, m.child("surface_history"), "expected a list of {time, surface} samples");
     for (std::size_t k = 0; k < h.size(); ++k) {
-      MapReader sm(ctx, h[k], fmt::format("{}[{}]", m.child("surface_history"), k), keys::water_sample);
+      MapReader sm(ctx, h[k], fmt::format("{}[{}]", m.child("surface_history"), k),
+                   key_names(water_sample_keys(), "water.surface_history"));
       WaterDescription::Sample smp;
-      const YAML::Node t = sm.required("time", "[time]");
-      smp.time = sample_time(ctx, t, sm.child("time"), number(ctx, t, sm.child("time"), any("time")), w);
-      smp.surface = read_surface(ctx, sm.required("surface", "[[x, y], ...] [length]"), sm.child("surface"), s);
+      read_declared(ctx, sm, water_sample_keys(), "water.surface_history", smp);  // time
+      smp.time = sample_time(ctx, sm.find("time"), sm.child("time"), smp.time, w);
+      smp.surface = read_surface(ctx, required_key(sm, water_sample_keys(), "water.surface_history", "surface"),
+                                 sm.child("surface"), s);
       smp.where = sm.where();
       w.history.push_back(smp);
     }

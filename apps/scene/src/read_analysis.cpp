@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
-#include "rheodda/scene/keys.hpp"
+#include "read_keys.hpp"
 #include "scene_readers.hpp"
 
 namespace rheodda::scene::detail {
@@ -23,36 +23,11 @@ Units read_units(const Ctx& ctx, const YAML::Node& n) {
 
 namespace {
 
-/// A declared key's value from its node, checked against its declaration.
-KeyValue read_value(const Ctx& ctx, const YAML::Node& v, const std::string& path, const KeySpec& k) {
-  const char* unit = k.unit == "–" ? "" : k.unit.c_str();
-  switch (k.type) {
-    case KeyType::number:
-      return number(ctx, v, path, {k.range.min, k.range.min_exclusive, k.range.max, k.range.max_exclusive, unit});
-    case KeyType::integer:
-      return integer(ctx, v, path, static_cast<int>(k.range.min), static_cast<int>(k.range.max));
-    case KeyType::flag: return flag(ctx, v, path);
-    case KeyType::choice: return choice(ctx, v, path, k.choices);
-    case KeyType::point: return point(ctx, v, path);
-    case KeyType::map: break;
-  }
-  return std::monostate{};
-}
-
-/// Every declared key of `map` that the file gives, read into `a`; required ones must be given.
-void read_declared(const Ctx& ctx, const MapReader& m, const std::string& map, Analysis& a) {
-  for (const KeySpec& k : analysis_keys()) {
-    if (k.map != map || k.type == KeyType::map) continue;
-    const YAML::Node v = k.required.empty() ? m.find(k.name) : m.required(k.name, k.required);
-    if (v.IsDefined()) k.set(a, read_value(ctx, v, m.child(k.name), k));
-  }
-}
-
 /// `settle:` (docs/reference/engine.md, "Settling stage"), after the analysis's own keys.
 void read_settle(const Ctx& ctx, const MapReader& m, Analysis& a) {
   MapReader sm(ctx, m.find("settle"), m.child("settle"), declared_key_names("analysis.settle"));
   a.settle = Analysis::Settle{};
-  read_declared(ctx, sm, "analysis.settle", a);
+  read_declared(ctx, sm, analysis_keys(), "analysis.settle", a);
   Analysis::Settle& st = *a.settle;
   if (!sm.has("max_displacement_ratio")) st.max_displacement_ratio = a.max_displacement_ratio;
   // A stage that ends at rest (docs/reference/engine.md, "Dynamic stages") needs no length:
@@ -102,7 +77,7 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   MapReader m(ctx, n, "analysis", declared_key_names("analysis"));
   Analysis a;
   a.where = m.where();
-  read_declared(ctx, m, "analysis", a);
+  read_declared(ctx, m, analysis_keys(), "analysis", a);
   const bool dynamic = a.type == AnalysisType::dynamic_analysis;
   if (a.dt > a.duration)
     ctx.fail(m.find("dt"), m.child("dt"), fmt::format("dt = {:g} is longer than duration = {:g}", a.dt, a.duration));

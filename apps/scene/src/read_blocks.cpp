@@ -10,6 +10,7 @@
 #include <optional>
 #include <unordered_set>
 
+#include "read_keys.hpp"
 #include "scene_readers.hpp"
 #include "rheodda/scene/geometry.hpp"
 #include "rheodda/scene/memory.hpp"
@@ -46,27 +47,19 @@ void read_blocks(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, std::
     ctx.fail(n, "blocks", "expected a list of blocks, e.g. `- {rectangle: {x: 0, y: 0, width: 1, height: 1}}`");
   for (std::size_t i = 0; i < n.size(); ++i) {
     const std::string path = fmt::format("blocks[{}]", i);
-    MapReader m(ctx, n[i], path, keys::block);
+    MapReader m(ctx, n[i], path, key_names(block_keys(), "blocks"));
     BlockDescription b;
     b.where = m.where();
+    read_declared(ctx, m, block_keys(), "blocks", b);  // name, fixed, initial_stress, initial_velocity (keys_blocks.cpp)
     if (YAML::Node v = m.find("material"); v.IsDefined())
       b.material = resolve(ctx, v, m.child("material"), s.materials, "material");
     else if (s.materials.size() != 1)
       ctx.fail(m.node(), m.child("material"), "missing key 'material': the scene has several materials");
-    if (YAML::Node v = m.find("fixed"); v.IsDefined()) b.fixed = flag(ctx, v, m.child("fixed"));
-    if (YAML::Node v = m.find("initial_stress"); v.IsDefined()) {
-      const auto x = numbers(ctx, v, m.child("initial_stress"), 3, any("stress"));
-      b.initial_stress = {x[0], x[1], x[2]};
-    }
-    if (YAML::Node v = m.find("initial_velocity"); v.IsDefined()) {
-      const auto x = numbers(ctx, v, m.child("initial_velocity"), 3, any("length/time, 1/time"));
-      if (s.analysis.type == AnalysisType::static_analysis && (x[0] != 0 || x[1] != 0 || x[2] != 0))
-        ctx.fail(v, m.child("initial_velocity"),
-                 "a static analysis carries no velocity; initial_velocity needs `analysis: {type: dynamic}`");
-      b.initial_velocity = {x[0], x[1], x[2]};
-    }
-    std::string name;
-    if (YAML::Node v = m.find("name"); v.IsDefined()) name = name_text(ctx, v, m.child("name"));
+    if (YAML::Node v = m.find("initial_velocity"); v.IsDefined() &&
+        s.analysis.type == AnalysisType::static_analysis && b.initial_velocity != std::array<double, 3>{0.0, 0.0, 0.0})
+      ctx.fail(v, m.child("initial_velocity"),
+               "a static analysis carries no velocity; initial_velocity needs `analysis: {type: dynamic}`");
+    const std::string name = b.name;
 
     const int shapes = int(m.has("polygon")) + int(m.has("rectangle")) + int(m.has("grid"));
     if (shapes != 1)
@@ -89,23 +82,18 @@ void read_blocks(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, std::
     const bool grid = m.has("grid");
     const std::string key = grid ? "grid" : "rectangle";
     YAML::Node g = m.find(key);
-    MapReader r(ctx, g, m.child(key), grid ? keys::grid : keys::rectangle);
-    const double x = number(ctx, r.required("x", "x of the lower-left corner [length]"), r.child("x"), any("length"));
-    const double y = number(ctx, r.required("y", "y of the lower-left corner [length]"), r.child("y"), any("length"));
-    const double w = number(ctx, r.required("width", "[length]"), r.child("width"), positive("length"));
-    const double h = number(ctx, r.required("height", "[length]"), r.child("height"), positive("length"));
-    double angle = 0.0;  // counter-clockwise rotation about (x, y) [deg]
-    if (YAML::Node v = r.find("angle"); v.IsDefined())
-      angle = number(ctx, v, r.child("angle"), {-360.0, false, 360.0, false, "deg"});
+    const auto& shape_keys = grid ? grid_keys() : rectangle_keys();
+    const std::string shape_map = grid ? "blocks.grid" : "blocks.rectangle";
+    MapReader r(ctx, g, m.child(key), key_names(shape_keys, shape_map));
+    BlockShape shape;
+    read_declared(ctx, r, shape_keys, shape_map, shape);  // keys_blocks.cpp
+    const double x = shape.x, y = shape.y, w = shape.width, h = shape.height;
+    const double angle = shape.angle;  // counter-clockwise rotation about (x, y) [deg]
     const double ca = std::cos(angle * std::numbers::pi / 180.0), sa = std::sin(angle * std::numbers::pi / 180.0);
     auto place = [&](double ls, double lt) -> Point { return {x + ca * ls - sa * lt, y + sa * ls + ca * lt}; };
-    int cols = 1, rows = 1;
-    if (grid) {
-      cols = integer(ctx, r.required("columns", "number of blocks along x"), r.child("columns"), 1, int(kMaxBlocks));
-      rows = integer(ctx, r.required("rows", "number of blocks along y"), r.child("rows"), 1, int(kMaxBlocks));
-      if (std::size_t(cols) * std::size_t(rows) + raw.size() > kMaxBlocks)
-        ctx.fail(g, m.child(key), fmt::format("more than {} blocks in the scene", kMaxBlocks));
-    }
+    const int cols = shape.columns, rows = shape.rows;  // 1 and 1 for a rectangle
+    if (grid && std::size_t(cols) * std::size_t(rows) + raw.size() > kMaxBlocks)
+      ctx.fail(g, m.child(key), fmt::format("more than {} blocks in the scene", kMaxBlocks));
     b.edge_joint_set = edge_sets(ctx, m, s, 4, "bottom, right, top, left");
     for (int row = 0; row < rows; ++row)
       for (int col = 0; col < cols; ++col) {

@@ -10,6 +10,7 @@
 #include <optional>
 #include <unordered_set>
 
+#include "read_keys.hpp"
 #include "scene_readers.hpp"
 
 namespace rheodda::scene::detail {
@@ -25,25 +26,14 @@ std::vector<Material> read_materials(const Ctx& ctx, const YAML::Node& n, bool d
     Material mat;
     mat.name = name_text(ctx, e.key_node, "materials");
     const std::string path = all.child(e.key);
-    MapReader m(ctx, e.value, path, keys::material);
+    MapReader m(ctx, e.value, path, key_names(material_keys(), "materials"));
     mat.where = location(e.key_node);
-    mat.density = number(ctx, m.required("density", "[mass/length^3]"), m.child("density"),
-                         positive("mass/length^3"));
-    mat.young_modulus = number(ctx, m.required("young_modulus", "E [stress]"),
-                               m.child("young_modulus"), positive("stress"));
-    mat.poisson_ratio = number(ctx, m.required("poisson_ratio", "nu [-]"), m.child("poisson_ratio"),
-                               {0.0, false, 0.5, true, ""});
-    if (YAML::Node v = m.find("plane"); v.IsDefined())
-      mat.plane = choice(ctx, v, m.child("plane"), {"strain", "stress"}) == "strain" ? PlaneKind::strain
-                                                                                   : PlaneKind::stress;
-    if (YAML::Node v = m.find("damping_ratio"); v.IsDefined()) {
-      // Block damping damps velocities; a static analysis carries none.
-      if (!dynamic_steps)
-        ctx.fail(v, m.child("damping_ratio"),
-                 "a static analysis carries no velocity; damping_ratio needs `analysis: {type: dynamic}` "
-                 "or a dynamic settling stage (`settle: {type: dynamic, ...}`)");
-      mat.damping_ratio = number(ctx, v, m.child("damping_ratio"), {0.0, false, 1.0, false, ""});
-    }
+    read_declared(ctx, m, material_keys(), "materials", mat);  // keys_joints.cpp
+    // Block damping damps velocities; a static analysis carries none.
+    if (YAML::Node v = m.find("damping_ratio"); v.IsDefined() && !dynamic_steps)
+      ctx.fail(v, m.child("damping_ratio"),
+               "a static analysis carries no velocity; damping_ratio needs `analysis: {type: dynamic}` "
+               "or a dynamic settling stage (`settle: {type: dynamic, ...}`)");
     out.push_back(std::move(mat));
   }
   return out;
@@ -65,7 +55,7 @@ LawChoice read_law(const Ctx& ctx, const YAML::Node& n, const std::string& path)
              fmt::format("unknown law '{}'{}; known laws: {}", name,
                          hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint), join(names)));
   }
-  std::vector<std::string> allowed = keys::law;
+  std::vector<std::string> allowed = key_names(law_keys(), "law");  // keys_joints.cpp
   for (const auto& p : info->parameters) allowed.push_back(p.name);
   MapReader m(ctx, n, path, allowed);
   LawChoice law;
@@ -100,40 +90,23 @@ std::vector<JointSetDescription> read_joint_sets(const Ctx& ctx, const YAML::Nod
     JointSetDescription js;
     js.name = name_text(ctx, e.key_node, "joint_sets");
     js.where = location(e.key_node);
-    MapReader m(ctx, e.value, all.child(e.key), keys::joint_set);
-    js.friction_angle = number(ctx, m.required("friction_angle", "phi [deg], 0 <= phi < 90"),
-                               m.child("friction_angle"), {0.0, false, 90.0, true, "deg"});
-    if (YAML::Node v = m.find("cohesion"); v.IsDefined())
-      js.cohesion = number(ctx, v, m.child("cohesion"), non_negative("stress"));
-    if (YAML::Node v = m.find("tensile_strength"); v.IsDefined())
-      js.tensile_strength = number(ctx, v, m.child("tensile_strength"), non_negative("stress"));
+    MapReader m(ctx, e.value, all.child(e.key), key_names(joint_set_keys(), "joint_sets"));
+    read_declared(ctx, m, joint_set_keys(), "joint_sets", js);  // keys_joints.cpp
     // Residual strength (UDEC/3DEC): once a contact slid, opened or its damage law failed.
-    if (YAML::Node v = m.find("residual_friction_angle"); v.IsDefined()) {
-      js.residual_friction_angle = number(ctx, v, m.child("residual_friction_angle"), non_negative("deg"));
-      if (*js.residual_friction_angle > js.friction_angle)
-        ctx.fail(v, m.child("residual_friction_angle"),
-                 fmt::format("{:g} deg is above the peak friction_angle {:g} deg: a residual strength is at most the peak",
-                             *js.residual_friction_angle, js.friction_angle));
-    }
-    if (YAML::Node v = m.find("residual_cohesion"); v.IsDefined()) {
-      js.residual_cohesion = number(ctx, v, m.child("residual_cohesion"), non_negative("stress"));
-      if (js.residual_cohesion > js.cohesion)
-        ctx.fail(v, m.child("residual_cohesion"),
-                 fmt::format("{:g} is above the peak cohesion {:g}: a residual strength is at most the peak",
-                             js.residual_cohesion, js.cohesion));
-    }
-    if (YAML::Node v = m.find("normal_stiffness"); v.IsDefined())
-      js.normal_stiffness = number(ctx, v, m.child("normal_stiffness"), positive("stress/length"));
-    if (YAML::Node v = m.find("shear_stiffness"); v.IsDefined())
-      js.shear_stiffness = number(ctx, v, m.child("shear_stiffness"), positive("stress/length"));
-    if (YAML::Node v = m.find("restitution"); v.IsDefined()) {
-      // Contact dashpots damp motion; a static analysis has none to damp.
-      if (!dynamic_steps)
-        ctx.fail(v, m.child("restitution"),
-                 "a static analysis carries no velocity; restitution needs `analysis: {type: dynamic}` "
-                 "or a dynamic settling stage (`settle: {type: dynamic, ...}`)");
-      js.restitution = number(ctx, v, m.child("restitution"), {0.0, false, 1.0, false, ""});
-    }
+    if (YAML::Node v = m.find("residual_friction_angle");
+        v.IsDefined() && *js.residual_friction_angle > js.friction_angle)
+      ctx.fail(v, m.child("residual_friction_angle"),
+               fmt::format("{:g} deg is above the peak friction_angle {:g} deg: a residual strength is at most the peak",
+                           *js.residual_friction_angle, js.friction_angle));
+    if (YAML::Node v = m.find("residual_cohesion"); v.IsDefined() && js.residual_cohesion > js.cohesion)
+      ctx.fail(v, m.child("residual_cohesion"),
+               fmt::format("{:g} is above the peak cohesion {:g}: a residual strength is at most the peak",
+                           js.residual_cohesion, js.cohesion));
+    // Contact dashpots damp motion; a static analysis has none to damp.
+    if (YAML::Node v = m.find("restitution"); v.IsDefined() && !dynamic_steps)
+      ctx.fail(v, m.child("restitution"),
+               "a static analysis carries no velocity; restitution needs `analysis: {type: dynamic}` "
+               "or a dynamic settling stage (`settle: {type: dynamic, ...}`)");
     if (YAML::Node v = m.find("law"); v.IsDefined()) {
       js.law = read_law(ctx, v, m.child("law"));
       // A law with an instantaneous spring E1 (burgers, maxwell, nishihara) is the
@@ -143,7 +116,6 @@ std::vector<JointSetDescription> read_joint_sets(const Ctx& ctx, const YAML::Nod
                  fmt::format("law '{}' sets the joint's elastic shear stiffness with its E1; "
                              "remove shear_stiffness (or use a law without E1)", js.law->name));
     }
-    if (YAML::Node v = m.find("record"); v.IsDefined()) js.record = flag(ctx, v, m.child("record"));
     out.push_back(std::move(js));
   }
   return out;

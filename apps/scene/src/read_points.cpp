@@ -10,6 +10,7 @@
 #include <optional>
 #include <unordered_set>
 
+#include "read_keys.hpp"
 #include "scene_readers.hpp"
 #include "rheodda/scene/geometry.hpp"
 
@@ -57,36 +58,36 @@ void read_points(const Ctx& ctx, const MapReader& top, SceneDescription& s) {
     return n;
   };
   // The optional `name` of a fixed point or load: what a stage removes it by (docs/reference/stages.md).
-  auto read_name = [&](const MapReader& m, const auto& earlier, auto name_of, const char* what) {
-    YAML::Node v = m.find("name");
-    if (!v.IsDefined()) return std::string();
-    std::string name = name_text(ctx, v, m.child("name"));
+  auto check_name = [&](const MapReader& m, const std::string& name, const auto& earlier, auto name_of,
+                        const char* what) {
     for (const auto& e : earlier)
-      if (name_of(e) == name) ctx.fail(v, m.child("name"), fmt::format("{} '{}' is defined twice", what, name));
-    return name;
+      if (!name.empty() && name_of(e) == name)
+        ctx.fail(m.find("name"), m.child("name"), fmt::format("{} '{}' is defined twice", what, name));
   };
+  // Each list's declared keys (keys_points.cpp) first, then the point on its block.
   if (YAML::Node n = list("fixed_points"); n.IsSequence())
     for (std::size_t i = 0; i < n.size(); ++i) {
-      MapReader m(ctx, n[i], fmt::format("fixed_points[{}]", i), keys::fixed_point);
-      const std::string name = read_name(m, s.fixed_points, [](const BlockPoint& p) { return p.name; }, "fixed point");
+      MapReader m(ctx, n[i], fmt::format("fixed_points[{}]", i), key_names(fixed_point_keys(), "fixed_points"));
+      BlockPoint declared;
+      read_declared(ctx, m, fixed_point_keys(), "fixed_points", declared);
+      check_name(m, declared.name, s.fixed_points, [](const BlockPoint& p) { return p.name; }, "fixed point");
       s.fixed_points.push_back(read_block_point(ctx, m, s, tol));
-      s.fixed_points.back().name = name;
+      s.fixed_points.back().name = declared.name;
     }
   if (YAML::Node n = list("loads"); n.IsSequence())
     for (std::size_t i = 0; i < n.size(); ++i) {
-      MapReader m(ctx, n[i], fmt::format("loads[{}]", i), keys::load);
+      MapReader m(ctx, n[i], fmt::format("loads[{}]", i), key_names(load_keys(), "loads"));
       LoadDescription load;
-      const std::string name = read_name(m, s.loads, [](const LoadDescription& l) { return l.at.name; }, "load");
+      read_declared(ctx, m, load_keys(), "loads", load);  // name, force
+      const std::string name = load.at.name;
+      check_name(m, name, s.loads, [](const LoadDescription& l) { return l.at.name; }, "load");
       load.at = read_block_point(ctx, m, s, tol);
       load.at.name = name;
       YAML::Node f = m.find("force"), h = m.find("history");
       if (f.IsDefined() == h.IsDefined())
         ctx.fail(m.node(), m.child("force"),
                  "give exactly one of force: [fx, fy] or history: [[t, fx, fy], ...]");
-      if (f.IsDefined()) {
-        const auto v = numbers(ctx, f, m.child("force"), 2, any("force"));
-        load.history.push_back({0.0, v[0], v[1]});
-      } else {
+      if (h.IsDefined()) {  // else `force` gave the one sample
         if (!h.IsSequence() || h.size() == 0 || h.size() > kMaxSamples)
           ctx.fail(h, m.child("history"), "expected a list of [t, fx, fy] samples");
         for (std::size_t k = 0; k < h.size(); ++k) {
@@ -103,13 +104,12 @@ void read_points(const Ctx& ctx, const MapReader& top, SceneDescription& s) {
     }
   if (YAML::Node n = list("measurement_points"); n.IsSequence())
     for (std::size_t i = 0; i < n.size(); ++i) {
-      MapReader m(ctx, n[i], fmt::format("measurement_points[{}]", i), keys::measurement_point);
+      MapReader m(ctx, n[i], fmt::format("measurement_points[{}]", i),
+                  key_names(measurement_point_keys(), "measurement_points"));
       MeasurementPoint mp;
-      YAML::Node name = m.required("name", "column prefix in history.csv");
-      mp.name = name_text(ctx, name, m.child("name"));
-      for (const auto& other : s.measurement_points)
-        if (other.name == mp.name)
-          ctx.fail(name, m.child("name"), fmt::format("measurement point '{}' is defined twice", mp.name));
+      read_declared(ctx, m, measurement_point_keys(), "measurement_points", mp);  // name
+      check_name(m, mp.name, s.measurement_points, [](const MeasurementPoint& p) { return p.name; },
+                 "measurement point");
       mp.at = read_block_point(ctx, m, s, tol);
       s.measurement_points.push_back(std::move(mp));
     }

@@ -10,6 +10,7 @@
 #include <optional>
 #include <unordered_set>
 
+#include "read_keys.hpp"
 #include "scene_readers.hpp"
 #include "rheodda/scene/geometry.hpp"
 #include "rheodda/scene/memory.hpp"
@@ -20,15 +21,15 @@ namespace rheodda::scene::detail {
 /// explicit traces, generates and cuts (rockmass::generate_traces, cut_blocks) and
 /// appends the blocks to `raw`; they are checked with the hand-written ones.
 void read_rock_mass(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, std::vector<RawBlock>& raw) {
-  MapReader m(ctx, n, "rock_mass", keys::rock_mass);
+  MapReader m(ctx, n, "rock_mass", key_names(rock_mass_keys(), "rock_mass"));
   RockMassDescription rm;
   rm.where = m.where();
-  if (YAML::Node v = m.find("name"); v.IsDefined()) rm.name = name_text(ctx, v, m.child("name"));
+  read_declared(ctx, m, rock_mass_keys(), "rock_mass", rm);  // name, seed, sliver_area (keys_blocks.cpp)
   if (YAML::Node v = m.find("material"); v.IsDefined())
     rm.material = resolve(ctx, v, m.child("material"), s.materials, "material");
   else if (s.materials.size() != 1)
     ctx.fail(m.node(), m.child("material"), "missing key 'material': the scene has several materials");
-  const YAML::Node region = m.required("region", "the polygon to cut, [[x, y], ...] [length]");
+  const YAML::Node region = required_key(m, rock_mass_keys(), "rock_mass", "region");
   rm.region.outer = polygon_points(ctx, region, m.child("region"));
   if (auto defect = coordinate_defect(rm.region.outer)) ctx.fail(region, m.child("region"), "the region " + *defect);
   rockmass::Box box{rm.region.outer[0][0], rm.region.outer[0][1], rm.region.outer[0][0], rm.region.outer[0][1]};
@@ -63,13 +64,6 @@ void read_rock_mass(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, st
     ctx.fail(m.node(), m.child("boundary_joint_set"),
              "missing key 'boundary_joint_set' (the joint set of the edges on the region's boundary): the scene "
              "has several joint sets");
-  if (YAML::Node v = m.find("seed"); v.IsDefined()) {
-    const double seed = number(ctx, v, m.child("seed"), {0.0, false, 9007199254740992.0, false, ""});
-    if (seed != std::floor(seed)) ctx.fail(v, m.child("seed"), fmt::format("{:g} is not a whole number", seed));
-    rm.seed = static_cast<std::uint64_t>(seed);
-  }
-  if (YAML::Node v = m.find("sliver_area"); v.IsDefined())
-    rm.sliver_area = number(ctx, v, m.child("sliver_area"), non_negative("length^2"));
   auto list = [&](const char* key) {
     YAML::Node v = m.find(key);
     if (v.IsDefined() && !v.IsSequence())
@@ -80,48 +74,28 @@ void read_rock_mass(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, st
   std::vector<std::pair<std::size_t, std::size_t>> set_traces;  // per joint set: its range in `traces`
   if (YAML::Node sets = list("joint_sets"); sets.IsDefined())
     for (std::size_t i = 0; i < sets.size(); ++i) {
-      MapReader j(ctx, sets[i], fmt::format("{}[{}]", m.child("joint_sets"), i), keys::rock_mass_joint_set);
+      const std::string set_map = "rock_mass.joint_sets";
+      MapReader j(ctx, sets[i], fmt::format("{}[{}]", m.child("joint_sets"), i),
+                  key_names(rock_mass_joint_set_keys(), set_map));
       rockmass::JointSetGeneration g;
-      g.tag = resolve(ctx, j.required("joint_set", "a name of the scene's joint_sets"), j.child("joint_set"),
+      read_declared(ctx, j, rock_mass_joint_set_keys(), set_map, g);  // keys_blocks.cpp
+      g.tag = resolve(ctx, required_key(j, rock_mass_joint_set_keys(), set_map, "joint_set"), j.child("joint_set"),
                       s.joint_sets, "joint set");
-      g.dip = number(ctx, j.required("dip", "angle below the horizontal [deg], 0 to 90"), j.child("dip"),
-                     {0.0, false, 90.0, false, "deg"});
-      if (YAML::Node v = j.find("dip_direction"); v.IsDefined())
-        g.dips_right = choice(ctx, v, j.child("dip_direction"), {"right", "left"}) == "right";
-      g.spacing = number(ctx, j.required("spacing", "mean spacing normal to the joints [length]"),
-                         j.child("spacing"), positive("length"));
-      if (YAML::Node v = j.find("spacing_distribution"); v.IsDefined()) {
-        const std::string d = choice(ctx, v, j.child("spacing_distribution"),
-                                     {"constant", "normal", "exponential", "log-normal"});
-        for (auto k : {rockmass::SpacingDistribution::constant, rockmass::SpacingDistribution::normal,
-                       rockmass::SpacingDistribution::exponential, rockmass::SpacingDistribution::log_normal})
-          if (d == rockmass::spacing_distribution_name(k)) g.spacing_distribution = k;
-      }
       const bool deviation = g.spacing_distribution == rockmass::SpacingDistribution::normal ||
                              g.spacing_distribution == rockmass::SpacingDistribution::log_normal;
-      if (YAML::Node v = j.find("spacing_deviation"); v.IsDefined()) {
-        if (!deviation)
-          ctx.fail(v, j.child("spacing_deviation"),
-                   fmt::format("a {} spacing has no deviation; spacing_deviation applies to spacing_distribution "
-                               "normal or log-normal",
-                               rockmass::spacing_distribution_name(g.spacing_distribution)));
-        g.spacing_deviation = number(ctx, v, j.child("spacing_deviation"), positive("length"));
-      } else if (deviation) {
+      if (YAML::Node v = j.find("spacing_deviation"); v.IsDefined() && !deviation)
+        ctx.fail(v, j.child("spacing_deviation"),
+                 fmt::format("a {} spacing has no deviation; spacing_deviation applies to spacing_distribution "
+                             "normal or log-normal",
+                             rockmass::spacing_distribution_name(g.spacing_distribution)));
+      else if (!v.IsDefined() && deviation)
         ctx.fail(j.node(), j.child("spacing_deviation"),
                  fmt::format("missing key 'spacing_deviation' (standard deviation of a {} spacing [length])",
                              rockmass::spacing_distribution_name(g.spacing_distribution)));
-      }
       YAML::Node length = j.find("trace_length"), gap = j.find("gap");
       if (length.IsDefined() != gap.IsDefined())
         ctx.fail(length.IsDefined() ? length : gap, j.child(length.IsDefined() ? "gap" : "trace_length"),
                  "give trace_length and gap together (non-persistent joints), or neither (persistent joints)");
-      if (length.IsDefined()) {
-        g.trace_length = number(ctx, length, j.child("trace_length"), positive("length"));
-        g.gap = number(ctx, gap, j.child("gap"), non_negative("length"));
-      }
-      if (YAML::Node v = j.find("dip_spread"); v.IsDefined())
-        g.dip_spread = number(ctx, v, j.child("dip_spread"), {0.0, false, 45.0, false, "deg"});
-      if (YAML::Node v = j.find("origin"); v.IsDefined()) g.origin = point(ctx, v, j.child("origin"));
       // Lines across the region: its box's diagonal over the smallest likely spacing.
       const double lines = std::hypot(box.x1 - box.x0, box.y1 - box.y0) / g.spacing;
       if (lines > 1e6)
@@ -141,14 +115,13 @@ void read_rock_mass(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, st
     }
   if (YAML::Node list_t = list("traces"); list_t.IsDefined())
     for (std::size_t i = 0; i < list_t.size(); ++i) {
-      MapReader j(ctx, list_t[i], fmt::format("{}[{}]", m.child("traces"), i), keys::rock_mass_trace);
+      MapReader j(ctx, list_t[i], fmt::format("{}[{}]", m.child("traces"), i),
+                  key_names(rock_mass_trace_keys(), "rock_mass.traces"));
       rockmass::Trace t;
-      t.tag = resolve(ctx, j.required("joint_set", "a name of the scene's joint_sets"), j.child("joint_set"),
-                      s.joint_sets, "joint set");
-      t.a = point(ctx, j.required("from", "[x, y] [length]"), j.child("from"));
-      YAML::Node to = j.required("to", "[x, y] [length]");
-      t.b = point(ctx, to, j.child("to"));
-      if (t.a == t.b) ctx.fail(to, j.child("to"), "the trace ends where it starts");
+      read_declared(ctx, j, rock_mass_trace_keys(), "rock_mass.traces", t);  // from, to (keys_blocks.cpp)
+      t.tag = resolve(ctx, required_key(j, rock_mass_trace_keys(), "rock_mass.traces", "joint_set"),
+                      j.child("joint_set"), s.joint_sets, "joint set");
+      if (t.a == t.b) ctx.fail(j.find("to"), j.child("to"), "the trace ends where it starts");
       rm.traces.push_back(t);
       traces.push_back(t);
     }

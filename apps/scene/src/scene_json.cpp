@@ -4,6 +4,7 @@
 
 #include "rheodda/scene/describe.hpp"
 #include "bolts_text.hpp"
+#include "key_json.hpp"
 #include "rheodda/scene/keys.hpp"
 #include "run_internal.hpp"
 
@@ -11,14 +12,9 @@ namespace rheodda::scene {
 namespace {
 
 using json = nlohmann::ordered_json;
-
-/// A declared key's value as JSON: null where it does not apply.
-json key_json(const KeyValue& v) {
-  return std::visit([](const auto& x) -> json {
-    if constexpr (std::is_same_v<std::decay_t<decltype(x)>, std::monostate>) return json(nullptr);
-    else return json(x);
-  }, v);
-}
+using detail::entry_json;
+using detail::key_json;
+using detail::law_json;
 
 /// The declared keys of one map (keys.hpp) as a JSON object, in their order; a
 /// sub-map (`settle`) the scene does not give, whose keys all do not apply, is null.
@@ -91,29 +87,10 @@ json scene_json(const SceneDescription& s) {
   j["units"] = {{"length", s.units.length}, {"force", s.units.force}, {"time", s.units.time},
                 {"stress", s.units.stress()}};
   j["analysis"] = section_of(s.analysis, "analysis");  // every declared key (keys.hpp), in order
-  for (const auto& m : s.materials)
-    j["materials"][m.name] = {{"density", m.density},
-                              {"young_modulus", m.young_modulus},
-                              {"poisson_ratio", m.poisson_ratio},
-                              {"plane", plane_name(m.plane)}};
-  for (const auto& js : s.joint_sets) {
-    json o = {{"friction_angle", js.friction_angle},
-              {"cohesion", js.cohesion},
-              {"tensile_strength", js.tensile_strength},
-              {"residual_friction_angle", js.residual_friction_angle.value_or(js.friction_angle)},
-              {"residual_cohesion", js.residual_cohesion}};
-    o["normal_stiffness"] = js.normal_stiffness ? json(*js.normal_stiffness) : json(nullptr);
-    o["shear_stiffness"] = js.shear_stiffness ? json(*js.shear_stiffness) : json(nullptr);
-    if (js.law) {
-      json law = {{"name", js.law->name}};
-      for (const auto& [k, v] : js.law->parameters) law[k] = v;
-      o["law"] = law;
-    } else {
-      o["law"] = nullptr;
-    }
-    o["record"] = js.record;
-    j["joint_sets"][js.name] = o;
-  }
+  for (const auto& m : s.materials) j["materials"][m.name] = entry_json(material_keys(), "materials", m);
+  for (const auto& js : s.joint_sets)
+    j["joint_sets"][js.name] =
+        entry_json(joint_set_keys(), "joint_sets", js, [&](const KeyInfo&) { return law_json(js.law); });
   j["blocks"] = json::array();
   for (const auto& b : s.blocks) {
     json e = {{"name", b.name}, {"material", s.materials[b.material].name}, {"polygon", b.polygon}};

@@ -46,7 +46,11 @@ const std::map<std::string, std::string> kSectionPath{
     {"stages", "stages[*]"},      {"stages.add_fixed_points", "stages[*].add_fixed_points[*]"},
     {"stages.add_loads", "stages[*].add_loads[*]"}, {"stages.joint_sets", "stages[*].joint_sets.*"},
     {"stages.joint_sets.law", "stages[*].joint_sets.*.law"}, {"bolts", "bolts[*]"},
+    {"blocks.rectangle", "blocks[*].rectangle"}, {"blocks.grid", "blocks[*].grid"},
+    {"fixed_points", "fixed_points[*]"}, {"loads", "loads[*]"}, {"measurement_points", "measurement_points[*]"},
+    {"bolts.from", "bolts[*].from"}, {"bolts.to", "bolts[*].to"},
     {"stages.add_bolts", "stages[*].add_bolts[*]"},
+    {"stages.remove_blocks", "stages[*].remove_blocks"}, {"stages.analysis", "stages[*].analysis"},
 };
 /// The section whose `list` table documents the keys of each point list.
 const std::string kPointsSection = "fixed_points, loads, measurement_points";
@@ -245,6 +249,8 @@ BOOST_AUTO_TEST_CASE(the_schema_is_the_list_each_map_refuses_unknown_keys_with) 
       {"stages[*].add_bolts[*].law",
        kBaseScene + "stages:\n  - {name: a, at: 0.5, add_bolts: [{name: b, from: {point: [1.5, 2], block: top}, "
                     "to: {fixed: [1.5, 4]}, law: {name: burgers, bogus_key: 1}}]}\n"},
+      {"stages[*].water",
+       kBaseScene + "stages:\n  - {name: a, at: 0.5, water: {bogus_key: 1, unit_weight: 9810, level: 1}}\n"},
   };
   for (const auto& m : scene::scene_schema()) {
     BOOST_TEST_CONTEXT("schema path '" << m.path << "'") {
@@ -263,7 +269,8 @@ BOOST_AUTO_TEST_CASE(the_docs_key_tables_are_the_declarations) {
   // docs/reference/scene-format.md holds, between its keys-MAP markers, what `rheodda keys
   // --markdown MAP` prints (scripts/scene-format-tables.sh writes it).
   const std::string doc = read_text(source_path("docs/reference/scene-format.md"));
-  for (const std::string map : {"analysis", "analysis.settle"}) {
+  for (const scene::DeclaredMap& m : scene::declared_maps()) {
+    const std::string& map = m.name;
     const std::string begin = "<!-- keys-" + map + ":begin -->\n", end = "<!-- keys-" + map + ":end -->";
     const auto b = doc.find(begin), e = doc.find(end);
     BOOST_TEST_REQUIRE((b != std::string::npos && e != std::string::npos), "no markers for " << map);
@@ -311,6 +318,47 @@ BOOST_AUTO_TEST_CASE(a_key_declared_once_reaches_the_loader_the_schema_check_sum
   BOOST_TEST(scene::describe_scene(s).find("dummy_tolerance 0.25 m") != std::string::npos, scene::describe_scene(s));
   BOOST_TEST(scene::scene_json_text(s).find("\"dummy_tolerance\":0.25") != std::string::npos);
   BOOST_TEST(scene::key_table_markdown("analysis").find("| `dummy_tolerance` | length | a key only this test declares | 0.5 |") !=
+             std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(a_key_declared_once_in_a_list_map_reaches_the_loader_the_schema_check_summary_and_docs) {
+  // The same for a list map (`bolts:`): one declaration, and the key is read with its
+  // range and unit, is in the schema, in `check`'s description, in summary.json's
+  // inputs and in the docs table.
+  static double dummy = 0.5;
+  scene::EntryKey<scene::BoltDescription> k;
+  k.map = "bolts";
+  k.name = "dummy_margin";
+  k.type = scene::KeyType::number;
+  k.unit = "force";
+  k.range = {0.0, true, 1.0, false};
+  k.default_text = "0.5";
+  k.meaning = "a bolt key only this test declares";
+  k.get = [](const scene::BoltDescription&) -> scene::KeyValue { return dummy; };
+  k.set = [](scene::BoltDescription&, const scene::KeyValue& v) { dummy = std::get<double>(v); };
+  scene::bolt_keys().push_back(k);
+  struct Undeclare {
+    ~Undeclare() { scene::bolt_keys().pop_back(); }
+  } undeclare;
+
+  const std::string bolt = "bolts:\n  - {name: b, from: {point: [1.5, 1.5]}, to: {fixed: [1.5, 4]}, axial_stiffness: 1e6, ";
+  const scene::SceneDescription s = scene::parse_scene(kBaseScene + bolt + "dummy_margin: 0.25}\n", "dummy.yaml");
+  BOOST_TEST(dummy == 0.25);
+  try {
+    (void)scene::parse_scene(kBaseScene + bolt + "dummy_margin: 1.5}\n", "dummy.yaml");
+    BOOST_ERROR("dummy_margin: 1.5 was accepted");
+  } catch (const scene::SceneError& e) {
+    BOOST_TEST(e.key() == "bolts[0].dummy_margin");
+    BOOST_TEST(e.line() == 17);
+    BOOST_TEST(e.message().find("out of range (0, 1] [force]") != std::string::npos, e.what());
+  }
+  bool in_schema = false;
+  for (const auto& m : scene::scene_schema())
+    if (m.path == "bolts[*]") in_schema = std::find(m.keys.begin(), m.keys.end(), "dummy_margin") != m.keys.end();
+  BOOST_TEST(in_schema);
+  BOOST_TEST(scene::describe_scene(s).find("dummy_margin 0.25 N") != std::string::npos, scene::describe_scene(s));
+  BOOST_TEST(scene::scene_json_text(s).find("\"dummy_margin\":0.25") != std::string::npos);
+  BOOST_TEST(scene::key_table_markdown("bolts").find("| `dummy_margin` | force | a bolt key only this test declares | 0.5 |") !=
              std::string::npos);
 }
 
