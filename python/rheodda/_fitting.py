@@ -1,0 +1,304 @@
+"""Fitting laws to laboratory creep curves from Python, as lmfit users do (docs/guide/fitting.md,
+docs/guide/python.md): :func:`fit`, :func:`fit_all`, :class:`FitResult`, :func:`ranking_frame`.
+The fit itself is the library's (laws/fit), the one ``rheodda fit`` runs."""
+
+import math as _math
+import os as _os
+
+import numpy as _np
+
+from . import _rheodda
+from ._frames import to_dataframe
+from ._rheodda import CreepData, Error, creep_data, law, read_creep_csv
+
+
+class FitResult:
+    """A law fitted to a creep curve (fit::FitResult, docs/guide/fitting.md).
+
+    values, errors: dicts by parameter name (registry units); covariance: the
+    covariance of the values by the delta method from the fit's log-parameter
+    covariance, cov_ij = corr_ij * err_i * err_j (``errors`` are the
+    delta-method standard errors v_i * sd(ln v_i); NaN in the rows and columns
+    of parameters that are not identifiable, fixed or on a bound);
+    identifiable: dict of bools, reasons: why not; vary: False for a parameter
+    held by ``params`` (vary=False); at_bound: 'min' or 'max' for a parameter
+    the fit ended on a bound of, '' otherwise; combinations: the combinations
+    the data fix although their parts are not identifiable; aic, bic (from
+    chi_square, k = varying), rss [length^2], chi_square (sum of
+    ((model - data)/sigma)^2 [-] with sigma, = rss without),
+    reduced_chi_square, varying (k), weighted, r2 (NaN without spread), rmse
+    [length], points; minimum_certain, minimum_note, start_minima (chi_square
+    reached by each start), singular_values; warnings; fitted (model at the
+    data points [length]); yaml: the law block `rheodda fit --yaml` writes.
+    ``str(result)`` and :meth:`fit_report` give the full table;
+    :meth:`to_dataframe` the parameters as a pandas DataFrame.
+    """
+
+    def __init__(self, raw, data):
+        self._raw = raw
+        self.data = data
+        self.law = raw.law
+        self.parameters = list(raw.parameters)
+        self.names = [p.name for p in self.parameters]
+        self.values = {p.name: p.value for p in self.parameters}
+        self.errors = {p.name: p.std_error for p in self.parameters}
+        self.units = {p.name: p.unit for p in self.parameters}
+        self.identifiable = {p.name: p.identifiable for p in self.parameters}
+        self.reasons = {p.name: p.reason for p in self.parameters if p.reason}
+        self.vary = {p.name: p.vary for p in self.parameters}
+        self.at_bound = {p.name: p.at_bound for p in self.parameters}
+        self.combinations = list(raw.combinations)
+        self.correlation = _np.asarray(raw.correlation)
+        err = _np.array([p.std_error for p in self.parameters])
+        self.covariance = self.correlation * _np.outer(err, err)
+        for attr in ("points", "rss", "chi_square", "reduced_chi_square", "varying", "weighted",
+                     "scale_covariance", "r2", "rmse", "aic", "bic", "iterations", "starts",
+                     "starts_agreeing", "structured_starts", "converged", "minimum_certain", "minimum_note",
+                     "warnings"):
+            setattr(self, attr, getattr(raw, attr))
+        self.fitted = _np.asarray(raw.fitted)
+        self.singular_values = _np.asarray(raw.singular_values)
+        self.start_minima = _np.asarray(raw.start_minima)
+
+    def make_law(self):
+        """The fitted law, ready for curves or a scene's joint set."""
+        return law(self.law, self.values)
+
+    @property
+    def yaml(self):
+        """The YAML law block of `rheodda fit --yaml` (paste under a joint set); the same
+        text as apps/fit_command.cpp write_yaml (tests/python/test_fit.py compares them)."""
+        r2 = "{:.6f}".format(self.r2) if _math.isfinite(self.r2) else "undefined"
+        lines = [
+            "# rheodda fit: law {} fitted to {} ({} points, R^2 {})".format(
+                self.law, self.data.source, self.points, r2),
+            "# paste under a joint set of a scene; the comments give the standard errors",
+        ]
+        if not self.minimum_certain:
+            lines.append("# warning: the minimum is not certain: {}".format(self.minimum_note))
+        for c in self.combinations:
+            lines.append("# fixed by the data: {} = {:.7g} +- {:.3g} {}".format(
+                c.expression, c.value, c.std_error, c.unit))
+        lines += ["law:", "  name: {}".format(self.law)]
+        for p in self.parameters:
+            if not p.vary:
+                note = "fixed"
+            elif p.at_bound:
+                note = "at its bound " + p.at_bound
+            elif p.identifiable:
+                note = "+- {:.3g}".format(p.std_error)
+            else:
+                note = "+- (not identifiable)"
+            lines.append("  {}: {:.7g}   # {} {}".format(p.name, p.value, note, p.unit))
+        return "\n".join(lines) + "\n"
+
+    def to_dataframe(self):
+        """The parameters as a pandas DataFrame indexed by name: value, std_error, relative_error,
+        unit, vary, at_bound, min, max, identifiable (registry units; std_error NaN where none)."""
+        rows = {k: [] for k in ("value", "std_error", "relative_error", "unit", "vary", "at_bound", "min",
+                                "max", "identifiable")}
+        for p in self.parameters:
+            has_error = p.vary and not p.at_bound and p.identifiable
+            err = p.std_error if has_error else _math.nan
+            for k, v in (("value", p.value), ("std_error", err), ("relative_error", err / p.value),
+                         ("unit", p.unit), ("vary", p.vary), ("at_bound", p.at_bound), ("min", p.min),
+                         ("max", p.max), ("identifiable", p.identifiable)):
+                rows[k].append(v)
+        frame = to_dataframe(rows)
+        frame.index = self.names
+        frame.index.name = "name"
+        return frame
+
+    def fit_report(self, min_correlation=0.1):
+        """A table in the manner of lmfit's fit_report: fit statistics, each parameter's value,
+        standard error (and relative error), unit, bounds or 'fixed', identifiability, the
+        combinations the data fix, the correlations above ``min_correlation`` in magnitude, the
+        sums of squares the starts reached, and the warnings."""
+        out = ["[[Fit of law {} to {}]]".format(self.law, self.data.source),
+               "    points             = {}".format(self.points),
+               "    varying            = {}".format(self.varying),
+               "    iterations         = {} (best of {} starts, {} reached it)".format(
+                   self.iterations, self.starts, self.starts_agreeing),
+               "    chi-square         = {:.8g}{}".format(
+                   self.chi_square, "" if self.weighted else " (no sigma: the RSS)"),
+               "    reduced chi-square = {:.8g}".format(self.reduced_chi_square),
+               "    RSS                = {:.8g} [length^2]".format(self.rss),
+               "    RMSE               = {:.8g} [length]".format(self.rmse),
+               "    R-squared          = {}".format(
+                   "{:.10f}".format(self.r2) if _math.isfinite(self.r2) else "undefined (no spread)"),
+               "    Akaike info crit   = {:.6f}".format(self.aic),
+               "    Bayesian info crit = {:.6f}".format(self.bic),
+               "    converged          = {}".format(self.converged),
+               "    minimum certain    = {}{}".format(
+                   self.minimum_certain, "" if self.minimum_certain else " (" + self.minimum_note + ")"),
+               "    starts' minima     = {}".format(" ".join("{:.6g}".format(m) for m in self.start_minima))]
+        if self.weighted:
+            out.append("    standard errors    = {}".format(
+                "scaled by sqrt(reduced chi-square)" if self.scale_covariance else "from sigma, absolute"))
+        out.append("[[Variables]]")
+        for p in self.parameters:
+            line = "    {:<6} {:>14.8g}".format(p.name + ":", p.value)
+            if not p.vary:
+                line += " (fixed)"
+            elif p.at_bound:
+                line += " (at its bound {} = {:g})".format(p.at_bound, p.min if p.at_bound == "min" else p.max)
+            elif p.identifiable:
+                line += " +/- {:.6g} ({:.2f}%)".format(p.std_error, 100.0 * p.std_error / p.value)
+            else:
+                line += " (not identifiable: {})".format(p.reason)
+            line += " [{}]".format(p.unit)
+            if p.vary and (p.min > 0 or _math.isfinite(p.max)):
+                line += " bounds [{:g}, {:g}]".format(p.min, p.max)
+            out.append(line)
+        if self.combinations:
+            out.append("[[Combinations the data fix]]")
+            for c in self.combinations:
+                out.append("    {} = {:.8g} +/- {:.3g} [{}]".format(c.expression, c.value, c.std_error, c.unit))
+        pairs = []
+        for i in range(len(self.names)):
+            for j in range(i + 1, len(self.names)):
+                c = self.correlation[i, j]
+                if _math.isfinite(c) and abs(c) >= min_correlation:
+                    pairs.append((abs(c), "    C({}, {}) = {:+.4f}".format(self.names[i], self.names[j], c)))
+        if pairs:
+            out.append("[[Correlations]] (unreported correlations are < {:.3f})".format(min_correlation))
+            out += [text for _, text in sorted(pairs, key=lambda x: -x[0])]
+        if self.warnings:
+            out.append("[[Warnings]]")
+            out += ["    " + w for w in self.warnings]
+        return "\n".join(out) + "\n"
+
+    def __str__(self):
+        return self.fit_report()
+
+    def __repr__(self):
+        r2 = "{:.6f}".format(self.r2) if _math.isfinite(self.r2) else "undefined"
+        return "<FitResult {}: {} R^2 {} AIC {:.4g} BIC {:.4g}>".format(
+            self.law, ", ".join("{}={:.6g}".format(k, v) for k, v in self.values.items()),
+            r2, self.aic, self.bic)
+
+
+def _creep_data(data, t, stress, time_column, displacement_column, stress_column, sigma=None,
+                weights=None, sigma_column=None):
+    if sigma is not None and weights is not None:
+        raise Error("fit: give sigma= (measurement standard deviations) or weights= (1/sigma), not both")
+    if weights is not None:
+        w = _np.asarray(weights, dtype=float)
+        if w.ndim != 1 or not _np.all(_np.isfinite(w)) or not _np.all(w > 0):
+            raise Error("fit: weights must be a 1-D array of finite positive numbers (1/sigma) [1/length]")
+        sigma = 1.0 / w
+    if sigma is not None:
+        sigma = _np.asarray(sigma, dtype=float)
+        if sigma.ndim != 1:
+            raise Error("fit: sigma must be a 1-D array, one standard deviation per point [length]; got shape {}"
+                        .format(sigma.shape))
+        if sigma_column:
+            raise Error("fit: sigma_column= reads sigma from the CSV; sigma= or weights= gives it: not both")
+    if isinstance(data, CreepData):
+        if sigma_column:
+            raise Error("fit: sigma_column= reads a CSV column; the data are a CreepData already")
+        return data if sigma is None else data._with_sigma(sigma.tolist())
+    if isinstance(data, (str, _os.PathLike)):
+        d = read_creep_csv(_os.fspath(data), time_column=time_column,
+                           displacement_column=displacement_column,
+                           stress_column=stress_column or "", stress=stress, sigma_column=sigma_column or "")
+        return d if sigma is None else d._with_sigma(sigma.tolist())
+    if sigma_column:
+        raise Error("fit: sigma_column= reads a CSV column; with arrays give sigma= or weights=")
+    if t is None or stress is None:
+        raise Error("fit: give a CSV path, a CreepData, or arrays t=..., displacement, stress=...")
+    return creep_data(_np.asarray(t, dtype=float).tolist(),
+                      _np.asarray(data, dtype=float).tolist(), stress,
+                      sigma=None if sigma is None else sigma.tolist())
+
+
+_SETTING_KEYS = ("value", "vary", "min", "max")
+
+
+def _settings(params):
+    """params= as {name: {"value", "vary", "min", "max"}} for the library (fit::ParameterSetting).
+
+    Each entry: a number (the initial value), a dict with any of value, vary, min, max, or an
+    object with those attributes (an lmfit.Parameter; an lmfit.Parameters is a dict of them).
+    min -inf or None means no bound beyond positivity (0), max None means +inf."""
+    out = {}
+    if params is None:
+        return out
+    if not hasattr(params, "items"):
+        raise Error("fit: params must be a dict {name: value | {'value', 'vary', 'min', 'max'}} "
+                    "or an lmfit.Parameters; got {}".format(type(params).__name__))
+    for name, spec in params.items():
+        if isinstance(spec, (int, float)) and not isinstance(spec, bool):
+            spec = {"value": spec}
+        elif isinstance(spec, dict):
+            unknown = sorted(set(spec) - set(_SETTING_KEYS))
+            if unknown:
+                raise Error("fit: params['{}']: unknown key(s) {}; the keys are {}".format(
+                    name, ", ".join(unknown), ", ".join(_SETTING_KEYS)))
+        elif all(hasattr(spec, k) for k in _SETTING_KEYS):
+            spec = {k: getattr(spec, k) for k in _SETTING_KEYS}
+        else:
+            raise Error("fit: params['{}'] must be a number (initial value), a dict with value, vary, min, "
+                        "max, or an lmfit.Parameter; got {!r}".format(name, spec))
+        lo = spec.get("min")
+        hi = spec.get("max")
+        value = spec.get("value")
+        out[str(name)] = {
+            "value": None if value is None else float(value),
+            "vary": bool(spec.get("vary", True)),
+            "min": 0.0 if lo is None or lo == -_math.inf else float(lo),
+            "max": _math.inf if hi is None else float(hi),
+        }
+    return out
+
+
+def fit(law_name, data, t=None, stress=None, *, params=None, sigma=None, weights=None, absolute_sigma=False,
+        time_column="t", displacement_column="displacement", stress_column=None, sigma_column=None,
+        restarts=4, max_iterations=500):
+    """Fits one registered law (``rheodda fit DATA --law LAW``).
+
+    ``data``: a CSV path (columns as in docs/guide/fitting.md; ``stress`` or
+    ``stress_column`` gives the shear stress [stress]), a :class:`CreepData`,
+    or an array of displacements [length] with ``t=`` times [time] and
+    ``stress=`` (a number, 'T:V[,T:V...]' or (t, value) pairs [stress]).
+
+    ``params``: per parameter an initial value, or a dict (or lmfit.Parameter)
+    with ``value``, ``vary`` (False: held at value, ``--fix``), ``min``,
+    ``max`` (bounds, ``--bounds``), in the parameter's registry unit.
+    ``sigma``: each point's measurement standard deviation [length] (or
+    ``weights`` = 1/sigma [1/length], as lmfit's; or ``sigma_column`` of the
+    CSV, ``--sigma-column``): the fit minimizes sum ((model - data)/sigma)^2.
+    ``absolute_sigma``: standard errors from sigma as absolute errors
+    (``--absolute-sigma``); by default they are scaled by sqrt(reduced
+    chi-square) as lmfit's. Returns a :class:`FitResult`.
+    """
+    d = _creep_data(data, t, stress, time_column, displacement_column, stress_column, sigma, weights,
+                    sigma_column)
+    return FitResult(_rheodda._fit_law(law_name, d, restarts, max_iterations, _settings(params),
+                                       not absolute_sigma), d)
+
+
+def fit_all(data, t=None, stress=None, *, rank_by="bic", params=None, sigma=None, weights=None,
+            absolute_sigma=False, time_column="t", displacement_column="displacement", stress_column=None,
+            sigma_column=None, restarts=4, max_iterations=500):
+    """Fits every law and ranks them best first by ``rank_by`` ('bic' or 'aic'),
+    as ``rheodda fit DATA --law all``; the other arguments as :func:`fit`
+    (``params`` apply to every law; a law without one of the named parameters
+    is skipped). Returns (results, skipped): skipped lists "law: reason" for
+    laws that cannot be fitted."""
+    d = _creep_data(data, t, stress, time_column, displacement_column, stress_column, sigma, weights,
+                    sigma_column)
+    results, skipped = _rheodda._fit_all(d, rank_by, restarts, max_iterations, _settings(params),
+                                         not absolute_sigma)
+    return [FitResult(r, d) for r in results], list(skipped)
+
+
+def ranking_frame(results):
+    """A list of :class:`FitResult` (as :func:`fit_all` returns) as a pandas DataFrame, one row per
+    law in the given order: law, k (varying), points, rmse [length], r2, chi_square, aic, bic."""
+    cols = {k: [] for k in ("law", "k", "points", "rmse", "r2", "chi_square", "aic", "bic")}
+    for r in results:
+        for k, v in (("law", r.law), ("k", r.varying), ("points", r.points), ("rmse", r.rmse), ("r2", r.r2),
+                     ("chi_square", r.chi_square), ("aic", r.aic), ("bic", r.bic)):
+            cols[k].append(v)
+    return to_dataframe(cols)
