@@ -5,6 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+
 #include "bolts_text.hpp"
 #include "key_json.hpp"
 #include "rheodda/scene/keys.hpp"
@@ -76,6 +78,9 @@ std::vector<const BoltDescription*> all_bolts(const SceneDescription& s) {
   return out;
 }
 
-bool has_bolts(const SceneDescription& s) { return !all_bolts(s).empty(); }
+bool has_bolts(const SceneDescription& s) {  // asked per history row: no list built
+  return !s.bolts.empty() ||
+         std::any_of(s.stages.begin(), s.stages.end(), [](const StageDescription& st) { return !st.add_bolts.empty(); });
+}
 
 }  // namespace rheodda::scene
