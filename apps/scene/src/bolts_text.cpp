@@ -53,21 +53,23 @@ std::string bolt_text(const SceneDescription& s, const BoltDescription& b) {
 }
 
 nlohmann::ordered_json bolt_json(const SceneDescription& s, const BoltDescription& b) {
-  // The declared keys (keys_bolts.cpp); the ends and the law as their readers read them.
+  // The declared keys (keys_bolts.cpp); the ends (their declared keys, the block by its
+  // name; left out: a stage's end found where it stands) and the law as their readers read them.
+  auto end_json = [&](const std::vector<EntryKey<BlockPoint>>& keys, const std::string& map, const BlockPoint& p,
+                      bool fixed) {
+    return detail::entry_json(keys, map, p, [&](const KeyInfo& k) -> nlohmann::ordered_json {
+      if (k.name == "fixed") return fixed ? nlohmann::ordered_json(p.point) : detail::left_out();
+      if (k.name == "point") return fixed ? detail::left_out() : nlohmann::ordered_json(p.point);
+      if (k.name == "block" && p.block >= 0) return s.blocks[static_cast<std::size_t>(p.block)].name;
+      return detail::left_out();
+    }, detail::Unset::omit);
+  };
   return detail::entry_json(bolt_keys(), "bolts", b, [&](const KeyInfo& k) -> nlohmann::ordered_json {
     if (k.name == "law") return detail::law_json(b.law);
-    if (k.name == "to" && b.to_fixed) return {{"fixed", b.to.point}};
-    const BlockPoint& p = k.name == "from" ? b.from : b.to;
-    nlohmann::ordered_json j = {{"point", p.point}};
-    if (p.block >= 0) j["block"] = s.blocks[p.block].name;  // left out: a stage's end found where it stands
-    return j;
+    if (k.name == "from") return end_json(bolt_end_keys(), "bolts.from", b.from, false);
+    if (k.name == "to") return end_json(bolt_to_keys(), "bolts.to", b.to, b.to_fixed);
+    return detail::left_out();
   });
-}
-
-void add_bolts_json(const SceneDescription& s, nlohmann::ordered_json& j) {
-  if (s.bolts.empty()) return;  // a scene without bolts: its "inputs" as before
-  j["bolts"] = nlohmann::ordered_json::array();
-  for (const auto& b : s.bolts) j["bolts"].push_back(bolt_json(s, b));
 }
 
 std::vector<const BoltDescription*> all_bolts(const SceneDescription& s) {

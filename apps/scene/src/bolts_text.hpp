@@ -12,8 +12,6 @@ namespace rheodda::scene {
 
 /// `rheodda check`'s lines on the bolts ("" without bolts).
 std::string describe_bolts(const SceneDescription& s);
-/// summary.json's "inputs": j["bolts"] (nothing without bolts).
-void add_bolts_json(const SceneDescription& s, nlohmann::ordered_json& j);
 /// One bolt as `rheodda check` prints it: "NAME: ENDS, axial_stiffness ...".
 std::string bolt_text(const SceneDescription& s, const BoltDescription& b);
 /// One bolt as summary.json's "inputs" hold it (the keys of the scene file).

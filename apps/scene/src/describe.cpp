@@ -66,7 +66,7 @@ std::string describe_scene(const SceneDescription& s) {
   auto line = [&out](const std::string& t) { out += t + '\n'; };
 
   line(fmt::format("scene: {} ({})", s.title, s.file));
-  line(fmt::format("units: length {}, force {}, time {}; stress {}", u.length, u.force, u.time, stress));
+  line(fmt::format("units: {}; stress {}", key_values_text(units_keys(), "units", u, u), stress));  // keys_top.cpp
   // Every declared key with its value (keys.hpp), wrapped; what they add up to follows.
   std::string settings = "analysis:";
   std::size_t width = settings.size();
@@ -252,21 +252,28 @@ std::string describe_scene(const SceneDescription& s) {
                        length, u.length));
   }
 
+  // The points (keys_points.cpp): every key given, the block by its name.
+  auto on_block = [&](const KeyInfo& k, const Point& p, int block) -> std::string {
+    if (k.name == "point") return key_value_text(k, p, u);
+    if (k.name == "block") return s.blocks[static_cast<std::size_t>(block)].name;
+    return "";
+  };
   line(fmt::format("fixed points: {}", s.fixed_points.size()));
   for (const auto& p : s.fixed_points)
-    line(fmt::format("  ({:g}, {:g}) on {}", p.point[0], p.point[1], s.blocks[p.block].name));
+    line("  " + key_values_text(fixed_point_keys(), "fixed_points", p, u,
+                                [&](const KeyInfo& k) { return on_block(k, p.point, p.block); }));
   line(fmt::format("loads: {}", s.loads.size()));
-  for (const auto& l : s.loads) {
-    const auto& h = l.history;
-    line(h.size() == 1
-             ? fmt::format("  ({:g}, {:g}) on {}: force ({:g}, {:g}) {}", l.at.point[0], l.at.point[1],
-                           s.blocks[l.at.block].name, h[0][1], h[0][2], u.force)
-             : fmt::format("  ({:g}, {:g}) on {}: history of {} samples, t = {:g} .. {:g} {}", l.at.point[0],
-                           l.at.point[1], s.blocks[l.at.block].name, h.size(), h.front()[0], h.back()[0], u.time));
-  }
+  for (const auto& l : s.loads)
+    line("  " + key_values_text(load_keys(), "loads", l, u, [&](const KeyInfo& k) -> std::string {
+           const auto& h = l.history;
+           if (k.name != "history") return on_block(k, l.at.point, l.at.block);
+           if (h.size() == 1) return "";  // a constant force: `force` says it
+           return fmt::format("of {} samples, t = {:g} .. {:g} {}", h.size(), h.front()[0], h.back()[0], u.time);
+         }));
   line(fmt::format("measurement points: {}", s.measurement_points.size()));
   for (const auto& m : s.measurement_points)
-    line(fmt::format("  {}: ({:g}, {:g}) on {}", m.name, m.at.point[0], m.at.point[1], s.blocks[m.at.block].name));
+    line("  " + key_values_text(measurement_point_keys(), "measurement_points", m, u,
+                                [&](const KeyInfo& k) { return on_block(k, m.at.point, m.at.block); }));
   if (s.water) out += describe_water(*s.water, u);  // water.hpp
   if (!s.stages.empty()) {  // docs/reference/stages.md
     line(fmt::format("stages: {}", s.stages.size()));

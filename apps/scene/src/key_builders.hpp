@@ -38,6 +38,17 @@ EntryKey<E> optional_key(KeyInfo info, std::optional<T> E::*field) {
   return k;
 }
 
+/// An optional name kept as text (`field`): not set (std::monostate) while empty.
+template <class E>
+EntryKey<E> optional_name_key(KeyInfo info, std::string E::*field) {
+  EntryKey<E> k = field_key(std::move(info), field);
+  k.get = [field](const E& e) -> KeyValue {
+    if ((e.*field).empty()) return std::monostate{};
+    return e.*field;
+  };
+  return k;
+}
+
 /// A key with its own getter and setter (a choice kept as an enum, a field of a member).
 template <class E>
 EntryKey<E> custom_key(KeyInfo info, std::function<KeyValue(const E&)> get, std::function<void(E&, const KeyValue&)> set) {

@@ -28,6 +28,8 @@ DeclaredMap declared(const std::string& map, std::vector<std::string> paths, std
 
 const std::vector<DeclaredMap>& declared_maps() {
   static const std::vector<DeclaredMap> maps{
+      declared("top", {""}, &top_keys),
+      declared("units", {"units"}, &units_keys),
       declared("analysis", {"analysis"}, &analysis_keys),
       declared("analysis.settle", {"analysis.settle"}, &analysis_keys),
       declared("materials", {"materials.*"}, &material_keys),
@@ -102,7 +104,7 @@ std::string key_table_markdown(const std::string& map) {
   std::string out = "| key | unit | meaning | default |\n|---|---|---|---|\n";
   for (const KeyInfo& k : declared_keys(map)) {
     std::string meaning = k.meaning;
-    if (k.type == KeyType::map) {
+    if (k.type == KeyType::map && !k.own_table) {
       // The sub-map's keys, from their declarations (schema_test reads them from here).
       const std::vector<std::string> sub = declared_key_names(k.submap.empty() ? map + "." + k.name : k.submap);
       meaning = fmt::format("`{{{}}}`: {}", fmt::join(sub, ", "), meaning);

@@ -34,7 +34,7 @@ KeyInfo removable_name(const std::string& map) {
 
 std::vector<EntryKey<BlockPoint>>& fixed_point_keys() {
   static std::vector<EntryKey<BlockPoint>> keys{
-      detail::field_key(removable_name("fixed_points"), &BlockPoint::name),
+      detail::optional_name_key(removable_name("fixed_points"), &BlockPoint::name),
       point_key<BlockPoint>("fixed_points"),
       block_key<BlockPoint>("fixed_points"),
   };
@@ -46,7 +46,11 @@ std::vector<EntryKey<LoadDescription>>& load_keys() {
     using E = LoadDescription;
     std::vector<EntryKey<E>> k;
     k.push_back(detail::custom_key<E>(
-        removable_name("loads"), [](const E& l) -> KeyValue { return l.at.name; },
+        removable_name("loads"),
+        [](const E& l) -> KeyValue {
+          if (l.at.name.empty()) return std::monostate{};
+          return l.at.name;
+        },
         [](E& l, const KeyValue& v) { l.at.name = std::get<std::string>(v); }));
     k.push_back(point_key<E>("loads"));
     k.push_back(block_key<E>("loads"));

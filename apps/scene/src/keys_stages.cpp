@@ -102,7 +102,7 @@ std::vector<EntryKey<StagePoint>> stage_point_keys(const std::string& map, bool 
   using E = StagePoint;
   const char* what = load ? "loads" : "fixed points";
   std::vector<EntryKey<E>> k;
-  k.push_back(detail::field_key(
+  k.push_back(detail::optional_name_key(
       KeyInfo{.map = map, .name = "name", .type = KeyType::name, .unit = "–", .default_text = "none",
               .meaning = std::string("what a later stage removes it by; unique among the ") + what},
       &E::name));

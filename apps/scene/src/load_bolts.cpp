@@ -57,6 +57,7 @@ BoltDescription read_bolt(const Ctx& ctx, const YAML::Node& n, const std::string
   const MapReader from(ctx, required_key(m, bolt_keys(), "bolts", "from"), m.child("from"),
                        key_names(bolt_end_keys(), "bolts.from"));
   b.from = read_end(from);
+  read_declared(ctx, from, bolt_end_keys(), "bolts.from", b.from);  // point and block are read_end's
 
   const MapReader to(ctx, required_key(m, bolt_keys(), "bolts", "to"), m.child("to"),
                      key_names(bolt_to_keys(), "bolts.to"));
@@ -75,6 +76,7 @@ BoltDescription read_bolt(const Ctx& ctx, const YAML::Node& n, const std::string
                fmt::format("both ends are on block '{}': a bolt joins two blocks, or a block and a fixed point",
                            s.blocks[b.to.block].name));
   }
+  read_declared(ctx, to, bolt_to_keys(), "bolts.to", b.to);  // fixed, point and block are read above
   if (std::hypot(b.to.point[0] - b.from.point[0], b.to.point[1] - b.from.point[1]) <= tol)
     ctx.fail(to.node(), to.child(b.to_fixed ? "fixed" : "point"), "the two ends coincide: a bolt needs a length");
 

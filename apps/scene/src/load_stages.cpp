@@ -48,10 +48,12 @@ std::vector<std::pair<std::string, YAML::Node>> name_list(const Ctx& ctx, const 
   return out;
 }
 
-/// The blocks of `remove_blocks: {names, region, rock_mass_inside}` (their union).
-std::vector<int> read_removed_blocks(const Ctx& ctx, const YAML::Node& n, const std::string& path,
-                                     const SceneDescription& s) {
+/// `remove_blocks: {names, region, rock_mass_inside}` into st.remove_blocks: the union of
+/// the blocks they give, in increasing order.
+void read_removed_blocks(const Ctx& ctx, const YAML::Node& n, const std::string& path, const SceneDescription& s,
+                         StageDescription& st) {
   MapReader m(ctx, n, path, key_names(stage_remove_blocks_keys(), "stages.remove_blocks"));
+  read_declared(ctx, m, stage_remove_blocks_keys(), "stages.remove_blocks", st);  // names, region, ...: below
   if (m.entries().empty())
     ctx.fail(n, path,
              "give the blocks to remove: names: [...], region: [[x, y], ...] or rock_mass_inside: [[x, y], ...]");
@@ -74,7 +76,7 @@ std::vector<int> read_removed_blocks(const Ctx& ctx, const YAML::Node& n, const 
   if (YAML::Node v = m.find("rock_mass_inside"); v.IsDefined() && !s.rock_mass)
     ctx.fail(v, m.child("rock_mass_inside"), "the scene has no rock_mass: whose blocks?");
   if (s.rock_mass) inside("rock_mass_inside", s.rock_mass->first_block, s.rock_mass->block_count);
-  return {out.begin(), out.end()};
+  st.remove_blocks.assign(out.begin(), out.end());
 }
 
 /// `{name, point, block}` of a point a stage adds (`block:` required: the
@@ -197,7 +199,7 @@ void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s) {
     }
     if (YAML::Node v = m.find("remove_blocks"); v.IsDefined()) {
       st.remove_blocks_where = location(v);
-      st.remove_blocks = read_removed_blocks(ctx, v, m.child("remove_blocks"), s);
+      read_removed_blocks(ctx, v, m.child("remove_blocks"), s, st);
       for (int b : st.remove_blocks) {
         if (removed[static_cast<std::size_t>(b)])
           ctx.fail(v, m.child("remove_blocks"),

@@ -24,6 +24,7 @@
 #include <algorithm>
 
 #include "rheodda/core/defaults.hpp"
+#include "read_keys.hpp"
 #include "scene_readers.hpp"
 #include "yaml_document.hpp"
 
@@ -68,15 +69,17 @@ SceneDescription parse_scene(const std::string& text_in, const std::string& file
   try {
     SceneDescription s;
     s.file = file;
-    MapReader top(ctx, root, "", keys::top);
+    // The sections (keys_top.cpp): each read by its reader; a required one asked for
+    // with its declaration's words.
+    const std::vector<EntryKey<SceneDescription>>& sections = top_keys();
+    MapReader top(ctx, root, "", key_names(sections, "top"));
+    auto section = [&](const std::string& name) { return required_key(top, sections, "top", name); };
     s.title = file.substr(file.find_last_of('/') == std::string::npos ? 0 : file.find_last_of('/') + 1);
-    if (YAML::Node v = top.find("title"); v.IsDefined()) s.title = text(ctx, v, "title");
-    s.units = read_units(ctx, top.required("units", "labels {length, force, time}"));
-    s.analysis = read_analysis(ctx, top.required("analysis", "time stepping: duration, dt, gravity, ..."));
-    s.materials = read_materials(ctx, top.required("materials", "named block materials"),
-                                 s.analysis.has_dynamic_steps());
-    s.joint_sets = read_joint_sets(ctx, top.required("joint_sets", "named joint sets"),
-                                   s.analysis.has_dynamic_steps());
+    read_declared(ctx, top, sections, "top", s);  // title
+    s.units = read_units(ctx, section("units"));
+    s.analysis = read_analysis(ctx, section("analysis"));
+    s.materials = read_materials(ctx, section("materials"), s.analysis.has_dynamic_steps());
+    s.joint_sets = read_joint_sets(ctx, section("joint_sets"), s.analysis.has_dynamic_steps());
     std::vector<RawBlock> raw;
     // With `rock_mass:`, `blocks:` is optional (blocks besides the generated ones).
     const YAML::Node rock_mass = top.find("rock_mass");

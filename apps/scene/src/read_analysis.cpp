@@ -13,11 +13,9 @@
 namespace rheodda::scene::detail {
 
 Units read_units(const Ctx& ctx, const YAML::Node& n) {
-  MapReader m(ctx, n, "units", keys::units);
+  MapReader m(ctx, n, "units", key_names(units_keys(), "units"));
   Units u;
-  u.length = text(ctx, m.required("length", "label of the length unit, e.g. m"), m.child("length"));
-  u.force = text(ctx, m.required("force", "label of the force unit, e.g. N"), m.child("force"));
-  u.time = text(ctx, m.required("time", "label of the time unit, e.g. s"), m.child("time"));
+  read_declared(ctx, m, units_keys(), "units", u);  // keys_top.cpp
   return u;
 }
 

@@ -60,9 +60,12 @@ LawChoice read_law(const Ctx& ctx, const YAML::Node& n, const std::string& path)
   MapReader m(ctx, n, path, allowed);
   LawChoice law;
   law.name = name;
-  laws::ParameterValues given;
+  read_declared(ctx, m, law_keys(), "law", law);  // the declared keys but `name` (read above), keys_joints.cpp
+  const std::vector<std::string> declared = key_names(law_keys(), "law");
+  laws::ParameterValues given;  // the rest: the law's parameters
   for (const auto& e : m.entries())
-    if (e.key != "name") given[e.key] = number(ctx, e.value, m.child(e.key), any(""));
+    if (std::find(declared.begin(), declared.end(), e.key) == declared.end())
+      given[e.key] = number(ctx, e.value, m.child(e.key), any(""));
   try {
     law.parameters = laws::validate_parameters(name, info->parameters, given);
   } catch (const laws::LawError& err) {

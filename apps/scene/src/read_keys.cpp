@@ -40,6 +40,7 @@ KeyValue read_value(const Ctx& ctx, const YAML::Node& v, const std::string& path
     case KeyType::point: return point(ctx, v, path);
     case KeyType::numbers: return numbers(ctx, v, path, k.count, any(unit.c_str()));
     case KeyType::name: return name_text(ctx, v, path);
+    case KeyType::text: return text(ctx, v, path);
     case KeyType::reference:
     case KeyType::list:
     case KeyType::named:

@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "rheodda/scene/scene.hpp"
-#include "scene_keys.hpp"
 #include "yaml_reader.hpp"
 
 namespace rheodda::scene::detail {

@@ -16,6 +16,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>
+#include <functional>
 #include <map>
 #include <regex>
 #include <set>
@@ -280,86 +281,158 @@ BOOST_AUTO_TEST_CASE(the_docs_key_tables_are_the_declarations) {
   }
 }
 
-BOOST_AUTO_TEST_CASE(a_key_declared_once_reaches_the_loader_the_schema_check_summary_and_docs) {
-  // One declaration, nothing else: the key must then be read (with its range and unit
-  // in the message), be in the schema, in `check`'s description, in summary.json's
-  // inputs and in the docs table.
-  static double dummy = 0.5;
-  scene::KeySpec k;
-  k.map = "analysis";
-  k.name = "dummy_tolerance";
+namespace {
+
+double g_dummy = 0.5;  ///< where the dummy key of the test below is read to
+
+/// Declares `dummy_margin` (a number in (0, 1] [length], default 0.5) in the map `map`
+/// of the typed list `list`, read into g_dummy; what it returns takes it back.
+template <class E>
+std::function<void()> declare_dummy(std::vector<scene::EntryKey<E>>& list, const std::string& map) {
+  scene::EntryKey<E> k;
+  k.map = map;
+  k.name = "dummy_margin";
   k.type = scene::KeyType::number;
   k.unit = "length";
   k.range = {0.0, true, 1.0, false};
   k.default_text = "0.5";
   k.meaning = "a key only this test declares";
-  k.get = [](const scene::Analysis&) -> scene::KeyValue { return dummy; };
-  k.set = [](scene::Analysis&, const scene::KeyValue& v) { dummy = std::get<double>(v); };
-  auto& keys = scene::analysis_keys();
-  keys.push_back(k);
-  struct Undeclare {
-    ~Undeclare() { scene::analysis_keys().pop_back(); }
-  } undeclare;
-
-  const scene::SceneDescription s = scene::parse_scene(with("  duration: 1\n", "  duration: 1\n  dummy_tolerance: 0.25\n"), "dummy.yaml");
-  BOOST_TEST(dummy == 0.25);
-  try {
-    (void)scene::parse_scene(with("  duration: 1\n", "  duration: 1\n  dummy_tolerance: 1.5\n"), "dummy.yaml");
-    BOOST_ERROR("dummy_tolerance: 1.5 was accepted");
-  } catch (const scene::SceneError& e) {
-    BOOST_TEST(e.key() == "analysis.dummy_tolerance");
-    BOOST_TEST(e.message().find("out of range (0, 1] [length]") != std::string::npos, e.what());
-  }
-  bool in_schema = false;
-  for (const auto& m : scene::scene_schema())
-    if (m.path == "analysis")
-      in_schema = std::find(m.keys.begin(), m.keys.end(), "dummy_tolerance") != m.keys.end();
-  BOOST_TEST(in_schema);
-  BOOST_TEST(scene::describe_scene(s).find("dummy_tolerance 0.25 m") != std::string::npos, scene::describe_scene(s));
-  BOOST_TEST(scene::scene_json_text(s).find("\"dummy_tolerance\":0.25") != std::string::npos);
-  BOOST_TEST(scene::key_table_markdown("analysis").find("| `dummy_tolerance` | length | a key only this test declares | 0.5 |") !=
-             std::string::npos);
+  k.get = [](const E&) -> scene::KeyValue { return g_dummy; };
+  k.set = [](E&, const scene::KeyValue& v) { g_dummy = std::get<double>(v); };
+  list.push_back(k);
+  return [&list] { list.pop_back(); };
 }
 
-BOOST_AUTO_TEST_CASE(a_key_declared_once_in_a_list_map_reaches_the_loader_the_schema_check_summary_and_docs) {
-  // The same for a list map (`bolts:`): one declaration, and the key is read with its
-  // range and unit, is in the schema, in `check`'s description, in summary.json's
-  // inputs and in the docs table.
-  static double dummy = 0.5;
-  scene::EntryKey<scene::BoltDescription> k;
-  k.map = "bolts";
-  k.name = "dummy_margin";
-  k.type = scene::KeyType::number;
-  k.unit = "force";
-  k.range = {0.0, true, 1.0, false};
-  k.default_text = "0.5";
-  k.meaning = "a bolt key only this test declares";
-  k.get = [](const scene::BoltDescription&) -> scene::KeyValue { return dummy; };
-  k.set = [](scene::BoltDescription&, const scene::KeyValue& v) { dummy = std::get<double>(v); };
-  scene::bolt_keys().push_back(k);
-  struct Undeclare {
-    ~Undeclare() { scene::bolt_keys().pop_back(); }
-  } undeclare;
+/// One declared map of the test below: how to declare the dummy key in it, a valid scene
+/// giving it (`D` stands for the key and its value), and which of `check` and
+/// summary.json describe the map from its declarations.
+struct DummyCase {
+  std::function<std::function<void()>()> declare;
+  std::string scene;
+  bool in_check = false;
+  bool in_summary = false;
+};
 
-  const std::string bolt = "bolts:\n  - {name: b, from: {point: [1.5, 1.5]}, to: {fixed: [1.5, 4]}, axial_stiffness: 1e6, ";
-  const scene::SceneDescription s = scene::parse_scene(kBaseScene + bolt + "dummy_margin: 0.25}\n", "dummy.yaml");
-  BOOST_TEST(dummy == 0.25);
-  try {
-    (void)scene::parse_scene(kBaseScene + bolt + "dummy_margin: 1.5}\n", "dummy.yaml");
-    BOOST_ERROR("dummy_margin: 1.5 was accepted");
-  } catch (const scene::SceneError& e) {
-    BOOST_TEST(e.key() == "bolts[0].dummy_margin");
-    BOOST_TEST(e.line() == 17);
-    BOOST_TEST(e.message().find("out of range (0, 1] [force]") != std::string::npos, e.what());
+const std::string kStage = "stages:\n  - {name: a, at: 0.5, ";
+const std::string kBolt = "bolts:\n  - {name: b, from: {point: [1.5, 1.5]}, to: {fixed: [1.5, 4]}, axial_stiffness: 1e6";
+const std::string kRockMass = "rock_mass: {region: [[0, 5], [4, 5], [4, 8], [0, 8]], boundary_joint_set: bedding";
+
+/// Per declared map (scene::declared_maps()), its case.
+std::map<std::string, DummyCase> dummy_cases() {
+  using namespace scene;
+  auto dummy = [](auto& list, const std::string& map) { return [&list, map] { return declare_dummy(list, map); }; };
+  return {
+      {"top", {dummy(top_keys(), "top"), "D\n" + kBaseScene, false, true}},
+      {"units", {dummy(units_keys(), "units"), with("units: {length: m,", "units: {D, length: m,"), true, true}},
+      {"analysis", {dummy(analysis_keys(), "analysis"), with("  duration: 1\n", "  duration: 1\n  D\n"), true, true}},
+      {"analysis.settle",
+       {dummy(analysis_keys(), "analysis.settle"),
+        with("  duration: 1\n", "  duration: 1\n  settle: {D, until: 0.1, dt: 0.01}\n"), true, true}},
+      {"materials", {dummy(material_keys(), "materials"), with("rock: {density", "rock: {D, density"), true, true}},
+      {"joint_sets",
+       {dummy(joint_set_keys(), "joint_sets"), with("bedding: {friction_angle: 30}", "bedding: {D, friction_angle: 30}"),
+        false, true}},
+      {"law", {dummy(law_keys(), "law"), with("{name: burgers,", "{name: burgers, D,"), false, true}},
+      {"blocks", {dummy(block_keys(), "blocks"), with("{name: base,", "{D, name: base,"), false, true}},
+      {"blocks.rectangle", {dummy(rectangle_keys(), "blocks.rectangle"), with("rectangle: {x: 0,", "rectangle: {D, x: 0,")}},
+      {"blocks.grid",
+       {dummy(grid_keys(), "blocks.grid"),
+        with("rectangle: {x: 0, y: 0, width: 4, height: 1}", "grid: {D, x: 0, y: 0, width: 4, height: 1, columns: 1, rows: 1}")}},
+      {"rock_mass", {dummy(rock_mass_keys(), "rock_mass"), kBaseScene + kRockMass + ", D}\n", false, true}},
+      {"rock_mass.joint_sets",
+       {dummy(rock_mass_joint_set_keys(), "rock_mass.joint_sets"),
+        kBaseScene + kRockMass + ", joint_sets: [{D, joint_set: bedding, dip: 0, spacing: 1}]}\n", false, true}},
+      {"rock_mass.traces",
+       {dummy(rock_mass_trace_keys(), "rock_mass.traces"),
+        kBaseScene + kRockMass + ", traces: [{D, joint_set: fault, from: [0, 6.5], to: [4, 6.5]}]}\n", false, true}},
+      {"fixed_points",
+       {dummy(fixed_point_keys(), "fixed_points"), kBaseScene + "fixed_points:\n  - {D, point: [1.5, 1.5]}\n", true, true}},
+      {"loads",
+       {dummy(load_keys(), "loads"), kBaseScene + "loads:\n  - {D, point: [1.5, 1.5], force: [0, 1]}\n", true, true}},
+      {"measurement_points",
+       {dummy(measurement_point_keys(), "measurement_points"), with("{name: p,", "{D, name: p,"), true, true}},
+      {"water", {dummy(water_keys(), "water"), kBaseScene + "water: {D, unit_weight: 9810, level: 1}\n", false, true}},
+      {"water.surface_history",
+       {dummy(water_sample_keys(), "water.surface_history"),
+        kBaseScene + "water: {unit_weight: 9810, surface_history: [{D, time: 0, surface: [[-1, 1], [5, 1]]}]}\n", false,
+        true}},
+      {"bolts", {dummy(bolt_keys(), "bolts"), kBaseScene + kBolt + ", D}\n", true, true}},
+      {"bolts.from",
+       {dummy(bolt_end_keys(), "bolts.from"), with("from: {point: [1.5, 1.5]}", "from: {D, point: [1.5, 1.5]}",
+                                                   kBaseScene + kBolt + "}\n"),
+        false, true}},
+      {"bolts.to",
+       {dummy(bolt_to_keys(), "bolts.to"), with("to: {fixed: [1.5, 4]}", "to: {D, fixed: [1.5, 4]}", kBaseScene + kBolt + "}\n"),
+        false, true}},
+      {"stages", {dummy(stage_keys(), "stages"), kBaseScene + kStage + "D, settle: false}\n", false, true}},
+      {"stages.remove_blocks",
+       {dummy(stage_remove_blocks_keys(), "stages.remove_blocks"),
+        with("  - {name: p, point: [1.5, 1.5]}\n", "  - {name: p, point: [1.5, 0.5]}\n") + kStage +
+            "remove_blocks: {D, names: [top]}}\n"}},
+      {"stages.add_fixed_points",
+       {dummy(stage_fixed_point_keys(), "stages.add_fixed_points"),
+        kBaseScene + kStage + "add_fixed_points: [{D, point: [1.5, 1.5], block: top}]}\n", false, true}},
+      {"stages.add_loads",
+       {dummy(stage_load_keys(), "stages.add_loads"),
+        kBaseScene + kStage + "add_loads: [{D, point: [1.5, 1.5], block: top, force: [0, 1]}]}\n", false, true}},
+      {"stages.joint_sets",
+       {dummy(stage_joint_set_keys(), "stages.joint_sets"),
+        kBaseScene + kStage + "joint_sets: {bedding: {D, friction_angle: 20}}}\n", false, true}},
+      {"stages.analysis",
+       {dummy(stage_analysis_keys(), "stages.analysis"), kBaseScene + kStage + "analysis: {D, type: dynamic}}\n", false,
+        true}},
+  };
+}
+
+/// `text` with its `D` (the one capital D of every case's scene) replaced by `key_value`.
+std::string with_dummy(const std::string& text, const std::string& key_value) {
+  return with("D", key_value, text);
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(a_key_declared_once_in_any_map_reaches_the_loader_the_schema_the_docs_check_and_summary) {
+  // One declaration, nothing else, in each declared map in turn: the key must then be
+  // read (with its range and unit in the message, at its line), be in the schema and the
+  // docs table, and, for the maps `check` and summary.json describe from their
+  // declarations, in `check`'s description and in summary.json's inputs.
+  const std::map<std::string, DummyCase> cases = dummy_cases();
+  for (const scene::DeclaredMap& m : scene::declared_maps()) {
+    BOOST_TEST_CONTEXT("declared map '" << m.name << "'") {
+      const auto c = cases.find(m.name);
+      BOOST_TEST_REQUIRE((c != cases.end()), "no case for this map: add one to dummy_cases()");
+      const std::function<void()> undeclare = c->second.declare();
+      struct Undeclare {
+        const std::function<void()>& f;
+        ~Undeclare() { f(); }
+      } guard{undeclare};
+
+      g_dummy = 0.5;
+      const scene::SceneDescription s = scene::parse_scene(with_dummy(c->second.scene, "dummy_margin: 0.25"), "dummy.yaml");
+      BOOST_TEST(g_dummy == 0.25, "the loader did not read it");
+      const std::string bad = with_dummy(c->second.scene, "dummy_margin: 1.5");
+      try {
+        (void)scene::parse_scene(bad, "dummy.yaml");
+        BOOST_ERROR("dummy_margin: 1.5 was accepted");
+      } catch (const scene::SceneError& e) {
+        BOOST_TEST(e.key().ends_with("dummy_margin"), e.what());
+        BOOST_TEST(e.line() == static_cast<int>(std::count(bad.begin(), bad.begin() + static_cast<long>(bad.find("dummy_margin")), '\n')) + 1);
+        BOOST_TEST(e.message().find("out of range (0, 1] [length]") != std::string::npos, e.what());
+      }
+      for (const std::string& path : m.schema_paths) {
+        bool in_schema = false;
+        for (const auto& sm : scene::scene_schema())
+          if (sm.path == path) in_schema = std::find(sm.keys.begin(), sm.keys.end(), "dummy_margin") != sm.keys.end();
+        BOOST_TEST(in_schema, "not in the schema at " << path);
+      }
+      BOOST_TEST(scene::key_table_markdown(m.name).find("| `dummy_margin` | length | a key only this test declares | 0.5 |") !=
+                 std::string::npos);
+      if (c->second.in_check)
+        BOOST_TEST(scene::describe_scene(s).find("dummy_margin 0.25 m") != std::string::npos, scene::describe_scene(s));
+      if (c->second.in_summary)
+        BOOST_TEST(scene::scene_json_text(s).find("\"dummy_margin\":0.25") != std::string::npos, scene::scene_json_text(s));
+    }
   }
-  bool in_schema = false;
-  for (const auto& m : scene::scene_schema())
-    if (m.path == "bolts[*]") in_schema = std::find(m.keys.begin(), m.keys.end(), "dummy_margin") != m.keys.end();
-  BOOST_TEST(in_schema);
-  BOOST_TEST(scene::describe_scene(s).find("dummy_margin 0.25 N") != std::string::npos, scene::describe_scene(s));
-  BOOST_TEST(scene::scene_json_text(s).find("\"dummy_margin\":0.25") != std::string::npos);
-  BOOST_TEST(scene::key_table_markdown("bolts").find("| `dummy_margin` | force | a bolt key only this test declares | 0.5 |") !=
-             std::string::npos);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

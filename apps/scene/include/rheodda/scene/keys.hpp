@@ -41,6 +41,7 @@ enum class KeyType {
   point,      ///< [x, y]
   numbers,    ///< a list of `count` numbers, any value
   name,       ///< a name: letters, digits, '_', '-', '.'
+  text,       ///< any text (a title, a unit's label)
   reference,  ///< the name of an entry of another section (a material, joint set, block)
   list,       ///< a list (of vertices, polygons, samples or entries), read by its section's reader
   named,      ///< a map from names (of joint sets, ...) to entries, read by its section's reader
@@ -77,6 +78,9 @@ struct KeyInfo {
   std::string meaning{};       ///< one table cell of docs/reference/scene-format.md
   std::size_t count = 0;     ///< numbers keys: how many
   std::string submap{};        ///< map keys: the declared map of its keys (default `<map>.<name>`)
+  /// A key of the top level (a section of the file): its keys are in a table of their
+  /// own, not listed in this key's meaning.
+  bool own_table = false;
   /// summary.json's inputs echo the key (false only for keys it never echoed, so that
   /// every summary.json stays as it was: materials' damping_ratio, joint sets' restitution).
   bool echoed = true;
@@ -107,6 +111,8 @@ struct BlockShape {
 // The declared keys of each map, in the order of the docs. Mutable so that a test (or
 // an extension) can declare one more key and find it in every listing; the program
 // itself only reads them.
+std::vector<EntryKey<SceneDescription>>& top_keys();                 ///< top (the file's sections)
+std::vector<EntryKey<Units>>& units_keys();                          ///< units
 std::vector<KeySpec>& analysis_keys();                               ///< analysis, analysis.settle
 std::vector<EntryKey<Material>>& material_keys();                    ///< materials
 std::vector<EntryKey<JointSetDescription>>& joint_set_keys();        ///< joint_sets
@@ -161,19 +167,28 @@ inline std::string key_value_text(const KeySpec& k, const Analysis& a, const Uni
 std::string unit_text(const std::string& unit, const Units& u);
 
 /// `rheodda check`'s words for the keys of `map` declared in `keys` that are set in `e`:
-/// "density 2700 N*s^2/m^4, young_modulus 1e+10 N/m^2, ..." (keys of maps and lists are
-/// their reader's to describe).
+/// "density 2700 N*s^2/m^4, young_modulus 1e+10 N/m^2, ...". A key its section's reader
+/// reads (no setter: a point on its block, a reference, a list) is in the words `other`
+/// gives ("" or no `other`: left out; maps and lists are their reader's to describe).
 template <class E>
 std::string key_values_text(const std::vector<EntryKey<E>>& keys, const std::string& map, const E& e,
-                            const Units& u) {
+                            const Units& u, const std::function<std::string(const KeyInfo&)>& other = {}) {
   std::string out;
+  auto add = [&out](const std::string& name, const std::string& value) {
+    out += (out.empty() ? "" : ", ") + name + " " + value;
+  };
   for (const EntryKey<E>& k : keys) {
-    if (k.map != map || k.type == KeyType::map || k.type == KeyType::list || k.type == KeyType::reference ||
+    if (k.map != map) continue;
+    if (!k.set && other) {
+      if (const std::string t = other(k); !t.empty()) add(k.name, t);
+      continue;
+    }
+    if (k.type == KeyType::map || k.type == KeyType::list || k.type == KeyType::reference ||
         k.type == KeyType::named)
       continue;
     const KeyValue v = k.get(e);
     if (std::holds_alternative<std::monostate>(v)) continue;
-    out += (out.empty() ? "" : ", ") + k.name + " " + key_value_text(k, v, u);
+    add(k.name, key_value_text(k, v, u));
   }
   return out;
 }
