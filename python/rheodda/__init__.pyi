@@ -38,7 +38,7 @@ from ._rheodda import (
     parse_scene as parse_scene,
     read_creep_csv as read_creep_csv,
 )
-from ._rheodda import FloatArray, Staged
+from ._rheodda import FloatArray, Staged, _FitFields
 
 PathLike = Union[str, os.PathLike[str]]
 # params= of fit: per parameter an initial value, a dict of value/vary/min/max, or an lmfit.Parameter.
@@ -49,10 +49,8 @@ __all__: list[str]
 def law_info(name: str) -> dict[str, Any]: ...
 def to_dataframe(columns: Mapping[str, npt.ArrayLike]) -> Any: ...
 
-class FitResult:
+class FitResult(_FitFields):
     data: CreepData
-    law: str
-    parameters: list[ParameterEstimate]
     names: list[str]
     values: dict[str, float]
     errors: dict[str, float]
@@ -61,31 +59,7 @@ class FitResult:
     reasons: dict[str, str]
     vary: dict[str, bool]
     at_bound: dict[str, str]
-    combinations: list[FixedCombination]
-    correlation: FloatArray
     covariance: FloatArray
-    points: int
-    rss: float
-    chi_square: float
-    reduced_chi_square: float
-    varying: int
-    weighted: bool
-    scale_covariance: bool
-    r2: float
-    rmse: float
-    aic: float
-    bic: float
-    iterations: int
-    starts: int
-    starts_agreeing: int
-    structured_starts: int
-    converged: bool
-    minimum_certain: bool
-    minimum_note: str
-    warnings: list[str]
-    fitted: FloatArray
-    singular_values: FloatArray
-    start_minima: FloatArray
     def __init__(self, raw: Any, data: CreepData) -> None: ...
     def make_law(self) -> Law: ...
     @property

@@ -224,7 +224,9 @@ class FixedCombination:
     @property
     def parameters(self) -> list[str]: ...
 
-class _FitResult:
+class _FitFields:
+    """Stub only (no such class at run time): the fields of a fit that _FitResult and
+    rheodda.FitResult both have."""
     law: str
     parameters: list[ParameterEstimate]
     correlation: FloatArray
@@ -251,6 +253,8 @@ class _FitResult:
     combinations: list[FixedCombination]
     warnings: list[str]
     fitted: FloatArray
+
+class _FitResult(_FitFields): ...
 
 class _Simulation:
     time: float
