@@ -1,7 +1,7 @@
 """Type stubs of rheodda's pure-Python part (python/rheodda/__init__.py); the
 compiled part is _rheodda.pyi. Checked by tests/python/test_typing.py."""
 import os
-from typing import Any, Callable, ItemsView, Iterator, KeysView, Mapping, Sequence, Union, ValuesView
+from typing import Any, Callable, Generic, ItemsView, Iterator, KeysView, Mapping, Sequence, TypeVar, Union, ValuesView
 
 import numpy as np
 import numpy.typing as npt
@@ -38,10 +38,9 @@ from ._rheodda import (
     parse_scene as parse_scene,
     read_creep_csv as read_creep_csv,
 )
+from ._rheodda import FloatArray, Staged, _FitFields
 
-FloatArray = npt.NDArray[np.float64]
 PathLike = Union[str, os.PathLike[str]]
-Staged = Union[float, str, Sequence[tuple[float, float]], FloatArray]
 # params= of fit: per parameter an initial value, a dict of value/vary/min/max, or an lmfit.Parameter.
 ParameterSpec = Union[float, Mapping[str, Union[float, bool, None]], Any]
 
@@ -50,10 +49,8 @@ __all__: list[str]
 def law_info(name: str) -> dict[str, Any]: ...
 def to_dataframe(columns: Mapping[str, npt.ArrayLike]) -> Any: ...
 
-class FitResult:
+class FitResult(_FitFields):
     data: CreepData
-    law: str
-    parameters: list[ParameterEstimate]
     names: list[str]
     values: dict[str, float]
     errors: dict[str, float]
@@ -62,31 +59,7 @@ class FitResult:
     reasons: dict[str, str]
     vary: dict[str, bool]
     at_bound: dict[str, str]
-    combinations: list[FixedCombination]
-    correlation: FloatArray
     covariance: FloatArray
-    points: int
-    rss: float
-    chi_square: float
-    reduced_chi_square: float
-    varying: int
-    weighted: bool
-    scale_covariance: bool
-    r2: float
-    rmse: float
-    aic: float
-    bic: float
-    iterations: int
-    starts: int
-    starts_agreeing: int
-    structured_starts: int
-    converged: bool
-    minimum_certain: bool
-    minimum_note: str
-    warnings: list[str]
-    fitted: FloatArray
-    singular_values: FloatArray
-    start_minima: FloatArray
     def __init__(self, raw: Any, data: CreepData) -> None: ...
     def make_law(self) -> Law: ...
     @property
@@ -113,17 +86,18 @@ CallbackFunction = Callable[["Simulation", StepReport], object]
 
 def run(scene: SceneLike, out_dir: PathLike, resume: bool = False, progress: bool = False) -> dict[str, Any]: ...
 
-class Block:
-    index: int
-    def __init__(self, sim: Simulation, index: int) -> None: ...
-    @property
-    def name(self) -> str: ...
+_Scalar = TypeVar("_Scalar")
+_Flag = TypeVar("_Flag")
+
+class _BlockQuantities(Generic[_Scalar, _Flag]):
+    """Stub only (no such class at run time): the quantities Block (one block: a float, a bool)
+    and Blocks (every block: an array of them) both read."""
     @property
     def position(self) -> FloatArray: ...
     @property
     def centroid(self) -> FloatArray: ...
     @property
-    def rotation(self) -> float: ...
+    def rotation(self) -> _Scalar: ...
     @property
     def velocity(self) -> FloatArray: ...
     @property
@@ -131,13 +105,19 @@ class Block:
     @property
     def stress(self) -> FloatArray: ...
     @property
-    def area(self) -> float: ...
+    def area(self) -> _Scalar: ...
     @property
-    def mass(self) -> float: ...
+    def mass(self) -> _Scalar: ...
     @property
-    def fixed(self) -> bool: ...
+    def fixed(self) -> _Flag: ...
     @property
-    def removed(self) -> bool: ...
+    def removed(self) -> _Flag: ...
+
+class Block(_BlockQuantities[float, bool]):
+    index: int
+    def __init__(self, sim: Simulation, index: int) -> None: ...
+    @property
+    def name(self) -> str: ...
     @property
     def vertices(self) -> FloatArray: ...
     def point_displacement(self, x: float, y: float) -> FloatArray: ...
@@ -147,33 +127,13 @@ class Block:
     def add_load(self, point: Sequence[float] | FloatArray, force: Sequence[float] | FloatArray | None = None,
                  history: Sequence[Sequence[float]] | None = None) -> Load: ...
 
-class Blocks:
+class Blocks(_BlockQuantities[FloatArray, npt.NDArray[np.bool_]]):
     def __init__(self, sim: Simulation) -> None: ...
     @property
     def names(self) -> list[str]: ...
     def __len__(self) -> int: ...
     def __getitem__(self, key: Union[int, str, np.integer[Any]]) -> Block: ...
     def __iter__(self) -> Iterator[Block]: ...
-    @property
-    def position(self) -> FloatArray: ...
-    @property
-    def centroid(self) -> FloatArray: ...
-    @property
-    def rotation(self) -> FloatArray: ...
-    @property
-    def velocity(self) -> FloatArray: ...
-    @property
-    def strain(self) -> FloatArray: ...
-    @property
-    def stress(self) -> FloatArray: ...
-    @property
-    def area(self) -> FloatArray: ...
-    @property
-    def mass(self) -> FloatArray: ...
-    @property
-    def fixed(self) -> npt.NDArray[np.bool_]: ...
-    @property
-    def removed(self) -> npt.NDArray[np.bool_]: ...
 
 class Load:
     id: int

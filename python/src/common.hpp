@@ -19,6 +19,8 @@ namespace py = pybind11;
 
 void bind_errors(py::module_& m);
 void bind_laws(py::module_& m);
+void bind_python_law(py::module_& m);  // after bind_laws: PythonLaw derives from Law
+void bind_law_curves(py::module_& m);
 void bind_fit(py::module_& m);
 void bind_scene(py::module_& m);
 void bind_simulation(py::module_& m);

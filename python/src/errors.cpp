@@ -19,6 +19,9 @@
 #include "common.hpp"
 
 namespace rheodda::python {
+
+using namespace pybind11::literals;  // "key"_a = value: an exception's attributes
+
 namespace {
 
 // The exception types live as long as the module (pybind11 keeps the module alive).
@@ -75,31 +78,17 @@ void bind_errors(py::module_& m) {
     } catch (const laws::CurveError& e) {  // a law curve that cannot hold its tolerance
       raise(run_error_type, e.what(), py::dict());
     } catch (const scene::SceneError& e) {
-      py::dict a;
-      a["file"] = e.file();
-      a["line"] = e.line();
-      a["column"] = e.column();
-      a["key"] = e.key();
-      a["message"] = e.message();
-      raise(scene_error_type, e.what(), a);
+      raise(scene_error_type, e.what(),
+            py::dict("file"_a = e.file(), "line"_a = e.line(), "column"_a = e.column(), "key"_a = e.key(),
+                     "message"_a = e.message()));
     } catch (const laws::LawError& e) {
-      py::dict a;
-      a["key"] = e.key();
-      raise(law_error_type, e.what(), a);
+      raise(law_error_type, e.what(), py::dict("key"_a = e.key()));
     } catch (const fit::DataError& e) {
-      py::dict a;
-      a["file"] = e.file();
-      a["line"] = e.line();
-      a["column"] = e.column();
-      raise(data_error_type, e.what(), a);
+      raise(data_error_type, e.what(), py::dict("file"_a = e.file(), "line"_a = e.line(), "column"_a = e.column()));
     } catch (const fit::FitError& e) {
-      py::dict a;
-      a["law"] = e.law();
-      raise(fit_error_type, e.what(), a);
+      raise(fit_error_type, e.what(), py::dict("law"_a = e.law()));
     } catch (const core::ModelError& e) {
-      py::dict a;
-      a["key"] = e.key();
-      raise(model_error_type, e.what(), a);
+      raise(model_error_type, e.what(), py::dict("key"_a = e.key()));
     }
   });
 }
@@ -107,12 +96,8 @@ void bind_errors(py::module_& m) {
 void raise_python_law_error(const std::string& law, const std::string& method, const std::string& value,
                             const std::string& expected) {
   const std::string message = "PythonLaw '" + law + "': " + method + " returned " + value + "; expected " + expected;
-  py::dict a;
-  a["law"] = law;
-  a["method"] = method;
-  a["value"] = value;
-  a["expected"] = expected;
-  raise(python_law_error_type, message.c_str(), a);
+  raise(python_law_error_type, message.c_str(),
+        py::dict("law"_a = law, "method"_a = method, "value"_a = value, "expected"_a = expected));
   throw py::error_already_set();
 }
 

@@ -17,6 +17,12 @@
 namespace rheodda::python {
 namespace {
 
+/// def_readonly(name, field) for each (name, field) pair: the library's fields as they are.
+template <class C, class... T>
+void readonly_fields(py::class_<C>& c, std::pair<const char*, T C::*>... fields) {
+  (c.def_readonly(fields.first, fields.second), ...);
+}
+
 fit::CreepData data_from_arrays(const std::vector<double>& t, const std::vector<double>& d,
                                 const py::object& stress, const std::string& source,
                                 const std::optional<std::vector<double>>& sigma) {
@@ -147,39 +153,30 @@ void bind_fit(py::module_& m) {
                py::repr(py::float_(c.std_error)).cast<std::string>() + " " + c.unit + ">";
       });
 
-  py::class_<fit::FitResult>(m, "_FitResult", "fit::FitResult as the library returns it; rheodda.FitResult wraps it")
-      .def_readonly("law", &fit::FitResult::law)
-      .def_readonly("parameters", &fit::FitResult::parameters)
+  using R = fit::FitResult;
+  py::class_<R> result(m, "_FitResult", "fit::FitResult as the library returns it; rheodda.FitResult wraps it");
+  readonly_fields(result, std::pair{"law", &R::law}, std::pair{"parameters", &R::parameters},
+                  std::pair{"points", &R::points}, std::pair{"rss", &R::rss},
+                  std::pair{"chi_square", &R::chi_square}, std::pair{"reduced_chi_square", &R::reduced_chi_square},
+                  std::pair{"varying", &R::varying}, std::pair{"weighted", &R::weighted},
+                  std::pair{"scale_covariance", &R::scale_covariance}, std::pair{"r2", &R::r2},
+                  std::pair{"rmse", &R::rmse}, std::pair{"aic", &R::aic}, std::pair{"bic", &R::bic},
+                  std::pair{"iterations", &R::iterations}, std::pair{"starts", &R::starts},
+                  std::pair{"starts_agreeing", &R::starts_agreeing}, std::pair{"converged", &R::converged},
+                  std::pair{"structured_starts", &R::structured_starts},
+                  std::pair{"minimum_certain", &R::minimum_certain}, std::pair{"minimum_note", &R::minimum_note},
+                  std::pair{"combinations", &R::combinations}, std::pair{"warnings", &R::warnings});
+  result
       .def_property_readonly("correlation",
-                             [](const fit::FitResult& r) {
+                             [](const R& r) {
                                const auto n = static_cast<py::ssize_t>(r.parameters.size());
                                py::array_t<double> a({n, n});
                                std::copy(r.correlation.begin(), r.correlation.end(), a.mutable_data());
                                return a;
                              })
-      .def_readonly("points", &fit::FitResult::points)
-      .def_readonly("rss", &fit::FitResult::rss)
-      .def_readonly("chi_square", &fit::FitResult::chi_square)
-      .def_readonly("reduced_chi_square", &fit::FitResult::reduced_chi_square)
-      .def_readonly("varying", &fit::FitResult::varying)
-      .def_readonly("weighted", &fit::FitResult::weighted)
-      .def_readonly("scale_covariance", &fit::FitResult::scale_covariance)
-      .def_property_readonly("start_minima", [](const fit::FitResult& r) { return to_numpy(r.start_minima); })
-      .def_readonly("r2", &fit::FitResult::r2)
-      .def_readonly("rmse", &fit::FitResult::rmse)
-      .def_readonly("aic", &fit::FitResult::aic)
-      .def_readonly("bic", &fit::FitResult::bic)
-      .def_readonly("iterations", &fit::FitResult::iterations)
-      .def_readonly("starts", &fit::FitResult::starts)
-      .def_readonly("starts_agreeing", &fit::FitResult::starts_agreeing)
-      .def_readonly("converged", &fit::FitResult::converged)
-      .def_readonly("structured_starts", &fit::FitResult::structured_starts)
-      .def_readonly("minimum_certain", &fit::FitResult::minimum_certain)
-      .def_readonly("minimum_note", &fit::FitResult::minimum_note)
-      .def_property_readonly("singular_values", [](const fit::FitResult& r) { return to_numpy(r.singular_values); })
-      .def_readonly("combinations", &fit::FitResult::combinations)
-      .def_readonly("warnings", &fit::FitResult::warnings)
-      .def_property_readonly("fitted", [](const fit::FitResult& r) { return to_numpy(r.fitted); });
+      .def_property_readonly("start_minima", [](const R& r) { return to_numpy(r.start_minima); })
+      .def_property_readonly("singular_values", [](const R& r) { return to_numpy(r.singular_values); })
+      .def_property_readonly("fitted", [](const R& r) { return to_numpy(r.fitted); });
 
   m.def(
       "read_creep_csv",

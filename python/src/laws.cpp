@@ -1,10 +1,9 @@
 // Laws from Python: the registry (names, parameters with units), building a law
-// from a dict, its closed forms, single steps and the law-alone curves of
-// `rheodda law curve` (laws::integrate_curve), and PythonLaw, the base class of
-// laws written in Python.
+// from a dict, and the Law class (its closed forms over numpy arrays, single
+// steps). A law written in Python (PythonLaw) is in python_law.cpp, the law-alone
+// curves of `rheodda law curve` in law_curves.cpp.
 #include "laws.hpp"
 
-#include <rheodda/laws/accurate_curve.hpp>
 #include <rheodda/laws/registry.hpp>
 
 #include <fmt/format.h>
@@ -12,171 +11,11 @@
 #include <cmath>
 #include <optional>
 
+#include "law_arrays.hpp"
+
 namespace rheodda::python {
 
-PythonLaw::PythonLaw(std::string name, laws::ParameterValues parameters, int internal_count,
-                     std::optional<double> instantaneous_stiffness, bool linear)
-    : name_(std::move(name)),
-      parameters_(std::move(parameters)),
-      internal_count_(internal_count),
-      e1_(instantaneous_stiffness),
-      linear_(linear) {
-  if (internal_count_ < 1 || internal_count_ > laws::kMaxInternal)
-    throw laws::LawError("internal_count", "PythonLaw '" + name_ + "': internal_count must be in 1.." +
-                                               std::to_string(laws::kMaxInternal));
-  if (e1_ && !(*e1_ > 0.0 && std::isfinite(*e1_)))
-    throw laws::LawError("instantaneous_stiffness",
-                         "PythonLaw '" + name_ + "': instantaneous_stiffness must be > 0 (force/length) or None");
-}
-
-laws::StepConstants PythonLaw::step_constants(double dt, laws::Scheme scheme) const {
-  laws::StepConstants k;
-  k.dt = dt;
-  k.scheme = scheme;
-  return k;
-}
-
-laws::Linearization PythonLaw::linearize(const laws::StepConstants&, const laws::RheologyState&, double,
-                                         double) const {
-  throw std::logic_error("PythonLaw '" + name_ + "': linearize(k, q, force_start, force_end_guess) is not defined");
-}
-
-double PythonLaw::advance(const laws::StepConstants&, const laws::RheologyState&, double, double,
-                          laws::RheologyState&) const {
-  throw std::logic_error("PythonLaw '" + name_ + "': advance(k, q, force_start, force_end) is not defined");
-}
-
-double PythonLaw::creep_closed_form(double, double) const { return std::numeric_limits<double>::quiet_NaN(); }
-
 namespace {
-
-py::tuple state_tuple(const laws::RheologyState& s) { return py::make_tuple(s.q[0], s.q[1], s.q[2], s.q[3]); }
-
-laws::RheologyState state_from(const py::object& q, const char* what) {
-  laws::RheologyState s;
-  const auto v = q.cast<std::vector<double>>();
-  if (v.size() > static_cast<std::size_t>(laws::kMaxInternal))
-    throw laws::LawError(what, std::string(what) + ": at most " + std::to_string(laws::kMaxInternal) +
-                                   " internal displacements, got " + std::to_string(v.size()));
-  for (std::size_t i = 0; i < v.size(); ++i) s.q[i] = v[i];
-  return s;
-}
-
-// What the Python methods return, checked at every call (docs/guide/python.md, "When a
-// Python law returns a bad value"): a value that is not a finite number, a
-// tuple of the wrong length or a wrong type raises rheodda.PythonLawError
-// naming the law, the method, the value and what was expected.
-std::string short_repr(const py::handle& v) {
-  std::string r = py::repr(v).cast<std::string>();
-  if (r.size() > 200) r = r.substr(0, 197) + "...";
-  return r;
-}
-
-/// `item` as a finite float, or PythonLawError about `whole` (what `method` returned).
-double finite_number(const std::string& law, const char* method, const py::handle& item, const py::handle& whole,
-                     const std::string& expected) {
-  if (py::isinstance<py::str>(item) || py::isinstance<py::bytes>(item) || py::isinstance<py::bool_>(item) ||
-      item.is_none())
-    raise_python_law_error(law, method, short_repr(whole), expected);
-  double x = 0.0;
-  try {
-    x = py::float_(py::reinterpret_borrow<py::object>(item)).cast<double>();
-  } catch (py::error_already_set&) {
-    raise_python_law_error(law, method, short_repr(whole), expected);
-  }
-  if (!std::isfinite(x)) raise_python_law_error(law, method, short_repr(whole), expected);
-  return x;
-}
-
-/// `v` as a sequence (not a text) of `n` items, or PythonLawError.
-py::sequence sized(const std::string& law, const char* method, const py::object& v, std::size_t n,
-                   const std::string& expected) {
-  if (py::isinstance<py::str>(v) || !py::isinstance<py::sequence>(v) || py::len(v) != n)
-    raise_python_law_error(law, method, short_repr(v), expected);
-  return v.cast<py::sequence>();
-}
-
-/// The trampoline: each virtual step function goes to the Python override.
-class PyPythonLaw : public PythonLaw {
- public:
-  using PythonLaw::PythonLaw;
-
-  laws::StepConstants step_constants(double dt, laws::Scheme scheme) const override {
-    py::gil_scoped_acquire gil;
-    if (py::function f = py::get_override(static_cast<const PythonLaw*>(this), "step_constants")) {
-      const py::object r = f(dt, std::string(laws::scheme_name(scheme)));
-      if (!py::isinstance<laws::StepConstants>(r))
-        raise_python_law_error(law(), "step_constants", short_repr(r), "a rheodda.StepConstants");
-      return r.cast<laws::StepConstants>();
-    }
-    return PythonLaw::step_constants(dt, scheme);
-  }
-  laws::Linearization linearize(const laws::StepConstants& k, const laws::RheologyState& old, double fs,
-                                double fe) const override {
-    py::gil_scoped_acquire gil;
-    if (py::function f = py::get_override(static_cast<const PythonLaw*>(this), "linearize")) {
-      static const std::string expected = "a tuple (h, c) of two finite numbers: h [length], c [length/force]";
-      const py::object r = f(k, state_tuple(old), fs, fe);
-      const py::sequence hc = sized(law(), "linearize", r, 2, expected);
-      return {finite_number(law(), "linearize", hc[0], r, expected),
-              finite_number(law(), "linearize", hc[1], r, expected)};
-    }
-    return PythonLaw::linearize(k, old, fs, fe);
-  }
-  double advance(const laws::StepConstants& k, const laws::RheologyState& old, double fs, double fe,
-                 laws::RheologyState& next) const override {
-    py::gil_scoped_acquire gil;
-    if (py::function f = py::get_override(static_cast<const PythonLaw*>(this), "advance")) {
-      const std::size_t n = static_cast<std::size_t>(internal_count());
-      const std::string expected = "a tuple (delta_creep, q_new): a finite number [length] and a sequence of "
-                                   "internal_count = " + std::to_string(n) + " finite numbers [length]";
-      const py::object r = f(k, state_tuple(old), fs, fe);
-      const py::sequence pair = sized(law(), "advance", r, 2, expected);
-      const double dd = finite_number(law(), "advance", pair[0], r, expected);
-      const py::object q = pair[1];
-      if (py::isinstance<py::str>(q) || !py::isinstance<py::sequence>(q) || py::len(q) != n)
-        raise_python_law_error(law(), "advance", short_repr(r), expected);
-      const py::sequence qs = q.cast<py::sequence>();
-      next = laws::RheologyState{};
-      for (std::size_t i = 0; i < n; ++i) next.q[i] = finite_number(law(), "advance", qs[i], r, expected);
-      return dd;
-    }
-    return PythonLaw::advance(k, old, fs, fe, next);
-  }
-  double creep_closed_form(double force, double t) const override {
-    py::gil_scoped_acquire gil;
-    if (py::function f = py::get_override(static_cast<const PythonLaw*>(this), "creep_closed_form")) {
-      const py::object r = f(force, t);
-      return finite_number(law(), "creep_closed_form", r, r, "a finite number [length]");
-    }
-    return PythonLaw::creep_closed_form(force, t);
-  }
-  std::optional<double> relaxation_modulus(double t) const override {
-    py::gil_scoped_acquire gil;
-    if (py::function f = py::get_override(static_cast<const PythonLaw*>(this), "relaxation_modulus")) {
-      const py::object r = f(t);
-      if (r.is_none()) return std::nullopt;
-      return finite_number(law(), "relaxation_modulus", r, r, "a finite number [force/length] or None");
-    }
-    return PythonLaw::relaxation_modulus(t);
-  }
-
- private:
-  std::string law() const { return std::string(name()); }
-};
-
-laws::ParameterValues parameter_values(const py::dict& d) {
-  laws::ParameterValues v;
-  for (auto item : d) {
-    const auto key = item.first.cast<std::string>();
-    try {
-      v[key] = item.second.cast<double>();
-    } catch (const py::cast_error&) {
-      throw laws::LawError(key, key + ": '" + py::str(item.second).cast<std::string>() + "' is not a number");
-    }
-  }
-  return v;
-}
 
 py::dict law_info(const laws::LawInfo& info) {
   py::dict d;
@@ -200,59 +39,31 @@ py::dict law_info(const laws::LawInfo& info) {
   return d;
 }
 
-/// f applied to every element of t (any shape), as a new array of that shape.
-template <class F>
-py::array_t<double> map_array(const py::array_t<double, py::array::c_style | py::array::forcecast>& t, F f) {
-  py::array_t<double> r(t.request().shape);
-  const double* in = t.data();
-  double* out = r.mutable_data();
-  for (py::ssize_t i = 0; i < t.size(); ++i) out[i] = f(in[i]);
-  return r;
-}
-
-/// f of a number as a float, or of every element of an array-like as an array.
-template <class F>
-py::object map_object(const py::object& t, F f) {
-  if (py::isinstance<py::float_>(t) || py::isinstance<py::int_>(t)) return py::float_(f(t.cast<double>()));
-  return map_array(t.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(), f);
-}
-
-/// f(a, b) over numpy's broadcast of a and b (any shapes that broadcast): a
-/// float when both are numbers, else an array of the broadcast shape.
-template <class F>
-py::object map_broadcast(const py::object& a, const py::object& b, F f) {
-  const auto is_number = [](const py::object& x) {
-    return py::isinstance<py::float_>(x) || py::isinstance<py::int_>(x);
-  };
-  if (is_number(a) && is_number(b)) return py::float_(f(a.cast<double>(), b.cast<double>()));
-  const py::module_ np = py::module_::import("numpy");
-  const py::tuple ab = np.attr("broadcast_arrays")(np.attr("asarray")(a, py::arg("dtype") = "float64"),
-                                                   np.attr("asarray")(b, py::arg("dtype") = "float64"));
-  using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
-  const Array x = ab[0].cast<Array>(), y = ab[1].cast<Array>();  // contiguous copies of the broadcast views
-  py::array_t<double> r(x.request().shape);
-  double* out = r.mutable_data();
-  for (py::ssize_t i = 0; i < x.size(); ++i) out[i] = f(x.data()[i], y.data()[i]);
-  return r;
-}
-
-py::dict curve_dict(const std::vector<laws::CurveSample>& samples, const char* exact_name) {
-  std::vector<double> t, f, d, x;
-  for (const auto& s : samples) {
-    t.push_back(s.t);
-    f.push_back(s.force);
-    d.push_back(s.displacement);
-    x.push_back(s.exact ? *s.exact : std::numeric_limits<double>::quiet_NaN());
-  }
-  py::dict r;
-  r["t"] = to_numpy(t);
-  r["force"] = to_numpy(f);
-  r["displacement"] = to_numpy(d);
-  r[exact_name] = to_numpy(x);
-  return r;
-}
-
 }  // namespace
+
+laws::RheologyState state_from(const py::object& q, const char* what) {
+  laws::RheologyState s;
+  const auto v = q.cast<std::vector<double>>();
+  if (v.size() > static_cast<std::size_t>(laws::kMaxInternal))
+    throw laws::LawError(what, std::string(what) + ": at most " + std::to_string(laws::kMaxInternal) +
+                                   " internal displacements, got " + std::to_string(v.size()));
+  for (std::size_t i = 0; i < v.size(); ++i) s.q[i] = v[i];
+  return s;
+}
+
+laws::ParameterValues parameter_values(const py::dict& d) {
+  laws::ParameterValues v;
+  for (auto item : d) {
+    const auto key = item.first.cast<std::string>();
+    try {
+      v[key] = item.second.cast<double>();
+    } catch (const py::cast_error&) {
+      throw laws::LawError(key, key + ": '" + py::str(item.second).cast<std::string>() + "' is not a number");
+    }
+  }
+  return v;
+}
+
 
 laws::StagedHistory staged_history(const py::object& value, const char* what) {
   if (py::isinstance<py::str>(value)) return laws::StagedHistory::parse(value.cast<std::string>(), what);
@@ -440,8 +251,7 @@ void bind_laws(py::module_& m) {
             laws::RheologyState st = state_from(q, "q"), next;
             st.damage = damage;
             const double dd = l.advance(k, st, fs, fe, next);
-            py::array_t<double> qn(laws::kMaxInternal);
-            std::copy(next.q.begin(), next.q.end(), qn.mutable_data());
+            const py::array_t<double> qn = q_array(next);
             // A damage law also returns its new damage, which the next step needs.
             if (l.failure_time(1.0)) return py::make_tuple(dd, qn, next.damage);
             return py::make_tuple(dd, qn);
@@ -459,41 +269,6 @@ void bind_laws(py::module_& m) {
         }
         return s + "})";
       });
-
-  py::class_<PythonLaw, ContactRheology, PyPythonLaw, std::shared_ptr<PythonLaw>>(
-      m, "PythonLaw",
-      "Base class of a law written in Python. Subclass it, call PythonLaw.__init__(self, name, parameters, "
-      "internal_count, instantaneous_stiffness, linear) and define linearize(k, q, force_start, "
-      "force_end_guess) -> (h, c) and advance(k, q, force_start, force_end) -> (delta_creep, q_new); "
-      "optionally step_constants(dt, scheme) -> StepConstants, creep_closed_form(force, t), "
-      "relaxation_modulus(t).")
-      .def(py::init([](std::string name, const py::dict& parameters, int internal_count,
-                       std::optional<double> e1, bool linear) {
-             return std::make_shared<PyPythonLaw>(std::move(name), parameter_values(parameters), internal_count, e1,
-                                                  linear);
-           }),
-           py::arg("name"), py::arg("parameters") = py::dict(), py::arg("internal_count") = 1,
-           py::arg("instantaneous_stiffness") = py::none(), py::arg("linear") = true)
-      .def("__repr__",
-           [](const py::object& self) {
-             return fmt::format("<PythonLaw '{}' ({}) {}>", self.cast<const PythonLaw&>().name(),
-                                py::str(py::type::of(self).attr("__qualname__")).cast<std::string>(),
-                                py::repr(self.attr("parameters")).cast<std::string>());
-           })
-      // The declared parameters, each read from the instance's attribute of that name when it has
-      // one: a change of self.eta1 shows here (the names and the others as given to __init__).
-      .def_property_readonly(
-          "parameters",
-          [](const py::object& self) {
-            py::dict d;
-            for (const auto& [k, v] : self.cast<const PythonLaw&>().parameters()) {
-              const py::object now = py::getattr(self, k.c_str(), py::none());
-              d[py::str(k)] = now.is_none() ? py::cast(v) : py::float_(now);
-            }
-            return d;
-          },
-          "The parameters by name: the instance's attribute of that name where it has one (so changes "
-          "show), else the value given to __init__ [the law's units]");
 
   m.def(
       "laws",
@@ -515,88 +290,6 @@ void bind_laws(py::module_& m) {
       py::arg("name"), py::arg("parameters") = py::none(),
       "Builds a registered law from its parameters (a dict and/or keywords), validated as in a scene; "
       "raises rheodda.LawError with the message of `rheodda law curve`");
-  // The law alone, as `rheodda law curve`: with a tolerance, substepped until it holds
-  // it (laws/accurate_curve.hpp; rheodda.RunError when it cannot); without, one step of
-  // the scheme per dt, and a RunError rather than NaN or infinity when the scheme fails.
-  const auto curve = [](const ContactRheology& law, laws::Control control, const laws::StagedHistory& h,
-                        double t_end, double dt, const std::string& scheme, const std::optional<double>& tolerance) {
-    std::vector<laws::CurveSample> s;
-    {
-      py::gil_scoped_release release;
-      if (tolerance)
-        s = laws::integrate_curve_accurate(law, control, h, t_end, dt, scheme_from(scheme), {*tolerance}).samples;
-      else
-        s = laws::integrate_curve(law, control, h, t_end, dt, scheme_from(scheme));
-    }
-    if (const std::size_t k = laws::first_non_finite(s); k < s.size())
-      throw laws::CurveError(fmt::format("the {} scheme at dt = {:g} gives a {} that is not a finite number at t = {:g}; "
-                                         "pass tolerance= (e.g. 1e-6) to substep until the curve is accurate",
-                                         scheme, dt, std::isfinite(s[k].force) ? "displacement" : "force", s[k].t));
-    return curve_dict(s, "exact");
-  };
-  m.def(
-      "creep_curve",
-      [curve](const ContactRheology& law, const py::object& force, double t_end, double dt, const std::string& scheme,
-              const std::optional<double>& tolerance) {
-        return curve(law, laws::Control::force, staged_history(force, "force"), t_end, dt, scheme, tolerance);
-      },
-      py::arg("law"), py::arg("force"), py::arg("t_end"), py::arg("dt"), py::arg("scheme") = "implicit",
-      py::arg("tolerance") = py::none(),
-      "The law alone under a staged force (shear stress) from t = 0 to t_end with step dt "
-      "(`rheodda law curve --force`): dict of numpy arrays t, force, displacement (total: F/E1 + creep) and "
-      "exact (the closed form; NaN where the law has none). tolerance: each dt in substeps of the scheme until "
-      "one step and two half steps agree to it (as the command does; docs/reference/laws.md); None: one step per dt");
-  m.def(
-      "relaxation_curve",
-      [curve](const ContactRheology& law, const py::object& displacement, double t_end, double dt,
-              const std::string& scheme, const std::optional<double>& tolerance) {
-        return curve(law, laws::Control::displacement, staged_history(displacement, "displacement"), t_end, dt, scheme,
-                     tolerance);
-      },
-      py::arg("law"), py::arg("displacement"), py::arg("t_end"), py::arg("dt"), py::arg("scheme") = "implicit",
-      py::arg("tolerance") = py::none(),
-      "The law alone under a staged displacement (`rheodda law curve --displacement`): dict of numpy arrays "
-      "t, force, displacement and exact (the closed-form force; NaN where none); tolerance as for creep_curve");
-  m.def(
-      "exact_displacement",
-      [](const ContactRheology& law, const py::object& force, const py::array_t<double, py::array::c_style | py::array::forcecast>& t) {
-        const auto h = staged_history(force, "force");
-        return map_array(t, [&](double time) {
-          const auto d = laws::exact_displacement(law, h, time);
-          return d ? *d : std::numeric_limits<double>::quiet_NaN();
-        });
-      },
-      py::arg("law"), py::arg("force"), py::arg("t"),
-      "Exact total displacement [length] at times t [time] (an array of any shape; the result has it) under a "
-      "staged force [force/length, shear stress] (Boltzmann superposition, the seed's eqs. 4-6); NaN where the "
-      "law has no exact response");
-  m.def(
-      "exact_force",
-      [](const ContactRheology& law, const py::object& displacement, const py::array_t<double, py::array::c_style | py::array::forcecast>& t) {
-        const auto h = staged_history(displacement, "displacement");
-        return map_array(t, [&](double time) {
-          const auto f = laws::exact_force(law, h, time);
-          return f ? *f : std::numeric_limits<double>::quiet_NaN();
-        });
-      },
-      py::arg("law"), py::arg("displacement"), py::arg("t"),
-      "Exact force [force/length, shear stress] at times t [time] (an array of any shape) under a staged "
-      "displacement [length]; NaN where the law has no closed form");
-  m.def(
-      "law_step",
-      [](const ContactRheology& law, const py::object& q, double dt, double force_start, double force_end,
-         const std::string& scheme) {
-        const laws::StepConstants k = law.step_constants(dt, scheme_from(scheme));
-        laws::RheologyState next;
-        const double dd = law.advance(k, state_from(q, "q"), force_start, force_end, next);
-        py::array_t<double> qn(laws::kMaxInternal);
-        std::copy(next.q.begin(), next.q.end(), qn.mutable_data());
-        return py::make_tuple(dd, qn);
-      },
-      py::arg("law"), py::arg("q"), py::arg("dt"), py::arg("force_start"), py::arg("force_end"),
-      py::arg("scheme") = "implicit",
-      "One step of dt [time] of the law alone from internal displacements q [length], the force going from "
-      "force_start to force_end [force/length, shear stress]: (Delta d_c [length], q_new [length])");
 }
 
 }  // namespace rheodda::python

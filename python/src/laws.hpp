@@ -1,5 +1,6 @@
-// The law part of the module: the bound law classes and the Python-written law
-// (PythonLaw, subclassed in Python through a pybind11 trampoline).
+// The law part of the module: the bound law classes (laws.cpp), the law-alone curves
+// (law_curves.cpp) and the Python-written law (PythonLaw, subclassed in Python through
+// a pybind11 trampoline: python_law.cpp).
 #pragma once
 
 #include <rheodda/laws/contact_rheology.hpp>
@@ -50,6 +51,9 @@ class PythonLaw : public laws::ContactRheology {
 /// A staged history from a Python value: a number (constant from t = 0), a
 /// text "T:V[,T:V...]" or a sequence of (t, value) pairs. `what` names it in errors.
 laws::StagedHistory staged_history(const py::object& value, const char* what);
+
+/// Law parameters from a dict {name: number}; a LawError naming the key that is not a number.
+laws::ParameterValues parameter_values(const py::dict& d);
 
 /// A scheme from its name ("lagged", "implicit", "exponential-linear"); LawError otherwise.
 laws::Scheme scheme_from(const std::string& name);

@@ -7,6 +7,8 @@ PYBIND11_MODULE(_rheodda, m) {
   m.attr("__version__") = "0.1.0";
   rheodda::python::bind_errors(m);
   rheodda::python::bind_laws(m);
+  rheodda::python::bind_python_law(m);
+  rheodda::python::bind_law_curves(m);
   rheodda::python::bind_fit(m);
   rheodda::python::bind_scene(m);
   rheodda::python::bind_simulation(m);

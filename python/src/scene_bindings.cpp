@@ -64,12 +64,31 @@ py::dict entry_dict(const std::vector<scene::EntryKey<E>>& keys, const std::stri
   return d;
 }
 
+/// summary.json's "inputs" (scene::scene_json_text, apps/scene/src/scene_json.cpp) parsed
+/// afresh by Python's json module: every section the run writes, with every key and value.
+py::dict inputs_of(const Scene& s) {
+  return py::module_::import("json").attr("loads")(scene::scene_json_text(s.description));
+}
+
+/// The section `key` of the inputs, or `absent` where the scene has none.
+py::object section(const Scene& s, const char* key, const py::object& absent) {
+  return inputs_of(s).attr("get")(key, absent);
+}
+
+/// A list of named entries (blocks, measurement points) as a dict by name, in the list's order.
+py::dict by_name(const py::object& entries) {
+  py::dict d;
+  for (const py::handle e : entries) d[e["name"]] = e;
+  return d;
+}
+
 }  // namespace
 
 void bind_scene(py::module_& m) {
-  py::class_<Scene>(m, "Scene", "A validated scene (docs/reference/scene-format.md): rheodda.load_scene(path) or "
-                                "rheodda.parse_scene(text) or rheodda.scene_from_dict(d)")
-      .def_property_readonly("file", [](const Scene& s) { return s.description.file; },
+  py::class_<Scene> cls(m, "Scene",
+                        "A validated scene (docs/reference/scene-format.md): rheodda.load_scene(path) or "
+                        "rheodda.parse_scene(text) or rheodda.scene_from_dict(d)");
+  cls.def_property_readonly("file", [](const Scene& s) { return s.description.file; },
                              "the file name the scene was read from (or given to parse_scene)")
       .def_property_readonly("title", [](const Scene& s) { return s.description.title; }, "the scene's title")
       .def_property_readonly("text", [](const Scene& s) { return s.text; },
@@ -95,28 +114,50 @@ void bind_scene(py::module_& m) {
           },
           "Every material by name, with every declared `materials:` key and its value, defaults filled in "
           "(None: not set, e.g. damping_ratio without damping); docs/reference/scene-format.md. A copy.")
-      .def_property_readonly("joint_sets",
-                             [](const Scene& s) {
-                               std::vector<std::string> r;
-                               for (const auto& j : s.description.joint_sets) r.push_back(j.name);
-                               return r;
-                             },
-                             "the joint sets' names, in scene order")
-      .def_property_readonly("blocks",
-                             [](const Scene& s) {
-                               std::vector<std::string> r;
-                               for (const auto& b : s.description.blocks) r.push_back(b.name);
-                               return r;
-                             },
-                             "the blocks' names, in scene order (the block index of the state arrays)")
-      .def_property_readonly("measurement_points",
-                             [](const Scene& s) {
-                               std::vector<std::string> r;
-                               for (const auto& p : s.description.measurement_points) r.push_back(p.name);
-                               return r;
-                             },
-                             "the measurement points' names")
-      .def_property_readonly("load_count", [](const Scene& s) { return s.description.loads.size(); },
+      .def_property_readonly("inputs", &inputs_of,
+                             "The whole scene as summary.json's `inputs` (docs/reference/outputs.md): every section "
+                             "with every key and value, defaults filled in, as the run writes them. A fresh copy "
+                             "at each read.")
+      .def_property_readonly(
+          "joint_sets", [](const Scene& s) { return section(s, "joint_sets", py::dict()); },
+          "Every joint set by name, in scene order, with every key and value of summary.json's inputs "
+          "(iterating, `in` and len() give the names). A copy.")
+      .def_property_readonly(
+          "blocks", [](const Scene& s) { return by_name(section(s, "blocks", py::list())); },
+          "Every block by name, in scene order (the block index of the state arrays), with every key and "
+          "value of summary.json's inputs (iterating, `in` and len() give the names). A copy.")
+      .def_property_readonly(
+          "measurement_points", [](const Scene& s) { return by_name(section(s, "measurement_points", py::list())); },
+          "Every measurement point by name, in scene order, with every key and value of summary.json's "
+          "inputs (iterating, `in` and len() give the names). A copy.");
+  // The other sections as the inputs write them: a list of dicts (empty where the scene has
+  // none) or one dict (None where the scene has none).
+  struct Section {
+    const char* key;
+    bool list;
+    const char* doc;
+  };
+  for (const Section& c :
+       {Section{"fixed_points", true, "The fixed points, in scene order, as summary.json's inputs write them. A copy."},
+        Section{"loads", true,
+                "The loads, in scene order (the indices of Simulation.set_load), as summary.json's inputs write "
+                "them. A copy."},
+        Section{"bolts", true,
+                "The bolts installed from the start (those a stage adds are in stages), as summary.json's inputs "
+                "write them (docs/reference/bolts.md); empty without bolts. A copy."},
+        Section{"stages", true,
+                "The stages, in scene order, as summary.json's inputs write them (docs/reference/stages.md); "
+                "empty without stages. A copy."},
+        Section{"rock_mass", false,
+                "The rock mass the blocks were cut from, as summary.json's inputs write it "
+                "(docs/guide/rockmass.md); None where they hold none. A copy."},
+        Section{"water", false,
+                "The water, as summary.json's inputs write it (docs/reference/water.md); None without water. "
+                "A copy."}})
+    cls.def_property_readonly(
+        c.key, [c](const Scene& s) { return section(s, c.key, c.list ? py::object(py::list()) : py::none()); },
+        c.doc);
+  cls.def_property_readonly("load_count", [](const Scene& s) { return s.description.loads.size(); },
                              "the number of loads (indices of Simulation.set_load)")
       // pickle and copy: a scene is its text and file name, parsed again (and so validated again).
       .def("__reduce__",

@@ -31,6 +31,14 @@ std::string scene_key(std::string key) {
 
 json point_json(const core::Vec2& p) { return {hex(p.x()), hex(p.y())}; }
 
+/// Columns by name as a dict of read-only numpy arrays, in the given order (docs/guide/python.md,
+/// "numpy conventions").
+py::dict read_only_columns(std::initializer_list<std::pair<const char*, py::array>> columns) {
+  py::dict d;
+  for (const auto& [name, a] : columns) d[name] = read_only(a);
+  return d;
+}
+
 }  // namespace
 
 void Simulation::check_block(int b) const {
@@ -255,27 +263,13 @@ py::dict Simulation::contacts() const {
     for (int k = 0; k < laws::kMaxInternal; ++k) qr(i, k) = st.q[k];
     dcreep.push_back(i < static_cast<py::ssize_t>(incr.size()) ? incr[i] : 0.0);
   }
-  py::dict d;
-  d["id"] = to_numpy(id);
-  d["joint_set"] = to_numpy(js);
-  d["state"] = str_array(state_names);
-  d["kind"] = str_array(kind_names);
-  d["vertex_block"] = to_numpy(vb);
-  d["vertex"] = to_numpy(vx);
-  d["edge_block"] = to_numpy(eb);
-  d["edge"] = to_numpy(ed);
-  d["x"] = to_numpy(x);
-  d["y"] = to_numpy(y);
-  d["normal_force"] = to_numpy(nf);
-  d["shear_force"] = to_numpy(sf);
-  d["shear_displacement"] = to_numpy(sd);
-  d["penetration"] = to_numpy(pen);
-  d["length"] = to_numpy(len);
-  d["creep_displacement"] = to_numpy(creep);
-  d["creep_increment"] = to_numpy(dcreep);
-  d["q"] = q;
-  for (auto item : d) read_only(item.second.cast<py::array>());
-  return d;
+  return read_only_columns({{"id", to_numpy(id)}, {"joint_set", to_numpy(js)}, {"state", str_array(state_names)},
+                            {"kind", str_array(kind_names)}, {"vertex_block", to_numpy(vb)}, {"vertex", to_numpy(vx)},
+                            {"edge_block", to_numpy(eb)}, {"edge", to_numpy(ed)}, {"x", to_numpy(x)},
+                            {"y", to_numpy(y)}, {"normal_force", to_numpy(nf)}, {"shear_force", to_numpy(sf)},
+                            {"shear_displacement", to_numpy(sd)}, {"penetration", to_numpy(pen)},
+                            {"length", to_numpy(len)}, {"creep_displacement", to_numpy(creep)},
+                            {"creep_increment", to_numpy(dcreep)}, {"q", q}});
 }
 
 py::dict Simulation::bolts() const {
@@ -293,17 +287,10 @@ py::dict Simulation::bolts() const {
     creep.push_back(bs[k].creep_elongation());
     rupture.push_back(bs[k].rupture_time);
   }
-  py::dict d;
-  d["name"] = str_array(name);
-  d["state"] = str_array(state);
-  d["force"] = to_numpy(force);
-  d["length"] = to_numpy(length);
-  d["elongation"] = to_numpy(elongation);
-  d["plastic_elongation"] = to_numpy(plastic);
-  d["creep_elongation"] = to_numpy(creep);
-  d["rupture_time"] = to_numpy(rupture);
-  for (auto item : d) read_only(item.second.cast<py::array>());
-  return d;
+  return read_only_columns({{"name", str_array(name)}, {"state", str_array(state)}, {"force", to_numpy(force)},
+                            {"length", to_numpy(length)}, {"elongation", to_numpy(elongation)},
+                            {"plastic_elongation", to_numpy(plastic)}, {"creep_elongation", to_numpy(creep)},
+                            {"rupture_time", to_numpy(rupture)}});
 }
 
 void bind_simulation_blocks(py::class_<Simulation>& c) {

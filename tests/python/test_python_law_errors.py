@@ -1,5 +1,5 @@
 """A law written in Python that returns a bad value raises rheodda.PythonLawError naming the law,
-the method, the value and what was expected, at the first step it happens (python/src/laws.cpp)."""
+the method, the value and what was expected, at the first step it happens (python/src/python_law.cpp)."""
 import math
 
 import pytest
