@@ -149,11 +149,17 @@ def test_scene_exposes_water_bolts_and_stages(root):
     assert reservoir.stages == [] and reservoir.bolts == []
 
 
-@pytest.mark.xfail(strict=True, reason="summary.json's inputs do not hold `rock_mass` yet "
-                                       "(apps/scene/src/scene_json.cpp); Scene.rock_mass follows them")
 def test_scene_exposes_its_rock_mass(root):
+    # the rock mass's keys as the file gives them, names resolved, defaults filled in
     tunnel = rheodda.load_scene(str(root / "examples" / "rockmass" / "tunnel-stages.yaml"))
-    assert tunnel.rock_mass is not None and tunnel.rock_mass == tunnel.inputs["rock_mass"]
+    r = tunnel.rock_mass
+    assert r is not None and r == tunnel.inputs["rock_mass"]
+    assert r["name"] == "rock" and r["material"] in tunnel.materials
+    assert r["seed"] == 7 and r["sliver_area"] == 0.05 and r["boundary_joint_set"] == "frame"
+    assert [g["joint_set"] for g in r["joint_sets"]] == ["bedding", "joints"]
+    assert r["joint_sets"][0]["trace_length"] is None and r["joint_sets"][0]["origin"] == [0, 0]  # persistent
+    assert r["joint_sets"][1]["trace_length"] == 5 and r["joint_sets"][1]["spacing_distribution"] == "normal"
+    assert r["traces"][0] == {"joint_set": "excavation", "from": [15, 9], "to": [16.14805, 9.228361]}
 
 
 def test_history_equals_rheodda_run(tmp_path):
