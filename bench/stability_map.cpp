@@ -55,6 +55,7 @@
 #include "rheodda/laws/history.hpp"
 #include "rheodda/laws/registry.hpp"
 #include "rheodda/laws/seed_table1.hpp"
+#include "held_spring.hpp"  // tests/models
 #include "two_block.hpp"  // tests/models
 
 using namespace rheodda;
@@ -68,17 +69,7 @@ double growth(laws::Scheme scheme, double x, double y, int steps = 200) {
   const auto law = laws::LawRegistry::builtin().create("kelvin", {{"E2", kE2}, {"eta2", kEta2}});
   const double dt = x * kEta2 / kE2, k = y * kE2, delta = 1e-3;  // [h], [MPa/mm], [mm]
   const laws::StepConstants ks = law->step_constants(dt, scheme);
-  laws::RheologyState q, next;
-  double force = k * delta, worst = 0.0;  // the spring's response at t = 0+
-  for (int n = 1; n <= steps; ++n) {
-    const double f = laws::solve_series_force(*law, ks, q, k, delta, force);
-    law->advance(ks, q, force, f, next);
-    q = next;
-    force = f;
-    if (!std::isfinite(f)) return INFINITY;
-    if (n > steps / 2) worst = std::max(worst, std::abs(f));
-  }
-  return worst / (k * delta);
+  return models::held_spring_growth(*law, ks, ks, k, delta, steps);  // tests/models/held_spring.hpp
 }
 
 // ---- DDA spot-check (--dda) ----

@@ -6,15 +6,8 @@
 # markers) and draws docs/img/accuracy-error-vs-time.png and
 # docs/img/stability-map.png and docs/img/toppling-error-vs-time.png with gnuplot.
 # Usage: scripts/accuracy-report.sh   (uses $RHEODDA_BUILD_DIR or build/; builds the benches if missing)
-set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${RHEODDA_BUILD_DIR:-$root/build}"
-if [[ ! -x "$build/bench/accuracy_bench" || ! -x "$build/bench/stability_map" ]]; then
-  cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-  cmake --build "$build" -j 2 --target accuracy_bench stability_map
-fi
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # strict mode; root, build, work (removed at exit)
+ensure_built accuracy_bench stability_map
 "$build/bench/accuracy_bench" --csv "$work/accuracy.csv" >"$work/accuracy.md"
 "$build/bench/stability_map" --csv "$work/stability.csv" >"$work/stability.md"
 "$build/bench/stability_map" --dda >"$work/stability-dda.md"

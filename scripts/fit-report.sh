@@ -6,15 +6,8 @@
 # history) and puts their output between the <!-- fit-speed:begin/end --> and
 # <!-- fit-global:begin/end --> markers. Takes about 10 min of one core.
 # Usage: scripts/fit-report.sh   (uses $RHEODDA_BUILD_DIR or build/; builds fit_bench if missing)
-set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${RHEODDA_BUILD_DIR:-$root/build}"
-if [[ ! -x "$build/bench/fit_bench" ]]; then
-  cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-  cmake --build "$build" -j 2 --target fit_bench
-fi
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # strict mode; root, build, work (removed at exit)
+ensure_built fit_bench
 {
   echo '```'
   "$build/bench/fit_bench"

@@ -3,16 +3,9 @@
 # joints of Table 1, default scheme, dt = 2 h) against the closed form (the
 # seed's eqs. 20-21) into docs/img/rheology-table1-dda.png.
 # Usage: scripts/plot-shear-creep.sh   (uses $RHEODDA_BUILD_DIR or build/; builds the bench if missing)
-set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${RHEODDA_BUILD_DIR:-$root/build}"
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # strict mode; root, build, work (removed at exit)
 bench="$build/bench/shear_creep_table1"
-if [[ ! -x "$bench" ]]; then
-  cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-  cmake --build "$build" -j 2 --target shear_creep_table1
-fi
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+ensure_built shear_creep_table1
 "$bench" --csv "$work"
 taus=(0.232 0.424 0.439 0.512)
 plot="plot"

@@ -3,16 +3,9 @@
 # (constant shear stress tau from t = 0, 200 h) with `rheodda law curve` and
 # gnuplot into docs/img/table1-burgers.png.
 # Usage: scripts/plot-table1.sh   (uses $RHEODDA_BUILD_DIR or build/; builds rheodda if missing)
-set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${RHEODDA_BUILD_DIR:-$root/build}"
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # strict mode; root, build, work (removed at exit)
 rheodda="$build/apps/rheodda"
-if [[ ! -x "$rheodda" ]]; then
-  cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-  cmake --build "$build" -j "$(nproc)" --target rheodda
-fi
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+ensure_built rheodda
 
 # tau [MPa], E1 [MPa/mm], E2 [MPa/mm], eta1 [MPa h/mm], eta2 [MPa h/mm]
 rows=(

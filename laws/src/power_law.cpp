@@ -234,6 +234,16 @@ std::vector<ParameterSpec> norton_specs() {
           spec("n", "-", "Norton stress exponent (1: a linear dashpot of viscosity tau_ref/A)", 1.0,
                false, 100.0)};
 }
+/// The Burgers-like laws' parameters: the spring E1 and the Kelvin element (E2, eta2),
+/// then the Norton dashpot's.
+std::vector<ParameterSpec> burgers_norton_specs() {
+  auto specs = norton_specs();
+  specs.insert(specs.begin(),
+               {spec("E1", "stress/length", "instantaneous (elastic) shear stiffness"),
+                spec("E2", "stress/length", "delayed-elastic (Kelvin) shear stiffness"),
+                spec("eta2", "stress*time/length", "viscosity of the Kelvin dashpot")});
+  return specs;
+}
 template <class Law>
 LawInfo info_of(std::string name, std::string summary, std::string equation,
                 std::vector<ParameterSpec> specs) {
@@ -266,11 +276,7 @@ PowerLawBurgers::PowerLawBurgers(const ParameterValues& p)
                      at(p, "A"), at(p, "tau_ref"), at(p, "n"), std::nullopt) {}
 
 LawInfo PowerLawBurgers::info() {
-  auto specs = norton_specs();
-  specs.insert(specs.begin(),
-               {spec("E1", "stress/length", "instantaneous (elastic) shear stiffness"),
-                spec("E2", "stress/length", "delayed-elastic (Kelvin) shear stiffness"),
-                spec("eta2", "stress*time/length", "viscosity of the Kelvin dashpot")});
+  auto specs = burgers_norton_specs();
   return info_of<PowerLawBurgers>(
       "power-law-burgers",
       "spring E1 + Kelvin (E2 || eta2) + Norton dashpot (rate A*(F/tau_ref)^n) in series",
@@ -282,11 +288,7 @@ DamageBurgers::DamageBurgers(const ParameterValues& p)
                      at(p, "A"), at(p, "tau_ref"), at(p, "n"), Damage{at(p, "t_r"), at(p, "r")}) {}
 
 LawInfo DamageBurgers::info() {
-  auto specs = norton_specs();
-  specs.insert(specs.begin(),
-               {spec("E1", "stress/length", "instantaneous (elastic) shear stiffness"),
-                spec("E2", "stress/length", "delayed-elastic (Kelvin) shear stiffness"),
-                spec("eta2", "stress*time/length", "viscosity of the Kelvin dashpot")});
+  auto specs = burgers_norton_specs();
   specs.push_back(spec("t_r", "time", "failure (rupture) time under tau = tau_ref"));
   specs.push_back(spec("r", "-", "Kachanov damage exponent: t_f = t_r*(tau_ref/F)^r", 0.0, true,
                        100.0));

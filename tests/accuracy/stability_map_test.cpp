@@ -11,6 +11,7 @@
 
 #include "rheodda/laws/history.hpp"
 #include "rheodda/laws/registry.hpp"
+#include "held_spring.hpp"  // tests/models
 
 using namespace rheodda;
 
@@ -23,17 +24,7 @@ double growth(laws::Scheme scheme, double x, double y) {
   const auto law = laws::LawRegistry::builtin().create("kelvin", {{"E2", kE2}, {"eta2", kEta2}});
   const double dt = x * kEta2 / kE2, k = y * kE2, delta = 1e-3;
   const laws::StepConstants ks = law->step_constants(dt, scheme);
-  laws::RheologyState q, next;
-  double force = k * delta, worst = 0.0;
-  for (int n = 1; n <= 200; ++n) {
-    const double f = laws::solve_series_force(*law, ks, q, k, delta, force);
-    law->advance(ks, q, force, f, next);
-    q = next;
-    force = f;
-    if (!std::isfinite(f)) return INFINITY;
-    if (n > 100) worst = std::max(worst, std::abs(f));
-  }
-  return worst / (k * delta);
+  return models::held_spring_growth(*law, ks, ks, k, delta, 200);  // tests/models/held_spring.hpp
 }
 
 }  // namespace

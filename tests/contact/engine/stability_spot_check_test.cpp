@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "creep_scene.hpp"
+#include "held_spring.hpp"  // tests/models
 #include "two_block.hpp"  // tests/models
 #include "rheodda/laws/history.hpp"
 
@@ -83,19 +84,7 @@ double law_growth(laws::Scheme scheme, Point p, bool closing_step_implicit = fal
   const laws::StepConstants ks = law->step_constants(dt, scheme);
   const laws::StepConstants first =
       law->step_constants(dt, closing_step_implicit ? laws::Scheme::implicit : scheme);
-  laws::RheologyState q, next;
-  double force = k * delta, worst = 0.0;  // [MPa]; the spring's response at t = 0+
-  for (int n = 1; n <= kSteps; ++n) {
-    const laws::StepConstants& c = n == 1 ? first : ks;
-    const double f = laws::solve_series_force(*law, c, q, k, delta, force);
-    law->advance(c, q, force, f, next);
-    q = next;
-    force = f;
-    if (!std::isfinite(f)) return INFINITY;
-    if (n > kSteps / 2) worst = std::max(worst, std::abs(f));
-  }
-  if (end_ratio) *end_ratio = force / (k * delta);
-  return worst / (k * delta);
+  return models::held_spring_growth(*law, first, ks, k, delta, kSteps, end_ratio);  // tests/models/held_spring.hpp
 }
 
 /// Closed-form force of the relaxation, relative to k delta: standard linear
