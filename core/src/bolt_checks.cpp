@@ -23,26 +23,26 @@ bool on_block(const std::vector<Vec2>& v, const Vec2& p) {
 
 }  // namespace
 
-void validate_bolt_values(const Bolt& b, const std::string& key) {
-  if (b.block_a == b.block_b) throw ModelError(key + ".block_b", "a bolt joins two blocks, not a block to itself");
+void validate_bolt_values(const Bolt& b, const ModelEntry& key) {
+  if (b.block_a == b.block_b) throw ModelError(key, "block_b", "a bolt joins two blocks, not a block to itself");
   if (!((b.point_b - b.point_a).norm() > 0.0) || !(b.installed_length >= 0.0))
-    throw ModelError(key + ".point_b", "the two ends coincide: a bolt needs a length");
+    throw ModelError(key, "point_b", "the two ends coincide: a bolt needs a length");
   if (!(b.axial_stiffness > 0.0 && std::isfinite(b.axial_stiffness)))
-    throw ModelError(key + ".axial_stiffness", "must be > 0 (force/length)");
-  if (!(b.yield_force > 0.0)) throw ModelError(key + ".yield_force", "must be > 0 (force)");
-  if (!(b.rupture_elongation > 0.0)) throw ModelError(key + ".rupture_elongation", "must be > 0 (length)");
+    throw ModelError(key, "axial_stiffness", "must be > 0 (force/length)");
+  if (!(b.yield_force > 0.0)) throw ModelError(key, "yield_force", "must be > 0 (force)");
+  if (!(b.rupture_elongation > 0.0)) throw ModelError(key, "rupture_elongation", "must be > 0 (length)");
   if (!std::isfinite(b.pretension) || std::abs(b.pretension) > b.yield_force)
-    throw ModelError(key + ".pretension", "must be finite and within the yield force (force)");
+    throw ModelError(key, "pretension", "must be finite and within the yield force (force)");
   if (b.pretension / b.axial_stiffness >= b.rupture_elongation)
-    throw ModelError(key + ".pretension", "stretches the bolt beyond its rupture elongation when installed");
+    throw ModelError(key, "pretension", "stretches the bolt beyond its rupture elongation when installed");
   if (b.law) {
     if (const auto e1 = b.law->instantaneous_stiffness();
         e1 && std::abs(*e1 - b.axial_stiffness) > 1e-12 * b.axial_stiffness)
-      throw ModelError(key + ".law", "the law's instantaneous stiffness E1 (" + std::to_string(*e1) +
+      throw ModelError(key, "law", "the law's instantaneous stiffness E1 (" + std::to_string(*e1) +
                                          ") is the bolt's spring and must equal axial_stiffness (" +
                                          std::to_string(b.axial_stiffness) + ")");
     if (b.law->failure_time(1.0))
-      throw ModelError(key + ".law", "a damage law's failure is not modelled on a bolt; use rupture_elongation");
+      throw ModelError(key, "law", "a damage law's failure is not modelled on a bolt; use rupture_elongation");
   }
 }
 
@@ -59,14 +59,14 @@ void validate_bolts(const Model& m) {
   const int blocks = static_cast<int>(m.blocks.size());
   for (std::size_t k = 0; k < m.bolts.size(); ++k) {
     const Bolt& b = m.bolts[k];
-    const std::string key = "bolts[" + std::to_string(k) + "]";
+    const ModelEntry key{"bolts", k};
     auto end = [&](const char* which, int block, const Vec2& p, bool may_be_fixed) {
-      const std::string at = key + "." + which;
-      if (!(std::isfinite(p.x()) && std::isfinite(p.y()))) throw ModelError(at + ".point", "must be finite");
+      const ModelEntry at = key.within(which);
+      if (!(std::isfinite(p.x()) && std::isfinite(p.y()))) throw ModelError(at, "point", "must be finite");
       if (block < 0 && may_be_fixed) return;
-      if (block < 0 || block >= blocks) throw ModelError(at + ".block", "no block with index " + std::to_string(block));
+      if (block < 0 || block >= blocks) throw ModelError(at, "block", "no block with index " + std::to_string(block));
       if (!on_block(m.blocks[block].vertices, p))
-        throw ModelError(at + ".point", "lies outside block " + std::to_string(block));
+        throw ModelError(at, "point", "lies outside block " + std::to_string(block));
     };
     end("a", b.block_a, b.point_a, false);
     end("b", b.block_b, b.point_b, true);

@@ -84,7 +84,7 @@ class BoltSet {
 void validate_bolts(const Model& m);
 /// Refuses a bolt whose values are out of range or whose two ends coincide
 /// (ModelError naming "<key>.field"); its ends' blocks and points are the caller's.
-void validate_bolt_values(const Bolt& b, const std::string& key);
+void validate_bolt_values(const Bolt& b, const ModelEntry& key);
 /// Refuses the settings that do not carry bolts (step doubling, the newton contact solve).
 void validate_bolt_settings(const Settings& s);
 

@@ -13,7 +13,6 @@ namespace {
 
 bool finite(const Vec2& v) { return std::isfinite(v.x()) && std::isfinite(v.y()); }
 
-std::string at(const char* list, std::size_t k) { return std::string(list) + "[" + std::to_string(k) + "]"; }
 
 }  // namespace
 
@@ -39,15 +38,15 @@ void Engine::Impl::validate() {
   for (std::size_t k = 0; k < m.materials.size(); ++k) {
     const Material& mat = m.materials[k];
     if (!(mat.density > 0.0 && std::isfinite(mat.density)))
-      throw ModelError(at("materials", k) + ".density", "must be > 0 (mass/length^3)");
+      throw ModelError(ModelEntry{"materials", k}, "density", "must be > 0 (mass/length^3)");
     if (!(mat.young_modulus > 0.0 && std::isfinite(mat.young_modulus)))
-      throw ModelError(at("materials", k) + ".young_modulus", "must be > 0 (stress)");
+      throw ModelError(ModelEntry{"materials", k}, "young_modulus", "must be > 0 (stress)");
     if (!(mat.poisson_ratio >= 0.0 && mat.poisson_ratio < 0.5))
-      throw ModelError(at("materials", k) + ".poisson_ratio", "must be in [0, 0.5)");
+      throw ModelError(ModelEntry{"materials", k}, "poisson_ratio", "must be in [0, 0.5)");
     if (!(mat.damping_ratio >= 0.0 && mat.damping_ratio <= 1.0))
-      throw ModelError(at("materials", k) + ".damping_ratio", "must be in [0, 1]");
+      throw ModelError(ModelEntry{"materials", k}, "damping_ratio", "must be in [0, 1]");
     if (mat.damping_ratio > 0.0 && !m.settings.has_dynamic_steps())
-      throw ModelError(at("materials", k) + ".damping_ratio",
+      throw ModelError(ModelEntry{"materials", k}, "damping_ratio",
                        "damps velocities; a static analysis (dynamic_ratio 0) without a dynamic "
                        "settling stage has none");
   }
@@ -55,53 +54,53 @@ void Engine::Impl::validate() {
   const Settings& s = m.settings;
   for (std::size_t k = 0; k < m.blocks.size(); ++k) {
     const BlockDef& b = m.blocks[k];
-    const std::string key = at("blocks", k);
+    const ModelEntry key{"blocks", k};
     if (b.vertices.size() < 3)
-      throw ModelError(key + ".vertices", "a block needs at least 3 vertices");
+      throw ModelError(key, "vertices", "a block needs at least 3 vertices");
     for (const auto& v : b.vertices)
-      if (!finite(v)) throw ModelError(key + ".vertices", "vertex coordinates must be finite");
+      if (!finite(v)) throw ModelError(key, "vertices", "vertex coordinates must be finite");
     if (!is_simple_polygon(b.vertices))
-      throw ModelError(key + ".vertices",
+      throw ModelError(key, "vertices",
                        "not a simple polygon (edges cross, touch or have zero length)");
     if (polygon_integrals(b.vertices).S == 0.0)
-      throw ModelError(key + ".vertices", "the polygon has zero area");
+      throw ModelError(key, "vertices", "the polygon has zero area");
     if (!b.edge_joint_set.empty() && b.edge_joint_set.size() != b.vertices.size())
-      throw ModelError(key + ".edge_joint_set",
+      throw ModelError(key, "edge_joint_set",
                        "needs one joint set per edge (" + std::to_string(b.vertices.size()) +
                            "), or none");
     for (int j : b.edge_joint_set)
-      if (j < 0) throw ModelError(key + ".edge_joint_set", "joint set indices must be >= 0");
+      if (j < 0) throw ModelError(key, "edge_joint_set", "joint set indices must be >= 0");
     if (b.material < 0 || b.material >= static_cast<int>(m.materials.size()))
-      throw ModelError(key + ".material", "no material with index " + std::to_string(b.material));
+      throw ModelError(key, "material", "no material with index " + std::to_string(b.material));
     if (!b.initial_stress.allFinite())
-      throw ModelError(key + ".initial_stress", "must be finite");
+      throw ModelError(key, "initial_stress", "must be finite");
     if (!finite(b.initial_velocity) || !std::isfinite(b.initial_angular_velocity))
-      throw ModelError(key + ".initial_velocity", "must be finite");
+      throw ModelError(key, "initial_velocity", "must be finite");
     if (s.dynamic_ratio == 0.0 &&
         (b.initial_velocity != Vec2::Zero() || b.initial_angular_velocity != 0.0))
-      throw ModelError(key + ".initial_velocity",
+      throw ModelError(key, "initial_velocity",
                        "a static analysis (settings.dynamic_ratio = 0) carries no velocities");
   }
-  auto check_point = [&](const std::string& key, int block, const Vec2& p) {
+  auto check_point = [&](const ModelEntry& key, int block, const Vec2& p) {
     if (block < 0 || block >= static_cast<int>(m.blocks.size()))
-      throw ModelError(key + ".block", "no block with index " + std::to_string(block));
-    if (!finite(p)) throw ModelError(key + ".point", "must be finite");
+      throw ModelError(key, "block", "no block with index " + std::to_string(block));
+    if (!finite(p)) throw ModelError(key, "point", "must be finite");
     const auto& v = m.blocks[block].vertices;
     Eigen::AlignedBox2d box;
     for (const auto& q : v) box.extend(q);
     if (!inside_or_near(v, p, 1e-9 * box.diagonal().norm()))
-      throw ModelError(key + ".point", "lies outside block " + std::to_string(block));
+      throw ModelError(key, "point", "lies outside block " + std::to_string(block));
   };
   for (std::size_t k = 0; k < m.point_loads.size(); ++k) {
     const PointLoad& l = m.point_loads[k];
-    const std::string key = at("point_loads", k);
+    const ModelEntry key{"point_loads", k};
     check_point(key, l.block, l.point);
-    if (l.history.empty()) throw ModelError(key + ".history", "needs at least one sample");
+    if (l.history.empty()) throw ModelError(key, "history", "needs at least one sample");
     for (std::size_t i = 0; i < l.history.size(); ++i) {
       if (!std::isfinite(l.history[i].time) || !finite(l.history[i].force))
-        throw ModelError(key + ".history", "time and force must be finite");
+        throw ModelError(key, "history", "time and force must be finite");
       if (i > 0 && !(l.history[i].time > l.history[i - 1].time))
-        throw ModelError(key + ".history", "times must increase strictly");
+        throw ModelError(key, "history", "times must increase strictly");
     }
   }
   if (m.water.active() || m.water.unit_weight != 0.0) {  // water.hpp: the surfaces span the blocks at the start
@@ -111,9 +110,9 @@ void Engine::Impl::validate() {
     validate_water(m.water, box.min().x(), box.max().x());
   }
   for (std::size_t k = 0; k < m.fixed_points.size(); ++k)
-    check_point(at("fixed_points", k), m.fixed_points[k].block, m.fixed_points[k].point);
+    check_point(ModelEntry{"fixed_points", k}, m.fixed_points[k].block, m.fixed_points[k].point);
   for (std::size_t k = 0; k < m.measurement_points.size(); ++k)
-    check_point(at("measurement_points", k), m.measurement_points[k].block,
+    check_point(ModelEntry{"measurement_points", k}, m.measurement_points[k].block,
                 m.measurement_points[k].point);
 
   if (!(s.dt > 0.0 && std::isfinite(s.dt))) throw ModelError("settings.dt", "must be > 0 (time)");

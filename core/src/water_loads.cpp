@@ -135,21 +135,21 @@ void validate_water(const Water& w, double x_min, double x_max) {
   if (w.history.empty()) throw ModelError("water.history", "needs at least one surface");
   for (std::size_t k = 0; k < w.history.size(); ++k) {
     const WaterSurface& s = w.history[k];
-    const std::string key = "water.history[" + std::to_string(k) + "]";
-    if (!std::isfinite(s.time)) throw ModelError(key + ".time", "must be finite");
+    const ModelEntry key{"water.history", k};
+    if (!std::isfinite(s.time)) throw ModelError(key, "time", "must be finite");
     if (k > 0 && !(s.time > w.history[k - 1].time))
-      throw ModelError(key + ".time", "times must increase strictly");
-    if (s.points.size() < 2) throw ModelError(key + ".points", "a surface needs at least 2 points");
+      throw ModelError(key, "time", "times must increase strictly");
+    if (s.points.size() < 2) throw ModelError(key, "points", "a surface needs at least 2 points");
     for (std::size_t i = 0; i < s.points.size(); ++i) {
-      if (!s.points[i].allFinite()) throw ModelError(key + ".points", "coordinates must be finite");
+      if (!s.points[i].allFinite()) throw ModelError(key, "points", "coordinates must be finite");
       if (i > 0 && !(s.points[i].x() > s.points[i - 1].x()))
-        throw ModelError(key + ".points", "x must increase strictly along the surface");
+        throw ModelError(key, "points", "x must increase strictly along the surface");
     }
     // Spanning is the user's intent checked (a surface is held level beyond its ends);
     // blocks that moved by a billionth of the model past a surface's end still pass.
     const double slack = 1e-9 * std::max(1.0, x_max - x_min);
     if (s.points.front().x() > x_min + slack || s.points.back().x() < x_max - slack)
-      throw ModelError(key + ".points", "the surface does not span the blocks' x-range [" + std::to_string(x_min) +
+      throw ModelError(key, "points", "the surface does not span the blocks' x-range [" + std::to_string(x_min) +
                                             ", " + std::to_string(x_max) + "]");
   }
 }

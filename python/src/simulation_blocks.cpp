@@ -3,6 +3,7 @@
 // removed and loads added and removed between steps (Engine::edit), and the
 // contacts and bolts as arrays.
 #include <rheodda/core/bolt.hpp>
+#include <rheodda/scene/edits.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -19,14 +20,6 @@ int quantity_width(const std::string& q) {
   if (q == "strain" || q == "stress") return 3;
   if (q == "rotation" || q == "area" || q == "mass") return 1;
   return 0;
-}
-
-/// A scene point's words for the engine's keys (point loads are `loads` in a scene; run_stages.cpp).
-std::string scene_key(std::string key) {
-  for (const auto& [engine_word, scene_word] :
-       {std::pair<std::string, std::string>{"remove_point_loads", "remove_loads"}, {"add_point_loads", "add_loads"}})
-    if (key.rfind(engine_word, 0) == 0) key.replace(0, engine_word.size(), scene_word);
-  return key;
 }
 
 json point_json(const core::Vec2& p) { return {hex(p.x()), hex(p.y())}; }
@@ -145,9 +138,7 @@ core::EditReport Simulation::apply_edit(const core::ModelEdit& e, const std::str
   try {
     rep = eng().edit(e);
   } catch (const core::ModelError& err) {
-    const std::string m = err.what();
-    const std::string key = scene_key(err.key());
-    throw core::ModelError(key, fmt::format("{}: {}", what, m.substr(std::min(m.size(), err.key().size() + 2))));
+    throw core::ModelError(scene::edit_key(err), fmt::format("{}: {}", what, err.message()));  // edits.hpp
   }
   // The edit with its points as material points (EditReport::replay), for restore().
   const core::ModelEdit& r = rep.replay;

@@ -1,6 +1,5 @@
 #include "rheodda/scene/assemble.hpp"
 
-#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -26,12 +25,12 @@ AssembledScene assemble_scene(const SceneDescription& s, const BuiltScene& built
   try {
     a.engine = std::make_unique<core::Engine>(built.model, *a.adapter);
   } catch (const core::ModelError& e) {
-    // The engine's key names a block ("blocks[3]...") or a setting: point at the scene's entry.
+    // The engine says which entry, as data (a block, a material): point at it in the scene.
     SourceLocation where = s.analysis.where;
-    int index = -1;
-    if (std::sscanf(e.key().c_str(), "blocks[%d]", &index) == 1 && index >= 0 &&
-        index < static_cast<int>(s.blocks.size()))
-      where = s.blocks[index].where;
+    if (const auto& at = e.entry()) {
+      if (at->list == "blocks" && at->index < s.blocks.size()) where = s.blocks[at->index].where;
+      if (at->list == "materials" && at->index < s.materials.size()) where = s.materials[at->index].where;
+    }
     throw SceneError(s.file, where, e.key(), e.what());
   }
   return a;

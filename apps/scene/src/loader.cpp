@@ -4,7 +4,7 @@
 //   scene_file.cpp      the file before parsing: a regular file, size, UTF-8, no tabs
 //   yaml_reader.hpp     the map reader (valid keys, duplicates, "did you mean") and the
 //                       typed readers (numbers with range and unit, words, points...)
-//   scene_keys.cpp      the valid keys of every map, and the schema publishing them
+//   keys*.cpp           every key of every map, declared once (keys.hpp); schema.cpp publishes them
 //   read_analysis.cpp   `units:`, `analysis:`
 //   read_joint_sets.cpp `materials:`, `joint_sets:` and their laws
 //   read_blocks.cpp     `blocks:`; read_rock_mass.cpp `rock_mass:`

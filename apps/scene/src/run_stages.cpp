@@ -20,45 +20,25 @@ namespace rheodda::scene {
 
 namespace {
 
-/// Where in the scene file the engine's key `key` of stage `st` was given.
-SourceLocation where_of(const StageDescription& st, const std::string& key) {
-  auto starts = [&](const char* prefix) { return key.rfind(prefix, 0) == 0; };
-  auto point_at = [&](const std::vector<StagePoint>& list, SourceLocation whole) {
-    const std::size_t open = key.find('['), close = key.find(']');
-    if (open == std::string::npos || close == std::string::npos) return whole;
-    const std::size_t k = std::stoul(key.substr(open + 1, close - open - 1));
-    return k < list.size() ? list[k].where : whole;
+/// Where in the scene file what the engine refused of stage `st`'s edit was given: the
+/// entry the error names (core::ModelError::entry), else the list or setting its key is.
+SourceLocation where_of(const StageDescription& st, const core::ModelError& err) {
+  const std::string list = err.entry() ? err.entry()->list : err.key();
+  const std::size_t k = err.entry() ? err.entry()->index : 0;
+  auto starts = [&](const char* prefix) { return list.rfind(prefix, 0) == 0; };
+  auto entry_of = [&](const auto& entries, SourceLocation whole) {
+    return err.entry() && k < entries.size() ? entries[k].where : whole;
   };
   if (starts("remove_blocks")) return st.remove_blocks_where;
   if (starts("remove_fixed_points")) return st.remove_fixed_points_where;
   if (starts("remove_point_loads")) return st.remove_loads_where;
-  if (starts("add_fixed_points")) return point_at(st.add_fixed_points, st.add_fixed_points_where);
-  if (starts("add_point_loads")) return point_at(st.add_loads, st.add_loads_where);
-  if (starts("add_bolts")) {
-    const std::size_t open = key.find('['), close = key.find(']');
-    const std::size_t k = open != std::string::npos && close != std::string::npos
-                              ? std::stoul(key.substr(open + 1, close - open - 1))
-                              : st.add_bolts.size();
-    return k < st.add_bolts.size() ? st.add_bolts[k].where : st.add_bolts_where;
-  }
+  if (starts("add_fixed_points")) return entry_of(st.add_fixed_points, st.add_fixed_points_where);
+  if (starts("add_point_loads")) return entry_of(st.add_loads, st.add_loads_where);
+  if (starts("add_bolts")) return entry_of(st.add_bolts, st.add_bolts_where);
   if (starts("joint_sets")) return st.joint_sets_where;
   if (starts("settle")) return st.settle_where;
   if (starts("water")) return st.water_where;
   return st.where;
-}
-
-/// The scene's word for the engine's key (point loads are `loads` in a scene, a
-/// bolt's ends `from` and `to`).
-std::string scene_key(std::string key) {
-  for (const auto& [engine_word, scene_word] :
-       {std::pair<std::string, std::string>{"remove_point_loads", "remove_loads"}, {"add_point_loads", "add_loads"}})
-    if (key.rfind(engine_word, 0) == 0) key.replace(0, engine_word.size(), scene_word);
-  if (key.rfind("add_bolts[", 0) == 0)
-    for (const auto& [engine_word, scene_word] :
-         {std::pair<std::string, std::string>{"].a.", "].from."}, {"].b.", "].to."}})
-      if (const std::size_t at = key.find(engine_word); at != std::string::npos)
-        key.replace(at, engine_word.size(), scene_word);
-  return key;
 }
 
 /// The block on which the point `p` of a stage's bolt end stands now (its `block:`
@@ -144,10 +124,9 @@ void apply_stage(Run& run) {
   try {
     rep = engine.edit(e);
   } catch (const core::ModelError& err) {
-    const std::string what = err.what();
-    throw SceneError(run.s.file, where_of(st, err.key()), path + "." + scene_key(err.key()),
+    throw SceneError(run.s.file, where_of(st, err), path + "." + edit_key(err),  // edits.hpp
                      fmt::format("stage '{}' at t = {:g} {}: {}", st.name, engine.time(), run.s.units.time,
-                                 what.substr(std::min(what.size(), err.key().size() + 2))));
+                                 err.message()));
   } catch (const std::invalid_argument& err) {  // a joint set the contact layer refuses
     throw SceneError(run.s.file, st.joint_sets_where, path + ".joint_sets",
                      fmt::format("stage '{}': {}", st.name, err.what()));

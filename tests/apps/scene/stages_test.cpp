@@ -14,6 +14,7 @@
 
 #include "../test_support.hpp"
 #include "rheodda/scene/describe.hpp"
+#include "rheodda/scene/edits.hpp"
 #include "rheodda/scene/loader.hpp"
 #include "rheodda/scene/plot.hpp"
 #include "rheodda/scene/run.hpp"
@@ -72,6 +73,20 @@ int column(const std::vector<std::string>& header, const std::string& name) {
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(stages)
+
+BOOST_AUTO_TEST_CASE(a_refused_edit_is_named_in_the_scene_words_from_the_engine_entry) {
+  // edit_key reads the entry the engine's error names (core::ModelError::entry), not its text.
+  using core::ModelEntry;
+  using core::ModelError;
+  BOOST_TEST(scene::edit_key(ModelError(ModelEntry{"add_point_loads", 2}, "history", "m")) == "add_loads[2].history");
+  BOOST_TEST(scene::edit_key(ModelError(ModelEntry{"add_bolts", 1}.within("a"), "point", "m")) ==
+             "add_bolts[1].from.point");
+  BOOST_TEST(scene::edit_key(ModelError(ModelEntry{"add_bolts", 0}, "b", "m")) == "add_bolts[0].to");
+  BOOST_TEST(scene::edit_key(ModelError(ModelEntry{"add_bolts", 0}, "point_b", "m")) == "add_bolts[0].point_b");
+  BOOST_TEST(scene::edit_key(ModelError(ModelEntry{"remove_point_loads", 0}, "", "m")) == "remove_loads[0]");
+  BOOST_TEST(scene::edit_key(ModelError("remove_point_loads", "m")) == "remove_loads");
+  BOOST_TEST(scene::edit_key(ModelError("dynamic_ratio", "m")) == "dynamic_ratio");
+}
 
 BOOST_AUTO_TEST_CASE(stages_are_read_with_names_times_and_resolved_references) {
   const auto s =

@@ -24,17 +24,45 @@ using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 
+/// An entry of one of the model's lists, or of an edit's ("blocks", 3), with the
+/// part of it an error is in ("vertices"; "a.point": the first end's point of a
+/// bolt): what a ModelError says as data, so that a reader maps it to its own
+/// entry (a scene file's line) without reading the key's text.
+struct ModelEntry {
+  std::string list;   ///< "blocks", "materials", "point_loads", "add_bolts", "water.history", ...
+  std::size_t index = 0;
+  std::string part;   ///< a dotted path within the entry; "" for the entry as a whole
+  /// The part `p` of this entry (of this part).
+  ModelEntry within(const std::string& p) const { return {list, index, part.empty() ? p : part + "." + p}; }
+  /// "blocks[3].vertices": the list, the index, the part.
+  std::string key() const { return list + "[" + std::to_string(index) + "]" + (part.empty() ? "" : "." + part); }
+};
+
 /// Bad model input (geometry, parameters, indices). key() names the offending
-/// entry, e.g. "blocks[3].vertices" or "settings.g2", so a reader can map it
-/// back to its file and line.
+/// entry, e.g. "blocks[3].vertices" or "settings.g2"; an error in an entry of a
+/// list says which as data (entry()), its message() apart from the key.
 class ModelError : public std::invalid_argument {
  public:
+  /// An error in a setting or a list as a whole (`key`: "settings.g2", "blocks").
   ModelError(std::string key, const std::string& message)
-      : std::invalid_argument(key + ": " + message), key_(std::move(key)) {}
+      : std::invalid_argument(key + ": " + message), key_(std::move(key)), message_(message) {}
+  /// An error in the part `field` ("" for the whole) of the list entry `entry`.
+  ModelError(const ModelEntry& entry, const std::string& field, const std::string& message)
+      : ModelError(field.empty() ? entry : entry.within(field), message) {}
+  /// An error in the list entry `entry` (its part included).
+  ModelError(ModelEntry entry, const std::string& message) : ModelError(entry.key(), message) {
+    entry_ = std::move(entry);
+  }
   const std::string& key() const { return key_; }
+  /// What is wrong, without the key.
+  const std::string& message() const { return message_; }
+  /// The list entry it is in, its part included; none for a setting or a whole list.
+  const std::optional<ModelEntry>& entry() const { return entry_; }
 
  private:
   std::string key_;
+  std::string message_;
+  std::optional<ModelEntry> entry_;
 };
 
 /// Plane stress (thin plate, sigma_z = 0) or plane strain (long body, epsilon_z = 0).

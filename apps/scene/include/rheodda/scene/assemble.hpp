@@ -24,10 +24,10 @@ struct AssembledScene {
 };
 
 /// Assembles `built` (build_scene of `scene`, its joint sets' laws possibly
-/// replaced). Throws SceneError: a joint set the contact layer refuses (its
-/// message names it "joint set N ...") points at that joint set, else at the
-/// analysis; a model the engine refuses points at the block its key names
-/// ("blocks[N]..."), else at the analysis.
+/// replaced). Throws SceneError: a joint set the contact layer refuses
+/// (contact::JointSetError says which, as data) points at that joint set, else at
+/// the analysis; a model the engine refuses points at the block or material its
+/// error names (core::ModelError::entry), else at the analysis.
 AssembledScene assemble_scene(const SceneDescription& scene, const BuiltScene& built);
 
 }  // namespace rheodda::scene

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "rheodda/contact/joint_set.hpp"
+#include "rheodda/core/model.hpp"
 #include "rheodda/scene/scene.hpp"
 
 namespace rheodda::scene {
@@ -24,5 +25,12 @@ std::vector<StageJointSet> read_joint_set_changes(const SceneDescription& s, con
 /// The joint set `c` makes of `now` (the contact system's current one): each
 /// value `c` gives replaces `now`'s; a law given is built by the registry.
 contact::JointSet changed_joint_set(const contact::JointSet& now, const StageJointSet& c);
+
+/// The key, in a scene's words, of what an edit of the engine (a stage's, or one
+/// from Python) was refused for (edit_errors.cpp): the engine's lists by their scene
+/// names (`add_point_loads` is `add_loads`, `remove_point_loads` `remove_loads`), a
+/// bolt's ends `a` and `b` by theirs (`from`, `to`): "add_loads[0].history",
+/// "add_bolts[1].from.point".
+std::string edit_key(const core::ModelError& e);
 
 }  // namespace rheodda::scene
