@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "rheodda/forecast/bands.hpp"
 #include "rheodda/forecast/forecast.hpp"
 #include "rheodda/scene/loader.hpp"
 #include "rheodda/scene/plot.hpp"
@@ -231,7 +232,7 @@ void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
   }
   stop_if_asked();
 
-  // --- Bands: every history column (and POINT.displacement) at the first member's times.
+  // --- Bands: every history column (and POINT.displacement) at the first member's times (bands.hpp).
   std::vector<fc::History> members;
   std::vector<std::string> failed;
   for (const auto& r : results) {
@@ -245,83 +246,24 @@ void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
     fmt::print(stderr, "rheodda: error: no member of the ensemble completed; see {}/study.csv\n", out.string());
     throw CLI::RuntimeError(kExitFailure);
   }
-  // Derived POINT.displacement = hypot(POINT.u, POINT.v) (as `rheodda study` reads it).
-  for (auto& h : members) {
-    const std::size_t n = h.columns.size();
-    for (std::size_t c = 0; c < n; ++c) {
-      const std::string& name = h.columns[c];
-      if (name.size() < 3 || name.substr(name.size() - 2) != ".u") continue;
-      const std::string point = name.substr(0, name.size() - 2);
-      const auto v = std::find(h.columns.begin(), h.columns.end(), point + ".v");
-      if (v == h.columns.end()) continue;
-      const auto cv = static_cast<std::size_t>(v - h.columns.begin());
-      h.columns.push_back(point + ".displacement");
-      for (auto& row : h.rows) row.push_back(std::hypot(row[c], row[cv]));
-    }
-  }
+  for (auto& h : members) fc::add_point_displacements(h);
   const fc::History& first = members.front();
-  const auto index_of = [](const fc::History& h, const std::string& name) -> std::optional<std::size_t> {
-    const auto it = std::find(h.columns.begin(), h.columns.end(), name);
-    if (it == h.columns.end()) return std::nullopt;
-    return static_cast<std::size_t>(it - h.columns.begin());
-  };
-  const std::size_t tc = *index_of(first, "time");
-  if (!index_of(first, column))
+  if (!fc::column_index(first, column))
     throw std::invalid_argument(fmt::format("--column {}: history.csv has no such column; it has: {}", column,
                                             fmt::join(first.columns, ", ")));
   std::vector<std::string> band_columns;
   for (const auto& c : first.columns)
     if (!bookkeeping(c)) band_columns.push_back(c);
-  {
-    std::ofstream f(out / "bands.csv", std::ios::binary);
-    if (!first.units_line.empty()) f << first.units_line << "\n";
-    f << "time";
-    for (const auto& c : band_columns)
-      for (double p : a.percentiles) f << fmt::format(",{}.p{:g}", c, p);
-    f << ",members\n";
-    for (const auto& row : first.rows) {
-      const double t = row[tc];
-      f << fmt::format("{}", t);
-      std::size_t count = 0;
-      for (const auto& c : band_columns) {
-        std::vector<double> v;
-        for (const auto& h : members) {
-          const auto hc = index_of(h, c);
-          if (!hc) continue;
-          const double x = fc::history_at(h, *index_of(h, "time"), *hc, t);
-          if (std::isfinite(x)) v.push_back(x);
-        }
-        count = std::max(count, v.size());
-        for (double p : a.percentiles) {
-          std::vector<double> w = v;
-          f << "," << (w.empty() ? std::string() : fmt::format("{}", fc::percentile(w, p)));
-        }
-      }
-      f << "," << count << "\n";
-    }
-  }
+  fc::write_bands((out / "bands.csv").string(), members, band_columns, a.percentiles);
 
   // --- The probability that the column exceeds the threshold by time `by` (its largest value up to then).
   nlohmann::json exceed = nullptr;
   if (a.threshold) {
-    std::size_t over = 0, n = 0;
-    for (const auto& h : members) {
-      const auto hc = index_of(h, column);
-      const std::size_t ht = *index_of(h, "time");
-      double peak = -std::numeric_limits<double>::infinity();
-      for (const auto& row : h.rows)
-        if (row[ht] <= by * (1 + 1e-12) && std::isfinite(row[*hc])) peak = std::max(peak, row[*hc]);
-      const double at_by = fc::history_at(h, ht, *hc, by);
-      if (std::isfinite(at_by)) peak = std::max(peak, at_by);
-      ++n;
-      over += peak > *a.threshold;
-    }
-    const double p = static_cast<double>(over) / static_cast<double>(n);
-    const double se = std::sqrt(p * (1 - p) / static_cast<double>(n));  // binomial standard error
-    exceed = {{"column", column}, {"threshold", *a.threshold}, {"by", by}, {"members", n}, {"exceeding", over},
-              {"probability", p}, {"std_error", se}};
+    const fc::Exceedance e = fc::exceedance(members, column, *a.threshold, by);
+    exceed = {{"column", column}, {"threshold", *a.threshold}, {"by", by}, {"members", e.members},
+              {"exceeding", e.exceeding}, {"probability", e.probability}, {"std_error", e.std_error}};
     fmt::print("P({} > {:g} by t = {:g} {}) = {:.3f} +- {:.3f} ({} of {} members)\n", column, *a.threshold, by,
-               s.units.time, p, se, over, n);
+               s.units.time, e.probability, e.std_error, e.exceeding, e.members);
   }
 
   // --- forecast.json
@@ -344,43 +286,14 @@ void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
     std::ofstream(out / "forecast.json", std::ios::binary) << j.dump(2) << "\n";
   }
 
-  // --- The fan chart of the column: the outer band, the inner ones, the median.
+  // --- The fan chart of the column: the outer band, the inner ones, the median (fan_chart.cpp).
   if (!a.no_plot) {
-    std::vector<double> ps = a.percentiles;
-    std::sort(ps.begin(), ps.end());
-    const fs::path gp = out / "fan.gp";
-    std::ofstream g(gp);
-    const auto col_of = [&](double p) {  // column number in bands.csv (1-based)
-      const auto ci = static_cast<std::size_t>(std::find(band_columns.begin(), band_columns.end(), column) - band_columns.begin());
-      const auto pi = static_cast<std::size_t>(std::find(a.percentiles.begin(), a.percentiles.end(), p) - a.percentiles.begin());
-      return 2 + ci * a.percentiles.size() + pi;
-    };
-    g << "# Drawn by rheodda forecast: percentile bands of " << column << " across the ensemble.\n"
-      << "set terminal pngcairo size 1000,650 noenhanced\n"
-      << "set output '" << (out / "fan.png").string() << "'\n"
-      << "set datafile separator ','\nset key bottom right\nset grid\nset format y '%.4g'\n"
-      << "set title '" << scene::gnuplot_text(fmt::format("{}: {} members, law {} of {}", s.title, members.size(), fit.law, a.joint_set)) << "'\n"
-      << "set xlabel 'time [" << s.units.time << "]'\n"
-      << "set ylabel '" << scene::gnuplot_text(column + " [" + s.units.length + "]") << "'\n"
-      << "plot ";
-    std::vector<std::string> parts;
-    const std::size_t nb = ps.size() / 2;
-    for (std::size_t b = 0; b < nb; ++b) {  // outer bands lighter
-      const double shade = 0.75 - 0.45 * static_cast<double>(b) / std::max<double>(1.0, static_cast<double>(nb));
-      const int c = static_cast<int>(255 * shade);
-      parts.push_back(fmt::format("'{}' skip {} using 1:{}:{} with filledcurves lc rgb '#{:02x}{:02x}ff' title '{:g}-{:g} %'",
-                                  (out / "bands.csv").string(), first.units_line.empty() ? 1 : 2, col_of(ps[b]),
-                                  col_of(ps[ps.size() - 1 - b]), c, c, ps[b], ps[ps.size() - 1 - b]));
-    }
-    if (ps.size() % 2 == 1)
-      parts.push_back(fmt::format("'{}' skip {} using 1:{} with lines lw 2 lc rgb '#000080' title '{:g} % (median)'",
-                                  (out / "bands.csv").string(), first.units_line.empty() ? 1 : 2, col_of(ps[nb]), ps[nb]));
-    if (a.threshold)
-      parts.push_back(fmt::format("{} with lines dt 2 lc rgb 'red' title 'threshold {:g}'", *a.threshold, *a.threshold));
-    g << fmt::format("{}", fmt::join(parts, ", \\\n     ")) << "\n";
-    g.close();
     try {
-      scene::run_gnuplot(gp.string());
+      fc::draw_fan_chart({.out_dir = out.string(), .band_columns = band_columns, .percentiles = a.percentiles,
+                          .column = column, .units_line = !first.units_line.empty(),
+                          .title = fmt::format("{}: {} members, law {} of {}", s.title, members.size(), fit.law,
+                                               a.joint_set),
+                          .time_unit = s.units.time, .length_unit = s.units.length, .threshold = a.threshold});
     } catch (const std::exception& e) {
       fmt::print(stderr, "rheodda: error: {}\n", e.what());
       throw CLI::RuntimeError(kExitFailure);

@@ -108,6 +108,9 @@ struct Engine::Impl {
   }
 
   void validate();
+  /// Checks an edit whole (model_edit_checks.cpp): throws ModelError; returns, per block,
+  /// whether it is removed once the edit is applied.
+  std::vector<char> check_edit(const ModelEdit& e) const;
   void initialise();
   void refresh_geometry();
   void count_held();  // held[k]: block k has two or more fixed points

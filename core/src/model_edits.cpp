@@ -40,7 +40,6 @@ void ContactAdapter::set_joint_set(int index, const contact::JointSet& joint_set
 
 namespace {
 
-
 /// The initial position of the material point of block b that stands at p now:
 /// x = A x0 + b inverted (BlockState::map_A, map_b) [length].
 Vec2 material_point(const BlockState& b, const Vec2& p) { return b.map_A.inverse() * (p - b.map_b); }
@@ -50,107 +49,9 @@ Vec2 material_point(const BlockState& b, const Vec2& p) { return b.map_A.inverse
 EditReport Engine::edit(const ModelEdit& e) {
   Impl& m = *impl_;
   const std::size_t nb = m.st.blocks.size();
-  const int n_blocks = static_cast<int>(nb);
-  // Check everything first: an invalid edit changes nothing.
-  auto check_indices = [](const std::vector<int>& list, std::size_t size, const char* key, const char* what) {
-    for (std::size_t k = 0; k < list.size(); ++k) {
-      if (list[k] < 0 || list[k] >= static_cast<int>(size))
-        throw ModelError(ModelEntry{key, k}, std::string("no ") + what + " with index " + std::to_string(list[k]));
-      for (std::size_t j = 0; j < k; ++j)
-        if (list[j] == list[k])
-          throw ModelError(ModelEntry{key, k}, std::string(what) + " " + std::to_string(list[k]) + " given twice");
-    }
-  };
-  check_indices(e.remove_fixed_points, m.model.fixed_points.size(), "remove_fixed_points", "fixed point");
-  check_indices(e.remove_point_loads, m.model.point_loads.size(), "remove_point_loads", "point load");
-  check_indices(e.remove_blocks, nb, "remove_blocks", "block");
-  std::vector<char> gone = m.removed.empty() ? std::vector<char>(nb, 0) : m.removed;
-  for (std::size_t k = 0; k < e.remove_blocks.size(); ++k) {
-    if (gone[static_cast<std::size_t>(e.remove_blocks[k])])
-      throw ModelError(ModelEntry{"remove_blocks", k}, "block " + std::to_string(e.remove_blocks[k]) + " was removed before");
-    gone[static_cast<std::size_t>(e.remove_blocks[k])] = 1;
-  }
-  if (std::count(gone.begin(), gone.end(), 1) == n_blocks)
-    throw ModelError("remove_blocks", "would remove every block of the model");
-  auto check_point = [&](const ModelEntry& key, int block, const Vec2& p) {
-    if (block < 0 || block >= n_blocks)
-      throw ModelError(key, "block", "no block with index " + std::to_string(block));
-    if (gone[static_cast<std::size_t>(block)])
-      throw ModelError(key, "block", "block " + std::to_string(block) + " is removed");
-    if (!std::isfinite(p.x()) || !std::isfinite(p.y())) throw ModelError(key, "point", "must be finite");
-    const auto& v = m.st.blocks[static_cast<std::size_t>(block)].vertices;
-    Eigen::AlignedBox2d box;
-    for (const auto& q : v) box.extend(q);
-    if (!inside_or_near(v, p, 1e-9 * box.diagonal().norm()))
-      throw ModelError(key, "point", "lies outside block " + std::to_string(block) + " where it stands now");
-  };
-  for (std::size_t k = 0; k < e.add_fixed_points.size(); ++k) {
-    const FixedPoint& fp = e.add_fixed_points[k];
-    if (!e.material_points)
-      check_point(ModelEntry{"add_fixed_points", k}, fp.block, fp.point);
-    else if (fp.block < 0 || fp.block >= n_blocks || gone[static_cast<std::size_t>(fp.block)] || !fp.material_point)
-      throw ModelError(ModelEntry{"add_fixed_points", k},
-                       "a replayed fixed point needs a block that stays and its material point");
-  }
-  for (std::size_t k = 0; k < e.add_point_loads.size(); ++k) {
-    const PointLoad& l = e.add_point_loads[k];
-    const ModelEntry key{"add_point_loads", k};
-    if (!e.material_points)
-      check_point(key, l.block, l.point);
-    else if (l.block < 0 || l.block >= n_blocks || gone[static_cast<std::size_t>(l.block)])
-      throw ModelError(key, "block", "a replayed point load needs a block that stays");
-    if (l.history.empty()) throw ModelError(key, "history", "needs at least one sample");
-    for (std::size_t i = 0; i < l.history.size(); ++i) {
-      if (!std::isfinite(l.history[i].time) || !std::isfinite(l.history[i].force.x()) ||
-          !std::isfinite(l.history[i].force.y()))
-        throw ModelError(key, "history", "time and force must be finite");
-      if (i > 0 && !(l.history[i].time > l.history[i - 1].time))
-        throw ModelError(key, "history", "times must increase strictly");
-    }
-  }
-  for (std::size_t k = 0; k < e.add_bolts.size(); ++k) {
-    const Bolt& b = e.add_bolts[k];
-    const ModelEntry key{"add_bolts", k};
-    if (!e.material_points) {
-      check_point(key.within("a"), b.block_a, b.point_a);
-      if (b.block_b >= 0) check_point(key.within("b"), b.block_b, b.point_b);
-      if (!std::isfinite(b.point_b.x()) || !std::isfinite(b.point_b.y())) throw ModelError(key, "b.point", "must be finite");
-    } else if (b.block_a < 0 || b.block_a >= n_blocks || gone[static_cast<std::size_t>(b.block_a)] ||
-               b.block_b >= n_blocks || (b.block_b >= 0 && gone[static_cast<std::size_t>(b.block_b)]) ||
-               !(b.installed_length > 0.0)) {
-      throw ModelError(key, "a replayed bolt needs blocks that stay and its installed length");
-    }
-    validate_bolt_values(b, key);  // bolt_checks.cpp
-  }
-  if (!e.add_bolts.empty()) validate_bolt_settings(m.model.settings);
-  // Support: a model held by fixed points must keep one on a block that stays.
-  {
-    std::vector<char> dropped(m.model.fixed_points.size(), 0);
-    for (int i : e.remove_fixed_points) dropped[static_cast<std::size_t>(i)] = 1;
-    std::size_t left = e.add_fixed_points.size();
-    for (std::size_t k = 0; k < m.model.fixed_points.size(); ++k)
-      if (!dropped[k] && !gone[static_cast<std::size_t>(m.model.fixed_points[k].block)]) ++left;
-    if (!m.model.fixed_points.empty() && left == 0)
-      throw ModelError(e.remove_blocks.empty() ? "remove_fixed_points" : "remove_blocks",
-                       "would leave no fixed point: the model is held by " +
-                           std::to_string(m.model.fixed_points.size()) +
-                           " fixed points, and none would remain on a block that stays");
-  }
-  for (std::size_t k = 0; k < e.joint_sets.size(); ++k)
-    if (e.joint_sets[k].first < 0) throw ModelError(ModelEntry{"joint_sets", k}, "no joint set with a negative index");
-  if (e.dynamic_ratio && !(*e.dynamic_ratio >= 0.0 && *e.dynamic_ratio <= 1.0))
-    throw ModelError("dynamic_ratio", "must be in [0, 1]");
-  if (e.water && (e.water->active() || e.water->unit_weight != 0.0)) {
-    // The new surfaces span the blocks that stay, where they stand now (water.hpp).
-    double x_min = std::numeric_limits<double>::max(), x_max = std::numeric_limits<double>::lowest();
-    for (std::size_t b = 0; b < m.st.blocks.size(); ++b)
-      if (!gone[b])
-        for (const Vec2& v : m.st.blocks[b].vertices) x_min = std::min(x_min, v.x()), x_max = std::max(x_max, v.x());
-    validate_water(*e.water, x_min, x_max);  // keys water.*
-  }
+  // Check everything first: an invalid edit changes nothing (model_edit_checks.cpp).
+  const std::vector<char> gone = m.check_edit(e);
   const Settings& s = m.model.settings;
-  if (e.settle && !(s.settle_until > 0.0 && s.settle_dt > 0.0 && s.settle_g2 > 0.0))
-    throw ModelError("settle", "a settling stage needs settings.settle_until, settle_dt and settle_g2");
 
   EditReport report;
   report.replay = e;

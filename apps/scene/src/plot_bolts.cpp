@@ -36,7 +36,7 @@ std::string plot_bolts(const std::string& out_dir, const std::string& format, co
     if (!series.count(cells[2])) order.push_back(cells[2]);
     series[cells[2]] += cells[0] + " " + cells[4] + "\n";
   }
-  const auto q = [](const std::string& s) { return "'" + gnuplot_text(s) + "'"; };
+  const auto q = [](const std::string& s) { return fmt::format("'{}'", gnuplot_text(s)); };
   const fs::path picture = dir / "plots" / ("bolts." + format);
   std::string plot;
   for (std::size_t k = 0; k < order.size(); ++k) {

@@ -29,9 +29,9 @@ using Vec6 = Eigen::Matrix<double, 6, 1>;
 /// bolt): what a ModelError says as data, so that a reader maps it to its own
 /// entry (a scene file's line) without reading the key's text.
 struct ModelEntry {
-  std::string list;   ///< "blocks", "materials", "point_loads", "add_bolts", "water.history", ...
+  std::string list{};  ///< "blocks", "materials", "point_loads", "add_bolts", "water.history", ...
   std::size_t index = 0;
-  std::string part;   ///< a dotted path within the entry; "" for the entry as a whole
+  std::string part{};  ///< a dotted path within the entry; "" for the entry as a whole
   /// The part `p` of this entry (of this part).
   ModelEntry within(const std::string& p) const { return {list, index, part.empty() ? p : part + "." + p}; }
   /// "blocks[3].vertices": the list, the index, the part.
