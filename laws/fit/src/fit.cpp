@@ -10,9 +10,11 @@
 #include <memory>
 #include <optional>
 
+#include "fit_input.hpp"
 #include "fit_settings.hpp"
 #include "gsl_solver.hpp"
 #include "identifiability.hpp"
+#include "search.hpp"
 #include "rheodda/laws/series_law.hpp"
 #include "series_structure.hpp"
 #include "starts.hpp"
@@ -43,7 +45,11 @@ std::vector<double> predict(const laws::ContactRheology& law, const laws::Staged
 
 namespace {
 
+using detail::check_input;
 using detail::Constraints;
+using detail::DataScale;
+using detail::Search;
+using detail::search_minimum;
 using detail::Element;
 using detail::Kind;
 using detail::SeriesStructure;
@@ -66,177 +72,7 @@ using detail::subsample;
 
 std::string fmt_g(double v) { return fmt::format("{:.4g}", v); }
 
-std::vector<double> logs(const std::vector<double>& v) {
-  std::vector<double> l(v.size());
-  for (std::size_t k = 0; k < v.size(); ++k) l[k] = std::log(v[k]);
-  return l;
-}
-
-// ---- 1. The input: what the fit can work on ----------------------------------
-struct DataScale {
-  double dmax = 0.0;  // largest |displacement|
-  double mean = 0.0;  // mean displacement (for R^2)
-  // residuals are divided by this: dmax, with sigma max|d/sigma|
-  double scale = 1.0, inv_scale = 1.0;
-};
-
-// The law must be fittable with positive parameters, the data hold more points
-// than varying parameters, stages that cover them, a load and a displacement.
-DataScale check_input(const laws::LawInfo& info, const CreepData& data, const Constraints& c) {
-  const std::size_t n = data.t.size(), np = c.varying;
-  for (const auto& spec : info.parameters)
-    if (spec.min < 0.0)
-      throw FitError(info.name, fmt::format("law '{}': parameter {} may be negative (range {}); fits "
-                                            "work on positive parameters only",
-                                            info.name, spec.name, spec.range_text()));
-  if (n < np + 1)
-    throw FitError(info.name,
-                   fmt::format("{}: too few points for law '{}': {} {}parameters need at least {} "
-                               "points, the data has {}",
-                               data.source, info.name, np, np < info.parameters.size() ? "varying " : "", np + 1, n));
-  // CreepData built in code (not by parse_creep_csv) must hold the same invariants.
-  std::size_t covered = 0;
-  for (const auto& s : data.stages) {
-    if (s.count == 0 || s.first != covered)
-      throw FitError(info.name, fmt::format("{}: stage at t = {:g} has no data points", data.source, s.t));
-    covered += s.count;
-  }
-  if (covered != n || data.displacement.size() != n || data.stages.empty())
-    throw FitError(info.name, fmt::format("{}: the stages do not cover the {} data points", data.source, n));
-  bool loaded = false;
-  for (const auto& s : data.stages) loaded = loaded || s.stress != 0.0;
-  if (!loaded)
-    throw FitError(info.name, fmt::format("{}: the applied stress is zero in every stage; nothing "
-                                          "to fit", data.source));
-  DataScale sc;
-  for (double d : data.displacement) {
-    sc.dmax = std::max(sc.dmax, std::abs(d));
-    sc.mean += d / static_cast<double>(n);
-  }
-  if (sc.dmax == 0.0)
-    throw FitError(info.name,
-                   fmt::format("{}: the displacement is zero everywhere; nothing to fit", data.source));
-  sc.scale = sc.dmax;
-  if (!c.weight.empty()) {
-    sc.scale = 0.0;
-    for (std::size_t j = 0; j < n; ++j) sc.scale = std::max(sc.scale, std::abs(data.displacement[j] * c.weight[j]));
-  }
-  sc.inv_scale = 1.0 / sc.scale;
-  return sc;
-}
-
-// ---- 2. The search: the best minimum over the starts -------------------------
-struct Search {
-  // Sums of squares closer than `floor` are the same: a scaled residual of
-  // 1e-10 rms (1e-10 of the largest displacement) is rounding, not fit.
-  double floor = 0.0;
-  std::vector<double> best_x;
-  double best_rss = std::numeric_limits<double>::infinity();
-  double structured_rss = std::numeric_limits<double>::infinity();
-  int best_iter = 0, best_status = GSL_FAILURE, structured = 0, starts_total = 0, agreeing_sample = 0;
-  std::vector<double> rss_full;  // final RSS of the starts run on all points
-  bool reference_lower = false;  // a classic start found a lower minimum than the structured search
-
-  bool consider(const Solver::Outcome& o, bool first) {
-    // A later start must improve by more than rounding.
-    if (std::isfinite(o.rss) && (first || o.rss < best_rss * (1.0 - 1e-9) - floor)) {
-      best_rss = o.rss;
-      best_iter = o.iterations;
-      best_status = o.status;
-      best_x = o.position;
-      return true;
-    }
-    return false;
-  }
-};
-
-// The starts of the variable-projection search, then the classic starts as a
-// reference, each polished by `full` (all points) or on a subsample.
-Search search_minimum(const laws::LawInfo& info, const CreepData& data, Solver& full,
-                      const CurveFeatures& features, double dmax, const FitOptions& options,
-                      const Constraints& constraints) {
-  const Problem& pr = full.pr;
-  const std::size_t n = pr.n, np = pr.np;
-  const std::vector<double> base = pr.structure ? series_start(*pr.structure, np, features)
-                                                : generic_start(info, features);
-  // The exact re-solve after the polish matters where GSL cannot settle: on a
-  // kink of the curve in the threshold (a Bingham element). Elsewhere GSL's
-  // minimum is the exact linear solution already (step tolerance 1e-10).
-  bool has_bingham = false;
-  if (pr.structure)
-    for (const auto& el : pr.structure->elements) has_bingham = has_bingham || el.kind == Kind::bingham;
-  // (Not with constraints: the exact re-solve knows neither fixed values, bounds nor weights.)
-  const bool refine = options.structured_search && has_bingham && !constraints.active;
-  const bool structured_search = pr.structure && options.structured_search;
-
-  Search sr;
-  sr.floor = static_cast<double>(n) * 1e-20;
-  const double floor = sr.floor;
-  sr.best_x.resize(np);
-
-  // 1. The starts of the variable-projection search (varpro.hpp), polished on all points.
-  if (structured_search) {
-    detail::VarProSettings vs;
-    vs.per_decade = std::max(options.grid_per_decade, 1);
-    for (auto& v : detail::varpro_starts(*pr.structure, np, data, 1.0 / dmax, vs)) {
-      const auto o = full.polish(logs(v.values), sr.starts_total > 0 ? sr.best_rss : -1.0, floor, options, refine);
-      sr.consider(o, sr.starts_total == 0);
-      ++sr.starts_total;
-      ++sr.structured;
-      sr.rss_full.push_back(o.rss);
-      if (std::isfinite(o.rss)) sr.structured_rss = std::min(sr.structured_rss, o.rss);
-    }
-  }
-  // 2. The classic starts (the curve-derived one and `restarts` variations of
-  // it): a reference. On more than kReferencePoints points they run on an even
-  // subsample (every stride-th point of each stage, about kReferenceSample in
-  // all), against the best minimum polished on that subsample; a start that
-  // finds a lower one there is then polished on all points. (A 100-point
-  // subsample of the 201-point staged Nishihara curves of docs/guide/fitting.md missed
-  // the reference's minimum in 10 of 300 draws; 200 points of 1 000 keep a
-  // Burgers fit within 1 ms, bench/fit_bench.)
-  const int classic = 1 + std::max(options.restarts, 0);
-  std::vector<std::vector<double>> classic_starts;
-  // The user's initial values (ParameterSetting::value), the others from the curve: tried first.
-  std::vector<double> given = base;
-  bool any_given = false;
-  for (std::size_t k = 0; k < np; ++k)
-    if (constraints.initial[k] && !constraints.fixed[k]) {
-      given[k] = *constraints.initial[k];
-      any_given = true;
-    }
-  if (any_given) classic_starts.push_back(logs(given));
-  for (int r = 0; r < classic; ++r)
-    classic_starts.push_back(logs(r == 0 ? base : restart_start(base, pr.structure, r, features.f_max)));
-  constexpr std::size_t kReferencePoints = 500, kReferenceSample = 200;
-  if (sr.structured > 0 && std::isfinite(sr.best_rss) && n > kReferencePoints && !constraints.active) {
-    const CreepData sub = subsample(data, kReferenceSample);
-    Solver small(info, sub, pr.structure, 1.0 / dmax);
-    const double floor_sub = static_cast<double>(sub.t.size()) * 1e-20;
-    const double level = small.polish(sr.best_x, -1.0, floor_sub, options, refine).rss;
-    for (const auto& start : classic_starts) {
-      const auto o = small.polish(start, level, floor_sub, options, refine);
-      ++sr.starts_total;
-      if (std::abs(o.rss - level) <= 1e-6 * level + floor_sub) ++sr.agreeing_sample;
-      else if (o.rss < level * (1.0 - 1e-6) - floor_sub) {
-        const auto o2 = full.polish(o.position, -1.0, floor, options, refine);
-        sr.rss_full.push_back(o2.rss);
-        sr.reference_lower = sr.consider(o2, false) || sr.reference_lower;
-      }
-    }
-  } else {
-    for (const auto& start : classic_starts) {
-      const auto o = full.polish(start, sr.starts_total > 0 ? sr.best_rss : -1.0, floor, options, refine);
-      sr.rss_full.push_back(o.rss);
-      const bool lower = sr.consider(o, sr.starts_total == 0);
-      sr.reference_lower = sr.reference_lower || (lower && sr.structured > 0);
-      ++sr.starts_total;
-    }
-  }
-  if (!std::isfinite(sr.best_rss))
-    throw FitError(info.name, fmt::format("law '{}': no start gave a finite fit", info.name));
-  return sr;
-}
+// ---- 1. The input (fit_input.cpp) and 2. the search (search.cpp) ------------------
 
 // Kelvin elements in series are interchangeable; report them ordered by
 // retardation time eta/E, shortest first (E2, eta2 the fast one), so the
