@@ -123,28 +123,153 @@ std::vector<StageJointSet> read_stage_joint_sets(const Ctx& ctx, const YAML::Nod
   return out;
 }
 
-void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s) {
-  if (!n.IsSequence() || n.size() == 0) ctx.fail(n, "stages", "expected a non-empty list of stages");
-  const Analysis& a = s.analysis;
-  // What exists as the stages come, to check their references in order.
-  std::vector<char> removed(s.blocks.size(), 0);
-  std::vector<std::string> removed_by(s.blocks.size());
+namespace {
+
+/// What exists as the stages come, in order: the blocks removed (and by which stage),
+/// the fixed points and loads by name and block, so that each stage's references are
+/// checked against the model as it will be then.
+struct StageWorld {
   struct Named {
     std::string name;
     int block;
   };
-  std::vector<Named> fixed;  // fixed points (name, block); `fixed: true` vertices unnamed
-  for (std::size_t b = 0; b < s.blocks.size(); ++b)
-    if (s.blocks[b].fixed)
-      for (std::size_t k = 0; k < s.blocks[b].polygon.size(); ++k) fixed.push_back({"", static_cast<int>(b)});
-  for (const auto& f : s.fixed_points) fixed.push_back({f.name, f.block});
-  std::vector<Named> loads;
-  for (const auto& l : s.loads) loads.push_back({l.at.name, l.at.block});
-  auto find_named = [](const std::vector<Named>& list, const std::string& name) {
+  explicit StageWorld(const SceneDescription& s) : removed(s.blocks.size(), 0), removed_by(s.blocks.size()) {
+    for (std::size_t b = 0; b < s.blocks.size(); ++b)
+      if (s.blocks[b].fixed)  // `fixed: true` vertices, unnamed
+        for (std::size_t k = 0; k < s.blocks[b].polygon.size(); ++k) fixed.push_back({"", static_cast<int>(b)});
+    for (const auto& f : s.fixed_points) fixed.push_back({f.name, f.block});
+    for (const auto& l : s.loads) loads.push_back({l.at.name, l.at.block});
+  }
+  static int find(const std::vector<Named>& list, const std::string& name) {
     for (std::size_t k = 0; k < list.size(); ++k)
       if (!name.empty() && list[k].name == name) return static_cast<int>(k);
     return -1;
+  }
+  /// "block 'b' is removed by then (stage 's')" when block `b` is removed.
+  std::string removed_text(const SceneDescription& s, int b) const {
+    return fmt::format("block '{}' is removed by then (stage '{}')", s.blocks[static_cast<std::size_t>(b)].name,
+                       removed_by[static_cast<std::size_t>(b)]);
+  }
+  bool is_removed(int b) const { return removed[static_cast<std::size_t>(b)] != 0; }
+
+  std::vector<char> removed;
+  std::vector<std::string> removed_by;
+  std::vector<Named> fixed;  ///< fixed points (name, block)
+  std::vector<Named> loads;
+};
+
+/// `remove_fixed_points:`, `remove_loads:` and `remove_blocks:` of a stage; the fixed
+/// points and loads on removed blocks go with them.
+void read_stage_removals(const Ctx& ctx, const MapReader& m, const SceneDescription& s, StageWorld& w,
+                         StageDescription& st) {
+  auto remove_named = [&](const char* key, std::vector<StageWorld::Named>& list, const char* what,
+                          std::vector<std::string>& into, SourceLocation& where) {
+    YAML::Node v = m.find(key);
+    if (!v.IsDefined()) return;
+    where = location(v);
+    for (const auto& [name, node] : name_list(ctx, v, m.child(key))) {
+      const int k = StageWorld::find(list, name);
+      if (k < 0) ctx.fail(node, m.child(key), fmt::format("no {} named '{}' is in the model at this stage", what, name));
+      list.erase(list.begin() + k);
+      into.push_back(name);
+    }
   };
+  remove_named("remove_fixed_points", w.fixed, "fixed point", st.remove_fixed_points, st.remove_fixed_points_where);
+  remove_named("remove_loads", w.loads, "load", st.remove_loads, st.remove_loads_where);
+  if (YAML::Node v = m.find("remove_blocks"); v.IsDefined()) {
+    st.remove_blocks_where = location(v);
+    read_removed_blocks(ctx, v, m.child("remove_blocks"), s, st);
+    for (int b : st.remove_blocks) {
+      if (w.is_removed(b))
+        ctx.fail(v, m.child("remove_blocks"),
+                 fmt::format("block '{}' was removed by stage '{}' before", s.blocks[static_cast<std::size_t>(b)].name,
+                             w.removed_by[static_cast<std::size_t>(b)]));
+      w.removed[static_cast<std::size_t>(b)] = 1;
+      w.removed_by[static_cast<std::size_t>(b)] = st.name;
+    }
+    if (std::all_of(w.removed.begin(), w.removed.end(), [](char c) { return c != 0; }))
+      ctx.fail(v, m.child("remove_blocks"), "would remove every block of the model");
+    std::erase_if(w.fixed, [&](const StageWorld::Named& f) { return w.is_removed(f.block); });
+    std::erase_if(w.loads, [&](const StageWorld::Named& l) { return w.is_removed(l.block); });
+  }
+}
+
+/// `add_fixed_points:` (load false) or `add_loads:` (load true) of a stage.
+void read_stage_points(const Ctx& ctx, const MapReader& m, const SceneDescription& s, bool load, StageWorld& w,
+                       std::vector<StagePoint>& into, SourceLocation& where) {
+  const char* key = load ? "add_loads" : "add_fixed_points";
+  YAML::Node v = m.find(key);
+  if (!v.IsDefined()) return;
+  where = location(v);
+  if (!v.IsSequence() || v.size() == 0) ctx.fail(v, m.child(key), "expected a non-empty list");
+  const auto& point_keys = load ? stage_load_keys() : stage_fixed_point_keys();
+  const std::string point_map = load ? "stages.add_loads" : "stages.add_fixed_points";
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    MapReader pm(ctx, v[k], fmt::format("{}[{}]", m.child(key), k), key_names(point_keys, point_map));
+    StagePoint p = read_stage_point(ctx, pm, point_keys, point_map, s);
+    if (w.is_removed(p.block)) ctx.fail(pm.find("block"), pm.child("block"), w.removed_text(s, p.block));
+    std::vector<StageWorld::Named>& list = load ? w.loads : w.fixed;
+    if (!p.name.empty() && StageWorld::find(list, p.name) >= 0)
+      ctx.fail(pm.find("name"), pm.child("name"),
+               fmt::format("a {} named '{}' is already in the model", load ? "load" : "fixed point", p.name));
+    if (load) {
+      YAML::Node f = pm.find("force"), h = pm.find("history");
+      if (f.IsDefined() == h.IsDefined())
+        ctx.fail(pm.node(), pm.child("force"),
+                 "give exactly one of force: [fx, fy] or history: [[t, fx, fy], ...] (t from the stage's start)");
+      if (h.IsDefined()) {  // else `force` gave the one sample
+        if (!h.IsSequence() || h.size() == 0 || h.size() > kMaxSamples)
+          ctx.fail(h, pm.child("history"), "expected a list of [t, fx, fy] samples");
+        for (std::size_t j = 0; j < h.size(); ++j) {
+          const std::string hk = fmt::format("{}[{}]", pm.child("history"), j);
+          const auto hv = numbers(ctx, h[j], hk, 3, any("time, force, force"));
+          if (hv[0] < 0.0) ctx.fail(h[j], hk, fmt::format("time {:g} is negative", hv[0]));
+          if (!p.history.empty() && hv[0] <= p.history.back()[0])
+            ctx.fail(h[j], hk, fmt::format("times must increase strictly: {:g} after {:g}", hv[0], p.history.back()[0]));
+          p.history.push_back({hv[0], hv[1], hv[2]});
+        }
+      }
+    }
+    list.push_back({p.name, p.block});
+    into.push_back(std::move(p));
+  }
+}
+
+/// `add_bolts:` of a stage (docs/reference/stages.md, "Bolts"): the keys of `bolts:`,
+/// their ends on blocks that stay.
+void read_stage_bolts(const Ctx& ctx, const MapReader& m, const SceneDescription& s, const StageWorld& w,
+                      StageDescription& st) {
+  YAML::Node v = m.find("add_bolts");
+  if (!v.IsDefined()) return;
+  st.add_bolts_where = location(v);
+  if (!v.IsSequence() || v.size() == 0) ctx.fail(v, m.child("add_bolts"), "expected a non-empty list of bolts");
+  std::vector<std::string> taken = bolt_names(s);
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    const std::string bp = fmt::format("{}[{}]", m.child("add_bolts"), k);
+    BoltDescription b = read_bolt(ctx, v[k], bp, s, taken, true);
+    for (const auto& [end, key] : {std::pair<const BlockPoint*, const char*>{&b.from, "from"}, {&b.to, "to"}})
+      if (end->block >= 0 && w.is_removed(end->block))
+        ctx.fail(v[k][key]["block"], fmt::format("{}.{}.block", bp, key), w.removed_text(s, end->block));
+    taken.push_back(b.name);
+    st.add_bolts.push_back(std::move(b));
+  }
+  // What the engine refuses for every bolt, refused here at the stage's line (bolt_checks.cpp).
+  const Analysis& a = s.analysis;
+  if (a.contact_solver == ContactSolverKind::newton)
+    ctx.fail(v, m.child("add_bolts"),
+             "the newton contact solve's residual does not hold the bolts' forces: give analysis.contact_solver: "
+             "open_close (docs/reference/bolts.md, \"Limits\")");
+  if (a.step_tolerance > 0.0)
+    ctx.fail(v, m.child("add_bolts"),
+             "step doubling (analysis.step_tolerance) does not carry bolts (docs/reference/bolts.md, \"Limits\")");
+}
+
+}  // namespace
+
+void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s) {
+  if (!n.IsSequence() || n.size() == 0) ctx.fail(n, "stages", "expected a non-empty list of stages");
+  const Analysis& a = s.analysis;
+  StageWorld w(s);
   // The settling stage a stage `after: settled` waits for: the analysis's at first.
   bool settling_to_wait_for = a.settle && a.settle->rest_tolerance > 0.0;
   double last_at = 0.0;
@@ -176,117 +301,14 @@ void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s) {
                         : std::string("the stage before opens no settling stage: give it settle: true (with "
                                       "analysis.settle's rest_tolerance), or use at: <time>"));
     }
-    if (YAML::Node v = m.find("remove_fixed_points"); v.IsDefined()) {
-      st.remove_fixed_points_where = location(v);
-      for (const auto& [fp, node] : name_list(ctx, v, m.child("remove_fixed_points"))) {
-        const int k = find_named(fixed, fp);
-        if (k < 0)
-          ctx.fail(node, m.child("remove_fixed_points"),
-                   fmt::format("no fixed point named '{}' is in the model at this stage", fp));
-        fixed.erase(fixed.begin() + k);
-        st.remove_fixed_points.push_back(fp);
-      }
-    }
-    if (YAML::Node v = m.find("remove_loads"); v.IsDefined()) {
-      st.remove_loads_where = location(v);
-      for (const auto& [ld, node] : name_list(ctx, v, m.child("remove_loads"))) {
-        const int k = find_named(loads, ld);
-        if (k < 0)
-          ctx.fail(node, m.child("remove_loads"), fmt::format("no load named '{}' is in the model at this stage", ld));
-        loads.erase(loads.begin() + k);
-        st.remove_loads.push_back(ld);
-      }
-    }
-    if (YAML::Node v = m.find("remove_blocks"); v.IsDefined()) {
-      st.remove_blocks_where = location(v);
-      read_removed_blocks(ctx, v, m.child("remove_blocks"), s, st);
-      for (int b : st.remove_blocks) {
-        if (removed[static_cast<std::size_t>(b)])
-          ctx.fail(v, m.child("remove_blocks"),
-                   fmt::format("block '{}' was removed by stage '{}' before",
-                               s.blocks[static_cast<std::size_t>(b)].name, removed_by[static_cast<std::size_t>(b)]));
-        removed[static_cast<std::size_t>(b)] = 1;
-        removed_by[static_cast<std::size_t>(b)] = st.name;
-      }
-      if (std::all_of(removed.begin(), removed.end(), [](char c) { return c != 0; }))
-        ctx.fail(v, m.child("remove_blocks"), "would remove every block of the model");
-      // Fixed points and loads on removed blocks go with them.
-      std::erase_if(fixed, [&](const Named& f) { return removed[static_cast<std::size_t>(f.block)] != 0; });
-      std::erase_if(loads, [&](const Named& l) { return removed[static_cast<std::size_t>(l.block)] != 0; });
-    }
-    auto read_points_of = [&](const char* key, bool load, std::vector<StagePoint>& into, SourceLocation& where) {
-      YAML::Node v = m.find(key);
-      if (!v.IsDefined()) return;
-      where = location(v);
-      if (!v.IsSequence() || v.size() == 0) ctx.fail(v, m.child(key), "expected a non-empty list");
-      for (std::size_t k = 0; k < v.size(); ++k) {
-        const auto& point_keys = load ? stage_load_keys() : stage_fixed_point_keys();
-        const std::string point_map = load ? "stages.add_loads" : "stages.add_fixed_points";
-        MapReader pm(ctx, v[k], fmt::format("{}[{}]", m.child(key), k), key_names(point_keys, point_map));
-        StagePoint p = read_stage_point(ctx, pm, point_keys, point_map, s);
-        if (removed[static_cast<std::size_t>(p.block)])
-          ctx.fail(pm.find("block"), pm.child("block"),
-                   fmt::format("block '{}' is removed by then (stage '{}')",
-                               s.blocks[static_cast<std::size_t>(p.block)].name,
-                               removed_by[static_cast<std::size_t>(p.block)]));
-        std::vector<Named>& list = load ? loads : fixed;
-        if (!p.name.empty() && find_named(list, p.name) >= 0)
-          ctx.fail(pm.find("name"), pm.child("name"),
-                   fmt::format("a {} named '{}' is already in the model", load ? "load" : "fixed point", p.name));
-        if (load) {
-          YAML::Node f = pm.find("force"), h = pm.find("history");
-          if (f.IsDefined() == h.IsDefined())
-            ctx.fail(pm.node(), pm.child("force"),
-                     "give exactly one of force: [fx, fy] or history: [[t, fx, fy], ...] (t from the stage's start)");
-          if (h.IsDefined()) {  // else `force` gave the one sample
-            if (!h.IsSequence() || h.size() == 0 || h.size() > kMaxSamples)
-              ctx.fail(h, pm.child("history"), "expected a list of [t, fx, fy] samples");
-            for (std::size_t j = 0; j < h.size(); ++j) {
-              const std::string hk = fmt::format("{}[{}]", pm.child("history"), j);
-              const auto hv = numbers(ctx, h[j], hk, 3, any("time, force, force"));
-              if (hv[0] < 0.0) ctx.fail(h[j], hk, fmt::format("time {:g} is negative", hv[0]));
-              if (!p.history.empty() && hv[0] <= p.history.back()[0])
-                ctx.fail(h[j], hk,
-                         fmt::format("times must increase strictly: {:g} after {:g}", hv[0], p.history.back()[0]));
-              p.history.push_back({hv[0], hv[1], hv[2]});
-            }
-          }
-        }
-        list.push_back({p.name, p.block});
-        into.push_back(std::move(p));
-      }
-    };
-    read_points_of("add_fixed_points", false, st.add_fixed_points, st.add_fixed_points_where);
-    read_points_of("add_loads", true, st.add_loads, st.add_loads_where);
-    if (YAML::Node v = m.find("add_bolts"); v.IsDefined()) {  // docs/reference/stages.md, "Bolts"
-      st.add_bolts_where = location(v);
-      if (!v.IsSequence() || v.size() == 0) ctx.fail(v, m.child("add_bolts"), "expected a non-empty list of bolts");
-      std::vector<std::string> taken = bolt_names(s);
-      for (std::size_t k = 0; k < v.size(); ++k) {
-        const std::string bp = fmt::format("{}[{}]", m.child("add_bolts"), k);
-        BoltDescription b = read_bolt(ctx, v[k], bp, s, taken, true);
-        for (const auto& [end, key] : {std::pair<const BlockPoint*, const char*>{&b.from, "from"}, {&b.to, "to"}})
-          if (end->block >= 0 && removed[static_cast<std::size_t>(end->block)])
-            ctx.fail(v[k][key]["block"], fmt::format("{}.{}.block", bp, key),
-                     fmt::format("block '{}' is removed by then (stage '{}')",
-                                 s.blocks[static_cast<std::size_t>(end->block)].name,
-                                 removed_by[static_cast<std::size_t>(end->block)]));
-        taken.push_back(b.name);
-        st.add_bolts.push_back(std::move(b));
-      }
-      // What the engine refuses for every bolt, refused here at the stage's line (bolt_checks.cpp).
-      if (a.contact_solver == ContactSolverKind::newton)
-        ctx.fail(v, m.child("add_bolts"),
-                 "the newton contact solve's residual does not hold the bolts' forces: give analysis.contact_solver: "
-                 "open_close (docs/reference/bolts.md, \"Limits\")");
-      if (a.step_tolerance > 0.0)
-        ctx.fail(v, m.child("add_bolts"),
-                 "step doubling (analysis.step_tolerance) does not carry bolts (docs/reference/bolts.md, \"Limits\")");
-    }
+    read_stage_removals(ctx, m, s, w, st);
+    read_stage_points(ctx, m, s, false, w, st.add_fixed_points, st.add_fixed_points_where);
+    read_stage_points(ctx, m, s, true, w, st.add_loads, st.add_loads_where);
+    read_stage_bolts(ctx, m, s, w, st);
     // Support: a model held by fixed points keeps one (Engine::edit checks it again).
     const bool had_support = !s.fixed_points.empty() || std::any_of(s.blocks.begin(), s.blocks.end(),
                                                                     [](const BlockDescription& b) { return b.fixed; });
-    if (had_support && fixed.empty()) {
+    if (had_support && w.fixed.empty()) {
       YAML::Node at_key = m.find("remove_blocks").IsDefined() ? m.find("remove_blocks") : m.find("remove_fixed_points");
       ctx.fail(
           at_key.IsDefined() ? at_key : m.node(),
