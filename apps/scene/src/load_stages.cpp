@@ -212,24 +212,7 @@ void read_stage_points(const Ctx& ctx, const MapReader& m, const SceneDescriptio
     if (!p.name.empty() && StageWorld::find(list, p.name) >= 0)
       ctx.fail(pm.find("name"), pm.child("name"),
                fmt::format("a {} named '{}' is already in the model", load ? "load" : "fixed point", p.name));
-    if (load) {
-      YAML::Node f = pm.find("force"), h = pm.find("history");
-      if (f.IsDefined() == h.IsDefined())
-        ctx.fail(pm.node(), pm.child("force"),
-                 "give exactly one of force: [fx, fy] or history: [[t, fx, fy], ...] (t from the stage's start)");
-      if (h.IsDefined()) {  // else `force` gave the one sample
-        if (!h.IsSequence() || h.size() == 0 || h.size() > kMaxSamples)
-          ctx.fail(h, pm.child("history"), "expected a list of [t, fx, fy] samples");
-        for (std::size_t j = 0; j < h.size(); ++j) {
-          const std::string hk = fmt::format("{}[{}]", pm.child("history"), j);
-          const auto hv = numbers(ctx, h[j], hk, 3, any("time, force, force"));
-          if (hv[0] < 0.0) ctx.fail(h[j], hk, fmt::format("time {:g} is negative", hv[0]));
-          if (!p.history.empty() && hv[0] <= p.history.back()[0])
-            ctx.fail(h[j], hk, fmt::format("times must increase strictly: {:g} after {:g}", hv[0], p.history.back()[0]));
-          p.history.push_back({hv[0], hv[1], hv[2]});
-        }
-      }
-    }
+    if (load) read_force_or_history(ctx, pm, p.history, " (t from the stage's start)");  // read_points.cpp
     list.push_back({p.name, p.block});
     into.push_back(std::move(p));
   }

@@ -78,13 +78,13 @@ WaterDescription read_water(const Ctx& ctx, const YAML::Node& n, const SceneDesc
     ctx.fail(m.node(), path,
              given == 0 ? "missing the phreatic surface: give one of level, surface, level_history, surface_history"
                         : "give only one of level, surface, level_history, surface_history");
-  if (YAML::Node v = m.find("level"); v.IsDefined()) {
-    w.history.front().where = location(v);  // the one sample, read with the declared keys
-  } else if (YAML::Node v = m.find("surface"); v.IsDefined()) {
+  if (const YAML::Node level = m.find("level"); level.IsDefined()) {
+    w.history.front().where = location(level);  // the one sample, read with the declared keys
+  } else if (const YAML::Node surface = m.find("surface"); surface.IsDefined()) {
     w.form = WaterDescription::Form::surface;
     WaterDescription::Sample smp;
-    smp.surface = read_surface(ctx, v, m.child("surface"), s);
-    smp.where = location(v);
+    smp.surface = read_surface(ctx, surface, m.child("surface"), s);
+    smp.where = location(surface);
     w.history.push_back(smp);
   } else if (YAML::Node v = m.find("level_history"); v.IsDefined()) {
     w.form = WaterDescription::Form::level_history;

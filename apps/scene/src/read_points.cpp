@@ -21,6 +21,26 @@ double geometry_tolerance(const std::vector<BlockDescription>& blocks) {
   return std::max(1e-9 * 2.0 * half_model_size(blocks), std::numeric_limits<double>::min());
 }
 
+void read_force_or_history(const Ctx& ctx, const MapReader& m, std::vector<std::array<double, 3>>& history,
+                           const std::string& times) {
+  YAML::Node f = m.find("force"), h = m.find("history");
+  if (f.IsDefined() == h.IsDefined())
+    ctx.fail(m.node(), m.child("force"),
+             fmt::format("give exactly one of force: [fx, fy] or history: [[t, fx, fy], ...]{}", times));
+  if (!h.IsDefined()) return;  // `force` gave the one sample (its declaration, keys_points.cpp)
+  if (!h.IsSequence() || h.size() == 0 || h.size() > kMaxSamples)
+    ctx.fail(h, m.child("history"), "expected a list of [t, fx, fy] samples");
+  history.clear();
+  for (std::size_t k = 0; k < h.size(); ++k) {
+    const std::string key = fmt::format("{}[{}]", m.child("history"), k);
+    const auto v = numbers(ctx, h[k], key, 3, any("time, force, force"));
+    if (v[0] < 0.0) ctx.fail(h[k], key, fmt::format("time {:g} is negative", v[0]));
+    if (!history.empty() && v[0] <= history.back()[0])
+      ctx.fail(h[k], key, fmt::format("times must increase strictly: {:g} after {:g}", v[0], history.back()[0]));
+    history.push_back({v[0], v[1], v[2]});
+  }
+}
+
 BlockPoint read_block_point(const Ctx& ctx, const MapReader& m, const SceneDescription& s, double tol) {
   BlockPoint bp;
   bp.where = m.where();
@@ -83,23 +103,7 @@ void read_points(const Ctx& ctx, const MapReader& top, SceneDescription& s) {
       check_name(m, name, s.loads, [](const LoadDescription& l) { return l.at.name; }, "load");
       load.at = read_block_point(ctx, m, s, tol);
       load.at.name = name;
-      YAML::Node f = m.find("force"), h = m.find("history");
-      if (f.IsDefined() == h.IsDefined())
-        ctx.fail(m.node(), m.child("force"),
-                 "give exactly one of force: [fx, fy] or history: [[t, fx, fy], ...]");
-      if (h.IsDefined()) {  // else `force` gave the one sample
-        if (!h.IsSequence() || h.size() == 0 || h.size() > kMaxSamples)
-          ctx.fail(h, m.child("history"), "expected a list of [t, fx, fy] samples");
-        for (std::size_t k = 0; k < h.size(); ++k) {
-          const std::string key = fmt::format("{}[{}]", m.child("history"), k);
-          const auto v = numbers(ctx, h[k], key, 3, any("time, force, force"));
-          if (v[0] < 0.0) ctx.fail(h[k], key, fmt::format("time {:g} is negative", v[0]));
-          if (!load.history.empty() && v[0] <= load.history.back()[0])
-            ctx.fail(h[k], key, fmt::format("times must increase strictly: {:g} after {:g}", v[0],
-                                            load.history.back()[0]));
-          load.history.push_back({v[0], v[1], v[2]});
-        }
-      }
+      read_force_or_history(ctx, m, load.history, "");
       s.loads.push_back(std::move(load));
     }
   if (YAML::Node n = list("measurement_points"); n.IsSequence())
