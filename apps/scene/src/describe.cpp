@@ -55,8 +55,12 @@ std::string describe_scene(const SceneDescription& s) {
     auto stiff = [&](const std::optional<double>& k, const char* fallback) {
       return k ? fmt::format("{:g} {}/{}", *k, stress, u.length) : std::string(fallback);
     };
-    line(fmt::format("  {}: friction_angle {:g} deg, cohesion {:g} {}, tensile_strength {:g} {}", j.name,
-                     j.friction_angle, j.cohesion, stress, j.tensile_strength, stress));
+    // The declared keys (keys_joints.cpp) but those the lines below describe in words of their own.
+    line(fmt::format("  {}: {}", j.name,
+                     key_values_text(keys_except(joint_set_keys(), {"residual_friction_angle", "residual_cohesion",
+                                                                    "normal_stiffness", "shear_stiffness",
+                                                                    "restitution", "record"}),
+                                     "joint_sets", j, u)));
     line(fmt::format("    once slid, opened or failed: residual_friction_angle {:g} deg, residual_cohesion {:g} {}, "
                      "tensile_strength 0",
                      j.residual_friction_angle.value_or(j.friction_angle), j.residual_cohesion, stress));

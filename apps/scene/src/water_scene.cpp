@@ -8,6 +8,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
+#include "rheodda/scene/keys.hpp"
 #include "rheodda/scene/scene.hpp"
 
 namespace rheodda::scene {
@@ -56,8 +57,12 @@ core::Water build_water(const WaterDescription& water, const SceneDescription& s
 }
 
 std::string describe_water(const WaterDescription& water, const Units& u) {
-  std::string out = fmt::format("water: unit_weight {:g} {}/{}^3, {}", water.unit_weight, u.force, u.length,
-                                form_name(water.form));
+  // The declared keys (keys_water.cpp) but the surface's, described below by its form.
+  std::string out = fmt::format(
+      "water: {}, {}",
+      key_values_text(keys_except(water_keys(), {"level", "surface", "level_history", "surface_history"}), "water",
+                      water, u),
+      form_name(water.form));
   const auto& h = water.history;
   switch (water.form) {
     case WaterDescription::Form::level:

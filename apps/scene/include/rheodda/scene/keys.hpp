@@ -21,6 +21,7 @@
 // `rheodda keys` read, through declared_maps()).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -190,6 +191,17 @@ std::string key_values_text(const std::vector<EntryKey<E>>& keys, const std::str
     if (std::holds_alternative<std::monostate>(v)) continue;
     add(k.name, key_value_text(k, v, u));
   }
+  return out;
+}
+
+/// The keys of `keys` but those named in `described`: what `key_values_text` lists of
+/// an entry whose other keys its section describes in words of its own (a joint set's
+/// residual strength and stiffnesses, the water's surface).
+template <class E>
+std::vector<EntryKey<E>> keys_except(const std::vector<EntryKey<E>>& keys, const std::vector<std::string>& described) {
+  std::vector<EntryKey<E>> out;
+  for (const EntryKey<E>& k : keys)
+    if (std::find(described.begin(), described.end(), k.name) == described.end()) out.push_back(k);
   return out;
 }
 
