@@ -13,6 +13,7 @@ import pytest
 
 import rheodda
 from conftest import TABLE1
+from test_python_law import PythonMaxwell
 from test_scene import SHEAR_TEST, same
 
 G = 9.81  # m/s^2, the scene's gravity
@@ -370,23 +371,8 @@ def test_a_restored_simulation_continues_bit_for_bit(tmp_path):
         rheodda.Simulation.restore(b"not a state")
 
 
-class Maxwell(rheodda.PythonLaw):
-    """Spring E1 and dashpot eta1, implicit: Delta d_c = dt F_e / eta1 (tests/python/test_python_law.py)."""
-
-    def __init__(self, E1, eta1):
-        super().__init__("python-maxwell", {"E1": E1, "eta1": eta1}, internal_count=1, instantaneous_stiffness=E1)
-        self.eta1 = eta1
-
-    def linearize(self, k, q, force_start, force_end_guess):
-        return 0.0, k.dt / self.eta1
-
-    def advance(self, k, q, force_start, force_end):
-        dd = k.dt * force_end / self.eta1
-        return dd, (q[0] + dd,)
-
-
 def test_a_state_with_a_law_written_in_python_keeps_it_in_memory_not_in_a_file(tmp_path):
-    law = Maxwell(TABLE1["E1"], TABLE1["eta1"])
+    law = PythonMaxwell(TABLE1["E1"], TABLE1["eta1"])
     a = rheodda.Simulation(SHEAR_TEST, laws={"plane": law}).run(50)
     state = a.save()
     assert state.laws == {"plane": law}
