@@ -15,6 +15,8 @@ using json = nlohmann::ordered_json;
 using detail::entry_json;
 using detail::key_json;
 using detail::law_json;
+using detail::left_out;
+using detail::Unset;
 
 /// The declared keys of one map (keys.hpp) as a JSON object, in their order; a
 /// sub-map (`settle`) the scene does not give, whose keys all do not apply, is null.
@@ -29,9 +31,6 @@ json section_of(const Analysis& a, const std::string& map) {
   return applies ? o : json(nullptr);
 }
 
-using detail::left_out;
-using detail::Unset;
-
 /// A block's name, as summary.json names the block of a point, a load or a stage's change.
 json block_name(const SceneDescription& s, int block) { return s.blocks[static_cast<std::size_t>(block)].name; }
 
@@ -43,8 +42,8 @@ json point_key(const SceneDescription& s, const KeyInfo& k, const Point& point, 
 }
 
 /// A load's keys read by the reader: point, block and the history (a `force` is its one sample).
-template <class Load>
-json load_key(const SceneDescription& s, const KeyInfo& k, const Point& point, int block, const Load& history) {
+json load_key(const SceneDescription& s, const KeyInfo& k, const Point& point, int block,
+              const std::vector<std::array<double, 3>>& history) {
   if (k.name == "history") return history;
   return point_key(s, k, point, block);
 }
