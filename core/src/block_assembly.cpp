@@ -7,7 +7,8 @@
 //   F_i  += T_i(p)^T f(t + dt)                 point load at p
 //   F_i  += rho S (gx, gy, 0, 0, 0, 0)         body force
 //   K_ii += 2/dt^2 M_i,  F_i += 2/dt M_i v_i   inertia, M_i = rho int T^T T dA
-//   K_ii += p T^T T,     F_i += p T^T (x0 - x) fixed point (penalty spring)
+//   K_ii += p T^T S T,   F_i += p T^T S (x0 - x) fixed point (penalty spring; S =
+//                                            diag(hold_x, hold_y), the directions held)
 //   F_i  += int T_i^T (-p n) ds                water pressure on the edges (water.hpp)
 // No term couples two blocks: the contacts add those (step_trial.cpp).
 #include "block_terms.hpp"
@@ -73,14 +74,15 @@ void Engine::Impl::assemble_blocks(double dt, double t_end, std::vector<Mat6>& d
         rhs.segment<6>(6 * static_cast<Eigen::Index>(k)) +=
             share * water_block_load(model.water, st.blocks[k].vertices, st.blocks[k].centroid, t_end);
   }
-  // Fixed points: spring p between the material point x and its held position x0,
-  // energy p/2 |T D - (x0 - x)|^2.
+  // Fixed points: spring p between the material point x and its held position x0
+  // in the held directions S (S^2 = S), energy p/2 |S (T D - (x0 - x))|^2.
   for (const auto& fp : model.fixed_points) {
     const BlockState& b = st.blocks[fp.block];
     const Vec2 x = b.map_A * fp.material() + b.map_b;
     const contact::Mat26 T = contact::displacement_matrix(b.centroid, x);
-    diag[fp.block].noalias() += fixed_k * T.transpose() * T;
-    rhs.segment<6>(6 * fp.block).noalias() += fixed_k * T.transpose() * (fp.point - x);
+    const Mat2 S = fp.held();
+    diag[fp.block].noalias() += fixed_k * T.transpose() * S * T;
+    rhs.segment<6>(6 * fp.block).noalias() += fixed_k * T.transpose() * S * (fp.point - x);
   }
 }
 

@@ -51,6 +51,7 @@ void each_flow(EnergyFlows& a, const EnergyFlows& b, F f) {
   f(a.dissipation_contact_closing, b.dissipation_contact_closing);
   f(a.dissipation_contact_release, b.dissipation_contact_release);
   f(a.dissipation_bolt, b.dissipation_bolt);
+  f(a.dissipation_edits, b.dissipation_edits);
   f(a.residual, b.residual);
   f(a.scale, b.scale);
 }
@@ -84,7 +85,7 @@ double EnergyFlows::net_input() const {
          dissipation_creep - dissipation_integration - dissipation_contact_damping -
          dissipation_block_damping -
          dissipation_contact_closing -
-         dissipation_contact_release - dissipation_bolt;
+         dissipation_contact_release - dissipation_bolt - dissipation_edits;
 }
 
 EnergyFlows& EnergyFlows::operator+=(const EnergyFlows& o) {
@@ -116,8 +117,9 @@ StoredEnergy EnergyAccount::stored_in_blocks(const EnergyInputs& in) {
     e.strain += 0.5 * g.S * b.stress.dot(compliance[b.material] * b.stress);
   }
   // Fixed points: the penalty spring p from the material point to its held position.
+  // (held directions S only).
   for (const FixedPoint& fp : in.model.fixed_points)
-    e.fixed += 0.5 * in.fixed_k * (position(in.blocks[fp.block], fp.material()) - fp.point).squaredNorm();
+    e.fixed += 0.5 * in.fixed_k * (fp.held() * (position(in.blocks[fp.block], fp.material()) - fp.point)).squaredNorm();
   return e;
 }
 
@@ -178,7 +180,7 @@ void EnergyAccount::begin(const EnergyInputs& in, const Eigen::VectorXd& D, doub
   // Fixed points: (1) with the spring p and the point's step displacement T D.
   for (const FixedPoint& fp : in.model.fixed_points) {
     const BlockState& b = in.blocks[fp.block];
-    const Vec2 u = contact::displacement_matrix(b.centroid, position(b, fp.material())) *
+    const Vec2 u = fp.held() * contact::displacement_matrix(b.centroid, position(b, fp.material())) *
                    D.segment<6>(6 * static_cast<Eigen::Index>(fp.block));
     springs += 0.5 * in.fixed_k * u.squaredNorm();
   }

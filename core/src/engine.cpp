@@ -72,7 +72,8 @@ void Engine::Impl::initialise() {
 void Engine::Impl::count_held() {
   held.assign(model.blocks.size(), 0);
   std::vector<int> points(model.blocks.size(), 0);
-  for (const FixedPoint& fp : model.fixed_points) ++points[fp.block];
+  for (const FixedPoint& fp : model.fixed_points)
+    if (fp.hold_x && fp.hold_y) ++points[fp.block];  // one held in x or y only leaves it a mass
   for (std::size_t k = 0; k < points.size(); ++k) held[k] = points[k] >= 2;
 }
 

@@ -109,8 +109,11 @@ void Engine::Impl::validate() {
       for (const Vec2& v : b.vertices) box.extend(v);
     validate_water(m.water, box.min().x(), box.max().x());
   }
-  for (std::size_t k = 0; k < m.fixed_points.size(); ++k)
+  for (std::size_t k = 0; k < m.fixed_points.size(); ++k) {
     check_point(ModelEntry{"fixed_points", k}, m.fixed_points[k].block, m.fixed_points[k].point);
+    if (!m.fixed_points[k].hold_x && !m.fixed_points[k].hold_y)
+      throw ModelError(ModelEntry{"fixed_points", k}, "hold", "holds neither x nor y");
+  }
   for (std::size_t k = 0; k < m.measurement_points.size(); ++k)
     check_point(ModelEntry{"measurement_points", k}, m.measurement_points[k].block,
                 m.measurement_points[k].point);

@@ -7,8 +7,10 @@
 #include <limits>
 #include <string>
 
-#include "engine_impl.hpp"
+#include "block_terms.hpp"
 #include "bolts.hpp"
+#include "engine_impl.hpp"
+#include "held_velocity.hpp"
 
 namespace rheodda::core {
 
@@ -50,6 +52,7 @@ std::vector<char> Engine::Impl::check_edit(const ModelEdit& e) const {
   };
   for (std::size_t k = 0; k < e.add_fixed_points.size(); ++k) {
     const FixedPoint& fp = e.add_fixed_points[k];
+    if (!fp.hold_x && !fp.hold_y) throw ModelError(ModelEntry{"add_fixed_points", k}, "hold", "holds neither x nor y");
     if (!e.material_points)
       check_point(ModelEntry{"add_fixed_points", k}, fp.block, fp.point);
     else if (fp.block < 0 || fp.block >= n_blocks || gone[static_cast<std::size_t>(fp.block)] || !fp.material_point)
@@ -99,6 +102,43 @@ std::vector<char> Engine::Impl::check_edit(const ModelEdit& e) const {
                        "would leave no fixed point: the model is held by " +
                            std::to_string(m.model.fixed_points.size()) +
                            " fixed points, and none would remain on a block that stays");
+  }
+  // Velocities given: finite, on a block that stays, in a dynamic analysis, and
+  // leaving the block's fixed points after the edit at rest (held_velocity.hpp).
+  {
+    const bool dynamic_after = (e.dynamic_ratio ? *e.dynamic_ratio > 0.0 : m.dynamic_now()) ||
+                               (e.settle && m.model.settings.settle_dynamic);
+    std::vector<char> dropped(m.model.fixed_points.size(), 0);
+    for (int i : e.remove_fixed_points) dropped[static_cast<std::size_t>(i)] = 1;
+    for (std::size_t k = 0; k < e.set_velocities.size(); ++k) {
+      const auto& [block, v] = e.set_velocities[k];
+      const ModelEntry key{"set_velocities", k};
+      if (block < 0 || block >= n_blocks) throw ModelError(key, "block", "no block with index " + std::to_string(block));
+      const std::size_t b = static_cast<std::size_t>(block);
+      if (gone[b]) throw ModelError(key, "block", "block " + std::to_string(block) + " is removed");
+      for (std::size_t j = 0; j < k; ++j)
+        if (e.set_velocities[j].first == block)
+          throw ModelError(key, "block", "block " + std::to_string(block) + " given twice");
+      if (!v.allFinite()) throw ModelError(key, "velocity", "must be finite");
+      if (!dynamic_after)
+        throw ModelError(key, "velocity", "a static analysis carries no velocity (its steps start at rest)");
+      const BlockState& st = m.st.blocks[b];
+      HeldRows J(0, 6);
+      for (std::size_t i = 0; i < m.model.fixed_points.size(); ++i) {
+        const FixedPoint& fp = m.model.fixed_points[i];
+        if (fp.block == block && !dropped[i]) add_held_rows(J, st.centroid, st.map_A * fp.material() + st.map_b, fp.held());
+      }
+      for (const FixedPoint& fp : e.add_fixed_points)
+        if (fp.block == block)
+          add_held_rows(J, st.centroid, e.material_points ? Vec2(st.map_A * fp.material() + st.map_b) : fp.point,
+                        fp.held());
+      const Mat6 M = m.model.materials[static_cast<std::size_t>(st.material)].density * unit_mass_matrix(m.moments[b]);
+      const Vec6 lost = v - held_velocity(M, J, v, std::sqrt(std::abs(m.moments[b].S)));
+      if (lost.dot(M * lost) > 1e-12 * v.dot(M * v))
+        throw ModelError(key, "velocity",
+                         "moves block " + std::to_string(block) +
+                             " where its fixed points hold it; free it first, or give a velocity that leaves them at rest");
+    }
   }
   for (std::size_t k = 0; k < e.joint_sets.size(); ++k)
     if (e.joint_sets[k].first < 0) throw ModelError(ModelEntry{"joint_sets", k}, "no joint set with a negative index");

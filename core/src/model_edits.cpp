@@ -3,6 +3,12 @@
 // given new values, the analysis switched between static and dynamic, a
 // settling stage opened. An edit is checked whole before anything changes.
 //
+// Velocities: a moving block that fixed points begin to hold stops in the
+// directions they hold, one they stop holding starts from rest in those
+// directions (held_velocity.hpp), and ModelEdit::set_velocities gives blocks a
+// velocity; the kinetic energy each takes or gives is booked as
+// EnergyFlows::dissipation_edits, so the balance stays closed across the edit.
+//
 // A removed block stays in the model (indices keep their meaning for outputs,
 // measurement points and checkpoints) but takes no part: its contacts are
 // dropped and never detected again (ContactModel::remove_blocks), it carries
@@ -15,7 +21,9 @@
 #include <string>
 
 #include "engine_impl.hpp"
+#include "block_terms.hpp"
 #include "bolts.hpp"
+#include "held_velocity.hpp"
 #include "rheodda/core/contact_adapter.hpp"
 
 namespace rheodda::core {
@@ -44,6 +52,11 @@ namespace {
 /// x = A x0 + b inverted (BlockState::map_A, map_b) [length].
 Vec2 material_point(const BlockState& b, const Vec2& p) { return b.map_A.inverse() * (p - b.map_b); }
 
+/// The rows of fixed point fp where its material point stands now (held_velocity.hpp).
+void add_rows(HeldRows& J, const BlockState& b, const FixedPoint& fp) {
+  add_held_rows(J, b.centroid, b.map_A * fp.material() + b.map_b, fp.held());
+}
+
 }  // namespace
 
 EditReport Engine::edit(const ModelEdit& e) {
@@ -62,6 +75,14 @@ EditReport Engine::edit(const ModelEdit& e) {
     std::sort(which.rbegin(), which.rend());
     for (int i : which) list.erase(list.begin() + i);
   };
+  // Per block, the rows its velocity must leave at rest after the edit: those of
+  // the fixed points removed from it (their spring's vibration is dropped) and,
+  // below, of every fixed point on a block that gains one (held_velocity.hpp).
+  std::vector<HeldRows> rows(nb);
+  for (int i : e.remove_fixed_points) {
+    const FixedPoint& fp = m.model.fixed_points[static_cast<std::size_t>(i)];
+    add_rows(rows[static_cast<std::size_t>(fp.block)], m.st.blocks[static_cast<std::size_t>(fp.block)], fp);
+  }
   erase(m.model.fixed_points, e.remove_fixed_points);
   erase(m.model.point_loads, e.remove_point_loads);
   // 2. Blocks removed, and the fixed points and loads on them.
@@ -103,6 +124,36 @@ EditReport Engine::edit(const ModelEdit& e) {
     report.replay.add_fixed_points[k] = fp;
     m.model.fixed_points.push_back(fp);
   }
+  std::vector<char> gains(nb, 0);
+  for (const FixedPoint& fp : e.add_fixed_points) gains[static_cast<std::size_t>(fp.block)] = 1;
+  for (const FixedPoint& fp : m.model.fixed_points)
+    if (gains[static_cast<std::size_t>(fp.block)])
+      add_rows(rows[static_cast<std::size_t>(fp.block)], m.st.blocks[static_cast<std::size_t>(fp.block)], fp);
+  // 3a. Velocities: the held directions at rest, then the velocities given.
+  auto mass = [&](std::size_t k) -> Mat6 {
+    return m.model.materials[static_cast<std::size_t>(m.st.blocks[k].material)].density * unit_mass_matrix(m.moments[k]);
+  };
+  auto kinetic = [](const Mat6& M, const Vec6& v) { return 0.5 * v.dot(M * v); };
+  double taken = 0.0;
+  for (std::size_t k = 0; k < nb; ++k) {
+    if (rows[k].rows() == 0 || m.is_removed(k)) continue;
+    BlockState& b = m.st.blocks[k];
+    const Mat6 M = mass(k);
+    const double size = std::sqrt(std::abs(m.moments[k].S));
+    const Vec6 v = held_velocity(M, rows[k], b.velocity, size);
+    taken += kinetic(M, b.velocity) - kinetic(M, v);
+    b.velocity = v;
+    b.acceleration = held_velocity(M, rows[k], b.acceleration, size);
+  }
+  for (const auto& [block, v] : e.set_velocities) {
+    const std::size_t k = static_cast<std::size_t>(block);
+    BlockState& b = m.st.blocks[k];
+    const Mat6 M = mass(k);
+    taken -= kinetic(M, v) - kinetic(M, b.velocity);
+    b.velocity = v;
+  }
+  report.kinetic_energy_taken = taken;
+  m.st.energy.total.dissipation_edits += taken;
   for (std::size_t k = 0; k < e.add_point_loads.size(); ++k) {
     PointLoad l = e.add_point_loads[k];
     if (!e.material_points) l.point = material_point(m.st.blocks[static_cast<std::size_t>(l.block)], l.point);

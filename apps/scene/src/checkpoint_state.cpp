@@ -40,7 +40,7 @@ constexpr std::size_t field_count() {
 // A structure that gains a member must have it written here too (and
 // kStateFormat raised): these fail to compile until it is.
 static_assert(field_count<core::StoredEnergy>() == 6);
-static_assert(field_count<core::EnergyFlows>() == 14);
+static_assert(field_count<core::EnergyFlows>() == 15);
 static_assert(field_count<core::EnergyBalance>() == 5);
 static_assert(field_count<core::StageEvent>() == 12);
 static_assert(field_count<core::StageState>() == 5);
@@ -136,7 +136,8 @@ void io(auto& ar, Is<core::StoredEnergy> auto& e) {
 void io(auto& ar, Is<core::EnergyFlows> auto& f) {
   ar(f.work_gravity, f.work_loads, f.work_contact_restart, f.dissipation_friction, f.dissipation_creep,
      f.dissipation_integration, f.integration_inertia, f.dissipation_contact_damping, f.dissipation_block_damping,
-     f.dissipation_contact_closing, f.dissipation_contact_release, f.dissipation_bolt, f.residual, f.scale);
+     f.dissipation_contact_closing, f.dissipation_contact_release, f.dissipation_bolt, f.dissipation_edits, f.residual,
+     f.scale);
 }
 void io(auto& ar, Is<core::EnergyBalance> auto& e) {
   ar(e.initial, e.stored, e.step, e.total, e.max_relative_residual);

@@ -92,6 +92,7 @@ void write_summary(Run& run, const std::string& status, const std::string& error
                    {"dissipation_block_damping", t.dissipation_block_damping},
                    {"dissipation_contact_closing", t.dissipation_contact_closing},
                    {"dissipation_contact_release", t.dissipation_contact_release},
+                   {"dissipation_edits", t.dissipation_edits},
                    {"residual", t.residual},
                    {"scale", en.initial.total() + t.scale},
                    {"relative_residual", en.relative_residual()},

@@ -71,6 +71,11 @@ struct EnergyFlows {
   double dissipation_bolt = 0.0;  ///< bolts (docs/reference/bolts.md, "Energy"): their springs' integration
                                   ///< (N1 - N0)^2/(2k), plastic N_y Delta e_p, creep N Delta e_c,
                                   ///< and the stored energy of a bolt that ruptured
+  /// Kinetic energy taken by edits between steps (Engine::edit; docs/reference/engine.md,
+  /// "Energy balance"): by fixed points added to or removed from a moving block
+  /// (Carnot's theorem, model_edits.cpp), less the kinetic energy a set velocity
+  /// gave (ModelEdit::set_velocities; signed). Booked in the totals only: no step has it.
+  double dissipation_edits = 0.0;
   double residual = 0.0;  ///< (change of the stored energy) - works + dissipations: > 0 is
                           ///< energy the terms do not account for that the model gained
   double scale = 0.0;     ///< |work_gravity| + |work_loads| (summed: of every step)

@@ -199,7 +199,8 @@ struct ModelEdit {
   /// where it was. The fixed points and point loads on it are removed with it.
   std::vector<int> remove_blocks;
   /// Fixed points to add: `point` is the held position now [length]; the
-  /// material point of `block` standing there is held from now on.
+  /// material point of `block` standing there is held from now on. A moving
+  /// block stops in the directions they hold (model_edits.cpp, "Velocities").
   std::vector<FixedPoint> add_fixed_points;
   /// Point loads to add: `point` is the load point now [length] (the material
   /// point standing there carries it); history times are run times [time].
@@ -226,6 +227,11 @@ struct ModelEdit {
   /// points already, as EditReport::replay gives them, and are not checked
   /// against where the blocks stand now.
   bool material_points = false;
+  /// Velocities to give blocks (index, (u0, v0, r0, ex, ey, gxy) [length/time,
+  /// 1/time]) after the other changes, in a dynamic analysis only; the velocity
+  /// must leave the block's fixed points at rest in the directions they hold.
+  /// The kinetic energy it adds is booked (EnergyFlows::dissipation_edits).
+  std::vector<std::pair<int, Vec6>> set_velocities;
   /// Opens a settling stage from now (Settings::settle_until long, with
   /// settle_dt, settle_g2, settle_dynamic and settle_rest_tolerance; docs/reference/engine.md,
   /// "Dynamic stages"); a dynamic stage in progress ends here.
@@ -237,6 +243,8 @@ struct EditReport {
   std::vector<int> fixed_points_removed;  ///< fixed points on removed blocks
   std::vector<int> point_loads_removed;   ///< point loads on removed blocks
   int contacts_dropped = 0;               ///< contacts of removed blocks [-]
+  /// Kinetic energy the edit took (EnergyFlows::dissipation_edits) [force x length].
+  double kinetic_energy_taken = 0.0;
   /// Bolts with an end on a removed block (indices into Model::bolts): removed with it,
   /// they carry nothing from now on (state `ruptured` at the edit's time; bolt.hpp).
   std::vector<int> bolts_removed;

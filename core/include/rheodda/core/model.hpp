@@ -112,7 +112,8 @@ struct PointLoad {
 };
 
 /// A fixed point: a stiff penalty spring holding a material point of a block
-/// at its initial position.
+/// at its initial position, in x and y or in one of them only (a spring in
+/// that direction alone: the point moves freely in the other).
 struct FixedPoint {
   int block = 0;                ///< index into Model::blocks
   Vec2 point = Vec2::Zero();    ///< initial (and held) position [length]
@@ -120,8 +121,17 @@ struct FixedPoint {
   /// point that stood there when it was added: this is that material point's
   /// initial position [length]; unset: `point`.
   std::optional<Vec2> material_point = std::nullopt;
+  bool hold_x = true;           ///< the spring acts in x
+  bool hold_y = true;           ///< the spring acts in y
   /// Initial position of the held material point [length].
   const Vec2& material() const { return material_point ? *material_point : point; }
+  /// The directions held: diag(hold_x, hold_y); the spring is p S (x - x0).
+  Eigen::Matrix2d held() const {
+    Eigen::Matrix2d s = Eigen::Matrix2d::Zero();
+    s(0, 0) = hold_x ? 1.0 : 0.0;
+    s(1, 1) = hold_y ? 1.0 : 0.0;
+    return s;
+  }
 };
 
 /// A measurement point: the engine records the displacement of this material

@@ -18,13 +18,14 @@ namespace rheodda::scene {
 /// The energy-balance columns that end every history.csv row, in order (docs/reference/outputs.md;
 /// docs/reference/engine.md, "Energy balance"): stored energies now, flows since t = 0, the
 /// residual and the step's inertia share.
-inline constexpr std::array<const char*, 18> kHistoryEnergyColumns{
+inline constexpr std::array<const char*, 19> kHistoryEnergyColumns{
     "energy_kinetic",          "energy_strain",           "energy_fixed",
     "energy_contact_normal",   "energy_contact_shear",    "work_gravity",
     "work_loads",              "work_contact_restart",    "dissipation_friction",
     "dissipation_creep",       "dissipation_integration", "dissipation_contact_damping",
     "dissipation_block_damping", "dissipation_contact_closing", "dissipation_contact_release",
-    "energy_residual",         "energy_residual_relative", "inertia_share"};
+    "dissipation_edits",       "energy_residual",         "energy_residual_relative",
+    "inertia_share"};
 
 /// The values of kHistoryEnergyColumns, in that order, of a run's balance now.
 inline std::array<double, kHistoryEnergyColumns.size()> history_energy_values(const core::EnergyBalance& en) {
@@ -34,7 +35,7 @@ inline std::array<double, kHistoryEnergyColumns.size()> history_energy_values(co
           fl.work_gravity, fl.work_loads, fl.work_contact_restart,
           fl.dissipation_friction, fl.dissipation_creep, fl.dissipation_integration,
           fl.dissipation_contact_damping, fl.dissipation_block_damping, fl.dissipation_contact_closing,
-          fl.dissipation_contact_release, fl.residual, en.relative_residual(),
+          fl.dissipation_contact_release, fl.dissipation_edits, fl.residual, en.relative_residual(),
           core::inertia_share(en.step)};
 }
 
