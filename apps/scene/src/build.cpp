@@ -128,7 +128,12 @@ BuiltScene build_scene(const SceneDescription& s) {
     if (b.fixed)
       for (const auto& p : b.polygon) m.fixed_points.push_back({static_cast<int>(i), {p[0], p[1]}});
   }
-  for (const auto& f : s.fixed_points) m.fixed_points.push_back({f.block, {f.point[0], f.point[1]}});
+  for (const auto& f : s.fixed_points) {
+    core::FixedPoint fp{f.block, {f.point[0], f.point[1]}};
+    fp.hold_x = f.hold != "y";  // `hold: x | y | both` (docs/reference/scene-format.md)
+    fp.hold_y = f.hold != "x";
+    m.fixed_points.push_back(fp);
+  }
   for (const auto& l : s.loads) {
     core::PointLoad load;
     load.block = l.at.block;

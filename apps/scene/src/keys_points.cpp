@@ -37,6 +37,12 @@ std::vector<EntryKey<BlockPoint>>& fixed_point_keys() {
       detail::optional_name_key(removable_name("fixed_points"), &BlockPoint::name),
       point_key<BlockPoint>("fixed_points"),
       block_key<BlockPoint>("fixed_points"),
+      detail::field_key(KeyInfo{.map = "fixed_points", .name = "hold", .type = KeyType::choice, .unit = "–",
+                                .choices = {"both", "x", "y"}, .default_text = "`both`",
+                                .meaning = "the directions the point is held in: `both`, or `x` or `y` only (a "
+                                           "penalty spring in that direction alone; the point moves freely in the "
+                                           "other)"},
+                        &BlockPoint::hold),
   };
   return keys;
 }

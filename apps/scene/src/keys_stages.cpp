@@ -116,6 +116,12 @@ std::vector<EntryKey<StagePoint>> stage_point_keys(const std::string& map, bool 
       KeyInfo{.map = map, .name = "block", .type = KeyType::reference, .unit = "–",
               .required = "the block it is on (required in a stage)", .default_text = "required",
               .meaning = "the block it is on"}));
+  if (!load)
+    k.push_back(detail::field_key(
+        KeyInfo{.map = map, .name = "hold", .type = KeyType::choice, .unit = "–", .choices = {"both", "x", "y"},
+                .default_text = "`both`",
+                .meaning = "the directions it is held in: `both`, or `x` or `y` only (as `fixed_points.hold`)"},
+        &E::hold));
   if (load) {
     k.push_back(detail::constant_force_key(
         KeyInfo{.map = map, .name = "force", .type = KeyType::numbers, .unit = "force",

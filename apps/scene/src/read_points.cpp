@@ -93,6 +93,7 @@ void read_points(const Ctx& ctx, const MapReader& top, SceneDescription& s) {
       check_name(m, declared.name, s.fixed_points, [](const BlockPoint& p) { return p.name; }, "fixed point");
       s.fixed_points.push_back(read_block_point(ctx, m, s, tol));
       s.fixed_points.back().name = declared.name;
+      s.fixed_points.back().hold = declared.hold;
     }
   if (YAML::Node n = list("loads"); n.IsSequence())
     for (std::size_t i = 0; i < n.size(); ++i) {
