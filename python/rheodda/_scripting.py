@@ -76,8 +76,13 @@ class Block:
     centroid = property(lambda self: self._get("position"), doc="centroid (x, y) [length]; = position")
     rotation = property(lambda self: self._get("rotation"),
                         doc="rotation since t = 0 [rad], counter-clockwise > 0")
-    velocity = property(lambda self: self._get("velocity"),
-                        doc="(u0, v0, r0, ex, ey, gxy) rates [length/time, 1/time]")
+    def _set_velocity(self, value):
+        self._sim._sim._set_velocity(self.index, [float(v) for v in value])
+
+    velocity = property(lambda self: self._get("velocity"), _set_velocity,
+                        doc="(u0, v0, r0, ex, ey, gxy) rates [length/time, 1/time]; settable between steps in a "
+                            "dynamic analysis as (vx, vy, omega) (strain rates 0) or all six (Engine::edit; the "
+                            "kinetic energy it adds is booked as -dissipation_edits)")
     strain = property(lambda self: self._get("strain"),
                       doc="Green-Lagrange strain since t = 0 (E_xx, E_yy, gamma_xy) [-]")
     stress = property(lambda self: self._get("stress"), doc="(sigma_x, sigma_y, tau_xy) [stress]")
@@ -95,14 +100,22 @@ class Block:
         """Displacement (u, v) of the material point initially at (x, y) [length]."""
         return self._sim._sim.point_displacement(self.index, float(x), float(y))
 
-    def fix(self):
-        """Holds the block from the next step on as a scene's ``fixed: true`` does: a fixed point at
-        every vertex, where it stands now. Raises ModelError for a removed block."""
-        self._sim._sim._fix(self.index)
+    def fix(self, dofs=("x", "y", "rotation")):
+        """Holds the block from the next step on in ``dofs`` (some of ``"x"``, ``"y"``, ``"rotation"``).
+        All three (the default), as a scene's ``fixed: true``: a fixed point at every vertex, where it
+        stands now. With ``"rotation"``, fixed points at every vertex held in the directions given (``x``
+        only: the block moves freely in y, neither turning nor moving in x); without it, one fixed point at
+        the centroid held in the directions given (the block turns freely about it). A moving block stops
+        in the directions held (its kinetic energy there booked as ``dissipation_edits``). Raises Error
+        for dofs without ``x`` or ``y``, ModelError for a removed block."""
+        if isinstance(dofs, str):
+            dofs = (dofs,)
+        self._sim._sim._fix(self.index, [str(d) for d in dofs])
 
     def free(self):
         """Removes every fixed point on the block (those of ``fixed: true``, of ``fixed_points:`` and of
-        :meth:`fix`). Raises Error when it has none, ModelError when the model would keep no fixed point."""
+        :meth:`fix`); the block starts from rest in the directions they held. Raises Error when it has none,
+        ModelError when the model would keep no fixed point."""
         self._sim._sim._free(self.index)
 
     def remove(self):

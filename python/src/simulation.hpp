@@ -77,7 +77,10 @@ class Simulation {
   py::object block_value(int b, const std::string& quantity) const;
   py::array_t<double> vertices(int b) const;
   py::array_t<double> point_displacement(int b, double x, double y) const;
-  void fix(int b);
+  /// Holds block b in `dofs` (of x, y, rotation; docs/guide/python.md, "Blocks").
+  void fix(int b, const std::vector<std::string>& dofs);
+  /// Gives block b the velocity (u0, v0, r0) or (u0, v0, r0, ex, ey, gxy) (ModelEdit::set_velocities).
+  void set_velocity(int b, const std::vector<double>& v);
   void free(int b);
   void remove(int b);
   /// Adds a load on block b at (x, y) now, following `samples` (t from now, fx, fy); its id.

@@ -148,7 +148,8 @@ core::EditReport Simulation::apply_edit(const core::ModelEdit& e, const std::str
             {"remove_blocks", r.remove_blocks}};
   json fixed = json::array();
   for (const auto& f : r.add_fixed_points)
-    fixed.push_back({{"block", f.block}, {"point", point_json(f.point)}, {"material_point", point_json(f.material())}});
+    fixed.push_back({{"block", f.block}, {"point", point_json(f.point)}, {"material_point", point_json(f.material())},
+                     {"hold_x", f.hold_x}, {"hold_y", f.hold_y}});
   json loads = json::array();
   for (const auto& l : r.add_point_loads) {
     json h = json::array();
@@ -169,12 +170,48 @@ core::EditReport Simulation::apply_edit(const core::ModelEdit& e, const std::str
   return rep;
 }
 
-void Simulation::fix(int b) {
+void Simulation::fix(int b, const std::vector<std::string>& dofs) {
   check_block(b);
-  // As a scene's `fixed: true` block: a fixed point at every vertex, where it stands now.
+  const std::string what = fmt::format("Block.fix of block '{}' ({})", scene_.blocks[b].name, b);
+  bool x = false, y = false, rotation = false;
+  for (const std::string& d : dofs) {
+    bool& held = d == "x" ? x : d == "y" ? y : rotation;
+    if (d != "x" && d != "y" && d != "rotation")
+      throw InputError(fmt::format("{}: dofs: unknown '{}'; give some of 'x', 'y', 'rotation'", what, d));
+    if (held) throw InputError(fmt::format("{}: dofs: '{}' given twice", what, d));
+    held = true;
+  }
+  if (!x && !y)
+    throw InputError(fmt::format("{}: dofs: {} holds no translation; a fixed point holds x or y (a rotation "
+                                 "alone cannot be held by fixed points: give 'x' or 'y' with it)",
+                                 what, dofs.empty() ? "an empty list" : "['rotation']"));
+  // The rotation held: a fixed point at every vertex (as a scene's `fixed: true`), in the
+  // directions given; not held: one at the centroid, about which the block turns freely.
   core::ModelEdit e;
-  for (const core::Vec2& v : eng().vertices(b)) e.add_fixed_points.push_back({b, v});
-  apply_edit(e, fmt::format("Block.fix of block '{}' ({})", scene_.blocks[b].name, b));
+  auto add = [&](const core::Vec2& p) {
+    core::FixedPoint fp{b, p};
+    fp.hold_x = x;
+    fp.hold_y = y;
+    e.add_fixed_points.push_back(fp);
+  };
+  if (rotation)
+    for (const core::Vec2& v : eng().vertices(b)) add(v);
+  else
+    add(eng().centroid(b));
+  apply_edit(e, what);
+}
+
+void Simulation::set_velocity(int b, const std::vector<double>& v) {
+  check_block(b);
+  const std::string what = fmt::format("Block.velocity of block '{}' ({})", scene_.blocks[b].name, b);
+  if (v.size() != 3 && v.size() != 6)
+    throw InputError(fmt::format("{}: expected (vx, vy, omega) or (vx, vy, omega, ex, ey, gxy), got {} numbers",
+                                 what, v.size()));
+  core::Vec6 velocity = core::Vec6::Zero();
+  for (std::size_t i = 0; i < v.size(); ++i) velocity[static_cast<Eigen::Index>(i)] = v[i];
+  core::ModelEdit e;
+  e.set_velocities.emplace_back(b, velocity);
+  apply_edit(e, what);
 }
 
 void Simulation::free(int b) {
@@ -289,7 +326,8 @@ void bind_simulation_blocks(py::class_<Simulation>& c) {
       .def("_block_value", &Simulation::block_value, py::arg("block"), py::arg("quantity"))
       .def("block_vertices", &Simulation::vertices, py::arg("block"))
       .def("point_displacement", &Simulation::point_displacement, py::arg("block"), py::arg("x"), py::arg("y"))
-      .def("_fix", &Simulation::fix, py::arg("block"))
+      .def("_fix", &Simulation::fix, py::arg("block"), py::arg("dofs"))
+      .def("_set_velocity", &Simulation::set_velocity, py::arg("block"), py::arg("velocity"))
       .def("_free", &Simulation::free, py::arg("block"))
       .def("_remove", &Simulation::remove, py::arg("block"))
       .def("_add_load", &Simulation::add_load, py::arg("block"), py::arg("x"), py::arg("y"), py::arg("samples"))

@@ -124,8 +124,12 @@ void Simulation::replay(const json& c) {
     e.remove_fixed_points = c.at("remove_fixed_points").get<std::vector<int>>();
     e.remove_point_loads = c.at("remove_point_loads").get<std::vector<int>>();
     e.remove_blocks = c.at("remove_blocks").get<std::vector<int>>();
-    for (const auto& f : c.at("add_fixed_points"))
-      e.add_fixed_points.push_back({f.at("block").get<int>(), vec2(f.at("point")), vec2(f.at("material_point"))});
+    for (const auto& f : c.at("add_fixed_points")) {
+      core::FixedPoint fp{f.at("block").get<int>(), vec2(f.at("point")), vec2(f.at("material_point"))};
+      fp.hold_x = f.value("hold_x", true);
+      fp.hold_y = f.value("hold_y", true);
+      e.add_fixed_points.push_back(fp);
+    }
     for (const auto& l : c.at("add_point_loads")) {
       core::PointLoad p;
       p.block = l.at("block").get<int>();
