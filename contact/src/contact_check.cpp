@@ -12,6 +12,7 @@
 #include <string>
 
 #include "contact_geometry.hpp"
+#include "law_call_site.hpp"
 
 namespace rheodda::contact {
 
@@ -198,6 +199,7 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
         // friction holds. The creep up to the failure (the law's advance at this
         // stress stops its damaging creep there) is this step's.
         laws::RheologyState at_failure;
+        const laws::CallSiteScope at(law_call_site(r));
         fail_law(c, law.advance(step_constants_of(c), work_rheology_[r.rheology], h.tau_start, tau, at_failure));
         ++res.state_changes;
         ++res.slipped;

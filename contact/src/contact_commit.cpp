@@ -11,6 +11,7 @@
 #include <string>
 
 #include "contact_geometry.hpp"
+#include "law_call_site.hpp"
 
 namespace rheodda::contact {
 
@@ -59,6 +60,7 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
           // along the entrance edge (the seed's eqs. 22-29) and take the force
           // from the spring's remaining stretch.
           const laws::RheologyState old = work_rheology_[r.rheology];
+          const laws::CallSiteScope at(law_call_site(r));
           creep = joint_sets_[r.joint_set].law->advance(step_constants_of(c), old, h.tau_start,
                                                         r.shear_force / r.tributary_length,
                                                         work_rheology_[r.rheology]);

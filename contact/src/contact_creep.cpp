@@ -12,6 +12,7 @@
 #include <string>
 
 #include "contact_geometry.hpp"
+#include "law_call_site.hpp"
 
 #include "rheodda/laws/series_law.hpp"
 
@@ -32,6 +33,7 @@ void ContactSystem::linearize(size_t c, double tau_guess) {
   // Delta d_c = h + c tau_e (laws/contact_rheology.hpp) with tau = F / l_t:
   // locking point shifted by h, compliance c / l_t in force terms.
   const Contact& r = work_[c];
+  const laws::CallSiteScope at(law_call_site(r));
   const laws::Linearization lin = joint_sets_[r.joint_set].law->linearize(
       step_constants_of(c), work_rheology_[r.rheology], hot_[c].tau_start, tau_guess);
   seams_[c] = {-lin.h, lin.c / r.tributary_length};

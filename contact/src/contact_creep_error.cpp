@@ -10,6 +10,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "law_call_site.hpp"
 #include "rheodda/contact/contact_system.hpp"
 
 namespace rheodda::contact {
@@ -78,6 +79,7 @@ void ContactSystem::estimate_creep_error() {
     const laws::RheologyState& old = start_rheology[s.rheology];
     laws::RheologyState next;
     double err = 0.0;
+    const laws::CallSiteScope at(law_call_site(c));
     if (k->used != laws::Scheme::exponential_linear) {
       // First-order scheme: its increment minus the exponential-linear one (the
       // exact increment for a force linear over the step) is its local error.

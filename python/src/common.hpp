@@ -58,6 +58,9 @@ inline py::array str_array(const std::vector<std::string>& v) {
 /// written in Python returned: `value` its repr, `expected` what it should be.
 [[noreturn]] void raise_python_law_error(const std::string& law, const std::string& method,
                                          const std::string& value, const std::string& expected);
+/// A PythonLawError raised inside the step `step` (as history's `step` column counts it) from
+/// time `time` [time_unit]: its message and attributes get them (errors.cpp); any other error unchanged.
+void locate_python_law_error(py::error_already_set& e, long step, double time, const std::string& time_unit);
 
 /// Raises the pending Python error (KeyboardInterrupt after Ctrl-C) if a signal
 /// handler raised one; call with the GIL held, between steps.

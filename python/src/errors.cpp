@@ -8,11 +8,14 @@
 //     rheodda.FitError              fit::FitError: .law
 //     rheodda.ModelError            core::ModelError: .key
 //     rheodda.PythonLawError        a law written in Python returned a bad value: .law .method .value .expected
+//                                   .contact (inside a run: the contact's id, else None) .step .time
 //   rheodda.RunError (RuntimeError) a run that failed (no convergence after max_cuts ...)
 #include <rheodda/core/model.hpp>
 #include <rheodda/fit/creep_data.hpp>
 #include <rheodda/fit/fit.hpp>
+#include <fmt/format.h>
 #include <rheodda/laws/accurate_curve.hpp>
+#include <rheodda/laws/call_site.hpp>
 #include <rheodda/laws/parameters.hpp>
 #include <rheodda/scene/error.hpp>
 
@@ -63,7 +66,8 @@ void bind_errors(py::module_& m) {
   python_law_error_type = new_type(
       m, "PythonLawError", error_type,
       "A method of a law written in Python returned a value that is not finite, of the wrong type or shape: "
-      ".law .method .value (its repr) .expected");
+      ".law .method .value (its repr) .expected; inside a run also .contact (its id) and .step, .time (the "
+      "step it was computed for and its start time); None elsewhere");
   PyObject* run_error = new_type(m, "RunError", PyExc_RuntimeError,
                                  "A run that failed (e.g. a step that does not converge after max_cuts cuts)");
 
@@ -95,10 +99,29 @@ void bind_errors(py::module_& m) {
 
 void raise_python_law_error(const std::string& law, const std::string& method, const std::string& value,
                             const std::string& expected) {
-  const std::string message = "PythonLaw '" + law + "': " + method + " returned " + value + "; expected " + expected;
+  std::string message = "PythonLaw '" + law + "': " + method + " returned " + value + "; expected " + expected;
+  // Inside a run the contact layer has set the contact it calls the law for (laws/call_site.hpp).
+  const laws::CallSite& at = laws::current_call_site();
+  py::object contact = py::none();
+  if (at.contact >= 0) {
+    message += fmt::format(", at contact {} (vertex {} of block {} on edge {} of block {}, joint set {})", at.contact,
+                           at.vertex, at.vertex_block, at.edge, at.edge_block, at.joint_set);
+    contact = py::int_(at.contact);
+  }
   raise(python_law_error_type, message.c_str(),
-        py::dict("law"_a = law, "method"_a = method, "value"_a = value, "expected"_a = expected));
+        py::dict("law"_a = law, "method"_a = method, "value"_a = value, "expected"_a = expected,
+                 "contact"_a = contact, "step"_a = py::none(), "time"_a = py::none()));
   throw py::error_already_set();
+}
+
+void locate_python_law_error(py::error_already_set& e, long step, double time, const std::string& time_unit) {
+  if (!python_law_error_type || !e.matches(python_law_error_type)) return;
+  const py::object v = e.value();
+  const std::string message = py::str(v).cast<std::string>() + fmt::format(", in step {} (from t = {:g} {})", step,
+                                                                           time, time_unit);
+  py::setattr(v, "args", py::make_tuple(message));
+  py::setattr(v, "step", py::int_(step));
+  py::setattr(v, "time", py::float_(time));
 }
 
 }  // namespace rheodda::python

@@ -54,16 +54,30 @@ py::tuple state_tuple(const laws::RheologyState& s) { return py::make_tuple(s.q[
 // tuple of the wrong length or a wrong type raises rheodda.PythonLawError
 // naming the law, the method, the value and what was expected.
 std::string short_repr(const py::handle& v) {
-  std::string r = py::repr(v).cast<std::string>();
+  // On one line: a newline and the indentation after it (numpy's repr of a 2-d array) become a space.
+  std::string r;
+  bool skip = false;
+  for (char ch : py::repr(v).cast<std::string>()) {
+    if (ch == '\n') {
+      r += ' ';
+      skip = true;
+    } else if (!(skip && ch == ' ')) {
+      r += ch;
+      skip = false;
+    }
+  }
   if (r.size() > 200) r = r.substr(0, 197) + "...";
   return r;
 }
 
 /// `item` as a finite float, or PythonLawError about `whole` (what `method` returned).
+/// A numpy array of one element or more dimensions is not a number (numpy's float() would
+/// take one of shape (1,) or (1, 1)): refused as a list of that shape is (float([x]) fails);
+/// a numpy scalar or an array of shape () is a number.
 double finite_number(const std::string& law, const char* method, const py::handle& item, const py::handle& whole,
                      const std::string& expected) {
   if (py::isinstance<py::str>(item) || py::isinstance<py::bytes>(item) || py::isinstance<py::bool_>(item) ||
-      item.is_none())
+      item.is_none() || (py::isinstance<py::array>(item) && py::reinterpret_borrow<py::array>(item).ndim() > 0))
     raise_python_law_error(law, method, short_repr(whole), expected);
   double x = 0.0;
   try {

@@ -131,6 +131,7 @@ void Simulation::run(const py::object& self, double end_time, long max_steps) {
         // A Python law raised inside a step: the contacts are mid-step.
         py::gil_scoped_acquire acquire;
         failure = "a Python law raised an exception";
+        locate_python_law_error(e, engine_->step_count() + 1, engine_->time(), scene_.units.time);
         python_error = std::move(e);
       } catch (const std::exception& e) {
         failure = fmt::format("run failed at t = {:g} {} (step {}): {}", engine_->time(), scene_.units.time,

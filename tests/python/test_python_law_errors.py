@@ -1,7 +1,9 @@
 """A law written in Python that returns a bad value raises rheodda.PythonLawError naming the law,
 the method, the value and what was expected, at the first step it happens (python/src/python_law.cpp)."""
 import math
+import re
 
+import numpy as np
 import pytest
 
 import rheodda
@@ -59,7 +61,9 @@ def test_a_bad_value_raises_at_the_first_step_it_happens(scene, method, value, s
     assert sim.step_count == 5 and sim.failed  # the step after the change, not later
     err = e.value
     assert (err.law, err.method, err.value, err.expected) == ("test-maxwell", method, shown, expected)
-    assert str(err) == "PythonLaw 'test-maxwell': {} returned {}; expected {}".format(method, shown, expected)
+    assert str(err).startswith("PythonLaw 'test-maxwell': {} returned {}; expected {}, at contact ".format(
+        method, shown, expected))
+    assert str(err).endswith(", in step 6 (from t = 5 h)") and (err.step, err.time) == (6, 5.0)
     assert isinstance(err, rheodda.Error)
 
 
@@ -102,3 +106,45 @@ def test_numpy_numbers_and_lists_are_accepted(scene):
     a = rheodda.Simulation(scene, laws={"plane": Maxwell()}).run().history()["plane.shear_displacement"]
     b = rheodda.Simulation(scene, laws={"plane": NumpyMaxwell()}).run().history()["plane.shear_displacement"]
     np.testing.assert_array_equal(a, b)
+
+
+@pytest.mark.parametrize("method, value", [
+    ("advance", (0.0, np.array([[0.0]]))),      # q_new of shape (1, 1)
+    ("advance", (np.array([1e-9]), (0.0,))),    # delta_creep of shape (1,)
+    ("linearize", np.array([[0.0], [1e-3]])),   # (h, c) of shape (2, 1)
+])
+def test_numpy_arrays_of_the_wrong_shape_are_refused_as_lists_of_that_shape_are(scene, method, value):
+    law = Maxwell()
+    sim = rheodda.Simulation(scene, laws={"plane": law})
+    sim.step(2)
+    law.bad[method] = value
+    with pytest.raises(rheodda.PythonLawError) as e:
+        sim.step()
+    shown = re.sub(r"\n\s*", " ", repr(value))
+    assert e.value.value == shown and e.value.method == method
+    nested = (0.0, [[0.0]]) if method == "advance" and isinstance(value[1], np.ndarray) else None
+    if nested is not None:  # the nested list of the same shape: refused the same way
+        law2 = Maxwell()
+        law2.bad["advance"] = nested
+        with pytest.raises(rheodda.PythonLawError):
+            rheodda.Simulation(scene, laws={"plane": law2}).step(1)
+
+
+def test_an_error_inside_a_run_names_the_step_the_time_and_the_contact(scene):
+    law = Maxwell()
+    sim = rheodda.Simulation(scene, laws={"plane": law})
+    sim.step(4)
+    ids = set(sim.contacts()["id"].tolist())
+    law.bad["advance"] = (math.nan, (0.0,))
+    with pytest.raises(rheodda.PythonLawError) as e:
+        sim.step()
+    err = e.value
+    assert (err.step, err.time) == (5, sim.time) and err.contact in ids
+    assert str(err).endswith(", in step 5 (from t = {:g} h)".format(sim.time))
+    assert ", at contact {} (vertex ".format(err.contact) in str(err)
+    with pytest.raises(rheodda.PythonLawError) as outside:  # a curve: no contact, no step
+        class Closed(Maxwell):
+            def creep_closed_form(self, force, t):
+                return math.inf
+        rheodda.creep_curve(Closed(), 0.2, t_end=2.0, dt=1.0)
+    assert (outside.value.contact, outside.value.step, outside.value.time) == (None, None, None)
