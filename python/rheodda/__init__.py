@@ -171,8 +171,19 @@ class Simulation:
 
     def run(self, until=None):
         """Advances to time ``until`` [time] (default: the scene's duration); the last step is
-        shortened to land on it."""
-        self._run(self.duration if until is None else float(until), -1)
+        shortened to land on it. Raises Error when ``until`` is not a number or lies before the
+        simulation's time (a run goes forward only; restore a saved state to go back)."""
+        if until is None:
+            end = self.duration
+        else:
+            end = float(until)
+            if _math.isnan(end):
+                raise Error("Simulation.run: until = nan is not a time")
+            if end < self.time - 1e-12 * max(1.0, abs(end)):  # the sliver rule of Engine::run_until
+                raise Error("Simulation.run: until = {:g} {} lies before the simulation's time {:g} {}: a run goes "
+                            "forward only (restore a saved state to go back)".format(
+                                end, self.units["time"], self.time, self.units["time"]))
+        self._run(end, -1)
         return self
 
     def _run(self, end_time, max_steps):

@@ -161,7 +161,13 @@ py::dict Simulation::history() const {
 
 // --- loads' histories and step settings: a new engine ---------------------
 
-void Simulation::set_load(int index, double fx, double fy) { set_load_history(index, {{eng().time(), fx, fy}}); }
+void Simulation::set_load(int index, double fx, double fy) {
+  // What the user gave is named, not the history the call makes of it.
+  if (!std::isfinite(fx) || !std::isfinite(fy))
+    throw InputError(fmt::format("set_load: load {}: force ({:g}, {:g}) must be finite [{}]", index, fx, fy,
+                                 scene_.units.force));
+  set_load_history(index, {{eng().time(), fx, fy}});
+}
 
 void Simulation::set_load_history(int index, const std::vector<std::array<double, 3>>& samples) {
   const auto& loads = eng().model().point_loads;
@@ -169,6 +175,16 @@ void Simulation::set_load_history(int index, const std::vector<std::array<double
     throw InputError(fmt::format("set_load: load {} does not exist; the model has {} loads (0..{})", index,
                                  loads.size(), static_cast<int>(loads.size()) - 1));
   if (samples.empty()) throw InputError("set_load_history: no samples");
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const auto& s = samples[k];
+    if (!std::isfinite(s[0]) || !std::isfinite(s[1]) || !std::isfinite(s[2]))
+      throw InputError(fmt::format("set_load_history: load {}: samples[{}] = ({:g}, {:g}, {:g}) must be finite "
+                                   "(t [{}], fx, fy [{}])", index, k, s[0], s[1], s[2], scene_.units.time,
+                                   scene_.units.force));
+    if (k > 0 && !(s[0] > samples[k - 1][0]))
+      throw InputError(fmt::format("set_load_history: load {}: samples[{}]: time {:g} does not follow {:g}: times "
+                                   "must increase strictly", index, k, s[0], samples[k - 1][0]));
+  }
   std::vector<core::LoadSample> h;
   json logged = json::array();
   for (const auto& s : samples) {

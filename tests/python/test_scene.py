@@ -3,6 +3,7 @@ changes loads, law parameters and step settings, the state as numpy arrays,
 run() equals `rheodda run`, errors carry the command's messages, Ctrl-C."""
 import copy
 import json
+import math
 import os
 import signal
 import subprocess
@@ -297,6 +298,24 @@ def test_errors_carry_the_command_line_messages(root, rheodda_binary, tmp_path):
         rheodda.Simulation(SHEAR_TEST).set_settings(solver_iterate_tolerance=1.0)
     with pytest.raises(rheodda.Error, match="load 5 does not exist"):
         rheodda.Simulation(SHEAR_TEST).set_load(5, (0.0, 0.0))
+    # What the user gave is named, not the history set_load makes of it.
+    with pytest.raises(rheodda.Error) as e:
+        rheodda.Simulation(SHEAR_TEST).set_load(1, (math.nan, 0.0))
+    assert str(e.value) == "set_load: load 1: force (nan, 0) must be finite [N]"
+    with pytest.raises(rheodda.Error, match=r"set_load_history: load 1: samples\[1\]: time 0 does not follow 5"):
+        rheodda.Simulation(SHEAR_TEST).set_load_history(1, [(5.0, 1.0, 0.0), (0.0, 2.0, 0.0)])
+
+
+def test_a_run_to_a_time_already_passed_is_refused():
+    sim = rheodda.Simulation(SHEAR_TEST)
+    sim.run(until=10.0)
+    with pytest.raises(rheodda.Error) as e:
+        sim.run(until=5.0)
+    assert str(e.value) == ("Simulation.run: until = 5 h lies before the simulation's time 10 h: a run goes forward "
+                            "only (restore a saved state to go back)")
+    with pytest.raises(rheodda.Error, match="until = nan is not a time"):
+        sim.run(until=math.nan)
+    assert sim.run(until=10.0).step_count == 10  # already there: nothing to do, no error
 
 
 def test_an_exception_in_the_callback_stops_between_steps_and_the_run_can_go_on(yaml_scene):
