@@ -77,7 +77,7 @@ void Simulation::apply_joint_set_change(int j, const std::string& text) {
   try {
     eng().edit(e);
   } catch (const contact::JointSetError& err) {  // the contact layer's checks (residual above peak ...)
-    throw core::ModelError(key + "." + err.key(), err.what());
+    throw core::ModelError(key + "." + err.key(), err.message());  // as the loader: key, then its message
   } catch (const std::invalid_argument& err) {
     throw core::ModelError(key, err.what());
   }

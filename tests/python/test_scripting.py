@@ -262,8 +262,16 @@ def test_joint_set_values_change_together_and_laws_keep_their_checks():
     plane = sim.joint_sets["plane"]
     plane.set(cohesion=0.1, tensile_strength=0.05, residual_cohesion=0.02)
     assert (plane.cohesion, plane.tensile_strength, plane.residual_cohesion) == (0.1, 0.05, 0.02)
-    with pytest.raises(rheodda.ModelError, match="residual"):
+    with pytest.raises(rheodda.ModelError) as setter:
         plane.residual_friction_angle = 45.0  # above the peak friction angle 40
+    # the loader's message for the same value in a scene file: key, shortest numbers
+    scene = copy.deepcopy(SHEAR_TEST)
+    scene["joint_sets"]["plane"]["residual_friction_angle"] = 45.0
+    with pytest.raises(rheodda.SceneError) as loader:
+        rheodda.scene_from_dict(scene)
+    assert str(setter.value) == "{}: {}".format(loader.value.key, loader.value.message) == (
+        "joint_sets.plane.residual_friction_angle: 45 deg is above the peak friction_angle 40 deg: a residual "
+        "strength is at most the peak")
     with pytest.raises(rheodda.ModelError, match="joint_sets.plane.frction_angle"):
         plane.set(frction_angle=20)
     assert plane.law == "burgers" and plane.law_parameters == TABLE1

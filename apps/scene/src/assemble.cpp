@@ -15,7 +15,7 @@ AssembledScene assemble_scene(const SceneDescription& s, const BuiltScene& built
     // The contact layer says which joint set, as data: point at its entry in the scene.
     if (e.joint_set() < s.joint_sets.size()) {
       const JointSetDescription& js = s.joint_sets[e.joint_set()];
-      throw SceneError(s.file, js.where, "joint_sets." + js.name + "." + e.key(), e.what());
+      throw SceneError(s.file, js.where, "joint_sets." + js.name + "." + e.key(), e.message());
     }
     throw SceneError(s.file, s.analysis.where, "analysis", e.what());
   } catch (const std::invalid_argument& e) {

@@ -40,19 +40,23 @@ inline double restitution_damping_ratio(double e) {
 
 /// A joint set refused by the contact layer (ContactSystem's constructor): which one,
 /// as data (its index in the list given, and the key at fault), so that a reader can
-/// point at its entry in a scene file without parsing the message.
+/// point at its entry in a scene file without parsing the message. Its text names the
+/// joint set and key as the scene loader does: "joint_sets.NAME.KEY: MESSAGE".
 class JointSetError : public std::invalid_argument {
  public:
   JointSetError(std::size_t index, std::string name, std::string key, const std::string& message)
-      : std::invalid_argument("joint set " + std::to_string(index) + " '" + name + "': " + message),
+      : std::invalid_argument("joint_sets." + name + "." + key + ": " + message),
         index_(index),
-        key_(std::move(key)) {}
+        key_(std::move(key)),
+        message_(message) {}
   std::size_t joint_set() const { return index_; }  ///< index into the joint sets given
   const std::string& key() const { return key_; }    ///< e.g. "cohesion", "shear_stiffness"
+  const std::string& message() const { return message_; }  ///< the text after the key
 
  private:
   std::size_t index_;
   std::string key_;
+  std::string message_;
 };
 
 /// Mechanical properties of one family of joints.
