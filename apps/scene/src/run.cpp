@@ -141,7 +141,7 @@ Run::Run(const SceneDescription& scene, const RunOptions& options, RunResult& ru
   for (long long k = 0; k <= nframes; ++k) frame_times.push_back(std::min(double(k) * a.output_interval, a.duration));
   for (std::size_t j = 0; j < s.joint_sets.size(); ++j)
     if (s.joint_sets[j].record) recorded.push_back(static_cast<int>(j));
-  history_header = make_history_header(s, recorded);
+  history_header = make_history_header(s);
   model_size = scene::model_size(initial);
   inputs_text = scene_json_text(s);
   scene_text_json = nlohmann::ordered_json(scene_text).dump();

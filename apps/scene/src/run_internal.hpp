@@ -109,7 +109,7 @@ void check_guards(const Run& run, const core::Engine& e);
 
 // run_writer.cpp
 /// history.csv's column line for the scene's measurement points and recorded joint sets.
-std::string make_history_header(const SceneDescription& s, const std::vector<int>& recorded);
+std::string make_history_header(const SceneDescription& s);
 /// history.csv's row of the engine's state after the step `r` (nullptr: the initial state).
 std::string history_row(const Run& run, const core::StepReport* r);
 /// A new run's history.csv and contacts.csv: units, headers and the initial row.

@@ -4,6 +4,7 @@
 // frames/contacts_NNNNNN.vtp, and the collections blocks.pvd and contacts.pvd
 // that list them.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cmath>
 #include <filesystem>
@@ -31,18 +32,24 @@ std::string contacts_collection(const Run& run) {
 
 }  // namespace
 
-std::string make_history_header(const SceneDescription& s, const std::vector<int>& recorded) {
-  std::string history_header = "time,step,dt,cuts,iterations";
-  for (const auto& mp : s.measurement_points) history_header += fmt::format(",{0}.u,{0}.v", mp.name);
-  for (int j : recorded)
-    history_header += fmt::format(",{0}.contacts,{0}.shear_displacement,{0}.shear_force,{0}.shear_displacement_magnitude",
-                                  s.joint_sets[j].name);
-  for (const char* column : kHistoryEnergyColumns) history_header += fmt::format(",{}", column);
-  if (has_bolts(s)) history_header += ",energy_bolt,dissipation_bolt";  // docs/reference/bolts.md, "Energy"
-  if (!s.stages.empty()) history_header += ",stage";  // docs/reference/stages.md
-  history_header += '\n';
-  return history_header;
+std::vector<std::string> history_columns(const SceneDescription& s) {
+  std::vector<std::string> c{"time", "step", "dt", "cuts", "iterations"};
+  for (const auto& mp : s.measurement_points)
+    for (const char* f : {".u", ".v"}) c.push_back(mp.name + f);
+  for (const auto& j : s.joint_sets)  // the recorded joint sets (Run::recorded)
+    if (j.record)
+      for (const char* f : {".contacts", ".shear_displacement", ".shear_force", ".shear_displacement_magnitude"})
+        c.push_back(j.name + f);
+  c.insert(c.end(), kHistoryEnergyColumns.begin(), kHistoryEnergyColumns.end());
+  if (has_bolts(s)) {  // docs/reference/bolts.md, "Energy"
+    c.emplace_back("energy_bolt");
+    c.emplace_back("dissipation_bolt");
+  }
+  if (!s.stages.empty()) c.emplace_back("stage");  // docs/reference/stages.md
+  return c;
 }
+
+std::string make_history_header(const SceneDescription& s) { return fmt::format("{}\n", fmt::join(history_columns(s), ",")); }
 
 std::string history_row(const Run& run, const core::StepReport* r) {
   const SceneDescription& s = run.s;

@@ -170,16 +170,12 @@ void apply(YAML::Node root, const Override& o, const std::string& file, const st
   }
 }
 
-/// history.csv columns a scene's run will have (docs/reference/outputs.md), plus the derived POINT.displacement.
-std::set<std::string> history_columns(const scene::SceneDescription& s) {
-  std::set<std::string> c{"time", "step", "dt", "cuts", "iterations"};
-  for (const auto& m : s.measurement_points)
-    for (const char* f : {".u", ".v", ".displacement"}) c.insert(m.name + f);
-  for (const auto& j : s.joint_sets)
-    if (j.record)
-      for (const char* f : {".contacts", ".shear_displacement", ".shear_force", ".shear_displacement_magnitude"})
-        c.insert(j.name + f);
-  c.insert(scene::kHistoryEnergyColumns.begin(), scene::kHistoryEnergyColumns.end());
+/// history.csv columns a scene's run will have (scene::history_columns, the run's own list), plus the
+/// derived POINT.displacement.
+std::set<std::string> output_columns(const scene::SceneDescription& s) {
+  const std::vector<std::string> run = scene::history_columns(s);
+  std::set<std::string> c(run.begin(), run.end());
+  for (const auto& m : s.measurement_points) c.insert(m.name + ".displacement");
   return c;
 }
 
@@ -544,7 +540,7 @@ std::vector<std::string> prepare_cases(const StudyDescription& study, const vola
         }
       throw SceneError(study.file, at, key, fmt::format("case '{}' is not a valid scene: {}: {}", c.name, e.key(), e.message()));
     }
-    const auto columns = history_columns(s);
+    const auto columns = output_columns(s);
     for (std::size_t i = 0; i < study.outputs.size(); ++i)
       if (!columns.count(study.outputs[i]))
         throw SceneError(study.file, c.where, fmt::format("outputs[{}]", i),

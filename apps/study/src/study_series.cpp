@@ -67,6 +67,23 @@ std::vector<std::pair<double, double>> read_history_series(const std::string& hi
   }
   if (it < 0 || iu < 0) throw std::runtime_error(fmt::format("{} has no column '{}'", history_csv, column));
   std::vector<std::pair<double, double>> out;
+  if (column == "stage") {
+    // The stage in force is a name (docs/reference/stages.md); as a number: the stages begun so
+    // far, 0 before the first. A step function: a stage begins between two steps, at the time
+    // of the row before its first, which gets both values (value_at takes the later one after it).
+    std::string current;
+    double begun = 0.0;
+    while (std::getline(in, line)) {
+      if (line.empty() || line[0] == '#') continue;
+      const auto f = split_csv_line(line);
+      const std::string name = iu < static_cast<int>(f.size()) ? f[static_cast<std::size_t>(iu)] : std::string();
+      const double t = std::stod(f.at(static_cast<std::size_t>(it)));
+      if (!name.empty() && name != current && !out.empty()) out.emplace_back(out.back().first, begun + 1.0);
+      if (!name.empty() && name != current) begun += 1.0, current = name;
+      out.emplace_back(t, begun);
+    }
+    return out;
+  }
   while (std::getline(in, line)) {
     if (line.empty() || line[0] == '#') continue;
     const auto f = split_csv_line(line);

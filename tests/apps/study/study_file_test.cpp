@@ -2,6 +2,9 @@
 // file, line, column and key; `rheodda study` then exits 2 and runs nothing.
 #include <boost/test/unit_test.hpp>
 
+#include <fstream>
+#include <sstream>
+
 #include "rheodda/scene/loader.hpp"
 #include "rheodda/study/study.hpp"
 #include "study_support.hpp"
@@ -207,6 +210,55 @@ BOOST_AUTO_TEST_CASE(a_missing_study_or_base_scene_is_named_with_the_reason_and_
   BOOST_TEST(b.output.find(file.string() + ":1:8: scene: cannot open " + (dir / "nosuch.yaml").string() +
                            ": No such file or directory") != std::string::npos, b.output);
   BOOST_TEST(b.output.find(":0:0") == std::string::npos, b.output);
+}
+
+BOOST_AUTO_TEST_CASE(a_study_takes_every_column_of_the_runs_history_bolts_and_stage_included) {
+  // The study checks its outputs against the run's own list of columns (scene::history_columns):
+  // the bolts' energy columns and `stage` of a scene with bolts and stages are there too.
+  const fs::path dir = fresh_dir("bolt-stage-columns");
+  std::ofstream(dir / "bolted.yaml") << read_text(source_path("examples/bolted-block.yaml"))
+                                     << "\nstages:\n"
+                                        "  - {name: weaken, at: 0.3, joint_sets: {slope: {friction_angle: 15}}}\n"
+                                        "  - {name: weaker, at: 0.6, joint_sets: {slope: {friction_angle: 10}}}\n";
+  std::ofstream(dir / "study.yaml") << "scene: bolted.yaml\n"
+                                       "outputs: [energy_bolt, dissipation_bolt, stage]\n"
+                                       "times: [0.2, 0.5, 1.0]\n"
+                                       "cases:\n"
+                                       "  - {name: phi20}\n";
+  const auto r = run_rheodda("study " + (dir / "study.yaml").string() + " -o " + (dir / "out").string() + " --no-plot");
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.output);
+  const auto rows = read_study_csv((dir / "out" / "study.csv").string());
+  BOOST_TEST_REQUIRE(rows.size() == 1u);
+  const auto& row = rows[0];
+  for (const auto& [column, text] : row) BOOST_TEST_MESSAGE(column << " = " << text);
+  // `stage` as a number: the stages begun by that time (0 before the first; docs/guide/studies.md).
+  BOOST_TEST(std::stod(row.at("stage@0.2")) == 0.0);
+  BOOST_TEST(std::stod(row.at("stage@0.5")) == 1.0);
+  BOOST_TEST(std::stod(row.at("stage@1")) == 2.0);
+  // The bolt columns at the end: the values of the case's own history.csv, last row.
+  std::ifstream history(dir / "out" / "cases" / "phi20" / "history.csv");
+  std::string line, header, last;
+  while (std::getline(history, line))
+    if (!line.empty() && line[0] != '#') (header.empty() ? header : last) = line;
+  auto field = [](const std::string& text, std::size_t k) {
+    std::stringstream in(text);
+    std::string f;
+    for (std::size_t i = 0; i <= k; ++i) std::getline(in, f, ',');
+    return f;
+  };
+  auto index_of = [&](const std::string& name) {
+    std::stringstream in(header);
+    std::string f;
+    for (std::size_t i = 0; std::getline(in, f, ','); ++i)
+      if (f == name) return i;
+    BOOST_FAIL("history.csv has no column " << name);
+    return std::size_t{0};
+  };
+  for (const char* column : {"energy_bolt", "dissipation_bolt"}) {
+    const double run = std::stod(field(last, index_of(column)));
+    BOOST_TEST(run > 0.0, column);  // the bolt holds the block: its spring stores and dissipates energy
+    BOOST_TEST(std::stod(row.at(std::string(column) + "@1")) == run, boost::test_tools::tolerance(1e-9));
+  }
 }
 
 BOOST_AUTO_TEST_SUITE_END()

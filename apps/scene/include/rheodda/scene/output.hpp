@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "rheodda/core/energy.hpp"
+#include "rheodda/scene/scene.hpp"
 
 namespace rheodda::scene {
 
@@ -38,6 +39,10 @@ inline std::array<double, kHistoryEnergyColumns.size()> history_energy_values(co
           fl.dissipation_contact_release, fl.dissipation_edits, fl.residual, en.relative_residual(),
           core::inertia_share(en.step)};
 }
+
+/// The columns of a run's history.csv, in order (docs/reference/outputs.md): the one
+/// list the run writes (run_writer.cpp) and a study checks its outputs against.
+std::vector<std::string> history_columns(const SceneDescription& s);
 
 /// Writes `content` to `path` through `path + ".tmp"` and a rename, so that a reader
 /// (or a run killed at any moment) sees either the old or the new content. With
