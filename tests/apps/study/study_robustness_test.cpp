@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <fstream>
 #include <regex>
 #include <string>
 #include <thread>
@@ -110,27 +111,43 @@ BOOST_AUTO_TEST_CASE(a_killed_study_leaves_no_case_running_and_resumes_to_the_sa
                          .exit_code == 0);
   const fs::path cut = dir / "cut";
   const pid_t pid = spawn_rheodda({"study", (dir / "study.yaml").string(), "-o", cut.string(), "-j", "2", "--no-plot"});
+  // Each running case is frozen (SIGSTOP) as soon as it has written some steps, so that
+  // neither runs to its end while the other starts: the kill finds both mid-run however
+  // the machine schedules them. Its process id is in its folder's lock (output.hpp, FolderLock).
   int status = 0;
-  for (;;) {  // until both running cases have written some steps
-    std::error_code ec;
-    const auto size = [&](const char* c) { return fs::file_size(cut / "cases" / c / "history.csv", ec); };
-    if (fs::exists(cut / "cases" / "b" / "history.csv", ec) && size("a") > 3000 && size("b") > 3000) break;
-    BOOST_TEST_REQUIRE(::waitpid(pid, &status, WNOHANG) == 0, "the study ended before it could be killed");
-    std::this_thread::yield();
+  std::vector<pid_t> frozen;
+  for (const char* c : {"a", "b"}) {
+    for (;;) {
+      std::error_code ec;
+      if (fs::exists(cut / "cases" / c / "history.csv", ec) &&
+          fs::file_size(cut / "cases" / c / "history.csv", ec) > 3000) {
+        std::ifstream lock(cut / "cases" / c / ".rheodda.lock");
+        pid_t owner = 0;
+        if (lock >> owner && owner > 0 && ::kill(owner, SIGSTOP) == 0) {
+          frozen.push_back(owner);
+          break;
+        }
+      }
+      BOOST_TEST_REQUIRE(::waitpid(pid, &status, WNOHANG) == 0, "the study ended before it could be killed");
+      std::this_thread::yield();
+    }
   }
+  auto ran_to_its_end = [&](const char* c) {
+    return fs::exists(cut / "cases" / c / "summary.json") &&
+           read_text((cut / "cases" / c / "summary.json").string()).find("\"completed\"") != std::string::npos;
+  };
+  for (const char* c : {"a", "b"}) BOOST_TEST_REQUIRE(!ran_to_its_end(c), "case " << c);  // frozen mid-run
   ::kill(pid, SIGKILL);
   ::waitpid(pid, &status, 0);
   BOOST_TEST_REQUIRE(WIFSIGNALED(status));
+  // The parent-death signal (SIGKILL) ends a stopped process too.
   // The cases die with the study (the kernel's parent-death signal): their locks are free
   // as soon as the kernel has ended them, not when their runs end (3 s each here).
   for (const char* c : {"a", "b"}) {
     int polls = 0;
     while (!lock_free(cut / "cases" / c) && polls++ < 400) std::this_thread::sleep_for(std::chrono::milliseconds(5));
     BOOST_TEST(lock_free(cut / "cases" / c), "case " << c << " still running");
-    const bool ran_to_its_end = fs::exists(cut / "cases" / c / "summary.json") &&
-                                read_text((cut / "cases" / c / "summary.json").string()).find("\"completed\"") !=
-                                    std::string::npos;
-    BOOST_TEST(!ran_to_its_end, "case " << c);
+    BOOST_TEST(!ran_to_its_end(c), "case " << c);
   }
   const auto resumed = run_rheodda("study " + (dir / "study.yaml").string() + " -o " + cut.string() +
                                    " -j 2 --no-plot --resume");
