@@ -155,3 +155,27 @@ def test_hold_is_read_and_checked_as_the_loader_reads_other_keys():
         sim.blocks["block"].fix(dofs=["rotation"])
     with pytest.raises(rheodda.Error, match="unknown 'z'"):
         sim.blocks["block"].fix(dofs=["z"])
+
+
+def test_a_stage_holding_a_falling_block_in_y_stops_its_fall_and_leaves_it_sliding_in_x(tmp_path):
+    # The block falls (g t^2/2) moving at 0.5 m/s in x; at t1 = 0.1 s a stage holds its centre in y
+    # only: the fall stops, its kinetic energy in y, m (g t1)^2 / 2, is booked, and it goes on in x at
+    # 0.5 m/s (x = 0.5 t throughout). A scene with stages runs with rheodda.run.
+    t1, vx = 0.1, 0.5
+    scene = falling("x")
+    del scene["fixed_points"]
+    scene["blocks"][0]["initial_velocity"] = [vx, 0.0, 0.0]
+    scene["measurement_points"] = [{"name": "centre", "point": [0.5, 10.25], "block": "rock"}]
+    y1 = 10.25 - G * t1 ** 2 / 2
+    scene["stages"] = [{"name": "hold", "at": t1,
+                        "add_fixed_points": [{"point": [0.5 + vx * t1, y1], "block": "rock", "hold": "y"}]}]
+    assert rheodda.run(scene, str(tmp_path / "out"))["status"] == "completed"
+    rows = [line.split(",") for line in (tmp_path / "out" / "history.csv").read_text().splitlines()
+            if not line.startswith("#")]
+    h = {name: np.array([float(r[k]) for r in rows[1:]]) for k, name in enumerate(rows[0]) if name != "stage"}
+    assert h["centre.u"][-1] == pytest.approx(vx * 0.3, rel=1e-9)
+    # held from t1 on, by a penalty spring: its deflection m g / p = 2.5e-8 m is 5e-7 of the fall
+    assert h["centre.v"][-1] == pytest.approx(-G * t1 ** 2 / 2, rel=1e-6)
+    mass = 2600 * 1.0 * 0.5  # density x area [kg/m]
+    assert h["dissipation_edits"][-1] == pytest.approx(mass * (G * t1) ** 2 / 2, rel=1e-9)
+    assert np.abs(unbooked(h)).max() < 1e-9 * mass * G  # history.csv's 10 digits
