@@ -42,6 +42,9 @@ class PythonLawError(Error):
     method: str
     value: str
     expected: str
+    contact: int | None
+    step: int | None
+    time: float | None
 
 class RunError(RuntimeError): ...
 
