@@ -248,10 +248,13 @@ BoltEnergy BoltSet::commit(const Model& m, const std::vector<BlockState>& blocks
   for (std::size_t k = 0; k < m.bolts.size(); ++k) {
     const Bolt& bolt = m.bolts[k];
     BoltState& s = states[k];
+    // A ruptured bolt keeps the length and elongation it ruptured at
+    // (docs/reference/bolts.md, "Equations"): it has no ends to measure between.
+    if (s.state == BoltMode::ruptured) continue;
     const auto [xa, xb] = ends(bolt, blocks);
     s.length = (xb - xa).norm();
     s.elongation = s.length - rest_length(bolt);  // exact, on the moved geometry
-    if (s.state == BoltMode::ruptured || k >= trials_.size() || !trials_[k].active) continue;
+    if (k >= trials_.size() || !trials_[k].active) continue;
     const Trial& t = trials_[k];
     const double kb = bolt.axial_stiffness;
     const double n_start = s.force, plastic_start = s.plastic_elongation, creep_start = s.creep_elongation();

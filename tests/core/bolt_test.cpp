@@ -106,6 +106,7 @@ BOOST_AUTO_TEST_CASE(bolt_yields_then_ruptures_at_its_elongation) {
   const double t_yield = ny * (k1 + k2) / k1 / rate;  // k1 F/(k1 + k2) = N_y: 30 s
   const double t_rupture = (er * k2 + ny) / rate;     // (F - N_y)/k2 = e_r: 70 s
   int checked[3] = {0, 0, 0};
+  double ruptured_elongation = 0.0, ruptured_length = 0.0;  // as it ruptured
   while (e.time() < 100.0 - 1e-9) {
     e.step();
     const double t = e.time(), F = rate * t;
@@ -130,6 +131,11 @@ BOOST_AUTO_TEST_CASE(bolt_yields_then_ruptures_at_its_elongation) {
       BOOST_TEST(s1.force == 0.0);
       BOOST_TEST(std::abs(s2.force - F) <= 3e-5 * F);
       BOOST_TEST(std::abs(s2.elongation - F / k2) <= 3e-5 * F / k2);
+      // A ruptured bolt keeps the elongation and length it ruptured at, while the
+      // block it held moves on.
+      if (checked[2] == 0) ruptured_elongation = s1.elongation, ruptured_length = s1.length;
+      BOOST_TEST(s1.elongation == ruptured_elongation);
+      BOOST_TEST(s1.length == ruptured_length);
       ++checked[2];
     }
   }
@@ -139,6 +145,9 @@ BOOST_AUTO_TEST_CASE(bolt_yields_then_ruptures_at_its_elongation) {
   // It ruptured at the end of the step in which its elongation passed e_r.
   BOOST_TEST(e.bolts()[0].rupture_time >= t_rupture);
   BOOST_TEST(e.bolts()[0].rupture_time <= t_rupture + 0.25 + 1e-9);
+  BOOST_TEST(ruptured_elongation > er);
+  BOOST_TEST(ruptured_elongation < er + 0.25 * rate / k2);  // within the step it ruptured in
+  BOOST_TEST(e.bolts()[1].elongation > 1.2 * ruptured_elongation);  // the block moved on
   BOOST_TEST(e.energy().max_relative_residual <= 1e-4);
 }
 
