@@ -136,6 +136,7 @@ void BoltSet::begin_step(const Model& m, const std::vector<BlockState>& blocks,
   model_ = &m;
   start_ = committed;
   trials_.assign(m.bolts.size(), Trial{});
+  if (previous_.size() != m.bolts.size()) previous_.resize(m.bolts.size());
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(6 * static_cast<Eigen::Index>(blocks.size()));
   for (std::size_t k = 0; k < m.bolts.size(); ++k) {
     const Bolt& bolt = m.bolts[k];
@@ -286,6 +287,8 @@ BoltEnergy BoltSet::commit(const Model& m, const std::vector<BlockState>& blocks
     energy.dissipation += 0.5 * (force - n_start) * (force - n_start) / kb +
                           force * (s.plastic_elongation - plastic_start) + force * (creep_now - creep_start) +
                           force * (t.at.work - (s.length - t.length_start));
+    if (previous_.size() == m.bolts.size())  // the curvature of the force (bolt_creep_error.cpp)
+      previous_[k] = {true, n_start, t.constants.dt, force, s.elongation};
     if (s.elongation > bolt.rupture_elongation) {
       // Ruptured at the end of this step: its stored energy is released, and it
       // carries nothing from now on (docs/reference/bolts.md, "Equations").

@@ -76,6 +76,11 @@ class BoltSet {
   /// nonlinear law's linearization moved; the force (3) at D not yet what (5)
   /// predicted (Newton not converged). Returns the number of such changes.
   int check(const Eigen::VectorXd& D);
+  /// The creep error estimate of the step just solved (after the last check,
+  /// before commit) [length]: the largest over the intact bolts with a law of
+  /// the creep elongation's local error (docs/reference/step-controls.md, "Adaptive
+  /// creep stepping"; bolt_creep_error.cpp).
+  double creep_error_estimate() const;
   /// The step is accepted and the blocks have moved (`blocks`: end-of-step
   /// geometry): updates `states` (exact elongation, plastic and creep increments,
   /// rupture at t_end) and returns the step's energy terms.
@@ -117,7 +122,17 @@ class BoltSet {
     laws::StepConstants constants;
     laws::Linearization lin;
   };
+  /// The force of the previous accepted step, for the curvature of a bolt's force
+  /// in the creep error estimate (bolt_creep_error.cpp): valid while the
+  /// committed state it was recorded against is the one a step starts from.
+  struct Previous {
+    bool valid = false;
+    double force_start = 0.0;  ///< N at the start of the previous step [force]
+    double dt = 0.0;           ///< its length [time]
+    double force_end = 0.0, elongation_end = 0.0;  ///< the committed state it led to
+  };
   std::vector<Trial> trials_;
+  std::vector<Previous> previous_;
   const Model* model_ = nullptr;
   std::vector<BoltState> start_;  ///< the states at the step start
   void linearize(std::size_t k, double guess);
