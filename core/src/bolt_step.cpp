@@ -18,11 +18,7 @@ namespace {
 Vec2 position(const BlockState& b, const Vec2& p0) { return b.map_A * p0 + b.map_b; }
 
 /// The two ends of a bolt now [length].
-std::pair<Vec2, Vec2> ends(const Bolt& bolt, const std::vector<BlockState>& blocks) {
-  const Vec2 a = position(blocks[bolt.block_a], bolt.point_a);
-  const Vec2 b = bolt.block_b >= 0 ? position(blocks[bolt.block_b], bolt.point_b) : bolt.point_b;
-  return {a, b};
-}
+std::pair<Vec2, Vec2> ends(const Bolt& bolt, const std::vector<BlockState>& blocks) { return bolt_ends(bolt, blocks); }
 
 /// Length when installed, L0 (Bolt::installed_length) [length].
 double installed_length(const Bolt& bolt) {
@@ -30,13 +26,21 @@ double installed_length(const Bolt& bolt) {
 }
 
 /// Unstressed length L_rest = L0 - pretension / k (bolt.hpp) [length].
-double rest_length(const Bolt& bolt) { return installed_length(bolt) - bolt.pretension / bolt.axial_stiffness; }
+double rest_length(const Bolt& bolt) { return bolt_rest_length(bolt); }
 
 /// Relative margin of the yield checks, so that a force at N_y to round-off
 /// does not flip between the modes from one iterate to the next [-].
 constexpr double kYieldMargin = 1e-9;
 
 }  // namespace
+
+std::pair<Vec2, Vec2> bolt_ends(const Bolt& bolt, const std::vector<BlockState>& blocks) {
+  const Vec2 a = position(blocks[bolt.block_a], bolt.point_a);
+  const Vec2 b = bolt.block_b >= 0 ? position(blocks[bolt.block_b], bolt.point_b) : bolt.point_b;
+  return {a, b};
+}
+
+double bolt_rest_length(const Bolt& bolt) { return installed_length(bolt) - bolt.pretension / bolt.axial_stiffness; }
 
 const char* bolt_mode_name(BoltMode m) {
   switch (m) {

@@ -41,6 +41,7 @@
 // the bolt's force along its end-of-step axis on the geometry the blocks are moved to.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "rheodda/contact/kinematics.hpp"
@@ -86,6 +87,20 @@ class BoltSet {
   /// rupture at t_end) and returns the step's energy terms.
   BoltEnergy commit(const Model& m, const std::vector<BlockState>& blocks, double t_end,
                     std::vector<BoltState>& states);
+
+  /// Step doubling (docs/reference/step-controls.md, "Step doubling"; bolt_doubling.cpp):
+  /// the largest difference of a bolt's creep elongation between `fine` (two
+  /// steps of dt/2) and `coarse` (one step of dt) from the same start [length].
+  static double creep_difference(const std::vector<BoltState>& fine, const std::vector<BoltState>& coarse);
+  /// Whether every bolt ends both runs in the same mode (elastic, yielding in
+  /// the same sense, ruptured), which Richardson extrapolation needs.
+  static bool same_modes(const std::vector<BoltState>& fine, const std::vector<BoltState>& coarse);
+  /// Richardson extrapolation of the bolts' states, fine := 2 fine - coarse
+  /// (the law's internal displacements and the plastic elongation; the length
+  /// and elongation measured on the extrapolated `blocks`, the force from them
+  /// by (1) of docs/reference/bolts.md). Needs same_modes.
+  static void extrapolate(const Model& m, const std::vector<BlockState>& blocks, std::vector<BoltState>& fine,
+                          const std::vector<BoltState>& coarse);
 
   /// Where an end of a bolt goes for the block unknowns D, by (1).
   struct EndMotion {
@@ -143,13 +158,18 @@ class BoltSet {
 /// Relative tolerance of the bolts' Newton iteration on their force (bolts.hpp, (5)) [-].
 constexpr double kNewtonTolerance = 1e-9;
 
+/// The two ends of a bolt on the blocks now [length] (bolt_step.cpp).
+std::pair<Vec2, Vec2> bolt_ends(const Bolt& bolt, const std::vector<BlockState>& blocks);
+/// Unstressed length L_rest = L0 - pretension / k of a bolt (bolt.hpp) [length].
+double bolt_rest_length(const Bolt& bolt);
+
 /// Refuses a model's bolts that are out of range (ModelError naming
 /// "bolts[k].key"), called by Engine::Impl::validate.
 void validate_bolts(const Model& m);
 /// Refuses a bolt whose values are out of range or whose two ends coincide
 /// (ModelError naming "<key>.field"); its ends' blocks and points are the caller's.
 void validate_bolt_values(const Bolt& b, const ModelEntry& key);
-/// Refuses the settings that do not carry bolts (step doubling, the newton contact solve).
+/// Refuses the settings that do not carry bolts (the newton contact solve).
 void validate_bolt_settings(const Settings& s);
 
 }  // namespace rheodda::core

@@ -149,10 +149,10 @@ class EnergyAccount {
   /// `start` through the two half steps. Makes it one step: the flows of the two
   /// halves summed or, when the step was extrapolated, every flow extrapolated as
   /// the states are, 2 (sum of the halves) - (the single step's `coarse`), and the
-  /// stored energies those of the extrapolated state.
+  /// stored energies those of the extrapolated state (`bolts`: the bolts' then).
   static void finish_doubling(const EnergyInputs& in, const EnergyBalance& start,
                               const EnergyFlows& coarse, bool extrapolated,
-                              const ContactEnergy& contacts, EnergyBalance& balance);
+                              const ContactEnergy& contacts, EnergyBalance& balance, double bolts = 0.0);
 
   /// A static trial step D of dt, before it is taken: the work its inertia term
   /// D^T M D/(beta dt^2) absorbs over the work of gravity and of the point loads
