@@ -28,6 +28,10 @@ double installed_length(const Bolt& bolt) {
 /// Unstressed length L_rest = L0 - pretension / k (bolt.hpp) [length].
 double rest_length(const Bolt& bolt) { return bolt_rest_length(bolt); }
 
+/// Relative round-off of a position [-]: a hundred times the double's epsilon,
+/// for the few operations that make an end's coordinates.
+constexpr double kRoundoff = 1e-14;
+
 /// Relative margin of the yield checks, so that a force at N_y to round-off
 /// does not flip between the modes from one iterate to the next [-].
 constexpr double kYieldMargin = 1e-9;
@@ -240,9 +244,11 @@ int BoltSet::check(const Eigen::VectorXd& D) {
       if (arm > 0.0) m = std::max(m, r.tail<4>().cwiseAbs().maxCoeff() / arm);
       return m;
     };
+    // Relative to the force, and not below the force of the round-off of the
+    // ends' coordinates, kRoundoff (|x_a| + |x_b|) (a bolt that carries little).
     const double off = std::max(misfit(exact_a - pred_a, t.at.a.rho), misfit(exact_b - pred_b, t.at.b.rho));
-    const double scale = std::abs(t.at.N) + std::abs(t.force_start) + t.k_eff * 1e-12 * t.length_start;
-    if (off > kNewtonTolerance * scale) ++changes;
+    const double floor = t.k_eff * kRoundoff * (t.x_a.norm() + t.x_b.norm());
+    if (off > kNewtonTolerance * (std::abs(t.at.N) + std::abs(t.force_start)) + floor) ++changes;
   }
   return changes;
 }

@@ -37,7 +37,7 @@
 // F_a += N0 g_a, g = T^T n, N0 = k_eff s0) plus the geometric stiffness. check()
 // moves the iterate to the new D; the step goes on iterating while the bolt's
 // generalized force (3) at the new D differs from what (5) predicted by more than
-// kNewtonTolerance of the force, so that the accepted step is in equilibrium with
+// kNewtonTolerance of the force and the force of the ends' coordinates' round-off, so that the accepted step is in equilibrium with
 // the bolt's force along its end-of-step axis on the geometry the blocks are moved to.
 #pragma once
 
@@ -155,7 +155,8 @@ class BoltSet {
   Point point(std::size_t k, const Eigen::VectorXd& D) const;
 };
 
-/// Relative tolerance of the bolts' Newton iteration on their force (bolts.hpp, (5)) [-].
+/// Relative tolerance of the bolts' Newton iteration on their force (bolts.hpp, (5)) [-];
+/// bolt_step.cpp adds the force of the round-off of the ends' coordinates.
 constexpr double kNewtonTolerance = 1e-9;
 
 /// The two ends of a bolt on the blocks now [length] (bolt_step.cpp).
