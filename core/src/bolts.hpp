@@ -55,6 +55,7 @@ struct BoltEnergy {
   double stored = 0.0;       ///< sum over intact bolts of N^2 / (2 k)
   double dissipation = 0.0;  ///< of the last step: (N1 - N0)^2/(2k) (integration) + N1 Delta e_p
                              ///< (plastic) + N1 Delta e_c (creep) + N0^2/(2k) of a bolt that ruptured
+                             ///< + N1 (n1 . (G_b D_b - G_a D_a) - Delta L) (the axis's turn)
 };
 
 class BoltSet {

@@ -69,8 +69,8 @@ struct EnergyFlows {
   double dissipation_contact_release = 0.0;  ///< contact springs detached during the step
                                              ///< (ContactEnergy::release)
   double dissipation_bolt = 0.0;  ///< bolts (docs/reference/bolts.md, "Energy"): their springs' integration
-                                  ///< (N1 - N0)^2/(2k), plastic N_y Delta e_p, creep N Delta e_c,
-                                  ///< and the stored energy of a bolt that ruptured
+                                  ///< (N1 - N0)^2/(2k) and its axis's turn, plastic N_y Delta e_p,
+                                  ///< creep N Delta e_c, and the stored energy of a bolt that ruptured
   double residual = 0.0;  ///< (change of the stored energy) - works + dissipations: > 0 is
                           ///< energy the terms do not account for that the model gained
   double scale = 0.0;     ///< |work_gravity| + |work_loads| (summed: of every step)
