@@ -15,7 +15,7 @@ suites='bolts,bolt_swing'
 run() {  # $1: build directory
   cmake --build "$1" --target core_test rheodda -j2 >/dev/null
   "$1/tests/core/core_test" --run_test="$suites" --log_level=message 2>&1 |
-    sed -n 's/\x1b\[[0-9;]*m//g; /: .*steps\|pendulum\|relaxation\|_tolerance/p' | grep -v 'error:' || true
+    sed -n 's/\x1b\[[0-9;]*m//g; /: .*steps\|pendulum\|relaxation\|_tolerance/p' | grep -v 'error:\|^ ' || true
   local out
   out="$(mktemp -d)"
   "$1/apps/rheodda" run "$root/examples/rockmass/tunnel-stages.yaml" -o "$out" 2>&1 | grep -o 'completed.*cuts of dt)'
