@@ -47,8 +47,6 @@ void validate_bolt_values(const Bolt& b, const ModelEntry& key) {
 }
 
 void validate_bolt_settings(const Settings& s) {
-  if (s.step_tolerance > 0.0)
-    throw ModelError("settings.step_tolerance", "step doubling does not carry bolts (docs/reference/bolts.md, \"Limits\")");
   if (s.contact_solver == ContactSolver::newton)
     throw ModelError("settings.contact_solver",
                      "the newton contact solve's residual does not hold the bolts' forces; use open_close "

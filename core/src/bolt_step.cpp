@@ -1,6 +1,7 @@
-// The bolts in a step (bolts.hpp; docs/reference/bolts.md, "Equations"): their terms in
-// the block equations, the check of their yield state, and their state update
-// when the step is accepted.
+// The bolts in a step (bolts.hpp; docs/reference/bolts.md, "Equations"): their Newton
+// terms in the block equations at the iterate, the check of the iterate (yield
+// state, law, convergence of the force along the end-of-step axis), and their
+// state update when the step is accepted.
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -17,11 +18,7 @@ namespace {
 Vec2 position(const BlockState& b, const Vec2& p0) { return b.map_A * p0 + b.map_b; }
 
 /// The two ends of a bolt now [length].
-std::pair<Vec2, Vec2> ends(const Bolt& bolt, const std::vector<BlockState>& blocks) {
-  const Vec2 a = position(blocks[bolt.block_a], bolt.point_a);
-  const Vec2 b = bolt.block_b >= 0 ? position(blocks[bolt.block_b], bolt.point_b) : bolt.point_b;
-  return {a, b};
-}
+std::pair<Vec2, Vec2> ends(const Bolt& bolt, const std::vector<BlockState>& blocks) { return bolt_ends(bolt, blocks); }
 
 /// Length when installed, L0 (Bolt::installed_length) [length].
 double installed_length(const Bolt& bolt) {
@@ -29,13 +26,25 @@ double installed_length(const Bolt& bolt) {
 }
 
 /// Unstressed length L_rest = L0 - pretension / k (bolt.hpp) [length].
-double rest_length(const Bolt& bolt) { return installed_length(bolt) - bolt.pretension / bolt.axial_stiffness; }
+double rest_length(const Bolt& bolt) { return bolt_rest_length(bolt); }
+
+/// Relative round-off of a position [-]: a hundred times the double's epsilon,
+/// for the few operations that make an end's coordinates.
+constexpr double kRoundoff = 1e-14;
 
 /// Relative margin of the yield checks, so that a force at N_y to round-off
 /// does not flip between the modes from one iterate to the next [-].
 constexpr double kYieldMargin = 1e-9;
 
 }  // namespace
+
+std::pair<Vec2, Vec2> bolt_ends(const Bolt& bolt, const std::vector<BlockState>& blocks) {
+  const Vec2 a = position(blocks[bolt.block_a], bolt.point_a);
+  const Vec2 b = bolt.block_b >= 0 ? position(blocks[bolt.block_b], bolt.point_b) : bolt.point_b;
+  return {a, b};
+}
+
+double bolt_rest_length(const Bolt& bolt) { return installed_length(bolt) - bolt.pretension / bolt.axial_stiffness; }
 
 const char* bolt_mode_name(BoltMode m) {
   switch (m) {
@@ -81,11 +90,62 @@ void BoltSet::linearize(std::size_t k, double guess) {
   t.s0 = s.elongation - s.plastic_elongation - s.creep_elongation() - t.lin.h;
 }
 
+BoltSet::EndMotion BoltSet::end_motion(const Vec2& c, const Vec2& x, const contact::Vec6& D) {
+  // (1) of bolts.hpp: x' = c + u + R(r0) (I + eps) (x - c), as Engine::Impl::accept
+  // moves the block (the exact-rotation post-correction, docs/reference/engine.md).
+  const Vec2 p = x - c;
+  const double r0 = D(2), cr = std::cos(r0), sr = std::sin(r0);
+  Eigen::Matrix2d R;
+  R << cr, -sr, sr, cr;
+  Eigen::Matrix2d A;
+  A << 1.0 + D(3), 0.5 * D(5), 0.5 * D(5), 1.0 + D(4);
+  EndMotion e;
+  e.rho = R * A * p;
+  e.x = c + D.head<2>() + e.rho;
+  e.G.col(0) = Vec2(1.0, 0.0);
+  e.G.col(1) = Vec2(0.0, 1.0);
+  e.G.col(2) = Vec2(-e.rho.y(), e.rho.x());  // dR/dr0 = J R, J the quarter turn
+  e.G.col(3) = R * Vec2(p.x(), 0.0);
+  e.G.col(4) = R * Vec2(0.0, p.y());
+  e.G.col(5) = R * Vec2(0.5 * p.y(), 0.5 * p.x());
+  return e;  // at D = 0: G = T (contact::displacement_matrix)
+}
+
+BoltSet::Point BoltSet::point(std::size_t k, const Eigen::VectorXd& D) const {
+  const Bolt& bolt = model_->bolts[k];
+  const Trial& t = trials_[k];
+  Point p;
+  p.D_a = D.segment<6>(6 * static_cast<Eigen::Index>(bolt.block_a));
+  p.a = end_motion(t.c_a, t.x_a, p.D_a);
+  if (bolt.block_b >= 0) {
+    p.D_b = D.segment<6>(6 * static_cast<Eigen::Index>(bolt.block_b));
+    p.b = end_motion(t.c_b, t.x_b, p.D_b);
+  } else {
+    p.b.x = t.x_b;  // a fixed anchor: G = 0
+  }
+  const Vec2 d = p.b.x - p.a.x;
+  p.L = d.norm();
+  p.n = p.L > 0.0 ? Vec2(d / p.L) : Vec2(d);  // ends met: no axis, no force direction
+  // (2): the force at this iterate, or the yield force.
+  p.N = t.sign != 0 ? t.sign * bolt.yield_force : t.k_eff * (t.s0 + p.L - t.length_start);
+  // (4): axial and geometric stiffness, the latter only in tension.
+  const double tension = std::max(p.N, 0.0);
+  const Eigen::Matrix2d nn = p.n * p.n.transpose();
+  p.K2 = (t.sign != 0 ? 0.0 : t.k_eff) * nn;
+  if (p.L > 0.0) p.K2 += tension / p.L * (Eigen::Matrix2d::Identity() - nn);
+  p.curv_a = std::max(p.N * p.n.dot(p.a.rho), 0.0);
+  if (bolt.block_b >= 0) p.curv_b = std::max(-p.N * p.n.dot(p.b.rho), 0.0);
+  p.work = p.n.dot(p.b.G * p.D_b - p.a.G * p.D_a);
+  return p;
+}
+
 void BoltSet::begin_step(const Model& m, const std::vector<BlockState>& blocks,
                          const std::vector<BoltState>& committed, double dt) {
   model_ = &m;
   start_ = committed;
   trials_.assign(m.bolts.size(), Trial{});
+  if (previous_.size() != m.bolts.size()) previous_.resize(m.bolts.size());
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(6 * static_cast<Eigen::Index>(blocks.size()));
   for (std::size_t k = 0; k < m.bolts.size(); ++k) {
     const Bolt& bolt = m.bolts[k];
     const BoltState& s = committed[k];
@@ -94,24 +154,18 @@ void BoltSet::begin_step(const Model& m, const std::vector<BlockState>& blocks,
     const auto [xa, xb] = ends(bolt, blocks);
     const double L = (xb - xa).norm();
     if (!(L > 0.0)) continue;  // ends met: no axis this step (docs/reference/bolts.md, "Limits")
-    const Vec2 n = (xb - xa) / L;
-    // (1): g = T^T n at the step-start position of each end.
-    t.g_a = contact::displacement_matrix(blocks[bolt.block_a].centroid, xa).transpose() * n;
-    if (bolt.block_b >= 0) t.g_b = contact::displacement_matrix(blocks[bolt.block_b].centroid, xb).transpose() * n;
+    t.length_start = L;
+    t.c_a = blocks[bolt.block_a].centroid;
+    t.x_a = xa;
+    t.x_b = xb;
+    if (bolt.block_b >= 0) t.c_b = blocks[bolt.block_b].centroid;
     t.active = true;
     t.force_start = s.force;
     if (bolt.law) t.constants = bolt.law->step_constants(dt, laws::automatic_scheme(*bolt.law, bolt.axial_stiffness, dt));
     linearize(k, s.force);
     t.sign = s.state == BoltMode::yielding ? (s.force >= 0.0 ? 1 : -1) : 0;
+    t.at = point(k, zero);  // D^0 = 0: Shi's spring along the start axis, and the geometric stiffness
   }
-}
-
-double BoltSet::elongation_increment(std::size_t k, const Eigen::VectorXd& D) const {
-  const Bolt& bolt = model_->bolts[k];
-  const Trial& t = trials_[k];
-  double d = -t.g_a.dot(D.segment<6>(6 * static_cast<Eigen::Index>(bolt.block_a)));
-  if (bolt.block_b >= 0) d += t.g_b.dot(D.segment<6>(6 * static_cast<Eigen::Index>(bolt.block_b)));
-  return d;  // (1) [length]
 }
 
 void BoltSet::assemble(contact::SystemSink& sink) const {
@@ -120,21 +174,22 @@ void BoltSet::assemble(contact::SystemSink& sink) const {
     if (!t.active) continue;
     const Bolt& bolt = model_->bolts[k];
     const int a = bolt.block_a, b = bolt.block_b;
-    if (t.sign != 0) {  // (4): the yield force, no stiffness
-      const double f = t.sign * bolt.yield_force;
-      sink.add_load(a, f * t.g_a);
-      if (b >= 0) sink.add_load(b, -f * t.g_b);
-      continue;
-    }
-    // (3): the spring k_eff along the axis, its force N0 at Delta = 0.
-    const double n0 = t.k_eff * t.s0;
-    sink.add_stiffness(a, a, t.k_eff * t.g_a * t.g_a.transpose());
-    sink.add_load(a, n0 * t.g_a);
+    const Point& p = t.at;
+    // (4) and (5): K += H, F += H D^j - dPi/dD(D^j).
+    contact::Mat6 h_aa = p.a.G.transpose() * p.K2 * p.a.G;
+    h_aa(2, 2) += p.curv_a;
+    sink.add_stiffness(a, a, h_aa);
+    contact::Vec6 f_a = h_aa * p.D_a + p.N * p.a.G.transpose() * p.n;
     if (b >= 0) {
-      sink.add_stiffness(b, b, t.k_eff * t.g_b * t.g_b.transpose());
-      sink.add_stiffness(a, b, -t.k_eff * t.g_a * t.g_b.transpose());
-      sink.add_load(b, -n0 * t.g_b);
+      contact::Mat6 h_bb = p.b.G.transpose() * p.K2 * p.b.G;
+      h_bb(2, 2) += p.curv_b;
+      const contact::Mat6 h_ab = -p.a.G.transpose() * p.K2 * p.b.G;
+      sink.add_stiffness(b, b, h_bb);
+      sink.add_stiffness(a, b, h_ab);
+      f_a += h_ab * p.D_b;
+      sink.add_load(b, h_bb * p.D_b + h_ab.transpose() * p.D_a - p.N * p.b.G.transpose() * p.n);
     }
+    sink.add_load(a, f_a);
   }
 }
 
@@ -144,8 +199,22 @@ int BoltSet::check(const Eigen::VectorXd& D) {
     Trial& t = trials_[k];
     if (!t.active) continue;
     const Bolt& bolt = model_->bolts[k];
-    // The elastic trial force with the plastic elongation of the step start (2).
-    const double trial = t.k_eff * (t.s0 + elongation_increment(k, D));
+    const Point before = t.at;
+    // What (5) predicts for the generalized force (3) at D: the linear model of D^j.
+    const contact::Vec6 dDa = D.segment<6>(6 * static_cast<Eigen::Index>(bolt.block_a)) - before.D_a;
+    const contact::Vec6 dDb =
+        bolt.block_b >= 0 ? contact::Vec6(D.segment<6>(6 * static_cast<Eigen::Index>(bolt.block_b)) - before.D_b)
+                          : contact::Vec6::Zero();
+    contact::Mat6 h_aa = before.a.G.transpose() * before.K2 * before.a.G;
+    h_aa(2, 2) += before.curv_a;
+    contact::Mat6 h_bb = before.b.G.transpose() * before.K2 * before.b.G;
+    h_bb(2, 2) += before.curv_b;
+    const contact::Mat6 h_ab = -before.a.G.transpose() * before.K2 * before.b.G;
+    const contact::Vec6 pred_a = -before.N * before.a.G.transpose() * before.n + h_aa * dDa + h_ab * dDb;
+    const contact::Vec6 pred_b = before.N * before.b.G.transpose() * before.n + h_ab.transpose() * dDa + h_bb * dDb;
+    // The elastic trial force at D, exact on the moved geometry (2).
+    t.at = point(k, D);
+    const double trial = t.sign != 0 ? t.k_eff * (t.s0 + t.at.L - t.length_start) : t.at.N;
     const double ny = bolt.yield_force;
     if (t.sign == 0 && std::abs(trial) > ny * (1.0 + kYieldMargin)) {
       t.sign = trial > 0.0 ? 1 : -1;  // beyond the yield force: it yields
@@ -158,12 +227,28 @@ int BoltSet::check(const Eigen::VectorXd& D) {
     // only (laws/contact_rheology.hpp, eq. 1'); make it again at this iterate's.
     if (bolt.law && bolt.law->linearity() != laws::Linearity::affine) {
       const double force = t.sign != 0 ? t.sign * ny : trial;
-      const laws::Linearization before = t.lin;
+      const laws::Linearization lin_before = t.lin;
       linearize(k, force);
-      const double moved = std::abs(t.lin.h - before.h) + std::abs((t.lin.c - before.c) * force);
+      const double moved = std::abs(t.lin.h - lin_before.h) + std::abs((t.lin.c - lin_before.c) * force);
       if (moved > kYieldMargin * (std::abs(t.s0) + std::abs(t.lin.h) + std::abs(force) / bolt.axial_stiffness))
         ++changes;
     }
+    t.at = point(k, D);  // in the mode and linearization now in force
+    // Newton: the force (3) at D against the prediction of (5), per end; the
+    // rotation and strain rows (force x length) over the end's lever arm.
+    const contact::Vec6 exact_a = -t.at.N * t.at.a.G.transpose() * t.at.n;
+    const contact::Vec6 exact_b = t.at.N * t.at.b.G.transpose() * t.at.n;
+    auto misfit = [](const contact::Vec6& r, const Vec2& rho) {
+      const double arm = rho.norm();
+      double m = r.head<2>().cwiseAbs().maxCoeff();
+      if (arm > 0.0) m = std::max(m, r.tail<4>().cwiseAbs().maxCoeff() / arm);
+      return m;
+    };
+    // Relative to the force, and not below the force of the round-off of the
+    // ends' coordinates, kRoundoff (|x_a| + |x_b|) (a bolt that carries little).
+    const double off = std::max(misfit(exact_a - pred_a, t.at.a.rho), misfit(exact_b - pred_b, t.at.b.rho));
+    const double floor = t.k_eff * kRoundoff * (t.x_a.norm() + t.x_b.norm());
+    if (off > kNewtonTolerance * (std::abs(t.at.N) + std::abs(t.force_start)) + floor) ++changes;
   }
   return changes;
 }
@@ -174,10 +259,13 @@ BoltEnergy BoltSet::commit(const Model& m, const std::vector<BlockState>& blocks
   for (std::size_t k = 0; k < m.bolts.size(); ++k) {
     const Bolt& bolt = m.bolts[k];
     BoltState& s = states[k];
+    // A ruptured bolt keeps the length and elongation it ruptured at
+    // (docs/reference/bolts.md, "Equations"): it has no ends to measure between.
+    if (s.state == BoltMode::ruptured) continue;
     const auto [xa, xb] = ends(bolt, blocks);
     s.length = (xb - xa).norm();
     s.elongation = s.length - rest_length(bolt);  // exact, on the moved geometry
-    if (s.state == BoltMode::ruptured || k >= trials_.size() || !trials_[k].active) continue;
+    if (k >= trials_.size() || !trials_[k].active) continue;
     const Trial& t = trials_[k];
     const double kb = bolt.axial_stiffness;
     const double n_start = s.force, plastic_start = s.plastic_elongation, creep_start = s.creep_elongation();
@@ -202,9 +290,15 @@ BoltEnergy BoltSet::commit(const Model& m, const std::vector<BlockState>& blocks
     }
     s.force = force;
     s.state = yielding ? BoltMode::yielding : BoltMode::elastic;
-    // Energy (bolts.hpp, BoltEnergy): the end force over the elongation's parts.
+    // Energy (bolts.hpp, BoltEnergy): the end force over the elongation's parts,
+    // and what its work in the step's equations, N n . (G_b D_b - G_a D_a) (bolts.hpp,
+    // (3)), exceeds its work over the length's change: the integration's share of
+    // the axis's turn, N L theta^2 / 2 for a turn theta (docs/reference/bolts.md, "Energy").
     energy.dissipation += 0.5 * (force - n_start) * (force - n_start) / kb +
-                          force * (s.plastic_elongation - plastic_start) + force * (creep_now - creep_start);
+                          force * (s.plastic_elongation - plastic_start) + force * (creep_now - creep_start) +
+                          force * (t.at.work - (s.length - t.length_start));
+    if (previous_.size() == m.bolts.size())  // the curvature of the force (bolt_creep_error.cpp)
+      previous_[k] = {true, n_start, t.constants.dt, force, s.elongation};
     if (s.elongation > bolt.rupture_elongation) {
       // Ruptured at the end of this step: its stored energy is released, and it
       // carries nothing from now on (docs/reference/bolts.md, "Equations").

@@ -249,7 +249,7 @@ void EnergyAccount::end(const EnergyInputs& in, double t_end, const ContactEnerg
 
 void EnergyAccount::finish_doubling(const EnergyInputs& in, const EnergyBalance& start,
                                     const EnergyFlows& coarse, bool extrapolated,
-                                    const ContactEnergy& contacts, EnergyBalance& balance) {
+                                    const ContactEnergy& contacts, EnergyBalance& balance, double bolts) {
   // The two half steps: their flows summed.
   EnergyFlows step = balance.total;
   each_flow(step, start.total, [](double& x, double y) { x -= y; });
@@ -261,6 +261,7 @@ void EnergyAccount::finish_doubling(const EnergyInputs& in, const EnergyBalance&
     now = stored_in_blocks(in);
     now.contact_normal = contacts.normal;
     now.contact_shear = contacts.shear;
+    now.bolt = bolts;
   }
   settle(step, start.stored, now);
   balance.stored = now;

@@ -104,9 +104,14 @@ StepReport Engine::Impl::step(double dt_cap) {
         // the first step dt (the control cannot stall on an estimate that does
         // not fall with the step, e.g. at a contact state change), nor more than
         // max_cuts times in one step.
+        // The bolts' creep counts as the joints' does (bolt_creep_error.cpp); they
+        // commit only when the step is accepted, and the null contact model has
+        // nothing to retract.
         err = contacts->creep_error_estimate();
+        if (!model.bolts.empty()) err = std::max(err, bolt_set.creep_error_estimate());
         if (err > kRejectFactor * s.creep_tolerance && dt > s.dt &&
-            rep.rejections + rep.cuts < s.max_cuts && contacts->retract_step()) {
+            rep.rejections + rep.cuts < s.max_cuts &&
+            (contacts->retract_step() || contacts == &null_contacts)) {
           dt = std::max(dt * std::max(s.dt_cut, 0.9 * std::sqrt(s.creep_tolerance / err)), s.dt);
           ++rep.rejections;
           continue;

@@ -30,6 +30,7 @@ StepReport Engine::Impl::doubling_step(double dt_cap) {
       st.measurements.empty() ? 0 : st.measurements.front().size();
   const std::unique_ptr<ContactSnapshot> start_contacts = contacts->snapshot();
   const EnergyBalance start_energy = st.energy;
+  const std::vector<BoltState> start_bolts = st.bolts;  // the bolts' states (bolt_doubling.cpp)
   if (!start_contacts)
     throw std::runtime_error(
         "settings.step_tolerance: the contact model cannot copy its state (step doubling needs "
@@ -42,8 +43,10 @@ StepReport Engine::Impl::doubling_step(double dt_cap) {
     refresh_geometry();
     contacts->restore(*start_contacts);
     st.energy = start_energy;
+    st.bolts = start_bolts;
   };
   std::vector<BlockState> coarse;
+  std::vector<BoltState> coarse_bolts;
   EnergyFlows coarse_energy;
   for (;;) {
     Trial trial;
@@ -53,6 +56,7 @@ StepReport Engine::Impl::doubling_step(double dt_cap) {
     std::unique_ptr<ContactSnapshot> coarse_contacts;
     if (ok) {
       coarse = st.blocks;
+      coarse_bolts = st.bolts;
       coarse_energy = st.energy.step;
       coarse_contacts = contacts->snapshot();
       restart();
@@ -73,6 +77,9 @@ StepReport Engine::Impl::doubling_step(double dt_cap) {
       for (std::size_t i = 0; i < st.blocks[k].vertices.size(); ++i)
         err = std::max(err, (st.blocks[k].vertices[i] - coarse[k].vertices[i]).squaredNorm());
     err = std::sqrt(err);
+    // A bolt's creep moves no vertex where its length is held: the difference
+    // of its creep elongation counts as well [length].
+    if (!model.bolts.empty()) err = std::max(err, BoltSet::creep_difference(st.bolts, coarse_bolts));
     // Reject and redo a step whose estimate exceeds the tolerance by more than
     // kRejectFactor, as the creep control does (not below dt, at most max_cuts
     // times in one step).
@@ -86,7 +93,8 @@ StepReport Engine::Impl::doubling_step(double dt_cap) {
     // Richardson: 2 y_f - y_c for the blocks and, through the contact model,
     // for every contact quantity; only when both runs end with the same
     // contacts in the same states (else y_f stands, first order).
-    rep.extrapolated = s.step_extrapolation && contacts->extrapolate(*coarse_contacts);
+    rep.extrapolated = s.step_extrapolation && BoltSet::same_modes(st.bolts, coarse_bolts) &&
+                       contacts->extrapolate(*coarse_contacts);
     if (rep.extrapolated) {
       for (std::size_t k = 0; k < st.blocks.size(); ++k) {
         BlockState& b = st.blocks[k];
@@ -100,9 +108,10 @@ StepReport Engine::Impl::doubling_step(double dt_cap) {
         b.acceleration = 2.0 * b.acceleration - c.acceleration;
       }
       refresh_geometry();
+      if (!model.bolts.empty()) BoltSet::extrapolate(model, st.blocks, st.bolts, coarse_bolts);
     }
     EnergyAccount::finish_doubling(energy_inputs(), start_energy, coarse_energy, rep.extrapolated,
-                                   contacts->energy(), st.energy);
+                                   contacts->energy(), st.energy, BoltSet::stored_energy(model, st.bolts));
     // One step of dt for the outside: one report, one measurement sample.
     st.step = start_step + 1;
     st.time = start_time + dt;

@@ -242,9 +242,6 @@ void read_stage_bolts(const Ctx& ctx, const MapReader& m, const SceneDescription
     ctx.fail(v, m.child("add_bolts"),
              "the newton contact solve's residual does not hold the bolts' forces: give analysis.contact_solver: "
              "open_close (docs/reference/bolts.md, \"Limits\")");
-  if (a.step_tolerance > 0.0)
-    ctx.fail(v, m.child("add_bolts"),
-             "step doubling (analysis.step_tolerance) does not carry bolts (docs/reference/bolts.md, \"Limits\")");
 }
 
 }  // namespace

@@ -69,8 +69,8 @@ struct EnergyFlows {
   double dissipation_contact_release = 0.0;  ///< contact springs detached during the step
                                              ///< (ContactEnergy::release)
   double dissipation_bolt = 0.0;  ///< bolts (docs/reference/bolts.md, "Energy"): their springs' integration
-                                  ///< (N1 - N0)^2/(2k), plastic N_y Delta e_p, creep N Delta e_c,
-                                  ///< and the stored energy of a bolt that ruptured
+                                  ///< (N1 - N0)^2/(2k) and its axis's turn, plastic N_y Delta e_p,
+                                  ///< creep N Delta e_c, and the stored energy of a bolt that ruptured
   /// Kinetic energy taken by edits between steps (Engine::edit; docs/reference/engine.md,
   /// "Energy balance"): by fixed points added to or removed from a moving block
   /// (Carnot's theorem, model_edits.cpp), less the kinetic energy a set velocity
@@ -154,10 +154,10 @@ class EnergyAccount {
   /// `start` through the two half steps. Makes it one step: the flows of the two
   /// halves summed or, when the step was extrapolated, every flow extrapolated as
   /// the states are, 2 (sum of the halves) - (the single step's `coarse`), and the
-  /// stored energies those of the extrapolated state.
+  /// stored energies those of the extrapolated state (`bolts`: the bolts' then).
   static void finish_doubling(const EnergyInputs& in, const EnergyBalance& start,
                               const EnergyFlows& coarse, bool extrapolated,
-                              const ContactEnergy& contacts, EnergyBalance& balance);
+                              const ContactEnergy& contacts, EnergyBalance& balance, double bolts = 0.0);
 
   /// A static trial step D of dt, before it is taken: the work its inertia term
   /// D^T M D/(beta dt^2) absorbs over the work of gravity and of the point loads
