@@ -114,7 +114,10 @@ struct Engine::Impl {
   void initialise();
   void refresh_geometry();
   void count_held();  // held[k]: block k has two or more fixed points
-  void assemble_blocks(double dt, double t_end, std::vector<Mat6>& diag, Eigen::VectorXd& rhs) const;
+  /// The block sub-matrices of a step of dt ending at t_end (block_assembly.cpp); without
+  /// `inertia`, those of the explicit step's cycles: no inertia and no block damping terms.
+  void assemble_blocks(double dt, double t_end, std::vector<Mat6>& diag, Eigen::VectorXd& rhs,
+                       bool inertia = true) const;
   double max_vertex_displacement(const Eigen::VectorXd& d) const;
   /// End of the stage the run is in or was last in: the settling stage or a
   /// collapse stage (EngineState::stage; dynamic_stages.cpp) [time].
@@ -162,6 +165,13 @@ struct Engine::Impl {
     int singular_block = -1, singular_unknown = -1;
   };
   Trial solve_trial(double dt, bool creep_error_wanted, StepReport& rep);
+  /// The step starting now is taken in explicit cycles (Settings::integrator; a dynamic step).
+  bool explicit_now() const { return model.settings.integrator == Integrator::explicit_step && dynamic_now(); }
+  /// The explicit step's attempt at a step of dt, after begin_step (explicit_step.cpp): D by
+  /// central-difference cycles, the end velocities in cycle_velocity, the contacts left in
+  /// their cycles' states.
+  Trial cycle_trial(double dt, StepReport& rep);
+  std::vector<Vec6> cycle_velocity;  ///< block velocities at the end of the last explicit attempt
   class Problem;  ///< the StepProblem of a trial (step_trial.cpp)
   /// Cuts dt after a failed attempt (dt *= dt_cut), or throws after max_cuts cuts.
   void cut(double& dt, const Trial& trial, StepReport& rep) const;

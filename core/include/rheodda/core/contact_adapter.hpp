@@ -39,6 +39,18 @@ class ContactAdapter final : public ContactModel {
     system_.contact_forces(D, f);
     return true;
   }
+  /// contact::ContactSystem::begin_cycles, cycle_stiffness, cycle_forces, end_cycles.
+  bool begin_cycles(int block_count, int threads, double damping) override {
+    system_.begin_cycles(block_count, threads, damping);
+    return true;
+  }
+  void cycle_stiffness(std::vector<Mat6>& K, std::vector<Mat6>& C) const override {
+    system_.cycle_stiffness(K, C);
+  }
+  void cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, Eigen::VectorXd& f) override {
+    system_.cycle_forces(D, V, f);
+  }
+  ContactCheck end_cycles(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) override;
   void abandon_step() override;
   /// contact::ContactSystem::creep_error_estimate (asked for by the step context).
   double creep_error_estimate() const override { return system_.creep_error_estimate(); }

@@ -61,6 +61,10 @@ struct StepReport {
                                   ///< the block vertices, under Settings::step_tolerance only [length]
   bool extrapolated = false;      ///< under Settings::step_tolerance: the step was extrapolated
                                   ///< (2 y(dt/2) - y(dt)); false: y(dt/2) stands
+  int cycles = 0;                 ///< explicit cycles of the accepted attempt (Settings::integrator;
+                                  ///< 0: an implicit step) [-]
+  double cycle_dt = 0.0;          ///< length of those cycles [time]
+  int stable_block = -1;          ///< the block whose stable cycle set their length (-1: none) [-]
   ContactChanges changes;         ///< what the contact checks changed, summed over every
                                   ///< open-close iterate of every attempt of the step [-]
   EnergyFlows energy;             ///< the step's energy flows and residual (energy.hpp) [force x length]
