@@ -44,7 +44,8 @@ int thread_count(int requested) { return requested > 0 ? requested : omp_get_max
 
 }  // namespace
 
-void ContactSystem::begin_cycles(int block_count, int threads, double damping) {
+void ContactSystem::begin_cycles(std::span<const BlockView> blocks, int threads, double damping) {
+  const int block_count = static_cast<int>(blocks.size());
   cycle_threads_ = threads;
   const std::size_t n = work_.size();
   cycles_.resize(n);
@@ -63,6 +64,8 @@ void ContactSystem::begin_cycles(int block_count, int threads, double damping) {
     y.cohesion_residual = js.cohesion_of(false);
     y.shift = 0.0;
     y.cn = h.cn, y.cs = h.cs;
+    y.bound_i = std::isfinite(blocks[r.key.eblock].mass) ? 2.0 : 1.0;
+    y.bound_j = std::isfinite(blocks[r.key.vblock].mass) ? 2.0 : 1.0;
     if (!js.restitution && damping > 0.0 && h.reduced_mass > 0.0) {
       y.cn = 2.0 * damping * std::sqrt(h.pn * h.reduced_mass);
       y.cs = 2.0 * damping * std::sqrt(h.ps * h.reduced_mass);
@@ -93,11 +96,11 @@ void ContactSystem::cycle_stiffness(std::vector<Mat6>& K, std::vector<Mat6>& C) 
     const Hot& h = hot_[c];
     const Cycle& y = cycles_[c];
     const double ps = shear_stiffness(c);
-    K[r.key.vblock].noalias() += 2.0 * (h.pn * h.ni * h.ni.transpose() + ps * h.ti * h.ti.transpose());
-    K[r.key.eblock].noalias() += 2.0 * (h.pn * h.nj * h.nj.transpose() + ps * h.tj * h.tj.transpose());
+    K[r.key.vblock].noalias() += y.bound_i * (h.pn * h.ni * h.ni.transpose() + ps * h.ti * h.ti.transpose());
+    K[r.key.eblock].noalias() += y.bound_j * (h.pn * h.nj * h.nj.transpose() + ps * h.tj * h.tj.transpose());
     if (!step_dynamic_ || (y.cn == 0.0 && y.cs == 0.0)) continue;
-    C[r.key.vblock].noalias() += 2.0 * (y.cn * h.ni * h.ni.transpose() + y.cs * h.ti * h.ti.transpose());
-    C[r.key.eblock].noalias() += 2.0 * (y.cn * h.nj * h.nj.transpose() + y.cs * h.tj * h.tj.transpose());
+    C[r.key.vblock].noalias() += y.bound_i * (y.cn * h.ni * h.ni.transpose() + y.cs * h.ti * h.ti.transpose());
+    C[r.key.eblock].noalias() += y.bound_j * (y.cn * h.nj * h.nj.transpose() + y.cs * h.tj * h.tj.transpose());
   }
 }
 

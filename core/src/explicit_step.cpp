@@ -71,7 +71,7 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
   const std::size_t nb = st.blocks.size();
   const auto nbi = static_cast<std::ptrdiff_t>(nb);
   const int threads = s.threads > 0 ? s.threads : omp_get_max_threads();
-  if (!contacts->begin_cycles(static_cast<int>(nb), s.threads, s.explicit_damping))
+  if (!contacts->begin_cycles(views, s.threads, s.explicit_damping))
     throw std::logic_error("the contact model cannot take explicit cycles");
   auto t0 = Clock::now();
   // (1): the loads at the step's start and end, the stiffness K.

@@ -193,12 +193,12 @@ class ContactSystem {
   // incremental elastic-plastic joint of explicit block codes, Cundall & Strack 1979).
 
   /// Starts the cycles of the step begun by begin_step: each contact's cycle state from
-  /// its trial record, the list of contacts by block (`block_count` blocks) the forces are
+  /// its trial record, the list of contacts by block (`blocks`, the step-start views) the forces are
   /// gathered through, and `threads` OpenMP threads for the cycles (0: OpenMP's default).
   /// A contact on a joint set without a restitution takes dashpots of the damping ratio
   /// `damping` [-] on its normal and shear springs and the two blocks' reduced mass,
   /// c = 2 zeta sqrt(k m) (as JointSet::restitution's; 0: none).
-  void begin_cycles(int block_count, int threads, double damping);
+  void begin_cycles(std::span<const BlockView> blocks, int threads, double damping);
   /// Adds to K and C (one 6x6 matrix per block each) bounds of the contacts' stiffness and
   /// dashpots on each block, 2 (p_n n n^T + k_s t t^T) and 2 (c_n n n^T + c_s t t^T) per
   /// contact and side (a spring between two blocks stores k (n_i.D_i + n_j.D_j)^2 / 2 <=
@@ -469,6 +469,9 @@ class ContactSystem {
     double tan_phi_residual = 0.0;
     double cohesion = 0.0, cohesion_residual = 0.0;  ///< [stress]
     double cn = 0.0, cs = 0.0;  ///< normal and shear dashpots [force time / length^2 per unit thickness]
+    /// Factors of the stiffness bound on its vertex and edge blocks: 2, or 1 where the other
+    /// block does not move (held: infinite mass), so the spring acts on one block alone.
+    double bound_i = 2.0, bound_j = 2.0;
   };
   std::vector<Cycle> cycles_;
   std::vector<Vec6> cycle_force_;          ///< per contact: force on its vertex block, then its edge block

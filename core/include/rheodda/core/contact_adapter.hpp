@@ -40,8 +40,8 @@ class ContactAdapter final : public ContactModel {
     return true;
   }
   /// contact::ContactSystem::begin_cycles, cycle_stiffness, cycle_forces, end_cycles.
-  bool begin_cycles(int block_count, int threads, double damping) override {
-    system_.begin_cycles(block_count, threads, damping);
+  bool begin_cycles(std::span<const contact::BlockView> blocks, int threads, double damping) override {
+    system_.begin_cycles(blocks, threads, damping);
     return true;
   }
   void cycle_stiffness(std::vector<Mat6>& K, std::vector<Mat6>& C) const override {

@@ -96,10 +96,12 @@ class ContactModel {
   // and end_step, begin_cycles -> { cycle_forces }* -> end_cycles instead of the
   // assemble/check iteration. A model that cannot returns false from begin_cycles.
 
-  /// Starts the cycles of the step begun (`block_count` blocks, `threads` OpenMP threads,
+  /// Starts the cycles of the step begun (on the step-start `blocks`, `threads` OpenMP threads,
   /// 0: OpenMP's default; contacts without their own dashpots damped at the ratio `damping`,
   /// Settings::explicit_damping); false when the model has no explicit cycles.
-  virtual bool begin_cycles(int /*block_count*/, int /*threads*/, double /*damping*/) { return false; }
+  virtual bool begin_cycles(std::span<const contact::BlockView> /*blocks*/, int /*threads*/, double /*damping*/) {
+    return false;
+  }
   /// Adds to K and C (6x6 per block) bounds of the contacts' stiffness and dashpots on each
   /// block (for the stable cycle).
   virtual void cycle_stiffness(std::vector<Mat6>& /*K*/, std::vector<Mat6>& /*C*/) const {}
@@ -169,7 +171,7 @@ class NullContactModel final : public ContactModel {
   }
   void end_step(std::span<const contact::BlockView>, const Eigen::VectorXd&) override {}
   bool contact_forces(const Eigen::VectorXd&, Eigen::VectorXd&) const override { return true; }
-  bool begin_cycles(int, int, double) override { return true; }  // no contacts: no force at any cycle
+  bool begin_cycles(std::span<const contact::BlockView>, int, double) override { return true; }  // no contacts: no force at any cycle
   void abandon_step() override {}
   std::unique_ptr<ContactSnapshot> snapshot() const override {
     return std::make_unique<ContactSnapshot>();
