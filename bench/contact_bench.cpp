@@ -326,6 +326,7 @@ int main(int argc, char** argv) {
                   "update, %.1f ns CPU\n",
                   static_cast<double>(cycles) / steps, engine.reports().back().cycle_dt, threads,
                   1e9 * step_time * steps / contact_cycles, 1e9 * cpu / contact_cycles);
+      std::printf("#   stable cycle set by block %d\n", engine.reports().back().stable_block);
     }
     std::printf("#   wall %.3f s: %.4g wall s per simulated ms\n", step_time * steps,
                 step_time * steps / (1e3 * engine.time()));

@@ -44,7 +44,7 @@ int thread_count(int requested) { return requested > 0 ? requested : omp_get_max
 
 }  // namespace
 
-void ContactSystem::begin_cycles(std::span<const BlockView> blocks, int threads, double damping) {
+void ContactSystem::begin_cycles(std::span<const BlockView> blocks, int threads) {
   const int block_count = static_cast<int>(blocks.size());
   cycle_threads_ = threads;
   const std::size_t n = work_.size();
@@ -63,13 +63,9 @@ void ContactSystem::begin_cycles(std::span<const BlockView> blocks, int threads,
     y.cohesion = js.cohesion_of(true);
     y.cohesion_residual = js.cohesion_of(false);
     y.shift = 0.0;
-    y.cn = h.cn, y.cs = h.cs;
+    y.cn = y.cs = 0.0;
     y.bound_i = std::isfinite(blocks[r.key.eblock].mass) ? 2.0 : 1.0;
     y.bound_j = std::isfinite(blocks[r.key.vblock].mass) ? 2.0 : 1.0;
-    if (!js.restitution && damping > 0.0 && h.reduced_mass > 0.0) {
-      y.cn = 2.0 * damping * std::sqrt(h.pn * h.reduced_mass);
-      y.cs = 2.0 * damping * std::sqrt(h.ps * h.reduced_mass);
-    }
     if (r.state == ContactState::sliding) {
       // A contact sliding at the step start carries its friction from the first cycle:
       // its spring starts stretched by the friction force over k (the elastic part of
@@ -90,7 +86,7 @@ void ContactSystem::begin_cycles(std::span<const BlockView> blocks, int threads,
   }
 }
 
-void ContactSystem::cycle_stiffness(std::vector<Mat6>& K, std::vector<Mat6>& C) const {
+void ContactSystem::cycle_stiffness(std::vector<Mat6>& K) const {
   for (std::size_t c = 0; c < work_.size(); ++c) {
     const Contact& r = work_[c];
     const Hot& h = hot_[c];
@@ -98,6 +94,20 @@ void ContactSystem::cycle_stiffness(std::vector<Mat6>& K, std::vector<Mat6>& C) 
     const double ps = shear_stiffness(c);
     K[r.key.vblock].noalias() += y.bound_i * (h.pn * h.ni * h.ni.transpose() + ps * h.ti * h.ti.transpose());
     K[r.key.eblock].noalias() += y.bound_j * (h.pn * h.nj * h.nj.transpose() + ps * h.tj * h.tj.transpose());
+  }
+}
+
+void ContactSystem::cycle_damping(double tau, std::vector<Mat6>& C) {
+  for (std::size_t c = 0; c < work_.size(); ++c) {
+    const Contact& r = work_[c];
+    const Hot& h = hot_[c];
+    Cycle& y = cycles_[c];
+    if (joint_sets_[r.joint_set].restitution) {
+      y.cn = h.cn, y.cs = h.cs;
+    } else {
+      y.cn = tau * h.pn;
+      y.cs = tau * shear_stiffness(c);
+    }
     if (!step_dynamic_ || (y.cn == 0.0 && y.cs == 0.0)) continue;
     C[r.key.vblock].noalias() += y.bound_i * (y.cn * h.ni * h.ni.transpose() + y.cs * h.ti * h.ti.transpose());
     C[r.key.eblock].noalias() += y.bound_j * (y.cn * h.nj * h.nj.transpose() + y.cs * h.tj * h.tj.transpose());

@@ -20,12 +20,16 @@
 // (3), smallest at the largest omega: omega_max^2 and c are bounded per block by the
 // largest eigenvalues of M^-1 K' and M^-1 C' (K', C' the block's own terms plus the
 // contacts' bounds, ContactModel::cycle_stiffness).
-// Damping (Settings::explicit_damping): the implicit step's scheme damps the contacts' and
-// the blocks' elastic vibrations within a step; the cycles resolve them, so what has no
-// damping of its own takes the ratio explicit_damping: contacts as dashpots beside their
-// springs (contact_cycles.cpp), a block's strain modes as modal damping
+// Damping (Settings::explicit_damping, zeta): the implicit step's scheme damps the contacts'
+// and the blocks' elastic vibrations within a step; the cycles resolve them, so what has no
+// damping of its own takes some. A block's strain modes, modal damping at zeta
 //     C_e = M_e Phi diag(2 zeta omega_i) Phi^T M_e,  K_e Phi = M_e Phi diag(omega_i^2)   (4)
-// (K_e = S E_e, M_e the strain rows of M; Phi M_e-orthonormal), each strain mode at zeta.
+// (K_e = S E_e, M_e the strain rows of M; Phi M_e-orthonormal). The contacts, dashpots
+// c = tau k beside each spring with tau = 2 zeta / omega_max                          (5)
+// (stiffness-proportional: the scene's highest mode at zeta, the lower ones less), so that
+// the cycle shortens by no more than sqrt(1 + zeta^2) - zeta. Per-contact dashpots at zeta
+// on the reduced mass would overdamp a block held by many contacts (zeta sqrt(n/2) on its
+// n springs) and shorten the cycle by as much.
 // Blocks held at two or more fixed points and removed blocks do not move. Every block and
 // every contact is updated on its own: the cycles run in parallel (OpenMP) and give the
 // same bits whatever the number of threads (contacts gathered per block in a fixed order).
@@ -71,7 +75,7 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
   const std::size_t nb = st.blocks.size();
   const auto nbi = static_cast<std::ptrdiff_t>(nb);
   const int threads = s.threads > 0 ? s.threads : omp_get_max_threads();
-  if (!contacts->begin_cycles(views, s.threads, s.explicit_damping))
+  if (!contacts->begin_cycles(views, s.threads))
     throw std::logic_error("the contact model cannot take explicit cycles");
   auto t0 = Clock::now();
   // (1): the loads at the step's start and end, the stiffness K.
@@ -87,27 +91,36 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
   std::vector<Eigen::Matrix3d> C(nb, Eigen::Matrix3d::Zero());
   std::vector<char> frozen(nb, 0);
   std::vector<Mat6> bound = K, damping(nb, Mat6::Zero());
-  contacts->cycle_stiffness(bound, damping);
-  double h_stable = std::numeric_limits<double>::infinity();
-  int stable_block = -1;
+  contacts->cycle_stiffness(bound);
+  std::vector<Eigen::LLT<Mat6>> mass(nb);
+  std::vector<double> w2(nb, 0.0);
+  double w2_max = 0.0;
   for (std::size_t k = 0; k < nb; ++k) {
     frozen[k] = held[k] || is_removed(k);
     if (frozen[k]) continue;
     const BlockState& b = st.blocks[k];
     const Material& mat = model.materials[b.material];
     const Mat6 M = mat.density * unit_mass_matrix(moments[k]);
-    const Eigen::LLT<Mat6> L(M);
-    M_inv[k] = L.solve(Mat6::Identity());
+    mass[k].compute(M);
+    M_inv[k] = mass[k].solve(Mat6::Identity());
     const Eigen::Matrix3d Ke = moments[k].S * elastic[b.material];
     if (const double tau = strain_damping_time(moments[k], mat, elastic[b.material]); tau > 0.0)
       C[k] = tau * Ke;  // the material's Kelvin-Voigt damping (block_terms.hpp)
     else if (s.explicit_damping > 0.0)
       C[k] = modal_strain_damping(Ke, M.block<3, 3>(3, 3), s.explicit_damping);  // (4)
     damping[k].block<3, 3>(3, 3) += C[k];
-    const double w2 = largest_eigenvalue(L, bound[k]);
-    if (!(w2 > 0.0)) continue;  // nothing stiff on it: free flight sets no limit
-    const double c = largest_eigenvalue(L, damping[k]);
-    const double h = 2.0 / (std::sqrt(w2 + 0.25 * c * c) + 0.5 * c);  // (3)
+    w2[k] = largest_eigenvalue(mass[k], bound[k]);
+    w2_max = std::max(w2_max, w2[k]);
+  }
+  // (5): the contacts' dashpots, stiffness-proportional at tau = 2 zeta / omega_max.
+  const double tau = s.explicit_damping > 0.0 && w2_max > 0.0 ? 2.0 * s.explicit_damping / std::sqrt(w2_max) : 0.0;
+  contacts->cycle_damping(tau, damping);
+  double h_stable = std::numeric_limits<double>::infinity();
+  int stable_block = -1;
+  for (std::size_t k = 0; k < nb; ++k) {
+    if (frozen[k] || !(w2[k] > 0.0)) continue;  // nothing stiff on it: free flight sets no limit
+    const double c = largest_eigenvalue(mass[k], damping[k]);
+    const double h = 2.0 / (std::sqrt(w2[k] + 0.25 * c * c) + 0.5 * c);  // (3)
     if (h < h_stable) h_stable = h, stable_block = static_cast<int>(k);
   }
   const double h_allowed = s.explicit_safety * h_stable;

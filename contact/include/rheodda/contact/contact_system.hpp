@@ -195,16 +195,18 @@ class ContactSystem {
   /// Starts the cycles of the step begun by begin_step: each contact's cycle state from
   /// its trial record, the list of contacts by block (`blocks`, the step-start views) the forces are
   /// gathered through, and `threads` OpenMP threads for the cycles (0: OpenMP's default).
-  /// A contact on a joint set without a restitution takes dashpots of the damping ratio
-  /// `damping` [-] on its normal and shear springs and the two blocks' reduced mass,
-  /// c = 2 zeta sqrt(k m) (as JointSet::restitution's; 0: none).
-  void begin_cycles(std::span<const BlockView> blocks, int threads, double damping);
-  /// Adds to K and C (one 6x6 matrix per block each) bounds of the contacts' stiffness and
-  /// dashpots on each block, 2 (p_n n n^T + k_s t t^T) and 2 (c_n n n^T + c_s t t^T) per
-  /// contact and side (a spring between two blocks stores k (n_i.D_i + n_j.D_j)^2 / 2 <=
-  /// k ((n_i.D_i)^2 + (n_j.D_j)^2)), open contacts included (they may close within the
-  /// step); for the stable cycle.
-  void cycle_stiffness(std::vector<Mat6>& K, std::vector<Mat6>& C) const;
+  void begin_cycles(std::span<const BlockView> blocks, int threads);
+  /// Adds to K (one 6x6 matrix per block) a bound of the contacts' stiffness on each block,
+  /// 2 (p_n n n^T + k_s t t^T) per contact and side (a spring between two blocks stores
+  /// k (n_i.D_i + n_j.D_j)^2 / 2 <= k ((n_i.D_i)^2 + (n_j.D_j)^2); 1 x where the other block
+  /// does not move), open contacts included (they may close within the step); for the
+  /// stable cycle.
+  void cycle_stiffness(std::vector<Mat6>& K) const;
+  /// The cycles' dashpots: a contact whose joint set has a restitution keeps its own
+  /// (c = 2 zeta sqrt(k m), JointSet::restitution); the others take c = tau k beside each
+  /// spring (stiffness-proportional, tau [time]; 0: none). Adds their bound to C as
+  /// cycle_stiffness adds the springs'.
+  void cycle_damping(double tau, std::vector<Mat6>& C);
   /// The contacts' forces on the blocks at the displacements D since the step start and
   /// the rates V (6 per block each), after each contact's state is decided at D: f (6 per
   /// block, set) is the force the contacts resist with (the residual of a block is its

@@ -40,13 +40,12 @@ class ContactAdapter final : public ContactModel {
     return true;
   }
   /// contact::ContactSystem::begin_cycles, cycle_stiffness, cycle_forces, end_cycles.
-  bool begin_cycles(std::span<const contact::BlockView> blocks, int threads, double damping) override {
-    system_.begin_cycles(blocks, threads, damping);
+  bool begin_cycles(std::span<const contact::BlockView> blocks, int threads) override {
+    system_.begin_cycles(blocks, threads);
     return true;
   }
-  void cycle_stiffness(std::vector<Mat6>& K, std::vector<Mat6>& C) const override {
-    system_.cycle_stiffness(K, C);
-  }
+  void cycle_stiffness(std::vector<Mat6>& K) const override { system_.cycle_stiffness(K); }
+  void cycle_damping(double tau, std::vector<Mat6>& C) override { system_.cycle_damping(tau, C); }
   void cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, Eigen::VectorXd& f) override {
     system_.cycle_forces(D, V, f);
   }

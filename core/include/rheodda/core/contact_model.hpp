@@ -97,14 +97,14 @@ class ContactModel {
   // assemble/check iteration. A model that cannot returns false from begin_cycles.
 
   /// Starts the cycles of the step begun (on the step-start `blocks`, `threads` OpenMP threads,
-  /// 0: OpenMP's default; contacts without their own dashpots damped at the ratio `damping`,
-  /// Settings::explicit_damping); false when the model has no explicit cycles.
-  virtual bool begin_cycles(std::span<const contact::BlockView> /*blocks*/, int /*threads*/, double /*damping*/) {
-    return false;
-  }
-  /// Adds to K and C (6x6 per block) bounds of the contacts' stiffness and dashpots on each
-  /// block (for the stable cycle).
-  virtual void cycle_stiffness(std::vector<Mat6>& /*K*/, std::vector<Mat6>& /*C*/) const {}
+  /// 0: OpenMP's default); false when the model has no explicit cycles.
+  virtual bool begin_cycles(std::span<const contact::BlockView> /*blocks*/, int /*threads*/) { return false; }
+  /// Adds to K (6x6 per block) a bound of the contacts' stiffness on each block (for the
+  /// stable cycle).
+  virtual void cycle_stiffness(std::vector<Mat6>& /*K*/) const {}
+  /// The cycles' dashpots: contacts without their own take c = tau k beside each spring
+  /// [tau: time]; adds a bound of all the dashpots on each block to C.
+  virtual void cycle_damping(double /*tau*/, std::vector<Mat6>& /*C*/) {}
   /// The contacts' resisting forces f (6 per block, set) at the displacements D since the
   /// step start and rates V, each contact's state decided at D.
   virtual void cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, Eigen::VectorXd& f) {
@@ -171,7 +171,7 @@ class NullContactModel final : public ContactModel {
   }
   void end_step(std::span<const contact::BlockView>, const Eigen::VectorXd&) override {}
   bool contact_forces(const Eigen::VectorXd&, Eigen::VectorXd&) const override { return true; }
-  bool begin_cycles(std::span<const contact::BlockView>, int, double) override { return true; }  // no contacts: no force at any cycle
+  bool begin_cycles(std::span<const contact::BlockView>, int) override { return true; }  // no contacts: no force at any cycle
   void abandon_step() override {}
   std::unique_ptr<ContactSnapshot> snapshot() const override {
     return std::make_unique<ContactSnapshot>();
