@@ -242,6 +242,8 @@ const std::vector<StageEvent>& Engine::events() const { return impl_->st.events;
 bool Engine::in_stage() const { return impl_->settling(); }
 const std::vector<BoltState>& Engine::bolts() const { return impl_->st.bolts; }
 
+Engine::StableCycle Engine::stable_cycle() { return impl_->stable_cycle(); }
+
 EngineState Engine::save() const {
   EngineState s = impl_->st;
   s.search_displacement = impl_->search_disp;

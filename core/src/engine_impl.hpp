@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -171,6 +172,21 @@ struct Engine::Impl {
   /// central-difference cycles, the end velocities in cycle_velocity, the contacts left in
   /// their cycles' states.
   Trial cycle_trial(double dt, StepReport& rep);
+  /// What the explicit step's cycles of a step of dt need of the blocks, after begin_step and
+  /// begin_cycles (explicit_step.cpp): stiffness, inverse masses, strain damping, loads, the
+  /// stable cycle and the block that sets it; the contacts' dashpots set for the step.
+  struct CycleBlocks {
+    std::vector<Mat6> K, M_inv;         ///< per block [stress ...], [1/mass ...]
+    std::vector<Eigen::Matrix3d> C;     ///< strain damping per block [stress x time]
+    std::vector<char> frozen;           ///< held at two or more fixed points, or removed
+    Eigen::VectorXd F0, dF;             ///< loads at the step's start, and their change over it [force]
+    bool loads_change = false;
+    double h_stable = std::numeric_limits<double>::infinity();  ///< [time]
+    int stable_block = -1;
+  };
+  CycleBlocks cycle_blocks(double dt) const;
+  /// Engine::stable_cycle (explicit_step.cpp).
+  StableCycle stable_cycle();
   std::vector<Vec6> cycle_velocity;  ///< block velocities at the end of the last explicit attempt
   class Problem;  ///< the StepProblem of a trial (step_trial.cpp)
   /// Cuts dt after a failed attempt (dt *= dt_cut), or throws after max_cuts cuts.

@@ -70,6 +70,71 @@ Eigen::Matrix3d modal_strain_damping(const Eigen::Matrix3d& K, const Eigen::Matr
 
 }  // namespace
 
+Engine::Impl::CycleBlocks Engine::Impl::cycle_blocks(double dt) const {
+  const Settings& s = model.settings;
+  const std::size_t nb = st.blocks.size();
+  CycleBlocks out;
+  std::vector<Mat6> K_end;
+  assemble_blocks(dt, st.time, out.K, out.F0, false);  // (1): the loads at the step's start and end, K
+  assemble_blocks(dt, st.time + dt, K_end, out.dF, false);
+  out.dF -= out.F0;
+  out.loads_change = out.dF.lpNorm<Eigen::Infinity>() > 0.0;
+  // Mass, block damping and the stable cycle (3) per block.
+  out.M_inv.assign(nb, Mat6::Zero());
+  out.C.assign(nb, Eigen::Matrix3d::Zero());
+  out.frozen.assign(nb, 0);
+  std::vector<Mat6> bound = out.K, damping(nb, Mat6::Zero());
+  contacts->cycle_stiffness(bound);
+  std::vector<Eigen::LLT<Mat6>> mass(nb);
+  std::vector<double> w2(nb, 0.0);
+  double w2_max = 0.0;
+  for (std::size_t k = 0; k < nb; ++k) {
+    out.frozen[k] = held[k] || is_removed(k);
+    if (out.frozen[k]) continue;
+    const BlockState& b = st.blocks[k];
+    const Material& mat = model.materials[b.material];
+    const Mat6 M = mat.density * unit_mass_matrix(moments[k]);
+    mass[k].compute(M);
+    out.M_inv[k] = mass[k].solve(Mat6::Identity());
+    const Eigen::Matrix3d Ke = moments[k].S * elastic[b.material];
+    if (const double tau = strain_damping_time(moments[k], mat, elastic[b.material]); tau > 0.0)
+      out.C[k] = tau * Ke;  // the material's Kelvin-Voigt damping (block_terms.hpp)
+    else if (s.explicit_damping > 0.0)
+      out.C[k] = modal_strain_damping(Ke, M.block<3, 3>(3, 3), s.explicit_damping);  // (4)
+    damping[k].block<3, 3>(3, 3) += out.C[k];
+    w2[k] = largest_eigenvalue(mass[k], bound[k]);
+    w2_max = std::max(w2_max, w2[k]);
+  }
+  // (5): the contacts' dashpots, stiffness-proportional at tau = 2 zeta / omega_max.
+  const double tau = s.explicit_damping > 0.0 && w2_max > 0.0 ? 2.0 * s.explicit_damping / std::sqrt(w2_max) : 0.0;
+  contacts->cycle_damping(tau, damping);
+  for (std::size_t k = 0; k < nb; ++k) {
+    if (out.frozen[k] || !(w2[k] > 0.0)) continue;  // nothing stiff on it: free flight sets no limit
+    const double c = largest_eigenvalue(mass[k], damping[k]);
+    const double h = 2.0 / (std::sqrt(w2[k] + 0.25 * c * c) + 0.5 * c);  // (3)
+    if (h < out.h_stable) out.h_stable = h, out.stable_block = static_cast<int>(k);
+  }
+  return out;
+}
+
+Engine::StableCycle Engine::Impl::stable_cycle() {
+  StepContext ctx{st.step, st.time, model.settings.dt, search_disp};
+  contacts->begin_step(views, ctx);
+  StableCycle out;
+  try {
+    if (contacts->begin_cycles(views, model.settings.threads)) {
+      const CycleBlocks b = cycle_blocks(model.settings.dt);
+      out.cycle = model.settings.explicit_safety * b.h_stable;
+      out.block = b.stable_block;
+    }
+  } catch (...) {
+    contacts->abandon_step();
+    throw;
+  }
+  contacts->abandon_step();
+  return out;
+}
+
 Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
   const Settings& s = model.settings;
   const std::size_t nb = st.blocks.size();
@@ -78,51 +143,16 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
   if (!contacts->begin_cycles(views, s.threads))
     throw std::logic_error("the contact model cannot take explicit cycles");
   auto t0 = Clock::now();
-  // (1): the loads at the step's start and end, the stiffness K.
-  std::vector<Mat6> K, K_end;
-  Eigen::VectorXd F0, F1;
-  assemble_blocks(dt, st.time, K, F0, false);
-  assemble_blocks(dt, st.time + dt, K_end, F1, false);
-  const Eigen::VectorXd dF = F1 - F0;
-  const bool loads_change = dF.lpNorm<Eigen::Infinity>() > 0.0;
-
-  // Mass, block damping and the stable cycle (3) per block.
-  std::vector<Mat6> M_inv(nb, Mat6::Zero());
-  std::vector<Eigen::Matrix3d> C(nb, Eigen::Matrix3d::Zero());
-  std::vector<char> frozen(nb, 0);
-  std::vector<Mat6> bound = K, damping(nb, Mat6::Zero());
-  contacts->cycle_stiffness(bound);
-  std::vector<Eigen::LLT<Mat6>> mass(nb);
-  std::vector<double> w2(nb, 0.0);
-  double w2_max = 0.0;
-  for (std::size_t k = 0; k < nb; ++k) {
-    frozen[k] = held[k] || is_removed(k);
-    if (frozen[k]) continue;
-    const BlockState& b = st.blocks[k];
-    const Material& mat = model.materials[b.material];
-    const Mat6 M = mat.density * unit_mass_matrix(moments[k]);
-    mass[k].compute(M);
-    M_inv[k] = mass[k].solve(Mat6::Identity());
-    const Eigen::Matrix3d Ke = moments[k].S * elastic[b.material];
-    if (const double tau = strain_damping_time(moments[k], mat, elastic[b.material]); tau > 0.0)
-      C[k] = tau * Ke;  // the material's Kelvin-Voigt damping (block_terms.hpp)
-    else if (s.explicit_damping > 0.0)
-      C[k] = modal_strain_damping(Ke, M.block<3, 3>(3, 3), s.explicit_damping);  // (4)
-    damping[k].block<3, 3>(3, 3) += C[k];
-    w2[k] = largest_eigenvalue(mass[k], bound[k]);
-    w2_max = std::max(w2_max, w2[k]);
-  }
-  // (5): the contacts' dashpots, stiffness-proportional at tau = 2 zeta / omega_max.
-  const double tau = s.explicit_damping > 0.0 && w2_max > 0.0 ? 2.0 * s.explicit_damping / std::sqrt(w2_max) : 0.0;
-  contacts->cycle_damping(tau, damping);
-  double h_stable = std::numeric_limits<double>::infinity();
-  int stable_block = -1;
-  for (std::size_t k = 0; k < nb; ++k) {
-    if (frozen[k] || !(w2[k] > 0.0)) continue;  // nothing stiff on it: free flight sets no limit
-    const double c = largest_eigenvalue(mass[k], damping[k]);
-    const double h = 2.0 / (std::sqrt(w2[k] + 0.25 * c * c) + 0.5 * c);  // (3)
-    if (h < h_stable) h_stable = h, stable_block = static_cast<int>(k);
-  }
+  const CycleBlocks blocks = cycle_blocks(dt);
+  const std::vector<Mat6>& K = blocks.K;
+  const std::vector<Mat6>& M_inv = blocks.M_inv;
+  const std::vector<Eigen::Matrix3d>& C = blocks.C;
+  const std::vector<char>& frozen = blocks.frozen;
+  const Eigen::VectorXd& F0 = blocks.F0;
+  const Eigen::VectorXd& dF = blocks.dF;
+  const bool loads_change = blocks.loads_change;
+  const double h_stable = blocks.h_stable;
+  const int stable_block = blocks.stable_block;
   const double h_allowed = s.explicit_safety * h_stable;
   const double wanted = std::isfinite(h_allowed) ? std::ceil(dt / h_allowed) : 1.0;
   if (!(wanted <= kMaxCycles))
