@@ -149,6 +149,7 @@ int main(int argc, char** argv) {
   std::string integrator = "implicit";
   int threads = 1;
   double safety = 0.0;  // 0: the engine's default (Settings::explicit_safety)
+  double damping = -1.0;  // < 0: the engine's default (Settings::explicit_damping)
   contact::ContactSettings tuned;  // contact iteration settings given on the command line
   bool tuned_any = false;
   std::vector<std::pair<int, int>> sizes{{10, 10}, {32, 32}, {100, 100}, {316, 316}};
@@ -179,6 +180,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[k], "--integrator") && k + 1 < argc) integrator = argv[++k];
     else if (!std::strcmp(argv[k], "--threads") && k + 1 < argc) threads = std::atoi(argv[++k]);
     else if (!std::strcmp(argv[k], "--safety") && k + 1 < argc) safety = std::atof(argv[++k]);
+    else if (!std::strcmp(argv[k], "--damping") && k + 1 < argc) damping = std::atof(argv[++k]);
     else if (!std::strcmp(argv[k], "--sizes") && k + 1 < argc && !(sizes = parse_sizes(argv[++k])).empty()) {}
     else {
       std::fprintf(stderr,
@@ -187,7 +189,7 @@ int main(int argc, char** argv) {
                    "[--glued] [--trace] [--sizes N|NXxNY,...] [--poisson NU] [--duration T] "
                    "[--friction-tolerance F] [--force-resolution F] [--max-flips N] [--max-refinements N] "
                    "[--stick-keeps-force] [--contact-solver open-close|newton] [--residual-tol R] "
-                   "[--integrator implicit|explicit] [--threads N] [--safety S]\n");
+                   "[--integrator implicit|explicit] [--threads N] [--safety S] [--damping Z]\n");
       return 2;
     }
   }
@@ -236,6 +238,7 @@ int main(int argc, char** argv) {
     }
     model.settings.threads = threads;
     if (safety > 0.0) model.settings.explicit_safety = safety;
+    if (damping >= 0.0) model.settings.explicit_damping = damping;
     const double n = static_cast<double>(model.blocks.size() - 1);
     if (n > 1.2 * static_cast<double>(max_blocks)) break;
     contact::ContactSettings cs = core::contact_settings_for(model, penalty);

@@ -183,6 +183,7 @@ BuiltScene build_scene(const SceneDescription& s) {
                                                                 : core::Integrator::implicit;
   st.explicit_safety = a.explicit_safety;
   st.stage_local_damping = a.stage_local_damping;
+  st.explicit_damping = a.explicit_damping;
   st.pcg_max_iterations = a.solver_max_iterations;
 
   contact::ContactSettings& cs = out.contact_settings;

@@ -277,6 +277,13 @@ std::vector<KeySpec> declare_analysis_keys() {
       "under `integrator: explicit`, the cycle as a share of the stable one 2/ω_max (ω_max bounded "
          "per block from its mass and the stiffness of its contacts, elasticity and fixed points); "
          "(0, 1]"));
+  keys.push_back(number_key("analysis", "explicit_damping", "–", {0.0, false, 1.0, false}, &Analysis::explicit_damping,
+      "1",
+      "under `integrator: explicit`, the damping ratio the cycles give what has no damping of its own: "
+         "contacts whose joint set has no `restitution` (dashpots beside their springs, the scene's "
+         "highest mode at this ratio) and the strain modes of blocks whose material has no "
+         "`damping_ratio` (each at this ratio). The implicit step damps both within a step; undamped "
+         "they rattle for ever (docs/reference/explicit-step.md, \"Damping\"); [0, 1], 0 = none"));
   keys.push_back(number_key("analysis", "stage_local_damping", "–", {0.0, false, 1.0, true}, &Analysis::stage_local_damping,
       "0",
       "under `integrator: explicit`, local (non-viscous) damping α of the cycles in the dynamic "
