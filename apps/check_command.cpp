@@ -8,6 +8,7 @@
 //   rheodda check examples/sliding-block.yaml --refine=5 --until 0.5 -o out/sliding-refine
 #include <fmt/format.h>
 
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <memory>
@@ -16,6 +17,8 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "rheodda/scene/assemble.hpp"
+#include "rheodda/scene/build.hpp"
 #include "rheodda/scene/describe.hpp"
 #include "rheodda/scene/loader.hpp"
 #include "rheodda/scene/output.hpp"
@@ -93,6 +96,30 @@ void refine(const CheckArgs& args) {
   }
 }
 
+/// A block's name in the scene, or its index where the scene did not list it (a rock mass's).
+std::string block_name(const scene::SceneDescription& s, int b) {
+  const auto k = static_cast<std::size_t>(b);
+  return k < s.blocks.size() ? "'" + s.blocks[k].name + "'" : fmt::format("{}", b);
+}
+
+/// The explicit step's cycle on the scene's initial state (docs/reference/explicit-step.md):
+/// its length, the block that sets it, the cycles a simulated time unit costs.
+std::string explicit_cycle_text(const scene::SceneDescription& s) {
+  const scene::BuiltScene built = scene::build_scene(s);
+  scene::AssembledScene a = scene::assemble_scene(s, built);
+  const core::Engine::StableCycle c = a.engine->stable_cycle();
+  const std::string& tu = s.units.time;
+  if (c.block < 0)
+    return fmt::format("  integrator explicit: nothing stiff holds a block at the start; its cycles are set once "
+                       "contacts close\n");
+  return fmt::format("  integrator explicit: dynamic steps in cycles of {:.3g} {} (explicit_safety {:g} of the stable "
+                     "cycle at the start, set by block {}), about {:.3g} cycles per simulated {}; its steps of dt "
+                     "{:g} {} take {} cycles each (docs/reference/explicit-step.md)\n",
+                     c.cycle, tu, s.analysis.explicit_safety, block_name(s, c.block),
+                     1.0 / c.cycle, tu, s.analysis.dt, tu,
+                     static_cast<long long>(std::ceil(s.analysis.dt / c.cycle - 1e-9)));
+}
+
 }  // namespace
 
 void add_check_command(CLI::App& app) {
@@ -131,6 +158,7 @@ void add_check_command(CLI::App& app) {
     require_readable(args->scene);
     const scene::SceneDescription s = scene::load_scene(args->scene);
     fmt::print("{}", scene::describe_scene(s));
+    if (s.analysis.integrator == scene::IntegratorKind::explicit_step) fmt::print("{}", explicit_cycle_text(s));
     fmt::print("scene OK\n");
     if (args->levels > 0)
       refine(*args);

@@ -6,7 +6,7 @@
 //   F_i  -= S sigma                            initial (carried) stress
 //   F_i  += T_i(p)^T f(t + dt)                 point load at p
 //   F_i  += rho S (gx, gy, 0, 0, 0, 0)         body force
-//   K_ii += 2/dt^2 M_i,  F_i += 2/dt M_i v_i   inertia, M_i = rho int T^T T dA
+//   K_ii += 2/dt^2 M_i,  F_i += 2/dt M_i v_i   inertia, M_i = rho int T^T T dA (implicit step only)
 //   K_ii += p T^T S T,   F_i += p T^T S (x0 - x) fixed point (penalty spring; S =
 //                                            diag(hold_x, hold_y), the directions held)
 //   F_i  += int T_i^T (-p n) ds                water pressure on the edges (water.hpp)
@@ -17,7 +17,7 @@
 namespace rheodda::core {
 
 void Engine::Impl::assemble_blocks(double dt, double t_end, std::vector<Mat6>& diag,
-                                   Eigen::VectorXd& rhs) const {
+                                   Eigen::VectorXd& rhs, bool inertia) const {
   const Settings& s = model.settings;
   const std::size_t n = st.blocks.size();
   diag.resize(n);
@@ -34,13 +34,16 @@ void Engine::Impl::assemble_blocks(double dt, double t_end, std::vector<Mat6>& d
     // K += M/(beta dt^2) and F += M Dp/(beta dt^2). Shi's beta = 1/2, gamma = 1
     // gives K += 2 M/dt^2 and F += 2 M v/dt with v the carried velocity.
     const Mat6 M = rho * unit_mass_matrix(g);
-    K = (1.0 / (nm.beta * dt * dt)) * M;
+    if (inertia)
+      K = (1.0 / (nm.beta * dt * dt)) * M;
+    else
+      K.setZero();  // the explicit step: inertia and block damping are its cycles' (explicit_step.cpp)
     // Elastic strain energy S/2 e^T E_e e: K(ex..gxy) += S E_e.
     K.block<3, 3>(3, 3) += g.S * elastic[b.material];
     // Block damping (Material::damping_ratio), implicit over the step: the
     // viscous stress E_e tau eps_dot with eps_dot = eps/dt adds (tau/dt) S E_e.
     if (const double tau = strain_damping_time(g, model.materials[b.material], elastic[b.material]);
-        tau > 0.0 && dynamic_now())
+        inertia && tau > 0.0 && dynamic_now())
       K.block<3, 3>(3, 3) += (tau / dt) * g.S * elastic[b.material];
     // Body force rho g over the area; the other rows vanish about the centroid.
     F.setZero();
@@ -51,7 +54,7 @@ void Engine::Impl::assemble_blocks(double dt, double t_end, std::vector<Mat6>& d
     F(1) = rho * gravity.y() * g.S;
     // Initial stress: potential S e^T sigma gives F(ex..gxy) -= S sigma.
     F.tail<3>() -= g.S * b.stress;
-    if (dynamic_now()) F.noalias() += (1.0 / (nm.beta * dt * dt)) * M * predictor(b, dt, nm);
+    if (inertia && dynamic_now()) F.noalias() += (1.0 / (nm.beta * dt * dt)) * M * predictor(b, dt, nm);
     // A block a stage removed (model_edits.cpp) keeps its positive definite
     // K and no load: nothing couples it (no contact, fixed point or load), so
     // its six unknowns solve to zero.

@@ -120,7 +120,9 @@ void Engine::Impl::accept(const Eigen::VectorXd& d_solved, double dt, int step_i
   const bool dynamic = ratio > 0.0;
   const bool keep_acceleration = model.settings.time_integration == TimeIntegration::trapezoidal;
   const Newmark nm = newmark();
-  energy.begin(energy_inputs(), d, dt, nm.beta, nm.gamma, t_end);
+  const bool cycled = explicit_now();  // the step was taken in explicit cycles (explicit_step.cpp)
+  // Central difference is Newmark's beta = 0, gamma = 1/2 (energy.cpp books no integration loss).
+  energy.begin(energy_inputs(), d, dt, cycled ? 0.0 : nm.beta, cycled ? 0.5 : nm.gamma, t_end);
   for (std::size_t k = 0; k < st.blocks.size(); ++k) {
     if (is_removed(k)) continue;  // frozen where it was removed, at rest
     BlockState& b = st.blocks[k];
@@ -144,7 +146,10 @@ void Engine::Impl::accept(const Eigen::VectorXd& d_solved, double dt, int step_i
     b.stress += elastic[b.material] * Dk.tail<3>();
     // Velocity (Newmark): a' = (D - Dp)/(beta dt^2), v' = v + dt ((1 - gamma) a + gamma a')
     // with the carried v, a; for Shi's scheme this is v' = 2 D/dt - v.
-    if (dynamic) {
+    if (cycled) {
+      b.velocity = cycle_velocity[k];  // the cycles' end velocity, (2) of explicit_step.cpp
+      b.acceleration.setZero();
+    } else if (dynamic) {
       const Vec6 a_new = (Dk - predictor(b, dt, nm)) / (nm.beta * dt * dt);
       b.velocity = ratio * b.velocity + dt * ((1.0 - nm.gamma) * ratio * b.acceleration + nm.gamma * a_new);
       if (keep_acceleration) b.acceleration = a_new;
@@ -237,6 +242,8 @@ const EnergyBalance& Engine::energy() const { return impl_->st.energy; }
 const std::vector<StageEvent>& Engine::events() const { return impl_->st.events; }
 bool Engine::in_stage() const { return impl_->settling(); }
 const std::vector<BoltState>& Engine::bolts() const { return impl_->st.bolts; }
+
+Engine::StableCycle Engine::stable_cycle() { return impl_->stable_cycle(); }
 
 EngineState Engine::save() const {
   EngineState s = impl_->st;

@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -114,7 +115,10 @@ struct Engine::Impl {
   void initialise();
   void refresh_geometry();
   void count_held();  // held[k]: block k has two or more fixed points
-  void assemble_blocks(double dt, double t_end, std::vector<Mat6>& diag, Eigen::VectorXd& rhs) const;
+  /// The block sub-matrices of a step of dt ending at t_end (block_assembly.cpp); without
+  /// `inertia`, those of the explicit step's cycles: no inertia and no block damping terms.
+  void assemble_blocks(double dt, double t_end, std::vector<Mat6>& diag, Eigen::VectorXd& rhs,
+                       bool inertia = true) const;
   double max_vertex_displacement(const Eigen::VectorXd& d) const;
   /// End of the stage the run is in or was last in: the settling stage or a
   /// collapse stage (EngineState::stage; dynamic_stages.cpp) [time].
@@ -162,6 +166,28 @@ struct Engine::Impl {
     int singular_block = -1, singular_unknown = -1;
   };
   Trial solve_trial(double dt, bool creep_error_wanted, StepReport& rep);
+  /// The step starting now is taken in explicit cycles (Settings::integrator; a dynamic step).
+  bool explicit_now() const { return model.settings.integrator == Integrator::explicit_step && dynamic_now(); }
+  /// The explicit step's attempt at a step of dt, after begin_step (explicit_step.cpp): D by
+  /// central-difference cycles, the end velocities in cycle_velocity, the contacts left in
+  /// their cycles' states.
+  Trial cycle_trial(double dt, StepReport& rep);
+  /// What the explicit step's cycles of a step of dt need of the blocks, after begin_step and
+  /// begin_cycles (explicit_step.cpp): stiffness, inverse masses, strain damping, loads, the
+  /// stable cycle and the block that sets it; the contacts' dashpots set for the step.
+  struct CycleBlocks {
+    std::vector<Mat6> K, M_inv;         ///< per block [stress ...], [1/mass ...]
+    std::vector<Eigen::Matrix3d> C;     ///< strain damping per block [stress x time]
+    std::vector<char> frozen;           ///< held at two or more fixed points, or removed
+    Eigen::VectorXd F0, dF;             ///< loads at the step's start, and their change over it [force]
+    bool loads_change = false;
+    double h_stable = std::numeric_limits<double>::infinity();  ///< [time]
+    int stable_block = -1;
+  };
+  CycleBlocks cycle_blocks(double dt) const;
+  /// Engine::stable_cycle (explicit_step.cpp).
+  StableCycle stable_cycle();
+  std::vector<Vec6> cycle_velocity;  ///< block velocities at the end of the last explicit attempt
   class Problem;  ///< the StepProblem of a trial (step_trial.cpp)
   /// Cuts dt after a failed attempt (dt *= dt_cut), or throws after max_cuts cuts.
   void cut(double& dt, const Trial& trial, StepReport& rep) const;

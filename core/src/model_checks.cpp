@@ -160,6 +160,29 @@ void Engine::Impl::validate() {
   }
   if (!(s.dynamic_ratio >= 0.0 && s.dynamic_ratio <= 1.0))
     throw ModelError("settings.dynamic_ratio", "must be in [0, 1]");
+  if (!(s.explicit_safety > 0.0 && s.explicit_safety <= 1.0))
+    throw ModelError("settings.explicit_safety", "must be in (0, 1]");
+  if (!(s.stage_local_damping >= 0.0 && s.stage_local_damping < 1.0))
+    throw ModelError("settings.stage_local_damping", "must be in [0, 1)");
+  if (!(s.explicit_damping >= 0.0 && s.explicit_damping <= 1.0))
+    throw ModelError("settings.explicit_damping", "must be in [0, 1]");
+  if (s.threads < 0) throw ModelError("settings.threads", "must be >= 0 (0: OpenMP's default)");
+  if (s.integrator == Integrator::explicit_step) {
+    if (!s.has_dynamic_steps())
+      throw ModelError("settings.integrator",
+                       "the explicit step integrates dynamic steps; a static analysis without a dynamic "
+                       "settling stage has none");
+    if (!m.bolts.empty())
+      throw ModelError("settings.integrator", "the explicit step does not carry bolts; give the implicit one");
+    if (s.step_tolerance > 0.0)
+      throw ModelError("settings.integrator",
+                       "step doubling (step_tolerance) estimates the implicit step's error; the explicit "
+                       "step's cycles are set by its stability");
+    if (s.time_integration == TimeIntegration::trapezoidal)
+      throw ModelError("settings.integrator",
+                       "time_integration chooses the implicit step's scheme; the explicit step is central "
+                       "difference");
+  }
   if (!finite(s.gravity)) throw ModelError("settings.gravity", "must be finite");
   if (!(s.settle_gravity_ramp >= 0.0 && std::isfinite(s.settle_gravity_ramp)))
     throw ModelError("settings.settle_gravity_ramp", "must be >= 0 (time; 0 = gravity at once)");

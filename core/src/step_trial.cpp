@@ -63,10 +63,19 @@ Engine::Impl::Trial Engine::Impl::solve_trial(double dt, bool creep_error_wanted
   ctx.inertia = 1.0 / (newmark().beta * dt * dt);  // as assemble_blocks adds M/(beta dt^2)
   contacts->begin_step(views, ctx);
   if (!model.bolts.empty()) bolt_set.begin_step(model, st.blocks, st.bolts, dt);
+  Trial trial;
+  if (explicit_now()) {
+    // The explicit step (explicit_step.cpp): cycles instead of the contact solve.
+    try {
+      trial = cycle_trial(dt, rep);
+    } catch (...) {
+      contacts->abandon_step();
+      throw;
+    }
+  } else {
   auto t0 = Clock::now();
   assemble_blocks(dt, st.time + dt, base_diag, base_rhs);
   rep.assembly_seconds += seconds_since(t0);
-  Trial trial;
   Problem problem(*this, rep, dt);
   try {
     const ContactSolveResult r = contact_solve->solve(problem, D);
@@ -82,6 +91,7 @@ Engine::Impl::Trial Engine::Impl::solve_trial(double dt, bool creep_error_wanted
   } catch (...) {
     contacts->abandon_step();  // leave the contacts at their step-start states
     throw;
+  }
   }
   trial.max_disp = trial.converged ? max_vertex_displacement(D) : 0.0;
   if (trial.converged && trial.max_disp > search_disp && search_disp < g2_now() * w0) {

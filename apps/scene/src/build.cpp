@@ -184,6 +184,11 @@ BuiltScene build_scene(const SceneDescription& s) {
   st.contact_solver = a.contact_solver == ContactSolverKind::newton ? core::ContactSolver::newton
                                                                     : core::ContactSolver::open_close;
   st.contact_residual_tolerance = a.contact_residual_tolerance;
+  st.integrator = a.integrator == IntegratorKind::explicit_step ? core::Integrator::explicit_step
+                                                                : core::Integrator::implicit;
+  st.explicit_safety = a.explicit_safety;
+  st.stage_local_damping = a.stage_local_damping;
+  st.explicit_damping = a.explicit_damping;
   st.pcg_max_iterations = a.solver_max_iterations;
 
   contact::ContactSettings& cs = out.contact_settings;

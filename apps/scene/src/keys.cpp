@@ -263,6 +263,33 @@ std::vector<KeySpec> declare_analysis_keys() {
          "`newton` (the same iterates, a step accepted once the residual of its equations is "
          "within `contact_residual_tolerance` of the contact forces, a dynamic step starting from "
          "the states its inertia alone would give)"));
+  keys.push_back(choice_key("analysis", "integrator", "–", {"implicit", "explicit"},
+      [](const Analysis& a) { return std::string(a.integrator == IntegratorKind::explicit_step ? "explicit" : "implicit"); },
+      [](Analysis& a, const std::string& v) { a.integrator = v == "explicit" ? IntegratorKind::explicit_step : IntegratorKind::implicit; },
+      "`implicit`",
+      "how dynamic steps are integrated (docs/reference/explicit-step.md): `implicit` (Shi's step: "
+         "the step's equations solved with the open–close iteration) or `explicit` (each dynamic "
+         "step in cycles of central difference with every contact's state decided on its own: no "
+         "matrix, no iteration, in parallel); the static steps of a static analysis stay implicit, "
+         "its dynamic stages (`settle`) are explicit"));
+  keys.push_back(number_key("analysis", "explicit_safety", "–", {0.0, true, 1.0, false}, &Analysis::explicit_safety,
+      "0.5",
+      "under `integrator: explicit`, the cycle as a share of the stable one 2/ω_max (ω_max bounded "
+         "per block from its mass and the stiffness of its contacts, elasticity and fixed points); "
+         "(0, 1]"));
+  keys.push_back(number_key("analysis", "explicit_damping", "–", {0.0, false, 1.0, false}, &Analysis::explicit_damping,
+      "1",
+      "under `integrator: explicit`, the damping ratio the cycles give what has no damping of its own: "
+         "contacts whose joint set has no `restitution` (dashpots beside their springs, the scene's "
+         "highest mode at this ratio) and the strain modes of blocks whose material has no "
+         "`damping_ratio` (each at this ratio). The implicit step damps both within a step; undamped "
+         "they rattle for ever (docs/reference/explicit-step.md, \"Damping\"); [0, 1], 0 = none"));
+  keys.push_back(number_key("analysis", "stage_local_damping", "–", {0.0, false, 1.0, true}, &Analysis::stage_local_damping,
+      "0",
+      "under `integrator: explicit`, local (non-viscous) damping α of the cycles in the dynamic "
+         "stages of a static analysis, where only the state at rest matters: each degree of freedom "
+         "takes −α \\|R\\| sign(v) beside its unbalanced force R (UDEC's default is 0.8); [0, 1), "
+         "0 = none; never in a dynamic analysis"));
   keys.push_back(number_key("analysis", "contact_residual_tolerance", "–", {0.0, true, 1.0, true}, &Analysis::contact_residual_tolerance,
       "1e-4",
       "under `contact_solver: newton`, a step is accepted when the residual of its equations, "

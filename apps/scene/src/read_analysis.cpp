@@ -97,6 +97,30 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
       ctx.fail(v, m.child("time_integration"),
                "dynamic_ratio = 0 carries no velocity; time_integration: trapezoidal needs dynamic_ratio > 0");
   }
+  if (const YAML::Node v = m.find("integrator"); v.IsDefined() && a.integrator == IntegratorKind::explicit_step) {
+    // The explicit step takes dynamic steps (docs/reference/explicit-step.md); the engine
+    // refuses the same (settings.integrator), but only at `run`.
+    if (!a.has_dynamic_steps())
+      ctx.fail(v, m.child("integrator"),
+               "the explicit step integrates dynamic steps; a static analysis without a dynamic settling "
+               "stage (settle.dynamic: true) has none");
+    if (a.step_tolerance > 0.0)
+      ctx.fail(v, m.child("integrator"),
+               "step doubling (step_tolerance) estimates the implicit step's error: give the implicit integrator "
+               "or no step_tolerance");
+    if (a.time_integration == TimeIntegration::trapezoidal)
+      ctx.fail(v, m.child("integrator"),
+               "time_integration chooses the implicit step's scheme; the explicit step is central difference");
+    if (const YAML::Node w = m.find("stage_local_damping");
+        w.IsDefined() && a.stage_local_damping > 0.0 && a.type == AnalysisType::dynamic_analysis)
+      ctx.fail(w, m.child("stage_local_damping"),
+               "local damping acts in the dynamic stages of a static analysis, where only the state at rest "
+               "matters; a dynamic analysis never takes it");
+  } else {
+    for (const char* key : {"explicit_safety", "explicit_damping", "stage_local_damping"})
+      if (const YAML::Node w = m.find(key); w.IsDefined())
+        ctx.fail(w, m.child(key), fmt::format("{} applies to the explicit step; give integrator: explicit", key));
+  }
   const bool adaptive = a.creep_tolerance > 0.0 || a.step_tolerance > 0.0;
   if (const YAML::Node v = m.find("step_tolerance"); v.IsDefined() && a.step_tolerance > 0.0) {
     if (a.creep_tolerance > 0.0)

@@ -98,6 +98,8 @@ RefinementStudy refinement_study(const std::string& scene_path, const std::strin
       if (a.settle->collapse_dt > 0.0)
         control("analysis.settle.collapse_dt", a.settle->collapse_dt, "collapse_dt", tu);
     }
+    if (a.integrator == scene::IntegratorKind::explicit_step)  // the explicit step's cycle (explicit-step.md)
+      control("analysis.explicit_safety", a.explicit_safety, "explicit_safety", "");
     if (a.step_tolerance > 0.0) control("analysis.step_tolerance", a.step_tolerance, "step_tolerance", lu);
     if (a.creep_tolerance > 0.0) control("analysis.creep_tolerance", a.creep_tolerance, "creep_tolerance", lu);
     if (a.dt_max > 0.0) control("analysis.dt_max", a.dt_max, "dt_max", tu);

@@ -396,6 +396,34 @@ BOOST_AUTO_TEST_CASE(time_integration_reaches_the_engine_settings_and_needs_a_dy
                   7, "trapezoidal", "analysis.time_integration", "dynamic_ratio = 0 carries no velocity");
 }
 
+BOOST_AUTO_TEST_CASE(the_explicit_step_keys_reach_the_engine_and_are_refused_where_they_do_nothing) {
+  // docs/reference/explicit-step.md: integrator, explicit_safety, explicit_damping, stage_local_damping.
+  const scene::SceneDescription base = scene::parse_scene(kBaseScene, "base.yaml");
+  BOOST_TEST((scene::build_scene(base).model.settings.integrator == core::Integrator::implicit));
+  const auto dynamic = with("  dt: 0.01", "  dt: 0.01\n  type: dynamic\n  integrator: explicit\n  explicit_safety: 0.8\n"
+                                         "  explicit_damping: 0.25");
+  const core::Settings st = scene::build_scene(scene::parse_scene(dynamic, "explicit.yaml")).model.settings;
+  BOOST_TEST((st.integrator == core::Integrator::explicit_step));
+  BOOST_TEST(st.explicit_safety == 0.8);
+  BOOST_TEST(st.explicit_damping == 0.25);
+  BOOST_TEST(st.stage_local_damping == 0.0);
+  const auto stages = with("  dt: 0.01", "  dt: 0.01\n  integrator: explicit\n  stage_local_damping: 0.8\n"
+                                        "  settle: {type: dynamic, until: 0.1, dt: 0.001, max_displacement_ratio: 0.001}");
+  BOOST_TEST(scene::build_scene(scene::parse_scene(stages, "stages.yaml")).model.settings.stage_local_damping == 0.8);
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  integrator: leapfrog"), 5, "leapfrog", "analysis.integrator",
+                  "'leapfrog' is not one of: implicit, explicit");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  integrator: explicit"), 5, "explicit", "analysis.integrator",
+                  "a static analysis without a dynamic settling stage");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  explicit_safety: 0.3"), 5, "0.3", "analysis.explicit_safety",
+                  "give integrator: explicit");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  type: dynamic\n  integrator: explicit\n  explicit_safety: 1.5"), 7,
+                  "1.5", "analysis.explicit_safety", "out of range");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  type: dynamic\n  integrator: explicit\n  stage_local_damping: 0.8"),
+                  7, "0.8", "analysis.stage_local_damping", "a dynamic analysis never takes it");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  type: dynamic\n  integrator: explicit\n  time_integration: trapezoidal"),
+                  6, "explicit", "analysis.integrator", "central difference");
+}
+
 BOOST_AUTO_TEST_CASE(open_close_limit_defaults_to_8_in_static_and_30_in_dynamic_analysis_and_reaches_the_engine) {
   // docs/notes/contact-solves.md, "The iteration limit in static analysis".
   BOOST_TEST(scene::build_scene(scene::parse_scene(kBaseScene, "base.yaml")).model.settings.max_open_close == 8);

@@ -184,6 +184,40 @@ class ContactSystem {
   /// check finds consistent leaves F0 - K0 D - f near zero: the residual of
   /// the step's equations (docs/reference/contacts.md, "Contact solves").
   void contact_forces(const Eigen::VectorXd& D, Eigen::VectorXd& f) const;
+  // Explicit cycles within a step (core's explicit step, docs/reference/explicit-step.md;
+  // contact_cycles.cpp): between begin_step and end_step, instead of assemble and check,
+  //   begin_cycles -> { cycle_forces }* -> end_cycles -> end_step.
+  // Each cycle decides every contact's state on its own from the state at the cycle's
+  // start (no iteration): a closed contact's normal spring, and the shear spring dragged
+  // along by the slip whenever its force would exceed the Mohr-Coulomb strength (the
+  // incremental elastic-plastic joint of explicit block codes, Cundall & Strack 1979).
+
+  /// Starts the cycles of the step begun by begin_step: each contact's cycle state from
+  /// its trial record, the list of contacts by block (`blocks`, the step-start views) the forces are
+  /// gathered through, and `threads` OpenMP threads for the cycles (0: OpenMP's default).
+  void begin_cycles(std::span<const BlockView> blocks, int threads);
+  /// Adds to K (one 6x6 matrix per block) a bound of the contacts' stiffness on each block,
+  /// 2 (p_n n n^T + k_s t t^T) per contact and side (a spring between two blocks stores
+  /// k (n_i.D_i + n_j.D_j)^2 / 2 <= k ((n_i.D_i)^2 + (n_j.D_j)^2); 1 x where the other block
+  /// does not move), open contacts included (they may close within the step); for the
+  /// stable cycle.
+  void cycle_stiffness(std::vector<Mat6>& K) const;
+  /// The cycles' dashpots: a contact whose joint set has a restitution keeps its own
+  /// (c = 2 zeta sqrt(k m), JointSet::restitution); the others take c = tau k beside each
+  /// spring (stiffness-proportional, tau [time]; 0: none). Adds their bound to C as
+  /// cycle_stiffness adds the springs'.
+  void cycle_damping(double tau, std::vector<Mat6>& C);
+  /// The contacts' forces on the blocks at the displacements D since the step start and
+  /// the rates V (6 per block each), after each contact's state is decided at D: f (6 per
+  /// block, set) is the force the contacts resist with (the residual of a block is its
+  /// load minus f). Summed per block over its contacts in a fixed order, so the result is
+  /// the same bits whatever the number of threads.
+  void cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, Eigen::VectorXd& f);
+  /// After the last cycle, at the step's D: the trial records take the cycles' states
+  /// (the locking point dragged by the slip, the slide direction, intact or not, the
+  /// normal force), ready for end_step. Returns the changes from the step-start states.
+  CheckResult end_cycles(std::span<const BlockView> blocks, const Eigen::VectorXd& D);
+
   /// Accepts the step: locking points, forces, accumulated shear; may raise the penalty.
   void end_step(std::span<const BlockView> blocks, const Eigen::VectorXd& D);
   /// Rejects the step: the records of the last accepted step stay as they were.
@@ -427,6 +461,24 @@ class ContactSystem {
   std::unordered_map<std::uint64_t, double> retract_prev_tau_;  ///< prev_tau_ before the last end_step
   double retract_prev_dt_ = 0.0;                                ///< prev_dt_ before the last end_step [time]
   std::vector<ContactKey> previous_keys_;
+  /// One contact's state within the explicit cycles of a step (contact_cycles.cpp).
+  struct Cycle {
+    ContactState state = ContactState::open;
+    int direction = 0;     ///< slide direction (+1 / -1) while sliding
+    bool intact = true;    ///< cohesion and tensile strength still act
+    double shift = 0.0;    ///< how far the cycles dragged the locking point along the edge [length]
+    double tan_phi = 0.0;  ///< friction of the contact while intact / once not [-]
+    double tan_phi_residual = 0.0;
+    double cohesion = 0.0, cohesion_residual = 0.0;  ///< [stress]
+    double cn = 0.0, cs = 0.0;  ///< normal and shear dashpots [force time / length^2 per unit thickness]
+    /// Factors of the stiffness bound on its vertex and edge blocks: 2, or 1 where the other
+    /// block does not move (held: infinite mass), so the spring acts on one block alone.
+    double bound_i = 2.0, bound_j = 2.0;
+  };
+  std::vector<Cycle> cycles_;
+  std::vector<Vec6> cycle_force_;          ///< per contact: force on its vertex block, then its edge block
+  std::vector<int> block_first_, block_entries_;  ///< CSR: entries 2c (vertex side) / 2c+1 (edge side) by block
+  int cycle_threads_ = 0;
   std::vector<char> removed_;  ///< remove_blocks: 1 for a removed block (empty: none removed)
   std::vector<Box> boxes_;
   BroadPhase broad_;

@@ -39,6 +39,17 @@ class ContactAdapter final : public ContactModel {
     system_.contact_forces(D, f);
     return true;
   }
+  /// contact::ContactSystem::begin_cycles, cycle_stiffness, cycle_forces, end_cycles.
+  bool begin_cycles(std::span<const contact::BlockView> blocks, int threads) override {
+    system_.begin_cycles(blocks, threads);
+    return true;
+  }
+  void cycle_stiffness(std::vector<Mat6>& K) const override { system_.cycle_stiffness(K); }
+  void cycle_damping(double tau, std::vector<Mat6>& C) override { system_.cycle_damping(tau, C); }
+  void cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, Eigen::VectorXd& f) override {
+    system_.cycle_forces(D, V, f);
+  }
+  ContactCheck end_cycles(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) override;
   void abandon_step() override;
   /// contact::ContactSystem::creep_error_estimate (asked for by the step context).
   double creep_error_estimate() const override { return system_.creep_error_estimate(); }

@@ -7,12 +7,15 @@
 #include <limits>
 #include <memory>
 #include <span>
+#include <vector>
 
 #include "rheodda/contact/contact_energy.hpp"
 #include "rheodda/contact/joint_set.hpp"
 #include "rheodda/contact/kinematics.hpp"
 
 namespace rheodda::core {
+
+using Mat6 = contact::Mat6;
 
 /// The contacts' terms of the energy balance (stored energies after the last
 /// accepted step and its flows; docs/reference/engine.md, "Energy balance").
@@ -89,6 +92,29 @@ class ContactModel {
   /// (f untouched) for a model that cannot (contact solves that need the
   /// residual of the step's equations then fall back; contact_solve.hpp).
   virtual bool contact_forces(const Eigen::VectorXd& /*D*/, Eigen::VectorXd& /*f*/) const { return false; }
+  // Explicit cycles (the explicit step, docs/reference/explicit-step.md): between begin_step
+  // and end_step, begin_cycles -> { cycle_forces }* -> end_cycles instead of the
+  // assemble/check iteration. A model that cannot returns false from begin_cycles.
+
+  /// Starts the cycles of the step begun (on the step-start `blocks`, `threads` OpenMP threads,
+  /// 0: OpenMP's default); false when the model has no explicit cycles.
+  virtual bool begin_cycles(std::span<const contact::BlockView> /*blocks*/, int /*threads*/) { return false; }
+  /// Adds to K (6x6 per block) a bound of the contacts' stiffness on each block (for the
+  /// stable cycle).
+  virtual void cycle_stiffness(std::vector<Mat6>& /*K*/) const {}
+  /// The cycles' dashpots: contacts without their own take c = tau k beside each spring
+  /// [tau: time]; adds a bound of all the dashpots on each block to C.
+  virtual void cycle_damping(double /*tau*/, std::vector<Mat6>& /*C*/) {}
+  /// The contacts' resisting forces f (6 per block, set) at the displacements D since the
+  /// step start and rates V, each contact's state decided at D.
+  virtual void cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, Eigen::VectorXd& f) {
+    (void)V;
+    f = Eigen::VectorXd::Zero(D.size());
+  }
+  /// After the last cycle: the trial states take the cycles' states, ready for end_step.
+  virtual ContactCheck end_cycles(std::span<const contact::BlockView> /*blocks*/, const Eigen::VectorXd& /*D*/) {
+    return {};
+  }
   /// Accept the step: commit states, locking points, forces and rheology history.
   virtual void end_step(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) = 0;
   /// Reject the step (it will be redone with a smaller dt): restore the step-start states.
@@ -145,6 +171,7 @@ class NullContactModel final : public ContactModel {
   }
   void end_step(std::span<const contact::BlockView>, const Eigen::VectorXd&) override {}
   bool contact_forces(const Eigen::VectorXd&, Eigen::VectorXd&) const override { return true; }
+  bool begin_cycles(std::span<const contact::BlockView>, int) override { return true; }  // no contacts: no force at any cycle
   void abandon_step() override {}
   std::unique_ptr<ContactSnapshot> snapshot() const override {
     return std::make_unique<ContactSnapshot>();

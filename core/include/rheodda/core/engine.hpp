@@ -19,6 +19,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <span>
@@ -61,6 +62,10 @@ struct StepReport {
                                   ///< the block vertices, under Settings::step_tolerance only [length]
   bool extrapolated = false;      ///< under Settings::step_tolerance: the step was extrapolated
                                   ///< (2 y(dt/2) - y(dt)); false: y(dt/2) stands
+  int cycles = 0;                 ///< explicit cycles of the accepted attempt (Settings::integrator;
+                                  ///< 0: an implicit step) [-]
+  double cycle_dt = 0.0;          ///< length of those cycles [time]
+  int stable_block = -1;          ///< the block whose stable cycle set their length (-1: none) [-]
   ContactChanges changes;         ///< what the contact checks changed, summed over every
                                   ///< open-close iterate of every attempt of the step [-]
   EnergyFlows energy;             ///< the step's energy flows and residual (energy.hpp) [force x length]
@@ -320,6 +325,16 @@ class Engine {
   bool in_stage() const;
   /// States of the bolts after the last accepted step, per Model::bolts (docs/reference/bolts.md).
   const std::vector<BoltState>& bolts() const;
+
+  /// The explicit step's cycle (docs/reference/explicit-step.md) on the current state, before
+  /// its rounding to whole cycles of a step: explicit_safety x the stable cycle, with the
+  /// contacts found as a step of Settings::dt would find them, and the block that sets it
+  /// (cycle infinite and block -1 when nothing stiff holds any block).
+  struct StableCycle {
+    double cycle = std::numeric_limits<double>::infinity();  ///< [time]
+    int block = -1;
+  };
+  StableCycle stable_cycle();
 
   /// Applies `edit` between two steps (model_edits.cpp; docs/reference/stages.md).
   /// Validates it first and throws ModelError naming the field ("remove_blocks[0]",

@@ -165,6 +165,15 @@ enum class TimeIntegration {
   trapezoidal,  ///< beta = 1/4, gamma = 1/2: keeps the energy of linear vibrations (dynamic only)
 };
 
+/// How dynamic steps are integrated (docs/reference/explicit-step.md). The scene's words are
+/// `implicit` and `explicit` (`explicit` is a C++ keyword: Integrator::explicit_step).
+enum class Integrator {
+  implicit,       ///< Shi's implicit step: the step's equations solved with the open-close
+                  ///< iteration (the reference; every step of a static analysis is one)
+  explicit_step,  ///< dynamic steps in explicit cycles (central difference, each contact's state
+                  ///< decided on its own, no matrix); static steps stay implicit
+};
+
 /// Analysis settings (Shi's control parameters).
 struct Settings {
   double dt = 1.0e-3;            ///< largest (and first) step size [time]; > 0
@@ -247,6 +256,29 @@ struct Settings {
   }
   /// Some steps carry velocity: a dynamic analysis, or a dynamic settling stage.
   bool has_dynamic_steps() const { return dynamic_ratio > 0.0 || (settle_until > 0.0 && settle_dynamic); }
+  /// Integrator of the dynamic steps (docs/reference/explicit-step.md): the dynamic steps of a
+  /// dynamic analysis and the dynamic stages of a static one; default implicit.
+  Integrator integrator = Integrator::implicit;
+  /// The explicit step's cycle is this share of the stable one, 2 / omega_max (omega_max
+  /// bounded per block from its mass and the stiffness on it) [-]; in (0, 1]
+  double explicit_safety = 0.5;
+  /// Local (non-viscous) damping of the explicit cycles in the dynamic stages of a static
+  /// analysis, where only the state at rest matters (Cundall's; UDEC's default is 0.8):
+  /// each degree of freedom takes the force -alpha |R| sign(v) beside its unbalanced
+  /// force R [-]; in [0, 1); 0 = none. Never in a dynamic analysis.
+  double stage_local_damping = 0.0;
+  /// Damping ratio the explicit cycles give what has no damping of its own [-], in [0, 1]:
+  /// each contact whose joint set has no restitution (dashpots on its normal and shear
+  /// springs and the two blocks' reduced mass), and each strain mode of a block whose
+  /// material has no damping_ratio (modal damping of the block's elastic vibration). The
+  /// implicit step's scheme damps both within a step (their periods are micro- to
+  /// milliseconds); the cycles resolve them, and undamped they rattle for ever and, with
+  /// friction, pump a sliding block off its joint (docs/reference/explicit-step.md,
+  /// "Damping"). 0 = none: the elastic dynamics undamped.
+  double explicit_damping = 1.0;
+  /// OpenMP threads of the explicit cycles; 0 = OpenMP's default (OMP_NUM_THREADS). The
+  /// results are the same bits whatever the number [-]; >= 0
+  int threads = 0;
   double dynamic_ratio = 1.0;    ///< share of the velocity carried to the next step [-], in [0, 1];
                                  ///< 0 = static analysis (no velocities at all), 1 = fully dynamic
   TimeIntegration time_integration = TimeIntegration::shi;  ///< default shi

@@ -41,6 +41,10 @@ struct Units {
 enum class AnalysisType { static_analysis, dynamic_analysis };
 enum class PlaneKind { strain, stress };
 enum class SolverKind { automatic, cholmod, pcg, amg };
+/// `integrator`: how dynamic steps are integrated (docs/reference/explicit-step.md);
+/// core::Integrator's choices under the scene's words `implicit` and `explicit`.
+enum class IntegratorKind { implicit, explicit_step };
+
 /// `contact_solver`: how a step's contact problem is solved (docs/reference/contacts.md, "Contact solves").
 enum class ContactSolverKind { open_close, newton };
 enum class TimeIntegration { shi, trapezoidal };
@@ -132,6 +136,13 @@ struct Analysis {
   /// state) or `newton` (the same iterates, accepted on the residual of the step's
   /// equations; docs/reference/contacts.md, "Contact solves")
   ContactSolverKind contact_solver = ContactSolverKind::open_close;
+  /// `integrator`: `implicit` (Shi's step) or `explicit` (dynamic steps in explicit cycles).
+  IntegratorKind integrator = IntegratorKind::implicit;
+  double explicit_safety = 0.5;        ///< the explicit cycle / the stable one [-]; in (0, 1]
+  double explicit_damping = 1.0;       ///< damping ratio the explicit cycles give what has no damping
+                                       ///< of its own (contacts, blocks' strain modes) [-]; in [0, 1]
+  double stage_local_damping = 0.0;    ///< local damping of explicit cycles in the dynamic stages
+                                       ///< of a static analysis [-]; in [0, 1)
   /// `contact_residual_tolerance`: under `newton`, a step is accepted when the
   /// residual of its equations is at most this fraction of the contact forces [-]; in (0, 1)
   double contact_residual_tolerance = 1e-4;

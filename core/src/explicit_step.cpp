@@ -1,0 +1,209 @@
+// The explicit step (docs/reference/explicit-step.md; ../shared/reference/explicit-dda.md):
+// a dynamic step of dt taken in n cycles of central difference instead of one implicit
+// solve. The contacts are detected once, on the step-start geometry (begin_step, with the
+// search reaching the step's motion as for the implicit step: the contact list stays valid
+// over the cycles the way a Verlet list does while nothing moves beyond its margin), and
+// linearized there as in the implicit step; the blocks' geometry and the creep laws move
+// once, at the step's end (end_step, accept). Within the step, with D the displacements
+// since its start (6 per block, the seed's eq. 27 unknowns) and V their rates:
+//     R(D, V, t) = F(t) - K D - C V - f_c(D, V)                                     (1)
+// F the block loads (gravity, initial stress, point loads, water, fixed points) linear in
+// t between the step's ends, K the blocks' elastic and fixed-point stiffness, C the block
+// damping (Material::damping_ratio: tau S E_e on the strain terms), f_c the contacts'
+// forces with each contact's state decided at D (contact_cycles.cpp). Central difference
+// (Newmark beta = 0, gamma = 1/2) with the block mass M = rho int T^T T dA (Shi 1988):
+//     V_(1/2) = V_0 + h/2 M^-1 R_0,  D_(k+1) = D_k + h V_(k+1/2),
+//     V_(k+3/2) = V_(k+1/2) + h M^-1 R_(k+1),  V_n = V_(n-1/2) + h/2 M^-1 R_n         (2)
+// with the cycle h = dt / n a share (Settings::explicit_safety) of the stable one. Central
+// difference with a dashpot is stable for h <= 2/omega (sqrt(1 + zeta^2) - zeta); with
+// zeta = c / (2 omega), c bounding M^-1 C, that is h <= 2 / (sqrt(omega^2 + c^2/4) + c/2)
+// (3), smallest at the largest omega: omega_max^2 and c are bounded per block by the
+// largest eigenvalues of M^-1 K' and M^-1 C' (K', C' the block's own terms plus the
+// contacts' bounds, ContactModel::cycle_stiffness).
+// Damping (Settings::explicit_damping, zeta): the implicit step's scheme damps the contacts'
+// and the blocks' elastic vibrations within a step; the cycles resolve them, so what has no
+// damping of its own takes some. A block's strain modes, modal damping at zeta
+//     C_e = M_e Phi diag(2 zeta omega_i) Phi^T M_e,  K_e Phi = M_e Phi diag(omega_i^2)   (4)
+// (K_e = S E_e, M_e the strain rows of M; Phi M_e-orthonormal). The contacts, dashpots
+// c = tau k beside each spring with tau = 2 zeta / omega_max                          (5)
+// (stiffness-proportional: the scene's highest mode at zeta, the lower ones less), so that
+// the cycle shortens by no more than sqrt(1 + zeta^2) - zeta. Per-contact dashpots at zeta
+// on the reduced mass would overdamp a block held by many contacts (zeta sqrt(n/2) on its
+// n springs) and shorten the cycle by as much.
+// Blocks held at two or more fixed points and removed blocks do not move. Every block and
+// every contact is updated on its own: the cycles run in parallel (OpenMP) and give the
+// same bits whatever the number of threads (contacts gathered per block in a fixed order).
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "block_terms.hpp"
+#include "engine_impl.hpp"
+
+namespace rheodda::core {
+
+namespace {
+
+/// More cycles than this in one step is a scene the explicit step cannot take.
+constexpr double kMaxCycles = 1.0e8;
+
+/// Largest eigenvalue of M^-1 A for the block mass M (its Cholesky factor L), A symmetric.
+double largest_eigenvalue(const Eigen::LLT<Mat6>& L, const Mat6& A) {
+  Mat6 B = L.matrixL().solve(A);
+  B = L.matrixL().solve(B.transpose()).eval();  // L^-1 A L^-T, symmetric
+  Eigen::SelfAdjointEigenSolver<Mat6> es(0.5 * (B + B.transpose()), Eigen::EigenvaluesOnly);
+  return std::max(es.eigenvalues().maxCoeff(), 0.0);
+}
+
+/// (4): each strain mode of a block damped at the ratio zeta.
+Eigen::Matrix3d modal_strain_damping(const Eigen::Matrix3d& K, const Eigen::Matrix3d& M, double zeta) {
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix3d> es(K, M);
+  const Eigen::Matrix3d& phi = es.eigenvectors();  // M-orthonormal
+  const Eigen::Vector3d w = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  const Eigen::Matrix3d Mphi = M * phi;
+  return Mphi * (2.0 * zeta * w).asDiagonal() * Mphi.transpose();
+}
+
+}  // namespace
+
+Engine::Impl::CycleBlocks Engine::Impl::cycle_blocks(double dt) const {
+  const Settings& s = model.settings;
+  const std::size_t nb = st.blocks.size();
+  CycleBlocks out;
+  std::vector<Mat6> K_end;
+  assemble_blocks(dt, st.time, out.K, out.F0, false);  // (1): the loads at the step's start and end, K
+  assemble_blocks(dt, st.time + dt, K_end, out.dF, false);
+  out.dF -= out.F0;
+  out.loads_change = out.dF.lpNorm<Eigen::Infinity>() > 0.0;
+  // Mass, block damping and the stable cycle (3) per block.
+  out.M_inv.assign(nb, Mat6::Zero());
+  out.C.assign(nb, Eigen::Matrix3d::Zero());
+  out.frozen.assign(nb, 0);
+  std::vector<Mat6> bound = out.K, damping(nb, Mat6::Zero());
+  contacts->cycle_stiffness(bound);
+  std::vector<Eigen::LLT<Mat6>> mass(nb);
+  std::vector<double> w2(nb, 0.0);
+  double w2_max = 0.0;
+  for (std::size_t k = 0; k < nb; ++k) {
+    out.frozen[k] = held[k] || is_removed(k);
+    if (out.frozen[k]) continue;
+    const BlockState& b = st.blocks[k];
+    const Material& mat = model.materials[b.material];
+    const Mat6 M = mat.density * unit_mass_matrix(moments[k]);
+    mass[k].compute(M);
+    out.M_inv[k] = mass[k].solve(Mat6::Identity());
+    const Eigen::Matrix3d Ke = moments[k].S * elastic[b.material];
+    if (const double tau = strain_damping_time(moments[k], mat, elastic[b.material]); tau > 0.0)
+      out.C[k] = tau * Ke;  // the material's Kelvin-Voigt damping (block_terms.hpp)
+    else if (s.explicit_damping > 0.0)
+      out.C[k] = modal_strain_damping(Ke, M.block<3, 3>(3, 3), s.explicit_damping);  // (4)
+    damping[k].block<3, 3>(3, 3) += out.C[k];
+    w2[k] = largest_eigenvalue(mass[k], bound[k]);
+    w2_max = std::max(w2_max, w2[k]);
+  }
+  // (5): the contacts' dashpots, stiffness-proportional at tau = 2 zeta / omega_max.
+  const double tau = s.explicit_damping > 0.0 && w2_max > 0.0 ? 2.0 * s.explicit_damping / std::sqrt(w2_max) : 0.0;
+  contacts->cycle_damping(tau, damping);
+  for (std::size_t k = 0; k < nb; ++k) {
+    if (out.frozen[k] || !(w2[k] > 0.0)) continue;  // nothing stiff on it: free flight sets no limit
+    const double c = largest_eigenvalue(mass[k], damping[k]);
+    const double h = 2.0 / (std::sqrt(w2[k] + 0.25 * c * c) + 0.5 * c);  // (3)
+    if (h < out.h_stable) out.h_stable = h, out.stable_block = static_cast<int>(k);
+  }
+  return out;
+}
+
+Engine::StableCycle Engine::Impl::stable_cycle() {
+  StepContext ctx{st.step, st.time, model.settings.dt, search_disp};
+  contacts->begin_step(views, ctx);
+  StableCycle out;
+  try {
+    if (contacts->begin_cycles(views, model.settings.threads)) {
+      const CycleBlocks b = cycle_blocks(model.settings.dt);
+      out.cycle = model.settings.explicit_safety * b.h_stable;
+      out.block = b.stable_block;
+    }
+  } catch (...) {
+    contacts->abandon_step();
+    throw;
+  }
+  contacts->abandon_step();
+  return out;
+}
+
+Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
+  const Settings& s = model.settings;
+  const std::size_t nb = st.blocks.size();
+  const auto nbi = static_cast<std::ptrdiff_t>(nb);
+  const int threads = s.threads > 0 ? s.threads : omp_get_max_threads();
+  if (!contacts->begin_cycles(views, s.threads))
+    throw std::logic_error("the contact model cannot take explicit cycles");
+  auto t0 = Clock::now();
+  const CycleBlocks blocks = cycle_blocks(dt);
+  const std::vector<Mat6>& K = blocks.K;
+  const std::vector<Mat6>& M_inv = blocks.M_inv;
+  const std::vector<Eigen::Matrix3d>& C = blocks.C;
+  const std::vector<char>& frozen = blocks.frozen;
+  const Eigen::VectorXd& F0 = blocks.F0;
+  const Eigen::VectorXd& dF = blocks.dF;
+  const bool loads_change = blocks.loads_change;
+  const double h_stable = blocks.h_stable;
+  const int stable_block = blocks.stable_block;
+  const double h_allowed = s.explicit_safety * h_stable;
+  const double wanted = std::isfinite(h_allowed) ? std::ceil(dt / h_allowed) : 1.0;
+  if (!(wanted <= kMaxCycles))
+    throw std::runtime_error("step " + std::to_string(st.step) + " at time " + std::to_string(st.time) +
+                             ": the explicit step needs " + std::to_string(wanted) + " cycles of " +
+                             std::to_string(h_allowed) + " for a step of " + std::to_string(dt) +
+                             " (its stable cycle is set by block " + std::to_string(stable_block) +
+                             "); give the implicit integrator or a shorter step");
+  const int n = std::max(1, static_cast<int>(wanted));
+  const double h = dt / n;
+  rep.assembly_seconds += seconds_since(t0);
+  t0 = Clock::now();
+
+  // (2): the cycles.
+  const double ratio = ratio_now();
+  const double alpha = settling() && s.dynamic_ratio == 0.0 ? s.stage_local_damping : 0.0;
+  Eigen::VectorXd V = Eigen::VectorXd::Zero(6 * nbi), Dn = Eigen::VectorXd::Zero(6 * nbi), f;
+  for (std::size_t k = 0; k < nb; ++k)
+    if (!frozen[k]) V.segment<6>(6 * static_cast<Eigen::Index>(k)) = ratio * st.blocks[k].velocity;
+  for (int c = 0; c <= n; ++c) {
+    contacts->cycle_forces(Dn, V, f);
+    const double w = static_cast<double>(c) / n;
+    const double kick = (c == 0 || c == n) ? 0.5 * h : h;
+    const bool drift = c < n;
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (std::ptrdiff_t k = 0; k < nbi; ++k) {
+      if (frozen[k]) continue;
+      auto Dk = Dn.segment<6>(6 * k);
+      auto Vk = V.segment<6>(6 * k);
+      Vec6 R = F0.segment<6>(6 * k) - K[k] * Dk - f.segment<6>(6 * k);
+      if (loads_change) R += w * dF.segment<6>(6 * k);
+      R.tail<3>() -= C[k] * Vk.tail<3>();
+      if (alpha > 0.0)  // local damping: -alpha |R| sign(v) per degree of freedom
+        for (int i = 0; i < 6; ++i)
+          if (Vk(i) != 0.0) R(i) -= alpha * std::abs(R(i)) * (Vk(i) > 0.0 ? 1.0 : -1.0);
+      Vk += kick * (M_inv[k] * R);
+      if (drift) Dk += h * Vk;
+    }
+  }
+  rep.solve_seconds += seconds_since(t0);
+  D = Dn;
+  cycle_velocity.resize(nb);
+  for (std::size_t k = 0; k < nb; ++k) cycle_velocity[k] = V.segment<6>(6 * static_cast<Eigen::Index>(k));
+  rep.cycles = n;
+  rep.cycle_dt = h;
+  rep.stable_block = stable_block;
+  Trial trial;
+  trial.converged = true;
+  trial.check = contacts->end_cycles(views, D);
+  rep.changes += trial.check.changes;
+  return trial;
+}
+
+}  // namespace rheodda::core
