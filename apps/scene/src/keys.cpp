@@ -273,12 +273,12 @@ std::vector<KeySpec> declare_analysis_keys() {
          "matrix, no iteration, in parallel); the static steps of a static analysis stay implicit, "
          "its dynamic stages (`settle`) are explicit"));
   keys.push_back(number_key("analysis", "explicit_safety", "–", {0.0, true, 1.0, false}, &Analysis::explicit_safety,
-      "0.5",
+      "0.8",
       "under `integrator: explicit`, the cycle as a share of the stable one 2/ω_max (ω_max bounded "
          "per block from its mass and the stiffness of its contacts, elasticity and fixed points); "
          "(0, 1]"));
   keys.push_back(number_key("analysis", "explicit_damping", "–", {0.0, false, 1.0, false}, &Analysis::explicit_damping,
-      "1",
+      "0.5",
       "under `integrator: explicit`, the damping ratio the cycles give what has no damping of its own: "
          "contacts whose joint set has no `restitution` (dashpots beside their springs, the scene's "
          "highest mode at this ratio) and the strain modes of blocks whose material has no "

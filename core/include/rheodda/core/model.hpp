@@ -261,21 +261,22 @@ struct Settings {
   Integrator integrator = Integrator::implicit;
   /// The explicit step's cycle is this share of the stable one, 2 / omega_max (omega_max
   /// bounded per block from its mass and the stiffness on it) [-]; in (0, 1]
-  double explicit_safety = 0.5;
+  double explicit_safety = 0.8;
   /// Local (non-viscous) damping of the explicit cycles in the dynamic stages of a static
   /// analysis, where only the state at rest matters (Cundall's; UDEC's default is 0.8):
   /// each degree of freedom takes the force -alpha |R| sign(v) beside its unbalanced
   /// force R [-]; in [0, 1); 0 = none. Never in a dynamic analysis.
   double stage_local_damping = 0.0;
   /// Damping ratio the explicit cycles give what has no damping of its own [-], in [0, 1]:
-  /// each contact whose joint set has no restitution (dashpots on its normal and shear
-  /// springs and the two blocks' reduced mass), and each strain mode of a block whose
-  /// material has no damping_ratio (modal damping of the block's elastic vibration). The
+  /// each contact whose joint set has no restitution (dashpots c = tau k beside its springs,
+  /// tau = 2 zeta / omega_max: the scene's highest mode at zeta, the lower ones less), and
+  /// each strain mode of a block whose material has no damping_ratio (modal damping of the
+  /// block's elastic vibration, each mode at zeta). The
   /// implicit step's scheme damps both within a step (their periods are micro- to
   /// milliseconds); the cycles resolve them, and undamped they rattle for ever and, with
   /// friction, pump a sliding block off its joint (docs/reference/explicit-step.md,
   /// "Damping"). 0 = none: the elastic dynamics undamped.
-  double explicit_damping = 1.0;
+  double explicit_damping = 0.5;
   /// OpenMP threads of the explicit cycles; 0 = OpenMP's default (OMP_NUM_THREADS). The
   /// results are the same bits whatever the number [-]; >= 0
   int threads = 0;

@@ -138,8 +138,8 @@ struct Analysis {
   ContactSolverKind contact_solver = ContactSolverKind::open_close;
   /// `integrator`: `implicit` (Shi's step) or `explicit` (dynamic steps in explicit cycles).
   IntegratorKind integrator = IntegratorKind::implicit;
-  double explicit_safety = 0.5;        ///< the explicit cycle / the stable one [-]; in (0, 1]
-  double explicit_damping = 1.0;       ///< damping ratio the explicit cycles give what has no damping
+  double explicit_safety = 0.8;        ///< the explicit cycle / the stable one [-]; in (0, 1]
+  double explicit_damping = 0.5;       ///< damping ratio the explicit cycles give what has no damping
                                        ///< of its own (contacts, blocks' strain modes) [-]; in [0, 1]
   double stage_local_damping = 0.0;    ///< local damping of explicit cycles in the dynamic stages
                                        ///< of a static analysis [-]; in [0, 1)
