@@ -116,7 +116,7 @@ std::vector<ProfileInterval> profile_intervals(const laws::LawInfo& law, const C
         }
         double end;
         if (found) end = std::exp(brent(f, inner, u));
-        else if (cut) end = std::exp(limit);
+        else if (cut) end = dir < 0 ? it->min : it->max;
         else end = dir < 0 ? 0.0 : std::numeric_limits<double>::infinity();
         (dir < 0 ? lv.lower : lv.upper) = end;
         (dir < 0 ? lv.lower_found : lv.upper_found) = found;
