@@ -32,8 +32,13 @@ def burgers(t, E1, E2, eta1, eta2):
     return F / E1 + F / E2 * (1.0 - np.exp(-E2 * t / eta2)) + F * t / eta1
 
 
-def reference_fit(t, d, start, fixed=None, bounds=None, sigma=None, absolute_sigma=False):
-    """values, errors (None where not fitted), chi-square of the reference least squares."""
+def reference_fit(t, d, start, fixed=None, bounds=None, sigma=None, absolute_sigma=False, tight=False):
+    """values, errors (None where not fitted), chi-square of the reference least squares.
+
+    tight: lmfit's least_squares (scipy's trust region) to xtol = ftol = gtol = 1e-15 instead of
+    leastsq to 1e-12, for values to compare to 1e-7: on the weighted curve with E1 and eta2 held
+    leastsq stops with E2 1.1e-7 short of the minimum (its chi-square equal to 4e-15), least_squares
+    within 2e-8 (the minimum solved to 40 digits by Gauss-Newton)."""
     fixed = fixed or {}
     bounds = bounds or {}
     if lmfit is not None:
@@ -44,9 +49,14 @@ def reference_fit(t, d, start, fixed=None, bounds=None, sigma=None, absolute_sig
         for name, (lo, hi) in bounds.items():
             params[name].set(min=lo, max=hi)
         weights = None if sigma is None else 1.0 / sigma
-        r = model.fit(d, params, t=t, weights=weights, scale_covar=not absolute_sigma,
-                      fit_kws={"xtol": 1e-12, "ftol": 1e-12})
-        return ({n: r.params[n].value for n in NAMES}, {n: r.params[n].stderr for n in NAMES}, r.chisqr, r)
+        if tight:
+            how = {"method": "least_squares", "fit_kws": {"xtol": 1e-15, "ftol": 1e-15, "gtol": 1e-15}}
+        else:
+            how = {"fit_kws": {"xtol": 1e-12, "ftol": 1e-12}}
+        r = model.fit(d, params, t=t, weights=weights, scale_covar=not absolute_sigma, **how)
+        # lmfit (1.1) gives a fixed parameter stderr 0: it is not fitted, so None here as below
+        return ({n: r.params[n].value for n in NAMES},
+                {n: r.params[n].stderr if r.params[n].vary else None for n in NAMES}, r.chisqr, r)
     curve_fit = pytest.importorskip("scipy.optimize").curve_fit  # pragma: no cover
     assert not bounds, "the scipy fallback compares unbounded fits only"
     free = [n for n in NAMES if n not in fixed]
@@ -76,6 +86,7 @@ def assert_same(r, values, errors, chisqr):
         assert r.values[n] == pytest.approx(values[n], rel=1e-6), n
         if errors[n] is None:
             assert not r.vary[n] or r.at_bound[n], n
+            assert math.isnan(r.errors[n]), n  # no standard error: NaN, as in to_dataframe
         else:
             assert r.errors[n] == pytest.approx(errors[n], rel=1e-4), n
     assert r.chi_square == pytest.approx(chisqr, rel=1e-9)
@@ -206,9 +217,12 @@ def test_a_binding_bound_reaches_lmfits_constrained_minimum(curve, fixed, bound,
     params = {n: {"value": v, "vary": False} for n, v in fixed.items()}
     params["eta2"] = {"max": bound}
     r = rheodda.fit("burgers", d, t=t, stress=F, params=params, sigma=sigma)
-    start = TABLE1 | {"eta2": 0.9 * bound}
+    held, _, chisqr_held, _ = reference_fit(t, d, TABLE1, fixed=fixed | {"eta2": bound}, sigma=sigma, tight=True)
+    # lmfit's bounded fit started at the held fit with eta2 10 % inside the bound goes back onto it.
+    # (From the seed's values with eta2 = 0.9 * 1200 and E1 held at 25, lmfit's leastsq ends in another
+    # minimum: eta2 7.26, E2 1225, the Kelvin element merged with the jump, chi^2 17597.2, 8 % higher.)
+    start = held | {"eta2": 0.9 * bound}
     values, _, chisqr, _ = reference_fit(t, d, start, fixed=fixed, bounds={"eta2": (0.0, bound)}, sigma=sigma)
-    held, _, chisqr_held, _ = reference_fit(t, d, TABLE1, fixed=fixed | {"eta2": bound}, sigma=sigma)
     assert chisqr == pytest.approx(chisqr_held, rel=1e-9)  # lmfit's is the constrained minimum
     assert r.at_bound["eta2"] == "max" and r.values["eta2"] == bound
     assert r.chi_square == pytest.approx(chisqr_held, rel=1e-10)
