@@ -136,12 +136,13 @@ std::map<std::string, fit::ParameterSetting> parse_settings(const FitArgs& a) {
     if (std::find(flags.begin(), flags.end(), flag) != flags.end())
       throw std::invalid_argument(fmt::format("{} {} is given twice", flag, name));
     flags.push_back(flag);
-    if (flags.size() > 1 && std::find(flags.begin(), flags.end(), "--fix") != flags.end())
-      throw std::invalid_argument(fmt::format(
-          "--fix {} holds {} at its value: --initial and --bounds on it would do nothing", name, name));
+    // --expr first: it is read first, so with --fix on the same name both are in `flags`.
     if (flags.size() > 1 && std::find(flags.begin(), flags.end(), "--expr") != flags.end())
       throw std::invalid_argument(fmt::format(
           "--expr gives {} by an expression: --fix, --initial and --bounds on it are not supported", name));
+    if (flags.size() > 1 && std::find(flags.begin(), flags.end(), "--fix") != flags.end())
+      throw std::invalid_argument(fmt::format(
+          "--fix {} holds {} at its value: --initial and --bounds on it would do nothing", name, name));
   };
   for (const auto& item : a.expr) {
     const auto [name, text] = split(item, "--expr");
