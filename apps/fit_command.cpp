@@ -6,6 +6,7 @@
 //   rheodda fit steps.csv --law burgers --stress-column tau
 //   rheodda fit table1-row1.csv --law burgers --stress 0.232 --fix E1=26.87 --bounds eta2=100:1e4
 //       --initial E2=150 --sigma-column sigma --absolute-sigma
+//   rheodda fit table1-row1.csv --law burgers --stress 0.232 --expr "eta2=12*E2" --max-iterations 5000
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -40,9 +41,10 @@ struct FitArgs {
   std::string units;
   std::string rank_by = "bic";
   int restarts = 4;
+  int max_iterations = 500;
   std::string json, yaml, plot;
   // Parameter settings (fit::ParameterSetting), each NAME=...
-  std::vector<std::string> fix, initial, bounds;
+  std::vector<std::string> fix, initial, bounds, expr;
   std::string sigma_column;
   bool absolute_sigma = false;
 };
@@ -115,7 +117,7 @@ double parse_number(const std::string& text, const std::string& what) {
 }
 
 // --fix NAME=VALUE, --initial NAME=VALUE, --bounds NAME=MIN:MAX (either side may
-// be empty) into fit::FitOptions::parameters; the values themselves are
+// be empty), --expr NAME=EXPRESSION into fit::FitOptions::parameters; the values themselves are
 // checked by fit::fit_law against the law (FitError).
 std::map<std::string, fit::ParameterSetting> parse_settings(const FitArgs& a) {
   std::map<std::string, fit::ParameterSetting> out;
@@ -124,7 +126,9 @@ std::map<std::string, fit::ParameterSetting> parse_settings(const FitArgs& a) {
     const std::size_t eq = item.find('=');
     if (eq == std::string::npos || eq == 0 || eq + 1 == item.size())
       throw std::invalid_argument(fmt::format("{} '{}': expected NAME={}", flag, item,
-                                              std::string(flag) == "--bounds" ? "MIN:MAX" : "VALUE"));
+                                              std::string(flag) == "--bounds" ? "MIN:MAX"
+                                              : std::string(flag) == "--expr" ? "EXPRESSION"
+                                                                              : "VALUE"));
     return std::pair{item.substr(0, eq), item.substr(eq + 1)};
   };
   auto claim = [&](const std::string& name, const std::string& flag) {
@@ -132,10 +136,19 @@ std::map<std::string, fit::ParameterSetting> parse_settings(const FitArgs& a) {
     if (std::find(flags.begin(), flags.end(), flag) != flags.end())
       throw std::invalid_argument(fmt::format("{} {} is given twice", flag, name));
     flags.push_back(flag);
+    // --expr first: it is read first, so with --fix on the same name both are in `flags`.
+    if (flags.size() > 1 && std::find(flags.begin(), flags.end(), "--expr") != flags.end())
+      throw std::invalid_argument(fmt::format(
+          "--expr gives {} by an expression: --fix, --initial and --bounds on it are not supported", name));
     if (flags.size() > 1 && std::find(flags.begin(), flags.end(), "--fix") != flags.end())
       throw std::invalid_argument(fmt::format(
           "--fix {} holds {} at its value: --initial and --bounds on it would do nothing", name, name));
   };
+  for (const auto& item : a.expr) {
+    const auto [name, text] = split(item, "--expr");
+    claim(name, "--expr");
+    out[name].expr = text;
+  }
   for (const auto& item : a.fix) {
     const auto [name, value] = split(item, "--fix");
     claim(name, "--fix");
@@ -195,10 +208,12 @@ void print_fit(const FitResult& r, const Units& u) {
     if (p.min > 0.0 || std::isfinite(p.max))
       bounds = fmt::format("  bounds [{:g}, {:g}]", p.min, p.max);
     fmt::print("  {:<9} {:>14.7g} {:>14} {:>10}  {}{}\n", p.name, p.value,
-               !p.vary ? "fixed" : !p.at_bound.empty() ? "at " + p.at_bound
+               !p.expr.empty() ? (p.identifiable ? fmt::format("{:.3g}", p.std_error) : "-")
+               : !p.vary ? "fixed" : !p.at_bound.empty() ? "at " + p.at_bound
                                  : p.identifiable ? fmt::format("{:.3g}", p.std_error) : "-",
-               p.identifiable && !held ? fmt::format("{:.3g}%", 100.0 * p.std_error / p.value) : "-",
-               u.of(p.unit), bounds);
+               p.identifiable && (!held || !p.expr.empty()) ? fmt::format("{:.3g}%", 100.0 * p.std_error / p.value)
+                                                            : "-",
+               u.of(p.unit), p.expr.empty() ? bounds : "  = " + p.expr);
   }
   for (const auto& c : r.combinations)
     fmt::print("  fixed by the data: {} = {:.7g} +- {:.3g} ({:.3g}%)  {}\n", c.expression, c.value,
@@ -284,6 +299,7 @@ void write_json(const std::string& path, const CreepData& d, const Units& u,
                         {"identifiable", p.identifiable},
                         {"reason", p.reason},
                         {"vary", p.vary},
+                        {"expr", p.expr},
                         {"at_bound", p.at_bound},
                         {"min", p.min},
                         {"max", std::isfinite(p.max) ? json(p.max) : json(nullptr)}});
@@ -327,6 +343,7 @@ void write_json(const std::string& path, const CreepData& d, const Units& u,
                    {"minimum_note", r.minimum_note},
                    {"combinations", combos},
                    {"converged", r.converged},
+                   {"optimality", r.optimality},
                    {"warnings", r.warnings}});
   }
   out["fits"] = arr;
@@ -351,7 +368,8 @@ void write_yaml(const std::string& path, const CreepData& d, const Units& u, con
   f << fmt::format("  name: {}\n", r.law);
   for (const auto& p : r.parameters)
     f << fmt::format("  {}: {:.7g}   # {} {}\n", p.name, p.value,
-                     !p.vary                ? std::string("fixed")
+                     !p.expr.empty()        ? "= " + p.expr
+                     : !p.vary              ? std::string("fixed")
                      : !p.at_bound.empty()  ? "at its bound " + p.at_bound
                      : p.identifiable       ? fmt::format("+- {:.3g}", p.std_error)
                                             : std::string("+- (not identifiable)"),
@@ -460,6 +478,8 @@ void run_fit(const FitArgs& a) {
   const std::string terminal = a.plot.empty() ? "" : plot_terminal(a.plot);
   if (a.restarts < 0 || a.restarts > 100)
     throw std::invalid_argument(fmt::format("--restarts {}: expected 0 to 100", a.restarts));
+  if (a.max_iterations < 1 || a.max_iterations > 1000000)
+    throw std::invalid_argument(fmt::format("--max-iterations {}: expected 1 to 1000000", a.max_iterations));
   const bool all = a.law == "all";
   const LawInfo* single = all ? nullptr : &LawRegistry::builtin().get(a.law);
 
@@ -474,6 +494,7 @@ void run_fit(const FitArgs& a) {
                                 "--sigma-column NAME");
   fit::FitOptions opt;
   opt.restarts = a.restarts;
+  opt.max_iterations = a.max_iterations;
   opt.parameters = parse_settings(a);
   opt.scale_covariance = !a.absolute_sigma;
   const CreepData data = fit::read_creep_csv(a.data, csv);
@@ -530,6 +551,13 @@ void add_fit_command(CLI::App& app) {
                    ->capture_default_str();
   cmd->add_option("--restarts", a->restarts, "Extra starts besides the one derived from the curve")
       ->capture_default_str();
+  cmd->add_option("--max-iterations", a->max_iterations,
+                  "Iteration limit per start (and again for a bounded fit's refinement)")
+      ->capture_default_str();
+  cmd->add_option("--expr", a->expr,
+                  "A parameter given by an expression of the others (repeatable; + - * / ^ ( ) numbers names), "
+                  "e.g. --expr eta2=12*E2")
+      ->type_name("NAME=EXPRESSION");
   cmd->add_option("--fix", a->fix, "Hold a parameter at a value (repeatable), e.g. --fix E1=26.87")
       ->type_name("NAME=VALUE");
   cmd->add_option("--initial", a->initial, "Initial value of a parameter, tried as the first start (repeatable)")

@@ -42,12 +42,25 @@ from ._rheodda import FloatArray, Staged, _FitFields
 
 PathLike = Union[str, os.PathLike[str]]
 # params= of fit: per parameter an initial value, a dict of value/vary/min/max, or an lmfit.Parameter.
-ParameterSpec = Union[float, Mapping[str, Union[float, bool, None]], Any]
+ParameterSpec = Union[float, Mapping[str, Union[float, bool, str, None]], Any]
 
 __all__: list[str]
 
 def law_info(name: str) -> dict[str, Any]: ...
 def to_dataframe(columns: Mapping[str, npt.ArrayLike]) -> Any: ...
+
+class FitParameter:
+    name: str
+    value: float
+    stderr: float
+    vary: bool
+    min: float
+    max: float
+    expr: str | None
+    unit: str
+    at_bound: str
+    identifiable: bool
+    def __init__(self, p: Any, stderr: float) -> None: ...
 
 class FitResult(_FitFields):
     data: CreepData
@@ -60,7 +73,14 @@ class FitResult(_FitFields):
     vary: dict[str, bool]
     at_bound: dict[str, str]
     covariance: FloatArray
-    def __init__(self, raw: Any, data: CreepData) -> None: ...
+    params: dict[str, FitParameter]
+    expr: dict[str, str]
+    residual: FloatArray
+    def __init__(self, raw: Any, data: CreepData,
+                 call: tuple[int, int, dict[str, dict[str, Any]], bool] | None = None) -> None: ...
+    def eval(self, t: npt.ArrayLike | None = None) -> FloatArray: ...
+    def conf_interval(self, sigmas: Sequence[float] = (1, 2), names: Sequence[str] | None = None,
+                      details: bool = False) -> Any: ...
     def make_law(self) -> Law: ...
     @property
     def yaml(self) -> str: ...

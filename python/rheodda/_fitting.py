@@ -9,7 +9,35 @@ import numpy as _np
 
 from . import _rheodda
 from ._frames import to_dataframe
-from ._rheodda import CreepData, Error, creep_data, law, read_creep_csv
+from ._rheodda import CreepData, Error, creep_data, exact_displacement, law, read_creep_csv
+
+
+class FitParameter:
+    """One parameter of a fit as lmfit's Parameter shows it (``result.params[name]``): name,
+    value, stderr (NaN where there is none: fixed, on a bound, not identifiable), vary
+    (False when fixed or given by an expression), min, max (0 and inf: no bound), expr (the
+    expression that gives it, None), and rheodda's unit, at_bound, identifiable."""
+
+    def __init__(self, p, stderr):
+        self.name = p.name
+        self.value = p.value
+        self.stderr = stderr
+        self.vary = p.vary
+        self.min = p.min
+        self.max = p.max
+        self.expr = p.expr or None
+        self.unit = p.unit
+        self.at_bound = p.at_bound
+        self.identifiable = p.identifiable
+
+    def __repr__(self):
+        if self.expr:
+            how = "expr='{}'".format(self.expr)
+        elif not self.vary:
+            how = "fixed"
+        else:
+            how = "bounds=[{:g}:{:g}]".format(self.min, self.max)
+        return "<FitParameter '{}', value={!r} +/- {:.3g}, {}>".format(self.name, self.value, self.stderr, how)
 
 
 class FitResult:
@@ -21,7 +49,7 @@ class FitResult:
     delta-method standard errors v_i * sd(ln v_i); NaN in the rows and columns
     of parameters that are not identifiable, fixed or on a bound);
     identifiable: dict of bools, reasons: why not; vary: False for a parameter
-    held by ``params`` (vary=False); at_bound: 'min' or 'max' for a parameter
+    held by ``params`` (vary=False) or given by an expression (expr=); at_bound: 'min' or 'max' for a parameter
     the fit ended on a bound of, '' otherwise; combinations: the combinations
     the data fix although their parts are not identifiable; aic, bic (from
     chi_square, k = varying), rss [length^2], chi_square (sum of
@@ -29,19 +57,29 @@ class FitResult:
     reduced_chi_square, varying (k), weighted, r2 (NaN without spread), rmse
     [length], points; minimum_certain, minimum_note, start_minima (chi_square
     reached by each start), singular_values; warnings; fitted (model at the
-    data points [length]); yaml: the law block `rheodda fit --yaml` writes.
+    data points [length]); residual ((fitted - data)/sigma, or fitted - data
+    without sigma, as lmfit's); params: name -> :class:`FitParameter`;
+    converged (the optimality conditions hold, with settings) and optimality
+    (their largest violation, a cosine); yaml: the law block `rheodda fit
+    --yaml` writes. ``errors`` and ``params[name].stderr`` are NaN where no
+    standard error is given (fixed, on a bound, not identifiable), as in
+    :meth:`to_dataframe`. :meth:`eval` gives the fitted curve at any times,
+    :meth:`conf_interval` profile-likelihood intervals.
     ``str(result)`` and :meth:`fit_report` give the full table;
     :meth:`to_dataframe` the parameters as a pandas DataFrame.
     """
 
-    def __init__(self, raw, data):
+    def __init__(self, raw, data, call=None):
         self._raw = raw
+        self._call = call  # (restarts, max_iterations, settings, scale_covariance) of the fit, for conf_interval
         self.data = data
         self.law = raw.law
         self.parameters = list(raw.parameters)
         self.names = [p.name for p in self.parameters]
         self.values = {p.name: p.value for p in self.parameters}
-        self.errors = {p.name: p.std_error for p in self.parameters}
+        self.errors = {p.name: p.std_error if _has_error(p) else _math.nan for p in self.parameters}
+        self.params = {p.name: FitParameter(p, self.errors[p.name]) for p in self.parameters}
+        self.expr = {p.name: p.expr for p in self.parameters if p.expr}
         self.units = {p.name: p.unit for p in self.parameters}
         self.identifiable = {p.name: p.identifiable for p in self.parameters}
         self.reasons = {p.name: p.reason for p in self.parameters if p.reason}
@@ -49,16 +87,51 @@ class FitResult:
         self.at_bound = {p.name: p.at_bound for p in self.parameters}
         self.combinations = list(raw.combinations)
         self.correlation = _np.asarray(raw.correlation)
-        err = _np.array([p.std_error for p in self.parameters])
+        err = _np.array([self.errors[p.name] for p in self.parameters])
         self.covariance = self.correlation * _np.outer(err, err)
         for attr in ("points", "rss", "chi_square", "reduced_chi_square", "varying", "weighted",
                      "scale_covariance", "r2", "rmse", "aic", "bic", "iterations", "starts",
-                     "starts_agreeing", "structured_starts", "converged", "minimum_certain", "minimum_note",
+                     "starts_agreeing", "structured_starts", "converged", "optimality", "minimum_certain", "minimum_note",
                      "warnings"):
             setattr(self, attr, getattr(raw, attr))
         self.fitted = _np.asarray(raw.fitted)
         self.singular_values = _np.asarray(raw.singular_values)
         self.start_minima = _np.asarray(raw.start_minima)
+        d = _np.asarray(data.displacement)
+        self.residual = (self.fitted - d) / (1.0 if data.sigma is None else _np.asarray(data.sigma))
+
+    def eval(self, t=None):
+        """The fitted curve [length] at times ``t`` [time] (default: the data's), under the data's
+        stress history: the law's exact staged response (rheodda.exact_displacement)."""
+        times = _np.asarray(self.data.t if t is None else t, dtype=float)
+        history = [(float(a), float(b)) for a, b in _np.asarray(self.data.stress)]
+        return _np.asarray(exact_displacement(self.make_law(), history, times))
+
+    def conf_interval(self, sigmas=(1, 2), names=None, details=False):
+        """Confidence intervals by profile likelihood (docs/guide/fitting.md, "Confidence intervals
+        by profile likelihood"), in the format of lmfit's ``conf_interval``: {name: [(probability,
+        lower end) for the sigmas, largest first, (0.0, value), (probability, upper end) ...]}.
+        Each end is where the chi-square minimized with the parameter held there rises to the
+        level (lmfit's F test with scaled errors; the chi-square quantile with
+        absolute_sigma=True). ``names``: the varying parameters to do (default: all of them).
+        An end that chi-square does not reach before the parameter's bound is that bound, before
+        1e6 times the value 0 or inf. ``details=True`` returns the library's records instead
+        (per parameter: value, fits, levels with sigma, probability, chi_square, lower, upper,
+        lower_found, upper_found)."""
+        if self._call is None:
+            raise Error("conf_interval: this FitResult does not hold the settings of its fit")
+        restarts, max_iterations, settings, scale_covariance = self._call
+        sig = sorted(float(x) for x in sigmas)
+        raw = _rheodda._profile(self.law, self.data, restarts, max_iterations, settings, scale_covariance,
+                                self._raw, sig, list(names or []))
+        if details:
+            return raw
+        out = {}
+        for r in raw:
+            levels = r["levels"]
+            out[r["name"]] = ([(lv["probability"], lv["lower"]) for lv in reversed(levels)] + [(0.0, r["value"])]
+                              + [(lv["probability"], lv["upper"]) for lv in levels])
+        return out
 
     def make_law(self):
         """The fitted law, ready for curves or a scene's joint set."""
@@ -81,7 +154,9 @@ class FitResult:
                 c.expression, c.value, c.std_error, c.unit))
         lines += ["law:", "  name: {}".format(self.law)]
         for p in self.parameters:
-            if not p.vary:
+            if p.expr:
+                note = "= {}".format(p.expr)
+            elif not p.vary:
                 note = "fixed"
             elif p.at_bound:
                 note = "at its bound " + p.at_bound
@@ -94,15 +169,15 @@ class FitResult:
 
     def to_dataframe(self):
         """The parameters as a pandas DataFrame indexed by name: value, std_error, relative_error,
-        unit, vary, at_bound, min, max, identifiable (registry units; std_error NaN where none)."""
+        unit, vary, at_bound, min, max, identifiable, expr (registry units; std_error NaN where none,
+        as in ``errors``; expr '' where none)."""
         rows = {k: [] for k in ("value", "std_error", "relative_error", "unit", "vary", "at_bound", "min",
-                                "max", "identifiable")}
+                                "max", "identifiable", "expr")}
         for p in self.parameters:
-            has_error = p.vary and not p.at_bound and p.identifiable
-            err = p.std_error if has_error else _math.nan
+            err = self.errors[p.name]
             for k, v in (("value", p.value), ("std_error", err), ("relative_error", err / p.value),
                          ("unit", p.unit), ("vary", p.vary), ("at_bound", p.at_bound), ("min", p.min),
-                         ("max", p.max), ("identifiable", p.identifiable)):
+                         ("max", p.max), ("identifiable", p.identifiable), ("expr", p.expr)):
                 rows[k].append(v)
         frame = to_dataframe(rows)
         frame.index = self.names
@@ -138,7 +213,11 @@ class FitResult:
         out.append("[[Variables]]")
         for p in self.parameters:
             line = "    {:<6} {:>14.8g}".format(p.name + ":", p.value)
-            if not p.vary:
+            if p.expr:
+                line += " == '{}'".format(p.expr)
+                if _has_error(p):
+                    line += " +/- {:.6g} ({:.2f}%)".format(p.std_error, 100.0 * p.std_error / p.value)
+            elif not p.vary:
                 line += " (fixed)"
             elif p.at_bound:
                 line += " (at its bound {} = {:g})".format(p.at_bound, p.min if p.at_bound == "min" else p.max)
@@ -147,7 +226,7 @@ class FitResult:
             else:
                 line += " (not identifiable: {})".format(p.reason)
             line += " [{}]".format(p.unit)
-            if p.vary and (p.min > 0 or _math.isfinite(p.max)):
+            if p.vary and not p.expr and (p.min > 0 or _math.isfinite(p.max)):
                 line += " bounds [{:g}, {:g}]".format(p.min, p.max)
             out.append(line)
         if self.combinations:
@@ -176,6 +255,12 @@ class FitResult:
         return "<FitResult {}: {} R^2 {} AIC {:.4g} BIC {:.4g}>".format(
             self.law, ", ".join("{}={:.6g}".format(k, v) for k, v in self.values.items()),
             r2, self.aic, self.bic)
+
+
+def _has_error(p):
+    """A parameter has a standard error when it varies (or is given by an expression), is not on a
+    bound and is identifiable; the others' errors are NaN in Python (0 in the library and the JSON)."""
+    return (p.vary or bool(p.expr)) and not p.at_bound and p.identifiable
 
 
 def _creep_data(data, t, stress, time_column, displacement_column, stress_column, sigma=None,
@@ -212,15 +297,17 @@ def _creep_data(data, t, stress, time_column, displacement_column, stress_column
                       sigma=None if sigma is None else sigma.tolist())
 
 
-_SETTING_KEYS = ("value", "vary", "min", "max")
+_SETTING_KEYS = ("value", "vary", "min", "max", "expr")
 
 
 def _settings(params):
-    """params= as {name: {"value", "vary", "min", "max"}} for the library (fit::ParameterSetting).
+    """params= as {name: {"value", "vary", "min", "max", "expr"}} for the library (fit::ParameterSetting).
 
-    Each entry: a number (the initial value), a dict with any of value, vary, min, max, or an
-    object with those attributes (an lmfit.Parameter; an lmfit.Parameters is a dict of them).
-    min -inf or None means no bound beyond positivity (0), max None means +inf."""
+    Each entry: a number (the initial value), a dict with any of value, vary, min, max, expr, or
+    an object with value, vary, min, max (and expr) attributes (an lmfit.Parameter; an
+    lmfit.Parameters is a dict of them). min -inf or None means no bound beyond positivity (0),
+    max None means +inf. A parameter with an expr is given by it: as lmfit does, its value and
+    vary are not used (lmfit sets them itself); bounds on it are refused by the library."""
     out = {}
     if params is None:
         return out
@@ -235,19 +322,25 @@ def _settings(params):
             if unknown:
                 raise Error("fit: params['{}']: unknown key(s) {}; the keys are {}".format(
                     name, ", ".join(unknown), ", ".join(_SETTING_KEYS)))
-        elif all(hasattr(spec, k) for k in _SETTING_KEYS):
-            spec = {k: getattr(spec, k) for k in _SETTING_KEYS}
+        elif all(hasattr(spec, k) for k in _SETTING_KEYS[:4]):
+            spec = {k: getattr(spec, k, None) for k in _SETTING_KEYS}
         else:
             raise Error("fit: params['{}'] must be a number (initial value), a dict with value, vary, min, "
                         "max, or an lmfit.Parameter; got {!r}".format(name, spec))
         lo = spec.get("min")
         hi = spec.get("max")
         value = spec.get("value")
+        expr = spec.get("expr")
+        if expr is not None and not isinstance(expr, str):
+            raise Error("fit: params['{}']: expr must be a text, e.g. '12*E2'; got {!r}".format(name, expr))
+        if expr:  # lmfit fills in value and vary = False for a constrained parameter: not settings
+            value = None
         out[str(name)] = {
             "value": None if value is None else float(value),
-            "vary": bool(spec.get("vary", True)),
+            "vary": True if expr else bool(spec.get("vary", True)),
             "min": 0.0 if lo is None or lo == -_math.inf else float(lo),
             "max": _math.inf if hi is None else float(hi),
+            "expr": expr or None,
         }
     return out
 
@@ -264,7 +357,11 @@ def fit(law_name, data, t=None, stress=None, *, params=None, sigma=None, weights
 
     ``params``: per parameter an initial value, or a dict (or lmfit.Parameter)
     with ``value``, ``vary`` (False: held at value, ``--fix``), ``min``,
-    ``max`` (bounds, ``--bounds``), in the parameter's registry unit.
+    ``max`` (bounds, ``--bounds``), ``expr`` (the parameter is this expression of the
+    others, e.g. '12*E2': + - * / ^ or **, parentheses, numbers, names; lmfit's expr,
+    ``--expr``), in the parameter's registry unit. ``max_iterations``: per start
+    (``--max-iterations``); a fit that stops before the optimality conditions hold says
+    ``converged = False`` with a warning.
     ``sigma``: each point's measurement standard deviation [length] (or
     ``weights`` = 1/sigma [1/length], as lmfit's; or ``sigma_column`` of the
     CSV, ``--sigma-column``): the fit minimizes sum ((model - data)/sigma)^2.
@@ -274,8 +371,10 @@ def fit(law_name, data, t=None, stress=None, *, params=None, sigma=None, weights
     """
     d = _creep_data(data, t, stress, time_column, displacement_column, stress_column, sigma, weights,
                     sigma_column)
-    return FitResult(_rheodda._fit_law(law_name, d, restarts, max_iterations, _settings(params),
-                                       not absolute_sigma), d)
+    settings = _settings(params)
+    call = (restarts, max_iterations, settings, not absolute_sigma)
+    return FitResult(_rheodda._fit_law(law_name, d, restarts, max_iterations, settings, not absolute_sigma), d,
+                     call)
 
 
 def fit_all(data, t=None, stress=None, *, rank_by="bic", params=None, sigma=None, weights=None,
@@ -288,9 +387,10 @@ def fit_all(data, t=None, stress=None, *, rank_by="bic", params=None, sigma=None
     laws that cannot be fitted."""
     d = _creep_data(data, t, stress, time_column, displacement_column, stress_column, sigma, weights,
                     sigma_column)
-    results, skipped = _rheodda._fit_all(d, rank_by, restarts, max_iterations, _settings(params),
-                                         not absolute_sigma)
-    return [FitResult(r, d) for r in results], list(skipped)
+    settings = _settings(params)
+    results, skipped = _rheodda._fit_all(d, rank_by, restarts, max_iterations, settings, not absolute_sigma)
+    call = (restarts, max_iterations, settings, not absolute_sigma)
+    return [FitResult(r, d, call) for r in results], list(skipped)
 
 
 def ranking_frame(results):

@@ -230,6 +230,8 @@ class ParameterEstimate:
     def min(self) -> float: ...
     @property
     def max(self) -> float: ...
+    @property
+    def expr(self) -> str: ...
 
 class FixedCombination:
     @property
@@ -265,6 +267,7 @@ class _FitFields:
     starts: int
     starts_agreeing: int
     converged: bool
+    optimality: float
     structured_starts: int
     minimum_certain: bool
     minimum_note: str
@@ -334,6 +337,9 @@ def _fit_law(law: str, data: CreepData, restarts: int = 4, max_iterations: int =
 def _fit_all(data: CreepData, rank_by: str = "bic", restarts: int = 4, max_iterations: int = 500,
              settings: Mapping[str, Mapping[str, Any]] = ...,
              scale_covariance: bool = True) -> tuple[list[_FitResult], list[str]]: ...
+def _profile(law: str, data: CreepData, restarts: int, max_iterations: int, settings: Mapping[str, Mapping[str, Any]],
+             scale_covariance: bool, best: _FitResult, sigmas: Sequence[float],
+             names: Sequence[str]) -> list[dict[str, Any]]: ...
 def load_scene(path: str) -> Scene: ...
 def parse_scene(text: str, file: str = "<text>") -> Scene: ...
 def run(scene: Scene, out_dir: str, resume: bool = False, progress: bool = False) -> dict[str, Any]: ...

@@ -4,6 +4,7 @@
 // (python/rheodda/__init__.py) from its public fields.
 #include <rheodda/fit/creep_data.hpp>
 #include <rheodda/fit/fit.hpp>
+#include <rheodda/fit/profile.hpp>
 #include <rheodda/laws/registry.hpp>
 
 #include <fmt/format.h>
@@ -52,7 +53,7 @@ fit::CreepData data_from_arrays(const std::vector<double>& t, const std::vector<
   return fit::parse_creep_csv(in, source, o);
 }
 
-// `settings`: {name: {"value": float or None, "vary": bool, "min": float, "max": float}}
+// `settings`: {name: {"value": float or None, "vary": bool, "min": float, "max": float, "expr": str}}
 // as rheodda.fit builds it from params= (python/rheodda/__init__.py).
 fit::FitOptions options_from(int restarts, int max_iterations, const py::dict& settings, bool scale_covariance) {
   fit::FitOptions o;
@@ -66,6 +67,7 @@ fit::FitOptions options_from(int restarts, int max_iterations, const py::dict& s
     p.vary = d["vary"].cast<bool>();
     p.min = d["min"].cast<double>();
     p.max = d["max"].cast<double>();
+    if (d.contains("expr") && !d["expr"].is_none()) p.expr = d["expr"].cast<std::string>();
     o.parameters[key.cast<std::string>()] = p;
   }
   return o;
@@ -134,6 +136,8 @@ void bind_fit(py::module_& m) {
                     "'min' or 'max' when the fit ended on that bound, else ''")
       .def_readonly("min", &fit::ParameterEstimate::min, "lower bound of the fit [unit] (0: none)")
       .def_readonly("max", &fit::ParameterEstimate::max, "upper bound of the fit [unit] (inf: none)")
+      .def_readonly("expr", &fit::ParameterEstimate::expr,
+                    "the expression of the other parameters that gives it (params expr=); '' if none")
       .def("__repr__", [](const fit::ParameterEstimate& p) {
         return "<" + p.name + " = " + py::repr(py::float_(p.value)).cast<std::string>() + " +- " +
                py::repr(py::float_(p.std_error)).cast<std::string>() + " " + p.unit +
@@ -163,6 +167,7 @@ void bind_fit(py::module_& m) {
                   std::pair{"rmse", &R::rmse}, std::pair{"aic", &R::aic}, std::pair{"bic", &R::bic},
                   std::pair{"iterations", &R::iterations}, std::pair{"starts", &R::starts},
                   std::pair{"starts_agreeing", &R::starts_agreeing}, std::pair{"converged", &R::converged},
+                  std::pair{"optimality", &R::optimality},
                   std::pair{"structured_starts", &R::structured_starts},
                   std::pair{"minimum_certain", &R::minimum_certain}, std::pair{"minimum_note", &R::minimum_note},
                   std::pair{"combinations", &R::combinations}, std::pair{"warnings", &R::warnings});
@@ -215,6 +220,33 @@ void bind_fit(py::module_& m) {
       },
       py::arg("law"), py::arg("data"), py::arg("restarts") = 4, py::arg("max_iterations") = 500,
       py::arg("settings") = py::dict(), py::arg("scale_covariance") = true);
+  m.def(
+      "_profile",
+      [](const std::string& law, const fit::CreepData& data, int restarts, int max_iterations,
+         const py::dict& settings, bool scale_covariance, const fit::FitResult& best,
+         const std::vector<double>& sigmas, const std::vector<std::string>& names) {
+        const laws::LawInfo& info = laws::LawRegistry::builtin().get(law);
+        const auto options = options_from(restarts, max_iterations, settings, scale_covariance);
+        std::vector<fit::ProfileInterval> r;
+        {
+          py::gil_scoped_release release;
+          r = fit::profile_intervals(info, data, options, best, sigmas, names);
+        }
+        py::list out;
+        for (const auto& pi : r) {
+          py::list levels;
+          for (const auto& l : pi.levels)
+            levels.append(py::dict(py::arg("sigma") = l.sigma, py::arg("probability") = l.probability,
+                                   py::arg("chi_square") = l.chi_square, py::arg("lower") = l.lower,
+                                   py::arg("upper") = l.upper, py::arg("lower_found") = l.lower_found,
+                                   py::arg("upper_found") = l.upper_found));
+          out.append(py::dict(py::arg("name") = pi.name, py::arg("value") = pi.value, py::arg("levels") = levels,
+                              py::arg("fits") = pi.fits));
+        }
+        return out;
+      },
+      py::arg("law"), py::arg("data"), py::arg("restarts"), py::arg("max_iterations"), py::arg("settings"),
+      py::arg("scale_covariance"), py::arg("best"), py::arg("sigmas"), py::arg("names"));
   m.def(
       "_fit_all",
       [](const fit::CreepData& data, const std::string& rank_by, int restarts, int max_iterations,

@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 
+#include "bounded_polish.hpp"
 #include "fit_input.hpp"
 #include "fit_settings.hpp"
 #include "gsl_solver.hpp"
@@ -123,7 +124,8 @@ void add_statistics(FitResult& res, const CreepData& data, const std::vector<dou
 }
 
 // Is the minimum certain? (docs/guide/fitting.md, "When the minimum is not certain")
-void judge_minimum(FitResult& res, const Search& sr, double scale) {
+// `not_optimal`: which optimality condition fails at the point reported (empty: none).
+void judge_minimum(FitResult& res, const Search& sr, double scale, const std::string& not_optimal) {
   const double floor = sr.floor;
   res.starts_agreeing = sr.agreeing_sample;
   for (double rs : sr.rss_full) res.starts_agreeing += std::abs(rs - sr.best_rss) <= 1e-6 * sr.best_rss + floor;
@@ -139,7 +141,11 @@ void judge_minimum(FitResult& res, const Search& sr, double scale) {
                                       : std::string("only one start was tried");
   }
   auto& warn = res.warnings;
-  if (!res.converged)
+  if (!res.converged && !not_optimal.empty())
+    warn.push_back(fmt::format("the fit stopped before reaching the minimum ({} iterations): {}; raise the "
+                               "iteration limit (--max-iterations, max_iterations=)",
+                               sr.best_iter, not_optimal));
+  else if (!res.converged)
     warn.push_back(fmt::format("the fit stopped before converging ({}, {} iterations)",
                                gsl_strerror(sr.best_status), sr.best_iter));
   if (!res.minimum_certain)
@@ -154,7 +160,7 @@ void judge_minimum(FitResult& res, const Search& sr, double scale) {
 void add_parameters(FitResult& res, const laws::LawInfo& info, const gsl_matrix* jac,
                     const std::vector<std::size_t>& cols, double s, const std::vector<double>& best_x,
                     const std::optional<SeriesStructure>& structure, const CreepData& data,
-                    const FitOptions& options) {
+                    const FitOptions& options, std::vector<double>& cov) {
   const std::size_t n = data.t.size(), np = info.parameters.size(), m = cols.size();
   for (std::size_t i = 0; i < np; ++i) {
     ParameterEstimate e;
@@ -169,7 +175,6 @@ void add_parameters(FitResult& res, const laws::LawInfo& info, const gsl_matrix*
   // on the parameters of `cols` only: the others are held.
   FitResult sub;
   for (std::size_t a = 0; a < m; ++a) sub.parameters.push_back(res.parameters[cols[a]]);
-  std::vector<double> cov;
   {
     std::unique_ptr<gsl_matrix, GslFree> jc(gsl_matrix_alloc(n, m));
     gsl_matrix_memcpy(jc.get(), jac);
@@ -199,6 +204,35 @@ void add_parameters(FitResult& res, const laws::LawInfo& info, const gsl_matrix*
       const double d = cov[a * m + a] * cov[b * m + b];
       res.correlation[i * np + j] = a == b ? 1.0 : (d > 0 ? cov[a * m + b] / std::sqrt(d) : 0.0);
     }
+}
+
+// The standard error of a parameter given by an expression (ParameterSetting::expr):
+// se(ln p_k) = sqrt(g^T C g) with g_a = d ln p_k / d ln p_cols[a] (Mapping::chain)
+// and C the covariance of the log parameters `cols` (delta method, as lmfit
+// propagates its uncertainties to constrained parameters).
+void add_derived_errors(FitResult& res, const Mapping& m, const std::vector<double>& x,
+                        const std::vector<std::size_t>& cols, const std::vector<double>& cov) {
+  if (m.derived.empty()) return;
+  const std::size_t np = x.size(), mc = cols.size();
+  const std::vector<double> D = m.chain(x);
+  for (const auto& d : m.derived) {
+    auto& e = res.parameters[d.k];
+    double var = 0.0;
+    for (std::size_t a = 0; a < mc; ++a) {
+      const double ga = D[d.k * np + cols[a]];
+      if (ga == 0.0) continue;
+      if (!res.parameters[cols[a]].identifiable) {
+        e.identifiable = false;
+        e.reason = fmt::format("it is given by '{}', which depends on {}, not identifiable", e.expr,
+                               res.parameters[cols[a]].name);
+      }
+      for (std::size_t b = 0; b < mc; ++b) var += ga * D[d.k * np + cols[b]] * cov[a * mc + b];
+    }
+    e.std_error = e.identifiable && var > 0.0 ? e.value * std::sqrt(var) : 0.0;
+    if (e.value <= std::exp(-699.0))
+      res.warnings.push_back(fmt::format("{} = {} is not positive at the fit: the law needs it > 0", e.name,
+                                         e.expr));
+  }
 }
 
 // ---- 5. Warnings: what the data cannot tell ----
@@ -274,6 +308,7 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
   if (structure && options.parameters.empty()) order_kelvins(*structure, sr.best_x);
 
   // The model saw exp(clamp(x, -700, 700)) (to_values): report that.
+  // (`sr.best_x` holds the derived parameters' values too: Mapping::to_full.)
   for (double& v : sr.best_x) v = std::clamp(v, -700.0, 700.0);
   // A parameter within 1e-6 (relative) of a bound is on it: MINUIT's transforms
   // reach a bound only in the limit.
@@ -285,6 +320,7 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
       if (x - m.lo[a] < 1e-6) x = m.lo[a], at_bound[m.free[a]] = "min";
       else if (m.hi[a] - x < 1e-6) x = m.hi[a], at_bound[m.free[a]] = "max";
     }
+    m.apply_derived(sr.best_x);
   }
   // Residuals and Jacobian at the best point.
   gsl_multifit_nlinear_workspace* w = full.at(sr.best_x);
@@ -303,46 +339,77 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
   res.structured_starts = sr.structured;
   res.iterations = sr.best_iter;
   res.converged = sr.best_status == GSL_SUCCESS || sr.best_status == GSL_ENOPROG;
+  // With settings: converged only where the optimality conditions hold at the
+  // point reported (bounded_polish.hpp), in the log of every varying parameter.
+  std::string not_optimal;
+  if (cons.mapping) {
+    const Mapping& m = *cons.mapping;
+    Mapping plain = m;
+    plain.lo.assign(m.free.size(), -std::numeric_limits<double>::infinity());
+    plain.hi.assign(m.free.size(), std::numeric_limits<double>::infinity());
+    std::vector<int> side(m.free.size(), 0);
+    for (std::size_t a = 0; a < m.free.size(); ++a)
+      side[a] = at_bound[m.free[a]] == "min" ? -1 : at_bound[m.free[a]] == "max" ? 1 : 0;
+    Solver ks(info, data, structure, ds.inv_scale, cons.weight, std::move(plain));
+    gsl_multifit_nlinear_workspace* kw = ks.at(sr.best_x);
+    const auto o = detail::optimality(gsl_multifit_nlinear_jac(kw), gsl_multifit_nlinear_residual(kw), side,
+                                      detail::kOptimalityTolerance, sr.floor);
+    res.optimality = o.worst;
+    if (!o.holds) {
+      const std::size_t k = m.free[o.worst_col];
+      not_optimal = fmt::format(
+          "the gradient of the sum of squares in {} is {:.2g} (as a cosine; at most {:g} at a minimum){}",
+          info.parameters[k].name, o.worst, detail::kOptimalityTolerance,
+          side[o.worst_col] != 0 ? fmt::format(", pointing into its bound {}", at_bound[k]) : std::string());
+      res.converged = false;
+    }
+  }
   res.varying = static_cast<int>(cons.varying);
   res.weighted = !cons.weight.empty();
   res.scale_covariance = options.scale_covariance;
   const double scale = ds.scale;
   for (double r : sr.rss_full) res.start_minima.push_back(r * scale * scale);
   add_statistics(res, data, fitted_scaled, best_rss, ds, cons.weight, cons.varying);
-  judge_minimum(res, sr, scale);
+  judge_minimum(res, sr, scale, not_optimal);
 
   // Standard errors: residual standard deviation sqrt(chi^2/(n - k)) (scaled),
   // or with absolute sigma the scale itself (the Jacobian of chi = f/inv_scale).
   const double s = options.scale_covariance
                        ? std::sqrt(best_rss / (static_cast<double>(n) - static_cast<double>(cons.varying)))
                        : ds.inv_scale;
+  std::vector<double> cov;
+  std::vector<std::size_t> cols;
   if (!cons.active) {
-    std::vector<std::size_t> cols(np);
+    cols.resize(np);
     for (std::size_t k = 0; k < np; ++k) cols[k] = k;
-    add_parameters(res, info, gsl_multifit_nlinear_jac(w), cols, s, sr.best_x, structure, data, options);
+    add_parameters(res, info, gsl_multifit_nlinear_jac(w), cols, s, sr.best_x, structure, data, options, cov);
   } else {
     // The Jacobian in the log of the varying parameters not on a bound (the others held).
     Mapping held;
     held.x = sr.best_x;
     for (std::size_t k = 0; k < np; ++k)
-      if (!cons.fixed[k] && at_bound[k].empty()) {
+      if (!cons.fixed[k] && cons.expr[k].empty() && at_bound[k].empty()) {
         held.free.push_back(k);
         held.lo.push_back(-std::numeric_limits<double>::infinity());
         held.hi.push_back(std::numeric_limits<double>::infinity());
       }
-    std::vector<std::size_t> cols = held.free;
+    held.derived = cons.mapping->derived;
+    cols = held.free;
     Solver js(info, data, structure, ds.inv_scale, cons.weight, std::move(held));
     add_parameters(res, info, gsl_multifit_nlinear_jac(js.at(sr.best_x)), cols, s, sr.best_x, structure, data,
-                   options);
+                   options, cov);
   }
   for (std::size_t k = 0; k < np; ++k) {
     auto& e = res.parameters[k];
-    e.vary = !cons.fixed[k];
+    e.vary = !cons.fixed[k] && cons.expr[k].empty();
+    e.expr = cons.expr[k];
     e.at_bound = at_bound[k];
     e.min = cons.min[k];
     e.max = cons.max[k];
-    if (!e.vary || !e.at_bound.empty()) e.value = !e.vary ? *cons.initial[k] : e.at_bound == "min" ? e.min : e.max;
+    if (cons.fixed[k]) e.value = *cons.initial[k];
+    else if (!e.at_bound.empty()) e.value = e.at_bound == "min" ? e.min : e.max;
   }
+  if (cons.mapping) add_derived_errors(res, *cons.mapping, sr.best_x, cols, cov);
   warn_data_limits(res, structure, data, features, options);
   for (const auto& e : res.parameters)
     if (!e.at_bound.empty())

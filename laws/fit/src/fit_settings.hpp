@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "gsl_solver.hpp"
@@ -18,6 +19,7 @@ struct Constraints {
   bool active = false;              // any setting or sigma: GSL works through `mapping`
   std::optional<Mapping> mapping;   // the free parameters and their log bounds
   std::vector<char> fixed;          // per parameter: vary = false
+  std::vector<std::string> expr;    // per parameter: the expression that gives it (lmfit's expr), or empty
   std::vector<std::optional<double>> initial;  // per parameter: the user's value
   std::vector<double> min, max;     // per parameter [its unit]
   std::vector<double> weight;       // 1/sigma per point; empty without sigma [1/length]

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bounded_polish.hpp"
 #include "varpro.hpp"
 
 namespace rheodda::fit::detail {
@@ -49,7 +50,44 @@ std::vector<double> Mapping::to_full(const double* z) const {
     else if (std::isfinite(h)) v = h + 1.0 - std::sqrt(za * za + 1.0);
     out[free[a]] = v;
   }
+  apply_derived(out);
   return out;
+}
+
+void Mapping::apply_derived(std::vector<double>& xs) const {
+  if (derived.empty()) return;
+  std::vector<double> p(xs.size());
+  for (const auto& d : derived) {
+    for (std::size_t k = 0; k < xs.size(); ++k) p[k] = std::exp(std::clamp(xs[k], -700.0, 700.0));
+    const double v = d.e.evaluate(p);
+    xs[d.k] = v > 0.0 ? std::log(v) : -700.0;
+  }
+}
+
+std::vector<double> Mapping::chain(const std::vector<double>& xs) const {
+  const std::size_t np = xs.size();
+  std::vector<double> D(np * np, 0.0), p(np), g;
+  for (std::size_t k = 0; k < np; ++k) {
+    D[k * np + k] = 1.0;
+    p[k] = std::exp(std::clamp(xs[k], -700.0, 700.0));
+  }
+  for (const auto& d : derived) {
+    const double v = d.e.evaluate(p, &g);
+    for (std::size_t j = 0; j < np; ++j) {
+      double s = 0.0;
+      if (v > 0.0)
+        for (std::size_t m = 0; m < np; ++m)
+          if (g[m] != 0.0) s += p[m] * g[m] / v * D[m * np + j];
+      D[d.k * np + j] = s;
+    }
+  }
+  return D;
+}
+
+bool Mapping::bounded() const {
+  for (std::size_t a = 0; a < free.size(); ++a)
+    if (std::isfinite(lo[a]) || std::isfinite(hi[a])) return true;
+  return false;
 }
 
 std::vector<double> Mapping::to_free(const std::vector<double>& xs, bool inside) const {
@@ -90,15 +128,28 @@ int Solver::mapped_residual_cb(const gsl_vector* z, void* params, gsl_vector* f)
   return residual_cb(s.x_full_.get(), &s.pr, f);
 }
 
-// Chain rule: dr/dz_a = dr/dx_k dx_k/dz_a for free parameter a = parameter k.
+// Chain rule: dr/dz_a = dr/dx_k dx_k/dz_a for free parameter a = parameter k,
+// plus sum over the derived parameters m of dr/dx_m dx_m/dx_k dx_k/dz_a.
 int Solver::mapped_jacobian_cb(const gsl_vector* z, void* params, gsl_matrix* jac) {
   auto& s = *static_cast<Solver*>(params);
   s.set_full(z);
   jacobian_cb(s.x_full_.get(), &s.pr, s.jac_full_.get());
   const auto& m = *s.mapping_;
+  const std::size_t np = s.pr.np;
+  std::vector<double> D;
+  if (!m.derived.empty()) {
+    std::vector<double> xs(np);
+    for (std::size_t k = 0; k < np; ++k) xs[k] = gsl_vector_get(s.x_full_.get(), k);
+    D = m.chain(xs);
+  }
   for (std::size_t a = 0; a < m.free.size(); ++a) {
     const double d = m.derivative(a, gsl_vector_get(z, a));
-    for (std::size_t j = 0; j < s.pr.n; ++j) gsl_matrix_set(jac, j, a, gsl_matrix_get(s.jac_full_.get(), j, m.free[a]) * d);
+    const std::size_t k = m.free[a];
+    for (std::size_t j = 0; j < s.pr.n; ++j) {
+      double v = gsl_matrix_get(s.jac_full_.get(), j, k);
+      for (const auto& dv : m.derived) v += gsl_matrix_get(s.jac_full_.get(), j, dv.k) * D[dv.k * np + k];
+      gsl_matrix_set(jac, j, a, v * d);
+    }
   }
   return GSL_SUCCESS;
 }
@@ -199,7 +250,16 @@ Solver::Outcome Solver::polish(const std::vector<double>& start, double stop_at,
   const gsl_vector* xs = gsl_multifit_nlinear_position(w_.get());
   o.position.resize(np);
   for (std::size_t k = 0; k < np; ++k) o.position[k] = gsl_vector_get(xs, k);
-  if (mapping_) return o.position = mapping_->to_full(o.position.data()), o;  // no refine: it ignores the mapping
+  if (mapping_) {  // no refine: it ignores the mapping
+    o.position = mapping_->to_full(o.position.data());
+    if (mapping_->bounded()) {  // to the constrained minimum (bounded_polish.hpp)
+      const auto b = bounded_polish(*this, o.position, options.max_iterations);
+      if (b.rss <= o.rss) o.position = b.x, o.rss = b.rss;
+      o.iterations += b.iterations;
+      o.status = b.optimal ? GSL_SUCCESS : GSL_EMAXITER;
+    }
+    return o;
+  }
   if (refine && pr.structure) {
     std::vector<double> v(np);
     for (std::size_t k = 0; k < np; ++k) v[k] = std::exp(o.position[k]);

@@ -13,6 +13,7 @@
 #include <optional>
 #include <vector>
 
+#include "expression.hpp"
 #include "residuals.hpp"
 #include "rheodda/fit/fit.hpp"
 
@@ -42,11 +43,28 @@ CreepData subsample(const CreepData& d, std::size_t max_points);
 //   none         x = z
 // (the transforms of MINUIT, F. James, MINUIT Reference Manual, CERN D506,
 // sec. 1.3, as lmfit uses them), so every z is inside the bounds. The
-// parameters that are not free keep their entry of `x`.
+// parameters that are not free keep their entry of `x`, but for those given by
+// an expression of the others (lmfit's expr), recomputed from them:
+// x_k = ln e(p), its derivative by the chain rule (chain()).
+struct Derived {
+  std::size_t k = 0;  // registry index of the parameter
+  Expression e;       // of the parameters' values
+};
+
 struct Mapping {
   std::vector<std::size_t> free;  // registry indices of the free parameters
   std::vector<double> x;          // log value of every parameter (the fixed ones are used)
   std::vector<double> lo, hi;     // log bounds of each free parameter (-inf, +inf: none)
+  std::vector<Derived> derived;   // parameters given by expressions, in an order that evaluates each after its uses
+
+  /// x_k = ln e(exp(x)) of every derived parameter, in order (ln of a value <= 0: -700).
+  void apply_derived(std::vector<double>& xs) const;
+  /// d x_k / d x_j (row-major np x np) at the log parameters `xs`: the identity
+  /// in the rows of parameters that are not derived; for a derived k,
+  /// sum_m (p_m/e) de/dp_m d x_m/d x_j.
+  std::vector<double> chain(const std::vector<double>& xs) const;
+  /// Any finite bound on a free parameter.
+  bool bounded() const;
 
   /// Every log parameter at free values z.
   std::vector<double> to_full(const double* z) const;
@@ -82,7 +100,12 @@ class Solver {
   // (step tolerance 1e-10 on the log parameters), except that it stops as soon
   // as the sum of squares reaches stop_at (relative 1e-7, within the 1e-6 at
   // which starts count as agreeing; stop_at < 0: never): the start has found
-  // that minimum. With `refine`, the linear part is then
+  // that minimum. With a bound on a free parameter, the projected
+  // Levenberg-Marquardt of bounded_polish.hpp then takes the point to the
+  // constrained minimum (MINUIT's transforms reach a bound in the limit only:
+  // their derivative vanishes there and the steps stall short of it); the
+  // status is GSL_SUCCESS only where the optimality conditions hold there.
+  // With `refine`, the linear part is then
   // re-solved exactly at the polished retardation times (varpro_refine):
   // GSL stops near, not on, a threshold equal to a stress level.
   Outcome polish(const std::vector<double>& start, double stop_at, double floor, const FitOptions& options,

@@ -1,6 +1,7 @@
 // `rheodda fit` end to end through the built binary: the report, the JSON and
 // YAML files, the plot, multi-stage data from a stress column, and exit code 2
-// with file, line and column for bad input.
+// with file, line and column for bad input; --fix, --bounds, --initial, --expr and
+// --max-iterations against the library.
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>
@@ -329,6 +330,115 @@ BOOST_AUTO_TEST_CASE(bad_settings_exit_2_naming_the_option) {
     const Run r = run_rheodda("fit '" + kExample + "' --law burgers --stress 0.232 " + args, dir);
     BOOST_TEST(r.code == 2, args);
     BOOST_TEST(r.err.find(words) != std::string::npos, args << ": " << r.err);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(expr_gives_a_parameter_as_that_expression_of_the_others) {
+  // --expr eta2=12*E2: eta2 is 12 E2 in the report, the JSON and the YAML, not counted in k,
+  // its standard error propagated (12 se(E2) for this linear expression), and the fit is
+  // the library's with the same setting.
+  TempDir dir;
+  const std::string json = (dir / "fit.json").string(), yaml = (dir / "law.yaml").string();
+  const Run r = run_rheodda("fit '" + kExample + "' --law burgers --stress 0.232 --expr 'eta2=12*E2' --json '" +
+                                json + "' --yaml '" + yaml + "'",
+                            dir);
+  BOOST_TEST_REQUIRE(r.code == 0, r.err);
+  BOOST_TEST(r.out.find("= 12*E2") != std::string::npos, r.out);
+  BOOST_TEST(r.out.find("k = 3") != std::string::npos, r.out);
+  const auto j = nlohmann::json::parse(slurp(json))["fits"][0];
+  const auto& e2 = j["parameters"][1];
+  const auto& eta2 = j["parameters"][3];
+  BOOST_TEST_REQUIRE(eta2["name"] == "eta2");
+  BOOST_TEST(e2["expr"] == "");
+  BOOST_TEST(eta2["expr"] == "12*E2");
+  BOOST_TEST(eta2["vary"].get<bool>() == false);
+  BOOST_TEST(eta2["value"].get<double>() == 12.0 * e2["value"].get<double>(), boost::test_tools::tolerance(1e-13));
+  BOOST_TEST(eta2["std_error"].get<double>() == 12.0 * e2["std_error"].get<double>(),
+             boost::test_tools::tolerance(1e-10));
+  BOOST_TEST(j["varying"].get<int>() == 3);
+  BOOST_TEST(j["converged"].get<bool>());
+  BOOST_TEST(j["optimality"].get<double>() <= 1e-6);
+  BOOST_TEST(slurp(yaml).find("# = 12*E2") != std::string::npos, slurp(yaml));
+
+  rheodda::fit::CsvOptions o;
+  o.stress = rheodda::laws::StagedHistory({{0.0, 0.232}});
+  rheodda::fit::FitOptions opt;
+  opt.parameters["eta2"].expr = "12*E2";
+  const auto lib = rheodda::fit::fit_law(rheodda::laws::LawRegistry::builtin().get("burgers"),
+                                         rheodda::fit::read_creep_csv(kExample, o), opt);
+  for (std::size_t k = 0; k < 4; ++k)
+    BOOST_TEST(j["parameters"][k]["value"].get<double>() == lib.parameters[k].value,
+               boost::test_tools::tolerance(1e-15));
+  BOOST_TEST(j["chi_square"].get<double>() == lib.chi_square, boost::test_tools::tolerance(1e-15));
+}
+
+BOOST_AUTO_TEST_CASE(max_iterations_reaches_the_fit_and_a_fit_cut_short_is_not_called_converged) {
+  // eta2 <= 1000 binds on the example. Two iterations per start stop far from the constrained
+  // minimum: NOT converged, with the warning that names --max-iterations; the default limit
+  // reaches it. Either way the result is the library's with the same max_iterations.
+  TempDir dir;
+  const std::string json = (dir / "fit.json").string();
+  const auto& burgers = rheodda::laws::LawRegistry::builtin().get("burgers");
+  rheodda::fit::CsvOptions o;
+  o.stress = rheodda::laws::StagedHistory({{0.0, 0.232}});
+  const auto data = rheodda::fit::read_creep_csv(kExample, o);
+  for (const int limit : {2, 500}) {
+    const Run r = run_rheodda("fit '" + kExample + "' --law burgers --stress 0.232 --bounds eta2=:1000 --restarts 0 "
+                                  "--max-iterations " + std::to_string(limit) + " --json '" + json + "'",
+                              dir);
+    BOOST_TEST_REQUIRE(r.code == 0, r.err);
+    const auto j = nlohmann::json::parse(slurp(json))["fits"][0];
+    rheodda::fit::FitOptions opt;
+    opt.restarts = 0;
+    opt.max_iterations = limit;
+    opt.parameters["eta2"].max = 1000.0;
+    const auto lib = rheodda::fit::fit_law(burgers, data, opt);
+    BOOST_TEST(j["iterations"].get<int>() == lib.iterations, limit);
+    BOOST_TEST(j["chi_square"].get<double>() == lib.chi_square, boost::test_tools::tolerance(1e-15));
+    BOOST_TEST(j["converged"].get<bool>() == lib.converged, limit);
+    bool warned = false;
+    for (const auto& w : j["warnings"])
+      warned = warned || w.get<std::string>().find("--max-iterations") != std::string::npos;
+    if (limit == 2) {
+      BOOST_TEST(!j["converged"].get<bool>());
+      BOOST_TEST(j["optimality"].get<double>() > 1e-6);
+      BOOST_TEST(warned);
+      BOOST_TEST(r.out.find("NOT converged") != std::string::npos, r.out);
+      BOOST_TEST(r.out.find("the fit stopped before reaching the minimum") != std::string::npos, r.out);
+    } else {
+      BOOST_TEST(j["converged"].get<bool>());
+      BOOST_TEST(j["optimality"].get<double>() <= 1e-6);
+      BOOST_TEST(!warned);
+      BOOST_TEST(j["parameters"][3]["at_bound"] == "max");
+      BOOST_TEST(j["parameters"][3]["value"].get<double>() == 1000.0);
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(bad_expr_and_max_iterations_exit_2_saying_what_is_wrong) {
+  TempDir dir;
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--expr eta2", "--expr 'eta2': expected NAME=EXPRESSION"},
+      {"--expr eta2=12*E9",
+       "law 'burgers': eta2: expression '12*E9': unknown name 'E9' (the parameters: E1, E2, eta1, eta2) at "
+       "character 4"},
+      {"--expr 'eta2=12*(E2'", "law 'burgers': eta2: expression '12*(E2': ')' expected at character 7"},
+      {"--expr 'eta2=12 E2'", "expression '12 E2': unexpected 'E' at character 4"},
+      {"--expr eta2=1200", "the expression '1200' names no parameter: to hold eta2 at a value, fix it"},
+      {"--expr eta2=2*E2 --expr E2=eta2/2", "the expressions refer to each other in a cycle: E2 -> eta2 -> E2"},
+      {"--expr eta2=2*E2 --expr eta2=3*E2", "--expr eta2 is given twice"},
+      {"--expr eta2=2*E2 --fix eta2=5", "--expr gives eta2 by an expression: --fix, --initial and --bounds on it"},
+      {"--expr eta2=2*E2 --bounds eta2=1:10", "--expr gives eta2 by an expression"},
+      {"--expr E9=2*E2", "law 'burgers' has no parameter 'E9'"},
+      {"--max-iterations 0", "--max-iterations 0: expected 1 to 1000000"},
+      {"--max-iterations 1000001", "--max-iterations 1000001: expected 1 to 1000000"},
+  };
+  for (const auto& [args, words] : cases) {
+    const Run r = run_rheodda("fit '" + kExample + "' --law burgers --stress 0.232 " + args, dir);
+    BOOST_TEST(r.code == 2, args);
+    BOOST_TEST(r.err.rfind("rheodda: error: ", 0) == 0, args << ": " << r.err);
+    BOOST_TEST(r.err.find(words) != std::string::npos, args << ": " << r.err);
+    BOOST_TEST(r.out.find("parameter ") == std::string::npos, args << ": a report was printed: " << r.out);
   }
 }
 

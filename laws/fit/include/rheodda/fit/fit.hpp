@@ -52,15 +52,23 @@ struct ParameterSetting {
   /// Lower bound (`--bounds NAME=MIN:MAX`); 0: none beyond positivity.
   double min = 0.0;
   double max = std::numeric_limits<double>::infinity();  ///< upper bound; inf: none
+  /// lmfit's `expr`: the parameter is this expression of the others (numbers,
+  /// parameter names, + - * / ^ or **, parentheses), e.g. "12*E2"; not varied,
+  /// and then value, vary = false and bounds are refused. Empty: none.
+  std::string expr;
 
   /// Nothing set: the parameter is fitted as without a setting.
-  bool is_default() const { return !value && vary && min == 0.0 && max == std::numeric_limits<double>::infinity(); }
+  bool is_default() const {
+    return !value && vary && min == 0.0 && max == std::numeric_limits<double>::infinity() && expr.empty();
+  }
 };
 
 /// Knobs of a fit; the defaults are what `rheodda fit` uses.
 struct FitOptions {
   int restarts = 4;               ///< extra starts besides the one derived from the curve
-  int max_iterations = 500;       ///< per start
+  /// Per start, for GSL's iterations and again for the bounded refinement
+  /// (`rheodda fit --max-iterations`).
+  int max_iterations = 500;
   double correlation_limit = 0.99;      ///< |corr| above this: warning
   double relative_error_limit = 1.0;    ///< std. error / value above this: warning
   double retardation_factor = 3.0;      ///< test shorter than this * eta/E: warning
@@ -100,6 +108,9 @@ struct ParameterEstimate {
   std::string at_bound;
   double min = 0.0;  ///< lower bound of the fit [unit]
   double max = std::numeric_limits<double>::infinity();  ///< upper bound of the fit [unit]
+  /// The expression of the other parameters that gives it (ParameterSetting::expr;
+  /// vary is then false); its std_error is propagated from theirs by its gradient.
+  std::string expr;
 };
 
 /// A combination of parameters that the data fix although some of its parts
@@ -136,7 +147,14 @@ struct FitResult {
   int starts = 0;          ///< starts tried
   int starts_agreeing = 0; ///< starts that reached the best RSS (relative 1e-6)
   int structured_starts = 0;  ///< of `starts`, those from the variable-projection search
-  bool converged = false;  ///< the best start met the step tolerance
+  /// The best start met GSL's step tolerance; with settings (FitOptions::parameters,
+  /// sigma) only where the optimality conditions hold at the point reported:
+  /// the gradient of chi^2 zero in the free parameters, pointing out of the box
+  /// at a bound (cosine below 1e-6, docs/guide/fitting.md).
+  bool converged = false;
+  /// The largest violation of the optimality conditions at the point reported
+  /// (a cosine, as above); 0 without settings.
+  double optimality = 0.0;
   /// false when the minimum was reached by one start only, or when the
   /// multi-start reference found a lower one than the variable-projection search
   bool minimum_certain = true;
