@@ -9,7 +9,7 @@
 //     R(D, V, t) = F(t) - K D - C V - f_c(D, V)                                     (1)
 // F the block loads (gravity, initial stress, point loads, water, fixed points) linear in
 // t between the step's ends, K the blocks' elastic and fixed-point stiffness, C the block
-// damping (Material::damping_ratio: tau S E_e on the strain terms), f_c the contacts'
+// damping on the strain terms (Material::damping_ratio's tau S E_e, else (4)), f_c the contacts'
 // forces with each contact's state decided at D (contact_cycles.cpp). Central difference
 // (Newmark beta = 0, gamma = 1/2) with the block mass M = rho int T^T T dA (Shi 1988):
 //     V_(1/2) = V_0 + h/2 M^-1 R_0,  D_(k+1) = D_k + h V_(k+1/2),

@@ -122,17 +122,17 @@ std::vector<char> Engine::Impl::check_edit(const ModelEdit& e) const {
       if (!v.allFinite()) throw ModelError(key, "velocity", "must be finite");
       if (!dynamic_after)
         throw ModelError(key, "velocity", "a static analysis carries no velocity (its steps start at rest)");
-      const BlockState& st = m.st.blocks[b];
+      const BlockState& bs = m.st.blocks[b];
       HeldRows J(0, 6);
       for (std::size_t i = 0; i < m.model.fixed_points.size(); ++i) {
         const FixedPoint& fp = m.model.fixed_points[i];
-        if (fp.block == block && !dropped[i]) add_held_rows(J, st.centroid, st.map_A * fp.material() + st.map_b, fp.held());
+        if (fp.block == block && !dropped[i]) add_held_rows(J, bs.centroid, bs.map_A * fp.material() + bs.map_b, fp.held());
       }
       for (const FixedPoint& fp : e.add_fixed_points)
         if (fp.block == block)
-          add_held_rows(J, st.centroid, e.material_points ? Vec2(st.map_A * fp.material() + st.map_b) : fp.point,
+          add_held_rows(J, bs.centroid, e.material_points ? Vec2(bs.map_A * fp.material() + bs.map_b) : fp.point,
                         fp.held());
-      const Mat6 M = m.model.materials[static_cast<std::size_t>(st.material)].density * unit_mass_matrix(m.moments[b]);
+      const Mat6 M = m.model.materials[static_cast<std::size_t>(bs.material)].density * unit_mass_matrix(m.moments[b]);
       const Vec6 lost = v - held_velocity(M, J, v, std::sqrt(std::abs(m.moments[b].S)));
       if (lost.dot(M * lost) > 1e-12 * v.dot(M * v))
         throw ModelError(key, "velocity",

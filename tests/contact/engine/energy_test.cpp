@@ -21,17 +21,6 @@ namespace {
 
 constexpr double kRho = 2600.0, kG = 9.81;  // default material density [kg/m^3], gravity [m/s^2]
 
-/// Fixed base whose top is the line through the origin at angle alpha [rad], and
-/// a block b x h on it (tests/contact/engine/incline_test.cpp), its lower
-/// corner at distance x0 up the slope and lifted by `gap` [m].
-core::Model incline_scene(double alpha, double b, double h, double x0, double gap = 0.0) {
-  core::Model m;
-  m.settings.dt = 1e-3;
-  add_fixed(m, rect(-1.0, -1.0, 7.0, 0.0, alpha));
-  m.blocks.push_back(block(rect(x0, gap, x0 + b, gap + h, alpha)));
-  return m;
-}
-
 /// The running-bond brick wall of the benchmarks (tests/models/brick_wall.hpp).
 core::Model brick_wall(int nx, int ny) { return models::running_bond_wall(nx, ny); }
 

@@ -11,14 +11,10 @@ using namespace rheodda::testing;
 
 namespace {
 
-/// Fixed base whose top is the line through the origin at angle alpha, and a block
-/// b x h resting on it, its lower corner at distance x0 up the slope; explicit step.
+/// The incline of incline_test.cpp (sim.hpp), taken by the explicit step.
 core::Model explicit_incline(double alpha, double b, double h, double x0) {
-  core::Model m;
-  m.settings.dt = 1e-3;
+  core::Model m = incline_scene(alpha, b, h, x0);
   m.settings.integrator = core::Integrator::explicit_step;
-  add_fixed(m, rect(-1.0, -1.0, 7.0, 0.0, alpha));
-  m.blocks.push_back(block(rect(x0, 0.0, x0 + b, h, alpha)));
   return m;
 }
 

@@ -47,6 +47,18 @@ inline int add_fixed(core::Model& m, std::vector<Vec2> vertices) {
   return b;
 }
 
+/// Fixed base whose top is the line through the origin at angle alpha [rad], and a block
+/// b x h on it, its lower corner at distance x0 up the slope and lifted by `gap` [m]; dt 1 ms.
+inline core::Model incline_scene(double alpha, double b, double h, double x0, double gap = 0.0,
+                                 core::ContactSolver solver = core::ContactSolver::open_close) {
+  core::Model m;
+  m.settings.dt = 1e-3;
+  m.settings.contact_solver = solver;
+  add_fixed(m, rect(-1.0, -1.0, 7.0, 0.0, alpha));
+  m.blocks.push_back(block(rect(x0, gap, x0 + b, gap + h, alpha)));
+  return m;
+}
+
 /// The benchmarks' running-bond wall (tests/models/brick_wall.hpp) with the solver
 /// `solver`, every open-close iterate solved to the full tolerance unless `iterate_tolerance`.
 inline core::Model running_bond_wall(int nx, int ny, core::SolverKind solver, double dynamic_ratio = 1.0,
