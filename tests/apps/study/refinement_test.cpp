@@ -97,6 +97,28 @@ BOOST_AUTO_TEST_CASE(every_step_control_the_scene_uses_is_halved_level_by_level)
   BOOST_TEST(st::prepare_cases(r.study).size() == 3u);
 }
 
+BOOST_AUTO_TEST_CASE(the_explicit_steps_cycle_is_refined_with_the_other_step_controls) {
+  // docs/reference/explicit-step.md: under integrator: explicit, explicit_safety is a step
+  // control, halved level by level with dt and g2; the study reads back as the same levels.
+  const fs::path dir = fresh_dir("refine-explicit");
+  std::string t = read_text(source_path("examples/sliding-block.yaml"));
+  t = with("  type: dynamic\n", "  type: dynamic\n  integrator: explicit\n", t);
+  const fs::path scene = dir / "sliding-explicit.yaml";
+  std::ofstream(scene) << t;
+  st::RefinementOptions o;
+  o.levels = 3;
+  const auto r = st::refinement_study(scene.string(), (dir / "r.yaml").string(), o);
+  BOOST_TEST_REQUIRE(r.study.cases.size() == 3u);
+  BOOST_TEST_REQUIRE(find(r.study.cases[2], "analysis.explicit_safety") != nullptr);
+  BOOST_TEST(std::stod(find(r.study.cases[2], "analysis.explicit_safety")->value_yaml) == 0.2);
+  BOOST_TEST(r.level_controls[1].find("explicit_safety 0.4") != std::string::npos, r.level_controls[1]);
+  std::ofstream(dir / "r.yaml") << r.study_text;
+  const st::StudyDescription back = st::load_study((dir / "r.yaml").string());
+  BOOST_TEST_REQUIRE(back.cases.size() == 3u);
+  BOOST_TEST(std::stod(find(back.cases[2], "analysis.explicit_safety")->value_yaml) == 0.2);
+  BOOST_TEST(st::prepare_cases(r.study).size() == 3u);
+}
+
 BOOST_AUTO_TEST_CASE(held_step_controls_keep_the_scene_value_and_the_others_are_halved) {
   const fs::path dir = fresh_dir("refine-hold");
   const std::string scene = source_path("examples/goodman-toppling-creep.yaml");
