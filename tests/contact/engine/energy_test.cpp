@@ -47,13 +47,7 @@ BOOST_AUTO_TEST_SUITE(energy_balance)
 BOOST_AUTO_TEST_CASE(sliding_block_dissipates_n_tan_phi_times_the_slip) {
   const double alpha = deg(30.0), phi = deg(20.0);
   Sim sim(incline_scene(alpha, 1.0, 0.5, 4.0), {joint(20.0)});
-  const Vec2 c0 = sim.engine.centroid(1);
-  const Vec2 down(-std::cos(alpha), -std::sin(alpha));
-  double travelled = 0.0;
-  while (travelled < 1.0 && sim.engine.step_count() < 5000) {
-    sim.engine.step();
-    travelled = sim.engine.point_displacement(1, c0).dot(down);
-  }
+  const double travelled = slide_down(sim, alpha, 1.0);
   const core::EnergyBalance& b = sim.engine.energy();
   const double m = kRho * 0.5;  // 1 m x 0.5 m
   BOOST_TEST_MESSAGE("sliding block: travelled " << travelled << " m; " << summary(sim.engine));

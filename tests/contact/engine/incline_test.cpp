@@ -21,13 +21,7 @@ BOOST_AUTO_TEST_CASE(sliding_block_follows_half_g_sin_minus_cos_tan_phi_t_square
   for (auto [alpha_deg, phi_deg] : {std::pair{30.0, 20.0}, std::pair{45.0, 30.0}}) {
     const double alpha = deg(alpha_deg), phi = deg(phi_deg), g = 9.81;
     Sim sim(incline_scene(alpha, 1.0, 0.5, 4.0, 0.0, solver), {joint(phi_deg)});
-    const Vec2 c0 = sim.engine.centroid(1);
-    const Vec2 down(-std::cos(alpha), -std::sin(alpha));
-    double travelled = 0.0;
-    while (travelled < 1.0 && sim.engine.step_count() < 5000) {
-      sim.engine.step();
-      travelled = sim.engine.point_displacement(1, c0).dot(down);
-    }
+    const double travelled = slide_down(sim, alpha, 1.0);
     const double t = sim.engine.time();
     const double closed_form = 0.5 * g * (std::sin(alpha) - std::cos(alpha) * std::tan(phi)) * t * t;
     BOOST_TEST_MESSAGE("alpha " << alpha_deg << " phi " << phi_deg << ": t = " << t << " s, DDA "
@@ -51,13 +45,7 @@ BOOST_AUTO_TEST_CASE(a_block_that_slipped_slides_on_with_the_residual_friction_a
   j.residual_friction_angle = 10.0;
   j.cohesion = 1000.0;  // [Pa]: far too little to hold 1.3 t on 1 m, lost once slipped
   Sim sim(incline_scene(alpha, 1.0, 0.5, 4.0), {j});
-  const Vec2 c0 = sim.engine.centroid(1);
-  const Vec2 down(-std::cos(alpha), -std::sin(alpha));
-  double travelled = 0.0;
-  while (travelled < 1.0 && sim.engine.step_count() < 5000) {
-    sim.engine.step();
-    travelled = sim.engine.point_displacement(1, c0).dot(down);
-  }
+  const double travelled = slide_down(sim, alpha, 1.0);
   const double t = sim.engine.time();
   const double residual = 0.5 * g * (std::sin(alpha) - std::cos(alpha) * std::tan(phi_r)) * t * t;
   const double peak = 0.5 * g * (std::sin(alpha) - std::cos(alpha) * std::tan(deg(20.0))) * t * t;

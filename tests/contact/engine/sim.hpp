@@ -59,6 +59,20 @@ inline core::Model incline_scene(double alpha, double b, double h, double x0, do
   return m;
 }
 
+/// Steps until block 1 of an incline_scene has slid `distance` [m] down the slope at angle
+/// alpha [rad] (at most 5 000 steps); returns how far its centroid travelled along it [m].
+template <class S>
+double slide_down(S& sim, double alpha, double distance) {
+  const Vec2 c0 = sim.engine.centroid(1);
+  const Vec2 down(-std::cos(alpha), -std::sin(alpha));
+  double travelled = 0.0;
+  while (travelled < distance && sim.engine.step_count() < 5000) {
+    sim.engine.step();
+    travelled = sim.engine.point_displacement(1, c0).dot(down);
+  }
+  return travelled;
+}
+
 /// The benchmarks' running-bond wall (tests/models/brick_wall.hpp) with the solver
 /// `solver`, every open-close iterate solved to the full tolerance unless `iterate_tolerance`.
 inline core::Model running_bond_wall(int nx, int ny, core::SolverKind solver, double dynamic_ratio = 1.0,
