@@ -1,9 +1,9 @@
 // The declared keys of `analysis:` and `analysis.settle` (keys.hpp), one entry per key.
 //
 // Each entry: map, key, unit, range (or choices), the field it fills, the default and the
-// meaning as docs/reference/scene-format.md shows them (its tables are generated from here:
-// `rheodda schema --markdown`). Checks that tie several keys together stay in the
-// loader (apps/scene/src/read_analysis.cpp).
+// meaning as docs/reference/scene-format.md shows them (its tables are generated from here
+// by scripts/scene-format-tables.sh, through `rheodda keys --markdown MAP`). Checks that tie
+// several keys together stay in the loader (apps/scene/src/read_analysis.cpp).
 #include "rheodda/scene/keys.hpp"
 
 #include "key_builders.hpp"

@@ -1,12 +1,11 @@
-// A scene's `water:` into the engine's model, `rheodda check`, summary.json and
-// contacts.csv (water.hpp; docs/reference/water.md).
+// A scene's `water:` into the engine's model, `rheodda check` and contacts.csv
+// (water.hpp; docs/reference/water.md); summary.json's "water" is scene_json.cpp's.
 #include "rheodda/scene/water.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <limits>
-#include <nlohmann/json.hpp>
 
 #include "rheodda/scene/keys.hpp"
 #include "rheodda/scene/scene.hpp"
@@ -83,25 +82,6 @@ std::string describe_water(const WaterDescription& water, const Units& u) {
   out += "  pressure gamma_w (h - y) on every block edge below the surface; contacts carry the effective normal force "
          "(docs/reference/water.md)\n";
   return out;
-}
-
-std::string water_json_text(const WaterDescription& water) {
-  nlohmann::ordered_json j;
-  j["unit_weight"] = water.unit_weight;
-  const auto& h = water.history;
-  switch (water.form) {
-    case WaterDescription::Form::level: j["level"] = h[0].level; break;
-    case WaterDescription::Form::surface: j["surface"] = h[0].surface; break;
-    case WaterDescription::Form::level_history:
-      j["level_history"] = nlohmann::ordered_json::array();
-      for (const auto& s : h) j["level_history"].push_back({s.time, s.level});
-      break;
-    case WaterDescription::Form::surface_history:
-      j["surface_history"] = nlohmann::ordered_json::array();
-      for (const auto& s : h) j["surface_history"].push_back({{"time", s.time}, {"surface", s.surface}});
-      break;
-  }
-  return j.dump();
 }
 
 std::string water_pressure_cell(const core::Water& water, const core::Vec2& p, double t) {

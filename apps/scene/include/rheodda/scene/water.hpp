@@ -40,9 +40,6 @@ core::Water build_water(const WaterDescription& water, const SceneDescription& s
 /// `rheodda check`'s lines on the water (each ending with a newline).
 std::string describe_water(const WaterDescription& water, const Units& units);
 
-/// summary.json's "water" (docs/reference/outputs.md) as JSON text.
-std::string water_json_text(const WaterDescription& water);
-
 /// The scene has water at some time: a `water:`, or a stage's (docs/reference/stages.md);
 /// its contacts.csv and contact frames then carry water_pressure.
 bool scene_has_water(const SceneDescription& scene);
