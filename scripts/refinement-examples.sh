@@ -3,8 +3,10 @@
 # controls (L0) and with every step control halved, level by level, and the
 # verdict (fine / coarse / not converged) with L0's error, the last two levels'
 # difference, the largest static inertia share and, where a joint fails, the
-# failure time of each level. Puts the table into docs/guide/choosing-step-controls.md between
-# the refinement-examples markers. About 25 min on 2 cores.
+# failure time of each level. Puts the shipped examples' table into
+# docs/guide/choosing-step-controls.md between the refinement-examples markers, and the
+# bench scenes' and the examples' variants' into docs/notes/step-controls.md between the
+# refinement-bench-scenes markers. About 25 min on 2 cores.
 # Usage: scripts/refinement-examples.sh   (uses $RHEODDA_BUILD_DIR or build/)
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # strict mode; root, build, work (removed at exit)
 # example | refine options (levels, --until: before a joint fails, where that is the headline)
@@ -60,12 +62,15 @@ for e in "${examples[@]}"; do
   [[ -n "$extra" ]] && rm -f "$file"
   echo "$scene${extra:+ with $extra}|$opts|$work/$i" >>"$work/list"
 done
-/usr/bin/python3 - "$work/list" >"$work/table.md" <<'PY'
+table() {  # table LIST shipped|other: the rows of the shipped examples as they ship, or the others
+/usr/bin/python3 - "$@" <<'PY'
 import json, sys, os
 print("| scene | `check` options | levels | verdict | L0 error | largest of the last two differences | largest inertia share | steps L0 … last | failure time per level |")
 print("|---|---|---:|---|---:|---:|---:|---|---|")
 for line in open(sys.argv[1]):
     scene, opts, out = line.rstrip("\n").split("|")
+    if (scene.startswith("examples/") and " with " not in scene) != (sys.argv[2] == "shipped"):
+        continue
     j = json.load(open(os.path.join(out, "refinement.json")))
     judged = [q for q in j["quantities"] if q["judged"]]
     last = max((d for q in judged for d in q["differences"][-2:]), default=0.0)
@@ -80,8 +85,12 @@ for line in open(sys.argv[1]):
     print(f"| {scene} | `{opts}` | {len(j['levels'])} | {j['verdict']} | {100 * j['largest_error']:.2g} % | "
           f"{100 * last:.2g} % | {share:.2g} | {steps} | {', '.join(failures) if failures else '–'} |")
 PY
-cat "$work/table.md"
+}
+table "$work/list" shipped >"$work/table.md"
+table "$work/list" other >"$work/bench.md"
+cat "$work/table.md" "$work/bench.md"
 "$root/scripts/splice-doc.sh" "$root/docs/guide/choosing-step-controls.md" refinement-examples "$work/table.md"
+"$root/scripts/splice-doc.sh" "$root/docs/notes/step-controls.md" refinement-bench-scenes "$work/bench.md"
 # The toppling example's levels in full (its refinement.txt, as `check` prints it).
 n=$(grep -n '^examples/goodman-toppling-creep.yaml|' "$work/list" | head -n 1 | cut -d: -f1)
 { echo '```'; cat "$work/$n/refinement.txt"; echo '```'; } >"$work/toppling.md"

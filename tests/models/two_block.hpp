@@ -93,7 +93,7 @@ inline JointForces joint_forces(const contact::ContactSystem& cs) {
   return f;
 }
 
-/// The growth of a creep scheme in the DDA step (the stability map, docs/guide/choosing-step-controls.md,
+/// The growth of a creep scheme in the DDA step (the stability map, docs/notes/step-controls.md,
 /// "Stability map"): the largest joint stress of step n relative to `scale`, watched over
 /// `steps` steps; diverged once it exceeds `stop` x scale.
 struct GrowthWatch {
