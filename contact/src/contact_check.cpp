@@ -23,7 +23,7 @@ void ContactSystem::stick(std::span<const BlockView> blocks, size_t c) {
   // contact slid against, as an elastic-plastic joint keeps its elastic shear
   // displacement: the locking point P0 goes behind p by the stretch that
   // carries F, P0 = p - s t with s = d F / k_s (d the slide direction, t the
-  // edge direction). Measured trade (docs/notes/contact-solves.md, "Why the iteration does
+  // edge direction). The trade (docs/notes/contact-solves.md, "Why the iteration does
   // not settle"): far fewer iterates and cuts on walls and slopes at the
   // friction limit; a creeping slope at its limit takes other, step-dependent
   // paths.
@@ -72,11 +72,11 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
     // dashpot (JointSet::restitution) adds its force c rate beside the spring
     // of a closed (normal) or locked (shear) contact, but neither opens, closes,
     // nor makes a contact slide, and friction is N tan(phi) of the spring's N.
-    // Measured (docs/reference/contacts.md, "Contact damping"): deciding on the total
-    // force instead, the dashpot's transient force at an impact (c v, hundreds
-    // of times the block's weight) locks the shear spring with a stretch that
-    // the weight's friction cannot hold afterwards, and the drop on an incline
-    // ends 1.24-1.43 mm down the slope depending on the step.
+    // Deciding on the total force instead, the dashpot's transient force at an
+    // impact (c v, hundreds of times the block's weight) would lock the shear
+    // spring with a stretch that the weight's friction cannot hold afterwards,
+    // and where a block dropped on an incline stops would depend on the step
+    // (docs/notes/contact-rules.md, "The total force deciding").
     const double N = h.pn * dn;
     r.penetration = dn;
     const ContactState before = r.state;

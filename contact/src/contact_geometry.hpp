@@ -35,8 +35,8 @@ inline double projection_ratio(const Vec2& a, const Vec2& b, const Vec2& p) {
 /// overhangs its edge's end by a little (a corner contact near the edge end,
 /// within the search reach) locks where it is; locking it at the clamped end
 /// attaches the spring already stretched by the overhang, energy from nowhere
-/// (measured on the stepped slope of bench/scenes/stepped-toppling.yaml: the
-/// explosion at dt = 0.1 ms, docs/notes/contact-solves.md "Locking points on the edge's line").
+/// (docs/notes/contact-solves.md, "Locking points on the edge's line": the stepped
+/// slope of bench/scenes/stepped-toppling.yaml).
 inline double line_ratio(const Vec2& a, const Vec2& b, const Vec2& p) {
   const Vec2 ab = b - a;
   return ab.dot(p - a) / ab.squaredNorm();

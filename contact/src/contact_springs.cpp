@@ -42,13 +42,11 @@ void ContactSystem::prepare(std::span<const BlockView> blocks, const Contact& c,
   // stiffness per unit area times the contact's tributary length l_t (its
   // length for an edge-edge contact, point_tributary_length for a point
   // contact), so that the joint's per-area response holds on every contact
-  // and a contact's springs do not jump when it changes kind. Measured
-  // (docs/notes/contact-solves.md, "Springs of a joint on point contacts"): taking the
-  // contact length, a column of the seed's slope that rose 3.4 cm off one base
-  // corner turned its other base contact from edge-edge into a point contact,
-  // whose shear spring jumped from the joint's 5e8 to the penalty's 1.6e11 N/m
-  // with the stretch it had: the contact slid, and the settled slope depended
-  // on whether the contact search reached the lifted corner.
+  // and a contact's springs do not jump when it changes kind. With the contact
+  // length instead, a column that rises off one base corner turns its other
+  // base contact from edge-edge into a point contact whose shear spring jumps
+  // from the joint's to the penalty's with the stretch it had, and slides
+  // (docs/notes/contact-solves.md, "Springs of a joint on point contacts").
   const JointSet& js = joint_sets_[c.joint_set];
   const double lt = c.tributary_length > 0.0 ? c.tributary_length : c.length;  // [length]
   h.pn = (js.normal_stiffness && lt > 0.0) ? *js.normal_stiffness * lt : penalty_;
@@ -89,16 +87,14 @@ double ContactSystem::reversal_stiffness(size_t c) const {
   // (ContactSettings::reversal_at_normal_resolution): the normal spring p_n
   // plus the step's inertia on the contact, m_red / (beta dt^2) (the Newmark
   // term the host adds to the block's stiffness; m_red the reduced mass of the
-  // two blocks). Measured (docs/notes/contact-solves.md, "Friction that pushed"): with a
-  // soft joint f_res / k_s was 1e-4 m on the seed's slope, more than a small
-  // step's slip, so a vertex moving backwards kept its friction force pushing
-  // it on, and the slope settled at 1 ms but never at 0.25 ms. Measured
-  // (docs/notes/contact-solves.md, "Contacts that stop"): with p_n alone the resolution is
-  // a fixed length while the backward slip of a contact whose friction exceeds
-  // its drive shrinks as dt^2 (the inertia holds it): contacts that had
-  // stopped stayed sliding, more of them the smaller the step (the damped
-  // brick wall: 41 at dt 31 us, 539 at 1.95 us), and the joints' shear
-  // displacement did not converge.
+  // two blocks). Why: with a soft joint f_res / k_s exceeds a small step's
+  // slip, so a vertex moving backwards would keep its friction force pushing it
+  // on, friction doing negative work (docs/notes/contact-solves.md, "Friction
+  // that pushed"); and with p_n alone the resolution is a fixed length while
+  // the backward slip of a contact whose friction exceeds its drive shrinks as
+  // dt^2 (the inertia holds it), so contacts that stop would stay sliding, the
+  // more the smaller the step, and the joints' shear displacement would not
+  // converge (docs/notes/contact-solves.md, "Contacts that stop").
   const Hot& h = hot_[c];
   if (!(settings_.reversal_at_normal_resolution && step_dynamic_)) return shear_stiffness(c);
   return h.pn + h.reduced_mass * step_inertia_;

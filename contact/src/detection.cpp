@@ -185,7 +185,7 @@ void detect_pair(std::span<const BlockView> blocks, int ia, int ib, const Detect
         // moved on past the notch's vertex along one edge (beyond the other's
         // end by more than the allowed penetration) no longer touches the other,
         // whose line would hold it with a spring in tension (docs/reference/contacts.md,
-        // "Contact types"; measured on the toppling example's toe block).
+        // "Contact types"; docs/notes/contact-rules.md, "The notch rule").
         bool any = false;
         for (int c = 0; c < 4; ++c)
           if ((c < 2 ? p_in_notch : q_in_notch) && score[c] >= -sin_tol && in_reach[c]) emit(c), any = true;

@@ -14,8 +14,8 @@
 // |R(D)| <= Settings::contact_residual_tolerance x |f(D)| (each block's
 // rotation and strain rows divided by its size, so that every row is a force),
 // whether or not a state changed. A dynamic step starts, as in the open-close
-// solve, from the states of the last step (starting from the states at the
-// Newmark predictor was measured and not adopted: docs/notes/contact-solves.md).
+// solve, from the states of the last step (the states at the Newmark predictor
+// are those of a free fall, every contact open: docs/notes/contact-solves.md).
 // Where the open-close iteration converges it converges too, to a D within the
 // tolerance of the same equations (tests/contact/engine/contact_solve_test.cpp).
 #include <cmath>

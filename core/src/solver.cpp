@@ -19,8 +19,7 @@ namespace {
 // regions with a compiled-in num_threads(4) (CHOLMOD_OMP_NUM_THREADS in
 // cholmod_core.h), which neither OMP_NUM_THREADS nor omp_set_num_threads
 // overrides. On a machine with fewer free cores than that the threads wait on
-// each other: on two cores the 1 620-block wall's factorisations took 3.3x the
-// time of serial ones (docs/reference/engine.md, "Solvers"). rheodda solves one model per
+// each other (docs/design/linear-solvers.md, "CHOLMOD runs serially"). rheodda solves one model per
 // core (studies run their cases in parallel, `-j`), so CHOLMOD runs serially:
 // no parallel region is active while this guard lives (OpenMP's
 // max-active-levels 0), and the caller's setting comes back after.

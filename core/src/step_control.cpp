@@ -54,8 +54,8 @@ StepReport Engine::Impl::step(double dt_cap) {
     // the time left before the first contact fails at its present stress, 1e-3
     // of it beyond, so that it fails in that step even when its stress moves
     // a little within it (a step right to the failure time can leave a sliver
-    // of life, then a sliver of that, and so on: measured, 38 more steps on
-    // the shear creep test at 1e-6 beyond).
+    // of life, then a sliver of that, and so on: docs/notes/rheology-in-dda.md,
+    // "Steps onto a failure").
     failure_step = contacts->time_to_failure() * (1.0 + 1e-3);
   }
   bool capped = dt_cap < st.next_dt;

@@ -58,10 +58,9 @@ Search search_minimum(const laws::LawInfo& info, const CreepData& data, Solver& 
   // it): a reference. On more than kReferencePoints points they run on an even
   // subsample (every stride-th point of each stage, about kReferenceSample in
   // all), against the best minimum polished on that subsample; a start that
-  // finds a lower one there is then polished on all points. (A 100-point
-  // subsample of the 201-point staged Nishihara curves of docs/guide/fitting.md missed
-  // the reference's minimum in 10 of 300 draws; 200 points of 1 000 keep a
-  // Burgers fit within 1 ms, bench/fit_bench.)
+  // finds a lower one there is then polished on all points. (Why these sizes,
+  // between a subsample that misses the reference's minimum and one that
+  // costs the fit its speed: docs/notes/fitting.md, "Speed".)
   const int classic = 1 + std::max(options.restarts, 0);
   std::vector<std::vector<double>> classic_starts;
   // The user's initial values (ParameterSetting::value), the others from the curve: tried first.

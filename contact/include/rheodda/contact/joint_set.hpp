@@ -153,25 +153,23 @@ struct ContactSettings {
   /// not stretch) instead of at the vertex's step-start projection (Shi) [-].
   /// The hosts set it for dynamic analyses, where it makes the outcome of an
   /// impact independent of where in its step the contact is reached. Off in
-  /// static analysis, where a step has no flight: measured on the toppling
-  /// example, it cost a level of `check --refine` ten times the steps and
-  /// took the refinement from fine (0.46 %) to 0.75 % (docs/reference/contacts.md,
-  /// "Contact damping").
+  /// static analysis, where a step has no flight and the rule would only cost
+  /// steps and accuracy (docs/reference/contacts.md, "Contact damping";
+  /// docs/notes/contact-rules.md, "Locking at touch").
   bool lock_at_touch = false;
   /// A sliding contact turns back (sticks) once its backward slip in the step
   /// exceeds f_res / (p_n + m_red / (beta dt^2)), the slip a force residual moves
   /// the vertex by against the normal spring and the step's inertia (the
   /// `inertia` of begin_step), instead of f_res / k_s (Shi's spring) [-]. The
   /// hosts set it for dynamic analyses: with a soft joint (k_s << p_n) and a
-  /// small step, the coarser resolution let a vertex that moved backwards keep
-  /// a friction force that pushed it on, step after step; friction did negative
-  /// work and the seed's slope settled at 1 ms but never at 0.25 ms and below
-  /// (docs/notes/contact-solves.md, "Friction that pushed"); without the inertia, contacts
-  /// that had stopped stayed sliding, more of them the smaller the step
+  /// small step, the coarser resolution lets a vertex that moves backwards keep
+  /// a friction force that pushes it on, step after step, friction doing
+  /// negative work (docs/notes/contact-solves.md, "Friction that pushed"); without the
+  /// inertia, contacts that stop stay sliding, more of them the smaller the step
   /// (docs/notes/contact-solves.md, "Contacts that stop"). Off in static analysis, where no
-  /// velocity carries the error to the next step: measured on the toppling
-  /// example, the finer resolution made its static iteration fail and cut the
-  /// step towards 1e-6 d.
+  /// velocity carries the error to the next step and the finer resolution keeps
+  /// the static iteration from settling (docs/notes/contact-solves.md, "Friction that
+  /// pushed").
   bool reversal_at_normal_resolution = false;
   /// Factor by which the penalty is raised [-].
   double penalty_raise = 2.0;

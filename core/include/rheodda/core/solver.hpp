@@ -70,11 +70,10 @@ class LinearSolver {
     return amg_failed_ ? SolverKind::cholmod : resolve(kind_, blocks);
   }
   /// automatic picks amg from this many blocks on. Below it CHOLMOD (run
-  /// serially) is exact (no tolerance to choose) and faster: on the brick-wall
-  /// benchmark (docs/notes/performance.md, "Which solver, from how many blocks";
-  /// scripts/solver-switch.sh) amg takes 1.1-1.2x CHOLMOD's time per step from
-  /// 105 to 1 620 blocks, about 1.0x at 2 139 and 0.6x at 4 128, where the
-  /// Cholesky factor's N^1.5 flops take over.
+  /// serially) is exact (no tolerance to choose) and faster; above it the
+  /// Cholesky factor's N^1.5 flops take over. The crossover on the brick-wall
+  /// benchmark: docs/notes/performance.md, "Which solver, from how many blocks"
+  /// (scripts/solver-switch.sh).
   static constexpr int kAmgBlocks = 2000;
   const SolverStats& stats() const { return stats_; }
   /// What the next solves depend on beside their systems (solver_state.cpp):
