@@ -112,12 +112,18 @@ std::string explicit_cycle_text(const scene::SceneDescription& s) {
   if (c.block < 0)
     return fmt::format("  integrator explicit: nothing stiff holds a block at the start; its cycles are set once "
                        "contacts close\n");
-  return fmt::format("  integrator explicit: dynamic steps in cycles of {:.3g} {} (explicit_safety {:g} of the stable "
-                     "cycle at the start, set by block {}), about {:.3g} cycles per simulated {}; its steps of dt "
-                     "{:g} {} take {} cycles each (docs/reference/explicit-step.md)\n",
-                     c.cycle, tu, s.analysis.explicit_safety, block_name(s, c.block),
-                     1.0 / c.cycle, tu, s.analysis.dt, tu,
-                     static_cast<long long>(std::ceil(s.analysis.dt / c.cycle - 1e-9)));
+  // The dynamic steps are the analysis's own in a dynamic analysis, the stages' in a static one.
+  const bool staged = s.analysis.type != scene::AnalysisType::dynamic_analysis && s.analysis.settle;
+  const double dt = staged ? s.analysis.settle->dt : s.analysis.dt;
+  const auto cycles = static_cast<long long>(std::ceil(dt / c.cycle - 1e-9));
+  std::string text = fmt::format(
+      "  integrator explicit: dynamic steps in cycles of {:.3g} {} (explicit_safety {:g} of the stable cycle at the "
+      "start, set by block {}), about {:.3g} cycles per simulated {}; its {}steps of dt {:g} {} take {} cycles each",
+      c.cycle, tu, s.analysis.explicit_safety, block_name(s, c.block), 1.0 / c.cycle, tu,
+      staged ? "dynamic stages' " : "", dt, tu, cycles);
+  if (staged && s.analysis.stage_cycles > 0 && cycles > s.analysis.stage_cycles)
+    text += fmt::format(", {} with the blocks' masses scaled (stage_cycles)", s.analysis.stage_cycles);
+  return text + " (docs/reference/explicit-step.md)\n";
 }
 
 }  // namespace

@@ -38,8 +38,9 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
     step_work_[c] = {h.pn, h.ps, h.dn0, dn, h.dt0, slip, h.start_state,  // energy balance
                      r.slide_direction * (std::max(h.assembled_normal_force, 0.0) * h.tan_phi +
                                           h.cohesion * r.length),
-                     r.state != ContactState::open ? normal_dashpot(c) * (dn - h.dn_ref) : 0.0,
-                     r.state == ContactState::locked ? shear_dashpot(c) * slip : 0.0};
+                     // (the dashpots of a step taken in cycles: booked cycle by cycle, contact_cycles.cpp)
+                     !cycled_ && r.state != ContactState::open ? normal_dashpot(c) * (dn - h.dn_ref) : 0.0,
+                     !cycled_ && r.state == ContactState::locked ? shear_dashpot(c) * slip : 0.0};
     switch (r.state) {
       case ContactState::open:
         if (h.law_failed) ++creep_counters_[r.joint_set].failures;  // failed at an iterate (check)
@@ -129,6 +130,7 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
   committed_rheology_.swap(work_rheology_);
   committed_creep_.swap(work_creep_);
   committed_work_.swap(step_work_);  // energy balance
+  committed_cycle_damping_ = cycled_ ? cycle_damping_ : 0.0;
   if (creep_error_wanted_) {
     // The step-start records (now in the working arrays) are the estimate's
     // start, and what retract_step swaps back.

@@ -47,6 +47,7 @@ int thread_count(int requested) { return requested > 0 ? requested : omp_get_max
 void ContactSystem::begin_cycles(std::span<const BlockView> blocks, int threads) {
   const int block_count = static_cast<int>(blocks.size());
   cycle_threads_ = threads;
+  cycled_ = true;
   const std::size_t n = work_.size();
   cycles_.resize(n);
   cycle_force_.assign(2 * n, Vec6::Zero());
@@ -64,6 +65,7 @@ void ContactSystem::begin_cycles(std::span<const BlockView> blocks, int threads)
     y.cohesion_residual = js.cohesion_of(false);
     y.shift = 0.0;
     y.cn = y.cs = 0.0;
+    y.damped = y.nd = y.ts = 0.0;
     y.bound_i = std::isfinite(blocks[r.key.eblock].mass) ? 2.0 : 1.0;
     y.bound_j = std::isfinite(blocks[r.key.vblock].mass) ? 2.0 : 1.0;
     if (r.state == ContactState::sliding) {
@@ -114,7 +116,8 @@ void ContactSystem::cycle_damping(double tau, std::vector<Mat6>& C) {
   }
 }
 
-void ContactSystem::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, Eigen::VectorXd& f) {
+void ContactSystem::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double h_work,
+                                 Eigen::VectorXd& f) {
   const auto n = static_cast<std::ptrdiff_t>(work_.size());
   const bool dashpots = step_dynamic_;
   const int threads = thread_count(cycle_threads_);
@@ -132,6 +135,15 @@ void ContactSystem::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd
     const double slip = h.ti.dot(Di) + h.tj.dot(Dj);
     const double reach = h.dt0 + seams_[c].locking_shift + slip;  // stretch from the step's locking point
     const double N = h.pn * dn;
+    if (y.nd != 0.0 || y.ts != 0.0) {
+      // The dashpot forces of the last cycle did work over the drift just made, h V (the
+      // scheme's discrete work; their power at the lagged rate would overstate it for the
+      // modes near the stable cycle, whose rates change sign from cycle to cycle).
+      const auto Vi = V.segment<6>(6 * r.key.vblock);
+      const auto Vj = V.segment<6>(6 * r.key.eblock);
+      y.damped += h_work * (y.nd * (h.ni.dot(Vi) + h.nj.dot(Vj)) + y.ts * (h.ti.dot(Vi) + h.tj.dot(Vj)));
+      y.nd = y.ts = 0.0;
+    }
     if (y.state == ContactState::open) {
       if (!(N > 0.0)) {
         fi.setZero(), fj.setZero();
@@ -167,8 +179,10 @@ void ContactSystem::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd
       T = y.direction * strength(N, y.tan_phi_residual, y.cohesion_residual, r.length);
       y.shift = reach - T / ks;
       y.state = ContactState::sliding;
+      y.nd = Nd;  // the shear force is the strength: friction's, not a dashpot's
     } else {
       y.state = ContactState::locked;
+      y.nd = Nd, y.ts = Ts;
     }
     fi.noalias() = (N + Nd) * h.ni + T * h.ti;
     fj.noalias() = (N + Nd) * h.nj + T * h.tj;
@@ -224,6 +238,8 @@ CheckResult ContactSystem::end_cycles(std::span<const BlockView> blocks, const E
   }
   force_scale_ = scale;
   step_max_penetration_ = res.max_penetration;
+  cycle_damping_ = 0.0;  // in the records' order: the same sum whatever the threads
+  for (const Cycle& y : cycles_) cycle_damping_ += y.damped;
   return res;
 }
 

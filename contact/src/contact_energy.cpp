@@ -87,6 +87,7 @@ ContactEnergy ContactSystem::energy() const {
     // Shear dashpot (locked; JointSet::restitution): its end force over the slip.
     e.damping += w.shear_damping * w.slip;
   }
+  e.damping += committed_cycle_damping_;  // a step taken in cycles: its dashpots' work (contact_cycles.cpp)
   e.restart = start - stored_before_;
   return e;
 }

@@ -19,6 +19,8 @@ namespace rheodda::contact {
 void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_displacement,
                                double dt, bool dynamic, double inertia, bool creep_error_wanted) {
   step_dynamic_ = dynamic;
+  cycled_ = false;
+  cycle_damping_ = 0.0;
   creep_error_wanted_ = creep_error_wanted;
   can_retract_ = false;
   const int nb = static_cast<int>(blocks.size());

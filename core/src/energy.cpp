@@ -111,7 +111,8 @@ StoredEnergy EnergyAccount::stored_in_blocks(const EnergyInputs& in) {
     const PolygonIntegrals& g = in.moments[k];
     // Kinetic: the velocity field T v over the block, rho/2 int |T v|^2 dA = v^T M v/2
     // (zero in a static analysis, whose blocks carry no velocity).
-    e.kinetic += 0.5 * in.model.materials[b.material].density *
+    // A block in a density-scaled stage (BlockState::mass_scale) moves with the mass s M.
+    e.kinetic += 0.5 * b.mass_scale * in.model.materials[b.material].density *
                  b.velocity.dot(unit_mass_matrix(g) * b.velocity);
     // Elastic strain energy S/2 eps^T E_e eps with eps = E_e^-1 sigma (Shi 1988).
     e.strain += 0.5 * g.S * b.stress.dot(compliance[b.material] * b.stress);
@@ -155,7 +156,7 @@ void EnergyAccount::begin(const EnergyInputs& in, const Eigen::VectorXd& D, doub
     const Vec3 eps = Dk.tail<3>();
     if (!central) springs += 0.5 * g.S * eps.dot(in.elastic[b.material] * eps);
     // Block damping: the viscous stress's end value (tau/dt) E_e eps over the strain eps.
-    if (dynamic)
+    if (dynamic && !central)  // (the cycles book their own: EnergyAccount::add_block_damping)
       if (const double tau = strain_damping_time(g, in.model.materials[b.material], in.elastic[b.material]);
           tau > 0.0)
         flows_.dissipation_block_damping += (tau / dt) * g.S * eps.dot(in.elastic[b.material] * eps);
@@ -164,10 +165,11 @@ void EnergyAccount::begin(const EnergyInputs& in, const Eigen::VectorXd& D, doub
     if (!dynamic) {
       // A static step starts at rest: the velocity a dynamic settling stage
       // left (Settings::settle_dynamic) is dropped, its kinetic energy with it.
-      flows_.integration_inertia += Dk.dot(M * Dk) / (beta * dt * dt) + 0.5 * b.velocity.dot(M * b.velocity);
+      flows_.integration_inertia +=
+          Dk.dot(M * Dk) / (beta * dt * dt) + 0.5 * b.mass_scale * b.velocity.dot(M * b.velocity);
       continue;
     }
-    const double ke = 0.5 * b.velocity.dot(M * b.velocity);
+    const double ke = 0.5 * b.mass_scale * b.velocity.dot(M * b.velocity);
     if (central) {
       flows_.integration_inertia += (1.0 - r * r) * ke;  // the velocity share not carried
       continue;

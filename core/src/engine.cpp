@@ -123,6 +123,7 @@ void Engine::Impl::accept(const Eigen::VectorXd& d_solved, double dt, int step_i
   const bool cycled = explicit_now();  // the step was taken in explicit cycles (explicit_step.cpp)
   // Central difference is Newmark's beta = 0, gamma = 1/2 (energy.cpp books no integration loss).
   energy.begin(energy_inputs(), d, dt, cycled ? 0.0 : nm.beta, cycled ? 0.5 : nm.gamma, t_end);
+  if (cycled) energy.add_block_damping(cycle_block_damping);  // booked cycle by cycle (explicit_step.cpp)
   for (std::size_t k = 0; k < st.blocks.size(); ++k) {
     if (is_removed(k)) continue;  // frozen where it was removed, at rest
     BlockState& b = st.blocks[k];
@@ -149,6 +150,7 @@ void Engine::Impl::accept(const Eigen::VectorXd& d_solved, double dt, int step_i
     if (cycled) {
       b.velocity = cycle_velocity[k];  // the cycles' end velocity, (2) of explicit_step.cpp
       b.acceleration.setZero();
+      b.mass_scale = cycle_scale[k];  // density scaling, (6) of explicit_step.cpp
     } else if (dynamic) {
       const Vec6 a_new = (Dk - predictor(b, dt, nm)) / (nm.beta * dt * dt);
       b.velocity = ratio * b.velocity + dt * ((1.0 - nm.gamma) * ratio * b.acceleration + nm.gamma * a_new);
@@ -158,6 +160,7 @@ void Engine::Impl::accept(const Eigen::VectorXd& d_solved, double dt, int step_i
       // the velocity it left is dropped here; the energy account books it).
       b.velocity.setZero();
       b.acceleration.setZero();
+      b.mass_scale = 1.0;  // a stage's density scaling ends with its velocity
     }
   }
   st.step = step_index + 1;

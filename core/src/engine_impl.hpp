@@ -177,14 +177,31 @@ struct Engine::Impl {
   /// stable cycle and the block that sets it; the contacts' dashpots set for the step.
   struct CycleBlocks {
     std::vector<Mat6> K, M_inv;         ///< per block [stress ...], [1/mass ...]
+    std::vector<Mat6> L;                ///< lower Cholesky factor of each block's mass [mass^(1/2) ...]
     std::vector<Eigen::Matrix3d> C;     ///< strain damping per block [stress x time]
     std::vector<char> frozen;           ///< held at two or more fixed points, or removed
     Eigen::VectorXd F0, dF;             ///< loads at the step's start, and their change over it [force]
     bool loads_change = false;
+    std::vector<double> scale;          ///< density scale of each block's mass (6) [-]
     double h_stable = std::numeric_limits<double>::infinity();  ///< [time]
     int stable_block = -1;
   };
   CycleBlocks cycle_blocks(double dt) const;
+  /// One pass of cycle_blocks at the masses scaled by out.scale: M_inv, C, the stable cycle of
+  /// each block (h) and of the step; the contacts' dashpots set for it.
+  void cycle_block_pass(const std::vector<Mat6>& bound, CycleBlocks& out, std::vector<double>& h) const;
+  /// The step starting now scales its blocks' masses (Settings::stage_cycles): an explicit
+  /// step in a dynamic stage of a static analysis.
+  bool density_scaling_now() const {
+    return model.settings.stage_cycles > 0 && settling() && model.settings.dynamic_ratio == 0.0;
+  }
+  /// Local damping of the explicit cycles of the step starting now (Settings::stage_local_damping):
+  /// in a dynamic stage of a static analysis, else 0 [-].
+  double local_damping_now() const {
+    return settling() && model.settings.dynamic_ratio == 0.0 ? model.settings.stage_local_damping : 0.0;
+  }
+  std::vector<double> cycle_scale;   ///< density scales of the last explicit attempt (6)
+  double cycle_block_damping = 0.0;  ///< work the blocks' damping took in its cycles [force x length]
   /// Engine::stable_cycle (explicit_step.cpp).
   StableCycle stable_cycle();
   std::vector<Vec6> cycle_velocity;  ///< block velocities at the end of the last explicit attempt

@@ -30,6 +30,13 @@
 // the cycle shortens by no more than sqrt(1 + zeta^2) - zeta. Per-contact dashpots at zeta
 // on the reduced mass would overdamp a block held by many contacts (zeta sqrt(n/2) on its
 // n springs) and shorten the cycle by as much.
+// Density scaling (Settings::stage_cycles), in the dynamic stages of a static analysis only,
+// where the state at rest is what counts: a block's mass matrix scaled by s >= 1 (its loads
+// kept) so that no step needs more than stage_cycles cycles                             (6)
+// (UDEC's and PFC's density scaling for static solutions; Cundall 1982).
+// Local damping (Settings::stage_local_damping, alpha), in the same stages: Cundall's on each
+// of the block's mass-normalised unknowns q = L^T v (M = L L^T): |q_i| loses alpha |r_i| h  (7)
+// at each kick, r = L^-1 R, never more than it has
 // Blocks held at two or more fixed points and removed blocks do not move. Every block and
 // every contact is updated on its own: the cycles run in parallel (OpenMP) and give the
 // same bits whatever the number of threads (contacts gathered per block in a fixed order).
@@ -50,6 +57,10 @@ namespace {
 
 /// More cycles than this in one step is a scene the explicit step cannot take.
 constexpr double kMaxCycles = 1.0e8;
+
+/// Density scaling (6): passes after the first that raise the scales of the blocks still
+/// below the wanted cycle.
+constexpr int kScalingPasses = 3;
 
 /// Largest eigenvalue of M^-1 A for the block mass M (its Cholesky factor L), A symmetric.
 double largest_eigenvalue(const Eigen::LLT<Mat6>& L, const Mat6& A) {
@@ -79,23 +90,54 @@ Engine::Impl::CycleBlocks Engine::Impl::cycle_blocks(double dt) const {
   assemble_blocks(dt, st.time + dt, K_end, out.dF, false);
   out.dF -= out.F0;
   out.loads_change = out.dF.lpNorm<Eigen::Infinity>() > 0.0;
+  out.frozen.assign(nb, 0);
+  for (std::size_t k = 0; k < nb; ++k) out.frozen[k] = held[k] || is_removed(k);
+  std::vector<Mat6> bound = out.K;  // K' of (3): the block's own stiffness and its contacts' bound
+  contacts->cycle_stiffness(bound);
+  // (6) Density scaling (Settings::stage_cycles): in a dynamic stage of a static analysis a
+  // block whose stable cycle is below h_wanted has its mass matrix scaled by s >= 1, which
+  // divides omega^2 by s and its damping rate by at least sqrt(s): s = (h_wanted / h)^2
+  // brings its cycle to h_wanted. The contacts' dashpots follow the new omega_max (5), which
+  // may shorten another block's cycle: a few passes settle it. A block's scale only rises
+  // within a stage (from BlockState::mass_scale), so that its velocity is rescaled once, with
+  // its kinetic energy kept (cycle_trial).
+  out.scale.assign(nb, 1.0);
+  const bool scaled = density_scaling_now();
+  const double h_wanted = scaled ? dt / (s.stage_cycles * s.explicit_safety) : 0.0;
+  if (scaled)
+    for (std::size_t k = 0; k < nb; ++k) out.scale[k] = st.blocks[k].mass_scale;
+  std::vector<double> h(nb, std::numeric_limits<double>::infinity());
+  for (int pass = 0;; ++pass) {
+    cycle_block_pass(bound, out, h);
+    if (!scaled || out.h_stable >= h_wanted || pass == kScalingPasses) break;
+    for (std::size_t k = 0; k < nb; ++k)
+      if (h[k] < h_wanted) out.scale[k] *= (h_wanted / h[k]) * (h_wanted / h[k]);
+  }
+  return out;
+}
+
+void Engine::Impl::cycle_block_pass(const std::vector<Mat6>& bound, CycleBlocks& out, std::vector<double>& h) const {
+  const Settings& s = model.settings;
+  const std::size_t nb = st.blocks.size();
   // Mass, block damping and the stable cycle (3) per block.
   out.M_inv.assign(nb, Mat6::Zero());
+  out.L.assign(nb, Mat6::Zero());
   out.C.assign(nb, Eigen::Matrix3d::Zero());
-  out.frozen.assign(nb, 0);
-  std::vector<Mat6> bound = out.K, damping(nb, Mat6::Zero());
-  contacts->cycle_stiffness(bound);
+  out.h_stable = std::numeric_limits<double>::infinity();
+  out.stable_block = -1;
+  std::vector<Mat6> damping(nb, Mat6::Zero());
   std::vector<Eigen::LLT<Mat6>> mass(nb);
   std::vector<double> w2(nb, 0.0);
   double w2_max = 0.0;
   for (std::size_t k = 0; k < nb; ++k) {
-    out.frozen[k] = held[k] || is_removed(k);
+    h[k] = std::numeric_limits<double>::infinity();
     if (out.frozen[k]) continue;
     const BlockState& b = st.blocks[k];
     const Material& mat = model.materials[b.material];
-    const Mat6 M = mat.density * unit_mass_matrix(moments[k]);
+    const Mat6 M = out.scale[k] * mat.density * unit_mass_matrix(moments[k]);
     mass[k].compute(M);
     out.M_inv[k] = mass[k].solve(Mat6::Identity());
+    out.L[k] = mass[k].matrixL();
     const Eigen::Matrix3d Ke = moments[k].S * elastic[b.material];
     if (const double tau = strain_damping_time(moments[k], mat, elastic[b.material]); tau > 0.0)
       out.C[k] = tau * Ke;  // the material's Kelvin-Voigt damping (block_terms.hpp)
@@ -111,10 +153,9 @@ Engine::Impl::CycleBlocks Engine::Impl::cycle_blocks(double dt) const {
   for (std::size_t k = 0; k < nb; ++k) {
     if (out.frozen[k] || !(w2[k] > 0.0)) continue;  // nothing stiff on it: free flight sets no limit
     const double c = largest_eigenvalue(mass[k], damping[k]);
-    const double h = 2.0 / (std::sqrt(w2[k] + 0.25 * c * c) + 0.5 * c);  // (3)
-    if (h < out.h_stable) out.h_stable = h, out.stable_block = static_cast<int>(k);
+    h[k] = 2.0 / (std::sqrt(w2[k] + 0.25 * c * c) + 0.5 * c);  // (3)
+    if (h[k] < out.h_stable) out.h_stable = h[k], out.stable_block = static_cast<int>(k);
   }
-  return out;
 }
 
 Engine::StableCycle Engine::Impl::stable_cycle() {
@@ -168,15 +209,21 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
 
   // (2): the cycles.
   const double ratio = ratio_now();
-  const double alpha = settling() && s.dynamic_ratio == 0.0 ? s.stage_local_damping : 0.0;
+  const double alpha = local_damping_now();
   Eigen::VectorXd V = Eigen::VectorXd::Zero(6 * nbi), Dn = Eigen::VectorXd::Zero(6 * nbi), f;
+  // (6): a block whose scale rose keeps its kinetic energy: v sqrt(s_old / s_new).
   for (std::size_t k = 0; k < nb; ++k)
-    if (!frozen[k]) V.segment<6>(6 * static_cast<Eigen::Index>(k)) = ratio * st.blocks[k].velocity;
+    if (!frozen[k])
+      V.segment<6>(6 * static_cast<Eigen::Index>(k)) =
+          ratio * std::sqrt(st.blocks[k].mass_scale / blocks.scale[k]) * st.blocks[k].velocity;
+  // The work the blocks' damping takes (strain damping, local damping), per block: its
+  // forces over the drift that follows, summed over the blocks in order.
+  std::vector<double> damped(nb, 0.0);
   for (int c = 0; c <= n; ++c) {
-    contacts->cycle_forces(Dn, V, f);
     const double w = static_cast<double>(c) / n;
     const double kick = (c == 0 || c == n) ? 0.5 * h : h;
     const bool drift = c < n;
+    contacts->cycle_forces(Dn, V, h, f);
 #pragma omp parallel for schedule(static) num_threads(threads)
     for (std::ptrdiff_t k = 0; k < nbi; ++k) {
       if (frozen[k]) continue;
@@ -184,18 +231,46 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
       auto Vk = V.segment<6>(6 * k);
       Vec6 R = F0.segment<6>(6 * k) - K[k] * Dk - f.segment<6>(6 * k);
       if (loads_change) R += w * dF.segment<6>(6 * k);
-      R.tail<3>() -= C[k] * Vk.tail<3>();
-      if (alpha > 0.0)  // local damping: -alpha |R| sign(v) per degree of freedom
-        for (int i = 0; i < 6; ++i)
-          if (Vk(i) != 0.0) R(i) -= alpha * std::abs(R(i)) * (Vk(i) > 0.0 ? 1.0 : -1.0);
-      Vk += kick * (M_inv[k] * R);
-      if (drift) Dk += h * Vk;
+      const Vec3 strain_force = C[k] * Vk.tail<3>();
+      R.tail<3>() -= strain_force;
+      double removed = 0.0;  // kinetic energy local damping took in this kick
+      if (alpha > 0.0) {
+        // (7) Local damping in the block's mass-normalised unknowns q = L^T v (M = L L^T,
+        // kinetic energy |q|^2 / 2), where it is Cundall's on decoupled unit masses: each
+        // component of the kicked q loses alpha |r_i| kick in magnitude (r = L^-1 R), never
+        // more than it has. Applied to the kicked velocity, it cannot reverse a motion or pump
+        // energy in (a force -alpha |R_i| sign(v_i) on DDA's coupled rotation and strain
+        // unknowns, or beside a force that already reverses the motion, can), and what it takes
+        // is that kick's kinetic energy, booked exactly.
+        const auto L = blocks.L[k].triangularView<Eigen::Lower>();
+        const Vec6 r = L.solve(R);
+        const Vec6 u = blocks.L[k].transpose() * Vk + kick * r;
+        Vec6 q;
+        for (int i = 0; i < 6; ++i) {
+          const double m = std::abs(u(i)) - kick * alpha * std::abs(r(i));
+          q(i) = m > 0.0 ? std::copysign(m, u(i)) : 0.0;
+        }
+        removed = 0.5 * (u.squaredNorm() - q.squaredNorm());
+        Vk = L.transpose().solve(q);
+      } else {
+        Vk += kick * (M_inv[k] * R);
+      }
+      damped[k] += removed;
+      if (drift) {
+        // The damping forces' work over the drift they lead to (the scheme's discrete work).
+        damped[k] += h * strain_force.dot(Vk.tail<3>());
+        Dk += h * Vk;
+      }
     }
   }
+  cycle_block_damping = 0.0;
+  for (const double x : damped) cycle_block_damping += x;
   rep.solve_seconds += seconds_since(t0);
   D = Dn;
   cycle_velocity.resize(nb);
   for (std::size_t k = 0; k < nb; ++k) cycle_velocity[k] = V.segment<6>(6 * static_cast<Eigen::Index>(k));
+  cycle_scale = blocks.scale;
+  rep.mass_scale = blocks.scale.empty() ? 1.0 : *std::max_element(blocks.scale.begin(), blocks.scale.end());
   rep.cycles = n;
   rep.cycle_dt = h;
   rep.stable_block = stable_block;

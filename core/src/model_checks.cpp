@@ -164,6 +164,7 @@ void Engine::Impl::validate() {
     throw ModelError("settings.explicit_safety", "must be in (0, 1]");
   if (!(s.stage_local_damping >= 0.0 && s.stage_local_damping < 1.0))
     throw ModelError("settings.stage_local_damping", "must be in [0, 1)");
+  if (s.stage_cycles < 0) throw ModelError("settings.stage_cycles", "must be >= 0 (0: no density scaling)");
   if (!(s.explicit_damping >= 0.0 && s.explicit_damping <= 1.0))
     throw ModelError("settings.explicit_damping", "must be in [0, 1]");
   if (s.threads < 0) throw ModelError("settings.threads", "must be >= 0 (0: OpenMP's default)");

@@ -131,7 +131,8 @@ EditReport Engine::edit(const ModelEdit& e) {
       add_rows(rows[static_cast<std::size_t>(fp.block)], m.st.blocks[static_cast<std::size_t>(fp.block)], fp);
   // 3a. Velocities: the held directions at rest, then the velocities given.
   auto mass = [&](std::size_t k) -> Mat6 {
-    return m.model.materials[static_cast<std::size_t>(m.st.blocks[k].material)].density * unit_mass_matrix(m.moments[k]);
+    const BlockState& b = m.st.blocks[k];  // s M in a density-scaled stage (BlockState::mass_scale)
+    return b.mass_scale * m.model.materials[static_cast<std::size_t>(b.material)].density * unit_mass_matrix(m.moments[k]);
   };
   auto kinetic = [](const Mat6& M, const Vec6& v) { return 0.5 * v.dot(M * v); };
   double taken = 0.0;

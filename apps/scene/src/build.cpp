@@ -188,6 +188,7 @@ BuiltScene build_scene(const SceneDescription& s) {
                                                                 : core::Integrator::implicit;
   st.explicit_safety = a.explicit_safety;
   st.stage_local_damping = a.stage_local_damping;
+  st.stage_cycles = a.stage_cycles;
   st.explicit_damping = a.explicit_damping;
   st.pcg_max_iterations = a.solver_max_iterations;
 

@@ -47,7 +47,7 @@ static_assert(field_count<core::StageState>() == 5);
 static_assert(field_count<core::EngineState>() == 11);
 static_assert(field_count<core::BoltState>() == 7);
 static_assert(field_count<core::SolverState>() == 8);
-static_assert(field_count<core::BlockState>() == 9);
+static_assert(field_count<core::BlockState>() == 10);
 static_assert(field_count<core::MeasurementSample>() == 4);
 static_assert(field_count<contact::Contact>() == 19);
 static_assert(field_count<contact::ContactKey>() == 4);
@@ -127,7 +127,7 @@ void section(Reader& r, const char* name) {
 
 // The structures, one description for both directions.
 void io(auto& ar, Is<core::BlockState> auto& b) {
-  ar(b.vertices, b.edge_joint_set, b.material, b.centroid, b.stress, b.velocity, b.acceleration, b.map_A, b.map_b);
+  ar(b.vertices, b.edge_joint_set, b.material, b.centroid, b.stress, b.velocity, b.acceleration, b.mass_scale, b.map_A, b.map_b);
 }
 void io(auto& ar, Is<core::MeasurementSample> auto& m) { ar(m.step, m.time, m.position, m.displacement); }
 void io(auto& ar, Is<core::StoredEnergy> auto& e) {

@@ -290,6 +290,12 @@ std::vector<KeySpec> declare_analysis_keys() {
          "stages of a static analysis, where only the state at rest matters: each degree of freedom "
          "takes −α \\|R\\| sign(v) beside its unbalanced force R (UDEC's default is 0.8); [0, 1), "
          "0 = none; never in a dynamic analysis"));
+  keys.push_back(integer_key("analysis", "stage_cycles", "–", {0.0, false, 1.0e8, false}, &Analysis::stage_cycles,
+      "0",
+      "under `integrator: explicit`, density scaling in the dynamic stages of a static analysis, "
+         "where only the state at rest matters: the most cycles a step of a stage takes; a block whose "
+         "stable cycle is shorter has its mass scaled up until it is not, its loads unchanged "
+         "(docs/reference/explicit-step.md, \"Density scaling\"); 0 = none; never in a dynamic analysis"));
   keys.push_back(number_key("analysis", "contact_residual_tolerance", "–", {0.0, true, 1.0, true}, &Analysis::contact_residual_tolerance,
       "1e-4",
       "under `contact_solver: newton`, a step is accepted when the residual of its equations, "

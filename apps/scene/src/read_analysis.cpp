@@ -116,8 +116,13 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
       ctx.fail(w, m.child("stage_local_damping"),
                "local damping acts in the dynamic stages of a static analysis, where only the state at rest "
                "matters; a dynamic analysis never takes it");
+    if (const YAML::Node w = m.find("stage_cycles");
+        w.IsDefined() && a.stage_cycles > 0 && a.type == AnalysisType::dynamic_analysis)
+      ctx.fail(w, m.child("stage_cycles"),
+               "density scaling acts in the dynamic stages of a static analysis, where only the state at rest "
+               "matters; a dynamic analysis never takes it (its masses are its physics)");
   } else {
-    for (const char* key : {"explicit_safety", "explicit_damping", "stage_local_damping"})
+    for (const char* key : {"explicit_safety", "explicit_damping", "stage_local_damping", "stage_cycles"})
       if (const YAML::Node w = m.find(key); w.IsDefined())
         ctx.fail(w, m.child(key), fmt::format("{} applies to the explicit step; give integrator: explicit", key));
   }

@@ -77,15 +77,18 @@ RefinementStudy refinement_study(const std::string& scene_path, const std::strin
     StudyCase c;
     c.name = fmt::format("L{}", k);
     std::vector<std::string> text;
-    auto control = [&](const std::string& key, double value, const std::string& shown, const std::string& unit) {
+    // Each control is multiplied by f (halved level by level), or by `by` where it refines upwards.
+    auto control = [&](const std::string& key, double value, const std::string& shown, const std::string& unit,
+                       double by = 0.0) {
+      const double g = by > 0.0 ? by : f;
       const std::string name = key.substr(std::string("analysis.").size());
       if (k == 0) used.push_back(name);
       if (held(name)) {
         text.push_back(fmt::format("{} {:g}{} (held)", shown, value, unit.empty() ? "" : " " + unit));
         return;
       }
-      if (k > 0) c.set.push_back({key, scene::exact_number(value * f), {}});
-      text.push_back(fmt::format("{} {:g}{}", shown, value * f, unit.empty() ? "" : " " + unit));
+      if (k > 0) c.set.push_back({key, scene::exact_number(value * g), {}});
+      text.push_back(fmt::format("{} {:g}{}", shown, value * g, unit.empty() ? "" : " " + unit));
     };
     const std::string& lu = s.units.length;
     control("analysis.dt", a.dt, "dt", tu);
@@ -100,6 +103,9 @@ RefinementStudy refinement_study(const std::string& scene_path, const std::strin
     }
     if (a.integrator == scene::IntegratorKind::explicit_step)  // the explicit step's cycle (explicit-step.md)
       control("analysis.explicit_safety", a.explicit_safety, "explicit_safety", "");
+    if (a.stage_cycles > 0)  // density scaling (explicit-step.md): twice the cycles, so that the
+      // stages' cycles shorten with their dt and explicit_safety instead of scaling more mass
+      control("analysis.stage_cycles", a.stage_cycles, "stage_cycles", "", std::ldexp(1.0, k));
     if (a.step_tolerance > 0.0) control("analysis.step_tolerance", a.step_tolerance, "step_tolerance", lu);
     if (a.creep_tolerance > 0.0) control("analysis.creep_tolerance", a.creep_tolerance, "creep_tolerance", lu);
     if (a.dt_max > 0.0) control("analysis.dt_max", a.dt_max, "dt_max", tu);

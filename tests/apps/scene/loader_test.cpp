@@ -397,7 +397,8 @@ BOOST_AUTO_TEST_CASE(time_integration_reaches_the_engine_settings_and_needs_a_dy
 }
 
 BOOST_AUTO_TEST_CASE(the_explicit_step_keys_reach_the_engine_and_are_refused_where_they_do_nothing) {
-  // docs/reference/explicit-step.md: integrator, explicit_safety, explicit_damping, stage_local_damping.
+  // docs/reference/explicit-step.md: integrator, explicit_safety, explicit_damping, stage_local_damping,
+  // stage_cycles.
   const scene::SceneDescription base = scene::parse_scene(kBaseScene, "base.yaml");
   BOOST_TEST((scene::build_scene(base).model.settings.integrator == core::Integrator::implicit));
   const auto dynamic = with("  dt: 0.01", "  dt: 0.01\n  type: dynamic\n  integrator: explicit\n  explicit_safety: 0.8\n"
@@ -408,8 +409,12 @@ BOOST_AUTO_TEST_CASE(the_explicit_step_keys_reach_the_engine_and_are_refused_whe
   BOOST_TEST(st.explicit_damping == 0.25);
   BOOST_TEST(st.stage_local_damping == 0.0);
   const auto stages = with("  dt: 0.01", "  dt: 0.01\n  integrator: explicit\n  stage_local_damping: 0.8\n"
+                                        "  stage_cycles: 200\n"
                                         "  settle: {type: dynamic, until: 0.1, dt: 0.001, max_displacement_ratio: 0.001}");
-  BOOST_TEST(scene::build_scene(scene::parse_scene(stages, "stages.yaml")).model.settings.stage_local_damping == 0.8);
+  const core::Settings staged = scene::build_scene(scene::parse_scene(stages, "stages.yaml")).model.settings;
+  BOOST_TEST(staged.stage_local_damping == 0.8);
+  BOOST_TEST(staged.stage_cycles == 200);
+  BOOST_TEST(st.stage_cycles == 0);
   expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  integrator: leapfrog"), 5, "leapfrog", "analysis.integrator",
                   "'leapfrog' is not one of: implicit, explicit");
   expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  integrator: explicit"), 5, "explicit", "analysis.integrator",
@@ -420,6 +425,12 @@ BOOST_AUTO_TEST_CASE(the_explicit_step_keys_reach_the_engine_and_are_refused_whe
                   "1.5", "analysis.explicit_safety", "out of range");
   expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  type: dynamic\n  integrator: explicit\n  stage_local_damping: 0.8"),
                   7, "0.8", "analysis.stage_local_damping", "a dynamic analysis never takes it");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  type: dynamic\n  integrator: explicit\n  stage_cycles: 100"),
+                  7, "100", "analysis.stage_cycles", "a dynamic analysis never takes it");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  stage_cycles: 100"), 5, "100", "analysis.stage_cycles",
+                  "give integrator: explicit");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  type: dynamic\n  integrator: explicit\n  stage_cycles: -1"), 7,
+                  "-1", "analysis.stage_cycles", "out of range");
   expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  type: dynamic\n  integrator: explicit\n  time_integration: trapezoidal"),
                   6, "explicit", "analysis.integrator", "central difference");
 }

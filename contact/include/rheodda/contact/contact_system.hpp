@@ -211,8 +211,10 @@ class ContactSystem {
   /// the rates V (6 per block each), after each contact's state is decided at D: f (6 per
   /// block, set) is the force the contacts resist with (the residual of a block is its
   /// load minus f). Summed per block over its contacts in a fixed order, so the result is
-  /// the same bits whatever the number of threads.
-  void cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, Eigen::VectorXd& f);
+  /// the same bits whatever the number of threads. The work of the last cycle's dashpot
+  /// forces over the drift since, h V (h: the cycle [time]), is booked per contact for the
+  /// energy balance (energy()).
+  void cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double h, Eigen::VectorXd& f);
   /// After the last cycle, at the step's D: the trial records take the cycles' states
   /// (the locking point dragged by the slip, the slide direction, intact or not, the
   /// normal force), ready for end_step. Returns the changes from the step-start states.
@@ -474,11 +476,16 @@ class ContactSystem {
     /// Factors of the stiffness bound on its vertex and edge blocks: 2, or 1 where the other
     /// block does not move (held: infinite mass), so the spring acts on one block alone.
     double bound_i = 2.0, bound_j = 2.0;
+    double damped = 0.0;  ///< work its dashpots took over the cycles [force x length per unit thickness]
+    double nd = 0.0, ts = 0.0;  ///< its dashpots' forces at the last cycle [force per unit thickness]
   };
   std::vector<Cycle> cycles_;
   std::vector<Vec6> cycle_force_;          ///< per contact: force on its vertex block, then its edge block
   std::vector<int> block_first_, block_entries_;  ///< CSR: entries 2c (vertex side) / 2c+1 (edge side) by block
   int cycle_threads_ = 0;
+  bool cycled_ = false;                  ///< the step being solved is taken in cycles (begin_cycles)
+  double cycle_damping_ = 0.0;            ///< the dashpots' work in the cycles of the step (end_cycles)
+  double committed_cycle_damping_ = 0.0; ///< the last accepted step's dashpot work in its cycles
   std::vector<char> removed_;  ///< remove_blocks: 1 for a removed block (empty: none removed)
   std::vector<Box> boxes_;
   BroadPhase broad_;

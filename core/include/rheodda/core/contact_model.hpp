@@ -106,9 +106,10 @@ class ContactModel {
   /// [tau: time]; adds a bound of all the dashpots on each block to C.
   virtual void cycle_damping(double /*tau*/, std::vector<Mat6>& /*C*/) {}
   /// The contacts' resisting forces f (6 per block, set) at the displacements D since the
-  /// step start and rates V, each contact's state decided at D.
-  virtual void cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, Eigen::VectorXd& f) {
-    (void)V;
+  /// step start and rates V, each contact's state decided at D; h: the cycle, the drift that
+  /// led to D (for the work the dashpots took over it) [time].
+  virtual void cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double h, Eigen::VectorXd& f) {
+    (void)V, (void)h;
     f = Eigen::VectorXd::Zero(D.size());
   }
   /// After the last cycle: the trial states take the cycles' states, ready for end_step.

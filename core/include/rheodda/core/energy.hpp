@@ -60,10 +60,12 @@ struct EnergyFlows {
   double integration_inertia = 0.0;   ///< of dissipation_integration, the inertia term's share:
                                       ///< shi (1 - r^2) KE, trapezoidal (1 - r^2) KE +
                                       ///< D^T M (a' - r a) / 2, static D^T M D / (beta dt^2)
-  double dissipation_contact_damping = 0.0;  ///< contact dashpots (JointSet::restitution;
-                                             ///< ContactEnergy::damping)
+  double dissipation_contact_damping = 0.0;  ///< contact dashpots (JointSet::restitution, and the
+                                             ///< explicit cycles' dashpots; ContactEnergy::damping)
   double dissipation_block_damping = 0.0;    ///< blocks' strain dashpots (Material::damping_ratio):
-                                             ///< sum of (tau/dt) S eps^T E_e eps
+                                             ///< sum of (tau/dt) S eps^T E_e eps; in a step taken in
+                                             ///< explicit cycles, the blocks' strain and local damping
+                                             ///< booked cycle by cycle
   double dissipation_contact_closing = 0.0;  ///< contact springs attached during the step
                                              ///< (ContactEnergy::closing)
   double dissipation_contact_release = 0.0;  ///< contact springs detached during the step
@@ -139,6 +141,9 @@ class EnergyAccount {
   /// t_end: its end time (the gravity of a ramp, Settings::gravity_at).
   void begin(const EnergyInputs& in, const Eigen::VectorXd& D, double dt, double beta,
              double gamma, double t_end);
+  /// After begin, for a step taken in explicit cycles: the work its blocks' damping (strain
+  /// damping, local damping) took, booked cycle by cycle (explicit_step.cpp) [force x length].
+  void add_block_damping(double work) { flows_.dissipation_block_damping += work; }
   /// After the blocks moved and the geometry was refreshed, and after the
   /// contacts' end_step: the stored energies, the load work, the contact terms
   /// and the residual; adds the step to `balance`.

@@ -66,6 +66,8 @@ struct StepReport {
                                   ///< 0: an implicit step) [-]
   double cycle_dt = 0.0;          ///< length of those cycles [time]
   int stable_block = -1;          ///< the block whose stable cycle set their length (-1: none) [-]
+  double mass_scale = 1.0;        ///< the largest density scale of the blocks' masses in those
+                                  ///< cycles (Settings::stage_cycles) [-]
   ContactChanges changes;         ///< what the contact checks changed, summed over every
                                   ///< open-close iterate of every attempt of the step [-]
   EnergyFlows energy;             ///< the step's energy flows and residual (energy.hpp) [force x length]
@@ -114,6 +116,10 @@ struct BlockState {
                                     ///< stays zero in a static analysis
   Vec6 acceleration = Vec6::Zero(); ///< at the end of the last step [length/time^2, 1/time^2];
                                     ///< kept by the trapezoidal rule only (zero otherwise)
+  /// The factor on the block's mass matrix in a density-scaled dynamic stage
+  /// (Settings::stage_cycles; docs/reference/explicit-step.md, "Density scaling") [-]; 1 otherwise.
+  /// The velocity is that of the scaled block and the kinetic energy v^T (s M) v / 2.
+  double mass_scale = 1.0;
   /// Affine map from initial to current position of a material point:
   /// x = map_A x0 + map_b (composed from every accepted step).
   Mat2 map_A = Mat2::Identity();    ///< [-]

@@ -267,6 +267,12 @@ struct Settings {
   /// each degree of freedom takes the force -alpha |R| sign(v) beside its unbalanced
   /// force R [-]; in [0, 1); 0 = none. Never in a dynamic analysis.
   double stage_local_damping = 0.0;
+  /// Density scaling of the explicit cycles in the dynamic stages of a static analysis,
+  /// where only the state at rest matters: the most cycles a step of such a stage takes [-];
+  /// 0 = no scaling. A block whose stable cycle is shorter than dt / (stage_cycles *
+  /// explicit_safety) has its mass matrix scaled up (BlockState::mass_scale) until it is
+  /// not; its loads stay (gravity acts on the block's true mass). Never in a dynamic analysis.
+  int stage_cycles = 0;
   /// Damping ratio the explicit cycles give what has no damping of its own [-], in [0, 1]:
   /// each contact whose joint set has no restitution (dashpots c = tau k beside its springs,
   /// tau = 2 zeta / omega_max: the scene's highest mode at zeta, the lower ones less), and

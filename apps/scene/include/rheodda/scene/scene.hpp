@@ -143,6 +143,8 @@ struct Analysis {
                                        ///< of its own (contacts, blocks' strain modes) [-]; in [0, 1]
   double stage_local_damping = 0.0;    ///< local damping of explicit cycles in the dynamic stages
                                        ///< of a static analysis [-]; in [0, 1)
+  int stage_cycles = 0;                ///< density scaling: the most explicit cycles per step of a
+                                       ///< dynamic stage of a static analysis [-]; 0 = none
   /// `contact_residual_tolerance`: under `newton`, a step is accepted when the
   /// residual of its equations is at most this fraction of the contact forces [-]; in (0, 1)
   double contact_residual_tolerance = 1e-4;
