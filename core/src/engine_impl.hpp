@@ -186,7 +186,8 @@ struct Engine::Impl {
     double h_stable = std::numeric_limits<double>::infinity();  ///< [time]
     int stable_block = -1;
   };
-  CycleBlocks cycle_blocks(double dt) const;
+  /// unscaled: the stable cycle of the true masses, whatever the stage (Engine::stable_cycle).
+  CycleBlocks cycle_blocks(double dt, bool unscaled = false) const;
   /// One pass of cycle_blocks at the masses scaled by out.scale: M_inv, C, the stable cycle of
   /// each block (h) and of the step; the contacts' dashpots set for it.
   void cycle_block_pass(const std::vector<Mat6>& bound, CycleBlocks& out, std::vector<double>& h) const;

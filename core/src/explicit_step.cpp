@@ -81,7 +81,7 @@ Eigen::Matrix3d modal_strain_damping(const Eigen::Matrix3d& K, const Eigen::Matr
 
 }  // namespace
 
-Engine::Impl::CycleBlocks Engine::Impl::cycle_blocks(double dt) const {
+Engine::Impl::CycleBlocks Engine::Impl::cycle_blocks(double dt, bool unscaled) const {
   const Settings& s = model.settings;
   const std::size_t nb = st.blocks.size();
   CycleBlocks out;
@@ -102,7 +102,7 @@ Engine::Impl::CycleBlocks Engine::Impl::cycle_blocks(double dt) const {
   // within a stage (from BlockState::mass_scale), so that its velocity is rescaled once, with
   // its kinetic energy kept (cycle_trial).
   out.scale.assign(nb, 1.0);
-  const bool scaled = density_scaling_now();
+  const bool scaled = !unscaled && density_scaling_now();
   const double h_wanted = scaled ? dt / (s.stage_cycles * s.explicit_safety) : 0.0;
   if (scaled)
     for (std::size_t k = 0; k < nb; ++k) out.scale[k] = st.blocks[k].mass_scale;
@@ -164,7 +164,7 @@ Engine::StableCycle Engine::Impl::stable_cycle() {
   StableCycle out;
   try {
     if (contacts->begin_cycles(views, model.settings.threads)) {
-      const CycleBlocks b = cycle_blocks(model.settings.dt);
+      const CycleBlocks b = cycle_blocks(model.settings.dt, true);
       out.cycle = model.settings.explicit_safety * b.h_stable;
       out.block = b.stable_block;
     }

@@ -334,7 +334,8 @@ class Engine {
 
   /// The explicit step's cycle (docs/reference/explicit-step.md) on the current state, before
   /// its rounding to whole cycles of a step: explicit_safety x the stable cycle, with the
-  /// contacts found as a step of Settings::dt would find them, and the block that sets it
+  /// contacts found as a step of Settings::dt would find them and the true masses (no density
+  /// scaling), and the block that sets it
   /// (cycle infinite and block -1 when nothing stiff holds any block).
   struct StableCycle {
     double cycle = std::numeric_limits<double>::infinity();  ///< [time]
