@@ -9,6 +9,8 @@
 //   K_ii += 2/dt^2 M_i,  F_i += 2/dt M_i v_i   inertia, M_i = rho int T^T T dA (implicit step only)
 //   K_ii += p T^T S T,   F_i += p T^T S (x0 - x) fixed point (penalty spring; S =
 //                                            diag(hold_x, hold_y), the directions held)
+//   K_ii += k_r g g^T,   F_i -= k_r (theta - theta_h) g   a held rotation (rotational penalty
+//                                            spring k_r = p J/S; block_terms.hpp, RotationHold)
 //   F_i  += int T_i^T (-p n) ds                water pressure on the edges (water.hpp)
 // No term couples two blocks: the contacts add those (step_trial.cpp).
 #include "block_terms.hpp"
@@ -86,6 +88,13 @@ void Engine::Impl::assemble_blocks(double dt, double t_end, std::vector<Mat6>& d
     const Mat2 S = fp.held();
     diag[fp.block].noalias() += fixed_k * T.transpose() * S * T;
     rhs.segment<6>(6 * fp.block).noalias() += fixed_k * T.transpose() * S * (fp.point - x);
+    // The rotation held: spring k_r on the block's mean rotation theta, energy
+    // k_r/2 (theta + g D - theta_h)^2 (block_terms.hpp, RotationHold).
+    if (fp.hold_rotation) {
+      const RotationHold h = rotation_hold(fixed_k, fp, model.blocks[fp.block].vertices, b.map_A, moments[fp.block]);
+      diag[fp.block].noalias() += h.stiffness * h.row * h.row.transpose();
+      rhs.segment<6>(6 * fp.block) -= h.stiffness * h.deflection * h.row;
+    }
   }
 }
 

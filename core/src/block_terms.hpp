@@ -5,9 +5,12 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "rheodda/core/block_system.hpp"
+#include "rheodda/core/defaults.hpp"
 #include "rheodda/core/model.hpp"
 #include "rheodda/core/polygon.hpp"
 
@@ -84,6 +87,64 @@ inline Vec2 load_at(const std::vector<LoadSample>& h, double t) {
   const LoadSample& a = *(it - 1);
   const double w = (t - a.time) / (b.time - a.time);
   return (1.0 - w) * a.force + w * b.force;
+}
+
+/// A fixed point's hold on its block's rotation (FixedPoint::hold_rotation; docs/reference/
+/// engine.md, "Holding a block's rotation"). The block's mean rotation theta [rad] is the
+/// angle of the rotation R that carries its initial shape best onto its current one in the
+/// least-squares sense of its area (of its mass), R = argmax tr(R^T F Sigma0), F the
+/// block's affine map (BlockState::map_A) and Sigma0 = int X X^T dA0 the central second
+/// moments of its initial polygon:
+///   tan(theta) = ((F Sigma0)21 - (F Sigma0)12) / ((F Sigma0)11 + (F Sigma0)22)
+/// (a rigid motion F = R(phi) gives theta = phi; for a square, Sigma0 isotropic, theta is the
+/// polar angle of F, Block.rotation). To first order in a step's unknowns D (u0, v0, r0, ex,
+/// ey, gxy; the seed's eq. 27) at the step-start geometry, with the central moments a =
+/// int dx^2, b = int dy^2, c = int dx dy and J = a + b [length^4]:
+///   dtheta = g . D,  g = m / J,  m = (0, 0, J, -c, c, (a - b)/2)
+/// m the rotation row of int T^T T dA (unit_mass_matrix): rho m . v is the block's angular
+/// momentum about its centroid. The spring's energy k_r (theta + g . D - theta_held)^2 / 2
+/// adds, as Shi's fixed point adds p T^T S T and p T^T S (x0 - x) (Shi 1988; dda.md),
+///   K += k_r g g^T,  F += -k_r (theta - theta_held) g
+/// to the block's terms. Since M^-1 m = e_r0 / rho, the spring's force turns the block and
+/// strains it not, and a rotation held at once takes the angular velocity only
+/// (held_velocity.hpp). A square or a regular polygon (a = b, c = 0) has g = e_r0: the
+/// spring acts on r0 alone. k_r = p J0/S0 (rotation_hold_stiffness, defaults.hpp).
+struct RotationHold {
+  double stiffness = 0.0;   ///< k_r [force x length/rad]
+  double deflection = 0.0;  ///< theta - theta_held, within (-pi, pi] [rad]
+  Vec6 row = Vec6::Zero();  ///< g: the change of theta per unit D [-] (zero on u0, v0)
+};
+
+/// theta of RotationHold: the mean rotation of a block of affine map F [-] whose initial
+/// polygon has the central integrals g0 [rad], within (-pi, pi].
+inline double mean_rotation(const PolygonIntegrals& g0, const Eigen::Matrix2d& F) {
+  Eigen::Matrix2d sigma0;  // Sigma0 / S0: positive definite whichever the polygon's orientation [length^2]
+  sigma0 << g0.Sxx, g0.Sxy, g0.Sxy, g0.Syy;
+  sigma0 /= g0.S;
+  const Eigen::Matrix2d A = F * sigma0;
+  return std::atan2(A(1, 0) - A(0, 1), A(0, 0) + A(1, 1));
+}
+
+/// g = m / J of RotationHold: the first-order change of a block's mean rotation per unit
+/// D at the geometry of central integrals g [-].
+inline Vec6 mean_rotation_row(const PolygonIntegrals& g) {
+  const double J = g.Sxx + g.Syy;
+  Vec6 row;
+  row << 0.0, 0.0, 1.0, -g.Sxy / J, g.Sxy / J, 0.5 * (g.Sxx - g.Syy) / J;
+  return row;
+}
+
+/// The hold of `fp` (hold_rotation) on its block: p the fixed-point spring [force/length],
+/// `initial` the block's initial polygon [length], F its affine map [-], g the central
+/// integrals of its step-start geometry.
+inline RotationHold rotation_hold(double p, const FixedPoint& fp, std::span<const Vec2> initial,
+                                  const Eigen::Matrix2d& F, const PolygonIntegrals& g) {
+  const PolygonIntegrals g0 = central_integrals(initial);
+  RotationHold h;
+  h.stiffness = rotation_hold_stiffness(p, g0);
+  h.deflection = std::remainder(mean_rotation(g0, F) - fp.held_rotation.value_or(0.0), 2.0 * std::numbers::pi);
+  h.row = mean_rotation_row(g);
+  return h;
 }
 
 }  // namespace rheodda::core

@@ -9,7 +9,8 @@
 //   (1) for a linear spring k whose stretch goes from s to s + Delta:
 //       end-force work = -(change of k s^2/2) - k Delta^2/2, so k Delta^2/2 >= 0
 //       is lost to the integration: per block elasticity S eps^T E_e eps/2,
-//       per fixed point p |T D|^2/2, per contact spring (contact_energy.cpp);
+//       per fixed point p |T D|^2/2 (and k_r (g . D)^2/2 for a held rotation,
+//       block_terms.hpp), per contact spring (contact_energy.cpp);
 //   (2) the inertia: D^T M a' - (change of v^T M v/2), with v' = r v + dt ((1 -
 //       gamma) r a + gamma a'):
 //         shi (beta 1/2, gamma 1): v' = 2 D/dt - r v, D = dt (v' + r v)/2, so
@@ -119,8 +120,16 @@ StoredEnergy EnergyAccount::stored_in_blocks(const EnergyInputs& in) {
   }
   // Fixed points: the penalty spring p from the material point to its held position.
   // (held directions S only).
-  for (const FixedPoint& fp : in.model.fixed_points)
-    e.fixed += 0.5 * in.fixed_k * (fp.held() * (position(in.blocks[fp.block], fp.material()) - fp.point)).squaredNorm();
+  // A held rotation: its spring k_r/2 (theta - theta_h)^2 (block_terms.hpp, RotationHold).
+  for (const FixedPoint& fp : in.model.fixed_points) {
+    const BlockState& b = in.blocks[fp.block];
+    e.fixed += 0.5 * in.fixed_k * (fp.held() * (position(b, fp.material()) - fp.point)).squaredNorm();
+    if (fp.hold_rotation) {
+      const RotationHold h =
+          rotation_hold(in.fixed_k, fp, in.model.blocks[fp.block].vertices, b.map_A, in.moments[fp.block]);
+      e.fixed += 0.5 * h.stiffness * h.deflection * h.deflection;
+    }
+  }
   return e;
 }
 
@@ -187,12 +196,20 @@ void EnergyAccount::begin(const EnergyInputs& in, const Eigen::VectorXd& D, doub
       flows_.integration_inertia += Dk.dot(M * a_new) - 0.5 * v_new.dot(M * v_new) + ke;
     }
   }
-  // Fixed points: (1) with the spring p and the point's step displacement T D.
+  // Fixed points: (1) with the spring p and the point's step displacement T D; a held
+  // rotation's with k_r and the step's rotation g . D (block_terms.hpp, RotationHold).
   for (const FixedPoint& fp : in.model.fixed_points) {
+    if (central) break;
     const BlockState& b = in.blocks[fp.block];
-    const Vec2 u = fp.held() * contact::displacement_matrix(b.centroid, position(b, fp.material())) *
-                   D.segment<6>(6 * static_cast<Eigen::Index>(fp.block));
-    if (!central) springs += 0.5 * in.fixed_k * u.squaredNorm();
+    const auto Dk = D.segment<6>(6 * static_cast<Eigen::Index>(fp.block));
+    const Vec2 u = fp.held() * contact::displacement_matrix(b.centroid, position(b, fp.material())) * Dk;
+    springs += 0.5 * in.fixed_k * u.squaredNorm();
+    if (fp.hold_rotation) {
+      const RotationHold h =
+          rotation_hold(in.fixed_k, fp, in.model.blocks[fp.block].vertices, b.map_A, in.moments[fp.block]);
+      const double turn = h.row.dot(Dk);
+      springs += 0.5 * h.stiffness * turn * turn;
+    }
   }
   flows_.dissipation_integration = springs + flows_.integration_inertia;
   flows_.work_loads = water_work(in, D, t_end);

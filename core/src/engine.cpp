@@ -72,9 +72,13 @@ void Engine::Impl::initialise() {
 void Engine::Impl::count_held() {
   held.assign(model.blocks.size(), 0);
   std::vector<int> points(model.blocks.size(), 0);
-  for (const FixedPoint& fp : model.fixed_points)
+  std::vector<char> turn(model.blocks.size(), 0);
+  for (const FixedPoint& fp : model.fixed_points) {
     if (fp.hold_x && fp.hold_y) ++points[fp.block];  // one held in x or y only leaves it a mass
-  for (std::size_t k = 0; k < points.size(); ++k) held[k] = points[k] >= 2;
+    if (fp.hold_rotation) turn[fp.block] = 1;
+  }
+  // Two points held in both directions, or one and the rotation, hold its rigid motion.
+  for (std::size_t k = 0; k < points.size(); ++k) held[k] = points[k] >= 2 || (points[k] >= 1 && turn[k]);
 }
 
 void Engine::Impl::refresh_geometry() {

@@ -50,7 +50,7 @@ struct Engine::Impl {
 
   EngineState st;
   std::vector<PolygonIntegrals> moments;  // central integrals of the step-start geometry
-  std::vector<char> held;                 // block held by two or more fixed points
+  std::vector<char> held;                 // block held by two or more fixed points (count_held)
   std::vector<char> removed;              // block removed by an edit (model_edits.cpp); empty: none
   bool is_removed(std::size_t k) const { return !removed.empty() && removed[k]; }
   /// The dynamic stage in progress was opened by a model edit (ModelEdit::settle;
@@ -114,7 +114,7 @@ struct Engine::Impl {
   std::vector<char> check_edit(const ModelEdit& e) const;
   void initialise();
   void refresh_geometry();
-  void count_held();  // held[k]: block k has two or more fixed points
+  void count_held();  // held[k]: two fixed points hold block k in x and y, or one and its rotation
   /// The block sub-matrices of a step of dt ending at t_end (block_assembly.cpp); without
   /// `inertia`, those of the explicit step's cycles: no inertia and no block damping terms.
   void assemble_blocks(double dt, double t_end, std::vector<Mat6>& diag, Eigen::VectorXd& rhs,

@@ -8,7 +8,9 @@
 // since its start (6 per block, the seed's eq. 27 unknowns) and V their rates:
 //     R(D, V, t) = F(t) - K D - C V - f_c(D, V)                                     (1)
 // F the block loads (gravity, initial stress, point loads, water, fixed points) linear in
-// t between the step's ends, K the blocks' elastic and fixed-point stiffness, C the block
+// t between the step's ends, K the blocks' elastic and fixed-point stiffness (a held
+// rotation's spring k_r g g^T with it, block_terms.hpp: in the omega bound of (3) at its
+// frequency sqrt(k_r / (rho J)) = sqrt(p/m), a fixed point's; assemble_blocks), C the block
 // damping on the strain terms (Material::damping_ratio's tau S E_e, else (4)), f_c the contacts'
 // forces with each contact's state decided at D (contact_cycles.cpp). Central difference
 // (Newmark beta = 0, gamma = 1/2) with the block mass M = rho int T^T T dA (Shi 1988):
@@ -37,7 +39,8 @@
 // Local damping (Settings::stage_local_damping, alpha), in the same stages: Cundall's on each
 // of the block's mass-normalised unknowns q = L^T v (M = L L^T): |q_i| loses alpha |r_i| h  (7)
 // at each kick, r = L^-1 R, never more than it has
-// Blocks held at two or more fixed points and removed blocks do not move. Every block and
+// Blocks held at two or more fixed points (or at one and in rotation; count_held) and
+// removed blocks do not move. Every block and
 // every contact is updated on its own: the cycles run in parallel (OpenMP) and give the
 // same bits whatever the number of threads (contacts gathered per block in a fixed order).
 #include <omp.h>

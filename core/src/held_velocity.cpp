@@ -2,6 +2,9 @@
 // (held_velocity.hpp, where the formulas are derived).
 #include "held_velocity.hpp"
 
+#include <cmath>
+
+#include "block_terms.hpp"
 #include "rheodda/contact/kinematics.hpp"
 
 namespace rheodda::core {
@@ -13,6 +16,13 @@ void add_held_rows(HeldRows& J, const Vec2& c, const Vec2& x, const Eigen::Matri
     J.conservativeResize(J.rows() + 1, Eigen::NoChange);
     J.row(J.rows() - 1) = T.row(d);
   }
+}
+
+void add_fixed_point_rows(HeldRows& J, const Vec2& c, const Vec2& x, const PolygonIntegrals& g, const FixedPoint& fp) {
+  add_held_rows(J, c, x, fp.held());
+  if (!fp.hold_rotation) return;
+  J.conservativeResize(J.rows() + 1, Eigen::NoChange);
+  J.row(J.rows() - 1) = std::sqrt((g.Sxx + g.Syy) / g.S) * mean_rotation_row(g).transpose();
 }
 
 Vec6 held_velocity(const Eigen::Matrix<double, 6, 6>& M, const HeldRows& J, const Vec6& v, double size) {

@@ -14,6 +14,12 @@
 // Whittaker, A Treatise on the Analytical Dynamics of Particles and Rigid
 // Bodies, on impulsive motion). A block held at every vertex has v+ = 0.
 //
+// A held rotation (FixedPoint::hold_rotation) is the row g of the block's mean rotation
+// (block_terms.hpp, RotationHold): g v = 0 is a zero angular momentum about the centroid,
+// rho J g v. Since M^-1 g^T = e_r0 / (rho J), the impulse changes the angular velocity
+// alone, by -g v: a spinning block (strain rates zero) stops turning and loses I omega^2/2,
+// I = rho J, whatever its shape.
+//
 // Fixed points removed: a block held by penalty springs carries, in the held
 // directions, only the springs' numerical vibration (Shi's v' = 2 D/dt - v on a
 // step whose D is the spring's deflection change flips the velocity's sign
@@ -25,6 +31,7 @@
 #include <Eigen/Dense>
 
 #include "rheodda/core/model.hpp"
+#include "rheodda/core/polygon.hpp"
 
 namespace rheodda::core {
 
@@ -34,6 +41,12 @@ using HeldRows = Eigen::Matrix<double, Eigen::Dynamic, 6>;
 /// Appends the rows of a point at x (current position) held in the directions
 /// `held` (FixedPoint::held()) to J, for a block of centroid c.
 void add_held_rows(HeldRows& J, const Vec2& c, const Vec2& x, const Eigen::Matrix2d& held);
+
+/// Appends the rows of fixed point fp whose material point stands at x on a block of
+/// centroid c and central integrals g: its held directions (add_held_rows) and, when it
+/// holds the rotation, the row of the block's mean rotation, scaled by the radius of
+/// gyration sqrt(J/S) so that it has the units of a point's row [-, length].
+void add_fixed_point_rows(HeldRows& J, const Vec2& c, const Vec2& x, const PolygonIntegrals& g, const FixedPoint& fp);
 
 /// v+: the velocity nearest v in the metric M (the block's mass matrix) that
 /// leaves every row of J at rest; v when J has no row. `size`: a length of the

@@ -111,8 +111,11 @@ void Engine::Impl::validate() {
   }
   for (std::size_t k = 0; k < m.fixed_points.size(); ++k) {
     check_point(ModelEntry{"fixed_points", k}, m.fixed_points[k].block, m.fixed_points[k].point);
-    if (!m.fixed_points[k].hold_x && !m.fixed_points[k].hold_y)
-      throw ModelError(ModelEntry{"fixed_points", k}, "hold", "holds neither x nor y");
+    const FixedPoint& fp = m.fixed_points[k];
+    if (!fp.hold_x && !fp.hold_y && !fp.hold_rotation)
+      throw ModelError(ModelEntry{"fixed_points", k}, "hold", "holds nothing (neither x, y nor the rotation)");
+    if (fp.held_rotation && !std::isfinite(*fp.held_rotation))
+      throw ModelError(ModelEntry{"fixed_points", k}, "held_rotation", "must be finite (rad)");
   }
   for (std::size_t k = 0; k < m.measurement_points.size(); ++k)
     check_point(ModelEntry{"measurement_points", k}, m.measurement_points[k].block,

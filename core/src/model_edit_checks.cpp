@@ -52,12 +52,17 @@ std::vector<char> Engine::Impl::check_edit(const ModelEdit& e) const {
   };
   for (std::size_t k = 0; k < e.add_fixed_points.size(); ++k) {
     const FixedPoint& fp = e.add_fixed_points[k];
-    if (!fp.hold_x && !fp.hold_y) throw ModelError(ModelEntry{"add_fixed_points", k}, "hold", "holds neither x nor y");
+    if (!fp.hold_x && !fp.hold_y && !fp.hold_rotation)
+      throw ModelError(ModelEntry{"add_fixed_points", k}, "hold", "holds nothing (neither x, y nor the rotation)");
+    if (fp.held_rotation && !std::isfinite(*fp.held_rotation))
+      throw ModelError(ModelEntry{"add_fixed_points", k}, "held_rotation", "must be finite (rad)");
     if (!e.material_points)
       check_point(ModelEntry{"add_fixed_points", k}, fp.block, fp.point);
-    else if (fp.block < 0 || fp.block >= n_blocks || gone[static_cast<std::size_t>(fp.block)] || !fp.material_point)
+    else if (fp.block < 0 || fp.block >= n_blocks || gone[static_cast<std::size_t>(fp.block)] || !fp.material_point ||
+             (fp.hold_rotation && !fp.held_rotation))
       throw ModelError(ModelEntry{"add_fixed_points", k},
-                       "a replayed fixed point needs a block that stays and its material point");
+                       "a replayed fixed point needs a block that stays, its material point and, holding the "
+                       "rotation, the rotation held");
   }
   for (std::size_t k = 0; k < e.add_point_loads.size(); ++k) {
     const PointLoad& l = e.add_point_loads[k];
@@ -126,12 +131,14 @@ std::vector<char> Engine::Impl::check_edit(const ModelEdit& e) const {
       HeldRows J(0, 6);
       for (std::size_t i = 0; i < m.model.fixed_points.size(); ++i) {
         const FixedPoint& fp = m.model.fixed_points[i];
-        if (fp.block == block && !dropped[i]) add_held_rows(J, bs.centroid, bs.map_A * fp.material() + bs.map_b, fp.held());
+        if (fp.block == block && !dropped[i])
+          add_fixed_point_rows(J, bs.centroid, bs.map_A * fp.material() + bs.map_b, m.moments[b], fp);
       }
       for (const FixedPoint& fp : e.add_fixed_points)
         if (fp.block == block)
-          add_held_rows(J, bs.centroid, e.material_points ? Vec2(bs.map_A * fp.material() + bs.map_b) : fp.point,
-                        fp.held());
+          add_fixed_point_rows(J, bs.centroid,
+                               e.material_points ? Vec2(bs.map_A * fp.material() + bs.map_b) : fp.point, m.moments[b],
+                               fp);
       const Mat6 M = m.model.materials[static_cast<std::size_t>(bs.material)].density * unit_mass_matrix(m.moments[b]);
       const Vec6 lost = v - held_velocity(M, J, v, std::sqrt(std::abs(m.moments[b].S)));
       if (lost.dot(M * lost) > 1e-12 * v.dot(M * v))

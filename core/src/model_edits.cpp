@@ -4,8 +4,8 @@
 // settling stage opened. An edit is checked whole before anything changes.
 //
 // Velocities: a moving block that fixed points begin to hold stops in the
-// directions they hold, one they stop holding starts from rest in those
-// directions (held_velocity.hpp), and ModelEdit::set_velocities gives blocks a
+// directions they hold (a held rotation: it stops turning), one they stop holding
+// starts from rest in those directions (held_velocity.hpp), and ModelEdit::set_velocities gives blocks a
 // velocity; the kinetic energy each takes or gives is booked as
 // EnergyFlows::dissipation_edits, so the balance stays closed across the edit.
 //
@@ -52,9 +52,10 @@ namespace {
 /// x = A x0 + b inverted (BlockState::map_A, map_b) [length].
 Vec2 material_point(const BlockState& b, const Vec2& p) { return b.map_A.inverse() * (p - b.map_b); }
 
-/// The rows of fixed point fp where its material point stands now (held_velocity.hpp).
-void add_rows(HeldRows& J, const BlockState& b, const FixedPoint& fp) {
-  add_held_rows(J, b.centroid, b.map_A * fp.material() + b.map_b, fp.held());
+/// The rows of fixed point fp where its material point stands now, on a block of central
+/// integrals g (held_velocity.hpp).
+void add_rows(HeldRows& J, const BlockState& b, const PolygonIntegrals& g, const FixedPoint& fp) {
+  add_fixed_point_rows(J, b.centroid, b.map_A * fp.material() + b.map_b, g, fp);
 }
 
 }  // namespace
@@ -81,7 +82,8 @@ EditReport Engine::edit(const ModelEdit& e) {
   std::vector<HeldRows> rows(nb);
   for (int i : e.remove_fixed_points) {
     const FixedPoint& fp = m.model.fixed_points[static_cast<std::size_t>(i)];
-    add_rows(rows[static_cast<std::size_t>(fp.block)], m.st.blocks[static_cast<std::size_t>(fp.block)], fp);
+    const auto k = static_cast<std::size_t>(fp.block);
+    add_rows(rows[k], m.st.blocks[k], m.moments[k], fp);
   }
   erase(m.model.fixed_points, e.remove_fixed_points);
   erase(m.model.point_loads, e.remove_point_loads);
@@ -119,16 +121,19 @@ EditReport Engine::edit(const ModelEdit& e) {
   // 3. Fixed points and loads added where their material points stand now.
   for (std::size_t k = 0; k < e.add_fixed_points.size(); ++k) {
     FixedPoint fp = e.add_fixed_points[k];
-    if (!e.material_points)
-      fp.material_point = material_point(m.st.blocks[static_cast<std::size_t>(fp.block)], fp.point);
+    const auto b = static_cast<std::size_t>(fp.block);
+    if (!e.material_points) fp.material_point = material_point(m.st.blocks[b], fp.point);
+    // A rotation held from the one the block has now (unless given: a replay's).
+    if (fp.hold_rotation && !fp.held_rotation)
+      fp.held_rotation = mean_rotation(central_integrals(m.model.blocks[b].vertices), m.st.blocks[b].map_A);
     report.replay.add_fixed_points[k] = fp;
     m.model.fixed_points.push_back(fp);
   }
   std::vector<char> gains(nb, 0);
   for (const FixedPoint& fp : e.add_fixed_points) gains[static_cast<std::size_t>(fp.block)] = 1;
   for (const FixedPoint& fp : m.model.fixed_points)
-    if (gains[static_cast<std::size_t>(fp.block)])
-      add_rows(rows[static_cast<std::size_t>(fp.block)], m.st.blocks[static_cast<std::size_t>(fp.block)], fp);
+    if (const auto k = static_cast<std::size_t>(fp.block); gains[k])
+      add_rows(rows[k], m.st.blocks[k], m.moments[k], fp);
   // 3a. Velocities: the held directions at rest, then the velocities given.
   auto mass = [&](std::size_t k) -> Mat6 {
     const BlockState& b = m.st.blocks[k];  // s M in a density-scaled stage (BlockState::mass_scale)

@@ -103,11 +103,13 @@ class Block:
     def fix(self, dofs=("x", "y", "rotation")):
         """Holds the block from the next step on in ``dofs`` (some of ``"x"``, ``"y"``, ``"rotation"``).
         All three (the default), as a scene's ``fixed: true``: a fixed point at every vertex, where it
-        stands now. With ``"rotation"``, fixed points at every vertex held in the directions given (``x``
-        only: the block moves freely in y, neither turning nor moving in x); without it, one fixed point at
-        the centroid held in the directions given (the block turns freely about it). A moving block stops
-        in the directions held (its kinetic energy there booked as ``dissipation_edits``). Raises Error
-        for dofs without ``x`` or ``y``, ModelError for a removed block."""
+        stands now. Otherwise one fixed point at the centroid, held in the directions given (as a scene's
+        ``hold: x`` or ``hold: y``) and, with ``"rotation"``, the block's rotation held where it is now by
+        a rotational spring p J/S [force length/rad] (as ``hold: rotation``; ``["rotation"]`` alone: the
+        block moves freely without turning, ``["x", "rotation"]``: free in y only); without it the block
+        turns freely about the point. A moving block stops in what is held (its kinetic energy there, a
+        spin's I omega^2/2, booked as ``dissipation_edits``). Raises Error for an empty or unknown dofs,
+        ModelError for a removed block."""
         if isinstance(dofs, str):
             dofs = (dofs,)
         self._sim._sim._fix(self.index, [str(d) for d in dofs])

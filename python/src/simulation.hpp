@@ -77,7 +77,7 @@ class Simulation {
   py::object block_value(int b, const std::string& quantity) const;
   py::array_t<double> vertices(int b) const;
   py::array_t<double> point_displacement(int b, double x, double y) const;
-  /// Holds block b in `dofs` (of x, y, rotation; docs/guide/python.md, "Blocks").
+  /// Holds block b in `dofs` (some of x, y, rotation; docs/guide/python.md, "Blocks").
   void fix(int b, const std::vector<std::string>& dofs);
   /// Gives block b the velocity (u0, v0, r0) or (u0, v0, r0, ex, ey, gxy) (ModelEdit::set_velocities).
   void set_velocity(int b, const std::vector<double>& v);

@@ -147,9 +147,15 @@ core::EditReport Simulation::apply_edit(const core::ModelEdit& e, const std::str
             {"remove_point_loads", r.remove_point_loads},
             {"remove_blocks", r.remove_blocks}};
   json fixed = json::array();
-  for (const auto& f : r.add_fixed_points)
-    fixed.push_back({{"block", f.block}, {"point", point_json(f.point)}, {"material_point", point_json(f.material())},
-                     {"hold_x", f.hold_x}, {"hold_y", f.hold_y}});
+  for (const auto& f : r.add_fixed_points) {
+    json j = {{"block", f.block}, {"point", point_json(f.point)}, {"material_point", point_json(f.material())},
+              {"hold_x", f.hold_x}, {"hold_y", f.hold_y}};
+    if (f.hold_rotation) {  // the rotation held [rad], as the edit resolved it
+      j["hold_rotation"] = true;
+      j["held_rotation"] = hex(f.held_rotation.value_or(0.0));
+    }
+    fixed.push_back(std::move(j));
+  }
   json loads = json::array();
   for (const auto& l : r.add_point_loads) {
     json h = json::array();
@@ -181,23 +187,25 @@ void Simulation::fix(int b, const std::vector<std::string>& dofs) {
     if (held) throw InputError(fmt::format("{}: dofs: '{}' given twice", what, d));
     held = true;
   }
-  if (!x && !y)
-    throw InputError(fmt::format("{}: dofs: {} holds no translation; a fixed point holds x or y (a rotation "
-                                 "alone cannot be held by fixed points: give 'x' or 'y' with it)",
-                                 what, dofs.empty() ? "an empty list" : "['rotation']"));
-  // The rotation held: a fixed point at every vertex (as a scene's `fixed: true`), in the
-  // directions given; not held: one at the centroid, about which the block turns freely.
+  if (!x && !y && !rotation)
+    throw InputError(fmt::format("{}: dofs: an empty list holds nothing; give some of 'x', 'y', 'rotation'", what));
+  // All three: a fixed point at every vertex (as a scene's `fixed: true`), the block held
+  // whole. Else one at the centroid, held in the directions given and, with 'rotation', in
+  // rotation (a rotational spring p J/S on the block's mean rotation, held at the one it
+  // has now, as a scene's `hold: rotation`; core/src/block_terms.hpp, RotationHold);
+  // without it the block turns freely about the point.
   core::ModelEdit e;
-  auto add = [&](const core::Vec2& p) {
+  auto add = [&](const core::Vec2& p, bool turn) {
     core::FixedPoint fp{b, p};
     fp.hold_x = x;
     fp.hold_y = y;
+    fp.hold_rotation = turn;
     e.add_fixed_points.push_back(fp);
   };
-  if (rotation)
-    for (const core::Vec2& v : eng().vertices(b)) add(v);
+  if (x && y && rotation)
+    for (const core::Vec2& v : eng().vertices(b)) add(v, false);
   else
-    add(eng().centroid(b));
+    add(eng().centroid(b), rotation);
   apply_edit(e, what);
 }
 

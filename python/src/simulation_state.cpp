@@ -128,6 +128,8 @@ void Simulation::replay(const json& c) {
       core::FixedPoint fp{f.at("block").get<int>(), vec2(f.at("point")), vec2(f.at("material_point"))};
       fp.hold_x = f.value("hold_x", true);
       fp.hold_y = f.value("hold_y", true);
+      fp.hold_rotation = f.value("hold_rotation", false);
+      if (fp.hold_rotation) fp.held_rotation = unhex(f.at("held_rotation"));
       e.add_fixed_points.push_back(fp);
     }
     for (const auto& l : c.at("add_point_loads")) {

@@ -103,6 +103,15 @@ std::vector<std::string> scene_warnings(const SceneDescription& s) {
   return out;
 }
 
+core::FixedPoint build_fixed_point(int block, double x, double y, const std::string& hold) {
+  core::FixedPoint fp{block, {x, y}};
+  // `hold: both | x | y | rotation` (docs/reference/scene-format.md, "fixed_points")
+  fp.hold_x = hold == "both" || hold == "x";
+  fp.hold_y = hold == "both" || hold == "y";
+  fp.hold_rotation = hold == "rotation";
+  return fp;
+}
+
 BuiltScene build_scene(const SceneDescription& s) {
   BuiltScene out;
   core::Model& m = out.model;
@@ -128,12 +137,8 @@ BuiltScene build_scene(const SceneDescription& s) {
     if (b.fixed)
       for (const auto& p : b.polygon) m.fixed_points.push_back({static_cast<int>(i), {p[0], p[1]}});
   }
-  for (const auto& f : s.fixed_points) {
-    core::FixedPoint fp{f.block, {f.point[0], f.point[1]}};
-    fp.hold_x = f.hold != "y";  // `hold: x | y | both` (docs/reference/scene-format.md)
-    fp.hold_y = f.hold != "x";
-    m.fixed_points.push_back(fp);
-  }
+  for (const auto& f : s.fixed_points)
+    m.fixed_points.push_back(build_fixed_point(f.block, f.point[0], f.point[1], f.hold));
   for (const auto& l : s.loads) {
     core::PointLoad load;
     load.block = l.at.block;

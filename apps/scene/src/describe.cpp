@@ -11,6 +11,7 @@
 #include <cstdlib>
 
 #include "rheodda/contact/joint_set.hpp"
+#include "rheodda/core/defaults.hpp"
 #include "rheodda/scene/build.hpp"
 #include "rheodda/scene/geometry.hpp"
 #include "bolts_text.hpp"
@@ -109,9 +110,17 @@ std::string describe_scene(const SceneDescription& s) {
     return "";
   };
   line(fmt::format("fixed points: {}", s.fixed_points.size()));
-  for (const auto& p : s.fixed_points)
-    line("  " + key_values_text(fixed_point_keys(), "fixed_points", p, u,
-                                [&](const KeyInfo& k) { return on_block(k, p.point, p.block); }));
+  for (const auto& p : s.fixed_points) {
+    std::string text = "  " + key_values_text(fixed_point_keys(), "fixed_points", p, u,
+                                              [&](const KeyInfo& k) { return on_block(k, p.point, p.block); });
+    if (p.hold == "rotation") {  // its spring k_r = p J/S (core/include/rheodda/core/defaults.hpp)
+      std::vector<core::Vec2> polygon;
+      for (const Point& v : s.blocks[static_cast<std::size_t>(p.block)].polygon) polygon.emplace_back(v[0], v[1]);
+      text += fmt::format(" (a rotational spring of {:.4g} {}·{}/rad)",
+                          core::rotation_hold_stiffness(s.analysis.fixed_point_stiffness, polygon), u.force, u.length);
+    }
+    line(text);
+  }
   line(fmt::format("loads: {}", s.loads.size()));
   for (const auto& l : s.loads)
     line("  " + key_values_text(load_keys(), "loads", l, u, [&](const KeyInfo& k) -> std::string {

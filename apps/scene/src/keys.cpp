@@ -228,7 +228,8 @@ std::vector<KeySpec> declare_analysis_keys() {
          "iteration limit in static analysis\")"));
   keys.push_back(number_key("analysis", "fixed_point_stiffness", "force/length", {0.0, true, kInf, false}, &Analysis::fixed_point_stiffness,
       "100 × the largest `young_modulus`",
-      "spring holding a fixed point"));
+      "spring holding a fixed point (times J/S, the block's polar radius of gyration squared: the rotational "
+      "spring of `hold: rotation` [force·length/rad])"));
   keys.push_back(choice_key("analysis", "solver", "–", {"automatic", "cholmod", "pcg", "amg"},
       [](const Analysis& a) { return std::string(solver_name(a.solver)); },
       [](Analysis& a, const std::string& v) {

@@ -38,10 +38,13 @@ std::vector<EntryKey<BlockPoint>>& fixed_point_keys() {
       point_key<BlockPoint>("fixed_points"),
       block_key<BlockPoint>("fixed_points"),
       detail::field_key(KeyInfo{.map = "fixed_points", .name = "hold", .type = KeyType::choice, .unit = "–",
-                                .choices = {"both", "x", "y"}, .default_text = "`both`",
-                                .meaning = "the directions the point is held in: `both`, or `x` or `y` only (a "
-                                           "penalty spring in that direction alone; the point moves freely in the "
-                                           "other)"},
+                                .choices = {"both", "x", "y", "rotation"}, .default_text = "`both`",
+                                .meaning = "what the point holds: `both` directions, or `x` or `y` only (a penalty "
+                                           "spring in that direction alone; the point moves freely in the other), or "
+                                           "`rotation`: the block's rotation alone (a rotational spring p J/S "
+                                           "[force·length/rad], J/S the block's polar radius of gyration squared; "
+                                           "the point only names the block). Several entries on a block combine "
+                                           "(`x` and `rotation`: free in y only)"},
                         &BlockPoint::hold),
   };
   return keys;

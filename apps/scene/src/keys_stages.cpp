@@ -118,9 +118,10 @@ std::vector<EntryKey<StagePoint>> stage_point_keys(const std::string& map, bool 
               .meaning = "the block it is on"}));
   if (!load)
     k.push_back(detail::field_key(
-        KeyInfo{.map = map, .name = "hold", .type = KeyType::choice, .unit = "–", .choices = {"both", "x", "y"},
-                .default_text = "`both`",
-                .meaning = "the directions it is held in: `both`, or `x` or `y` only (as `fixed_points.hold`)"},
+        KeyInfo{.map = map, .name = "hold", .type = KeyType::choice, .unit = "–",
+                .choices = {"both", "x", "y", "rotation"}, .default_text = "`both`",
+                .meaning = "what it holds: `both` directions, `x` or `y` only, or `rotation`: the block's "
+                           "rotation alone, at the one it has at the stage (as `fixed_points.hold`)"},
         &E::hold));
   if (load) {
     k.push_back(detail::constant_force_key(

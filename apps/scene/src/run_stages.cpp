@@ -89,12 +89,8 @@ void apply_stage(Run& run) {
   for (const auto& name : st.remove_fixed_points) e.remove_fixed_points.push_back(index_of(g.fixed_names, name));
   for (const auto& name : st.remove_loads) e.remove_point_loads.push_back(index_of(g.load_names, name));
   e.remove_blocks = st.remove_blocks;
-  for (const StagePoint& p : st.add_fixed_points) {
-    core::FixedPoint fp{p.block, {p.point[0], p.point[1]}};
-    fp.hold_x = p.hold != "y";  // `hold: x | y | both` (docs/reference/stages.md)
-    fp.hold_y = p.hold != "x";
-    e.add_fixed_points.push_back(fp);
-  }
+  for (const StagePoint& p : st.add_fixed_points)  // `hold: both | x | y | rotation` (docs/reference/stages.md)
+    e.add_fixed_points.push_back(build_fixed_point(p.block, p.point[0], p.point[1], p.hold));
   for (const StagePoint& p : st.add_loads) {
     core::PointLoad l;
     l.block = p.block;

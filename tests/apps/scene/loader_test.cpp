@@ -73,6 +73,25 @@ BOOST_AUTO_TEST_CASE(rectangle_grid_and_angle_shorthands_expand_to_polygons) {
   BOOST_TEST(scene::signed_area(t.polygon) == 0.1, boost::test_tools::tolerance(1e-12));
 }
 
+BOOST_AUTO_TEST_CASE(a_fixed_point_holding_the_rotation_is_read_built_described_and_checked) {
+  // `hold: rotation` on the 1 m square `top`: the engine's point holds its rotation alone, with
+  // the spring p J/S = 1e11/6 N m/rad (fixed_point_stiffness 100 E); several entries combine.
+  const std::string points = "fixed_points:\n  - {point: [1.5, 1.5], block: top, hold: rotation}\n"
+                             "  - {point: [1.5, 1.5], block: top, hold: x}\nmeasurement_points:\n";
+  const auto s = scene::parse_scene(with("measurement_points:\n", points), "hold.yaml");
+  BOOST_TEST(s.fixed_points[0].hold == "rotation");
+  const auto built = scene::build_scene(s);
+  const auto& fixed = built.model.fixed_points;  // the base's four corners (fixed: true), then the entries
+  BOOST_TEST_REQUIRE(fixed.size() == 6u);
+  BOOST_TEST((fixed[4].hold_rotation && !fixed[4].hold_x && !fixed[4].hold_y));
+  BOOST_TEST((fixed[5].hold_x && !fixed[5].hold_y && !fixed[5].hold_rotation));
+  BOOST_TEST(scene::describe_scene(s).find("block top, hold rotation (a rotational spring of 1.667e+10 N·m/rad)") !=
+             std::string::npos);
+  expect_error_at(with("measurement_points:\n", "fixed_points:\n  - {point: [1.5, 1.5], hold: spin}\n"
+                                                 "measurement_points:\n"),
+                  15, "spin", "fixed_points[0].hold", "'spin' is not one of: both, x, y, rotation");
+}
+
 BOOST_AUTO_TEST_CASE(unknown_key_names_line_column_and_nearest_valid_key) {
   expect_error_at(with("  dt: 0.01", "  dtt: 0.01"), 4, "dtt", "analysis.dtt", "did you mean 'dt'?");
   expect_error_at(with("joint_sets:", "joint_set:"), 8, "joint_set", "joint_set", "did you mean 'joint_sets'?");

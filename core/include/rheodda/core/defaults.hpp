@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rheodda/core/model.hpp"
+#include "rheodda/core/polygon.hpp"
 
 namespace rheodda::core {
 
@@ -32,6 +33,23 @@ inline double default_penalty(double largest_young_modulus) { return kPenaltyFac
 /// The fixed-point spring 100 E_max [force/length].
 inline double default_fixed_point_stiffness(double largest_young_modulus) {
   return kFixedPointFactor * largest_young_modulus;
+}
+
+/// Stiffness of the rotational spring of a fixed point held in rotation
+/// (FixedPoint::hold_rotation), k_r = p J/S = p rho_g^2 [force x length/rad, per unit
+/// thickness]: the fixed-point spring p [force/length] spread evenly over the block's
+/// area S [length^2], which resists a rotation theta about the centroid with the moment
+/// int (p/S) |x - c|^2 theta dA = p (J/S) theta, J = int |x - c|^2 dA the polar second
+/// moment of area [length^4] and rho_g^2 = J/S the polar radius of gyration squared
+/// [length^2]. It gives the held rotation the frequency of a point held by p,
+/// k_r/(rho J) = p/(rho S) = p/m (the explicit step's stable cycle: no shorter than
+/// a fixed point's). `vertices`: the block's polygon, either orientation [length]; or its
+/// central integrals (polygon.hpp).
+inline double rotation_hold_stiffness(double fixed_point_stiffness, const PolygonIntegrals& central) {
+  return fixed_point_stiffness * (central.Sxx + central.Syy) / central.S;  // J/S: a clockwise polygon's signs cancel
+}
+inline double rotation_hold_stiffness(double fixed_point_stiffness, std::span<const Vec2> vertices) {
+  return rotation_hold_stiffness(fixed_point_stiffness, central_integrals(vertices));
 }
 
 /// Shi's half model size w0: half the larger side of the model's bounding box [length];

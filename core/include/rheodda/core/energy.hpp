@@ -36,7 +36,8 @@ struct StoredEnergy {
   double kinetic = 0.0;         ///< sum over blocks of v^T M v / 2, M = rho int T^T T dA
   double strain = 0.0;          ///< sum over blocks of S sigma^T E_e^-1 sigma / 2 (initial
                                 ///< stresses included)
-  double fixed = 0.0;           ///< sum over fixed points of p |x - x0|^2 / 2
+  double fixed = 0.0;           ///< sum over fixed points of p |S (x - x0)|^2 / 2, plus
+                                ///< k_r (theta - theta_h)^2 / 2 for a held rotation [force x length]
   double contact_normal = 0.0;  ///< sum over closed contacts of p_n d_n^2 / 2
   double contact_shear = 0.0;   ///< sum over locked contacts of F^2 / (2 k_s), k_s elastic
   double bolt = 0.0;            ///< sum over intact bolts of N^2 / (2 k) (docs/reference/bolts.md, "Energy")

@@ -113,7 +113,9 @@ struct PointLoad {
 
 /// A fixed point: a stiff penalty spring holding a material point of a block
 /// at its initial position, in x and y or in one of them only (a spring in
-/// that direction alone: the point moves freely in the other).
+/// that direction alone: the point moves freely in the other), and/or a
+/// rotational penalty spring holding the block's rotation (hold_rotation; with
+/// neither hold_x nor hold_y, the block held in rotation alone).
 struct FixedPoint {
   int block = 0;                ///< index into Model::blocks
   Vec2 point = Vec2::Zero();    ///< initial (and held) position [length]
@@ -123,6 +125,18 @@ struct FixedPoint {
   std::optional<Vec2> material_point = std::nullopt;
   bool hold_x = true;           ///< the spring acts in x
   bool hold_y = true;           ///< the spring acts in y
+  /// The block's rotation is held: a rotational spring k_r = p J/S [force x length/rad]
+  /// (rotation_hold_stiffness, defaults.hpp; J the polar second moment of the block's
+  /// area about its centroid, S its area: p spread over the area) on the block's mean
+  /// rotation about its centroid (block_terms.hpp, RotationHold), holding it at
+  /// held_rotation. The point itself then holds only in the directions hold_x, hold_y
+  /// say (none: it only names the block, and must lie on it).
+  bool hold_rotation = false;
+  /// The mean rotation held [rad], counter-clockwise > 0, measured from the block's
+  /// initial orientation. Unset: 0 in a Model (the block held as it starts); in an
+  /// edit (ModelEdit::add_fixed_points) the rotation the block has at the edit,
+  /// which EditReport::replay sets.
+  std::optional<double> held_rotation = std::nullopt;
   /// Initial position of the held material point [length].
   const Vec2& material() const { return material_point ? *material_point : point; }
   /// The directions held: diag(hold_x, hold_y); the spring is p S (x - x0).

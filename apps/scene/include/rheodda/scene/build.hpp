@@ -32,6 +32,11 @@ std::vector<std::string> scene_warnings(const SceneDescription& scene);
 /// Builds the model; throws SceneError if the engine refuses it (its ModelError key is reported).
 BuiltScene build_scene(const SceneDescription& scene);
 
+/// The engine's fixed point of a scene's `fixed_points` or `add_fixed_points` entry at
+/// (x, y) [length] on `block`: `hold: both | x | y` the point held in both directions or in
+/// one, `rotation` the block's rotation alone (core::FixedPoint::hold_rotation).
+core::FixedPoint build_fixed_point(int block, double x, double y, const std::string& hold);
+
 /// The engine's bolt of a scene's bolt (core/include/rheodda/core/bolt.hpp): its law
 /// built by the registry; points as the description gives them.
 core::Bolt build_bolt(const BoltDescription& b);

@@ -209,8 +209,9 @@ struct BlockPoint {
   std::string name;       ///< fixed_points, loads: optional `name` a stage removes it by (empty: none)
   Point point{0.0, 0.0};  ///< [length]
   int block = 0;          ///< index into SceneDescription::blocks
-  /// fixed_points only: the directions held, `both`, `x` or `y` (a penalty spring in
-  /// that direction alone; docs/reference/scene-format.md, "fixed_points").
+  /// fixed_points only: what is held, `both` directions, `x` or `y` (a penalty spring in
+  /// that direction alone) or `rotation` (the block's rotation alone, a rotational spring;
+  /// build_fixed_point; docs/reference/scene-format.md, "fixed_points").
   std::string hold = "both";
   SourceLocation where{};
 };

@@ -31,7 +31,7 @@ struct StagePoint {
   std::string name;        ///< optional; what a later stage removes it by
   std::array<double, 2> point{0.0, 0.0};  ///< where the material point stands at the stage [length]
   int block = 0;           ///< index into SceneDescription::blocks (`block:` is required)
-  std::string hold = "both";  ///< add_fixed_points: the directions held, `both`, `x` or `y`
+  std::string hold = "both";  ///< add_fixed_points: what is held, `both`, `x`, `y` or `rotation`
   /// Loads: (t [time] from the stage's start, fx, fy [force]) samples, strictly
   /// increasing t; a constant `force` is one sample at 0. Empty for a fixed point.
   std::vector<std::array<double, 3>> history;
