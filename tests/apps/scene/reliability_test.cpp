@@ -462,6 +462,76 @@ BOOST_AUTO_TEST_CASE(the_run_says_where_each_joint_sets_law_acted) {
                                "through a step)");
 }
 
+/// Waits (by watching the file, not the clock) until the run `pid` has written some steps into `out`.
+void wait_for_steps(pid_t pid, const fs::path& out) {
+  int status = 0;
+  for (;;) {
+    std::error_code ec;
+    if (fs::exists(out / "history.csv", ec) && fs::file_size(out / "history.csv", ec) > 3000) return;
+    BOOST_TEST_REQUIRE(::waitpid(pid, &status, WNOHANG) == 0, "the run ended before it could be signalled");
+    std::this_thread::yield();
+  }
+}
+
+BOOST_AUTO_TEST_CASE(a_run_removes_its_lock_however_it_ends_and_keeps_its_outputs) {
+  // issue 52: `.rheodda.lock` stayed in the folder after every run.
+  const fs::path done = fresh_dir("lock-done");
+  BOOST_TEST((run(sliding(0.02, 0.01), done).status == scene::RunStatus::completed));
+  BOOST_TEST(!fs::exists(done / ".rheodda.lock"));
+  BOOST_TEST(status_of(done) == "completed");
+  // Stopped between two steps (what Ctrl-C and kill do): the checkpoint and outputs stay.
+  const fs::path stopped = fresh_dir("lock-stopped");
+  BOOST_TEST((run(sliding(0.05, 0.01), stopped, 3).status == scene::RunStatus::interrupted));
+  BOOST_TEST(!fs::exists(stopped / ".rheodda.lock"));
+  BOOST_TEST(fs::exists(stopped / "checkpoint.json"));
+  BOOST_TEST(status_of(stopped) == "interrupted");
+  // Failed.
+  auto bad = sliding(0.01, 0.005);
+  bad.analysis.dt = 1e-300;
+  const fs::path failed = fresh_dir("lock-failed");
+  (void)message_of<std::runtime_error>([&] { run(bad, failed); });
+  BOOST_TEST(!fs::exists(failed / ".rheodda.lock"));
+  BOOST_TEST(status_of(failed) == "failed");
+  // Ctrl-C of the command: exit 130, no lock, the outputs so far kept and resumable.
+  const std::string scene = source_path("examples/sliding-block.yaml");
+  const fs::path cut = fresh_dir("lock-sigint");
+  const pid_t pid = spawn_rheodda({"run", scene, "-o", cut.string()});
+  wait_for_steps(pid, cut);
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  BOOST_TEST_REQUIRE(WIFEXITED(status));
+  BOOST_TEST(WEXITSTATUS(status) == 128 + SIGINT);
+  BOOST_TEST(!fs::exists(cut / ".rheodda.lock"));
+  BOOST_TEST(status_of(cut) == "interrupted");
+  BOOST_TEST(fs::file_size(cut / "history.csv") > 3000u);
+  const auto resumed = run_rheodda("run " + scene + " -o " + cut.string() + " --resume");
+  BOOST_TEST(resumed.exit_code == 0, resumed.output);
+  BOOST_TEST(!fs::exists(cut / ".rheodda.lock"));
+}
+
+BOOST_AUTO_TEST_CASE(a_lock_left_by_a_run_that_no_longer_runs_does_not_block_the_next) {
+  // kill -9 leaves the file (nothing can remove it), with the process id of the dead run.
+  const std::string scene = source_path("examples/sliding-block.yaml");
+  const fs::path out = fresh_dir("lock-killed");
+  const pid_t pid = spawn_rheodda({"run", scene, "-o", out.string()});
+  wait_for_steps(pid, out);
+  ::kill(pid, SIGKILL);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  BOOST_TEST_REQUIRE(fs::exists(out / ".rheodda.lock"));
+  long owner = 0;
+  std::ifstream(out / ".rheodda.lock") >> owner;
+  BOOST_TEST(owner == static_cast<long>(pid));
+  const auto again = run_rheodda("run " + scene + " -o " + out.string());
+  BOOST_TEST(again.exit_code == 0, again.output);
+  BOOST_TEST(!fs::exists(out / ".rheodda.lock"));
+  // A lock file naming a process that has ended, as any file system leaves it.
+  std::ofstream(out / ".rheodda.lock") << pid << "\n";
+  BOOST_TEST((run(sliding(0.02, 0.01), out).status == scene::RunStatus::completed));
+  BOOST_TEST(!fs::exists(out / ".rheodda.lock"));
+}
+
 BOOST_AUTO_TEST_SUITE_END()
 
 BOOST_AUTO_TEST_CASE(a_run_that_will_not_fit_in_memory_is_refused_before_it_starts_with_an_estimate) {

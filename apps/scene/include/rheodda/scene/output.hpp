@@ -63,9 +63,12 @@ std::string write_error(const std::string& path, int error_number);
 std::string read_file(const std::string& path);
 
 /// Exclusive use of an output folder by one run: an advisory lock (flock) on
-/// DIR/.rheodda.lock holding the owner's process id, released when the object is
-/// destroyed or the process ends (also on kill -9). Throws std::runtime_error
-/// naming the folder and the process that holds it.
+/// DIR/.rheodda.lock holding the owner's process id. The object's destruction (the
+/// run's end, however it ends short of the process being killed) removes the file;
+/// the flock goes with the process too (also on kill -9), so a lock file a killed
+/// run left does not block the next one (nor, on a file system without flock, one
+/// whose process no longer runs). Throws std::runtime_error naming the folder and
+/// the process that holds it.
 class FolderLock {
  public:
   explicit FolderLock(const std::string& dir);
@@ -74,6 +77,7 @@ class FolderLock {
   FolderLock& operator=(const FolderLock&) = delete;
 
  private:
+  std::string path_;
   int fd_ = -1;
 };
 
