@@ -16,6 +16,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 namespace rheodda::scene {
 
@@ -64,6 +65,46 @@ std::string read_file(const std::string& path) {
   std::ostringstream buf;
   buf << in.rdbuf();
   return buf.str();
+}
+
+void remove_run_outputs(const std::string& dir) {
+  namespace fs = std::filesystem;
+  static const char* const kFiles[] = {"history.csv", "contacts.csv", "bolts.csv",  "events.csv",
+                                       "blocks.pvd",  "contacts.pvd", "bolts.pvd",  "summary.json",
+                                       "checkpoint.json"};
+  auto remove = [](const fs::path& p) {
+    std::error_code ec;
+    fs::remove(p, ec);
+    if (ec) throw std::runtime_error(fmt::format("cannot remove {} of the earlier run: {}", p.string(), ec.message()));
+  };
+  auto ends_with = [](const std::string& name, const std::string& tail) {
+    return name.size() >= tail.size() && name.compare(name.size() - tail.size(), tail.size(), tail) == 0;
+  };
+  const fs::path d(dir);
+  for (const char* f : kFiles) {
+    remove(d / f);
+    remove(d / (std::string(f) + ".tmp"));
+  }
+  // The saved states (checkpoint-N.state) and the folders of frames and pictures.
+  auto sweep = [&](const fs::path& folder, auto&& written) {
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec)) return;
+    std::vector<fs::path> doomed;
+    for (const auto& e : fs::directory_iterator(folder, ec))
+      if (e.is_regular_file(ec) && written(e.path().filename().string())) doomed.push_back(e.path());
+    for (const auto& p : doomed) remove(p);
+  };
+  sweep(d, [&](const std::string& n) {
+    return n.rfind("checkpoint-", 0) == 0 && (ends_with(n, ".state") || ends_with(n, ".state.tmp"));
+  });
+  sweep(d / "frames", [&](const std::string& n) { return ends_with(n, ".vtp") || ends_with(n, ".vtp.tmp"); });
+  sweep(d / "plots", [&](const std::string& n) {
+    for (const char* ext : {".png", ".svg", ".gp", ".dat"})
+      if (ends_with(n, ext) || ends_with(n, std::string(ext) + ".tmp")) return true;
+    return false;
+  });
+  std::error_code ec;
+  if (fs::is_directory(d / "plots", ec) && fs::is_empty(d / "plots", ec)) fs::remove(d / "plots", ec);
 }
 
 namespace {

@@ -62,6 +62,15 @@ std::string write_error(const std::string& path, int error_number);
 /// Reads a whole file; throws std::runtime_error.
 std::string read_file(const std::string& path);
 
+/// Removes from `dir` what an earlier run and `rheodda plot` wrote there: the files of
+/// docs/reference/outputs.md's table (history.csv, contacts.csv, bolts.csv, events.csv,
+/// the .pvd collections, summary.json, checkpoint.json and its state files, and a `.tmp`
+/// of any of them), the frames in frames/ (*.vtp) and the pictures in plots/ (*.png,
+/// *.svg and their *.gp scripts and *.dat data), and plots/ when that empties it. Nothing else: files of the user's own stay. A run that starts without
+/// --resume calls it, so a folder holds one run's outputs. Throws std::runtime_error
+/// naming a file that cannot be removed.
+void remove_run_outputs(const std::string& dir);
+
 /// Exclusive use of an output folder by one run: an advisory lock (flock) on
 /// DIR/.rheodda.lock holding the owner's process id. The object's destruction (the
 /// run's end, however it ends short of the process being killed) removes the file;
