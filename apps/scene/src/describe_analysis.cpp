@@ -72,8 +72,6 @@ std::string describe_analysis(const SceneDescription& s) {
                    a.penalty_raise, a.penalty_max_factor));
   if (a.stick_keeps_force)
     line("  stick_keeps_force: a sliding contact that sticks keeps its friction force");
-  if (a.accept_unresolved_impacts)
-    line("  accept_unresolved_impacts: no warning where the dynamic steps do not resolve the contacts' vibration");
   if (a.step_tolerance > 0.0)
     line(fmt::format("  time step: step doubling, step_tolerance {:g} {} ({}), dt_max {}", a.step_tolerance,
                      u.length,
