@@ -137,10 +137,15 @@ FolderLock::FolderLock(const std::string& dir) {
     if (fd_ < 0) throw std::runtime_error(write_error(path_, errno));
     if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
       const int error = errno;
+      if (error == EINTR) {  // a signal came: try again
+        ::close(fd_);
+        fd_ = -1;
+        continue;
+      }
       const long owner = lock_owner(fd_);
       // A folder whose file system has no flock (some network mounts): the process id in
       // the file decides; one that no longer runs left a stale lock, taken over here.
-      const bool no_flock = error != EWOULDBLOCK && error != EINTR;
+      const bool no_flock = error != EWOULDBLOCK;
       if (!no_flock || process_lives(owner)) {
         ::close(fd_);
         fd_ = -1;
@@ -157,9 +162,9 @@ FolderLock::FolderLock(const std::string& dir) {
     fd_ = -1;
     if (attempt == 100) throw std::runtime_error(fmt::format("cannot lock {}: it keeps being replaced", path_));
   }
-  // The process id: for the message of a second run, and to tell a stale lock.
   const std::string pid = std::to_string(::getpid()) + "\n";
   if (::ftruncate(fd_, 0) == 0 && ::pwrite(fd_, pid.data(), pid.size(), 0) < 0) {
+    // The process id is for the message of a second run and to tell a stale lock only.
   }
 }
 
