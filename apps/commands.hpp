@@ -25,7 +25,8 @@ inline void on_stop_signals(void (*handler)(int)) {
 
 /// Exit codes: 0 success, 1 run-time failure, 2 bad input (arguments, files, parameters),
 /// 3 step controls too coarse (check --refine),
-/// 128 + N a run stopped by signal N. `rheodda --help` lists them (kExitCodesHelp).
+/// 128 + N a run stopped by signal N. `rheodda --help` lists them (kExitCodesHelp), each command's
+/// help in one line (kExitCodesLine).
 inline constexpr int kExitFailure = 1;
 inline constexpr int kExitBadInput = 2;
 /// `rheodda check --refine`: the scene's step controls are coarser than the tolerance,
@@ -46,6 +47,10 @@ inline constexpr const char* kExitCodesHelp =
     "         or its refinement study does not converge\n"
     "  128+N  a run stopped by signal N between two steps (130: Ctrl-C, 143: kill);\n"
     "         continue it with `rheodda run SCENE -o OUTDIR --resume`";
+
+/// The line each command's help ends with instead of the whole list.
+inline constexpr const char* kExitCodesLine =
+    "Exit codes: 0 success, 1 failure, 2 bad input, 3 coarse step controls, 128+N signal N (`rheodda --help`)";
 
 /// Throws std::invalid_argument("cannot open PATH: <reason>") unless the file at `path`
 /// can be opened for reading (so that a missing file is reported by name, without a location).

@@ -25,6 +25,7 @@
 #include "commands.hpp"
 #include "rheodda/fit/fit.hpp"
 #include "rheodda/laws/registry.hpp"
+#include "rheodda/scene/plot.hpp"
 
 namespace rheodda::apps {
 namespace {
@@ -177,8 +178,9 @@ std::map<std::string, fit::ParameterSetting> parse_settings(const FitArgs& a) {
 
 std::string plot_terminal(const std::string& path) {
   const std::string ext = std::filesystem::path(path).extension().string();
-  if (ext == ".png") return "pngcairo size 960,720 enhanced font 'Sans,10'";
-  if (ext == ".svg") return "svg size 960,720 enhanced font 'Sans,10'";
+  // noenhanced: names are drawn as written (an underscore in a file name is no subscript).
+  if (ext == ".png") return "pngcairo size 960,720 noenhanced font 'Sans,10'";
+  if (ext == ".svg") return "svg size 960,720 noenhanced font 'Sans,10'";
   throw std::invalid_argument(
       fmt::format("--plot {}: the file name must end in .png or .svg", path));
 }
@@ -195,6 +197,29 @@ void print_data(const CreepData& d, const Units& u) {
   for (std::size_t i = 0; i < d.stages.size(); ++i)
     fmt::print("  stage {}: stress {}{} from t = {} ({} points)\n", i + 1, g6(d.stages[i].stress),
                unit(u.stress), g6(d.stages[i].t), d.stages[i].count);
+}
+
+/// The correlation matrix of the estimates, lower triangle: Python's FitResult.correlation
+/// (and --json's "correlation", which gives 0 for a held parameter); '-' where the fit gives
+/// none: a parameter held (fixed, given by --expr) or not identifiable.
+void print_correlation(const FitResult& r) {
+  const std::size_t n = r.parameters.size();
+  if (n < 2) return;
+  std::size_t width = 8;
+  for (const auto& p : r.parameters) width = std::max(width, p.name.size() + 1);
+  auto cell = [&](std::size_t i, std::size_t j) {
+    const double c = r.correlation_at(i, j);
+    return std::isfinite(c) ? fmt::format("{:+.4f}", c) : std::string("-");
+  };
+  fmt::print("  correlation of the estimates ('-': none, the parameter held or not identifiable):\n  {:<{}}", "",
+             width);
+  for (std::size_t j = 0; j < n; ++j) fmt::print(" {:>{}}", r.parameters[j].name, width);
+  fmt::print("\n");
+  for (std::size_t i = 0; i < n; ++i) {
+    fmt::print("  {:<{}}", r.parameters[i].name, width);
+    for (std::size_t j = 0; j <= i; ++j) fmt::print(" {:>{}}", cell(i, j), width);
+    fmt::print("\n");
+  }
 }
 
 void print_fit(const FitResult& r, const Units& u) {
@@ -218,6 +243,7 @@ void print_fit(const FitResult& r, const Units& u) {
   for (const auto& c : r.combinations)
     fmt::print("  fixed by the data: {} = {:.7g} +- {:.3g} ({:.3g}%)  {}\n", c.expression, c.value,
                c.std_error, 100.0 * c.std_error / c.value, u.of(c.unit));
+  print_correlation(r);
   fmt::print("  R^2 {}   RMSE {:.4g} {}   AIC {:.2f}   BIC {:.2f}   (n = {}, k = {})\n",
              r.r2_defined() ? fmt::format("{:.8f}", r.r2) : "undefined (the data have no spread)",
              r.rmse, u.length, r.aic, r.bic, r.points, r.varying);
@@ -425,10 +451,12 @@ void write_plot(const std::string& path, const std::string& terminal, const Cree
   };
   std::string top, bottom;
   for (std::size_t i = 0; i < fits.size(); ++i) {
-    top += fmt::format(", {} using 1:{} with lines lw 2 lc {} title '{}'", quote((dir / "curve.csv").string()),
-                       i + 2, i + 2, fits[i].law);
-    bottom += fmt::format("{}{} using 1:{} with points pt 7 ps 0.35 lc {} title '{}'",
-                          i ? ", " : "", quote((dir / "data.csv").string()), i + 3, i + 2, fits[i].law);
+    // Ten colours, then dashed (scene::curve_style): every law of --law all told apart.
+    const scene::CurveStyle style = scene::curve_style(i);
+    top += fmt::format(", {} using 1:{} with lines lw 2 {} title {}", quote((dir / "curve.csv").string()), i + 2,
+                       style.line(), quote(fits[i].law));
+    bottom += fmt::format("{}{} using 1:{} with points pt {} ps 0.35 lc rgb '{}' title {}", i ? ", " : "",
+                          quote((dir / "data.csv").string()), i + 3, style.point, style.colour, quote(fits[i].law));
   }
   std::string script = fmt::format(
       "set terminal {}\nset output {}\nset datafile separator ','\n"

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include <exception>
+#include <functional>
 #include <new>
 
 #include "commands.hpp"
@@ -20,7 +21,6 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   // The same string as summary.json's "program" (rheodda/version.hpp, from CMake's project()).
   app.set_version_flag("--version", rheodda::kProgramVersion, "Print the version (rheodda X.Y.Z) and exit");
-  app.footer(rheodda::apps::kExitCodesHelp);
   rheodda::apps::add_law_commands(app);
   rheodda::apps::add_check_command(app);
   rheodda::apps::add_keys_command(app);
@@ -29,6 +29,16 @@ int main(int argc, char** argv) {
   rheodda::apps::add_study_command(app);
   rheodda::apps::add_generate_command(app);
   rheodda::apps::add_forecast_command(app);
+  // The exit codes once, in `rheodda --help` (and docs/reference/cli.md); each command's
+  // help refers to them in one line (a command made before app.footer() would copy it).
+  app.footer(rheodda::apps::kExitCodesHelp);
+  const std::function<void(CLI::App&)> refer = [&refer](CLI::App& parent) {
+    for (CLI::App* command : parent.get_subcommands({})) {
+      command->footer(rheodda::apps::kExitCodesLine);
+      refer(*command);
+    }
+  };
+  refer(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

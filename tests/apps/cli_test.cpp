@@ -47,12 +47,29 @@ BOOST_AUTO_TEST_CASE(help_lists_the_exit_codes_the_commands_return) {
   BOOST_TEST(has(h.output, "\n  1      the command failed while working"), h.output);
   BOOST_TEST(has(h.output, "\n  2      bad input"), h.output);
   BOOST_TEST(has(h.output, "\n  128+N  a run stopped by signal N"), h.output);
+  BOOST_TEST(!has(h.output, "(`rheodda --help`)"), h.output);  // the whole list here, not the line
   // And the codes are the ones returned: 2 for bad arguments and unknown laws, 0 for success
   // (1 and 128+N: run_commands_test and run_test's interrupted runs, study_runner_test's failed cases).
   BOOST_TEST(run_rheodda("law curve nosuch --force 0:1 --t-end 1 --dt 1").exit_code == 2);
   BOOST_TEST(run_rheodda("run").exit_code == 2);
   BOOST_TEST(run_rheodda("--no-such-option").exit_code == 2);
   BOOST_TEST(run_rheodda("law list").exit_code == 0);
+}
+
+BOOST_AUTO_TEST_CASE(each_commands_help_refers_to_the_exit_codes_in_one_line) {
+  // issue 52: every `--help` repeated the 17-line block of `rheodda --help`.
+  for (const char* command : {"law", "law list", "law curve", "keys", "check", "generate", "run", "plot", "fit",
+                              "study", "forecast"}) {
+    const auto h = run_rheodda(std::string(command) + " --help");
+    BOOST_TEST_CONTEXT(command) {
+      BOOST_TEST(h.exit_code == 0, h.output);
+      BOOST_TEST(has(h.output, "\nExit codes: 0 success, 1 failure, 2 bad input, 3 coarse step controls, 128+N signal N "
+                               "(`rheodda --help`)\n"),
+                 h.output);
+      BOOST_TEST(!has(h.output, "0      success"), h.output);
+      BOOST_TEST(!has(h.output, "128+N  a run stopped"), h.output);
+    }
+  }
 }
 
 BOOST_AUTO_TEST_CASE(a_missing_scene_file_is_named_with_the_reason_without_a_location) {

@@ -86,3 +86,38 @@ def test_nishihara_under_one_stress_reports_what_the_data_fix(root, rheodda_bina
     subprocess.run([rheodda_binary, "fit", csv_path, "--law", "nishihara", "--stress", "0.232", "--yaml", str(yaml)],
                    check=True, capture_output=True)
     assert r.yaml == yaml.read_text()
+
+
+def _cli_correlation(report):
+    """The lower triangle `rheodda fit` prints under "correlation of the estimates", as
+    {(row, column): value or None for '-'}."""
+    lines = report.splitlines()
+    at = next(i for i, line in enumerate(lines) if "correlation of the estimates" in line)
+    names = lines[at + 1].split()
+    out = {}
+    for line in lines[at + 2:at + 2 + len(names)]:
+        row, *cells = line.split()
+        assert row == names[len({k[0] for k in out})]
+        for name, cell in zip(names, cells):
+            out[(row, name)] = None if cell == "-" else float(cell)
+    return names, out
+
+
+@pytest.mark.parametrize("law", ["burgers", "nishihara"])
+def test_the_command_lines_report_prints_the_correlation_of_the_fit_result(root, rheodda_binary, law):
+    # issue 52: the report of `rheodda fit` left out the correlation matrix FitResult has.
+    csv_path = str(root / "examples" / "creep-data" / "table1-row1.csv")
+    r = rheodda.fit(law, csv_path, stress=0.232)
+    cli = subprocess.run([rheodda_binary, "fit", csv_path, "--law", law, "--stress", "0.232"],
+                         check=True, capture_output=True, text=True)
+    names, printed = _cli_correlation(cli.stdout)
+    assert names == r.names
+    assert len(printed) == len(names) * (len(names) + 1) // 2  # the lower triangle, diagonal included
+    for (a, b), value in printed.items():
+        c = r.correlation[r.names.index(a), r.names.index(b)]
+        if value is None:  # not identifiable (nishihara's eta3 and Fs under one stress)
+            assert np.isnan(c), (a, b)
+        else:
+            assert value == pytest.approx(c, abs=5e-5), (a, b)
+    if law == "nishihara":
+        assert printed[("Fs", "E1")] is None and printed[("E2", "E1")] is not None

@@ -1,6 +1,7 @@
 #include "rheodda/scene/build.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cmath>
 #include <limits>
@@ -73,7 +74,9 @@ std::vector<std::string> scene_warnings(const SceneDescription& s) {
   // velocity update (docs/reference/contacts.md, "Contact damping": the drop on an
   // incline converges from T/10 on). Joint sets with a normal stiffness per
   // area have springs that depend on each contact's length: not estimated.
-  if (a.has_dynamic_steps() && a.penalty > 0.0) {
+  // One warning for all the joint sets concerned (the period is the scene's),
+  // saying what to do; none where the scene accepts it (accept_unresolved_impacts).
+  if (a.has_dynamic_steps() && a.penalty > 0.0 && !a.accept_unresolved_impacts) {
     double lightest = std::numeric_limits<double>::infinity();
     for (const auto& b : s.blocks) {
       if (b.fixed) continue;
@@ -88,17 +91,19 @@ std::vector<std::string> scene_warnings(const SceneDescription& s) {
     const double period = 2.0 * std::numbers::pi * std::sqrt(lightest / a.penalty);
     const bool adaptive = a.creep_tolerance > 0.0 || a.step_tolerance > 0.0;
     // The dynamic steps: the analysis's, or a dynamic settling stage's in a static analysis.
-    const double largest = a.type == AnalysisType::static_analysis ? a.settle->dt
-                           : adaptive && a.dt_max > 0.0           ? a.dt_max
-                                                                  : a.dt;
+    const bool settle = a.type == AnalysisType::static_analysis;
+    const double largest = settle ? a.settle->dt : adaptive && a.dt_max > 0.0 ? a.dt_max : a.dt;
+    const char* key = settle ? "settle.dt" : adaptive && a.dt_max > 0.0 ? "dt_max" : "dt";
+    std::vector<std::string> sets;
     for (const auto& js : s.joint_sets)
-      if (js.restitution && !js.normal_stiffness && std::isfinite(period) && largest > 0.1 * period)
-        out.push_back(fmt::format(
-            "joint set '{}': its restitution acts once a step resolves the contacts' vibration, period about "
-            "{:.3g} {} (the lightest free block on the penalty spring), and dt is {:g} {}, above a tenth of it: "
-            "impacts are left to the time integration's velocity update (docs/reference/contacts.md, \"Contact damping\"); "
-            "give dt below {:.3g} {} or see what the step changes with `rheodda check --refine`",
-            js.name, period, s.units.time, largest, s.units.time, 0.1 * period, s.units.time));
+      if (js.restitution && !js.normal_stiffness) sets.push_back("'" + js.name + "'");
+    if (!sets.empty() && std::isfinite(period) && largest > 0.1 * period)
+      out.push_back(fmt::format(
+          "joint set{} {}: `restitution` acts as given only at dynamic steps below {:.3g} {} (a tenth of the "
+          "contacts' vibration period), and {} is {:g} {}: give a smaller {} or, where `rheodda check --refine` "
+          "shows no change, `analysis.accept_unresolved_impacts: true` (docs/reference/contacts.md)",
+          sets.size() == 1 ? "" : "s", fmt::join(sets, ", "), 0.1 * period, s.units.time, key, largest, s.units.time,
+          key));
   }
   return out;
 }

@@ -222,6 +222,13 @@ std::vector<KeySpec> declare_analysis_keys() {
          "rule). Fewer iterates and cuts on walls and slopes at their friction limit, but a "
          "creeping slope at its limit then takes step-dependent paths "
          "(docs/notes/contact-solves.md, \"Stick and slip\")"));
+  keys.push_back(flag_key("analysis", "accept_unresolved_impacts", "–", &Analysis::accept_unresolved_impacts,
+      "false",
+      "`true`: no warning that the dynamic steps (`dt`, or `settle.dt`) are above a tenth of the "
+         "contacts' vibration period, where a joint set's `restitution` does not act as given and "
+         "impacts are left to the time integration. For scenes whose answer was shown not to "
+         "depend on it (`rheodda check --refine`; docs/reference/contacts.md, \"Contact damping\"); "
+         "`true` or `false`"));
   keys.push_back(integer_key("analysis", "open_close_limit", "–", {1.0, false, 1000.0, false}, &Analysis::open_close_limit,
       "8 (Shi's) in a static analysis, 30 in a dynamic one",
       "open–close iterations before a step is cut, 1–1000 (docs/notes/contact-solves.md, \"The "

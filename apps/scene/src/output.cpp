@@ -2,17 +2,21 @@
 
 #include <fmt/format.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 namespace rheodda::scene {
 
@@ -63,29 +67,116 @@ std::string read_file(const std::string& path) {
   return buf.str();
 }
 
+void remove_run_outputs(const std::string& dir) {
+  namespace fs = std::filesystem;
+  static const char* const kFiles[] = {"history.csv", "contacts.csv", "bolts.csv",  "events.csv",
+                                       "blocks.pvd",  "contacts.pvd", "bolts.pvd",  "summary.json",
+                                       "checkpoint.json"};
+  auto remove = [](const fs::path& p) {
+    std::error_code ec;
+    fs::remove(p, ec);
+    if (ec) throw std::runtime_error(fmt::format("cannot remove {} of the earlier run: {}", p.string(), ec.message()));
+  };
+  auto ends_with = [](const std::string& name, const std::string& tail) {
+    return name.size() >= tail.size() && name.compare(name.size() - tail.size(), tail.size(), tail) == 0;
+  };
+  const fs::path d(dir);
+  for (const char* f : kFiles) {
+    remove(d / f);
+    remove(d / (std::string(f) + ".tmp"));
+  }
+  // The saved states (checkpoint-N.state) and the folders of frames and pictures.
+  auto sweep = [&](const fs::path& folder, auto&& written) {
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec)) return;
+    std::vector<fs::path> doomed;
+    for (const auto& e : fs::directory_iterator(folder, ec))
+      if (e.is_regular_file(ec) && written(e.path().filename().string())) doomed.push_back(e.path());
+    for (const auto& p : doomed) remove(p);
+  };
+  sweep(d, [&](const std::string& n) {
+    return n.rfind("checkpoint-", 0) == 0 && (ends_with(n, ".state") || ends_with(n, ".state.tmp"));
+  });
+  sweep(d / "frames", [&](const std::string& n) { return ends_with(n, ".vtp") || ends_with(n, ".vtp.tmp"); });
+  sweep(d / "plots", [&](const std::string& n) {
+    for (const char* ext : {".png", ".svg", ".gp", ".dat"})
+      if (ends_with(n, ext) || ends_with(n, std::string(ext) + ".tmp")) return true;
+    return false;
+  });
+  std::error_code ec;
+  if (fs::is_directory(d / "plots", ec) && fs::is_empty(d / "plots", ec)) fs::remove(d / "plots", ec);
+}
+
+namespace {
+
+/// True when process `pid` runs on this machine (or cannot be told apart from one that does).
+bool process_lives(long pid) {
+  if (pid <= 0) return false;
+  return ::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH;
+}
+
+/// The process id a lock file holds (0 when it holds none).
+long lock_owner(int fd) {
+  char buf[32] = {};
+  const ssize_t n = ::pread(fd, buf, sizeof buf - 1, 0);
+  if (n <= 0) return 0;
+  char* end = nullptr;
+  const long pid = std::strtol(buf, &end, 10);
+  return end != buf ? pid : 0;
+}
+
+}  // namespace
+
 FolderLock::FolderLock(const std::string& dir) {
-  const std::string path = (std::filesystem::path(dir) / ".rheodda.lock").string();
-  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw std::runtime_error(write_error(path, errno));
-  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-    char buf[32] = {};
-    const ssize_t n = ::pread(fd_, buf, sizeof buf - 1, 0);
+  path_ = (std::filesystem::path(dir) / ".rheodda.lock").string();
+  // A lock file is removed when its run ends (~FolderLock): a run that opened it just
+  // before may then hold a file no longer in the folder, so it checks after locking that
+  // the name still leads to the file it locked, and otherwise starts again.
+  for (int attempt = 0;; ++attempt) {
+    fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0) throw std::runtime_error(write_error(path_, errno));
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      const int error = errno;
+      if (error == EINTR) {  // a signal came: try again
+        ::close(fd_);
+        fd_ = -1;
+        continue;
+      }
+      const long owner = lock_owner(fd_);
+      // A folder whose file system has no flock (some network mounts): the process id in
+      // the file decides; one that no longer runs left a stale lock, taken over here.
+      const bool no_flock = error != EWOULDBLOCK;
+      if (!no_flock || process_lives(owner)) {
+        ::close(fd_);
+        fd_ = -1;
+        throw std::runtime_error(fmt::format(
+            "{} is in use by another rheodda run{}: wait for it to end, or give this run another folder (-o)", dir,
+            owner > 0 ? fmt::format(" (process {})", owner) : std::string()));
+      }
+    }
+    struct stat held {}, named {};
+    if (::fstat(fd_, &held) == 0 && ::stat(path_.c_str(), &named) == 0 && held.st_dev == named.st_dev &&
+        held.st_ino == named.st_ino)
+      break;
     ::close(fd_);
     fd_ = -1;
-    std::string owner = n > 0 ? std::string(buf, static_cast<std::size_t>(n)) : std::string();
-    while (!owner.empty() && (owner.back() == '\n' || owner.back() == ' ')) owner.pop_back();
-    throw std::runtime_error(fmt::format(
-        "{} is in use by another rheodda run{}: wait for it to end, or give this run another folder (-o)", dir,
-        owner.empty() ? "" : " (process " + owner + ")"));
+    if (attempt == 100) throw std::runtime_error(fmt::format("cannot lock {}: it keeps being replaced", path_));
   }
   const std::string pid = std::to_string(::getpid()) + "\n";
   if (::ftruncate(fd_, 0) == 0 && ::pwrite(fd_, pid.data(), pid.size(), 0) < 0) {
-    // The pid is for the message of a second run only.
+    // The process id is for the message of a second run and to tell a stale lock only.
   }
 }
 
 FolderLock::~FolderLock() {
-  if (fd_ >= 0) ::close(fd_);  // releases the flock
+  if (fd_ < 0) return;
+  // The run has ended (completed, stopped, failed): its lock file goes, the outputs stay.
+  // Only the file this run holds: while it is held no other run can have replaced it.
+  struct stat held {}, named {};
+  if (::fstat(fd_, &held) == 0 && ::stat(path_.c_str(), &named) == 0 && held.st_dev == named.st_dev &&
+      held.st_ino == named.st_ino)
+    ::unlink(path_.c_str());
+  ::close(fd_);  // releases the flock
 }
 
 void CsvAppender::create(const std::string& path) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <filesystem>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -57,6 +58,36 @@ std::string gnuplot_wrapped(const std::string& s, std::size_t width) {
   }
   flush(true);
   return out + "\"";
+}
+
+std::string CurveStyle::line() const { return fmt::format("lc rgb '{}' dt {}", colour, dash); }
+
+CurveStyle curve_style(std::size_t i) {
+  static const char* const kColours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                                         "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+  static const int kDashes[] = {1, 2, 4, 3};
+  static const int kPoints[] = {7, 5, 9, 13};
+  const std::size_t n = std::size(kColours), round = (i / n) % std::size(kDashes);
+  return {kColours[i % n], kDashes[round], kPoints[round]};
+}
+
+std::string history_column_unit(const std::string& column, const std::string& length, const std::string& force,
+                                const std::string& time) {
+  auto ends_with = [&](const std::string& tail) {
+    return column.size() > tail.size() && column.compare(column.size() - tail.size(), tail.size(), tail) == 0;
+  };
+  auto starts_with = [&](const std::string& head) { return column.rfind(head, 0) == 0; };
+  if (column == "time" || column == "dt") return time;
+  if (column == "step" || column == "cuts" || column == "iterations" || column == "stage" ||
+      column == "energy_residual_relative" || column == "inertia_share" || ends_with(".contacts"))
+    return "-";
+  if (ends_with(".u") || ends_with(".v") || ends_with(".displacement") || ends_with(".shear_displacement") ||
+      ends_with(".shear_displacement_magnitude"))
+    return length;
+  if (ends_with(".shear_force")) return fmt::format("{}/{} thickness", force, length);
+  if (starts_with("energy_") || starts_with("work_") || starts_with("dissipation_"))
+    return fmt::format("{}*{}/{} thickness", force, length, length);
+  return "";
 }
 
 namespace {

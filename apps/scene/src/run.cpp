@@ -38,11 +38,14 @@ void make_output_folder(const std::string& out) {
 
 /// A new run invalidates an earlier run's checkpoint before it touches any
 /// output: a later --resume must never continue files this run has emptied.
+/// Then the earlier run's outputs go, frames and pictures included (a shorter run
+/// would leave frames beyond its own, and `rheodda plot`'s pictures would show the
+/// earlier results beside the new ones); the user's own files stay.
 void forget_earlier_run(const std::string& out, const std::string& checkpoint_path) {
   std::error_code ec;
   if (fs::remove(checkpoint_path, ec)) sync_directory(out);
   if (ec) throw std::runtime_error(write_error(checkpoint_path, ec.value()));
-  for (const char* f : kStateFiles) fs::remove(fs::path(out) / f, ec);  // its states, named by nothing now
+  remove_run_outputs(out);
 }
 
 /// What the engine's step observer does after each accepted step: the totals,

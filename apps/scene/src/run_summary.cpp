@@ -198,19 +198,15 @@ void add_end_warnings(Run& run) {
   if (const auto& m = result.mechanism; m.static_analysis && m.steps > 0 &&
                                                  m.inertia_share > core::kMechanismRunShare)
     result.warnings.push_back(fmt::format(
-        "static analysis: parts of the model moved as a mechanism in {} steps (from t = {:g} to {:g} {}): "
-        "the inertia term of the static steps took {:.1f} % of the work of gravity and loads. A static "
-        "step starts at rest and holds a mechanism (or a part whose springs are soft on the step's scale) "
-        "by its inertia term alone, so how far and how fast it moves there depends on dt and "
-        "max_displacement_ratio: check the results with both halved (`rheodda check {} --refine` does it), or "
-        "run that phase as a dynamic analysis (docs/reference/engine.md, \"Mechanisms in static analysis\"){}",
+        "static analysis: parts of the model moved as a mechanism in {} steps (t = {:g} to {:g} {}), held only by "
+        "the steps' inertia ({:.1f} % of the work of gravity and loads): how far depends on dt and "
+        "max_displacement_ratio. Check with both halved (`rheodda check {} --refine`) or run that phase dynamically "
+        "(docs/reference/engine.md, \"Mechanisms in static analysis\"){}",
         m.steps, m.first_time, m.last_time, s.units.time, 100.0 * m.inertia_share,
         s.file.empty() ? std::string("SCENE") : s.file,
         // Settling under gravity applied at once: the usual case, with its remedy.
         m.first_step >= 0 && m.first_step < 10 && !s.analysis.settle
-            ? ". It began in the first steps: where that is the model settling as gravity comes on, a "
-              "settling stage (analysis.settle, docs/reference/engine.md \"Settling stage\") makes every run start "
-              "from the same settled state"
+            ? "; from the first steps: a settling stage (analysis.settle) starts every run settled"
             : ""));
 }
 

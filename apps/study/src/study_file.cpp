@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -271,9 +272,12 @@ void read_sweep(const std::string& file, const YAML::Node& sw, StudyDescription&
         if (n > 100000) fail(file, p["count"], at + ".count", "more than 100000 values");
         for (std::uint64_t k = 0; k < n; ++k) {
           const double f = static_cast<double>(k) / static_cast<double>(n - 1);
-          // Evenly spaced in the value, or in its logarithm; the ends exactly.
+          // Evenly spaced in the value, or in its logarithm; the ends exactly, and the values
+          // between to 12 significant digits: a log grid from 1e10 to 1.6e11 takes 8e10, not the
+          // 79999999999.99991 of exp(log) (issue 52), a linear one from 0.1 to 0.7 takes 0.3.
           double v = sp.log_scale ? std::exp(std::log(sp.from) + f * (std::log(sp.to) - std::log(sp.from)))
                                   : sp.from + f * (sp.to - sp.from);
+          v = std::strtod(fmt::format("{:.12g}", v).c_str(), nullptr);
           if (k == 0) v = sp.from;
           if (k + 1 == n) v = sp.to;
           sp.values.push_back(v);

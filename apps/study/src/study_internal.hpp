@@ -19,6 +19,10 @@ std::vector<std::string> split_csv_line(const std::string& line);
 /// Shortest text that reads back as the same double.
 std::string format_value(double v);
 
+/// study.csv's column of `output` at time `t`: "OUTPUT@T", T as %g (e.g. block.u@100,
+/// x@1e+06), or as format_value where %g would not read back as `t` (0.1234567, not 0.123457).
+std::string output_column(const std::string& output, double t);
+
 /// study.csv: one row per case, its parameters, outputs at the study's times, wall time, steps and message.
 void write_study_csv(const StudyDescription& study, const std::vector<CaseResult>& results,
                      const std::filesystem::path& path);

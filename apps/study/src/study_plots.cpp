@@ -21,6 +21,37 @@ using detail::read_text;
 using detail::split_csv_line;
 namespace {
 
+/// The unit labels of the cases' runs, from the first line of a case's history.csv
+/// ("# units: length=m force=N time=d stress=N/m^2"); empty where no case wrote one.
+struct RunUnits {
+  std::string length, force, time;
+  /// "NAME [UNIT]" for a history.csv column whose unit is known, else NAME.
+  std::string label(const std::string& column, const std::string& what = "") const {
+    const std::string unit = time.empty() ? "" : scene::history_column_unit(column, length, force, time);
+    return (what.empty() ? column : what) + (unit.empty() ? "" : " [" + unit + "]");
+  }
+};
+
+RunUnits run_units(const std::vector<CaseResult>& results, const fs::path& out_dir) {
+  RunUnits u;
+  for (const auto& r : results) {
+    std::ifstream h(out_dir / "cases" / r.name / "history.csv");
+    std::string first;
+    if (!std::getline(h, first) || first.rfind("# units:", 0) != 0) continue;
+    auto value = [&](const std::string& key) {
+      const auto at = first.find(" " + key + "=");
+      if (at == std::string::npos) return std::string();
+      const auto from = at + key.size() + 2;
+      return first.substr(from, first.find(' ', from) - from);
+    };
+    u.length = value("length");
+    u.force = value("force");
+    u.time = value("time");
+    break;
+  }
+  return u;
+}
+
 /// study.png: the `plot` output of every case against time.
 void plot_histories(const StudyDescription& study, const std::vector<CaseResult>& results, const fs::path& out_dir) {
   const fs::path dat = out_dir / "study_plot.dat";
@@ -40,31 +71,23 @@ void plot_histories(const StudyDescription& study, const std::vector<CaseResult>
     titles.push_back(r.status == "completed" ? r.name : r.name + " (" + r.status + ")");
   }
   d.close();
-  // Axis units from the first line of a case's history.csv ("# units: length=m force=N time=d ...").
-  std::string units, time_unit;
-  for (const auto& r : results) {
-    std::ifstream h(out_dir / "cases" / r.name / "history.csv");
-    std::string first;
-    if (!std::getline(h, first) || first.rfind("# units:", 0) != 0) continue;
-    units = first.substr(2);
-    const auto at = first.find("time=");
-    if (at != std::string::npos) time_unit = first.substr(at + 5, first.find(' ', at) - (at + 5));
-    break;
-  }
+  // Each axis with its unit in brackets, in the runs' own unit labels.
+  const RunUnits units = run_units(results, out_dir);
   const fs::path gp = out_dir / "study.gp";
   std::ofstream g(gp);
   g << "# Drawn by rheodda study: " << study.plot << " of every case against time.\n"
     << "set terminal pngcairo size 1000,650 noenhanced\n"
     << "set output '" << (out_dir / "study.png").string() << "'\n"
     << "set title '" << scene::gnuplot_text(study.title) << "'\n"
-    << "set xlabel 'time" << (time_unit.empty() ? "" : " [" + time_unit + "]") << "'\n"
-    << "set ylabel '" << study.plot << (units.empty() ? "" : " (" + units + ")") << "'\n"
+    << "set xlabel '" << scene::gnuplot_text(units.label("time")) << "'\n"
+    << "set ylabel '" << scene::gnuplot_text(units.label(study.plot)) << "'\n"
     << "set grid\n";
   // Many cases (a sweep): no key (the lines would hide the plot); the sweep pictures name them.
+  // Ten colours, then the same dashed (scene::curve_style): 40 cases before a look repeats.
   g << (titles.size() > 12 ? "set key off\n" : "set key outside right\n") << "plot ";
   for (std::size_t i = 0; i < titles.size(); ++i)
-    g << (i ? ", \\\n     " : "") << "'" << dat.string() << "' index " << i << " using 1:2 with lines lw 2 title '"
-      << scene::gnuplot_text(titles[i]) << "'";
+    g << (i ? ", \\\n     " : "") << "'" << dat.string() << "' index " << i << " using 1:2 with lines lw 2 "
+      << scene::curve_style(i).line() << " title '" << scene::gnuplot_text(titles[i]) << "'";
   g << "\n";
   g.close();
   scene::run_gnuplot(gp.string());
@@ -117,11 +140,13 @@ std::vector<std::string> plot_sweep(const StudyDescription& study, const std::ve
     return v[k];
   };
   const auto swept = [&](std::size_t c) { return study.cases[c].parameter_values.size() == ps.size(); };
+  const RunUnits units = run_units(results, out_dir);
   const std::string last_time = fmt::format("{:g}", study.times.back());
+  const std::string at_last = "at t = " + last_time + (units.time.empty() ? "" : " " + units.time);
   const std::size_t columns = grid ? 1 : ps.size();
   for (std::size_t o = 0; o < study.outputs.size(); ++o) {
     if (grid && ps.size() == 1) {
-      Panel pn{param_label(ps[0]), study.outputs[o], ps[0].log_scale, {}};
+      Panel pn{param_label(ps[0]), units.label(study.outputs[o]), ps[0].log_scale, {}};
       for (std::size_t t = 0; t < nt; ++t) {
         Curve cv{fmt::format("t = {:g}", study.times[t]), {}};
         for (std::size_t c = 0; c < results.size(); ++c)
@@ -131,7 +156,8 @@ std::vector<std::string> plot_sweep(const StudyDescription& study, const std::ve
       }
       panels.push_back(std::move(pn));
     } else if (grid) {
-      Panel pn{param_label(ps[0]), study.outputs[o] + " at t = " + last_time, ps[0].log_scale, {}};
+      Panel pn{param_label(ps[0]), units.label(study.outputs[o], study.outputs[o] + " " + at_last),
+               ps[0].log_scale, {}};
       std::map<std::vector<double>, std::size_t> curve_of;  // the other parameters' values -> curve
       for (std::size_t c = 0; c < results.size(); ++c) {
         if (!swept(c)) continue;
@@ -149,7 +175,8 @@ std::vector<std::string> plot_sweep(const StudyDescription& study, const std::ve
       panels.push_back(std::move(pn));
     } else {
       for (std::size_t i = 0; i < ps.size(); ++i) {
-        Panel pn{param_label(ps[i]), study.outputs[o] + " at t = " + last_time, ps[i].log_scale, {}};
+        Panel pn{param_label(ps[i]), units.label(study.outputs[o], study.outputs[o] + " " + at_last),
+                 ps[i].log_scale, {}};
         Curve cv{"", {}};
         for (std::size_t c = 0; c < results.size(); ++c)
           if (swept(c))
@@ -192,7 +219,9 @@ std::vector<std::string> plot_sweep(const StudyDescription& study, const std::ve
         << (pn.curves.size() > 10 ? "set key off\n" : "set key outside right\n") << "plot ";
       for (std::size_t i = 0; i < pn.curves.size(); ++i, ++block)
         g << (i ? ", \\\n     " : "") << "'" << dat.string() << "' index " << block << " using 1:2 with "
-          << (grid ? "linespoints lw 2 pt 7" : "points pt 7") << " title '" << scene::gnuplot_text(pn.curves[i].title) << "'";
+          << (grid ? fmt::format("linespoints lw 2 {} pt {}", scene::curve_style(i).line(), scene::curve_style(i).point)
+                   : std::string("points pt 7"))
+          << " title '" << scene::gnuplot_text(pn.curves[i].title) << "'";
       g << "\n";
     }
     g << "unset multiplot\n";
@@ -227,7 +256,7 @@ std::vector<std::string> plot_sweep(const StudyDescription& study, const std::ve
       << (ps[0].log_scale ? "set logscale x\n" : "") << (ps[1].log_scale ? "set logscale y\n" : "")
       << "set xlabel '" << scene::gnuplot_text(param_label(ps[0])) << "'\n"
       << "set ylabel '" << scene::gnuplot_text(param_label(ps[1])) << "'\n"
-      << "set cblabel '" << scene::gnuplot_text(study.plot + " at t = " + last_time) << "'\n"
+      << "set cblabel '" << scene::gnuplot_text(units.label(study.plot, study.plot + " " + at_last)) << "'\n"
       << "splot '" << mdat.string() << "' using 1:2:3 with pm3d notitle, '' using 1:2:3 with points pt 7 lc rgb 'black' notitle\n";
   }
   scene::run_gnuplot(mgp.string());
@@ -286,7 +315,7 @@ std::vector<std::string> plot_study_dir(const std::string& dir) {
   const std::size_t status = column("status");
   std::vector<std::size_t> cols;
   for (const auto& o : study.outputs)
-    for (double t : study.times) cols.push_back(column(fmt::format("{}@{:g}", o, t)));
+    for (double t : study.times) cols.push_back(column(detail::output_column(o, t)));
   while (std::getline(in, line)) {
     if (line.empty()) continue;
     // Only the message (last column) may be quoted: the fields before it split at commas.

@@ -1,6 +1,7 @@
 // A study's record: study.csv (the cases' values) and study.json (what redraws it) (docs/guide/studies.md).
 #include <fmt/format.h>
 
+#include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -25,12 +26,17 @@ std::string csv_quote(const std::string& s) {
 // Shortest text that reads back as the same double: study.csv holds the runs' values exactly.
 std::string format_value(double v) { return fmt::format("{}", v); }
 
+std::string output_column(const std::string& output, double t) {
+  const std::string g = fmt::format("{:g}", t);
+  return output + "@" + (std::strtod(g.c_str(), nullptr) == t ? g : format_value(t));
+}
+
 void write_study_csv(const StudyDescription& study, const std::vector<CaseResult>& results, const fs::path& path) {
   std::ofstream out(path, std::ios::binary);
   out << "case,status";
   for (const auto& p : study.parameters) out << "," << p.name << " [" << p.unit << "]";
   for (const auto& o : study.outputs)
-    for (double t : study.times) out << "," << csv_quote(fmt::format("{}@{:g}", o, t));
+    for (double t : study.times) out << "," << csv_quote(output_column(o, t));
   out << ",wall_seconds,steps,inertia_share,message\n";
   for (std::size_t c = 0; c < results.size(); ++c) {
     const auto& r = results[c];

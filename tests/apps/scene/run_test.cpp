@@ -234,6 +234,9 @@ BOOST_AUTO_TEST_CASE(a_static_block_that_slides_is_reported_as_a_mechanism_and_o
     for (const auto& w : r.warnings) {
       warned = warned || w.find("moved as a mechanism") != std::string::npos;
       settle_hint = settle_hint || w.find("analysis.settle") != std::string::npos;
+      // Short, and it says what to do (issue 52: warnings of 400-900 characters).
+      BOOST_TEST(w.size() - file.string().size() < 450u, w);
+      BOOST_TEST(w.find("Check with both halved (`rheodda check " + file.string() + " --refine`)") != std::string::npos, w);
     }
     if (phi == 20.0) {
       BOOST_TEST(slip > 1e-3);  // it slides

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <set>
 
+#include "rheodda/scene/plot.hpp"
 #include "rheodda/study/study.hpp"
 #include "study_support.hpp"
 
@@ -209,6 +210,61 @@ BOOST_AUTO_TEST_CASE(a_latin_hypercube_study_draws_a_sensitivity_scatter_and_no_
   const std::string gp = read_text((dir / "out" / "study_sweep.gp").string());
   BOOST_TEST(gp.find("set multiplot layout 1,2") != std::string::npos, gp);
   BOOST_TEST(gp.find("set logscale x\nset xlabel 'E [Pa]'") != std::string::npos, gp);
+}
+
+BOOST_AUTO_TEST_CASE(a_log_grid_takes_round_values_and_many_cases_are_told_apart_on_axes_with_units) {
+  // issue 52: study.csv held 79999999999.99991 for 8e10 (exp(log) of a log grid), the
+  // cases' colours repeated after 8, and the y axis read "(units: length=m force=N ...)".
+  const fs::path dir = fresh_dir("sweep-many");
+  const fs::path study = dir / "many.yaml";
+  std::ofstream(study) << head()
+                       << "sweep:\n"
+                          "  parameters:\n"
+                          "    - {name: phi, key: joint_sets.slope.friction_angle, unit: deg, values: [5, 15, 25]}\n"
+                          "    - {name: E, key: materials.rock.young_modulus, unit: Pa, range: [1.0e10, 1.6e11], "
+                          "count: 5, scale: log}\n";
+  const auto parsed = st::parse_study(read_text(study.string()), study.string());
+  BOOST_TEST((parsed.parameters[1].values == std::vector<double>{1e10, 2e10, 4e10, 8e10, 1.6e11}));
+  const auto r = run_rheodda("study " + study.string() + " -o " + (dir / "out").string() + " -j 2");
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.output);
+  const auto rows = read_study_csv((dir / "out" / "study.csv").string());
+  BOOST_TEST_REQUIRE(rows.size() == 15u);
+  std::set<std::string> es;
+  for (const auto& row : rows) es.insert(row.at("E [Pa]"));
+  BOOST_TEST((es == std::set<std::string>{"10000000000", "20000000000", "40000000000", "80000000000", "160000000000"}));
+  BOOST_TEST(read_text((dir / "out" / "cases" / "phi-5_E-8e10" / "scene.yaml").string()).find("young_modulus: 80000000000") !=
+             std::string::npos);
+  // study.png: each axis with its unit in brackets; 15 cases, 15 looks (colour and dash).
+  const std::string gp = read_text((dir / "out" / "study.gp").string());
+  BOOST_TEST(gp.find("set xlabel 'time [s]'\n") != std::string::npos, gp);
+  BOOST_TEST(gp.find("set ylabel 'centre.u [m]'\n") != std::string::npos, gp);
+  BOOST_TEST(gp.find("units:") == std::string::npos, gp);
+  std::set<std::string> looks;
+  std::size_t curves = 0;
+  for (std::size_t at = gp.find(" lc rgb '"); at != std::string::npos; at = gp.find(" lc rgb '", at + 1), ++curves)
+    looks.insert(gp.substr(at, gp.find(" title", at) - at));
+  BOOST_TEST(curves == 15u);
+  BOOST_TEST(looks.size() == 15u, gp);
+  // The sweep's panels likewise: the output at the last time with its unit.
+  const std::string sweep = read_text((dir / "out" / "study_sweep.gp").string());
+  BOOST_TEST(sweep.find("set ylabel 'centre.u at t = 0.05 s [m]'") != std::string::npos, sweep);
+  // Forty curves before a look repeats (gnuplot's own line types repeat after 8).
+  std::set<std::pair<std::string, int>> forty;
+  for (std::size_t i = 0; i < 40; ++i) forty.insert({rheodda::scene::curve_style(i).colour, rheodda::scene::curve_style(i).dash});
+  BOOST_TEST(forty.size() == 40u);
+}
+
+BOOST_AUTO_TEST_CASE(history_columns_carry_their_units_on_axis_labels) {
+  using rheodda::scene::history_column_unit;
+  BOOST_TEST(history_column_unit("time", "m", "N", "d") == "d");
+  BOOST_TEST(history_column_unit("block10_top.u", "m", "N", "d") == "m");
+  BOOST_TEST(history_column_unit("block10_top.displacement", "m", "N", "d") == "m");
+  BOOST_TEST(history_column_unit("base.shear_displacement_magnitude", "mm", "N", "h") == "mm");
+  BOOST_TEST(history_column_unit("base.shear_force", "m", "kN", "d") == "kN/m thickness");
+  BOOST_TEST(history_column_unit("work_gravity", "m", "N", "d") == "N*m/m thickness");
+  BOOST_TEST(history_column_unit("base.contacts", "m", "N", "d") == "-");
+  BOOST_TEST(history_column_unit("inertia_share", "m", "N", "d") == "-");
+  BOOST_TEST(history_column_unit("something_else", "m", "N", "d") == "");
 }
 
 BOOST_AUTO_TEST_SUITE_END()

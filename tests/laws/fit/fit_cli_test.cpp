@@ -5,6 +5,9 @@
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <vector>
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -142,6 +145,55 @@ BOOST_AUTO_TEST_CASE(plot_writes_an_svg_and_fails_clearly_without_gnuplot) {
   const Run none = run_rheodda(args, dir, "PATH=/nonexistent");
   BOOST_TEST(none.code == 1);
   BOOST_TEST(none.err.find("gnuplot") != std::string::npos, none.err);
+}
+
+BOOST_AUTO_TEST_CASE(the_plot_draws_names_as_written) {
+  // issue 52: the title turned the underscore of a file name into a subscript (gnuplot's
+  // enhanced text).
+  TempDir dir;
+  fs::copy_file(kExample, dir / "table1_row1.csv");
+  const Run r = run_rheodda("fit '" + (dir / "table1_row1.csv").string() + "' --law burgers --stress 0.232 --plot '" +
+                                (dir / "fit.svg").string() + "'",
+                            dir);
+  BOOST_TEST_REQUIRE(r.code == 0, r.err);
+  const std::string svg = slurp(dir / "fit.svg");
+  BOOST_TEST(svg.find("<text>table1_row1.csv: burgers fit</text>") != std::string::npos, svg.substr(0, 4000));
+  BOOST_TEST(svg.find("dy=") == std::string::npos);  // no sub- or superscript anywhere
+}
+
+BOOST_AUTO_TEST_CASE(the_report_prints_the_correlation_matrix_of_the_json_and_python) {
+  // issue 52: the CLI report omitted the correlations that --json and Python's FitResult give.
+  TempDir dir;
+  const Run r = run_rheodda("fit '" + kExample + "' --law burgers --stress 0.232 --json '" +
+                                (dir / "fit.json").string() + "'",
+                            dir);
+  BOOST_TEST_REQUIRE(r.code == 0, r.err);
+  const auto at = r.out.find("correlation of the estimates");
+  BOOST_TEST_REQUIRE(at != std::string::npos, r.out);
+  std::istringstream lines(r.out.substr(at));
+  std::string line;
+  std::getline(lines, line);  // the heading
+  std::getline(lines, line);  // the names
+  std::istringstream names(line);
+  std::vector<std::string> header{std::istream_iterator<std::string>(names), {}};
+  BOOST_TEST((header == std::vector<std::string>{"E1", "E2", "eta1", "eta2"}), line);
+  const auto json = nlohmann::json::parse(slurp(dir / "fit.json"));
+  const auto& corr = json["fits"][0]["correlation"];
+  for (std::size_t i = 0; i < 4; ++i) {
+    std::getline(lines, line);
+    std::istringstream row(line);
+    std::string name;
+    row >> name;
+    BOOST_TEST(name == header[i]);
+    for (std::size_t j = 0; j <= i; ++j) {
+      std::string cell;
+      row >> cell;
+      BOOST_TEST(std::abs(std::stod(cell) - corr[i][j].get<double>()) <= 5e-5, cell << " vs " << corr[i][j]);
+    }
+    std::string more;
+    BOOST_TEST(!(row >> more), line);  // the lower triangle only
+  }
+  BOOST_TEST(corr[1][0].get<double>() != 0.0);  // the example's estimates are correlated
 }
 
 BOOST_AUTO_TEST_CASE(bad_input_exits_2_naming_file_line_and_column) {

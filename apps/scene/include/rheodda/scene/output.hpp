@@ -62,10 +62,22 @@ std::string write_error(const std::string& path, int error_number);
 /// Reads a whole file; throws std::runtime_error.
 std::string read_file(const std::string& path);
 
+/// Removes from `dir` what an earlier run and `rheodda plot` wrote there: the files of
+/// docs/reference/outputs.md's table (history.csv, contacts.csv, bolts.csv, events.csv,
+/// the .pvd collections, summary.json, checkpoint.json and its state files, and a `.tmp`
+/// of any of them), the frames in frames/ (*.vtp) and the pictures in plots/ (*.png,
+/// *.svg and their *.gp scripts and *.dat data), and plots/ when that empties it. Nothing else: files of the user's own stay. A run that starts without
+/// --resume calls it, so a folder holds one run's outputs. Throws std::runtime_error
+/// naming a file that cannot be removed.
+void remove_run_outputs(const std::string& dir);
+
 /// Exclusive use of an output folder by one run: an advisory lock (flock) on
-/// DIR/.rheodda.lock holding the owner's process id, released when the object is
-/// destroyed or the process ends (also on kill -9). Throws std::runtime_error
-/// naming the folder and the process that holds it.
+/// DIR/.rheodda.lock holding the owner's process id. The object's destruction (the
+/// run's end, however it ends short of the process being killed) removes the file;
+/// the flock goes with the process too (also on kill -9), so a lock file a killed
+/// run left does not block the next one (nor, on a file system without flock, one
+/// whose process no longer runs). Throws std::runtime_error naming the folder and
+/// the process that holds it.
 class FolderLock {
  public:
   explicit FolderLock(const std::string& dir);
@@ -74,6 +86,7 @@ class FolderLock {
   FolderLock& operator=(const FolderLock&) = delete;
 
  private:
+  std::string path_;
   int fd_ = -1;
 };
 

@@ -25,6 +25,26 @@ std::string gnuplot_text(const std::string& s);
 /// picture's title: a study case's title lists every setting it changes.
 std::string gnuplot_wrapped(const std::string& s, std::size_t width);
 
+/// The look of curve `i` of a picture with many (a study's cases, the laws of a fit):
+/// ten colours that stay apart (Tableau 10), solid for the first ten curves, then the
+/// same colours dashed, dash-dotted and dotted, so that 40 curves are told apart before
+/// any repeats (gnuplot's own line types repeat after 8); `point` likewise for points.
+struct CurveStyle {
+  std::string colour;  ///< "#rrggbb"
+  int dash = 1;        ///< gnuplot dash type: 1 solid, 2 dashed, 4 dash-dotted, 3 dotted
+  int point = 7;       ///< gnuplot point type: 7 circle, 5 square, 9 triangle, 13 diamond (filled)
+  /// "lc rgb '#rrggbb' dt N" for a line.
+  std::string line() const;
+};
+CurveStyle curve_style(std::size_t i);
+
+/// The unit of a column of history.csv (docs/reference/outputs.md) as an axis label
+/// shows it in brackets, in the run's unit labels: "m" for a displacement, "N/m
+/// thickness" for a force (per unit thickness), "N*m/m thickness" for an energy, "d" for
+/// a time, "-" for a count or a ratio; "" for a column it does not know.
+std::string history_column_unit(const std::string& column, const std::string& length, const std::string& force,
+                                const std::string& time);
+
 struct PlotOptions {
   std::string out_dir;         ///< a run's output directory
   std::vector<double> times;   ///< draw the frames nearest these times [time]; empty: first, middle, last

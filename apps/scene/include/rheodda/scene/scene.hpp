@@ -117,6 +117,11 @@ struct Analysis {
   bool stick_keeps_force = false;      ///< a sliding contact that sticks keeps its friction force
                                        ///< (contact::ContactSettings::stick_keeps_force) [-];
                                        ///< the loader's default: true in a dynamic analysis
+  /// `accept_unresolved_impacts`: the scene's author has checked (e.g. with `rheodda check
+  /// --refine`) that dynamic steps above a tenth of the contacts' vibration period, where
+  /// a joint set's restitution does not act as given, do not change the answer: no
+  /// warning about it (scene_warnings) [-].
+  bool accept_unresolved_impacts = false;
   bool stick_keeps_force_given = false;  ///< the scene gave stick_keeps_force (else a dynamic settling
                                          ///< stage of a static analysis keeps the force, its static steps not)
   // The open-close iteration (contact::ContactSettings fields of the same names):
