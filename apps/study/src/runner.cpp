@@ -112,9 +112,13 @@ class StudyProgress {
         for (const auto& [i, since] : running_)
           work += std::max(0.0, mean - std::chrono::duration<double>(Clock::now() - since).count());
         const double slots = static_cast<double>(std::max<std::size_t>(1, std::min(at_once_, running_.size() + waiting)));
-        t += fmt::format(fmt::runtime(term ? "{}~{} left (mean case {}, {} at a time)"
-                              : "{}time left about {} (from the mean wall time {} of the {} cases finished, {} at a time)"),
-                         sep, scene::duration_text(work / slots), scene::duration_text(mean), finished_, at_once_);
+        const std::string left = scene::duration_text(work / slots), per_case = scene::duration_text(mean);
+        if (term)
+          t += fmt::format("{}~{} left (mean case {}, {} at a time)", sep, left, per_case, at_once_);
+        else
+          t += fmt::format("{}time left about {} (from the mean wall time {} of the {} finished, {} at a time)", sep,
+                           left, per_case, finished_ == 1 ? std::string("case") : fmt::format("{} cases", finished_),
+                           at_once_);
       }
     }
     display.show(t, how != nullptr);
