@@ -28,12 +28,16 @@ void RunProgress::follow(const Run& run, const core::StepReport* r) {
   const core::Engine& e = run.engine;
   const bool in = e.in_stage();
   const std::size_t ended = e.events().size();
-  if (in && r && r->collapse_stage) {  // the step opened a mechanism stage (Settings::collapse_dt)
+  if (in && !r) {  // at the start (of a resumed run, perhaps within a mechanism stage): the saved stage, once
+    const core::StageState stage = e.save().stage;
+    kind_ = stage.event.kind;
+    phase_start_ = stage.event.start_time;
+  } else if (in && r && r->collapse_stage) {  // the step opened a mechanism stage (Settings::collapse_dt)
     kind_ = core::StageKind::mechanism;
     phase_start_ = e.time() - r->dt;
-  } else if (in && (!in_dynamic_ || ended != events_)) {  // at the start, or opened by a scene's stage
+  } else if (in && (!in_dynamic_ || ended != events_)) {  // opened by a scene's stage (`settle: true`)
     kind_ = core::StageKind::settling;
-    phase_start_ = r ? e.time() - r->dt : e.time();
+    phase_start_ = e.time() - r->dt;
   }
   in_dynamic_ = in;
   events_ = ended;
