@@ -38,6 +38,7 @@ struct CheckArgs {
   double until = 0.0;
   double tolerance = 0.05;
   std::vector<std::string> hold;
+  bool quiet = false;  ///< --refine: no progress
 };
 
 void refine(const CheckArgs& args) {
@@ -57,7 +58,7 @@ void refine(const CheckArgs& args) {
   study::StudyOptions opt;
   opt.out_dir = out_dir;
   opt.jobs = args.jobs;
-  opt.progress = true;
+  opt.progress = !args.quiet;
   opt.stop = &g_check_stop;
   on_stop_signals(on_check_stop);
   fmt::print("\nmeasuring the step controls: {} levels, each with every step control{} halved (the last costs "
@@ -160,6 +161,7 @@ void add_check_command(CLI::App& app) {
       ->delimiter(',')
       ->type_name("KEY,...")
       ->needs(refine_flag);
+  add_quiet_flag(*check, args->quiet);
   check->callback([args] {
     require_readable(args->scene);
     const scene::SceneDescription s = scene::load_scene(args->scene);

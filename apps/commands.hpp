@@ -59,6 +59,12 @@ inline void require_readable(const std::string& path) {
   if (!in) throw std::invalid_argument("cannot open " + path + ": " + std::strerror(errno));
 }
 
+/// `-q,--quiet`: no progress on stderr (docs/reference/cli.md, "Progress").
+inline void add_quiet_flag(CLI::App& command, bool& quiet) {
+  command.add_flag("-q,--quiet", quiet,
+                   "Show no progress (by default on stderr: a line redrawn on a terminal, else a line every 10 s)");
+}
+
 /// `rheodda law list`, `rheodda law curve`.
 void add_law_commands(CLI::App& app);
 

@@ -19,6 +19,7 @@
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,7 @@
 #include "rheodda/fit/fit.hpp"
 #include "rheodda/laws/registry.hpp"
 #include "rheodda/scene/plot.hpp"
+#include "rheodda/scene/progress.hpp"
 
 namespace rheodda::apps {
 namespace {
@@ -48,6 +50,7 @@ struct FitArgs {
   std::vector<std::string> fix, initial, bounds, expr;
   std::string sigma_column;
   bool absolute_sigma = false;
+  bool quiet = false;
 };
 
 /// The user's unit names for the three dimensions of the laws' schemas.
@@ -530,8 +533,17 @@ void run_fit(const FitArgs& a) {
   std::vector<FitResult> fits;
   std::vector<std::string> skipped;
   if (all) {
+    scene::Progress display(a.quiet ? nullptr : stderr);  // docs/reference/cli.md, "Progress"
+    std::optional<scene::ProgressPhase> phase;
     fits = fit::fit_all(LawRegistry::builtin(), data,
-                        a.rank_by == "aic" ? fit::Criterion::aic : fit::Criterion::bic, skipped, opt);
+                        a.rank_by == "aic" ? fit::Criterion::aic : fit::Criterion::bic, skipped, opt,
+                        [&](const std::string& law, std::size_t k, std::size_t n) {
+                          std::string text = fmt::format("rheodda fit --law all: law {} of {} ({})", k + 1, n, law);
+                          if (phase) phase->set(std::move(text));
+                          else phase.emplace(display, std::move(text));
+                        });
+    if (phase) phase->set(fmt::format("rheodda fit --law all: {} laws", LawRegistry::builtin().laws().size()));
+    phase.reset();
     if (fits.empty()) {
       std::string why;
       for (const auto& s : skipped) why += "\n  " + s;
@@ -603,6 +615,7 @@ void add_fit_command(CLI::App& app) {
       ->type_name("FILE");
   cmd->add_option("--plot", a->plot, "Draw data, fit and residuals with gnuplot (.png or .svg)")
       ->type_name("FILE");
+  add_quiet_flag(*cmd, a->quiet);
   cmd->callback([a, rank] {
     if (rank->count() > 0 && a->law != "all")
       throw std::invalid_argument("--rank-by ranks the laws of --law all; it does nothing with one law");

@@ -22,6 +22,7 @@
 #include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -31,6 +32,7 @@
 #include "rheodda/forecast/forecast.hpp"
 #include "rheodda/scene/loader.hpp"
 #include "rheodda/scene/plot.hpp"
+#include "rheodda/scene/progress.hpp"
 #include "rheodda/study/study.hpp"
 #ifdef RHEODDA_WITH_MPI
 #include "mpi_study.hpp"
@@ -62,6 +64,7 @@ struct ForecastArgs {
   int jobs = 0;
   bool no_plot = false;
   bool resume = false;
+  bool quiet = false;
   std::string case_program;
 };
 
@@ -215,7 +218,7 @@ void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
   study::StudyOptions opt;
   opt.out_dir = out.string();
   opt.jobs = a.jobs;
-  opt.progress = true;
+  opt.progress = !a.quiet;
   opt.plot = !a.no_plot;
   opt.resume = a.resume;
   opt.stop = &g_forecast_stop;
@@ -233,6 +236,8 @@ void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
   stop_if_asked();
 
   // --- Bands: every history column (and POINT.displacement) at the first member's times (bands.hpp).
+  scene::Progress display(a.quiet ? nullptr : stderr);  // docs/reference/cli.md, "Progress"
+  std::optional<scene::ProgressPhase> phase(std::in_place, display, "rheodda forecast: reading the members' histories");
   std::vector<fc::History> members;
   std::vector<std::string> failed;
   for (const auto& r : results) {
@@ -254,7 +259,9 @@ void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
   std::vector<std::string> band_columns;
   for (const auto& c : first.columns)
     if (!bookkeeping(c)) band_columns.push_back(c);
+  phase.emplace(display, "rheodda forecast: writing bands.csv");
   fc::write_bands((out / "bands.csv").string(), members, band_columns, a.percentiles);
+  phase.reset();
 
   // --- The probability that the column exceeds the threshold by time `by` (its largest value up to then).
   nlohmann::json exceed = nullptr;
@@ -288,6 +295,7 @@ void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
 
   // --- The fan chart of the column: the outer band, the inner ones, the median (fan_chart.cpp).
   if (!a.no_plot) {
+    const scene::ProgressPhase drawing(display, "rheodda forecast: drawing fan.png");
     try {
       fc::draw_fan_chart({.out_dir = out.string(), .band_columns = band_columns, .percentiles = a.percentiles,
                           .column = column, .units_line = !first.units_line.empty(),
@@ -336,6 +344,7 @@ void add_forecast_command(CLI::App& app) {
   cmd->add_flag("--no-plot", a->no_plot, "Draw neither fan.png nor the study pictures");
   cmd->add_flag("--resume", a->resume, "Continue a stopped forecast in OUTDIR (same arguments): completed members are kept");
   cmd->add_option("--case-program", a->case_program, "Program run per member (as for rheodda study)")->type_name("PROGRAM");
+  add_quiet_flag(*cmd, a->quiet);
   cmd->callback([a] {
     on_stop_signals(on_forecast_stop);
 #ifdef RHEODDA_WITH_MPI

@@ -9,12 +9,14 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include "commands.hpp"
 #include "rheodda/scene/loader.hpp"
 #include "rheodda/scene/output.hpp"
 #include "rheodda/scene/plot.hpp"
+#include "rheodda/scene/progress.hpp"
 
 namespace rheodda::apps {
 
@@ -24,6 +26,7 @@ struct GenerateOptions {
   std::string scene;
   std::string out;
   bool plot = false;
+  bool quiet = false;
 };
 
 /// The scene text without `rock_mass:` and with the generated blocks under `blocks:`,
@@ -79,22 +82,29 @@ void add_generate_command(CLI::App& app) {
   g->add_option("SCENE", o->scene, "Scene file with a rock_mass: section")->required();
   g->add_option("-o,--output", o->out, "Explicit scene to write (YAML)")->required();
   g->add_flag("--plot", o->plot, "Also draw the blocks, edges coloured by joint set, into OUTPUT-blocks.png (gnuplot)");
+  add_quiet_flag(*g, o->quiet);
   g->callback([o] {
     require_readable(o->scene);
+    scene::Progress display(o->quiet ? nullptr : stderr);  // docs/reference/cli.md, "Progress"
+    std::optional<scene::ProgressPhase> phase(std::in_place, display,
+                                              fmt::format("rheodda generate: cutting the rock mass of {}", o->scene));
     const scene::SceneDescription s = scene::load_scene(o->scene);
     if (!s.rock_mass)
       throw std::invalid_argument(fmt::format("{} has no rock_mass: section; nothing to generate", o->scene));
+    phase.emplace(display, fmt::format("rheodda generate: writing {} ({} blocks)", o->out, s.blocks.size()));
     // The blocks were checked with the rock mass (as explicit blocks are); the text
     // reads back to them bit for bit (explicit_scene).
     const std::string text = explicit_scene(s, scene::read_scene_text(o->scene));
     const std::filesystem::path out(o->out);
     if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
     scene::write_file_atomic(o->out, text);
+    phase.reset();
     fmt::print("wrote {}: {} blocks ({} generated from rock_mass '{}')\n", o->out, s.blocks.size(),
                s.rock_mass->block_count, s.rock_mass->name);
     if (o->plot) {
       const std::string picture = (out.parent_path() / (out.stem().string() + "-blocks.png")).string();
       try {
+        const scene::ProgressPhase drawing(display, fmt::format("rheodda generate: drawing {}", picture));
         scene::plot_scene(s, picture, "png");
       } catch (const std::runtime_error& e) {
         fmt::print(stderr, "rheodda: error: {}\n", e.what());

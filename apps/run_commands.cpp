@@ -4,7 +4,6 @@
 //   rheodda plot out/shear-creep
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-#include <unistd.h>
 
 #include <csignal>
 #include <filesystem>
@@ -31,6 +30,7 @@ struct RunArgs {
   std::string scene;
   std::string out;
   bool resume = false;
+  bool quiet = false;  ///< no progress (docs/reference/cli.md, "Progress")
   int threads = 0;  ///< OpenMP threads of the explicit step's cycles; 0: OMP_NUM_THREADS or every core
 };
 
@@ -45,7 +45,7 @@ void run_command(const RunArgs& args) {
                     ? (std::filesystem::path("out") / std::filesystem::path(args.scene).stem()).string()
                     : args.out;
   opt.resume = args.resume;
-  opt.progress = ::isatty(STDERR_FILENO) != 0;
+  opt.progress = !args.quiet;  // a redrawn line on a terminal, plain lines in a log
   opt.stop = &g_stop;
   // Stop between two steps on Ctrl-C or kill: files stay consistent, the run can be resumed.
   on_stop_signals(on_stop_signal);
@@ -105,6 +105,7 @@ void add_scene_commands(CLI::App& app) {
   run->add_option("SCENE", args->scene, "Scene file (YAML, docs/reference/scene-format.md)")->required();
   run->add_option("-o,--out", args->out, "Output directory (default out/<scene name>)")->type_name("OUTDIR");
   run->add_flag("--resume", args->resume, "Continue an interrupted run from OUTDIR/checkpoint.json");
+  add_quiet_flag(*run, args->quiet);
   run->add_option("--threads", args->threads,
                   "Threads of the explicit step's cycles (docs/reference/explicit-step.md); default "
                   "OMP_NUM_THREADS or every core. The results are the same whatever the number")

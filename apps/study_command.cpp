@@ -34,6 +34,7 @@ struct StudyArgs {
   int jobs = 0;
   bool no_plot = false;
   bool resume = false;
+  bool quiet = false;
   std::string case_program;
 };
 
@@ -72,7 +73,7 @@ study::StudyOptions options_of(const StudyArgs& args) {
   study::StudyOptions opt;
   opt.out_dir = args.out.empty() ? "out/" + std::filesystem::path(args.file).stem().string() : args.out;
   opt.jobs = args.jobs;
-  opt.progress = true;
+  opt.progress = !args.quiet;
   opt.plot = !args.no_plot;
   opt.resume = args.resume;
   opt.stop = &g_study_stop;
@@ -136,6 +137,7 @@ void add_study_command(CLI::App& app) {
       ->type_name("PROGRAM");
   st->add_flag("--resume", args->resume,
                "Continue a stopped study in OUTDIR: completed cases are kept, interrupted ones resumed");
+  add_quiet_flag(*st, args->quiet);
   st->callback([args] { study_command(*args); });
 
   // `rheodda plot OUTDIR` of a study's folder (study.json) draws the study's pictures

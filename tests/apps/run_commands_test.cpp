@@ -3,6 +3,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include "rheodda/scene/plot.hpp"
+#include "rheodda/scene/progress.hpp"
 #include "test_support.hpp"
 
 using namespace rheodda::test;
@@ -45,15 +46,19 @@ BOOST_AUTO_TEST_CASE(bad_scene_exits_2_with_file_line_column_and_writes_nothing)
   BOOST_TEST(run_rheodda("check " + (dir / "missing.yaml").string()).exit_code == 2);
 }
 
-BOOST_AUTO_TEST_CASE(run_is_quiet_off_a_terminal_and_plot_draws_block_pictures_and_history_curves) {
+BOOST_AUTO_TEST_CASE(run_prints_plain_lines_off_a_terminal_and_plot_draws_block_pictures_and_history_curves) {
   const fs::path dir = fresh_dir("plot");
   const fs::path scene = dir / "short.yaml";
   std::ofstream(scene) << with("  duration: 1 ", "  duration: 0.1 ",
                                read_text(source_path("examples/sliding-block.yaml")));
   const auto r = run_rheodda("run " + scene.string() + " -o " + (dir / "out").string());
   BOOST_TEST_REQUIRE(r.exit_code == 0, r.output);
-  // Not a terminal: no progress display, only the summary at the end.
+  // Not a terminal: no redrawn line, a plain line at the start and at the end (a run shorter than
+  // 10 s: none between; docs/reference/cli.md, "Progress"), and the summary.
   BOOST_TEST(r.output.find('\r') == std::string::npos);
+  BOOST_TEST(r.output.find("rheodda run: start, dynamic, t = 0 of 0.1 s (0.0 %), step 0") != std::string::npos, r.output);
+  BOOST_TEST(r.output.find("rheodda run: completed, dynamic, t = 0.1 of 0.1 s (100.0 %), step 100") != std::string::npos,
+             r.output);
   BOOST_TEST(r.output.find("completed at t = 0.1 of 0.1 s: 100 steps") != std::string::npos, r.output);
   const auto p = run_rheodda("plot " + (dir / "out").string() + " --times 0,0.1");
   BOOST_TEST_REQUIRE(p.exit_code == 0, p.output);
@@ -62,6 +67,28 @@ BOOST_AUTO_TEST_CASE(run_is_quiet_off_a_terminal_and_plot_draws_block_pictures_a
     BOOST_TEST(png.substr(0, 4) == "\x89PNG", f);
   }
   BOOST_TEST(run_rheodda("plot " + (dir / "nothing").string()).exit_code == 2);
+}
+
+BOOST_AUTO_TEST_CASE(the_time_left_is_that_of_the_recent_rate_and_reads_as_minutes_and_hours) {
+  using rheodda::scene::RateEstimate;
+  RateEstimate r(60.0);
+  BOOST_TEST(!r.seconds_left(0.0, 100.0).has_value());  // nothing measured yet
+  r.add(0.0, 0.0);
+  r.add(1.0, 1.0);
+  BOOST_TEST(!r.seconds_left(1.0, 100.0).has_value());  // less than 2 s of it
+  // 1 unit a second for 100 s, then 4 a second: the window (the last minute) sees mostly the new rate.
+  for (int k = 2; k <= 100; ++k) r.add(k, k);
+  BOOST_TEST(*r.seconds_left(100.0, 160.0) == 60.0, boost::test_tools::tolerance(1e-12));
+  for (int k = 1; k <= 60; ++k) r.add(100.0 + k, 100.0 + 4.0 * k);
+  BOOST_TEST(r.span() <= 61.0);
+  BOOST_TEST(*r.seconds_left(340.0, 740.0) == 100.0, boost::test_tools::tolerance(0.02));
+  r.add(160.2, 1000.0);  // within half a second of the last sample: not kept
+  BOOST_TEST(*r.seconds_left(340.0, 740.0) == 100.0, boost::test_tools::tolerance(0.02));
+  r.reset();  // a new stage
+  BOOST_TEST(!r.seconds_left(340.0, 740.0).has_value());
+  BOOST_TEST(rheodda::scene::duration_text(42.4) == "42 s");
+  BOOST_TEST(rheodda::scene::duration_text(190) == "3 min 10 s");
+  BOOST_TEST(rheodda::scene::duration_text(2 * 3600 + 5 * 60 + 10) == "2 h 05 min");
 }
 
 BOOST_AUTO_TEST_CASE(a_long_picture_title_is_broken_into_lines_that_fit_and_keeps_every_word) {

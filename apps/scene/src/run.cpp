@@ -71,16 +71,7 @@ void record_step(Run& run, const core::Engine& e, const core::StepReport& r) {
   run.history.append(row);
   run.recorded_step = e.step_count();
   check_guards(run, e);
-  if (opt.progress) {
-    const auto now = Clock::now();
-    if (now - run.last_progress > std::chrono::milliseconds(200)) {
-      run.last_progress = now;
-      std::fprintf(opt.progress_stream, "\r  t = %-12.6g of %g %s  step %-8d dt %-10.4g cuts %-3d %5.1f%%  ",
-                   e.time(), run.a.duration, s.units.time.c_str(), e.step_count(), r.dt, r.cuts,
-                   100.0 * e.time() / run.a.duration);
-      std::fflush(opt.progress_stream);
-    }
-  }
+  run.progress.step(run, r);
   if ((opt.stop && *opt.stop) || (opt.stop_after_step >= 0 && e.step_count() >= opt.stop_after_step))
     throw StopAfterStep{};
 }
@@ -134,6 +125,7 @@ Run::Run(const SceneDescription& scene, const RunOptions& options, RunResult& ru
       scene_hash(fmt::format("{:016x}", fnv1a(scene_text.data(), scene_text.size()))),
       checkpoint_path((fs::path(options.out_dir) / "checkpoint.json").string()),
       wall_start(start),
+      progress(options.progress ? options.progress_stream : nullptr),
       run_totals(scene.joint_sets.size(), scene.analysis.type == AnalysisType::static_analysis),
       recorded_step(run_engine.step_count()) {
   for (int b = 0; b < engine.block_count(); ++b) {
@@ -184,12 +176,14 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     resume_run(run);
   else
     create_csv_files(run);
+  run.progress.start(run);
   try {
     if (s.stages.empty())
       run_to_end(run);
     else
       run_staged_to_end(run);
   } catch (const StopAfterStep&) {
+    run.progress.end(run, "interrupted");
     write_checkpoint(run);
     write_summary(run, "interrupted", "");
     result.status = RunStatus::interrupted;
@@ -209,7 +203,7 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
   } catch (const std::exception& e) {
     fail(run, e);
   }
-  if (opt.progress) std::fprintf(opt.progress_stream, "\n");
+  run.progress.end(run, "completed");
   write_checkpoint(run);
   collect_totals(run);
   add_end_warnings(run);

@@ -4,7 +4,8 @@
 // memory check, non-finite values, max_travel_ratio and max_output_size),
 // run_writer.cpp (history.csv rows, contacts.csv and the VTK frames),
 // run_checkpoint.cpp (checkpoint.json and --resume), run_summary.cpp
-// (summary.json, RunResult's totals, the end-of-run warnings).
+// (summary.json, RunResult's totals, the end-of-run warnings), run_progress.cpp
+// (the progress display).
 #pragma once
 
 #include "rheodda/scene/describe.hpp"
@@ -22,6 +23,7 @@
 #include "rheodda/core/engine.hpp"
 #include "rheodda/scene/output.hpp"
 #include "rheodda/scene/run.hpp"
+#include "run_progress.hpp"
 #include "run_stages.hpp"
 #include "run_totals.hpp"
 
@@ -79,7 +81,7 @@ struct Run {
   /// Steps run again without writing (a resume writing a lost frame again), up to the checkpoint's.
   enum class Mode { replay, record } mode = Mode::record;
   int replay_target = 0;
-  Clock::time_point last_progress{};
+  RunProgress progress;  ///< the progress display (run_progress.cpp)
   RunTotals run_totals;
   int recorded_step;     ///< the last step whose outputs are written [-]
   StateFile state_file;  ///< the state file the last checkpoint names

@@ -4,13 +4,16 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
 
+#include "rheodda/scene/progress.hpp"
 #include "study_internal.hpp"
 
 namespace rheodda::study {
@@ -68,6 +71,67 @@ void collect(const StudyDescription& study, const fs::path& dir, CaseResult& r) 
     }
   }
 }
+
+/// The progress of a study (docs/reference/cli.md, "Progress"): the cases done,
+/// running and waiting, and the time left from the mean wall time of the cases
+/// finished in this session (the cases' own progress is in their log.txt).
+class StudyProgress {
+ public:
+  using Clock = std::chrono::steady_clock;
+  StudyProgress(bool on, std::size_t cases, std::size_t at_once)
+      : display(on ? stderr : nullptr), cases_(cases), at_once_(at_once) {}
+  void started(std::size_t i) { running_[i] = Clock::now(); }
+  /// A case has ended: its line (when it ran in this session) and the counts.
+  void ended(std::size_t i, const CaseResult& r, bool ran) {
+    ++done_;
+    failed_ += r.status != "completed";
+    if (!ran) return;
+    running_.erase(i);
+    ++finished_;
+    finished_wall_ += r.wall_seconds;
+    display.note(fmt::format("[{}/{}] {}: {} ({:.1f} s, {} steps){}", done_, cases_, r.name, r.status,
+                             r.wall_seconds, r.steps, r.message.empty() ? "" : ": " + r.message));
+  }
+  void update(std::size_t waiting, const char* how = nullptr) {
+    if (how == nullptr && !display.due()) return;
+    const bool term = display.terminal();
+    const std::string sep = term ? "  " : ", ";
+    std::string t = term ? "" : "rheodda study: ";
+    if (how) t += std::string(how) + sep;
+    t += fmt::format("{} of {} cases done", done_, cases_);
+    if (failed_ > 0) t += fmt::format(" ({} failed)", failed_);
+    t += fmt::format("{}{} running{}{} waiting{}wall {}", sep, running_.size(), sep, waiting, sep,
+                     scene::duration_text(display.elapsed()));
+    if (how == nullptr && done_ < cases_) {
+      if (finished_ == 0) {
+        t += sep + (term ? std::string("time left: after a case") : std::string("time left: known once a case has finished"));
+      } else {
+        // What is left of the running cases and the waiting ones at the mean case's wall time, `at_once` at a time.
+        const double mean = finished_wall_ / static_cast<double>(finished_);
+        double work = mean * static_cast<double>(waiting);
+        for (const auto& [i, since] : running_)
+          work += std::max(0.0, mean - std::chrono::duration<double>(Clock::now() - since).count());
+        const double slots = static_cast<double>(std::max<std::size_t>(1, std::min(at_once_, running_.size() + waiting)));
+        const std::string left = scene::duration_text(work / slots), per_case = scene::duration_text(mean);
+        if (term)
+          t += fmt::format("{}~{} left (mean case {}, {} at a time)", sep, left, per_case, at_once_);
+        else
+          t += fmt::format("{}time left about {} (from the mean wall time {} of the {} finished, {} at a time)", sep,
+                           left, per_case, finished_ == 1 ? std::string("case") : fmt::format("{} cases", finished_),
+                           at_once_);
+      }
+    }
+    display.show(t, how != nullptr);
+    if (how && std::string(how) != "start") display.finish();
+  }
+  scene::Progress display;
+
+ private:
+  std::size_t cases_, at_once_;
+  std::size_t done_ = 0, failed_ = 0, finished_ = 0;
+  double finished_wall_ = 0.0;  ///< wall time of the cases finished in this session [s]
+  std::map<std::size_t, Clock::time_point> running_;
+};
 
 }  // namespace
 
@@ -131,7 +195,14 @@ std::vector<CaseResult> run_study(const StudyDescription& study, const StudyOpti
 
   std::size_t next = 0, done = 0;
   bool stopping = false;
+  StudyProgress progress(options.progress, results.size(), exec->capacity());
+  if (progress.display.on())
+    progress.display.show(fmt::format("{}start, {} cases, {} at a time (each case's progress in its log.txt)",
+                                      progress.display.terminal() ? "" : "rheodda study: ", results.size(),
+                                      exec->capacity()),
+                          true);
   while (done < results.size()) {
+    progress.update(results.size() - next);
     if (stop_requested() && !stopping) {
       // Stop the running cases (each stops after its step, keeping a checkpoint);
       // start no more.
@@ -149,17 +220,20 @@ std::vector<CaseResult> run_study(const StudyDescription& study, const StudyOpti
         } catch (const std::exception&) {
         }
         ++done;
+        progress.ended(next, results[next], false);
         ++next;
         continue;
       }
       try {
         exec->start({next, dir.string(), todo[next] == Todo::resume});
+        progress.started(next);
       } catch (const std::exception& e) {
         results[next].status = "failed";
         results[next].exit_code = -1;
         results[next].message = e.what();
         results[next].values.assign(study.outputs.size() * study.times.size(), std::nullopt);
         ++done;
+        progress.ended(next, results[next], false);
       }
       ++next;
     }
@@ -178,15 +252,17 @@ std::vector<CaseResult> run_study(const StudyDescription& study, const StudyOpti
       res.message = fmt::format("killed by signal {} ({}){}", o->signal, strsignal(o->signal), res.message.substr(killed.size()));
     if (!o->error.empty()) res.message = o->error;
     ++done;
-    if (options.progress)
-      fmt::print(stderr, "[{}/{}] {}: {} ({:.1f} s, {} steps){}\n", done, results.size(), res.name, res.status,
-                 res.wall_seconds, res.steps, res.message.empty() ? "" : ": " + res.message);
+    progress.ended(o->index, res, true);
   }
+  progress.update(results.size() - next, stopping ? "stopped" : "end");
   not_started(next);
   write_study_csv(study, results, out_dir / "study.csv");
   write_study_json(study, out_dir / "study.json");
   if (stopping) return results;
-  if (options.plot) (void)plot_study_dir(out_dir.string());
+  if (options.plot) {
+    const scene::ProgressPhase phase(progress.display, "rheodda study: drawing study.png");
+    (void)plot_study_dir(out_dir.string());
+  }
   return results;
 }
 

@@ -421,9 +421,12 @@ FitResult fit_law(const laws::LawInfo& info, const CreepData& data, const FitOpt
 
 std::vector<FitResult> fit_all(const laws::LawRegistry& registry, const CreepData& data,
                                Criterion criterion, std::vector<std::string>& skipped,
-                               const FitOptions& options) {
+                               const FitOptions& options,
+                               const std::function<void(const std::string&, std::size_t, std::size_t)>& on_law) {
   std::vector<FitResult> out;
+  std::size_t index = 0;
   for (const auto& info : registry.laws()) {
+    if (on_law) on_law(info.name, index++, registry.laws().size());
     try {
       out.push_back(fit_law(info, data, options));
     } catch (const FitError& e) {

@@ -28,7 +28,9 @@ namespace rheodda::scene {
 struct RunOptions {
   std::string out_dir;   ///< created if missing
   bool resume = false;   ///< continue from out_dir/checkpoint.json
-  bool progress = false; ///< draw a one-line progress display on `progress_stream`
+  /// Show the progress on `progress_stream` (progress.hpp; docs/reference/cli.md, "Progress"):
+  /// a line redrawn in place on a terminal, else a plain line at the start, every 10 s and at the end.
+  bool progress = false;
   std::FILE* progress_stream = stderr;
   /// When non-null and set non-zero (e.g. by a SIGINT handler), the run stops after
   /// the current step, leaving every file consistent and a checkpoint to resume from.

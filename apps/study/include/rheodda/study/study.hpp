@@ -159,7 +159,8 @@ struct StudyOptions {
   std::string out_dir;         ///< created if missing; cases go to out_dir/cases/NAME/
   int jobs = 0;                ///< cases run at once; 0: the machine's hardware threads
   std::string rheodda_binary;  ///< the program run per case (`rheodda run`); empty: this process's executable
-  bool progress = false;       ///< one line on stderr per finished case
+  bool progress = false;       ///< a line on stderr per finished case, and the study's state between them
+                               ///< (docs/reference/cli.md, "Progress")
   bool plot = true;            ///< draw study.png with gnuplot
   /// When non-null and set non-zero (e.g. by a SIGINT/SIGTERM handler): the running
   /// cases are stopped (SIGTERM: each stops after its step and keeps a checkpoint),

@@ -19,6 +19,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <map>
 #include <optional>
@@ -193,9 +194,12 @@ enum class Criterion { aic, bic };
 
 /// Fits every law of the registry and returns the results sorted best first by
 /// the criterion. Laws that cannot be fitted are left out, their reasons
-/// appended to `skipped` ("law: reason").
+/// appended to `skipped` ("law: reason"). `on_law` (when set) is told of each
+/// law before it is fitted: its name, index and the number of laws (a progress display).
 std::vector<FitResult> fit_all(const laws::LawRegistry& registry, const CreepData& data,
                                Criterion criterion, std::vector<std::string>& skipped,
-                               const FitOptions& options = {});
+                               const FitOptions& options = {},
+                               const std::function<void(const std::string& law, std::size_t index,
+                                                        std::size_t count)>& on_law = {});
 
 }  // namespace rheodda::fit
