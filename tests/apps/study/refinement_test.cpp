@@ -119,6 +119,27 @@ BOOST_AUTO_TEST_CASE(the_explicit_steps_cycle_is_refined_with_the_other_step_con
   BOOST_TEST(st::prepare_cases(r.study).size() == 3u);
 }
 
+BOOST_AUTO_TEST_CASE(density_scaled_stages_refine_with_twice_the_cycles) {
+  // docs/reference/explicit-step.md, "Density scaling": halving the stages' dt and
+  // explicit_safety at a fixed stage_cycles would keep their cycle and scale more mass; the
+  // refinement doubles stage_cycles instead, level by level.
+  const fs::path dir = fresh_dir("refine-density");
+  std::string t = read_text(source_path("bench/scenes/jointed-slope-cohesionless.yaml"));
+  t = with("  type: static\n", "  type: static\n  integrator: explicit\n  stage_cycles: 50\n", t);
+  const fs::path scene = dir / "slope-scaled.yaml";
+  std::ofstream(scene) << t;
+  st::RefinementOptions o;
+  o.levels = 3;
+  const auto r = st::refinement_study(scene.string(), (dir / "r.yaml").string(), o);
+  BOOST_TEST_REQUIRE(r.study.cases.size() == 3u);
+  BOOST_TEST_REQUIRE(find(r.study.cases[2], "analysis.stage_cycles") != nullptr);
+  BOOST_TEST(find(r.study.cases[2], "analysis.stage_cycles")->value_yaml == "200");
+  BOOST_TEST(std::stod(find(r.study.cases[2], "analysis.explicit_safety")->value_yaml) == 0.2);
+  BOOST_TEST(r.level_controls[1].find("stage_cycles 100") != std::string::npos, r.level_controls[1]);
+  std::ofstream(dir / "r.yaml") << r.study_text;
+  BOOST_TEST(st::load_study((dir / "r.yaml").string()).cases.size() == 3u);
+}
+
 BOOST_AUTO_TEST_CASE(held_step_controls_keep_the_scene_value_and_the_others_are_halved) {
   const fs::path dir = fresh_dir("refine-hold");
   const std::string scene = source_path("examples/goodman-toppling-creep.yaml");
