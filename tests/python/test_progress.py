@@ -119,7 +119,9 @@ def test_study_fit_and_generate_show_progress_off_a_terminal(root, tmp_path, rhe
                 "--stress", "0.232", "--units", "MPa, mm, h"], period=0)
     assert fit.returncode == 0, fit.stderr
     lines = [l for l in fit.stderr.splitlines() if l.startswith("rheodda fit --law all: ")]
-    assert lines and re.search(r"law 1 of [0-9]+ \(", lines[0]), fit.stderr
+    # The phase's line is drawn by a timer thread: which laws it catches depends on how fast each
+    # fit is (a law fitted within the thread's first wake is never shown), not which come first.
+    assert lines and re.search(r"law [0-9]+ of [0-9]+ \(", lines[0]), fit.stderr
     assert re.search(r"rheodda fit --law all: [0-9]+ laws: done in [0-9]", lines[-1]), lines
     quiet = _run([rheodda_binary, "fit", str(root / "examples/creep-data/table1-row1.csv"), "--law", "all",
                   "--stress", "0.232", "--units", "MPa, mm, h", "-q"], period=0)
