@@ -157,6 +157,21 @@ BOOST_AUTO_TEST_CASE(the_same_bits_whatever_the_number_of_threads) {
   }
 }
 
+/// A static analysis whose dynamic settling stage (1 ms steps, at most `until` long, ending at
+/// rest) is taken in explicit cycles; the blocks are the caller's.
+core::Model explicit_settling_model(double until) {
+  core::Model m;
+  m.settings.dt = 1e-2;
+  m.settings.dynamic_ratio = 0.0;
+  m.settings.settle_until = until;
+  m.settings.settle_dt = 1e-3;
+  m.settings.settle_g2 = 1e-3;
+  m.settings.settle_dynamic = true;
+  m.settings.settle_rest_tolerance = 1e-6;
+  m.settings.integrator = core::Integrator::explicit_step;
+  return m;
+}
+
 BOOST_AUTO_TEST_CASE(a_settling_stage_taken_explicitly_ends_at_rest_where_the_rigid_plastic_impact_does) {
   // A static analysis whose dynamic settling stage (ends at rest, docs/reference/engine.md,
   // "Dynamic stages") drops a block 1 mm (normal to the slope) onto a 20 deg slope with
@@ -174,15 +189,7 @@ BOOST_AUTO_TEST_CASE(a_settling_stage_taken_explicitly_ends_at_rest_where_the_ri
     bool at_rest = false;
   };
   auto run = [&](double gap, double local_damping) {
-    core::Model m;
-    m.settings.dt = 1e-2;
-    m.settings.dynamic_ratio = 0.0;
-    m.settings.settle_until = 2.0;
-    m.settings.settle_dt = 1e-3;
-    m.settings.settle_g2 = 1e-3;
-    m.settings.settle_dynamic = true;
-    m.settings.settle_rest_tolerance = 1e-6;
-    m.settings.integrator = core::Integrator::explicit_step;
+    core::Model m = explicit_settling_model(2.0);
     m.settings.stage_local_damping = local_damping;
     m.materials[0].damping_ratio = 1.0;
     add_fixed(m, rect(-1.0, -1.0, 7.0, 0.0, alpha));
@@ -230,15 +237,7 @@ BOOST_AUTO_TEST_CASE(density_scaling_bounds_the_cycles_of_a_stage_and_keeps_its_
     bool at_rest = false;
   };
   auto run = [](int stage_cycles) {
-    core::Model m;
-    m.settings.dt = 1e-2;
-    m.settings.dynamic_ratio = 0.0;
-    m.settings.settle_until = 1.0;
-    m.settings.settle_dt = 1e-3;
-    m.settings.settle_g2 = 1e-3;
-    m.settings.settle_dynamic = true;
-    m.settings.settle_rest_tolerance = 1e-6;
-    m.settings.integrator = core::Integrator::explicit_step;
+    core::Model m = explicit_settling_model(1.0);
     m.settings.stage_local_damping = 0.8;
     m.settings.stage_cycles = stage_cycles;
     add_fixed(m, rect(-1.0, -1.0, 2.0, 0.0));
