@@ -218,6 +218,9 @@ struct Engine::Impl {
   double next_load_break() const;
   /// Next step of an adaptive control from the error estimate err of a step dt [time].
   double next_adaptive_dt(double dt, double tolerance, double err, double load_break) const;
+  /// Next step of an adaptive control after a step the caller's end time shortened
+  /// from `proposed`, whose own estimate asks for `next` [time] (step_control.cpp).
+  double landed_next_dt(double next, double proposed, const StepReport& rep, double load_break) const;
 };
 
 }  // namespace rheodda::core

@@ -44,6 +44,10 @@ StepReport Engine::Impl::step(double dt_cap) {
   if (s.step_tolerance > 0.0 && !settle) return doubling_step(dt_cap);
   StepReport rep;
   rep.step = st.step;
+  // The step the control proposes, and whether the caller's end time shortens it
+  // (run_until landing on an output time): see landed_next_dt.
+  const double proposed = st.next_dt;
+  const double caller_cap = dt_cap;
   bool adaptive = s.creep_tolerance > 0.0 && !settle;
   double load_break = std::numeric_limits<double>::infinity();
   double failure_step = std::numeric_limits<double>::infinity();  // step that reaches a failure
@@ -129,6 +133,7 @@ StepReport Engine::Impl::step(double dt_cap) {
         rep.creep_error = err;
         rep.creep_state_changes = contacts->creep_state_changes();
         double next = next_adaptive_dt(dt, s.creep_tolerance, err, load_break);
+        if (dt == caller_cap && dt < proposed) next = landed_next_dt(next, proposed, rep, load_break);
         // A creeping contact that locked, slid or opened moved load onto its
         // neighbours at once, as a load change does: restart from dt.
         if (s.creep_restart_on_contact_change && rep.creep_state_changes > 0)
@@ -176,6 +181,20 @@ double Engine::Impl::next_load_break() const {
       if (ls.time > st.time + eps) t = std::min(t, ls.time);
   if (model.water.active()) t = std::min(t, next_water_break(model.water, st.time + eps));  // water.hpp
   return t;
+}
+
+double Engine::Impl::landed_next_dt(double next, double proposed, const StepReport& rep, double load_break) const {
+  // A step shortened only to end on the caller's end time (an output time of
+  // `rheodda run`, docs/reference/outputs.md "Output times") says little about the next:
+  // its error estimate at the short step lets the control grow it by 2 at most. The
+  // next step takes up the one the control had proposed, as Boost.Odeint's
+  // integrate_times does after an observation point ("continue with the original step
+  // size if dt was reduced due to observation"): max(proposed, what this step asks).
+  // Not after a rejection or a cut (the proposal failed), nor at a load break (the
+  // control restarts from dt there).
+  if (rep.rejections > 0 || rep.cuts > 0) return next;
+  if (st.time >= load_break - 1e-12 * std::max(1.0, std::abs(load_break))) return next;
+  return std::max(next, proposed);
 }
 
 double Engine::Impl::next_adaptive_dt(double dt, double tolerance, double err,

@@ -21,6 +21,8 @@ StepReport Engine::Impl::doubling_step(double dt_cap) {
   StepReport rep;
   rep.step = st.step;
   const double load_break = next_load_break();
+  const double proposed = st.next_dt;
+  const double caller_cap = dt_cap;  // the caller's end time shortens the step (landed_next_dt)
   dt_cap = std::min(dt_cap, load_break - st.time);
   double dt = std::min(st.next_dt, dt_cap);
   const std::vector<BlockState> start_blocks = st.blocks;
@@ -127,7 +129,9 @@ StepReport Engine::Impl::doubling_step(double dt_cap) {
     // step - e.g. the quasi-static settling of a static analysis under gravity
     // applied at once, whose per-step motion is g dt^2 whatever the creep - the
     // control would follow that path in ever smaller steps.
-    st.next_dt = std::max(next_adaptive_dt(dt, s.step_tolerance, err, load_break), s.dt);
+    double next = next_adaptive_dt(dt, s.step_tolerance, err, load_break);
+    if (dt == caller_cap && dt < proposed) next = landed_next_dt(next, proposed, rep, load_break);
+    st.next_dt = std::max(next, s.dt);
     return rep;
   }
 }

@@ -285,12 +285,13 @@ class Engine {
   StepReport step();
   /// Advances `steps` accepted steps.
   void run(int steps);
-  /// Advances until time() >= end_time (the last step is shortened to land on it).
+  /// Advances until time() >= end_time (the last step is shortened to land on it;
+  /// under an adaptive control the step after it takes up the size the control had
+  /// reached: `rheodda run` ends a step on each output time this way).
   void run_until(double end_time);
   /// Advances until time() >= end_time, shortening a step only so as not to pass
-  /// `horizon` (>= end_time): the steps taken do not depend on end_time, so a
-  /// caller that stops at output times (`rheodda run`'s frames) does not change
-  /// them; the run then passes end_time by up to one step.
+  /// `horizon` (>= end_time): the steps taken do not depend on end_time; the run
+  /// then passes end_time by up to one step.
   void run_until(double end_time, double horizon);
   /// Called after every accepted step, in the order added.
   void add_observer(StepObserver observer);
