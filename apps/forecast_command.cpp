@@ -7,7 +7,7 @@
 // The law parameters of one joint set are drawn from the fit's covariance (forecast.hpp),
 // the ensemble is written as a study file (OUT/ensemble.yaml) and run as a study
 // (OUT/cases/sampleNNN/, locally or over MPI ranks), then every history column's
-// percentiles across the members are taken at the times of the first member's history.
+// percentiles across the members are taken at the scene's output times.
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -31,6 +31,7 @@
 #include "rheodda/forecast/bands.hpp"
 #include "rheodda/forecast/forecast.hpp"
 #include "rheodda/scene/loader.hpp"
+#include "rheodda/scene/output.hpp"
 #include "rheodda/scene/plot.hpp"
 #include "rheodda/scene/progress.hpp"
 #include "rheodda/study/study.hpp"
@@ -235,7 +236,7 @@ void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
   }
   stop_if_asked();
 
-  // --- Bands: every history column (and POINT.displacement) at the first member's times (bands.hpp).
+  // --- Bands: every history column (and POINT.displacement) at the output times (bands.hpp).
   scene::Progress display(a.quiet ? nullptr : stderr);  // docs/reference/cli.md, "Progress"
   std::optional<scene::ProgressPhase> phase(std::in_place, display, "rheodda forecast: reading the members' histories");
   std::vector<fc::History> members;
@@ -259,8 +260,13 @@ void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
   std::vector<std::string> band_columns;
   for (const auto& c : first.columns)
     if (!bookkeeping(c)) band_columns.push_back(c);
+  // At the members' output times (those of the scene and --by, ensemble_text's study
+  // `times`): every member has a row at each (docs/guide/forecast.md, "Outputs").
+  std::vector<double> band_times = scene::run_output_times(s.analysis);
+  if (std::none_of(band_times.begin(), band_times.end(), [&](double t) { return std::abs(t - by) <= 1e-9 * s.analysis.duration; }))
+    band_times.insert(std::upper_bound(band_times.begin(), band_times.end(), by), by);
   phase.emplace(display, "rheodda forecast: writing bands.csv");
-  fc::write_bands((out / "bands.csv").string(), members, band_columns, a.percentiles);
+  fc::write_bands((out / "bands.csv").string(), members, band_columns, a.percentiles, band_times);
   phase.reset();
 
   // --- The probability that the column exceeds the threshold by time `by` (its largest value up to then).

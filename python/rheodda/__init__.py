@@ -292,7 +292,9 @@ class Simulation:
     def history(self):
         """The history since t = 0 as a dict of numpy arrays, one per column of history.csv
         (time, step, dt, cuts, iterations, POINT.u/.v, SET.contacts/.shear_displacement/
-        .shear_force, energy terms), at full precision."""
+        .shear_force, energy terms), at full precision: a row after every accepted step,
+        whatever the scene's analysis.history (a script steps the run itself and keeps
+        what it needs; history.csv of `rheodda run` and rheodda.run follows the key)."""
         return self._sim._history()
 
     def history_frame(self):

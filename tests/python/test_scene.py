@@ -166,6 +166,7 @@ def test_scene_exposes_its_rock_mass(root):
 def test_history_equals_rheodda_run(tmp_path):
     few_frames = copy.deepcopy(SHEAR_TEST)
     few_frames["analysis"]["output_interval"] = 50  # each frame is written and synced: keep the test fast
+    few_frames["analysis"]["history"] = "steps"  # a row per step, as Simulation.history() keeps
     yaml_scene = rheodda.scene_from_dict(few_frames)
     result = rheodda.run(yaml_scene, str(tmp_path / "out"))
     assert result["status"] == "completed" and result["steps"] == 200
@@ -184,6 +185,13 @@ def test_history_equals_rheodda_run(tmp_path):
         column = np.array([float(r[header.index(name)] or "nan") for r in rows])
         # history.csv prints 10 significant digits
         np.testing.assert_allclose(h[name][1:], column[1:], rtol=1e-9, atol=0, err_msg=name)
+    # By default history.csv has the rows of the output times (t = 0, 50, ..., 200 h): those same rows.
+    del few_frames["analysis"]["history"]
+    rheodda.run(rheodda.scene_from_dict(few_frames), str(tmp_path / "outputs"))
+    lines = [l for l in (tmp_path / "outputs" / "history.csv").read_text().splitlines() if not l.startswith("#")]
+    assert [l.split(",")[0] for l in lines[1:]] == ["0", "50", "100", "150", "200"]
+    assert lines[1:] == [l for l in (tmp_path / "out" / "history.csv").read_text().splitlines()
+                         if l.split(",")[0] in ("0", "50", "100", "150", "200")]
 
 
 def test_callback_changing_a_load_mid_run_equals_the_load_history_from_the_start(yaml_scene):

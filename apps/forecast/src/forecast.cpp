@@ -307,7 +307,8 @@ double history_at(const History& h, std::size_t tc, std::size_t c, double t) {
   for (std::size_t k = 1; k < h.rows.size(); ++k)
     if (t <= h.rows[k][tc]) {
       const double t0 = h.rows[k - 1][tc], t1 = h.rows[k][tc];
-      if (t == t1 || t1 == t0) return h.rows[k][c];  // a row's own time: its value (the row before may be empty)
+      // A row's own time (to round-off: an output time the steps ended on): its value (the row before may be empty).
+      if (std::abs(t - t1) <= 1e-12 * std::max(1.0, std::abs(t1)) || t1 == t0) return h.rows[k][c];
       return h.rows[k - 1][c] + (h.rows[k][c] - h.rows[k - 1][c]) * (t - t0) / (t1 - t0);
     }
   return h.rows.back()[c];

@@ -189,7 +189,7 @@ void io(auto& ar, Is<RunResult::StaticMechanism> auto& m) {
   ar(m.static_analysis, m.inertia_share, m.steps, m.first_time, m.first_step, m.last_time, m.collapse_stages);
 }
 void io(auto& ar, Is<RunTotals> auto& t) {
-  ar(t.cuts, t.redone, t.extrapolated, t.max_penetration, t.contact_changes, t.mechanism, t.first_failure);
+  ar(t.cuts, t.redone, t.extrapolated, t.max_penetration, t.contact_changes, t.mechanism, t.first_failure, t.settled);
 }
 
 template <class T>

@@ -2,6 +2,7 @@
 // `analysis:` with its value (keys.hpp), wrapped, then what they add up to.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "describe_parts.hpp"
@@ -31,6 +32,23 @@ std::string solver_text(const SceneDescription& s) {
     name += fmt::format(", solver_tolerance {:g}, solver_max_iterations {}, solver_iterate_tolerance {:g}",
                         a.solver_tolerance, a.solver_max_iterations, a.solver_iterate_tolerance);
   return name;
+}
+
+}  // namespace
+
+namespace {
+
+/// How many output times run_output_times(a) lists, without listing them (a scene may
+/// ask for more than fit in memory: `check` describes it all the same).
+long long output_time_count(const Analysis& a) {
+  const double n = std::ceil(a.duration / a.output_interval - 1e-9);
+  long long count = static_cast<long long>(std::min(n, 9.0e18)) + 1;
+  const double same = 1e-9 * a.duration;
+  for (const double t : a.output_times) {
+    const double k = std::round(t / a.output_interval);
+    if (std::abs(t - k * a.output_interval) > same && a.duration - t > same) ++count;
+  }
+  return count;
 }
 
 }  // namespace
@@ -113,8 +131,13 @@ std::string describe_analysis(const SceneDescription& s) {
     line(fmt::format("  collapse stages: a static step that moves as a mechanism is cut down to {:g} {}, then taken "
                      "as a dynamic stage of {:g} {} (docs/reference/engine.md, \"Collapse stages\")",
                      a.settle->collapse_dt, u.time, a.settle->until, u.time));
-  line(fmt::format("  output every {:g} {}: {} frames", a.output_interval, u.time,
-                   static_cast<long long>(std::ceil(a.duration / a.output_interval - 1e-9)) + 1));
+  line(fmt::format("  output every {:g} {}{}: {} output times, a step ends on each{}; history.csv {}; {}",
+                   a.output_interval, u.time,
+                   a.output_times.empty() ? "" : fmt::format(" and at {} output_times", a.output_times.size()),
+                   output_time_count(a),
+                   a.output_interval < a.dt ? fmt::format(" (output_interval is shorter than dt = {:g} {}: so are the steps)", a.dt, u.time) : "",
+                   a.history == HistoryRows::steps ? "a row after every step" : "a row at each (and at the dynamic stages' ends)",
+                   a.frames ? "a frame at each" : "no frames"));
   line(fmt::format("  run guards: stop when a block moves more than {} or the outputs exceed {}",
                    a.max_travel_ratio > 0.0 ? fmt::format("{:g} x the model size", a.max_travel_ratio)
                                             : std::string("(no limit)"),

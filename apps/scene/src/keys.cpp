@@ -310,8 +310,30 @@ std::vector<KeySpec> declare_analysis_keys() {
          "\\|F0 − K0 D − f(D)\\|, is at most this fraction of the contact forces \\|f(D)\\| "
          "(rotation and strain rows divided by the block's size); in (0, 1)"));
   keys.push_back(number_key("analysis", "output_interval", "time", {0.0, true, kInf, false}, &Analysis::output_interval,
-      "duration / 100",
-      "time between output frames, ≤ duration"));
+      "duration / 100, `dt` when longer",
+      "time between output times, ≤ duration: at k × `output_interval` (and at the end) a step "
+         "ends, a frame is written and history.csv has a row (docs/reference/outputs.md); shorter "
+         "than `dt`, it shortens the steps to it"));
+  keys.push_back(detail::reader_key<Analysis>(
+      info("analysis", "output_times", KeyType::list, "time", {}, "none",
+           "`[t1, t2, ...]`: output times besides those of `output_interval`, strictly increasing, in "
+              "(0, `duration`]; a step ends on each (a study adds its `times` here)"),
+      [](const Analysis& a) -> KeyValue {
+        if (a.output_times.empty()) return std::monostate{};
+        return a.output_times;
+      }));
+  keys.push_back(choice_key("analysis", "history", "–", {"outputs", "steps"},
+      [](const Analysis& a) { return std::string(history_rows_name(a.history)); },
+      [](Analysis& a, const std::string& v) { a.history = v == "steps" ? HistoryRows::steps : HistoryRows::outputs; },
+      "`outputs`",
+      "the rows of history.csv: `outputs` (at t = 0, at each output time, and at the steps that end a "
+         "dynamic stage, open a collapse stage or bring a contact's damage law to failure) or `steps` "
+         "(after every accepted step: for a step-by-step look at the step control; large)"));
+  keys.push_back(flag_key("analysis", "frames", "–", &Analysis::frames,
+      "true",
+      "`true`: contacts.csv, bolts.csv and the VTK frames at each output time; `false`: history.csv, "
+         "events.csv and summary.json only (what a study's cases write unless the study asks for "
+         "`frames`); `true` or `false`"));
   keys.push_back(number_key("analysis", "max_travel_ratio", "–", {0.0, false, kInf, false}, &Analysis::max_travel_ratio,
       "10",
       "run guard: the run stops (exit 1, outputs kept, summary.json says why) when a block "

@@ -37,6 +37,7 @@ std::string_view plane_name(PlaneKind p) { return p == PlaneKind::strain ? "stra
 std::string_view time_integration_name(TimeIntegration t) {
   return t == TimeIntegration::trapezoidal ? "trapezoidal" : "shi";
 }
+std::string_view history_rows_name(HistoryRows h) { return h == HistoryRows::steps ? "steps" : "outputs"; }
 std::string_view solver_name(SolverKind s) {
   switch (s) {
     case SolverKind::automatic: return "automatic";

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <iterator>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -160,24 +161,16 @@ std::string plot_scene(const SceneDescription& s, const std::string& picture, co
   return picture;
 }
 
-std::vector<std::string> plot_run(const PlotOptions& o) {
-  const fs::path dir(o.out_dir);
-  // A scene file instead of a run's directory: its blocks, edges coloured by joint set,
-  // into <scene without extension>-blocks.<format> beside it.
-  if (fs::is_regular_file(dir)) {
-    const SceneDescription s = load_scene(dir.string());
-    return {plot_scene(s, (dir.parent_path() / (dir.stem().string() + "-blocks." + o.format)).string(), o.format)};
-  }
-  if (!fs::exists(dir / "summary.json") || !fs::exists(dir / "blocks.pvd"))
-    throw std::invalid_argument(fmt::format("{} holds no run (no summary.json or blocks.pvd)", o.out_dir));
-  const auto summary = nlohmann::json::parse(read_file((dir / "summary.json").string()));
-  const auto& units = summary.at("units");
-  const std::string L = units.at("length"), T = units.at("time"), F = units.at("force");
-  const std::string title = summary.at("inputs").value("title", "");
+namespace {
 
+/// The blocks at the frames `o` asks for (plots/blocks_NNNNNN.*): returns the pictures.
+std::vector<std::string> plot_frames(const PlotOptions& o, const std::string& title, const std::string& L,
+                                     const std::string& T) {
+  const fs::path dir(o.out_dir);
   // Frames listed in the collection file.
   std::vector<std::pair<double, std::string>> frames;
   const std::string pvd = read_file((dir / "blocks.pvd").string());
+
   const std::regex entry("timestep=\"([^\"]+)\" part=\"0\" file=\"([^\"]+)\"");
   for (auto it = std::sregex_iterator(pvd.begin(), pvd.end(), entry); it != std::sregex_iterator(); ++it)
     frames.emplace_back(std::stod((*it)[1].str()), (*it)[2].str());
@@ -210,7 +203,6 @@ std::vector<std::string> plot_run(const PlotOptions& o) {
   std::sort(chosen.begin(), chosen.end());
   chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
 
-  fs::create_directories(dir / "plots");
   std::vector<std::string> written;
 
   // Magnification: tiny displacements (creep) are drawn at 5% of the model size.
@@ -271,30 +263,48 @@ std::vector<std::string> plot_run(const PlotOptions& o) {
     written.push_back(picture.string());
   }
 
-  // History curves: measurement points (u, v) and recorded joint sets (mean shear displacement, force).
+  return written;
+}
+
+/// history.csv's column names (its first line that is not a comment), read without the rows.
+std::vector<std::string> history_header(const fs::path& csv) {
+  std::ifstream in(csv);
+  if (!in) throw std::runtime_error(fmt::format("cannot read {}", csv.string()));
+  std::string line;
+  while (std::getline(in, line))
+    if (!line.empty() && line[0] != '#') break;
   std::vector<std::string> header;
-  {
-    std::istringstream in(read_file((dir / "history.csv").string()));
-    std::string line;
-    while (std::getline(in, line))
-      if (!line.empty() && line[0] != '#') break;
-    std::stringstream ss(line);
-    std::string col;
-    while (std::getline(ss, col, ',')) header.push_back(col);
-  }
+  std::stringstream ss(line);
+  std::string col;
+  while (std::getline(ss, col, ',')) header.push_back(col);
+  return header;
+}
+
+/// plots/history.*: the measurement points' displacements (and, with a settling stage,
+/// those after it) and the recorded joint sets' mean shear displacement and force.
+void plot_history(const PlotOptions& o, const nlohmann::json& summary, const std::string& title,
+                  const std::string& L, const std::string& T, const std::string& F, std::vector<std::string>& written) {
+  const fs::path dir(o.out_dir);
+  // History curves: measurement points (u, v) and recorded joint sets (mean shear displacement, force).
+  const std::vector<std::string> header = history_header(dir / "history.csv");
   auto column = [&](const std::string& name) {
     for (std::size_t i = 0; i < header.size(); ++i)
       if (header[i] == name) return static_cast<int>(i) + 1;
     return 0;
   };
   const std::string csv = quote((dir / "history.csv").string());
-  std::vector<std::string> point_curves, joint_curves, force_curves;
+  std::vector<std::string> point_curves, settled_curves, joint_curves, force_curves;
   for (const auto& mp : summary.at("measurement_points")) {
     const std::string n = mp.get<std::string>();
     point_curves.push_back(fmt::format("{} using 1:{} with lines lw 1.5 title {} noenhanced", csv,
                                        column(n + ".u"), quote(n + ".u")));
     point_curves.push_back(fmt::format("{} using 1:{} with lines lw 1.5 dt 2 title {} noenhanced", csv,
                                        column(n + ".v"), quote(n + ".v")));
+    // With a settling stage: the displacement since its end (empty before it, not drawn).
+    for (const char* c : {".u_after_settling", ".v_after_settling"})
+      if (column(n + c) > 0)
+        settled_curves.push_back(fmt::format("{} using 1:{} with lines lw 1.5{} title {} noenhanced", csv,
+                                             column(n + c), c[1] == 'v' ? " dt 2" : "", quote(n + c)));
   }
   for (const auto& js : summary.at("recorded_joint_sets")) {
     const std::string n = js.get<std::string>();
@@ -303,7 +313,8 @@ std::vector<std::string> plot_run(const PlotOptions& o) {
     force_curves.push_back(fmt::format("{} using 1:{} with lines lw 1.5 title {} noenhanced", csv,
                                        column(n + ".shear_force"), quote(n + ".shear_force")));
   }
-  const int panels = int(!point_curves.empty()) + int(!joint_curves.empty()) + int(!force_curves.empty());
+  const int panels = int(!point_curves.empty()) + int(!settled_curves.empty()) + int(!joint_curves.empty()) +
+                     int(!force_curves.empty());
   if (panels > 0) {
     const fs::path picture = dir / "plots" / ("history." + o.format);
     std::string script = fmt::format(
@@ -319,6 +330,7 @@ std::vector<std::string> plot_run(const PlotOptions& o) {
       script += ", \\\n     0 with lines lc rgb '#bbbbbb' notitle\n";  // keeps zero in view
     };
     panel(point_curves, fmt::format("displacement [{}]", L));
+    panel(settled_curves, fmt::format("displacement after settling [{}]", L));
     panel(joint_curves, fmt::format("mean shear displacement [{}]", L));
     panel(force_curves, fmt::format("mean shear force [{}/{} thickness]", F, L));
     script += "unset multiplot\n";
@@ -327,6 +339,34 @@ std::vector<std::string> plot_run(const PlotOptions& o) {
     run_gnuplot(gp.string());
     written.push_back(picture.string());
   }
+}
+
+}  // namespace
+
+std::vector<std::string> plot_run(const PlotOptions& o) {
+  const fs::path dir(o.out_dir);
+  // A scene file instead of a run's directory: its blocks, edges coloured by joint set,
+  // into <scene without extension>-blocks.<format> beside it.
+  if (fs::is_regular_file(dir)) {
+    const SceneDescription s = load_scene(dir.string());
+    return {plot_scene(s, (dir.parent_path() / (dir.stem().string() + "-blocks." + o.format)).string(), o.format)};
+  }
+  // A run without frames (analysis.frames: false, a study's case) has its history drawn.
+  const bool has_frames = fs::exists(dir / "blocks.pvd");
+  if (!fs::exists(dir / "summary.json") || (!has_frames && !fs::exists(dir / "history.csv")))
+    throw std::invalid_argument(fmt::format("{} holds no run (no summary.json, or neither blocks.pvd nor history.csv)", o.out_dir));
+  const auto summary = nlohmann::json::parse(read_file((dir / "summary.json").string()));
+  const auto& units = summary.at("units");
+  const std::string L = units.at("length"), T = units.at("time"), F = units.at("force");
+  const std::string title = summary.at("inputs").value("title", "");
+  fs::create_directories(dir / "plots");
+  std::vector<std::string> written;
+  if (has_frames) {
+    written = plot_frames(o, title, L, T);
+  } else if (o.warn) {
+    o.warn(fmt::format("{} has no frames (analysis.frames: false): drawing the history only", o.out_dir));
+  }
+  plot_history(o, summary, title, L, T, F, written);
   // A run with bolts: their forces (plot_bolts.cpp).
   if (fs::exists(dir / "bolts.csv")) written.push_back(plot_bolts(o.out_dir, o.format, title, T, F, L));
   return written;

@@ -5,6 +5,7 @@
 // here are the defaults that depend on other keys and the checks that tie keys
 // together, after every key has been read.
 #include <fmt/format.h>
+#include <algorithm>
 #include <yaml-cpp/yaml.h>
 
 #include "read_keys.hpp"
@@ -168,10 +169,25 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   // (brick walls). Measured in docs/notes/contact-solves.md, "The iteration limit in static analysis".
   if (!m.has("open_close_limit")) a.open_close_limit = dynamic ? 30 : 8;
   if (const YAML::Node v = m.find("output_interval"); !v.IsDefined()) {
-    a.output_interval = a.duration / 100.0;
+    // A step ends on each output time (docs/reference/outputs.md, "Output times"): the
+    // default asks for no step shorter than dt.
+    a.output_interval = std::max(a.duration / 100.0, a.dt);
   } else if (a.output_interval > a.duration) {
     ctx.fail(v, m.child("output_interval"),
              fmt::format("output_interval = {:g} is longer than duration = {:g}", a.output_interval, a.duration));
+  }
+  if (const YAML::Node v = m.find("output_times"); v.IsDefined()) {
+    // Output times besides those of output_interval (docs/reference/outputs.md): a step ends on each.
+    if (!v.IsSequence())
+      ctx.fail(v, m.child("output_times"), fmt::format("expected a list of times [{}], got {}", "time", type_word(v)));
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const std::string key = fmt::format("{}[{}]", m.child("output_times"), i);
+      const double t = number(ctx, v[i], key, {0.0, true, a.duration, false, "time"});
+      if (!a.output_times.empty() && t <= a.output_times.back())
+        ctx.fail(v[i], key, fmt::format("{:g} does not follow {:g}: output times are strictly increasing", t,
+                                        a.output_times.back()));
+      a.output_times.push_back(t);
+    }
   }
   return a;
 }

@@ -62,13 +62,14 @@ void record_step(Run& run, const core::Engine& e, const core::StepReport& r) {
   if (const std::string what = nonfinite_state(e, s); !what.empty())
     throw NonFinite(fmt::format("{} is not finite after step {} (t = {:g} {})", what, e.step_count(), e.time(),
                                 s.units.time));
+  note_settled(run);
   const std::string row = history_row(run, &r);
   // The numbers of the row: without the `stage` column's name (docs/reference/stages.md), the last.
   const std::string numbers = s.stages.empty() ? row : row.substr(0, row.rfind(',')) + '\n';
   if (const std::string col = nonfinite_column(run.history_header, numbers); !col.empty())
     throw NonFinite(fmt::format("history.csv column '{}' is not finite after step {} (t = {:g} {})", col,
                                 e.step_count(), e.time(), s.units.time));
-  run.history.append(row);
+  if (history_row_due(run, r)) run.history.append(row);
   run.recorded_step = e.step_count();
   check_guards(run, e);
   run.progress.step(run, r);
@@ -76,16 +77,16 @@ void record_step(Run& run, const core::Engine& e, const core::StepReport& r) {
     throw StopAfterStep{};
 }
 
-/// The frames still due, each at the end of the first step that reaches its
-/// output time: steps are never shortened to land on output times (only on the
-/// end of the run), so output_interval cannot change the steps taken
-/// (docs/reference/outputs.md). A run resumed at an output time whose frame was not
-/// written (stopped on that very step) writes it now.
+/// The frames still due, each at its output time: the step that would pass it is
+/// shortened to end on it, as the last step is to end on the duration
+/// (Engine::run_until; the step after it takes up the step size the control had
+/// reached, docs/reference/outputs.md "Output times"). A run resumed at an output time
+/// whose frame was not written (stopped on that very step) writes it now.
 void run_to_end(Run& run) {
   if (run.frames_done == 0) write_frame(run);
   for (std::size_t k = run.next_output(run.pvd.back().first); k < run.frame_times.size();
        k = run.next_output(run.pvd.back().first)) {
-    run.engine.run_until(run.frame_times[k], run.a.duration);  // returns at once if the time is reached
+    run.engine.run_until(run.frame_times[k]);  // returns at once if the time is reached
     write_frame(run);
   }
 }
@@ -132,8 +133,12 @@ Run::Run(const SceneDescription& scene, const RunOptions& options, RunResult& ru
     const auto v = engine.vertices(b);
     initial.emplace_back(v.begin(), v.end());
   }
-  const long long nframes = static_cast<long long>(std::ceil(a.duration / a.output_interval - 1e-9));
-  for (long long k = 0; k <= nframes; ++k) frame_times.push_back(std::min(double(k) * a.output_interval, a.duration));
+  frame_times = run_output_times(a);
+  row_times = frame_times;
+  for (const StageDescription& st : s.stages)
+    if (st.start == StageStart::at) row_times.push_back(st.at);
+  std::sort(row_times.begin(), row_times.end());
+  note_rows_state();
   for (std::size_t j = 0; j < s.joint_sets.size(); ++j)
     if (s.joint_sets[j].record) recorded.push_back(static_cast<int>(j));
   history_header = make_history_header(s);
@@ -142,10 +147,19 @@ Run::Run(const SceneDescription& scene, const RunOptions& options, RunResult& ru
   scene_text_json = nlohmann::ordered_json(scene_text).dump();
 }
 
-std::size_t Run::next_output(double t) const {
+std::size_t index_after(const std::vector<double>& times, double t) {
   std::size_t k = 0;
-  while (k < frame_times.size() && frame_times[k] <= t + 1e-12 * std::max(1.0, std::abs(frame_times[k]))) ++k;
+  while (k < times.size() && times[k] <= t + 1e-12 * std::max(1.0, std::abs(times[k]))) ++k;
   return k;
+}
+
+std::size_t Run::next_output(double t) const { return index_after(frame_times, t); }
+
+void Run::note_rows_state() {
+  rows_reached = index_after(row_times, engine.time());
+  events_seen = engine.events().size();
+  failures_seen = 0;
+  for (const contact::CreepCounters& c : contacts.creep_counters()) failures_seen += c.failures;
 }
 
 RunResult run_scene(const SceneDescription& s, const std::string& scene_text, const RunOptions& opt) {

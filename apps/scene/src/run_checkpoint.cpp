@@ -76,10 +76,11 @@ void resume_run(Run& run) {
   run.earlier_wall = ck.wall_seconds;
   // Every file the run continues must be what the checkpoint recorded.
   run.history.resume((fs::path(out) / "history.csv").string(), ck.history_bytes, ck.history_hash);
-  run.contacts_csv.resume((fs::path(out) / "contacts.csv").string(), ck.contacts_bytes, ck.contacts_hash);
+  if (run.a.frames)  // analysis.frames: false writes no contacts.csv and no frame files
+    run.contacts_csv.resume((fs::path(out) / "contacts.csv").string(), ck.contacts_bytes, ck.contacts_hash);
   std::vector<bool> frame_ok;  // false: missing or changed
   int last_lost = -1;
-  for (int k = 0; k < run.frames_done; ++k) {
+  for (int k = 0; k < run.frames_done && run.a.frames; ++k) {
     std::string text, layer;
     try {
       text = read_file((fs::path(out) / pvd[k].second).string());
@@ -112,7 +113,7 @@ void resume_run(Run& run) {
     try {
       for (std::size_t k = run.next_output(engine.time()); k < run.frame_times.size() && f <= last_lost;
            k = run.next_output(engine.time())) {
-        engine.run_until(run.frame_times[k], run.a.duration);
+        engine.run_until(run.frame_times[k]);  // as run_to_end: the steps end on the output times
         restore_frame(f++);
       }
     } catch (const StopAfterStep&) {  // at the checkpoint's step: its frame, if it is one
@@ -125,10 +126,11 @@ void resume_run(Run& run) {
     engine.restore(saved.engine);
     contacts.restore(saved.contacts);
   }
-  write_collections(run);
+  if (run.a.frames) write_collections(run);
   run.run_totals = std::move(saved.totals);
   run.recorded_step = ck.step;
   run.result.resumed_from_step = ck.step;
+  run.note_rows_state();  // the rows of history.csv go on from the checkpoint's step
 }
 
 }  // namespace rheodda::scene

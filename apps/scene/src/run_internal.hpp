@@ -63,8 +63,14 @@ struct Run {
 
   /// Initial vertex positions, for the displacement field of the frames and max_travel_ratio.
   std::vector<std::vector<core::Vec2>> initial;
-  /// Output frame times: k * output_interval, the last one landing on duration.
+  /// Output times (output_times(a)): a step ends on each, and a frame is written there.
   std::vector<double> frame_times;
+  /// The output times and the stages' `at` times: history.csv has a row of the step
+  /// that ends on each (history_row_due).
+  std::vector<double> row_times;
+  std::size_t rows_reached = 0;   ///< the row_times up to the last step's time [-]
+  std::size_t events_seen = 0;    ///< the engine's dynamic stages that had ended at the last step [-]
+  int failures_seen = 0;          ///< contacts whose damage law had failed at the last step [-]
   std::vector<int> recorded;   ///< the joint sets with `record` (history.csv columns)
   std::string history_header;  ///< history.csv's column line
   double model_size = 0.0;     ///< the larger side of the initial bounding box [length]
@@ -93,7 +99,14 @@ struct Run {
 
   /// The index of the first output time after t, the engine's round-off sliver counting as reached.
   std::size_t next_output(double t) const;
+  /// Takes up rows_reached, events_seen and failures_seen from the engine's state now (a
+  /// new run, a resume): what history_row_due compares the next step with.
+  void note_rows_state();
 };
+
+/// The index of the first of the increasing `times` after t, the engine's round-off
+/// sliver counting as reached.
+std::size_t index_after(const std::vector<double>& times, double t);
 
 // scene_json.cpp: scene_json_text (rheodda/scene/describe.hpp).
 
@@ -114,6 +127,14 @@ void check_guards(const Run& run, const core::Engine& e);
 std::string make_history_header(const SceneDescription& s);
 /// history.csv's row of the engine's state after the step `r` (nullptr: the initial state).
 std::string history_row(const Run& run, const core::StepReport* r);
+/// Whether history.csv gets the row of the step `r` just taken (analysis.history): every
+/// step, or the step that ends on an output time or a stage's time, ends a dynamic
+/// stage, opens a collapse stage, or brings a contact's damage law to failure. Notes the
+/// step as seen.
+bool history_row_due(Run& run, const core::StepReport& r);
+/// After the step just taken: the measurement points' displacements at the end of the
+/// settling stage (analysis.settle), once it has ended (RunTotals::settled).
+void note_settled(Run& run);
 /// A new run's history.csv and contacts.csv: units, headers and the initial row.
 void create_csv_files(Run& run);
 /// A frame's blocks file: the blocks at the engine's current state.

@@ -232,7 +232,7 @@ void run_staged_to_end(Run& run) {
                                      "before began later)",
                                      st->name, st->at, run.s.units.time, engine.time(), run.s.units.time));
       if (run.frame_times[k] < st->at - 1e-12 * std::max(1.0, std::abs(st->at))) {
-        engine.run_until(run.frame_times[k], st->at);  // never past the stage's time
+        engine.run_until(run.frame_times[k]);  // an output time before the stage's: the steps end on it
         write_frame(run);
         continue;
       }
@@ -241,7 +241,7 @@ void run_staged_to_end(Run& run) {
       continue;
     }
     try {
-      engine.run_until(run.frame_times[k], run.a.duration);
+      engine.run_until(run.frame_times[k]);
       write_frame(run);
     } catch (const StageDue&) {
       g.due = false;

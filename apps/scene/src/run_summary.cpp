@@ -39,7 +39,7 @@ void collect_totals(Run& run) {
   result.mechanism = run_totals.mechanism;
   if (result.mechanism.static_analysis)
     result.mechanism.inertia_share = core::inertia_share(engine.energy().total);
-  result.frames = run.frames_done;
+  result.frames = run.a.frames ? run.frames_done : 0;  // analysis.frames: false writes none
   result.wall_seconds = run.earlier_wall + std::chrono::duration<double>(Clock::now() - run.wall_start).count();
 }
 

@@ -26,6 +26,10 @@ struct RunTotals {
   /// Per joint set: the end of the step in which its first damage-law failure
   /// was counted (NaN: none yet) [time].
   std::vector<double> first_failure;
+  /// (u, v) of each measurement point at the end of the settling stage (analysis.settle),
+  /// in point order: what history.csv's POINT.u_after_settling counts from; empty before
+  /// the stage has ended [length].
+  std::vector<double> settled;
 
   /// `joint_sets`: how many the scene has; `static_analysis`: whether the
   /// mechanism figures are kept.

@@ -1,11 +1,12 @@
-// What a run writes as it goes (docs/reference/outputs.md): a row of history.csv per
-// accepted step, and at each output time a frame: the contacts' rows of
-// contacts.csv, the VTK files frames/blocks_NNNNNN.vtp and
-// frames/contacts_NNNNNN.vtp, and the collections blocks.pvd and contacts.pvd
-// that list them.
+// What a run writes as it goes (docs/reference/outputs.md): the rows of history.csv
+// (at the output times and the events of history_row_due, or after every step), and
+// at each output time a frame: the contacts' rows of contacts.csv, the VTK files
+// frames/blocks_NNNNNN.vtp and frames/contacts_NNNNNN.vtp, and the collections
+// blocks.pvd and contacts.pvd that list them (unless analysis.frames is false).
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -34,8 +35,11 @@ std::string contacts_collection(const Run& run) {
 
 std::vector<std::string> history_columns(const SceneDescription& s) {
   std::vector<std::string> c{"time", "step", "dt", "cuts", "iterations"};
-  for (const auto& mp : s.measurement_points)
+  for (const auto& mp : s.measurement_points) {
     for (const char* f : {".u", ".v"}) c.push_back(mp.name + f);
+    if (s.analysis.settle)  // the displacement since the end of the settling stage
+      for (const char* f : {".u_after_settling", ".v_after_settling"}) c.push_back(mp.name + f);
+  }
   for (const auto& j : s.joint_sets)  // the recorded joint sets (Run::recorded)
     if (j.record)
       for (const char* f : {".contacts", ".shear_displacement", ".shear_force", ".shear_displacement_magnitude"})
@@ -56,9 +60,17 @@ std::string history_row(const Run& run, const core::StepReport* r) {
   const core::Engine& engine = run.engine;
   std::string row = fmt::format("{:.10g},{},{:.10g},{},{}", engine.time(), engine.step_count(),
                                 r ? r->dt : 0.0, r ? r->cuts : 0, r ? r->iterations : 0);
-  for (const auto& mp : s.measurement_points) {
+  const std::vector<double>& settled = run.run_totals.settled;
+  for (std::size_t k = 0; k < s.measurement_points.size(); ++k) {
+    const auto& mp = s.measurement_points[k];
     const core::Vec2 d = engine.point_displacement(mp.at.block, {mp.at.point[0], mp.at.point[1]});
     row += fmt::format(",{:.10g},{:.10g}", d.x(), d.y());
+    if (!s.analysis.settle) continue;
+    // Empty until the settling stage has ended, then 0 at its end (docs/reference/outputs.md).
+    if (settled.empty())
+      row += ",,";
+    else
+      row += fmt::format(",{:.10g},{:.10g}", d.x() - settled[2 * k], d.y() - settled[2 * k + 1]);
   }
   for (int j : run.recorded) {
     int n = 0;
@@ -81,15 +93,76 @@ std::string history_row(const Run& run, const core::StepReport* r) {
   return row + '\n';
 }
 
+std::vector<double> run_output_times(const Analysis& a) {
+  std::vector<double> t;
+  const long long n = static_cast<long long>(std::ceil(a.duration / a.output_interval - 1e-9));
+  for (long long k = 0; k <= n; ++k) t.push_back(std::min(double(k) * a.output_interval, a.duration));
+  t.insert(t.end(), a.output_times.begin(), a.output_times.end());
+  std::sort(t.begin(), t.end());
+  // One time for those closer than 1e-9 of the run (a study's time of 5.787037e-5 d
+  // among the output times 5 x 1.1574074e-5 d); the duration and the earlier of others stay.
+  const double same = 1e-9 * a.duration;
+  std::vector<double> out;
+  for (const double x : t)
+    if (out.empty() || x - out.back() > same) out.push_back(x);
+    else if (x == a.duration) out.back() = x;
+  return out;
+}
+
+bool history_row_due(Run& run, const core::StepReport& r) {
+  const core::Engine& e = run.engine;
+  bool due = run.a.history == HistoryRows::steps || r.collapse_stage;
+  if (const std::size_t k = index_after(run.row_times, e.time()); k > run.rows_reached) {
+    run.rows_reached = k;  // an output time or a stage's time
+    due = true;
+  }
+  if (e.events().size() > run.events_seen) {  // a dynamic stage ended
+    run.events_seen = e.events().size();
+    due = true;
+  }
+  int failures = 0;
+  for (const contact::CreepCounters& c : run.contacts.creep_counters()) failures += c.failures;
+  if (failures > run.failures_seen) {  // a contact's damage law failed
+    run.failures_seen = failures;
+    due = true;
+  }
+  return due;
+}
+
+void note_settled(Run& run) {
+  const SceneDescription& s = run.s;
+  std::vector<double>& settled = run.run_totals.settled;
+  if (!s.analysis.settle || !settled.empty()) return;
+  // The settling stage at the start is the first dynamic stage to end; a stage's own
+  // settling (docs/reference/stages.md) comes later, a collapse stage only after it.
+  const auto& events = run.engine.events();
+  if (events.empty() || events.front().kind != core::StageKind::settling) return;
+  for (const auto& mp : s.measurement_points) {
+    const core::Vec2 d = run.engine.point_displacement(mp.at.block, {mp.at.point[0], mp.at.point[1]});
+    settled.push_back(d.x());
+    settled.push_back(d.y());
+  }
+  if (settled.empty()) settled.push_back(0.0);  // no point: the stage has ended all the same
+}
+
 void create_csv_files(Run& run) {
   run.history.create((fs::path(run.out) / "history.csv").string());
-  run.contacts_csv.create((fs::path(run.out) / "contacts.csv").string());
   run.history.append(units_comment(run.s.units) + run.history_header);
+  run.history.append(history_row(run, nullptr));
+  if (!run.a.frames) {
+    // Only history.csv, events.csv and summary.json: what an earlier run into the
+    // folder left of the others would be taken for this run's.
+    std::error_code ec;
+    for (const char* f : {"contacts.csv", "bolts.csv", "blocks.pvd", "contacts.pvd", "bolts.pvd"})
+      fs::remove(fs::path(run.out) / f, ec);
+    fs::remove_all(fs::path(run.out) / "frames", ec);
+    return;
+  }
+  run.contacts_csv.create((fs::path(run.out) / "contacts.csv").string());
   // With water (docs/reference/water.md) a last column, water_pressure.
   run.contacts_csv.append(units_comment(run.s.units) +
                           (scene_has_water(run.s) ? contacts_header.substr(0, contacts_header.size() - 1) + ",water_pressure\n"
                                        : contacts_header));
-  run.history.append(history_row(run, nullptr));
   if (has_bolts(run.s)) create_bolts_csv(run);
 }
 
@@ -160,6 +233,15 @@ void write_frame(Run& run) {
   const std::string& out = run.out;
   run.frame_open = true;
   const int k = run.frames_done;
+  if (!run.a.frames) {  // analysis.frames: false: the output time only (the loop, checkpoint and summary count it)
+    run.pvd.emplace_back(engine.time(), std::string());
+    run.frame_hash.push_back(0);
+    ++run.frames_done;
+    run.frame_open = false;
+    if (run.frames_done == 1 || Clock::now() - run.last_checkpoint > std::chrono::seconds(1)) write_checkpoint(run);
+    write_summary(run, "running", "");
+    return;
+  }
   std::string rows;
   for (const auto& c : run.contacts.contacts()) {
     const core::Vec2 p = engine.vertices(c.key.vblock)[c.key.vertex];

@@ -13,6 +13,7 @@
 #include <set>
 #include <sstream>
 
+#include "rheodda/scene/describe.hpp"
 #include "rheodda/scene/loader.hpp"
 #include "rheodda/study/study.hpp"
 #include "rheodda/scene/output.hpp"
@@ -172,11 +173,14 @@ void apply(YAML::Node root, const Override& o, const std::string& file, const st
 }
 
 /// history.csv columns a scene's run will have (scene::history_columns, the run's own list), plus the
-/// derived POINT.displacement.
+/// derived POINT.displacement (and with a settling stage POINT.displacement_after_settling).
 std::set<std::string> output_columns(const scene::SceneDescription& s) {
   const std::vector<std::string> run = scene::history_columns(s);
   std::set<std::string> c(run.begin(), run.end());
-  for (const auto& m : s.measurement_points) c.insert(m.name + ".displacement");
+  for (const auto& m : s.measurement_points) {
+    c.insert(m.name + ".displacement");
+    if (s.analysis.settle) c.insert(m.name + ".displacement_after_settling");
+  }
   return c;
 }
 
@@ -358,7 +362,7 @@ StudyDescription parse_study(const std::string& text, const std::string& file) {
     throw SceneError(file, {e.mark.line + 1, e.mark.column + 1}, "", e.msg);
   }
   if (!root.IsMap()) fail(file, root, "", "a study file is a map with keys scene, outputs, times, cases");
-  check_keys(file, root, "", {"title", "scene", "set", "outputs", "times", "plot", "cases", "sweep"});
+  check_keys(file, root, "", {"title", "scene", "set", "outputs", "times", "plot", "frames", "cases", "sweep"});
   StudyDescription s;
   s.file = file;
   s.title = root["title"] ? scalar_string(file, root["title"], "title") : fs::path(file).filename().string();
@@ -391,6 +395,13 @@ StudyDescription parse_study(const std::string& text, const std::string& file) {
     s.plot = scalar_string(file, root["plot"], "plot");
     if (std::find(s.outputs.begin(), s.outputs.end(), s.plot) == s.outputs.end())
       fail(file, root["plot"], "plot", fmt::format("'{}' is not one of the outputs ({})", s.plot, fmt::join(s.outputs, ", ")));
+  }
+
+  if (const YAML::Node f = root["frames"]) {
+    bool v = false;
+    if (!f.IsScalar() || !YAML::convert<bool>::decode(f, v))
+      fail(file, f, "frames", "expected true or false (each case also writes contacts.csv and the VTK frames)");
+    s.frames = v;
   }
 
   if (root["sweep"]) read_sweep(file, root["sweep"], s);
@@ -477,9 +488,46 @@ std::string case_title(const std::string& base_title, const StudyCase& c, std::s
   return fmt::format("{} [case {}: {}]", base_title, c.name, fmt::join(changes, ", "));
 }
 
+namespace {
+
+/// What a case writes (docs/guide/studies.md, "What a case writes"): a row of history.csv
+/// at each of the study's times within the case's duration (analysis.output_times), and
+/// no frames unless the study or the case asks for them (analysis.frames).
+void case_outputs(const StudyDescription& study, const StudyCase& c, YAML::Node root) {
+  YAML::Node a = root["analysis"];
+  if (!a || !a.IsMap()) return;  // the loader says what is wrong with the scene
+  double duration = 0.0;
+  std::vector<std::pair<double, std::string>> times;  // (value, text as the file gives it)
+  try {
+    duration = a["duration"].as<double>();
+    if (const YAML::Node given = a["output_times"]) {
+      if (!given.IsSequence()) return;
+      for (const YAML::Node& t : given) times.emplace_back(t.as<double>(), t.Scalar());
+    }
+  } catch (const YAML::Exception&) {
+    return;
+  }
+  for (double t : study.times)
+    if (t > 0.0 && t <= duration) times.emplace_back(t, scene::exact_number(t));
+  std::sort(times.begin(), times.end());
+  times.erase(std::unique(times.begin(), times.end(), [](const auto& x, const auto& y) { return x.first == y.first; }),
+              times.end());
+  if (!times.empty()) {
+    YAML::Node list(YAML::NodeType::Sequence);
+    list.SetStyle(YAML::EmitterStyle::Flow);
+    for (const auto& t : times) list.push_back(t.second);
+    a["output_times"] = list;
+  }
+  const bool case_sets_frames = std::any_of(c.set.begin(), c.set.end(), [](const Override& o) { return o.key == "analysis.frames"; });
+  if (!case_sets_frames) a["frames"] = study.frames;
+}
+
+}  // namespace
+
 std::string case_scene_text(const StudyDescription& study, const std::string& base_text, const StudyCase& c) {
   YAML::Node root = YAML::Load(base_text);
   for (const auto& o : c.set) apply(root, o, study.file, fmt::format("cases[{}].set", c.name));
+  case_outputs(study, c, root);
   // A case scene is not the base scene: its title (run summary, summary.json, plots) says what changed.
   bool own_title = false;
   for (const auto& o : c.set) own_title = own_title || o.key == "title";

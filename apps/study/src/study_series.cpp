@@ -58,11 +58,16 @@ std::vector<std::pair<double, double>> read_history_series(const std::string& hi
   };
   const int it = col("time");
   int iu = col(column), iv = -1;
-  const std::string suffix = ".displacement";
-  if (iu < 0 && column.size() > suffix.size() && column.compare(column.size() - suffix.size(), suffix.size(), suffix) == 0) {
+  // POINT.displacement = hypot(POINT.u, POINT.v); POINT.displacement_after_settling of
+  // POINT.u_after_settling and POINT.v_after_settling (docs/reference/outputs.md).
+  for (const std::string after : {"", "_after_settling"}) {
+    const std::string suffix = ".displacement" + after;
+    if (iu >= 0 || column.size() <= suffix.size() ||
+        column.compare(column.size() - suffix.size(), suffix.size(), suffix) != 0)
+      continue;
     const std::string point = column.substr(0, column.size() - suffix.size());
-    iu = col(point + ".u");
-    iv = col(point + ".v");
+    iu = col(point + ".u" + after);
+    iv = col(point + ".v" + after);
     if (iv < 0) iu = -1;
   }
   if (it < 0 || iu < 0) throw std::runtime_error(fmt::format("{} has no column '{}'", history_csv, column));

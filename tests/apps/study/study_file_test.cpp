@@ -57,6 +57,67 @@ BOOST_AUTO_TEST_CASE(a_valid_study_builds_one_scene_per_case_with_the_overrides_
   for (const auto& t : texts) BOOST_TEST(t.find("duration: 0.05") != std::string::npos);
 }
 
+BOOST_AUTO_TEST_CASE(a_case_writes_what_the_study_reads_its_times_as_output_times_and_no_frames) {
+  // docs/guide/studies.md, "What a case writes".
+  const auto s = st::parse_study(study_text(), "ok.yaml");
+  BOOST_TEST(!s.frames);
+  const auto texts = st::prepare_cases(s);
+  const auto c = rheodda::scene::parse_scene(texts[0], "case");
+  BOOST_TEST(c.analysis.output_times == (std::vector<double>{0.01, 0.05}), boost::test_tools::per_element());
+  BOOST_TEST(!c.analysis.frames);
+  // The study asks for frames; a case's own `analysis.frames` wins; times the base scene
+  // lists already are kept, those after a case's duration are left to the study's check.
+  const std::string framed = study_text() + "frames: true\n";
+  const auto f = st::parse_study(framed, "framed.yaml");
+  BOOST_TEST(f.frames);
+  BOOST_TEST(rheodda::scene::parse_scene(st::prepare_cases(f)[0], "case").analysis.frames);
+  std::string own = study_text();
+  own.replace(own.find("{joint_sets.slope.friction_angle: 10}"), 37,
+              "{joint_sets.slope.friction_angle: 10, analysis.frames: true, analysis.output_times: [0.02, 0.05]}");
+  const auto o = st::parse_study(own, "own.yaml");
+  const auto oc = rheodda::scene::parse_scene(st::prepare_cases(o)[0], "case");
+  BOOST_TEST(oc.analysis.frames);
+  BOOST_TEST(oc.analysis.output_times == (std::vector<double>{0.01, 0.02, 0.05}), boost::test_tools::per_element());
+  expect_study_error(study_text() + "frames: some\n", 9, "frames", "expected true or false");
+}
+
+BOOST_AUTO_TEST_CASE(a_study_reads_the_displacement_after_settling) {
+  // docs/reference/outputs.md, "Displacement after settling": with a settling stage a
+  // point's POINT.u_after_settling and POINT.displacement_after_settling are outputs.
+  const fs::path dir = fresh_dir("after-settling-study");
+  std::string scene = read_text(source_path("examples/shear-creep-test.yaml"));
+  scene.replace(scene.find("  output_interval: 2     # h\n"), 29, "  output_interval: 50\n  settle: {until: 1, dt: 0.25}\n");
+  std::ofstream(dir / "settle.yaml") << scene;
+  std::ofstream(dir / "study.yaml") << "scene: settle.yaml\n"
+                                       "outputs: [A_joint.displacement, A_joint.displacement_after_settling, A_joint.u_after_settling]\n"
+                                       "times: [1, 100, 200]\n"
+                                       "cases:\n"
+                                       "  - {name: base}\n";
+  const auto r = run_rheodda("study " + (dir / "study.yaml").string() + " -o " + (dir / "out").string() + " --no-plot");
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.output);
+  const auto row = read_study_csv((dir / "out" / "study.csv").string()).at(0);
+  BOOST_TEST(std::stod(row.at("A_joint.displacement_after_settling@1")) == 0.0);  // the settling's end
+  const double settled = std::stod(row.at("A_joint.displacement@1"));
+  BOOST_TEST(settled > 0.005);
+  // After it: the creep alone, 2.4e-3 mm of the 11.2e-3 mm at 200 h.
+  BOOST_TEST(std::stod(row.at("A_joint.u_after_settling@200")) > 0.002);
+  BOOST_TEST(std::stod(row.at("A_joint.displacement_after_settling@200")) <
+             std::stod(row.at("A_joint.displacement@200")) - 0.9 * settled);
+  // A scene without a settling stage has no such output: refused before anything runs.
+  std::ofstream(dir / "plain.yaml") << "scene: " << source_path("examples/shear-creep-test.yaml") << "\n"
+                                       "outputs: [A_joint.displacement_after_settling]\n"
+                                       "times: [200]\n"
+                                       "cases:\n"
+                                       "  - {name: base}\n";
+  try {
+    (void)st::prepare_cases(st::load_study((dir / "plain.yaml").string()));
+    BOOST_ERROR("a study of a column the run will not have was accepted");
+  } catch (const st::SceneError& e) {
+    BOOST_TEST(std::string(e.what()).find("has no history column 'A_joint.displacement_after_settling'") != std::string::npos,
+               e.what());
+  }
+}
+
 BOOST_AUTO_TEST_CASE(overrides_select_map_keys_list_elements_by_index_or_name_and_remove_keys) {
   const std::string base = read_text(source_path("examples/goodman-toppling.yaml"));
   const auto s = st::parse_study(

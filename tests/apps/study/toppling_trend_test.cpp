@@ -93,10 +93,16 @@ BOOST_AUTO_TEST_CASE(reduced_toppling_study_displacement_falls_with_phi_and_cree
         BOOST_TEST(d20 > d10);
       }
     }
-    // The two refinement levels agree within the spread of levels L2-L4.
+    // The two refinement levels agree within the spread the placement of the steps gives
+    // at these levels: a step ends on each output time, and outputs every 0.5, 1 or 2 d
+    // put block 1 at 10 d at 0.68-0.73 m on L3 and 0.73-0.79 m on L2 (up to 8 % on a
+    // level, 16 % across the two), block 10 at 4.71-4.98 and 4.99-5.30 m
+    // (docs/notes/step-controls.md, "Output times and the steps"; with frames after the
+    // first step past each output time the levels were 1-2 % apart). Here, outputs
+    // every 1 d, they are 10 % apart at 10 d.
     for (const std::string t : {"@10", "@20"}) {
       const double l3 = std::stod(crow[0].at(col + t)), l2 = std::stod(crow[1].at(col + t));
-      BOOST_TEST(std::abs(l2 - l3) < 0.05 * l3, col << t << ": L2 " << l2 << ", L3 " << l3);
+      BOOST_TEST(std::abs(l2 - l3) < 0.15 * l3, col << t << ": L2 " << l2 << ", L3 " << l3);
     }
   }
 }

@@ -16,14 +16,15 @@ namespace rheodda::forecast {
 std::optional<std::size_t> column_index(const History& h, const std::string& name);
 
 /// Adds POINT.displacement = hypot(POINT.u, POINT.v) [length] for each measurement
-/// point of `h` (as `rheodda study` reads it).
+/// point of `h`, and POINT.displacement_after_settling of its columns after settling
+/// (as `rheodda study` reads them).
 void add_point_displacements(History& h);
 
-/// bands.csv: at each time of the first member, the percentiles `percentiles` of
-/// every column of `columns` across the members that have a finite value there
-/// (interpolated in time, history_at), and how many members had one.
+/// bands.csv: at each of `times` (the run's output times) [time], the percentiles
+/// `percentiles` of every column of `columns` across the members that have a finite
+/// value there (interpolated in time, history_at), and how many members had one.
 void write_bands(const std::string& path, const std::vector<History>& members, const std::vector<std::string>& columns,
-                 const std::vector<double>& percentiles);
+                 const std::vector<double>& percentiles, const std::vector<double>& times);
 
 /// How many members' `column` exceeds a threshold by a time (its largest value up to then).
 struct Exceedance {

@@ -44,6 +44,11 @@ inline std::array<double, kHistoryEnergyColumns.size()> history_energy_values(co
 /// list the run writes (run_writer.cpp) and a study checks its outputs against.
 std::vector<std::string> history_columns(const SceneDescription& s);
 
+/// A run's output times, increasing (docs/reference/outputs.md): 0, k × output_interval,
+/// the `output_times` and the duration, times within 1e-9 × duration of each other
+/// counted once [time]. A step ends on each; each has a frame and a history.csv row.
+std::vector<double> run_output_times(const Analysis& a);
+
 /// Writes `content` to `path` through `path + ".tmp"` and a rename, so that a reader
 /// (or a run killed at any moment) sees either the old or the new content. With
 /// `durable`, the file is also flushed to disk (fsync) before the rename and the rename

@@ -48,6 +48,9 @@ enum class IntegratorKind { implicit, explicit_step };
 /// `contact_solver`: how a step's contact problem is solved (docs/reference/contacts.md, "Contact solves").
 enum class ContactSolverKind { open_close, newton };
 enum class TimeIntegration { shi, trapezoidal };
+/// `history`: history.csv's rows at the output times (and the steps that end a dynamic
+/// stage, open a collapse stage or fail a contact's law), or at every accepted step.
+enum class HistoryRows { outputs, steps };
 
 /// `analysis:` — time stepping, contact numerics, outputs.
 struct Analysis {
@@ -154,7 +157,15 @@ struct Analysis {
   /// residual of its equations is at most this fraction of the contact forces [-]; in (0, 1)
   double contact_residual_tolerance = 1e-4;
   int solver_max_iterations = 10000;   ///< CG iteration limit per solve of pcg and amg [-]; >= 1
-  double output_interval = 0.0;        ///< time between output frames [time]; default duration / 100
+  double output_interval = 0.0;        ///< time between output times [time]; default duration / 100
+  /// `output_times`: output times besides every output_interval [time]; strictly
+  /// increasing, in (0, duration]; empty: none. A study adds its `times` here.
+  std::vector<double> output_times;
+  /// `history`: which steps history.csv has a row of (docs/reference/outputs.md, "history.csv").
+  HistoryRows history = HistoryRows::outputs;
+  /// `frames`: contacts.csv, bolts.csv and the VTK frames are written at the output
+  /// times; false: history.csv, events.csv and summary.json only (a study's cases).
+  bool frames = true;
   /// Run guard: the run stops when a block vertex has moved more than this times the
   /// model size (largest extent of the initial blocks) [-]; 0 = no limit.
   double max_travel_ratio = 10.0;
@@ -293,5 +304,6 @@ std::string_view analysis_type_name(AnalysisType t);
 std::string_view plane_name(PlaneKind p);
 std::string_view solver_name(SolverKind s);
 std::string_view time_integration_name(TimeIntegration t);
+std::string_view history_rows_name(HistoryRows h);
 
 }  // namespace rheodda::scene

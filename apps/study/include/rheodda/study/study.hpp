@@ -69,8 +69,13 @@ struct StudyDescription {
   std::string scene;               ///< base scene path (relative ones resolved against the study file's folder)
   SourceLocation scene_where{};    ///< of the `scene:` value in the study file
   std::vector<std::string> outputs;  ///< history.csv columns, or `POINT.displacement` = hypot(POINT.u, POINT.v)
+                                     ///< (`POINT.displacement_after_settling` of the columns after settling)
   std::vector<double> times;       ///< times the outputs are read at [scene time unit]; linear interpolation
   std::string plot;                ///< the output overlaid across cases in study.png; default: outputs[0]
+  /// `frames`: each case also writes contacts.csv, bolts.csv and the VTK frames (for `rheodda
+  /// plot` of a case's blocks, ParaView); false (the default): history.csv, events.csv and
+  /// summary.json only (analysis.frames: false in each case scene).
+  bool frames = false;
   std::vector<StudyCase> cases;    ///< the listed cases first, then the sweep's
   std::size_t common_count = 0;    ///< the first common_count overrides of each case's `set` are the study's `set`
   std::vector<SweepParameter> parameters;  ///< `sweep.parameters`; empty without a sweep
@@ -93,7 +98,10 @@ StudyDescription load_study(const std::string& path);
 StudyDescription parse_study(const std::string& text, const std::string& file);
 
 /// The base scene text with the case's overrides applied (YAML). Throws SceneError
-/// located at the override in the study file when a path does not resolve.
+/// located at the override in the study file when a path does not resolve. The study's
+/// `times` (those within the case's duration) join the case's analysis.output_times, so
+/// that its history.csv has a row at each; analysis.frames is the study's `frames` unless
+/// the case sets it.
 /// Unless the case sets `title` itself, the case scene's title is the base scene's
 /// title (or file name) followed by the case's name and changes, case_title().
 /// The case's own changes come first, then the study's common `set`.
@@ -210,7 +218,9 @@ bool is_study_dir(const std::string& dir);
 std::vector<std::string> plot_study_dir(const std::string& dir);
 
 /// Reads output `column` of a run's history.csv as (time, value) pairs;
-/// `POINT.displacement` is derived as hypot(POINT.u, POINT.v). Throws std::runtime_error.
+/// `POINT.displacement` is derived as hypot(POINT.u, POINT.v), and
+/// `POINT.displacement_after_settling` as hypot(POINT.u_after_settling,
+/// POINT.v_after_settling). Throws std::runtime_error.
 std::vector<std::pair<double, double>> read_history_series(const std::string& history_csv, const std::string& column);
 
 /// Linear interpolation of a series at t; nullopt outside its time range.
