@@ -9,6 +9,11 @@ docs/reference/outputs.md between <!-- example-results:begin/end -->; the test
 tests/python/test_example_results.py reruns the examples and fails when a
 value drifts from the documented one by more than its tolerance.
 
+The same runs give the sizes of the examples' output folders (docs/reference/outputs.md,
+"Shipped examples: output sizes", between <!-- example-output-sizes:begin/end -->):
+history.csv's rows and bytes, contacts.csv, the frames, the whole folder, and a bound
+on the folder that the test holds each run to.
+
 Usage: /usr/bin/python3 scripts/example_results.py [--write]   (build: $RHEODDA_BUILD_DIR or build/)
 """
 import concurrent.futures
@@ -102,15 +107,81 @@ def headlines(scenes, work_dir):
     return out
 
 
-def table():
+def table(found):
+    """The headline table of {example: output folder} (runs())."""
     lines = ["| example | quantity | value | unit | tolerance |", "|---|---|---:|---|---:|"]
-    with tempfile.TemporaryDirectory() as tmp:
-        for e, results in headlines(examples(), tmp).items():
-            if isinstance(results, Exception):
-                raise results
-            for q, v, u in results:
-                lines.append(f"| {label(e)} | {q} | {v:.9g} | {u} | {TOLERANCE:g} |")
+    for e, out in found.items():
+        if isinstance(out, Exception):
+            raise out
+        for q, v, u in headline_of(out):
+            lines.append(f"| {label(e)} | {q} | {v:.9g} | {u} | {TOLERANCE:g} |")
     return "\n".join(lines) + "\n"
+
+
+SIZES = "example-output-sizes"
+# A folder's bound: this factor on its documented size, rounded up to two significant
+# digits: room for an adaptive path that ends a few steps or rows apart, not for an
+# output that grows with the steps again.
+SIZE_MARGIN = 1.5
+
+
+def folder_bytes(path):
+    """Bytes of the files under path [byte]."""
+    return sum(f.stat().st_size for f in pathlib.Path(path).rglob("*") if f.is_file())
+
+
+def sizes_of(out_dir):
+    """{history_rows, history, contacts, frames, folder}: history.csv's rows [-] and the
+    bytes of history.csv, contacts.csv, the frames (frames/ and the .pvd collections) and
+    the whole folder [byte] of a run's output folder."""
+    out_dir = pathlib.Path(out_dir)
+    with open(out_dir / "history.csv") as f:
+        rows = sum(1 for line in f if line[:1] not in ("#", "t", ""))
+    size = lambda name: (out_dir / name).stat().st_size if (out_dir / name).exists() else 0
+    frames = folder_bytes(out_dir / "frames") if (out_dir / "frames").exists() else 0
+    frames += sum(size(p) for p in ("blocks.pvd", "contacts.pvd", "bolts.pvd"))
+    return {"history_rows": rows, "history": size("history.csv"), "contacts": size("contacts.csv"),
+            "frames": frames, "folder": folder_bytes(out_dir)}
+
+
+def megabytes(b):
+    return f"{b / 1e6:.3g}"
+
+
+def bound_of(folder):
+    """The bound of a folder of `folder` bytes [MB]: SIZE_MARGIN x, up to two significant digits."""
+    mb = SIZE_MARGIN * folder / 1e6
+    step = 10 ** (math.floor(math.log10(mb)) - 1) if mb > 0 else 0.01
+    return max(0.01, math.ceil(mb / step) * step)
+
+
+def sizes_table(found):
+    """The output sizes table of {example: output folder} (runs())."""
+    lines = ["| example | history.csv rows | history.csv [MB] | contacts.csv [MB] | frames [MB] | folder [MB] | bound [MB] |",
+             "|---|---:|---:|---:|---:|---:|---:|"]
+    for e, out in found.items():
+        if isinstance(out, Exception):
+            raise out
+        s = sizes_of(out)
+        lines.append(f"| {label(e)} | {s['history_rows']} | {megabytes(s['history'])} | {megabytes(s['contacts'])} | "
+                     f"{megabytes(s['frames'])} | {megabytes(s['folder'])} | {bound_of(s['folder']):.2g} |")
+    return "\n".join(lines) + "\n"
+
+
+def documented_sizes():
+    """{example: bound of its output folder [byte]} from docs/reference/outputs.md."""
+    text = DOC.read_text()
+    body = text.split(f"<!-- {SIZES}:begin -->")[1].split(f"<!-- {SIZES}:end -->")[0]
+    return {cells[0]: float(cells[6]) * 1e6
+            for cells in ([c.strip() for c in line.strip().strip("|").split("|")]
+                          for line in body.strip().splitlines()[2:])}
+
+
+def splice(mark, text):
+    with tempfile.NamedTemporaryFile("w", suffix=".md", delete=False) as f:
+        f.write(text)
+    subprocess.run(["bash", str(ROOT / "scripts" / "splice-doc.sh"), str(DOC), mark, f.name], check=True)
+    os.unlink(f.name)
 
 
 def documented():
@@ -125,10 +196,12 @@ def documented():
 
 
 if __name__ == "__main__":
-    t = table()
+    with tempfile.TemporaryDirectory() as tmp:
+        found = runs(examples(), tmp)
+        t, s = table(found), sizes_table(found)
     if "--write" in sys.argv:
-        with tempfile.NamedTemporaryFile("w", suffix=".md", delete=False) as f:
-            f.write(t)
-        subprocess.run(["bash", str(ROOT / "scripts" / "splice-doc.sh"), str(DOC), MARK, f.name], check=True)
-        os.unlink(f.name)
+        splice(MARK, t)
+        splice(SIZES, s)
     print(t, end="")
+    print()
+    print(s, end="")

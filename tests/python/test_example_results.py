@@ -57,10 +57,29 @@ def test_headline_results_match_the_documented_values(example, runs):
             f"(tolerance {tolerance:g} relative): the behaviour changed; if on purpose, regenerate the table")
 
 
+@pytest.mark.parametrize("example", example_results.examples(), ids=example_results.label)
+def test_output_folders_stay_within_their_documented_bound(example, runs):
+    # Outputs sized to the question (docs/reference/outputs.md, "Shipped examples: output
+    # sizes"): history.csv at the output times, not a row per step.
+    out = runs[example]
+    if isinstance(out, Exception):
+        raise out
+    name = example_results.label(example)
+    bounds = example_results.documented_sizes()
+    assert name in bounds, (f"{name}: no output size in docs/reference/outputs.md; run "
+                            "/usr/bin/python3 scripts/example_results.py --write")
+    sizes = example_results.sizes_of(out)
+    assert sizes["folder"] <= bounds[name], (
+        f"{name}: the output folder holds {sizes['folder'] / 1e6:.3g} MB (history.csv {sizes['history_rows']} rows, "
+        f"{sizes['history'] / 1e6:.3g} MB), above its bound of {bounds[name] / 1e6:.3g} MB")
+
+
 def test_every_documented_example_still_exists():
     names = {example_results.label(e) for e in example_results.examples()}
     for example, quantity in DOCUMENTED:
         assert example in names, f"docs/reference/outputs.md documents {example} ({quantity}), which is not shipped"
+    for example in example_results.documented_sizes():
+        assert example in names, f"docs/reference/outputs.md gives the output size of {example}, which is not shipped"
 
 
 def test_every_quoted_number_is_what_its_generator_gives(runs, work):
