@@ -114,13 +114,19 @@ void add_scene_commands(CLI::App& app) {
   run->callback([args] { run_command(*args); });
 
   auto plot = std::make_shared<scene::PlotOptions>();
-  auto* p = app.add_subcommand("plot", "Draw the blocks at chosen times and the history curves (gnuplot)");
+  auto* p = app.add_subcommand("plot", "Draw the blocks and their contacts at chosen times, joint stress against strength, and the history curves (gnuplot)");
   p->add_option("OUTDIR", plot->out_dir, "Output directory of a run or a study, or a scene file (its blocks coloured by joint set)")->required();
   p->add_option("--times", plot->times, "Times to draw the blocks at (default: first, middle, last frame)")
       ->delimiter(',');
   p->add_option("--format", plot->format, "png or svg")->check(CLI::IsMember({"png", "svg"}))->capture_default_str();
   p->add_option("--scale", plot->scale,
                 "Displacement magnification of the block pictures (default: automatic, shown in the title)");
+  p->add_option("--contact-column", plot->contact_column,
+                "The contacts.csv column the contacts pictures colour the contacts by")
+      ->check(CLI::IsMember(scene::contact_colour_columns()))
+      ->capture_default_str();
+  p->add_option("--from", plot->from, "Start of the time window: the history's axis, the default frames")->type_name("T");
+  p->add_option("--to", plot->to, "End of the time window")->type_name("T");
   plot->warn = [](const std::string& w) { fmt::print(stderr, "rheodda: warning: {}\n", w); };
   p->callback([plot] {
     std::vector<std::string> pictures;

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "contact_geometry.hpp"
+#include "rheodda/contact/strength.hpp"
 #include "law_call_site.hpp"
 
 namespace rheodda::contact {
@@ -31,7 +32,7 @@ void ContactSystem::stick(std::span<const BlockView> blocks, size_t c) {
   Hot& h = hot_[c];
   const BlockView& eb = blocks[r.key.eblock];
   const Vec2 a = edge_start(eb, r.key.edge), b = edge_end(eb, r.key.edge);
-  const double friction = std::max(h.normal_force, 0.0) * h.tan_phi + h.cohesion * r.length;
+  const double friction = mohr_coulomb_strength(h.normal_force, h.tan_phi, h.cohesion, r.length);
   const bool keep = step_dynamic_ && settings_.stick_keeps_force_dynamic ? *settings_.stick_keeps_force_dynamic
                                                                           : settings_.stick_keeps_force;
   const double stretch = keep ? r.slide_direction * friction / shear_stiffness(c) : 0.0;

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "contact_geometry.hpp"
+#include "rheodda/contact/strength.hpp"
 #include "law_call_site.hpp"
 
 namespace rheodda::contact {
@@ -36,8 +37,7 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
     r.penetration = dn;
     r.creep_state = r.rheology >= 0 ? CreepState::idle : CreepState::none;
     step_work_[c] = {h.pn, h.ps, h.dn0, dn, h.dt0, slip, h.start_state,  // energy balance
-                     r.slide_direction * (std::max(h.assembled_normal_force, 0.0) * h.tan_phi +
-                                          h.cohesion * r.length),
+                     r.slide_direction * mohr_coulomb_strength(h.assembled_normal_force, h.tan_phi, h.cohesion, r.length),
                      // (the dashpots of a step taken in cycles: booked cycle by cycle, contact_cycles.cpp)
                      !cycled_ && r.state != ContactState::open ? normal_dashpot(c) * (dn - h.dn_ref) : 0.0,
                      !cycled_ && r.state == ContactState::locked ? shear_dashpot(c) * slip : 0.0};
@@ -99,8 +99,7 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
       case ContactState::sliding: {
         if (h.law_failed) ++creep_counters_[r.joint_set].failures;  // failed at an iterate (check)
         r.normal_force = h.pn * dn;
-        r.shear_force = r.slide_direction *
-                        (std::max(r.normal_force, 0.0) * h.tan_phi + h.cohesion * r.length);
+        r.shear_force = r.slide_direction * mohr_coulomb_strength(r.normal_force, h.tan_phi, h.cohesion, r.length);
         r.shear_displacement += slip;
         r.intact = false;
         max_pen = std::max(max_pen, dn);

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "contact_geometry.hpp"
+#include "rheodda/contact/strength.hpp"
 
 namespace rheodda::contact {
 
@@ -67,7 +68,7 @@ void ContactSystem::prepare(std::span<const BlockView> blocks, const Contact& c,
     h.cn = 2.0 * zeta * std::sqrt(h.pn * h.reduced_mass);
     h.cs = 2.0 * zeta * std::sqrt(h.ps * h.reduced_mass);
   }
-  h.tan_phi = std::tan(js.friction_angle_of(c.intact) * std::numbers::pi / 180.0);
+  h.tan_phi = tan_deg(js.friction_angle_of(c.intact));
   h.cohesion = js.cohesion_of(c.intact);
   h.tensile_strength = c.intact ? js.tensile_strength : 0.0;
 }
@@ -150,7 +151,7 @@ void ContactSystem::assemble(std::span<const BlockView>, SystemSink& sink) const
     } else {
       // Sliding: Mohr-Coulomb friction F = N tan(phi) + c l against the slip
       // direction, N from the last iterate.
-      const double f = std::max(h.normal_force, 0.0) * h.tan_phi + h.cohesion * r.length;
+      const double f = mohr_coulomb_strength(h.normal_force, h.tan_phi, h.cohesion, r.length);
       fi -= r.slide_direction * f * h.ti;
       fj -= r.slide_direction * f * h.tj;
     }
@@ -179,7 +180,7 @@ void ContactSystem::contact_forces(const Eigen::VectorXd& D, Eigen::VectorXd& f)
       T = shear_stiffness(c) * (h.dt0 + seams_[c].locking_shift + slip) + shear_dashpot(c) * slip;
     } else {
       // Mohr-Coulomb friction from the spring's normal force at D.
-      T = r.slide_direction * (std::max(h.pn * dn, 0.0) * h.tan_phi + h.cohesion * r.length);
+      T = r.slide_direction * mohr_coulomb_strength(h.pn * dn, h.tan_phi, h.cohesion, r.length);
     }
     f.segment<6>(6 * r.key.vblock) += h.ni * N + h.ti * T;
     f.segment<6>(6 * r.key.eblock) += h.nj * N + h.tj * T;

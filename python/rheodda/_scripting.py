@@ -387,8 +387,9 @@ class Contacts(Table):
     """The contacts after the last accepted step (``sim.contacts``), one row per contact: ``id``,
     ``joint_set`` (index into ``sim.joint_sets``), ``state`` (open, sliding, locked), ``kind``,
     ``vertex_block``, ``vertex``, ``edge_block``, ``edge``, ``x``, ``y`` [length],
-    ``normal_force``, ``shear_force`` [force/length], ``shear_displacement``, ``penetration``,
-    ``length``, ``creep_displacement``, ``creep_increment`` [length], ``q`` (n, 4) [length]: the
+    ``normal_force``, ``shear_force``, ``shear_strength`` [force/length], ``shear_displacement``,
+    ``penetration``, ``length``, ``tributary_length``, ``creep_displacement``, ``creep_increment``
+    [length], ``q`` (n, 4) [length]: the
     columns of contacts.csv plus the law state. ``sim.contacts()`` gives them as a dict."""
 
     def __init__(self, columns):

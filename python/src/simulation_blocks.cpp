@@ -2,6 +2,7 @@
 // block at a time or as arrays (Blocks' views), the blocks fixed, freed and
 // removed and loads added and removed between steps (Engine::edit), and the
 // contacts and bolts as arrays.
+#include <rheodda/contact/strength.hpp>
 #include <rheodda/core/bolt.hpp>
 #include <rheodda/scene/edits.hpp>
 
@@ -272,7 +273,7 @@ py::dict Simulation::contacts() const {
   const auto incr = contacts_->creep_increments();
   const auto n = static_cast<py::ssize_t>(cs.size());
   std::vector<long> id, js, vb, vx, eb, ed;
-  std::vector<double> x, y, nf, sf, sd, pen, len, creep, dcreep;
+  std::vector<double> x, y, nf, sf, ss, sd, pen, len, trib, creep, dcreep;
   py::array_t<double> q({n, py::ssize_t{laws::kMaxInternal}});
   auto qr = q.mutable_unchecked<2>();
   std::vector<std::string> state_names, kind_names;
@@ -291,9 +292,11 @@ py::dict Simulation::contacts() const {
     y.push_back(p.y());
     nf.push_back(c.normal_force);
     sf.push_back(c.shear_force);
+    ss.push_back(contact::mohr_coulomb_strength(contacts_->joint_sets()[c.joint_set], c.normal_force, c.length, c.intact));
     sd.push_back(c.shear_displacement);
     pen.push_back(c.penetration);
     len.push_back(c.length);
+    trib.push_back(c.tributary_length);
     const laws::RheologyState st = c.rheology >= 0 ? states[c.rheology] : laws::RheologyState{};
     creep.push_back(st.creep());
     for (int k = 0; k < laws::kMaxInternal; ++k) qr(i, k) = st.q[k];
@@ -303,8 +306,9 @@ py::dict Simulation::contacts() const {
                             {"kind", str_array(kind_names)}, {"vertex_block", to_numpy(vb)}, {"vertex", to_numpy(vx)},
                             {"edge_block", to_numpy(eb)}, {"edge", to_numpy(ed)}, {"x", to_numpy(x)},
                             {"y", to_numpy(y)}, {"normal_force", to_numpy(nf)}, {"shear_force", to_numpy(sf)},
-                            {"shear_displacement", to_numpy(sd)}, {"penetration", to_numpy(pen)},
-                            {"length", to_numpy(len)}, {"creep_displacement", to_numpy(creep)},
+                            {"shear_strength", to_numpy(ss)}, {"shear_displacement", to_numpy(sd)},
+                            {"penetration", to_numpy(pen)}, {"length", to_numpy(len)},
+                            {"tributary_length", to_numpy(trib)}, {"creep_displacement", to_numpy(creep)},
                             {"creep_increment", to_numpy(dcreep)}, {"q", q}});
 }
 

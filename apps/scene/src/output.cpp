@@ -314,10 +314,12 @@ std::string vtk_contacts(const std::vector<FrameContact>& contacts) {
   ints("kind", [](const FrameContact& c) { return c.kind; });
   reals("normal_force", [](const FrameContact& c) { return c.normal_force; });
   reals("shear_force", [](const FrameContact& c) { return c.shear_force; });
+  reals("shear_strength", [](const FrameContact& c) { return c.shear_strength; });
   reals("shear_displacement", [](const FrameContact& c) { return c.shear_displacement; });
   reals("creep_displacement", [](const FrameContact& c) { return c.creep_displacement; });
   reals("penetration", [](const FrameContact& c) { return c.penetration; });
   reals("length", [](const FrameContact& c) { return c.length; });
+  reals("tributary_length", [](const FrameContact& c) { return c.tributary_length; });
   if (!contacts.empty() && contacts.front().water_pressure)  // scenes with water (docs/reference/water.md)
     reals("water_pressure", [](const FrameContact& c) { return c.water_pressure.value_or(0.0); });
   s += "</PointData>\n<Verts>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";

@@ -18,6 +18,8 @@
 #include "rheodda/scene/loader.hpp"
 #include "rheodda/scene/output.hpp"
 #include "plot_bolts.hpp"
+#include "plot_contacts.hpp"
+#include "plot_support.hpp"
 
 extern char** environ;
 
@@ -95,19 +97,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr std::size_t kTitleWidth = 110;  // characters per title line of a 1000-pixel picture
-
-std::string quote(const std::string& s) {
-  std::string out(1, '\'');
-  out += gnuplot_text(s);
-  out += '\'';
-  return out;
-}
-
-std::string terminal(const std::string& format, int w, int h) {
-  return format == "svg" ? fmt::format("set terminal svg size {},{} dynamic background rgb 'white'", w, h)
-                         : fmt::format("set terminal pngcairo size {},{} font 'sans,11'", w, h);
-}
+std::string quote(const std::string& s) { return gnuplot_quote(s); }
+std::string terminal(const std::string& format, int w, int h) { return gnuplot_terminal(format, w, h); }
+constexpr std::size_t kTitleWidth = kPlotTitleWidth;
 
 /// 1, 2 or 5 times a power of ten, at least x.
 double nice(double x) {
@@ -164,21 +156,24 @@ std::string plot_scene(const SceneDescription& s, const std::string& picture, co
 namespace {
 
 /// The blocks at the frames `o` asks for (plots/blocks_NNNNNN.*): returns the pictures.
-std::vector<std::string> plot_frames(const PlotOptions& o, const std::string& title, const std::string& L,
-                                     const std::string& T) {
+std::vector<std::string> plot_frames(const PlotOptions& o, const std::string& title, const PlotUnits& units,
+                                     const std::vector<std::pair<double, std::string>>& frames) {
+  const std::string &L = units.length, &T = units.time;
   const fs::path dir(o.out_dir);
-  // Frames listed in the collection file.
-  std::vector<std::pair<double, std::string>> frames;
-  const std::string pvd = read_file((dir / "blocks.pvd").string());
-
-  const std::regex entry("timestep=\"([^\"]+)\" part=\"0\" file=\"([^\"]+)\"");
-  for (auto it = std::sregex_iterator(pvd.begin(), pvd.end(), entry); it != std::sregex_iterator(); ++it)
-    frames.emplace_back(std::stod((*it)[1].str()), (*it)[2].str());
-  if (frames.empty()) throw std::invalid_argument(fmt::format("{}/blocks.pvd lists no frame", o.out_dir));
-
   std::vector<std::size_t> chosen;
   if (o.times.empty()) {
-    chosen = {0, frames.size() / 2, frames.size() - 1};
+    // The first, middle and last frame (within the time window --from, --to).
+    // (A frame's time is that of its step, which may differ from the output time in the
+    // last bits: 0.15000000000000002 for 0.15.)
+    const double eps = 1e-9 * std::max({std::abs(frames.front().first), std::abs(frames.back().first), 1e-300});
+    std::vector<std::size_t> in;
+    for (std::size_t k = 0; k < frames.size(); ++k)
+      if ((!o.from || frames[k].first >= *o.from - eps) && (!o.to || frames[k].first <= *o.to + eps)) in.push_back(k);
+    if (in.empty())
+      throw std::invalid_argument(fmt::format("--from {}, --to {}: no frame in that window (the frames span {:g} to {:g} {})",
+                                              o.from ? fmt::format("{:g}", *o.from) : "-", o.to ? fmt::format("{:g}", *o.to) : "-",
+                                              frames.front().first, frames.back().first, T));
+    chosen = {in.front(), in[in.size() / 2], in.back()};
   } else {
     const double first = frames.front().first, last = frames.back().first;
     // Times closer than this to a frame's time are that frame (the .pvd holds %g-printed times).
@@ -263,7 +258,24 @@ std::vector<std::string> plot_frames(const PlotOptions& o, const std::string& ti
     written.push_back(picture.string());
   }
 
+  // Where creep and slip act at the same frames (plot_contacts.cpp).
+  if (fs::exists(dir / "contacts.csv")) {
+    std::vector<ContactFrame> drawn;
+    for (std::size_t i = 0; i < chosen.size(); ++i) drawn.push_back({chosen[i], frames[chosen[i]].first, &data[i]});
+    for (auto& p : plot_contacts(o.out_dir, o.format, title, units, drawn, o.contact_column)) written.push_back(std::move(p));
+  }
   return written;
+}
+
+/// The frames listed in OUT_DIR/blocks.pvd: (time, file), in its order.
+std::vector<std::pair<double, std::string>> listed_frames(const fs::path& dir) {
+  std::vector<std::pair<double, std::string>> frames;
+  const std::string pvd = read_file((dir / "blocks.pvd").string());
+  const std::regex entry("timestep=\"([^\"]+)\" part=\"0\" file=\"([^\"]+)\"");
+  for (auto it = std::sregex_iterator(pvd.begin(), pvd.end(), entry); it != std::sregex_iterator(); ++it)
+    frames.emplace_back(std::stod((*it)[1].str()), (*it)[2].str());
+  if (frames.empty()) throw std::invalid_argument(fmt::format("{}/blocks.pvd lists no frame", dir.string()));
+  return frames;
 }
 
 /// history.csv's column names (its first line that is not a comment), read without the rows.
@@ -319,8 +331,10 @@ void plot_history(const PlotOptions& o, const nlohmann::json& summary, const std
     const fs::path picture = dir / "plots" / ("history." + o.format);
     std::string script = fmt::format(
         "{}\nset output {}\nset datafile separator ','\nset key top left noenhanced\nset grid lc rgb '#dddddd'\n"
-        "set xlabel 'time [{}]' noenhanced\nset offsets 0, 0, graph 0.05, graph 0.05\nset multiplot layout {},1 title {} noenhanced\n",
-        terminal(o.format, 1000, 330 * panels + 40), quote(picture.string()), T, panels,
+        "set xlabel 'time [{}]' noenhanced\nset offsets 0, 0, graph 0.05, graph 0.05\nset xrange [{}:{}]\n"
+        "set multiplot layout {},1 title {} noenhanced\n",
+        terminal(o.format, 1000, 330 * panels + 40), quote(picture.string()), T,
+        o.from ? fmt::format("{:.17g}", *o.from) : "*", o.to ? fmt::format("{:.17g}", *o.to) : "*", panels,
         quote(title + ": history"));
     auto panel = [&](const std::vector<std::string>& curves, const std::string& ylabel) {
       if (curves.empty()) return;
@@ -358,11 +372,14 @@ std::vector<std::string> plot_run(const PlotOptions& o) {
   const auto summary = nlohmann::json::parse(read_file((dir / "summary.json").string()));
   const auto& units = summary.at("units");
   const std::string L = units.at("length"), T = units.at("time"), F = units.at("force");
+  const PlotUnits plot_units{L, F, T, units.value("stress", F + "/" + L + "^2")};
   const std::string title = summary.at("inputs").value("title", "");
+  if (o.from && o.to && !(*o.from < *o.to))
+    throw std::invalid_argument(fmt::format("--from {:g} --to {:g}: the window's start must come before its end", *o.from, *o.to));
   fs::create_directories(dir / "plots");
   std::vector<std::string> written;
   if (has_frames) {
-    written = plot_frames(o, title, L, T);
+    written = plot_frames(o, title, plot_units, listed_frames(dir));
   } else if (o.warn) {
     o.warn(fmt::format("{} has no frames (analysis.frames: false): drawing the history only", o.out_dir));
   }

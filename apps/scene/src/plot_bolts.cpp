@@ -4,9 +4,9 @@
 
 #include <filesystem>
 #include <map>
-#include <sstream>
 
 #include "plot_bolts.hpp"
+#include "plot_support.hpp"
 #include "rheodda/scene/output.hpp"
 #include "rheodda/scene/plot.hpp"
 
@@ -19,24 +19,12 @@ std::string plot_bolts(const std::string& out_dir, const std::string& format, co
   // time,step,bolt,state,force,... -> per bolt "time force" lines, in file order.
   std::map<std::string, std::string> series;
   std::vector<std::string> order;
-  std::istringstream in(read_file((dir / "bolts.csv").string()));
-  std::string line;
-  bool header = true;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    if (header) {
-      header = false;
-      continue;
-    }
-    std::vector<std::string> cells;
-    std::stringstream ss(line);
-    std::string c;
-    while (std::getline(ss, c, ',')) cells.push_back(c);
-    if (cells.size() < 5) continue;
+  for_each_csv_row((dir / "bolts.csv").string(), [&](const std::vector<std::string>&, const std::vector<std::string>& cells) {
+    if (cells.size() < 5) return;
     if (!series.count(cells[2])) order.push_back(cells[2]);
     series[cells[2]] += cells[0] + " " + cells[4] + "\n";
-  }
-  const auto q = [](const std::string& s) { return fmt::format("'{}'", gnuplot_text(s)); };
+  });
+  const auto q = gnuplot_quote;
   const fs::path picture = dir / "plots" / ("bolts." + format);
   std::string plot;
   for (std::size_t k = 0; k < order.size(); ++k) {
@@ -49,8 +37,7 @@ std::string plot_bolts(const std::string& out_dir, const std::string& format, co
       "{}\nset output {}\nset title {} noenhanced\nset key top left noenhanced\nset grid lc rgb '#dddddd'\n"
       "set xlabel 'time [{}]' noenhanced\nset ylabel 'bolt axial force, tension > 0 [{}/{} thickness]' noenhanced\n"
       "plot {}, \\\n     0 with lines lc rgb '#bbbbbb' notitle\n",
-      format == "svg" ? "set terminal svg size 1000,500 dynamic background rgb 'white'"
-                      : "set terminal pngcairo size 1000,500 font 'sans,11'",
+      gnuplot_terminal(format, 1000, 500),
       q(picture.string()), q(title + ": bolt forces"), time_unit, force_unit, length_unit, plot);
   const fs::path gp = dir / "plots" / "bolts.gp";
   write_file_atomic(gp.string(), script);

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "rheodda/contact/strength.hpp"
 #include "run_internal.hpp"
 
 namespace rheodda::scene {
@@ -23,7 +24,14 @@ std::string units_comment(const Units& u) {
 
 const std::string contacts_header =
     "time,step,id,joint_set,state,kind,vertex_block,vertex,edge_block,edge,x,y,"
-    "normal_force,shear_force,shear_displacement,penetration,length,creep_displacement,creep_state\n";
+    "normal_force,shear_force,shear_strength,shear_displacement,penetration,length,tributary_length,"
+    "creep_displacement,creep_state\n";
+
+/// The contact's Mohr-Coulomb strength [force/length]: the peak while it is intact, the
+/// residual once it has slid or opened (contact/strength.hpp).
+double strength(const Run& run, const contact::Contact& c) {
+  return contact::mohr_coulomb_strength(run.contacts.joint_sets()[c.joint_set], c.normal_force, c.length, c.intact);
+}
 
 std::string contacts_collection(const Run& run) {
   std::vector<std::pair<double, std::string>> files;
@@ -203,6 +211,8 @@ std::string contacts_frame_text(const Run& run) {
     fc.creep_displacement = c.creep_displacement;
     fc.penetration = c.penetration;
     fc.length = c.length;
+    fc.tributary_length = c.tributary_length;
+    fc.shear_strength = strength(run, c);
     if (scene_has_water(run.s)) fc.water_pressure = core::water_pressure(run.engine.model().water, p, run.engine.time());
     layer.push_back(fc);
   }
@@ -246,12 +256,13 @@ void write_frame(Run& run) {
   for (const auto& c : run.contacts.contacts()) {
     const core::Vec2 p = engine.vertices(c.key.vblock)[c.key.vertex];
     rows += fmt::format("{:.10g},{},{},{},{},{},{},{},{},{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},"
-                        "{:.10g},{}{}\n",
+                        "{:.10g},{:.10g},{:.10g},{}{}\n",
                         engine.time(), engine.step_count(), c.id, s.joint_sets[c.joint_set].name,
                         contact::contact_state_name(c.state), contact::contact_kind_name(c.kind),
                         s.blocks[c.key.vblock].name, c.key.vertex, s.blocks[c.key.eblock].name, c.key.edge,
-                        p.x(), p.y(), c.normal_force, c.shear_force, c.shear_displacement, c.penetration,
-                        c.length, c.creep_displacement, contact::creep_state_name(c.creep_state),
+                        p.x(), p.y(), c.normal_force, c.shear_force, strength(run, c), c.shear_displacement,
+                        c.penetration, c.length, c.tributary_length, c.creep_displacement,
+                        contact::creep_state_name(c.creep_state),
                         scene_has_water(s) ? water_pressure_cell(engine.model().water, p, engine.time()) : std::string());
   }
   for (const auto& c : run.contacts.contacts())

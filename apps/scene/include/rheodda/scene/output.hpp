@@ -151,10 +151,12 @@ struct FrameContact {
   int kind = 0;                   ///< 0 vertex-edge, 1 vertex-vertex, 2 edge-edge
   double normal_force = 0.0;       ///< [force] (per unit thickness)
   double shear_force = 0.0;        ///< [force]
+  double shear_strength = 0.0;     ///< Mohr-Coulomb strength N tan(phi) + c l, residual once not intact [force]
   double shear_displacement = 0.0; ///< accumulated, signed along the entrance edge [length]
   double creep_displacement = 0.0; ///< accumulated by the joint set's law [length]
   double penetration = 0.0;        ///< [length]
-  double length = 0.0;             ///< contact (tributary) length [length]
+  double length = 0.0;             ///< contact length (0 for a point contact) [length]
+  double tributary_length = 0.0;   ///< the joint length the contact stands for [length]
   std::optional<double> water_pressure;  ///< at the point, scenes with water only [stress] (docs/reference/water.md)
 };
 

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,10 +51,20 @@ struct PlotOptions {
   std::vector<double> times;   ///< draw the frames nearest these times [time]; empty: first, middle, last
   std::string format = "png";  ///< "png" or "svg"
   double scale = 0.0;          ///< displacement magnification; 0: automatic (1 unless displacements are tiny)
+  /// The contacts.csv column the contacts pictures colour the contacts by (one of
+  /// contact_colour_columns()).
+  std::string contact_column = "creep_displacement";
+  /// The time window [time]: history.png spans it, and without `times` the frames drawn
+  /// are the first, middle and last within it. Unset: the run's start, its end.
+  std::optional<double> from, to;
   /// Receives each warning, e.g. a requested time after the run's last frame (the last frame
   /// is drawn instead); `rheodda plot` prints them. Empty: warnings are not reported.
   std::function<void(const std::string&)> warn;
 };
+
+/// The columns of contacts.csv a contacts picture can colour the contacts by (its numeric
+/// columns), and `mobilised_friction` = |shear_force| / shear_strength.
+const std::vector<std::string>& contact_colour_columns();
 
 /// The blocks of a scene, each edge coloured by its joint set (a rock mass's region
 /// boundary in grey), with each set's joint length in the key, into `picture`
@@ -61,8 +72,10 @@ struct PlotOptions {
 std::string plot_scene(const SceneDescription& s, const std::string& picture, const std::string& format);
 
 /// `options.out_dir` may also be a scene file: then plot_scene() into <scene without extension>-blocks.<format>.
-/// Writes OUTDIR/plots/blocks_<frame>.<format> and OUTDIR/plots/history.<format>
-/// (and the gnuplot scripts and data next to them); returns the pictures' paths.
+/// Writes OUTDIR/plots/blocks_<frame>.<format>, with contacts.csv
+/// OUTDIR/plots/contacts_<frame>.<format> and strength_<frame>.<format> (plot_contacts.hpp),
+/// and OUTDIR/plots/history.<format> (and the gnuplot scripts and data next to them);
+/// returns the pictures' paths.
 /// Throws std::invalid_argument for a directory that holds no run, std::runtime_error if gnuplot fails.
 std::vector<std::string> plot_run(const PlotOptions& options);
 

@@ -1,0 +1,30 @@
+// The Mohr-Coulomb strength of a contact, written once (docs/reference/contacts.md,
+// "Friction, cohesion, tension (Mohr-Coulomb)"): the implicit step's springs and
+// commit, the explicit step's cycles and the outputs all take it from here.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "rheodda/contact/joint_set.hpp"
+
+namespace rheodda::contact {
+
+/// tan of an angle given in degrees [-].
+inline double tan_deg(double degrees) { return std::tan(degrees * std::numbers::pi / 180.0); }
+
+/// The Mohr-Coulomb shear strength N tan(phi) + c l of a contact [force/length]: N the
+/// normal force [force/length] (compression > 0; a contact in tension carries no
+/// friction), tan(phi) [-], c the cohesion [stress], l the contact length [length].
+inline double mohr_coulomb_strength(double normal_force, double tan_phi, double cohesion, double length) {
+  return std::max(normal_force, 0.0) * tan_phi + cohesion * length;
+}
+
+/// The strength of a contact of joint set `js` [force/length], peak while it is intact and
+/// residual once not (JointSet::friction_angle_of, cohesion_of).
+inline double mohr_coulomb_strength(const JointSet& js, double normal_force, double length, bool intact) {
+  return mohr_coulomb_strength(normal_force, tan_deg(js.friction_angle_of(intact)), js.cohesion_of(intact), length);
+}
+
+}  // namespace rheodda::contact
