@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <tuple>
 #include <stdexcept>
 
 #include "plot_support.hpp"
@@ -169,25 +170,32 @@ std::string draw_layout(const fs::path& dir, const std::string& format, const st
                                                   : std::string();
   const fs::path picture = dir / "plots" / (stem + "." + format);
   const std::string q_blocks = gnuplot_quote(blocks_dat.string()), q_dat = gnuplot_quote(dat.string());
-  auto n = [&](const char* s) { return count.count(s) ? count.at(s) : 0; };
-  const std::string script = fmt::format(
+  // A series per state that has contacts (gnuplot warns of one with no point).
+  std::string states;
+  for (const auto& [word, code, look] : {std::tuple{"locked", 2, "pt 7 ps 0.8 lc rgb '#1f77b4'"},
+                                         std::tuple{"sliding", 1, "pt 7 ps 1.0 lc rgb '#d62728'"},
+                                         std::tuple{"open", 0, "pt 6 ps 0.6 lc rgb '#7f7f7f'"}})
+    if (count.count(word))
+      states += fmt::format(", \\\n     {} using 1:($3=={} ? $2 : 1/0) with points {} title '{} ({})'", q_dat, code, look,
+                            word, count.at(word));
+  const std::string outline = fmt::format("plot {} with lines lc rgb '#aaaaaa' notitle", q_blocks);
+  std::string script = fmt::format(
       "{}\nset output {}\nset size ratio -1\nset grid lc rgb '#eeeeee'\nset key outside top center horizontal noenhanced\n"
       "set xlabel 'x [{}]' noenhanced\nset ylabel 'y [{}]' noenhanced\n"
       "set multiplot layout 2,1 title {} noenhanced\n"
-      "set title 'contact state' noenhanced\n"
-      "plot {} with lines lc rgb '#aaaaaa' notitle, \\\n"
-      "     {} using 1:($3==2 ? $2 : 1/0) with points pt 7 ps 0.8 lc rgb '#1f77b4' title 'locked ({})', \\\n"
-      "     {} using 1:($3==1 ? $2 : 1/0) with points pt 7 ps 1.0 lc rgb '#d62728' title 'sliding ({})', \\\n"
-      "     {} using 1:($3==0 ? $2 : 1/0) with points pt 6 ps 0.6 lc rgb '#7f7f7f' title 'open ({})'\n"
-      "set title {} noenhanced\n{}"
-      "set palette defined (0 '#440154', 0.25 '#3b528b', 0.5 '#21918c', 0.75 '#5ec962', 1 '#fde725')\n"
-      "set cblabel {} noenhanced\nunset key\n"
-      "plot {} with lines lc rgb '#aaaaaa' notitle, \\\n"
-      "     {} using 1:2:4 with points pt 7 ps 0.9 lc palette notitle\n"
-      "unset multiplot\n",
-      gnuplot_terminal(format, 1000, canvas_height(*f.blocks)), gnuplot_quote(picture.string()), units.length, units.length,
-      gnuplot_wrapped(fmt::format("{}: contacts at t = {:g} {}", title, f.time, units.time), kPlotTitleWidth), q_blocks, q_dat, n("locked"), q_dat, n("sliding"), q_dat, n("open"),
-      gnuplot_quote("contacts coloured by " + label), cbrange, gnuplot_quote(label), q_blocks, q_dat);
+      "set title {} noenhanced\n{}{}\n",
+      gnuplot_terminal(format, 1000, canvas_height(*f.blocks)), gnuplot_quote(picture.string()), units.length,
+      units.length, gnuplot_wrapped(fmt::format("{}: contacts at t = {:g} {}", title, f.time, units.time), kPlotTitleWidth),
+      gnuplot_quote(rows.empty() ? "contact state: no contact at this time" : "contact state"), outline, states);
+  script += fmt::format("set title {} noenhanced\n", gnuplot_quote("contacts coloured by " + label));
+  if (rows.empty())
+    script += outline + "\n";
+  else
+    script += fmt::format(
+        "{}set palette defined (0 '#440154', 0.25 '#3b528b', 0.5 '#21918c', 0.75 '#5ec962', 1 '#fde725')\n"
+        "set cblabel {} noenhanced\nunset key\n{}, \\\n     {} using 1:2:4 with points pt 7 ps 0.9 lc palette notitle\n",
+        cbrange, gnuplot_quote(label), outline, q_dat);
+  script += "unset multiplot\n";
   const fs::path gp = dir / "plots" / (stem + ".gp");
   write_file_atomic(gp.string(), script);
   run_gnuplot(gp.string());
