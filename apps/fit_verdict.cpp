@@ -6,7 +6,10 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
+
+#include "rheodda/laws/registry.hpp"
 
 namespace rheodda::apps {
 
@@ -51,10 +54,14 @@ std::string fit_verdict(const std::vector<fit::FitResult>& ranked, bool bic) {
     if (delta(ranked[i]) > fit::kUnsupportedDelta) continue;
     const std::vector<std::string> u = fit::unidentified_parameters(ranked[i]);
     if (u.empty()) continue;
+    // What each value decides (laws::ParameterSpec::what_its_value_decides), by the law's declaration.
+    std::string decides;
+    for (const auto& p : laws::LawRegistry::builtin().get(ranked[i].law).parameters)
+      if (std::find(u.begin(), u.end(), p.name) != u.end()) decides += "; " + p.what_its_value_decides();
     out += fmt::format(
         "  {}: the data do not determine {}: the value{} reported {} one of many the data allow, and a forecast "
-        "with this law depends on that choice, not on the data{}\n",
-        ranked[i].law, fmt::join(u, ", "), u.size() == 1 ? "" : "s", u.size() == 1 ? "is" : "are each",
+        "with this law depends on that choice, not on the data{}{}\n",
+        ranked[i].law, fmt::join(u, ", "), u.size() == 1 ? "" : "s", u.size() == 1 ? "is" : "are each", decides,
         i == 0 ? fmt::format("; --yaml writes it marked (unidentified: [{}]), and check and run warn where a scene "
                              "uses it",
                              fmt::join(u, ", "))
