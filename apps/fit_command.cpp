@@ -8,6 +8,7 @@
 //       --initial E2=150 --sigma-column sigma --absolute-sigma
 //   rheodda fit table1-row1.csv --law burgers --stress 0.232 --expr "eta2=12*E2" --max-iterations 5000
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -24,6 +25,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "fit_verdict.hpp"
 #include "rheodda/fit/fit.hpp"
 #include "rheodda/laws/registry.hpp"
 #include "rheodda/scene/plot.hpp"
@@ -266,20 +268,8 @@ void print_fit(const FitResult& r, const Units& u) {
   for (const auto& w : r.warnings) fmt::print("  warning: {}\n", w);
 }
 
-std::vector<double> weights(const std::vector<FitResult>& ranked, bool bic) {
-  std::vector<double> w;
-  double sum = 0.0;
-  const double best = bic ? ranked.front().bic : ranked.front().aic;
-  for (const auto& r : ranked) {
-    w.push_back(std::exp(-0.5 * ((bic ? r.bic : r.aic) - best)));
-    sum += w.back();
-  }
-  for (auto& x : w) x /= sum;
-  return w;
-}
-
 void print_ranking(const std::vector<FitResult>& ranked, bool bic, const Units& u) {
-  const auto w = weights(ranked, bic);
+  const auto w = ranking_weights(ranked, bic);  // fit_verdict.cpp
   fmt::print("\nranking by {} (lower is better; weight = exp(-delta/2), normalized):\n",
              bic ? "BIC" : "AIC");
   fmt::print("  {:>4}  {:<20} {:>2} {:>12} {:>12} {:>12} {:>10} {:>12} {:>10} {:>8}\n", "rank", "law",
@@ -375,6 +365,23 @@ void write_json(const std::string& path, const CreepData& d, const Units& u,
                    {"optimality", r.optimality},
                    {"warnings", r.warnings}});
   }
+  {
+    // The weights of evidence (fit::model_weights: Akaike weights on AIC) and what each fit leaves undetermined.
+    std::vector<double> aic, bic;
+    for (const auto& r : fits) {
+      aic.push_back(r.aic);
+      bic.push_back(r.bic);
+    }
+    const auto wa = fit::model_weights(aic), wb = fit::model_weights(bic);
+    for (std::size_t i = 0; i < fits.size(); ++i) {
+      arr[i]["akaike_weight"] = wa[i];
+      arr[i]["bic_weight"] = wb[i];
+      arr[i]["unidentified"] = fit::unidentified_parameters(fits[i]);
+    }
+    const fit::TestedRange tested = fit::tested_range(d);
+    out["tested_stress"] = {tested.stress_min, tested.stress_max};
+    out["tested_duration"] = tested.duration;
+  }
   out["fits"] = arr;
   out["rank_by"] = rank_by;
   out["best"] = fits.front().law;
@@ -393,6 +400,16 @@ void write_yaml(const std::string& path, const CreepData& d, const Units& u, con
   for (const auto& c : r.combinations)
     f << fmt::format("# fixed by the data: {} = {:.7g} +- {:.3g} {}\n", c.expression, c.value,
                      c.std_error, u.of(c.unit));
+  // What the fit says of the law, in keys the scene loader reads (docs/reference/scene-format.md, "law").
+  const fit::TestedRange tested = fit::tested_range(d);
+  const std::vector<std::string> unidentified = fit::unidentified_parameters(r);
+  if (!unidentified.empty())
+    f << fmt::format("# the data do not determine {}: the value{} below {} one of many they allow (unidentified)\n",
+                     fmt::join(unidentified, ", "), unidentified.size() == 1 ? "" : "s",
+                     unidentified.size() == 1 ? "is" : "are");
+  f << fmt::format("# tested_stress and tested_duration: the stresses and duration of the data{}; the scene's "
+                   "units must be the data's\n",
+                   u.text.empty() ? "" : fmt::format(" [{}], [{}]", u.stress, u.time));
   f << "law:\n";
   f << fmt::format("  name: {}\n", r.law);
   for (const auto& p : r.parameters)
@@ -403,6 +420,9 @@ void write_yaml(const std::string& path, const CreepData& d, const Units& u, con
                      : p.identifiable       ? fmt::format("+- {:.3g}", p.std_error)
                                             : std::string("+- (not identifiable)"),
                      u.of(p.unit));
+  if (!unidentified.empty()) f << fmt::format("  unidentified: [{}]\n", fmt::join(unidentified, ", "));
+  f << fmt::format("  tested_stress: [{:.7g}, {:.7g}]\n", tested.stress_min, tested.stress_max);
+  f << fmt::format("  tested_duration: {:.7g}\n", tested.duration);
 }
 
 void write_plot(const std::string& path, const std::string& terminal, const CreepData& d,
@@ -559,6 +579,7 @@ void run_fit(const FitArgs& a) {
   if (all) {
     print_ranking(fits, a.rank_by != "aic", units);
     fmt::print("\nbest: {}\n", fits.front().law);
+    fmt::print("{}", fit_verdict(fits, a.rank_by != "aic"));  // fit_verdict.cpp
   }
   if (!a.json.empty()) write_json(a.json, data, units, fits, skipped, a.rank_by);
   if (!a.yaml.empty()) write_yaml(a.yaml, data, units, fits.front());

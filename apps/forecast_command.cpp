@@ -215,6 +215,10 @@ void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
              drawn.spread.empty() ? "" : fmt::format("; not identified, drawn within a factor {:g}: {}", u.spread, fmt::join(drawn.spread, ", ")),
              scene_samples.size());
 
+  // What the band covers, and what not (coverage.cpp): said before the members run.
+  const std::string coverage = fc::band_coverage(fit, drawn, u);
+  fmt::print("{}", coverage);
+
   // --- The ensemble, as a study.
   study::StudyOptions opt;
   opt.out_dir = out.string();
@@ -295,7 +299,8 @@ void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
                            {"unidentified_spread", u.spread}, {"parameters", params},
                            {"members_completed", members.size()}, {"members_failed", failed},
                            {"percentiles", a.percentiles}, {"column", column}, {"exceedance", exceed},
-                           {"units_converted", !placeholder_units}};
+                           {"units_converted", !placeholder_units},
+                           {"law_form_sampled", false}, {"band_coverage", coverage}};
     std::ofstream(out / "forecast.json", std::ios::binary) << j.dump(2) << "\n";
   }
 

@@ -6,6 +6,19 @@
 
 namespace rheodda::laws {
 
+std::string ParameterSpec::what_its_value_decides() const {
+  // The laws' elements (laws.md): a Bingham threshold [stress], dashpots [stress*time/length],
+  // springs [stress/length].
+  if (unit == "stress")
+    return fmt::format("{} is a threshold: its element flows only where the shear stress exceeds it, so whether a "
+                       "contact near it creeps at all is decided by the value of {}, not by the data",
+                       name, name);
+  if (unit.find("time") != std::string::npos)
+    return fmt::format("{} is a viscosity: the rate of its element, and so the creep computed, scales with 1/{}", name,
+                       name);
+  return fmt::format("{} is a stiffness: the size of its element's creep scales with 1/{}", name, name);
+}
+
 std::string ParameterSpec::range_text() const {
   auto num = [](double v) {
     if (v == std::numeric_limits<double>::max()) return std::string("1.8e308");

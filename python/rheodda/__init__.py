@@ -67,7 +67,7 @@ __all__ = [
     "Law", "PythonLaw", "StepConstants", "UnitStepConstants", "laws", "law", "law_info",
     "creep_curve", "relaxation_curve", "exact_displacement", "exact_force", "law_step",
     "CreepData", "read_creep_csv", "creep_data", "FitResult", "FitParameter", "FixedCombination", "fit", "fit_all",
-    "ranking_frame",
+    "ranking_frame", "model_weights",
     "Scene", "load_scene", "parse_scene", "scene_from_dict", "Simulation", "StepReport",
     "Block", "Blocks", "Load", "JointSet", "JointSets", "Contacts", "Bolts", "Callback", "SimulationState",
     "run", "run_study", "rheodda_binary", "to_dataframe",
@@ -85,7 +85,7 @@ def law_info(name):
 
 # Outputs as DataFrames (_frames.py) and fitting (_fitting.py), re-exported here.
 from ._frames import to_dataframe  # noqa: E402,F401  (re-exported API)
-from ._fitting import FitParameter, FitResult, fit, fit_all, ranking_frame  # noqa: E402,F401  (re-exported API)
+from ._fitting import FitParameter, FitResult, fit, fit_all, model_weights, ranking_frame  # noqa: E402,F401  (re-exported API)
 
 
 # --- scenes --------------------------------------------------------------------

@@ -152,6 +152,13 @@ class FitResult:
         for c in self.combinations:
             lines.append("# fixed by the data: {} = {:.7g} +- {:.3g} {}".format(
                 c.expression, c.value, c.std_error, c.unit))
+        unidentified = self.unidentified
+        if unidentified:
+            lines.append("# the data do not determine {}: the value{} below {} one of many they allow "
+                         "(unidentified)".format(", ".join(unidentified), "" if len(unidentified) == 1 else "s",
+                                                 "is" if len(unidentified) == 1 else "are"))
+        lines.append("# tested_stress and tested_duration: the stresses and duration of the data; the scene's "
+                     "units must be the data's")
         lines += ["law:", "  name: {}".format(self.law)]
         for p in self.parameters:
             if p.expr:
@@ -165,7 +172,18 @@ class FitResult:
             else:
                 note = "+- (not identifiable)"
             lines.append("  {}: {:.7g}   # {} {}".format(p.name, p.value, note, p.unit))
+        if unidentified:
+            lines.append("  unidentified: [{}]".format(", ".join(unidentified)))
+        lo, hi, duration = _rheodda._tested_range(self.data)
+        lines.append("  tested_stress: [{:.7g}, {:.7g}]".format(lo, hi))
+        lines.append("  tested_duration: {:.7g}".format(duration))
         return "\n".join(lines) + "\n"
+
+    @property
+    def unidentified(self):
+        """The names of the parameters the data do not determine (varying, not on a bound, not
+        identifiable): `yaml` marks them ``unidentified: [...]``, and a scene using the law warns."""
+        return list(_rheodda._unidentified(self._raw))
 
     def to_dataframe(self):
         """The parameters as a pandas DataFrame indexed by name: value, std_error, relative_error,
@@ -393,12 +411,28 @@ def fit_all(data, t=None, stress=None, *, rank_by="bic", params=None, sigma=None
     return [FitResult(r, d, call) for r in results], list(skipped)
 
 
+def model_weights(results, criterion="aic"):
+    """The weight of evidence for each of ``results`` (as :func:`fit_all` returns), in their
+    order: w_i = exp(-Delta_i/2) / sum_j exp(-Delta_j/2), Delta_i the law's ``criterion``
+    ('aic' or 'bic') minus the lowest. On AIC these are the Akaike weights (Burnham & Anderson
+    2002, Model Selection and Multimodel Inference, ch. 2); they sum to 1 [-]. As
+    `rheodda fit --law all`'s verdict (docs/guide/fitting.md, "The verdict")."""
+    if criterion not in ("aic", "bic"):
+        raise Error("model_weights: criterion '{}' is not one of aic, bic".format(criterion))
+    return _np.asarray(_rheodda._model_weights([getattr(r, criterion) for r in results]))
+
+
 def ranking_frame(results):
     """A list of :class:`FitResult` (as :func:`fit_all` returns) as a pandas DataFrame, one row per
-    law in the given order: law, k (varying), points, rmse [length], r2, chi_square, aic, bic."""
-    cols = {k: [] for k in ("law", "k", "points", "rmse", "r2", "chi_square", "aic", "bic")}
-    for r in results:
+    law in the given order: law, k (varying), points, rmse [length], r2, chi_square, aic, bic,
+    akaike_weight, bic_weight (:func:`model_weights`), unidentified (the parameters the data do not
+    determine, comma-separated)."""
+    cols = {k: [] for k in ("law", "k", "points", "rmse", "r2", "chi_square", "aic", "bic", "akaike_weight",
+                            "bic_weight", "unidentified")}
+    wa, wb = model_weights(results, "aic"), model_weights(results, "bic")
+    for i, r in enumerate(results):
         for k, v in (("law", r.law), ("k", r.varying), ("points", r.points), ("rmse", r.rmse), ("r2", r.r2),
-                     ("chi_square", r.chi_square), ("aic", r.aic), ("bic", r.bic)):
+                     ("chi_square", r.chi_square), ("aic", r.aic), ("bic", r.bic), ("akaike_weight", wa[i]),
+                     ("bic_weight", wb[i]), ("unidentified", ", ".join(r.unidentified))):
             cols[k].append(v)
     return to_dataframe(cols)

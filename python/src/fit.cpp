@@ -247,6 +247,19 @@ void bind_fit(py::module_& m) {
       },
       py::arg("law"), py::arg("data"), py::arg("restarts"), py::arg("max_iterations"), py::arg("settings"),
       py::arg("scale_covariance"), py::arg("best"), py::arg("sigmas"), py::arg("names"));
+  // The choice of a law (laws/fit/src/model_choice.cpp): _fitting.py's model_weights, yaml.
+  m.def("_model_weights", &fit::model_weights, py::arg("criterion"),
+        "w_i = exp(-Delta_i/2) / sum_j exp(-Delta_j/2) of criterion values (Akaike weights on AIC; "
+        "Burnham & Anderson 2002)");
+  m.def("_unidentified", &fit::unidentified_parameters, py::arg("result"),
+        "the names of the parameters the fit leaves undetermined");
+  m.def(
+      "_tested_range",
+      [](const fit::CreepData& d) {
+        const fit::TestedRange r = fit::tested_range(d);
+        return py::make_tuple(r.stress_min, r.stress_max, r.duration);
+      },
+      py::arg("data"), "(lowest, highest) |stress| of the loading stages [stress], the test's duration [time]");
   m.def(
       "_fit_all",
       [](const fit::CreepData& data, const std::string& rank_by, int restarts, int max_iterations,

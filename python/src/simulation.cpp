@@ -58,7 +58,10 @@ Simulation::Simulation(const Scene& s, const py::dict& law_overrides, py::object
     keep_alive_.push_back(py::reinterpret_borrow<py::object>(item.second));
     built_.joint_sets[j].law = item.second.cast<std::shared_ptr<laws::ContactRheology>>();
     const laws::ContactRheology& law = *built_.joint_sets[j].law;
-    scene_.joint_sets[j].law = scene::LawChoice{std::string(law.name()), law.parameters()};
+    scene::LawChoice choice;  // the override's law: none of a fit's marks (docs/guide/fitting.md)
+    choice.name = std::string(law.name());
+    choice.parameters = law.parameters();
+    scene_.joint_sets[j].law = std::move(choice);
     // What restore() gives again: a built-in law by its parameters, a Python law by the object itself.
     if (dynamic_cast<const PythonLaw*>(&law)) {
       laws_[name] = "python";

@@ -68,6 +68,25 @@ def test_bad_data_raises_the_command_line_message(root, rheodda_binary, tmp_path
         rheodda.fit("burgers", [0.1, 0.2], t=[0.0, 1.0], stress=0.232)  # fewer points than parameters + 1
 
 
+def test_model_weights_are_the_hand_computed_akaike_weights(root):
+    # w_i = exp(-(AIC_i - AIC_min)/2) / sum_j exp(-(AIC_j - AIC_min)/2) (Burnham & Anderson 2002, ch. 2)
+    csv_path = str(root / "examples" / "creep-data" / "steps-unloading.csv")
+    ranked, _ = rheodda.fit_all(csv_path, stress_column="tau")
+    aic = np.array([r.aic for r in ranked])
+    hand = np.exp(-0.5 * (aic - aic.min()))
+    hand /= hand.sum()
+    np.testing.assert_allclose(rheodda.model_weights(ranked), hand, rtol=1e-12, atol=1e-300)
+    bic = np.array([r.bic for r in ranked])
+    hand_bic = np.exp(-0.5 * (bic - bic.min()))
+    np.testing.assert_allclose(rheodda.model_weights(ranked, "bic"), hand_bic / hand_bic.sum(), rtol=1e-12,
+                               atol=1e-300)
+    frame = rheodda.ranking_frame(ranked)
+    np.testing.assert_allclose(frame["akaike_weight"].to_numpy(), hand, rtol=1e-12, atol=1e-300)
+    assert list(frame["unidentified"]) == [", ".join(r.unidentified) for r in ranked]
+    with pytest.raises(rheodda.Error):
+        rheodda.model_weights(ranked, "dic")
+
+
 def test_nishihara_under_one_stress_reports_what_the_data_fix(root, rheodda_binary, tmp_path):
     # One stress level: the Bingham part creeps at (F - Fs)/eta3, so only that combination is fixed.
     csv_path = str(root / "examples" / "creep-data" / "table1-row1.csv")
@@ -86,6 +105,10 @@ def test_nishihara_under_one_stress_reports_what_the_data_fix(root, rheodda_bina
     subprocess.run([rheodda_binary, "fit", csv_path, "--law", "nishihara", "--stress", "0.232", "--yaml", str(yaml)],
                    check=True, capture_output=True)
     assert r.yaml == yaml.read_text()
+    # the scene loader's mark of what the data do not determine, and the range they cover
+    assert r.unidentified == ["eta3", "Fs"]
+    assert "\n  unidentified: [eta3, Fs]\n" in r.yaml
+    assert "\n  tested_stress: [0.232, 0.232]\n  tested_duration: 200\n" in r.yaml
 
 
 def _cli_correlation(report):

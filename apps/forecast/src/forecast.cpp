@@ -1,5 +1,6 @@
 // Sampling a fitted law's parameters, unit conversion, percentiles (forecast.hpp).
 #include "rheodda/forecast/forecast.hpp"
+#include "rheodda/fit/fit.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -161,6 +162,15 @@ FittedLaw read_fit_report(const std::string& path, const std::string& law) {
         if (c[i][k].is_number()) r.correlation[i * n + k] = c[i][k].get<double>();
     }
     check_correlation(r, path);
+    // The weight of evidence of each law of the report (band_coverage: the other laws its data support).
+    r.rank_by = j.value("rank_by", std::string("bic"));
+    std::vector<double> criterion;
+    for (const auto& x : j["fits"]) {
+      const auto c = x.find(r.rank_by);
+      criterion.push_back(c != x.end() && c->is_number() ? c->get<double>() : std::numeric_limits<double>::infinity());
+    }
+    const std::vector<double> w = fit::model_weights(criterion);
+    for (std::size_t i = 0; i < laws.size(); ++i) r.weights.emplace_back(laws[i], std::isfinite(w[i]) ? w[i] : 0.0);
     const auto& u = j.at("units");
     r.stress_unit = u.value("stress", std::string());
     r.length_unit = u.value("length", std::string());

@@ -9,12 +9,14 @@
 
 #include "rheodda/laws/registry.hpp"
 #include "rheodda/laws/series_law.hpp"
+#include "law_choice.hpp"
 #include "rheodda/scene/geometry.hpp"
 
 namespace rheodda::scene {
 
 std::vector<std::string> scene_warnings(const SceneDescription& s) {
-  std::vector<std::string> out;
+  // What a fitted law carries: its unidentified parameters, the duration it was tested for (law_choice.cpp).
+  std::vector<std::string> out = detail::law_choice_warnings(s);
   const Analysis& a = s.analysis;
   // The lagged scheme's stability limit (only when the scene asks for lagged:
   // the automatic choice and the other schemes are stable at any step). The

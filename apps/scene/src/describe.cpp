@@ -78,6 +78,15 @@ std::string describe_scene(const SceneDescription& s) {
       std::string params;
       for (const auto& [k, v] : j.law->parameters) params += fmt::format(" {}={}", k, exact_number(v));
       line(fmt::format("    law {}:{} (scheme {})", j.law->name, params, scheme_text(a)));
+      // What a fit says of it (keys_joints.cpp; the warnings: law_choice.cpp).
+      if (!j.law->unidentified.empty() || j.law->tested_stress || j.law->tested_duration)
+        line(fmt::format("    fitted law: unidentified {}; tested_stress {}; tested_duration {}",
+                         j.law->unidentified.empty() ? std::string("none") : fmt::format("{}", fmt::join(j.law->unidentified, ", ")),
+                         j.law->tested_stress ? fmt::format("[{:g}, {:g}] {}", (*j.law->tested_stress)[0],
+                                                            (*j.law->tested_stress)[1], stress)
+                                              : std::string("not stated"),
+                         j.law->tested_duration ? fmt::format("{:g} {}", *j.law->tested_duration, u.time)
+                                                : std::string("not stated")));
     } else {
       line("    law: none (no creep)");
     }

@@ -59,13 +59,18 @@ nlohmann::ordered_json entry_json(const std::vector<EntryKey<E>>& keys, const st
 /// A key left out of summary.json (entry_json's `other`).
 inline nlohmann::ordered_json left_out() { return nlohmann::ordered_json(nlohmann::ordered_json::value_t::discarded); }
 
-/// A law as summary.json echoes it: its declared keys (keys_joints.cpp; `name`) and every
-/// parameter; null for none.
+/// A law as summary.json echoes it: its declared keys (keys_joints.cpp; `name`, and what a
+/// fit says of it where the scene gives it) and every parameter; null for none.
 inline nlohmann::ordered_json law_json(const std::optional<LawChoice>& law) {
   if (!law) return nullptr;
-  nlohmann::ordered_json o = entry_json(law_keys(), "law", *law, [&](const KeyInfo& k) -> nlohmann::ordered_json {
-    return k.name == "name" ? nlohmann::ordered_json(law->name) : left_out();
-  });
+  nlohmann::ordered_json o = entry_json(
+      law_keys(), "law", *law,
+      [&](const KeyInfo& k) -> nlohmann::ordered_json {
+        if (k.name == "name") return nlohmann::ordered_json(law->name);
+        if (k.name == "unidentified" && !law->unidentified.empty()) return nlohmann::ordered_json(law->unidentified);
+        return left_out();
+      },
+      Unset::omit);
   for (const auto& [k, v] : law->parameters) o[k] = v;
   return o;
 }

@@ -79,6 +79,7 @@ std::string unit_text(const std::string& unit, const Units& u) {
   if (unit == "stress") return u.stress();
   if (unit == "force/length") return u.force + "/" + u.length;
   if (unit == "stress/length") return u.stress() + "/" + u.length;
+  if (unit == "stress*time/length") return u.stress() + "*" + u.time + "/" + u.length;  // a law's viscosity
   if (unit == "length/time²") return u.length + "/" + u.time + "^2";
   if (unit == "mass/length³") return u.force + "*" + u.time + "^2/" + u.length + "^4";
   if (unit == "force/length³") return u.force + "/" + u.length + "^3";

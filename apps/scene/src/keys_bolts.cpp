@@ -50,7 +50,8 @@ std::vector<EntryKey<BoltDescription>>& bolt_keys() {
                 .meaning = "the law's name and parameters, as a joint set's `law` (above): creep of the axial force "
                            "(relaxation); force is the bolt's axial force, displacement its elongation, so E1, E2 in "
                            "force/length and eta1, eta2 in force·time/length; its E1 is the bolt's spring "
-                           "(`axial_stiffness` left out, or equal); a damage law is refused",
+                           "(`axial_stiffness` left out, or equal); a damage law is refused, and so are `unidentified`, "
+                           "`tested_stress` and `tested_duration` (a joint set's law only)",
                 .submap = "law"}));
     return k;
   }();

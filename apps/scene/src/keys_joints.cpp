@@ -122,6 +122,35 @@ std::vector<EntryKey<LawChoice>>& law_keys() {
         KeyInfo{.map = "law", .name = "name", .type = KeyType::name, .unit = "–",
                 .default_text = "required", .meaning = "a law of `rheodda law list`"},
         [](const LawChoice& l) -> KeyValue { return l.name; }));
+    // What a fit says of the law (rheodda fit --yaml writes them): read by read_law too
+    // (a list of the law's parameter names), and the range the law was tested over;
+    // the warnings they raise: law_choice.cpp.
+    k.push_back(detail::reader_key<LawChoice>(
+        KeyInfo{.map = "law", .name = "unidentified", .type = KeyType::list, .unit = "–", .default_text = "none",
+                .meaning = "`[NAME, ...]`: the law's parameters that the data it was fitted to do not determine "
+                           "(`rheodda fit --yaml` writes it): their values are one choice among many the data allow; "
+                           "`check` and `run` warn, saying what the choice decides; a joint set's law only"},
+        [](const LawChoice& l) -> KeyValue {
+          if (l.unidentified.empty()) return std::monostate{};
+          std::string names;
+          for (const auto& n : l.unidentified) names += (names.empty() ? "" : ", ") + n;
+          return names;
+        }));
+    k.push_back(detail::optional_key(
+        KeyInfo{.map = "law", .name = "tested_stress", .type = KeyType::numbers, .unit = "stress",
+                .default_text = "not stated",
+                .meaning = "`[lowest, highest]`, 0 < lowest ≤ highest: the shear stresses of the tests the law was "
+                           "fitted to (`rheodda fit --yaml` writes it); `run` warns where the contacts' shear stresses "
+                           "at the end of settling lie outside, with the factor; a joint set's law only",
+                .count = 2},
+        &LawChoice::tested_stress));
+    k.push_back(detail::optional_key(
+        KeyInfo{.map = "law", .name = "tested_duration", .type = KeyType::number, .unit = "time", .range = kPositive,
+                .default_text = "not stated",
+                .meaning = "> 0: the duration of the longest test the law was fitted to (`rheodda fit --yaml` writes "
+                           "it); `check` and `run` warn when the run lasts longer, with the factor; a joint set's law "
+                           "only"},
+        &LawChoice::tested_duration));
     return k;
   }();
   return keys;

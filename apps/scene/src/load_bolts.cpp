@@ -81,7 +81,8 @@ BoltDescription read_bolt(const Ctx& ctx, const YAML::Node& n, const std::string
     ctx.fail(to.node(), to.child(b.to_fixed ? "fixed" : "point"), "the two ends coincide: a bolt needs a length");
 
   if (const YAML::Node law = m.find("law"); law.IsDefined()) {
-    b.law = read_law(ctx, law, m.child("law"));
+    b.law = read_law(ctx, law, m.child("law"),
+                     "a bolt's law does not take it (its force is axial, not a joint's shear stress)");
     const auto built = laws::LawRegistry::builtin().create(b.law->name, b.law->parameters);
     if (built->failure_time(1.0))
       ctx.fail(law, m.child("law"),

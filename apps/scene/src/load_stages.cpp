@@ -110,7 +110,8 @@ std::vector<StageJointSet> read_stage_joint_sets(const Ctx& ctx, const YAML::Nod
     if (m.entries().empty()) ctx.fail(e.value, all.child(e.key), "changes nothing: give the values to change");
     read_declared(ctx, m, stage_joint_set_keys(), "stages.joint_sets", c);  // the strengths (keys_stages.cpp)
     if (YAML::Node v = m.find("law"); v.IsDefined()) {
-      const LawChoice law = read_law(ctx, v, m.child("law"));
+      const LawChoice law =
+          read_law(ctx, v, m.child("law"), "a stage changes the law's parameters only: give it on the joint set's law");
       if (!js.law || js.law->name != law.name)
         ctx.fail(v, m.child("law"),
                  fmt::format("joint set '{}' has {}: a stage can change a law's parameters, not add or replace a law",

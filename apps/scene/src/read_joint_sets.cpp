@@ -39,7 +39,36 @@ std::vector<Material> read_materials(const Ctx& ctx, const YAML::Node& n, bool d
   return out;
 }
 
-LawChoice read_law(const Ctx& ctx, const YAML::Node& n, const std::string& path) {
+namespace {
+
+/// `unidentified: [NAME, ...]`: names of parameters of the law `info`, each once.
+std::vector<std::string> read_unidentified(const Ctx& ctx, const YAML::Node& v, const std::string& path,
+                                           const laws::LawInfo& info) {
+  std::vector<std::string> params;
+  for (const auto& p : info.parameters) params.push_back(p.name);
+  if (!v.IsSequence())
+    ctx.fail(v, path, fmt::format("expected a list of the law's parameters, e.g. `[{}]`; law '{}' has {}",
+                                  params.back(), info.name, join(params)));
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const std::string item_path = fmt::format("{}[{}]", path, i);
+    const std::string name = text(ctx, v[i], item_path);
+    if (std::find(params.begin(), params.end(), name) == params.end()) {
+      const std::string hint = laws::nearest_name(name, params);
+      ctx.fail(v[i], item_path,
+               fmt::format("law '{}' has no parameter '{}'{}; its parameters: {}", info.name, name,
+                           hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint), join(params)));
+    }
+    if (std::find(out.begin(), out.end(), name) != out.end())
+      ctx.fail(v[i], item_path, fmt::format("'{}' is listed twice", name));
+    out.push_back(name);
+  }
+  return out;
+}
+
+}  // namespace
+
+LawChoice read_law(const Ctx& ctx, const YAML::Node& n, const std::string& path, const char* fit_marks_refused) {
   const auto& registry = laws::LawRegistry::builtin();
   if (!n.IsMap()) ctx.fail(n, path, fmt::format("expected a map `{{name: LAW, PARAM: value, ...}}`, got {}", type_word(n)));
   YAML::Node name_node = n["name"];
@@ -61,6 +90,20 @@ LawChoice read_law(const Ctx& ctx, const YAML::Node& n, const std::string& path)
   LawChoice law;
   law.name = name;
   read_declared(ctx, m, law_keys(), "law", law);  // the declared keys but `name` (read above), keys_joints.cpp
+  // What a fit says of the law (keys_joints.cpp): a joint set's law only.
+  for (const char* key : {"unidentified", "tested_stress", "tested_duration"})
+    if (YAML::Node v = m.find(key); v.IsDefined() && fit_marks_refused)
+      ctx.fail(v, m.child(key), fmt::format("{} marks a fitted law of a joint set; {}", key, fit_marks_refused));
+  if (YAML::Node v = m.find("unidentified"); v.IsDefined())
+    law.unidentified = read_unidentified(ctx, v, m.child("unidentified"), *info);
+  if (YAML::Node v = m.find("tested_stress"); v.IsDefined()) {
+    const auto& range = *law.tested_stress;
+    if (!(range[0] > 0.0 && range[0] <= range[1]))
+      ctx.fail(v, m.child("tested_stress"),
+               fmt::format("[{:g}, {:g}] is not [lowest, highest] with 0 < lowest <= highest: the shear stresses "
+                           "of the tests the law was fitted to",
+                           range[0], range[1]));
+  }
   const std::vector<std::string> declared = key_names(law_keys(), "law");
   laws::ParameterValues given;  // the rest: the law's parameters
   for (const auto& e : m.entries())
@@ -111,7 +154,7 @@ std::vector<JointSetDescription> read_joint_sets(const Ctx& ctx, const YAML::Nod
                "a static analysis carries no velocity; restitution needs `analysis: {type: dynamic}` "
                "or a dynamic settling stage (`settle: {type: dynamic, ...}`)");
     if (YAML::Node v = m.find("law"); v.IsDefined()) {
-      js.law = read_law(ctx, v, m.child("law"));
+      js.law = read_law(ctx, v, m.child("law"), nullptr);
       // A law with an instantaneous spring E1 (burgers, maxwell, nishihara) is the
       // joint's elastic shear spring, k_s = E1 l: one value, given once.
       if (js.shear_stiffness && js.law->parameters.count("E1"))

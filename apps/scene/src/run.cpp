@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "rheodda/scene/assemble.hpp"
+#include "law_choice.hpp"
 #include "rheodda/scene/build.hpp"
 #include "run_internal.hpp"
 
@@ -75,6 +76,19 @@ void record_step(Run& run, const core::Engine& e, const core::StepReport& r) {
   run.progress.step(run, r);
   if ((opt.stop && *opt.stop) || (opt.stop_after_step >= 0 && e.step_count() >= opt.stop_after_step))
     throw StopAfterStep{};
+}
+
+/// Once settled (the first step outside a settling or collapse stage; at the end when the
+/// run never left one): the contacts' shear stresses against what the laws were fitted to.
+void check_law_stresses(Run& run, const core::Engine& e, bool at_end) {
+  if (run.law_stresses_done || (!at_end && e.in_stage())) return;
+  run.law_stresses_done = true;
+  const std::string when = at_end           ? "at the end of the run"
+                           : run.opt.resume ? "at the first step after resuming"
+                           : run.a.settle   ? "after settling"
+                                            : "after the first step";
+  for (auto& w : detail::law_stress_warnings(run.s, run.contacts.contacts(), e.time(), when))
+    run.result.warnings.push_back(std::move(w));
 }
 
 /// The frames still due, each at its output time: the step that would pass it is
@@ -179,6 +193,8 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
   if (!opt.resume) forget_earlier_run(out, checkpoint_path);
 
   Run run(s, opt, result, *assembled.contacts, *assembled.engine, scene_text, wall_start);
+  run.law_stresses_done = !detail::law_stresses_checked(s);
+  run.engine.add_observer([&run](const core::Engine& e, const core::StepReport&) { check_law_stresses(run, e, false); });
   run.engine.add_observer([&run](const core::Engine& e, const core::StepReport& r) { record_step(run, e, r); });
   if (!s.stages.empty()) {  // docs/reference/stages.md
     if (opt.resume)
@@ -220,6 +236,7 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
   run.progress.end(run, "completed");
   write_checkpoint(run);
   collect_totals(run);
+  check_law_stresses(run, run.engine, true);
   add_end_warnings(run);
   write_summary(run, "completed", "");
   return result;

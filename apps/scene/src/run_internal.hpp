@@ -96,6 +96,9 @@ struct Run {
   std::string inputs_text;      ///< scene_json_text of the scene, spliced into summary.json
   std::string scene_text_json;  ///< the scene text as a JSON string
   StageRun stage_run;           ///< the scene's stages (run_stages.cpp); unused without stages
+  /// The contacts' shear stresses compared with what the laws were fitted to (law_choice.cpp)
+  /// once settled: false until done, true from the start when no law asks for it.
+  bool law_stresses_done = false;
 
   /// The index of the first output time after t, the engine's round-off sliver counting as reached.
   std::size_t next_output(double t) const;

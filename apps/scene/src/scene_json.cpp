@@ -103,7 +103,10 @@ json rock_mass_json(const SceneDescription& s, const RockMassDescription& r) {
 json stage_joint_set_json(const StageJointSet& c) {
   return entry_json(stage_joint_set_keys(), "stages.joint_sets", c, [&](const KeyInfo& k) -> json {
     if (k.name != "law" || !c.law_name) return left_out();
-    return law_json(LawChoice{*c.law_name, c.law_parameters});
+    LawChoice law;  // a stage's law: its parameters only (read_law refuses a fit's marks there)
+    law.name = *c.law_name;
+    law.parameters = c.law_parameters;
+    return law_json(law);
   }, Unset::omit);
 }
 

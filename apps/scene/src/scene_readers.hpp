@@ -28,7 +28,10 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n);
 /// `materials:` (read_joint_sets.cpp).
 std::vector<Material> read_materials(const Ctx& ctx, const YAML::Node& n, bool dynamic_steps);
 /// A joint set's `law:` (read_joint_sets.cpp).
-LawChoice read_law(const Ctx& ctx, const YAML::Node& n, const std::string& path);
+/// A `law:` map: its name, parameters and what a fit says of it (`unidentified`,
+/// `tested_stress`, `tested_duration`), which are refused with `fit_marks_refused` as the
+/// reason when that is not null (a bolt's law, a stage's).
+LawChoice read_law(const Ctx& ctx, const YAML::Node& n, const std::string& path, const char* fit_marks_refused);
 /// A stage's `joint_sets: {NAME: {...}}` (load_stages.cpp); also the joint set
 /// changes of the Python scripting API (joint_set_changes.cpp).
 std::vector<StageJointSet> read_stage_joint_sets(const Ctx& ctx, const YAML::Node& n, const std::string& path,

@@ -280,4 +280,44 @@ BOOST_AUTO_TEST_CASE(bad_forecast_input_is_refused_with_exit_2_and_the_reason) {
   BOOST_TEST(!fs::exists(dir / "a"));  // nothing written before the input is checked
 }
 
+BOOST_AUTO_TEST_CASE(the_report_says_the_band_leaves_out_the_laws_form_and_what_an_unidentified_fs_decides) {
+  // A Nishihara fit whose Fs the data do not determine, from a report where Burgers has the larger weight.
+  fc::FittedLaw f;
+  f.law = "nishihara";
+  f.names = {"E1", "E2", "eta2", "eta3", "Fs"};
+  f.units = {"MPa/mm", "MPa/mm", "MPa*h/mm", "MPa*h/mm", "MPa"};
+  f.values = {26.87, 192.43, 2141.23, 17354.0, 0.248};
+  f.identifiable = {true, true, true, true, false};
+  f.rank_by = "bic";
+  f.weights = {{"burgers", 0.9}, {"nishihara", 0.09}, {"maxwell", 0.01}};
+  fc::Samples drawn;
+  drawn.held = {"Fs"};
+  const std::string text = fc::band_coverage(f, drawn, fc::Unidentified{});
+  BOOST_TEST(text.find("what the band covers: the uncertainty of the parameters of law nishihara that the data "
+                       "determine (E1, E2, eta2, eta3), drawn from the fit's covariance\n") != std::string::npos,
+             text);
+  BOOST_TEST(text.find("every member runs nishihara (weight 0.09 on BIC), and the data prefer burgers (weight 0.9, "
+                       "10 times more") != std::string::npos,
+             text);
+  BOOST_TEST(text.find("the choice of Fs, which the data do not determine: every member holds it at the fit's 0.248 "
+                       "MPa; Fs is a threshold: its element flows only where the shear stress exceeds it") !=
+                 std::string::npos,
+             text);
+  // The best law of its report, with a rival within Delta 2 (weight ratio below e): named as supported as well.
+  f.law = "burgers";
+  f.weights = {{"burgers", 0.6}, {"nishihara", 0.4}};
+  f.names = {"E1"};
+  f.units = {"MPa/mm"};
+  f.values = {26.87};
+  f.identifiable = {true};
+  const std::string rival = fc::band_coverage(f, fc::Samples{}, fc::Unidentified{});
+  BOOST_TEST(rival.find("the data support nishihara (weight 0.4) about as well as burgers (weight 0.6 on BIC") !=
+                 std::string::npos,
+             rival);
+  // A report of one law: the question was not asked.
+  f.weights = {{"burgers", 1.0}};
+  BOOST_TEST(fc::band_coverage(f, fc::Samples{}, fc::Unidentified{}).find("the report fitted law burgers only") !=
+             std::string::npos);
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <map>
 #include <vector>
 
 #include <sys/wait.h>
@@ -14,6 +15,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <filesystem>
 #include <fstream>
@@ -81,8 +83,15 @@ BOOST_AUTO_TEST_CASE(yaml_block_builds_the_law_and_recovers_table1_row1_within_t
   const YAML::Node law = YAML::LoadFile((dir / "law.yaml").string())["law"];
   BOOST_TEST(law["name"].as<std::string>() == "burgers");
   rheodda::laws::ParameterValues values;
-  for (const auto& kv : law)
-    if (kv.first.as<std::string>() != "name") values[kv.first.as<std::string>()] = kv.second.as<double>();
+  // The law's parameters; the range it was tested over (the scene loader's keys): one stress, 200 h.
+  for (const auto& kv : law) {
+    const std::string key = kv.first.as<std::string>();
+    if (key != "name" && key != "tested_stress" && key != "tested_duration") values[key] = kv.second.as<double>();
+  }
+  BOOST_TEST(!law["unidentified"].IsDefined());  // every parameter determined
+  BOOST_TEST(law["tested_stress"][0].as<double>() == 0.232);
+  BOOST_TEST(law["tested_stress"][1].as<double>() == 0.232);
+  BOOST_TEST(law["tested_duration"].as<double>() == 200.0);
   BOOST_CHECK_NO_THROW(rheodda::laws::LawRegistry::builtin().create("burgers", values));
   const auto json = nlohmann::json::parse(slurp(dir / "fit.json"));
   const auto truth = rheodda::fit::test::burgers_values(rheodda::fit::test::kTable1[0]);
@@ -111,6 +120,45 @@ BOOST_AUTO_TEST_CASE(law_all_ranks_burgers_first_on_the_example) {
   for (std::size_t i = 1; i < json["fits"].size(); ++i)
     BOOST_TEST(json["fits"][i - 1]["bic"].get<double>() <= json["fits"][i]["bic"].get<double>());
   BOOST_TEST(r.out.find("ranking by BIC") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(law_all_ends_with_a_verdict_whose_weights_are_the_hand_computed_akaike_weights) {
+  TempDir dir;
+  const Run r = run_rheodda("fit '" + kExample + "' --law all --stress 0.232 --rank-by aic --json '" +
+                                (dir / "fit.json").string() + "'",
+                            dir);
+  BOOST_TEST_REQUIRE(r.code == 0, r.err);
+  const auto json = nlohmann::json::parse(slurp(dir / "fit.json"));
+  // By hand: w_i = exp(-(AIC_i - AIC_min)/2) / sum_j exp(-(AIC_j - AIC_min)/2) (Burnham & Anderson 2002).
+  double best = INFINITY, sum = 0.0;
+  for (const auto& f : json["fits"]) best = std::min(best, f["aic"].get<double>());
+  for (const auto& f : json["fits"]) sum += std::exp(-0.5 * (f["aic"].get<double>() - best));
+  std::map<std::string, double> weight;
+  for (const auto& f : json["fits"]) {
+    const double w = std::exp(-0.5 * (f["aic"].get<double>() - best)) / sum;
+    weight[f["law"]] = w;
+    BOOST_TEST(f["akaike_weight"].get<double>() == w, boost::test_tools::tolerance(1e-12));
+  }
+  // Burgers generated the curve; Nishihara and the generalized Kelvin law contain it (Fs -> 0, E3 -> 0) and
+  // lose 2 on AIC by their extra parameter: supported less, at e = 2.72 times less weight.
+  BOOST_TEST(r.out.find("verdict: weights w = exp(-dAIC/2) / sum exp(-dAIC/2) on AIC, the Akaike weights") !=
+                 std::string::npos,
+             r.out);
+  BOOST_TEST(r.out.find(fmt::format("  the data support: burgers (weight {:.3g})", weight["burgers"])) !=
+                 std::string::npos,
+             r.out);
+  BOOST_TEST(r.out.find("they do not support: maxwell, kelvin") != std::string::npos, r.out);
+  // What nishihara leaves undetermined is said in the verdict, as in the JSON.
+  const auto nishihara = std::find_if(json["fits"].begin(), json["fits"].end(),
+                                      [](const auto& f) { return f["law"] == "nishihara"; });
+  BOOST_TEST_REQUIRE((nishihara != json["fits"].end()));
+  const auto unidentified = (*nishihara)["unidentified"].get<std::vector<std::string>>();
+  BOOST_TEST((std::find(unidentified.begin(), unidentified.end(), "Fs") != unidentified.end()),
+             (*nishihara)["unidentified"].dump());
+  BOOST_TEST(r.out.find(fmt::format("  nishihara: the data do not determine {}", fmt::join(unidentified, ", "))) !=
+                 std::string::npos,
+             r.out);
+  BOOST_TEST(json["tested_duration"].get<double>() == 200.0);
 }
 
 BOOST_AUTO_TEST_CASE(stress_column_multi_stage_with_unloading_is_fitted_at_once) {

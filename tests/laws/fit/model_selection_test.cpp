@@ -3,6 +3,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>
+#include <cmath>
 
 #include "rheodda/fit/fit.hpp"
 #include "synthetic.hpp"
@@ -92,6 +93,42 @@ BOOST_AUTO_TEST_CASE(nishihara_on_a_single_stress_warns_that_eta3_and_fs_are_not
   const auto r = fit::fit_law(laws::LawRegistry::builtin().get("nishihara"), data);
   BOOST_TEST((any_warning_contains(r, "strongly correlated") ||
               any_warning_contains(r, "not identifiable")));
+}
+
+BOOST_AUTO_TEST_CASE(model_weights_are_the_akaike_weights_of_a_hand_computation) {
+  // AIC 10, 12, 20, 11 (any order): Delta 0, 2, 10, 1; w = exp(-Delta/2) / sum (Burnham & Anderson 2002).
+  const std::vector<double> w = fit::model_weights({12.0, 10.0, 20.0, 11.0});
+  const double sum = 1.0 + std::exp(-1.0) + std::exp(-5.0) + std::exp(-0.5);
+  BOOST_TEST(w[0] == std::exp(-1.0) / sum, boost::test_tools::tolerance(1e-15));
+  BOOST_TEST(w[1] == 1.0 / sum, boost::test_tools::tolerance(1e-15));
+  BOOST_TEST(w[2] == std::exp(-5.0) / sum, boost::test_tools::tolerance(1e-15));
+  BOOST_TEST(w[3] == std::exp(-0.5) / sum, boost::test_tools::tolerance(1e-15));
+  // Far apart criteria (AIC of thousands) do not overflow: the best's weight is 1.
+  const std::vector<double> far = fit::model_weights({-8661.2, -5872.9});
+  BOOST_TEST(far[0] == 1.0);
+  BOOST_TEST(far[1] == 0.0);
+  BOOST_TEST(fit::model_weights({}).empty());
+}
+
+BOOST_AUTO_TEST_CASE(a_fit_names_what_it_leaves_undetermined_and_the_range_its_data_cover) {
+  // Nishihara under one stress: Fs and eta3 enter only as (F - Fs)/eta3; Burgers is determined.
+  const laws::StagedHistory one({{0.0, 0.232}});
+  const auto data = fit::test::synthetic_curve("burgers", fit::test::burgers_values(fit::test::kTable1[0]), one,
+                                               fit::test::sample_times(150, 1, one), 2e-5, 4);
+  const auto nishihara = fit::fit_law(laws::LawRegistry::builtin().get("nishihara"), data);
+  const auto u = fit::unidentified_parameters(nishihara);
+  BOOST_TEST((std::find(u.begin(), u.end(), "Fs") != u.end()));
+  BOOST_TEST(fit::unidentified_parameters(fit::fit_law(laws::LawRegistry::builtin().get("burgers"), data)).empty());
+  const fit::TestedRange r = fit::tested_range(data);
+  BOOST_TEST(r.stress_min == 0.232);
+  BOOST_TEST(r.stress_max == 0.232);
+  BOOST_TEST(r.duration == data.t.back());
+  // Loading at 0.2, 0.4, 0.6 then unloaded: the unloading is no stress the law was tested at.
+  const auto steps = fit::test::synthetic_curve("burgers", fit::test::burgers_values(fit::test::kTable1[0]), kSteps,
+                                                fit::test::sample_times(400, 2, kSteps), 2e-5, 4);
+  const fit::TestedRange s = fit::tested_range(steps);
+  BOOST_TEST(s.stress_min == 0.2);
+  BOOST_TEST(s.stress_max == 0.6);
 }
 
 BOOST_AUTO_TEST_CASE(well_sampled_burgers_data_gives_no_warning) {

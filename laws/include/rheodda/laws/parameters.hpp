@@ -36,6 +36,10 @@ struct ParameterSpec {
   std::optional<double> default_value{};  ///< used when the key is absent
   /// "(0, 1.8e308]"-style text of the valid range.
   std::string range_text() const;
+  /// What the parameter's value decides in the law's creep, by its dimension, for a
+  /// value the data do not determine: a threshold [stress] decides whether a contact
+  /// near it flows at all; a viscosity, the rate of its element; a stiffness, its size.
+  std::string what_its_value_decides() const;
 };
 
 /// Parameter values by name.

@@ -28,6 +28,11 @@ struct FittedLaw {
   std::vector<double> log_std;
   std::vector<double> correlation;  ///< of the ln p, row-major; NaN in rows/columns of unidentified parameters
   std::string stress_unit, length_unit, time_unit;  ///< the report's units ("" when it gave none)
+  /// Every law of the report with its weight of evidence on the report's ranking criterion
+  /// (fit::model_weights: Akaike weights with rank_by aic), the report's order; one entry
+  /// when it fitted one law.
+  std::vector<std::pair<std::string, double>> weights;
+  std::string rank_by;  ///< "aic" or "bic"
 };
 
 /// Reads the fit of `law` (empty: the report's best) from a `rheodda fit --json` file.
@@ -58,6 +63,12 @@ struct Samples {
 /// after 100 x count draws. The same seed gives the same samples (std::mt19937_64,
 /// Box-Muller).
 Samples draw_samples(const FittedLaw& fit, std::size_t count, std::uint64_t seed, const Unidentified& u);
+
+/// What the forecast's band covers and what it does not (docs/guide/forecast.md, "What the
+/// band covers"): the parameters drawn, the unidentified ones held or spread and what their
+/// value decides, the other laws the report's data support (the law's form is not sampled:
+/// a forecast runs one law). Lines ending in newlines (coverage.cpp).
+std::string band_coverage(const FittedLaw& fit, const Samples& drawn, const Unidentified& u);
 
 /// Factor that converts a parameter of `dimension` (e.g. "stress*time/length") from the
 /// report's units to a scene's (length, force, time labels; stress = force/length^2).

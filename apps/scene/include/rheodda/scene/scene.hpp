@@ -190,6 +190,14 @@ struct Material {
 struct LawChoice {
   std::string name;               ///< e.g. "burgers"
   laws::ParameterValues parameters;  ///< by the registry's names (E1, E2, eta1, eta2, ...), defaults filled in
+  // What a fit says of the law (`rheodda fit --yaml` writes them; docs/guide/fitting.md,
+  // "What a fitted law carries into a scene"); a joint set's law only.
+  /// `unidentified: [Fs, ...]`: parameters the data it was fitted to do not determine.
+  std::vector<std::string> unidentified;
+  /// `tested_stress: [lowest, highest]` [stress]: the shear stresses of the tests it was fitted to.
+  std::optional<std::vector<double>> tested_stress;
+  /// `tested_duration` [time]: the duration of the longest test it was fitted to.
+  std::optional<double> tested_duration;
 };
 
 /// `joint_sets: {NAME: {...}}` — joints: strength, stiffness, optional creep law.

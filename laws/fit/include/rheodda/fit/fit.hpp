@@ -202,4 +202,33 @@ std::vector<FitResult> fit_all(const laws::LawRegistry& registry, const CreepDat
                                const std::function<void(const std::string& law, std::size_t index,
                                                         std::size_t count)>& on_law = {});
 
+// ---- The choice of a law (model_choice.cpp; docs/guide/fitting.md, "The verdict") ----
+
+/// Model weights of criterion values (one per law, any order):
+///   w_i = exp(-Delta_i/2) / sum_j exp(-Delta_j/2),  Delta_i = c_i - min_j c_j.
+/// On AIC these are the Akaike weights (Burnham & Anderson 2002, Model Selection and
+/// Multimodel Inference, 2nd ed., Springer, ch. 2, "Akaike weights"): the weight of
+/// evidence for each law among those fitted; on BIC, approximate posterior probabilities
+/// of the laws under equal prior ones (same book, ch. 6). Sum 1 [-].
+std::vector<double> model_weights(const std::vector<double>& criterion);
+
+/// Delta limits of the verdict (Burnham & Anderson 2002, p. 70: Delta <= 2 substantial
+/// support, 4-7 considerably less, > 10 essentially none): a law within kSupportedDelta of
+/// the best is supported (evidence ratio exp(Delta/2) <= e), beyond kUnsupportedDelta it is
+/// not (ratio above exp(5) = 148) [-].
+inline constexpr double kSupportedDelta = 2.0;
+inline constexpr double kUnsupportedDelta = 10.0;
+
+/// The names of the parameters a fit leaves undetermined: varying, not on a bound, not
+/// given by an expression, and not identifiable (ParameterEstimate::identifiable).
+std::vector<std::string> unidentified_parameters(const FitResult& r);
+
+/// What a fit's data cover: the lowest and highest |stress| of the stages that load
+/// [stress], and the test's duration from the first stage's start to the last reading [time].
+struct TestedRange {
+  double stress_min = 0.0, stress_max = 0.0;
+  double duration = 0.0;
+};
+TestedRange tested_range(const CreepData& data);
+
 }  // namespace rheodda::fit
