@@ -26,8 +26,10 @@
 #include "commands.hpp"
 #include "rheodda/fit/fit.hpp"
 #include "rheodda/laws/registry.hpp"
+#include "rheodda/scene/loader.hpp"
 #include "rheodda/scene/plot.hpp"
 #include "rheodda/scene/progress.hpp"
+#include "rheodda/units/units.hpp"
 
 namespace rheodda::apps {
 namespace {
@@ -42,6 +44,7 @@ struct FitArgs {
   std::string stress, stress_column;
   std::string time_column = "t", displacement_column = "displacement";
   std::string units;
+  std::string scene_units, scene_file;  // --scene-units, --scene: the units --yaml writes the law in
   std::string rank_by = "bic";
   int restarts = 4;
   int max_iterations = 500;
@@ -53,33 +56,8 @@ struct FitArgs {
   bool quiet = false;
 };
 
-/// The user's unit names for the three dimensions of the laws' schemas.
-struct Units {
-  std::string text;  ///< as given, echoed in reports; empty if not given
-  std::string stress = "stress", length = "length", time = "time";
-  /// "stress*time/length" -> "MPa*h/mm".
-  std::string of(const std::string& dimension) const {
-    std::string out;
-    std::size_t i = 0;
-    while (i < dimension.size()) {
-      std::size_t j = i;
-      while (j < dimension.size() && std::isalpha(static_cast<unsigned char>(dimension[j]))) ++j;
-      if (j == i) {
-        out += dimension[i++];
-        continue;
-      }
-      const std::string word = dimension.substr(i, j - i);
-      out += word == "stress" ? stress : word == "length" ? length : word == "time" ? time : word;
-      i = j;
-    }
-    return out;
-  }
-};
-
-Units parse_units(const std::string& text) {
-  Units u;
-  if (text.empty()) return u;
-  u.text = text;
+/// Three unit labels "A, B, C" of `option` (as given), trimmed; refused unless three non-empty.
+std::vector<std::string> three_labels(const std::string& text, const char* option, const char* what) {
   std::vector<std::string> items;
   std::size_t pos = 0;
   while (true) {
@@ -92,12 +70,58 @@ Units parse_units(const std::string& text) {
     pos = comma + 1;
   }
   if (items.size() != 3 || items[0].empty() || items[1].empty() || items[2].empty())
-    throw std::invalid_argument(fmt::format(
-        "--units '{}': expected three units 'STRESS, LENGTH, TIME', e.g. \"MPa, mm, h\"", text));
+    throw std::invalid_argument(fmt::format("{} '{}': expected three units {}", option, text, what));
+  return items;
+}
+
+/// The user's unit names for the three dimensions of the laws' schemas.
+struct Units {
+  std::string text;  ///< as given, echoed in reports; empty if not given
+  std::string stress = "stress", length = "length", time = "time";
+  /// "stress*time/length" -> "MPa*h/mm" (rheodda::units spells it); "-" stays "-".
+  std::string of(const std::string& dimension) const {
+    return dimension == "-" ? dimension : units::unit_of(dimension, base());
+  }
+  units::Base base() const { return {.length = length, .force = "", .time = time, .stress = stress}; }
+};
+
+Units parse_units(const std::string& text) {
+  Units u;
+  if (text.empty()) return u;
+  u.text = text;
+  const auto items = three_labels(text, "--units", "'STRESS, LENGTH, TIME', e.g. \"MPa, mm, h\"");
   u.stress = items[0];
   u.length = items[1];
   u.time = items[2];
   return u;
+}
+
+/// The units --yaml writes the law in: the data's, or a scene's (--scene-units, --scene).
+struct YamlUnits {
+  std::optional<units::Base> scene;  ///< none: the data's units
+  std::string text;                  ///< "m, N, d" as the scene states them
+};
+
+YamlUnits yaml_units(const std::string& scene_units, const std::string& scene_file, const Units& data,
+                     const std::string& yaml) {
+  YamlUnits y;
+  if (scene_units.empty() && scene_file.empty()) return y;
+  if (yaml.empty())
+    throw std::invalid_argument(fmt::format("{} gives the units of the --yaml law: give --yaml FILE",
+                                            scene_units.empty() ? "--scene" : "--scene-units"));
+  if (data.text.empty())
+    throw std::invalid_argument(fmt::format("{} converts the law from the data's units: give them with --units "
+                                            "\"STRESS, LENGTH, TIME\", e.g. \"MPa, mm, h\"",
+                                            scene_units.empty() ? "--scene" : "--scene-units"));
+  if (!scene_units.empty()) {
+    const auto items = three_labels(scene_units, "--scene-units", "'LENGTH, FORCE, TIME', e.g. \"m, N, d\"");
+    y.scene = units::Base{.length = items[0], .force = items[1], .time = items[2]};
+  } else {
+    const scene::Units u = scene::load_scene(scene_file).units;
+    y.scene = units::Base{.length = u.length, .force = u.force, .time = u.time};
+  }
+  y.text = fmt::format("{}, {}, {}", y.scene->length, y.scene->force, y.scene->time);
+  return y;
 }
 
 StagedHistory parse_stress(const std::string& text) {
@@ -383,11 +407,13 @@ void write_json(const std::string& path, const CreepData& d, const Units& u,
   f << out.dump(2) << '\n';
 }
 
-void write_yaml(const std::string& path, const CreepData& d, const Units& u, const FitResult& r) {
+void write_yaml(const std::string& path, const CreepData& d, const Units& u, const FitResult& r, const YamlUnits& y) {
   auto f = open_output(path, "--yaml");
   f << fmt::format("# rheodda fit: law {} fitted to {} ({} points, R^2 {}){}\n", r.law, d.source,
                    r.points, r.r2_defined() ? fmt::format("{:.6f}", r.r2) : "undefined",
                    u.text.empty() ? "" : fmt::format("; units {}", u.text));
+  if (y.scene)
+    f << fmt::format("# in the scene's units {} (length, force, time), converted from the data's {}\n", y.text, u.text);
   f << "# paste under a joint set of a scene; the comments give the standard errors\n";
   if (!r.minimum_certain) f << fmt::format("# warning: the minimum is not certain: {}\n", r.minimum_note);
   for (const auto& c : r.combinations)
@@ -395,14 +421,18 @@ void write_yaml(const std::string& path, const CreepData& d, const Units& u, con
                      c.std_error, u.of(c.unit));
   f << "law:\n";
   f << fmt::format("  name: {}\n", r.law);
-  for (const auto& p : r.parameters)
-    f << fmt::format("  {}: {:.7g}   # {} {}\n", p.name, p.value,
+  for (const auto& p : r.parameters) {
+    // In the scene's units: the value and its error times the factor UDUNITS-2 gives.
+    const std::string unit = !y.scene ? u.of(p.unit) : p.unit == "-" ? p.unit : units::unit_of(p.unit, *y.scene);
+    const double factor = !y.scene || p.unit == "-" ? 1.0 : units::convert(1.0, u.of(p.unit), unit);
+    f << fmt::format("  {}: {:.7g}   # {} {}{}\n", p.name, p.value * factor,
                      !p.expr.empty()        ? "= " + p.expr
                      : !p.vary              ? std::string("fixed")
                      : !p.at_bound.empty()  ? "at its bound " + p.at_bound
-                     : p.identifiable       ? fmt::format("+- {:.3g}", p.std_error)
+                     : p.identifiable       ? fmt::format("+- {:.3g}", p.std_error * factor)
                                             : std::string("+- (not identifiable)"),
-                     u.of(p.unit));
+                     unit, y.scene ? fmt::format(" (fitted {:.7g} {})", p.value, u.of(p.unit)) : "");
+  }
 }
 
 void write_plot(const std::string& path, const std::string& terminal, const CreepData& d,
@@ -506,6 +536,7 @@ void run_fit(const FitArgs& a) {
         "--stress and --stress-column both given: give one stress for the file or a stress "
         "column, not both");
   const Units units = parse_units(a.units);
+  const YamlUnits yunits = yaml_units(a.scene_units, a.scene_file, units, a.yaml);
   const std::string terminal = a.plot.empty() ? "" : plot_terminal(a.plot);
   if (a.restarts < 0 || a.restarts > 100)
     throw std::invalid_argument(fmt::format("--restarts {}: expected 0 to 100", a.restarts));
@@ -561,7 +592,7 @@ void run_fit(const FitArgs& a) {
     fmt::print("\nbest: {}\n", fits.front().law);
   }
   if (!a.json.empty()) write_json(a.json, data, units, fits, skipped, a.rank_by);
-  if (!a.yaml.empty()) write_yaml(a.yaml, data, units, fits.front());
+  if (!a.yaml.empty()) write_yaml(a.yaml, data, units, fits.front(), yunits);
   if (!a.plot.empty()) write_plot(a.plot, terminal, data, units, fits);
 }
 
@@ -613,6 +644,13 @@ void add_fit_command(CLI::App& app) {
   cmd->add_option("--json", a->json, "Write the full report as JSON")->type_name("FILE");
   cmd->add_option("--yaml", a->yaml, "Write the (best) law as a YAML block for a joint set")
       ->type_name("FILE");
+  auto* su = cmd->add_option("--scene-units", a->scene_units,
+                             "Units 'LENGTH, FORCE, TIME' of the scene the --yaml law goes into, e.g. \"m, N, d\" "
+                             "(converted from --units)")
+                 ->type_name("UNITS");
+  auto* sf = cmd->add_option("--scene", a->scene_file, "Scene file whose units the --yaml law is written in")
+                 ->type_name("FILE");
+  su->excludes(sf);
   cmd->add_option("--plot", a->plot, "Draw data, fit and residuals with gnuplot (.png or .svg)")
       ->type_name("FILE");
   add_quiet_flag(*cmd, a->quiet);

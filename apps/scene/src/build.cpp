@@ -1,5 +1,6 @@
 #include "rheodda/scene/build.hpp"
 
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -10,12 +11,14 @@
 #include "rheodda/laws/registry.hpp"
 #include "rheodda/laws/series_law.hpp"
 #include "rheodda/scene/geometry.hpp"
+#include "gravity_check.hpp"
 
 namespace rheodda::scene {
 
 std::vector<std::string> scene_warnings(const SceneDescription& s) {
   std::vector<std::string> out;
   const Analysis& a = s.analysis;
+  if (auto w = detail::gravity_warning(s)) out.push_back(std::move(*w));  // gravity_check.cpp
   // The lagged scheme's stability limit (only when the scene asks for lagged:
   // the automatic choice and the other schemes are stable at any step). The
   // series stiffness per unit area is the joint set's shear_stiffness or the

@@ -61,7 +61,7 @@ double number(const Ctx& ctx, const YAML::Node& n, const std::string& key, const
     try {
       v = n.as<double>();
     } catch (const YAML::Exception&) {
-      ctx.fail(n, key, fmt::format("'{}' is not a number", n.Scalar()));
+      v = quantity(ctx, n, key, n.Scalar(), r.unit);  // "2600 kg/m^3"
     }
   }
   if (!std::isfinite(v))
@@ -123,6 +123,15 @@ std::vector<double> numbers(const Ctx& ctx, const YAML::Node& n, const std::stri
     ctx.fail(n, key, fmt::format("expected a list of {} numbers [{}], got {}", count, r.unit,
                                  n.IsSequence() ? fmt::format("{} items", n.size())
                                                 : std::string(type_word(n))));
+  // "time, force, force": a dimension per item.
+  std::vector<std::string> dims;
+  for (std::string_view u = r.unit;;) {
+    const std::size_t comma = u.find(", ");
+    dims.emplace_back(u.substr(0, comma));
+    if (comma == std::string_view::npos) break;
+    u.remove_prefix(comma + 2);
+  }
+  if (dims.size() != count) dims.assign(count, r.unit);
   std::vector<double> out;
   for (std::size_t i = 0; i < count; ++i) {
     const YAML::Node item = n[i];
@@ -130,13 +139,15 @@ std::vector<double> numbers(const Ctx& ctx, const YAML::Node& n, const std::stri
     const auto fast = item.IsScalar() ? plain_number(item.Scalar()) : std::nullopt;
     const bool in_range = fast && (r.min_exclusive ? *fast > r.min : *fast >= r.min) &&
                           (r.max_exclusive ? *fast < r.max : *fast <= r.max);
-    out.push_back(in_range ? *fast : number(ctx, item, fmt::format("{}[{}]", key, i), r));
+    Range ri = r;
+    ri.unit = dims[i].c_str();
+    out.push_back(in_range ? *fast : number(ctx, item, fmt::format("{}[{}]", key, i), ri));
   }
   return out;
 }
 
-Point point(const Ctx& ctx, const YAML::Node& n, const std::string& key) {
-  const auto v = numbers(ctx, n, key, 2, any("length"));
+Point point(const Ctx& ctx, const YAML::Node& n, const std::string& key, const char* dimension) {
+  const auto v = numbers(ctx, n, key, 2, any(dimension));
   return {v[0], v[1]};
 }
 
