@@ -121,6 +121,15 @@ YamlUnits yaml_units(const std::string& scene_units, const std::string& scene_fi
     y.scene = units::Base{.length = u.length, .force = u.force, .time = u.time};
   }
   y.text = fmt::format("{}, {}, {}", y.scene->length, y.scene->force, y.scene->time);
+  // Every label a unit UDUNITS-2 knows, before the fit runs.
+  const std::string from = scene_units.empty() ? "--scene " + scene_file : "--scene-units";
+  for (const auto& [option, label] : {std::pair{from, y.scene->length}, {from, y.scene->force}, {from, y.scene->time},
+                                      {std::string("--units"), data.stress}, {std::string("--units"), data.length},
+                                      {std::string("--units"), data.time}})
+    if (!units::known(label))
+      throw std::invalid_argument(fmt::format("{}: '{}' is not a unit UDUNITS-2 knows (m, mm, N, kN, MPa, s, h, d, ...), "
+                                              "so the law cannot be converted",
+                                              option, label));
   return y;
 }
 

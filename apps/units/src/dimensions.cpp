@@ -43,9 +43,19 @@ std::string unit_of(std::string_view dimension, const Base& base) {
     return l;
   };
   const std::string length = label(base.length), time = label(base.time);
-  const std::string force = base.stress.empty() ? label(base.force) : fmt::format("({}*{}^2)", label(base.stress), length);
-  const std::string stress = base.stress.empty() ? fmt::format("({}/{}^2)", force, length) : label(base.stress);
+  // Products and quotients of labels, read left to right ("N/m^2*d/m" is (N/m^2)*d/m): in
+  // parentheses only after a '/' or before a power, where reading on would change them.
+  const std::string force = base.stress.empty() ? label(base.force) : fmt::format("{}*{}^2", label(base.stress), length);
+  const std::string stress = base.stress.empty() ? fmt::format("{}/{}^2", force, length) : label(base.stress);
+  const std::string mass = fmt::format("{}*{}^2/{}", force, time, length);
   std::string out;
+  const auto compound = [&out, &dimension](const std::string& u, std::size_t end) {
+    const bool after_slash = !out.empty() && out.back() == '/';
+    const bool before_power = end < dimension.size() && dimension[end] == '^';
+    const bool before_superscript = dimension.compare(end, 2, "²") == 0 || dimension.compare(end, 2, "³") == 0;
+    const bool simple = u.find_first_of("*/^") == std::string::npos;
+    out += simple || !(after_slash || before_power || before_superscript) ? u : fmt::format("({})", u);
+  };
   for (std::size_t i = 0; i < dimension.size();) {
     const unsigned char c = static_cast<unsigned char>(dimension[i]);
     if (std::isalpha(c)) {
@@ -53,10 +63,10 @@ std::string unit_of(std::string_view dimension, const Base& base) {
       while (j < dimension.size() && std::isalpha(static_cast<unsigned char>(dimension[j]))) ++j;
       const std::string_view w = dimension.substr(i, j - i);
       if (w == "length") out += length;
-      else if (w == "force") out += force;
+      else if (w == "force") compound(force, j);
       else if (w == "time") out += time;
-      else if (w == "stress") out += stress;
-      else if (w == "mass") out += fmt::format("({}*{}^2/{})", force, time, length);
+      else if (w == "stress") compound(stress, j);
+      else if (w == "mass") compound(mass, j);
       else out += w;  // deg, rad, MB: units of their own
       i = j;
     } else if (dimension.compare(i, 2, "²") == 0) {

@@ -50,7 +50,8 @@ struct Base {
 /// stress = force/length² (or `base.stress`), mass = force·time²/length, deg, with *, /,
 /// ^n, ², ³ and ·;
 /// "–" or "-" for none), spelled with `base`'s labels for UDUNITS-2:
-/// "stress*time/length" in {mm, N, h} is "(N/mm^2)*h/mm"; none is "1". A label of more
+/// "stress*time/length" in {mm, N, h} is "N/mm^2*h/mm" (read left to right, as UDUNITS-2
+/// does: (N/mm^2)*h/mm), "length/stress" is "mm/(N/mm^2)"; none is "1". A label of more
 /// than one word is put in parentheses.
 std::string unit_of(std::string_view dimension, const Base& base);
 
