@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 
 #include "../scene/run_support.hpp"
 #include "rheodda/scene/build.hpp"
@@ -192,6 +193,42 @@ BOOST_AUTO_TEST_CASE(a_scene_in_si_with_units_is_the_same_scene_as_in_mm_n_h) {
   for (const char* c : {"plane.shear_displacement", "A_joint.u", "A_joint.v"})
     BOOST_TEST(last_value(dir / "si", c) == last_value(dir / "mm", c) / per_mm, tt::tolerance(1e-6));
   BOOST_TEST(last_value(dir / "si", "time") == 20.0 * h, tt::tolerance(1e-12));
+  std::filesystem::remove_all(dir);
+}
+
+BOOST_AUTO_TEST_CASE(the_shipped_examples_are_read_as_before) {
+  // Bare numbers throughout, the Earth's gravity (or none) in each one's units: nothing given
+  // with a unit, no gravity warning; their results are pinned by tests/python/test_example_results.py.
+  int scenes = 0;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(source_path("examples"))) {
+    if (e.path().extension() != ".yaml") continue;
+    const std::string text = read_text(e.path().string());
+    if (text.find("\nunits:") == std::string::npos) continue;  // a study file
+    const scene::SceneDescription s = scene::load_scene(e.path().string());
+    BOOST_TEST(s.given_quantities.empty(), e.path());
+    for (const auto& w : scene::scene_warnings(s)) BOOST_TEST(w.find("gravity") == std::string::npos, e.path() << ": " << w);
+    ++scenes;
+  }
+  BOOST_TEST(scenes >= 15);
+}
+
+BOOST_AUTO_TEST_CASE(the_command_line_reads_times_with_their_units) {
+  const std::string slope = source_path("examples/goodman-toppling.yaml");  // m, N, d
+  CommandResult r = run_rheodda("check " + slope + " --refine=2 --until '2 m' -o /tmp/rheodda-units-never");
+  BOOST_TEST(r.exit_code == 2, r.output);
+  BOOST_TEST(r.output.find("--until: '2 m' has the wrong dimension: m is length, this key takes time") !=
+             std::string::npos, r.output);
+  BOOST_TEST(!std::filesystem::exists("/tmp/rheodda-units-never"));
+  // check of the user's scene: gravity 9.81 in a scene whose time is days, values with units listed
+  const auto dir = std::filesystem::temp_directory_path() / "rheodda-units-check";
+  std::filesystem::create_directories(dir);
+  const std::string days = with("units: {length: m, force: N, time: s}", "units: {length: m, force: N, time: d}",
+                                with("duration: 1\n", "duration: 100 d\n"));
+  std::ofstream(dir / "days.yaml") << days;
+  r = run_rheodda("check " + (dir / "days.yaml").string());
+  BOOST_TEST(r.exit_code == 0, r.output);
+  BOOST_TEST(r.output.find("analysis.duration 100 d (given as 100 d at line 3)") != std::string::npos, r.output);
+  BOOST_TEST(r.output.find("9.81 m/s^2 is 7.32313e+10 m/d^2 in the scene's units") != std::string::npos, r.output);
   std::filesystem::remove_all(dir);
 }
 
