@@ -34,6 +34,7 @@
 #include "rheodda/scene/plot.hpp"
 #include "rheodda/scene/progress.hpp"
 #include "rheodda/study/study.hpp"
+#include "rheodda/units/units.hpp"
 #ifdef RHEODDA_WITH_MPI
 #include "mpi_study.hpp"
 #endif
@@ -69,23 +70,9 @@ struct ForecastArgs {
 };
 
 
-/// A dimension ("stress*time/length") in a scene's unit labels ("N/mm^2*h/mm").
+/// A dimension ("stress*time/length") in a scene's unit labels ("N/mm^2*h/mm"); "-" stays "-".
 std::string scene_unit(const std::string& dimension, const scene::Units& u) {
-  std::string out, word;
-  const auto flush = [&] {
-    out += word == "stress" ? u.stress() : word == "length" ? u.length : word == "time" ? u.time : word;
-    word.clear();
-  };
-  for (char ch : dimension) {
-    if (std::isalpha(static_cast<unsigned char>(ch))) {
-      word += ch;
-    } else {
-      flush();
-      out += ch;
-    }
-  }
-  flush();
-  return out;
+  return dimension == "-" ? dimension : units::unit_of(dimension, {.length = u.length, .force = u.force, .time = u.time});
 }
 
 /// A YAML double-quoted scalar.
