@@ -133,17 +133,6 @@ YamlUnits yaml_units(const std::string& scene_units, const std::string& scene_fi
   return y;
 }
 
-StagedHistory parse_stress(const std::string& text) {
-  if (text.find(':') != std::string::npos) return StagedHistory::parse(text, "--stress");
-  double v = 0.0;
-  const auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (text.empty() || ec != std::errc() || p != text.data() + text.size() || !std::isfinite(v))
-    throw LawError("stress", fmt::format("--stress '{}' is neither a number nor a staged history "
-                                         "T:V[,T:V...]",
-                                         text));
-  return StagedHistory({{0.0, v}});
-}
-
 // A number of an option's text; `what` names it in the message.
 double parse_number(const std::string& text, const std::string& what) {
   double v = 0.0;
@@ -153,10 +142,50 @@ double parse_number(const std::string& text, const std::string& what) {
   return v;
 }
 
+/// A number of `dimension` in the data's units: bare as written (parse_number), or with its
+/// unit ("0.232 MPa", "26.87 MPa/mm") converted into the data's units (--units) by UDUNITS-2.
+double data_number(const std::string& text, const std::string& what, const std::string& dimension, const Units& u) {
+  const std::optional<units::Quantity> q = units::split_quantity(text);
+  if (!q || q->unit.empty()) return parse_number(text, what);
+  if (u.text.empty())
+    throw std::invalid_argument(fmt::format("{}: '{}' carries a unit: give the data's units with --units \"STRESS, "
+                                            "LENGTH, TIME\" to convert it into",
+                                            what, text));
+  try {
+    return units::convert(q->value, q->unit, u.of(dimension));
+  } catch (const units::UnitError& e) {
+    throw std::invalid_argument(fmt::format("{}: '{}': {}", what, text, e.what()));
+  }
+}
+
+StagedHistory parse_stress(const std::string& text, const Units& u) {
+  if (text.find(':') != std::string::npos) return StagedHistory::parse(text, "--stress");
+  const std::optional<units::Quantity> q = units::split_quantity(text);
+  if (!q)
+    throw LawError("stress", fmt::format("--stress '{}' is neither a number (with its unit or not) nor a staged "
+                                         "history T:V[,T:V...]",
+                                         text));
+  return StagedHistory({{0.0, q->unit.empty() ? q->value : data_number(text, "--stress", "stress", u)}});
+}
+
+/// The dimension of the law parameter `name` (of `law`, or of any law for --law all); "" when
+/// no law has it (fit::fit_law refuses it then).
+std::string parameter_dimension(const std::string& law, const std::string& name) {
+  for (const auto& info : LawRegistry::builtin().laws())
+    if (law == "all" || info.name == law)
+      for (const auto& p : info.parameters)
+        if (p.name == name) return p.unit;
+  return "";
+}
+
 // --fix NAME=VALUE, --initial NAME=VALUE, --bounds NAME=MIN:MAX (either side may
 // be empty), --expr NAME=EXPRESSION into fit::FitOptions::parameters; the values themselves are
 // checked by fit::fit_law against the law (FitError).
-std::map<std::string, fit::ParameterSetting> parse_settings(const FitArgs& a) {
+std::map<std::string, fit::ParameterSetting> parse_settings(const FitArgs& a, const Units& u) {
+  // A value in the parameter's unit of the data, or with its own unit (data_number).
+  const auto value_of = [&a, &u](const std::string& text, const std::string& what, const std::string& name) {
+    return data_number(text, what, parameter_dimension(a.law, name), u);
+  };
   std::map<std::string, fit::ParameterSetting> out;
   std::map<std::string, std::vector<std::string>> seen;  // name -> the options that set it
   auto split = [](const std::string& item, const char* flag) {
@@ -189,13 +218,13 @@ std::map<std::string, fit::ParameterSetting> parse_settings(const FitArgs& a) {
   for (const auto& item : a.fix) {
     const auto [name, value] = split(item, "--fix");
     claim(name, "--fix");
-    out[name].value = parse_number(value, "--fix " + name);
+    out[name].value = value_of(value, "--fix " + name, name);
     out[name].vary = false;
   }
   for (const auto& item : a.initial) {
     const auto [name, value] = split(item, "--initial");
     claim(name, "--initial");
-    out[name].value = parse_number(value, "--initial " + name);
+    out[name].value = value_of(value, "--initial " + name, name);
   }
   for (const auto& item : a.bounds) {
     const auto [name, range] = split(item, "--bounds");
@@ -206,8 +235,8 @@ std::map<std::string, fit::ParameterSetting> parse_settings(const FitArgs& a) {
                                               "or :1e4)",
                                               name, range));
     const std::string lo = range.substr(0, colon), hi = range.substr(colon + 1);
-    if (!lo.empty()) out[name].min = parse_number(lo, "--bounds " + name + " MIN");
-    if (!hi.empty()) out[name].max = parse_number(hi, "--bounds " + name + " MAX");
+    if (!lo.empty()) out[name].min = value_of(lo, "--bounds " + name + " MIN", name);
+    if (!hi.empty()) out[name].max = value_of(hi, "--bounds " + name + " MAX", name);
   }
   return out;
 }
@@ -559,14 +588,14 @@ void run_fit(const FitArgs& a) {
   csv.displacement_column = a.displacement_column;
   csv.stress_column = a.stress_column;
   csv.sigma_column = a.sigma_column;
-  if (!a.stress.empty()) csv.stress = parse_stress(a.stress);
+  if (!a.stress.empty()) csv.stress = parse_stress(a.stress, units);
   if (a.absolute_sigma && a.sigma_column.empty())
     throw std::invalid_argument("--absolute-sigma takes the --sigma-column values as absolute errors; give "
                                 "--sigma-column NAME");
   fit::FitOptions opt;
   opt.restarts = a.restarts;
   opt.max_iterations = a.max_iterations;
-  opt.parameters = parse_settings(a);
+  opt.parameters = parse_settings(a, units);
   opt.scale_covariance = !a.absolute_sigma;
   const CreepData data = fit::read_creep_csv(a.data, csv);
 

@@ -130,6 +130,27 @@ BOOST_AUTO_TEST_CASE(yaml_in_a_scenes_units_is_the_fit_converted) {
   BOOST_TEST(r.err.find("'dx' is not a unit UDUNITS-2 knows") != std::string::npos, r.err);
 }
 
+BOOST_AUTO_TEST_CASE(stress_and_parameter_settings_may_carry_their_units) {
+  // --stress 232 kPa is --stress 0.232 in MPa; --fix E1=26870 kPa/mm is 26.87 MPa/mm.
+  TempDir dir;
+  const std::string base = "fit '" + kExample + "' --law burgers --units 'MPa, mm, h' --quiet --json ";
+  Run r = run_rheodda(base + "'" + (dir / "a.json").string() + "' --stress 0.232 --fix E1=26.87", dir);
+  BOOST_TEST_REQUIRE(r.code == 0, r.err);
+  r = run_rheodda(base + "'" + (dir / "b.json").string() + "' --stress '232 kPa' --fix 'E1=26870 kPa/mm'", dir);
+  BOOST_TEST_REQUIRE(r.code == 0, r.err);
+  const auto a = nlohmann::json::parse(slurp(dir / "a.json"))["fits"][0]["parameters"];
+  const auto b = nlohmann::json::parse(slurp(dir / "b.json"))["fits"][0]["parameters"];
+  for (std::size_t i = 0; i < a.size(); ++i)
+    BOOST_TEST(b[i]["value"].get<double>() == a[i]["value"].get<double>(), boost::test_tools::tolerance(1e-9));
+  r = run_rheodda("fit '" + kExample + "' --law burgers --stress '232 kPa'", dir);  // no --units to convert into
+  BOOST_TEST(r.code == 2);
+  BOOST_TEST(r.err.find("give the data's units with --units") != std::string::npos, r.err);
+  r = run_rheodda(base + "'" + (dir / "c.json").string() + "' --stress 0.232 --initial 'eta1=3 MPa*h'", dir);
+  BOOST_TEST(r.code == 2);
+  BOOST_TEST(r.err.find("--initial eta1: '3 MPa*h': MPa*h is force*time/length^2, not force*time/length^3") !=
+             std::string::npos, r.err);
+}
+
 BOOST_AUTO_TEST_CASE(law_all_ranks_burgers_first_on_the_example) {
   TempDir dir;
   const Run r = run_rheodda("fit '" + kExample + "' --law all --stress 0.232 --json '" +
