@@ -27,9 +27,7 @@ std::string dimension_text(const std::string& dimension, const std::string& unit
   return words == dimension ? dimension : fmt::format("{} = {}", dimension, words);
 }
 
-}  // namespace
-
-GivenQuantity to_scene_units(const std::string& text, const std::string& dimension, const Units& su) {
+GivenQuantity convert(const std::string& text, const std::string& dimension, const Units& su) {
   const std::optional<units::Quantity> q = units::split_quantity(text);
   if (!q) throw QuantityError(fmt::format("'{}' is not a number (or a number and its unit)", text));
   const units::Base base{.length = su.length, .force = su.force, .time = su.time};
@@ -64,6 +62,16 @@ GivenQuantity to_scene_units(const std::string& text, const std::string& dimensi
   }
   if (!std::isfinite(g.value)) throw QuantityError(fmt::format("'{}' is not finite in the scene's units", text));
   return g;
+}
+
+}  // namespace
+
+GivenQuantity to_scene_units(const std::string& text, const std::string& dimension, const Units& u) {
+  try {
+    return convert(text, dimension, u);
+  } catch (const units::UnitError& e) {  // e.g. no unit database: named at the value all the same
+    throw QuantityError(fmt::format("'{}': {}", text, e.what()));
+  }
 }
 
 double scene_number(const std::string& text, const std::string& dimension, const Units& u) {
