@@ -117,21 +117,29 @@ std::string choice(const Ctx& ctx, const YAML::Node& n, const std::string& key,
   return s;
 }
 
+namespace {
+
+/// The dimension of item i of a list of `count` numbers whose unit is `unit`: "time, force,
+/// force" gives each item its own; one dimension is every item's.
+std::string item_dimension(std::string_view unit, std::size_t i, std::size_t count) {
+  std::vector<std::string_view> parts;
+  for (std::string_view u = unit;;) {
+    const std::size_t comma = u.find(", ");
+    parts.push_back(u.substr(0, comma));
+    if (comma == std::string_view::npos) break;
+    u.remove_prefix(comma + 2);
+  }
+  return std::string(parts.size() == count ? parts[i] : unit);
+}
+
+}  // namespace
+
 std::vector<double> numbers(const Ctx& ctx, const YAML::Node& n, const std::string& key,
                             std::size_t count, const Range& r) {
   if (!n.IsSequence() || n.size() != count)
     ctx.fail(n, key, fmt::format("expected a list of {} numbers [{}], got {}", count, r.unit,
                                  n.IsSequence() ? fmt::format("{} items", n.size())
                                                 : std::string(type_word(n))));
-  // "time, force, force": a dimension per item.
-  std::vector<std::string> dims;
-  for (std::string_view u = r.unit;;) {
-    const std::size_t comma = u.find(", ");
-    dims.emplace_back(u.substr(0, comma));
-    if (comma == std::string_view::npos) break;
-    u.remove_prefix(comma + 2);
-  }
-  if (dims.size() != count) dims.assign(count, r.unit);
   std::vector<double> out;
   for (std::size_t i = 0; i < count; ++i) {
     const YAML::Node item = n[i];
@@ -139,9 +147,14 @@ std::vector<double> numbers(const Ctx& ctx, const YAML::Node& n, const std::stri
     const auto fast = item.IsScalar() ? plain_number(item.Scalar()) : std::nullopt;
     const bool in_range = fast && (r.min_exclusive ? *fast > r.min : *fast >= r.min) &&
                           (r.max_exclusive ? *fast < r.max : *fast <= r.max);
+    if (in_range) {
+      out.push_back(*fast);
+      continue;
+    }
+    const std::string dimension = item_dimension(r.unit, i, count);
     Range ri = r;
-    ri.unit = dims[i].c_str();
-    out.push_back(in_range ? *fast : number(ctx, item, fmt::format("{}[{}]", key, i), ri));
+    ri.unit = dimension.c_str();
+    out.push_back(number(ctx, item, fmt::format("{}[{}]", key, i), ri));
   }
   return out;
 }

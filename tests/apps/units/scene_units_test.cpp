@@ -121,6 +121,19 @@ BOOST_AUTO_TEST_CASE(force_and_spring_stiffness_convert) {
   BOOST_TEST(k.analysis.fixed_point_stiffness == 2e6, tt::tolerance(1e-15));  // force/length
 }
 
+BOOST_AUTO_TEST_CASE(each_item_of_a_sample_has_its_own_dimension) {
+  // A load history's [t, fx, fy]: a time, then two forces.
+  const std::string t =
+      kBaseScene + "loads:\n  - {point: [1.5, 1.5], block: top, history: [[0, 0, 0], [0.5 min, 1 kN/m, -2 kN/m]]}\n";
+  const scene::SceneDescription s = scene::parse_scene(t, "h.yaml");
+  BOOST_TEST_REQUIRE(s.loads[0].history.size() == 2u);
+  BOOST_TEST(s.loads[0].history[1][0] == 30.0);
+  BOOST_TEST(s.loads[0].history[1][1] == 1000.0);
+  BOOST_TEST(s.loads[0].history[1][2] == -2000.0);
+  expect_error_at(with("[0.5 min, 1 kN/m", "[0.5 m, 1 kN/m", t), 17, "0.5 m", "loads[0].history[1][0]",
+                  "m is length, this key takes time");
+}
+
 BOOST_AUTO_TEST_CASE(a_bare_number_is_kept_exactly) {
   const scene::SceneDescription a = scene::parse_scene(kBaseScene, "a.yaml");
   BOOST_TEST(a.given_quantities.empty());
