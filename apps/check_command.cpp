@@ -35,16 +35,20 @@ struct CheckArgs {
   int levels = 0;  ///< --refine: levels of the refinement study (0: no refinement)
   std::string out;
   int jobs = 0;
-  double until = 0.0;
+  std::string until;  ///< --until: a time, bare in the scene's unit or with its own ("100 d")
   double tolerance = 0.05;
   std::vector<std::string> hold;
   bool quiet = false;  ///< --refine: no progress
 };
 
-void refine(const CheckArgs& args) {
+void refine(const CheckArgs& args, const scene::Units& units) {
   study::RefinementOptions o;
   o.levels = args.levels;
-  if (args.until > 0.0) o.until = args.until;
+  if (!args.until.empty()) {
+    o.until = option_quantity("--until", args.until, "time", units);
+    if (!(*o.until > 0.0))
+      throw std::invalid_argument(fmt::format("--until {}: a time > 0", args.until));
+  }
   o.tolerance = args.tolerance;
   o.hold = args.hold;
   const std::string out_dir =
@@ -147,8 +151,9 @@ void add_check_command(CLI::App& app) {
       ->check(CLI::NonNegativeNumber)
       ->needs(refine_flag);
   check->add_option("--until", args->until,
-                    "--refine: run each level to this time [scene time unit] instead of the scene's duration")
-      ->check(CLI::PositiveNumber)
+                    "--refine: run each level to this time (the scene's time unit, or with a unit: \"100 d\") "
+                    "instead of the scene's duration")
+      ->type_name("TIME")
       ->needs(refine_flag);
   check->add_option("--tolerance", args->tolerance,
                     "--refine: largest relative difference allowed between the scene's own level and the finest "
@@ -169,7 +174,7 @@ void add_check_command(CLI::App& app) {
     if (s.analysis.integrator == scene::IntegratorKind::explicit_step) fmt::print("{}", explicit_cycle_text(s));
     fmt::print("scene OK\n");
     if (args->levels > 0)
-      refine(*args);
+      refine(*args, s.units);
     else
       fmt::print("step controls: not measured (rheodda check {} --refine: whether the answer is within 5 % of "
                  "that of finer controls)\n",

@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "rheodda/scene/quantity.hpp"
+
 namespace rheodda::apps {
 
 /// SIGINT and SIGTERM call `handler` (which records the signal for the command to
@@ -51,6 +53,17 @@ inline constexpr const char* kExitCodesHelp =
 /// The line each command's help ends with instead of the whole list.
 inline constexpr const char* kExitCodesLine =
     "Exit codes: 0 success, 1 failure, 2 bad input, 3 coarse step controls, 128+N signal N (`rheodda --help`)";
+
+/// The number an option gives for a scene (`--until 100 d`): bare in the scene's units, or
+/// with its unit, converted (scene::scene_number); the error names the option.
+inline double option_quantity(const std::string& option, const std::string& text, const std::string& dimension,
+                              const scene::Units& units) {
+  try {
+    return scene::scene_number(text, dimension, units);
+  } catch (const scene::QuantityError& e) {
+    throw std::invalid_argument(option + ": " + e.what());
+  }
+}
 
 /// Throws std::invalid_argument("cannot open PATH: <reason>") unless the file at `path`
 /// can be opened for reading (so that a missing file is reported by name, without a location).

@@ -28,8 +28,10 @@
 #include "fit_verdict.hpp"
 #include "rheodda/fit/fit.hpp"
 #include "rheodda/laws/registry.hpp"
+#include "rheodda/scene/loader.hpp"
 #include "rheodda/scene/plot.hpp"
 #include "rheodda/scene/progress.hpp"
+#include "rheodda/units/units.hpp"
 
 namespace rheodda::apps {
 namespace {
@@ -44,6 +46,7 @@ struct FitArgs {
   std::string stress, stress_column;
   std::string time_column = "t", displacement_column = "displacement";
   std::string units;
+  std::string scene_units, scene_file;  // --scene-units, --scene: the units --yaml writes the law in
   std::string rank_by = "bic";
   int restarts = 4;
   int max_iterations = 500;
@@ -55,33 +58,8 @@ struct FitArgs {
   bool quiet = false;
 };
 
-/// The user's unit names for the three dimensions of the laws' schemas.
-struct Units {
-  std::string text;  ///< as given, echoed in reports; empty if not given
-  std::string stress = "stress", length = "length", time = "time";
-  /// "stress*time/length" -> "MPa*h/mm".
-  std::string of(const std::string& dimension) const {
-    std::string out;
-    std::size_t i = 0;
-    while (i < dimension.size()) {
-      std::size_t j = i;
-      while (j < dimension.size() && std::isalpha(static_cast<unsigned char>(dimension[j]))) ++j;
-      if (j == i) {
-        out += dimension[i++];
-        continue;
-      }
-      const std::string word = dimension.substr(i, j - i);
-      out += word == "stress" ? stress : word == "length" ? length : word == "time" ? time : word;
-      i = j;
-    }
-    return out;
-  }
-};
-
-Units parse_units(const std::string& text) {
-  Units u;
-  if (text.empty()) return u;
-  u.text = text;
+/// Three unit labels "A, B, C" of `option` (as given), trimmed; refused unless three non-empty.
+std::vector<std::string> three_labels(const std::string& text, const char* option, const char* what) {
   std::vector<std::string> items;
   std::size_t pos = 0;
   while (true) {
@@ -94,23 +72,67 @@ Units parse_units(const std::string& text) {
     pos = comma + 1;
   }
   if (items.size() != 3 || items[0].empty() || items[1].empty() || items[2].empty())
-    throw std::invalid_argument(fmt::format(
-        "--units '{}': expected three units 'STRESS, LENGTH, TIME', e.g. \"MPa, mm, h\"", text));
+    throw std::invalid_argument(fmt::format("{} '{}': expected three units {}", option, text, what));
+  return items;
+}
+
+/// The user's unit names for the three dimensions of the laws' schemas.
+struct Units {
+  std::string text;  ///< as given, echoed in reports; empty if not given
+  std::string stress = "stress", length = "length", time = "time";
+  /// "stress*time/length" -> "MPa*h/mm" (rheodda::units spells it); "-" stays "-".
+  std::string of(const std::string& dimension) const {
+    return dimension == "-" ? dimension : units::unit_of(dimension, base());
+  }
+  units::Base base() const { return {.length = length, .force = "", .time = time, .stress = stress}; }
+};
+
+Units parse_units(const std::string& text) {
+  Units u;
+  if (text.empty()) return u;
+  u.text = text;
+  const auto items = three_labels(text, "--units", "'STRESS, LENGTH, TIME', e.g. \"MPa, mm, h\"");
   u.stress = items[0];
   u.length = items[1];
   u.time = items[2];
   return u;
 }
 
-StagedHistory parse_stress(const std::string& text) {
-  if (text.find(':') != std::string::npos) return StagedHistory::parse(text, "--stress");
-  double v = 0.0;
-  const auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (text.empty() || ec != std::errc() || p != text.data() + text.size() || !std::isfinite(v))
-    throw LawError("stress", fmt::format("--stress '{}' is neither a number nor a staged history "
-                                         "T:V[,T:V...]",
-                                         text));
-  return StagedHistory({{0.0, v}});
+/// The units --yaml writes the law in: the data's, or a scene's (--scene-units, --scene).
+struct YamlUnits {
+  std::optional<units::Base> scene;  ///< none: the data's units
+  std::string text;                  ///< "m, N, d" as the scene states them
+};
+
+YamlUnits yaml_units(const std::string& scene_units, const std::string& scene_file, const Units& data,
+                     const std::string& yaml) {
+  YamlUnits y;
+  if (scene_units.empty() && scene_file.empty()) return y;
+  if (yaml.empty())
+    throw std::invalid_argument(fmt::format("{} gives the units of the --yaml law: give --yaml FILE",
+                                            scene_units.empty() ? "--scene" : "--scene-units"));
+  if (data.text.empty())
+    throw std::invalid_argument(fmt::format("{} converts the law from the data's units: give them with --units "
+                                            "\"STRESS, LENGTH, TIME\", e.g. \"MPa, mm, h\"",
+                                            scene_units.empty() ? "--scene" : "--scene-units"));
+  if (!scene_units.empty()) {
+    const auto items = three_labels(scene_units, "--scene-units", "'LENGTH, FORCE, TIME', e.g. \"m, N, d\"");
+    y.scene = units::Base{.length = items[0], .force = items[1], .time = items[2]};
+  } else {
+    const scene::Units u = scene::load_scene(scene_file).units;
+    y.scene = units::Base{.length = u.length, .force = u.force, .time = u.time};
+  }
+  y.text = fmt::format("{}, {}, {}", y.scene->length, y.scene->force, y.scene->time);
+  // Every label a unit UDUNITS-2 knows, before the fit runs.
+  const std::string from = scene_units.empty() ? "--scene " + scene_file : "--scene-units";
+  for (const auto& [option, label] : {std::pair{from, y.scene->length}, {from, y.scene->force}, {from, y.scene->time},
+                                      {std::string("--units"), data.stress}, {std::string("--units"), data.length},
+                                      {std::string("--units"), data.time}})
+    if (!units::known(label))
+      throw std::invalid_argument(fmt::format("{}: '{}' is not a unit UDUNITS-2 knows (m, mm, N, kN, MPa, s, h, d, ...), "
+                                              "so the law cannot be converted",
+                                              option, label));
+  return y;
 }
 
 // A number of an option's text; `what` names it in the message.
@@ -122,10 +144,50 @@ double parse_number(const std::string& text, const std::string& what) {
   return v;
 }
 
+/// A number of `dimension` in the data's units: bare as written (parse_number), or with its
+/// unit ("0.232 MPa", "26.87 MPa/mm") converted into the data's units (--units) by UDUNITS-2.
+double data_number(const std::string& text, const std::string& what, const std::string& dimension, const Units& u) {
+  const std::optional<units::Quantity> q = units::split_quantity(text);
+  if (!q || q->unit.empty()) return parse_number(text, what);
+  if (u.text.empty())
+    throw std::invalid_argument(fmt::format("{}: '{}' carries a unit: give the data's units with --units \"STRESS, "
+                                            "LENGTH, TIME\" to convert it into",
+                                            what, text));
+  try {
+    return units::convert(q->value, q->unit, u.of(dimension));
+  } catch (const units::UnitError& e) {
+    throw std::invalid_argument(fmt::format("{}: '{}': {}", what, text, e.what()));
+  }
+}
+
+StagedHistory parse_stress(const std::string& text, const Units& u) {
+  if (text.find(':') != std::string::npos) return StagedHistory::parse(text, "--stress");
+  const std::optional<units::Quantity> q = units::split_quantity(text);
+  if (!q)
+    throw LawError("stress", fmt::format("--stress '{}' is neither a number (with its unit or not) nor a staged "
+                                         "history T:V[,T:V...]",
+                                         text));
+  return StagedHistory({{0.0, q->unit.empty() ? q->value : data_number(text, "--stress", "stress", u)}});
+}
+
+/// The dimension of the law parameter `name` (of `law`, or of any law for --law all); "" when
+/// no law has it (fit::fit_law refuses it then).
+std::string parameter_dimension(const std::string& law, const std::string& name) {
+  for (const auto& info : LawRegistry::builtin().laws())
+    if (law == "all" || info.name == law)
+      for (const auto& p : info.parameters)
+        if (p.name == name) return p.unit;
+  return "";
+}
+
 // --fix NAME=VALUE, --initial NAME=VALUE, --bounds NAME=MIN:MAX (either side may
 // be empty), --expr NAME=EXPRESSION into fit::FitOptions::parameters; the values themselves are
 // checked by fit::fit_law against the law (FitError).
-std::map<std::string, fit::ParameterSetting> parse_settings(const FitArgs& a) {
+std::map<std::string, fit::ParameterSetting> parse_settings(const FitArgs& a, const Units& u) {
+  // A value in the parameter's unit of the data, or with its own unit (data_number).
+  const auto value_of = [&a, &u](const std::string& text, const std::string& what, const std::string& name) {
+    return data_number(text, what, parameter_dimension(a.law, name), u);
+  };
   std::map<std::string, fit::ParameterSetting> out;
   std::map<std::string, std::vector<std::string>> seen;  // name -> the options that set it
   auto split = [](const std::string& item, const char* flag) {
@@ -158,13 +220,13 @@ std::map<std::string, fit::ParameterSetting> parse_settings(const FitArgs& a) {
   for (const auto& item : a.fix) {
     const auto [name, value] = split(item, "--fix");
     claim(name, "--fix");
-    out[name].value = parse_number(value, "--fix " + name);
+    out[name].value = value_of(value, "--fix " + name, name);
     out[name].vary = false;
   }
   for (const auto& item : a.initial) {
     const auto [name, value] = split(item, "--initial");
     claim(name, "--initial");
-    out[name].value = parse_number(value, "--initial " + name);
+    out[name].value = value_of(value, "--initial " + name, name);
   }
   for (const auto& item : a.bounds) {
     const auto [name, range] = split(item, "--bounds");
@@ -175,8 +237,8 @@ std::map<std::string, fit::ParameterSetting> parse_settings(const FitArgs& a) {
                                               "or :1e4)",
                                               name, range));
     const std::string lo = range.substr(0, colon), hi = range.substr(colon + 1);
-    if (!lo.empty()) out[name].min = parse_number(lo, "--bounds " + name + " MIN");
-    if (!hi.empty()) out[name].max = parse_number(hi, "--bounds " + name + " MAX");
+    if (!lo.empty()) out[name].min = value_of(lo, "--bounds " + name + " MIN", name);
+    if (!hi.empty()) out[name].max = value_of(hi, "--bounds " + name + " MAX", name);
   }
   return out;
 }
@@ -390,11 +452,13 @@ void write_json(const std::string& path, const CreepData& d, const Units& u,
   f << out.dump(2) << '\n';
 }
 
-void write_yaml(const std::string& path, const CreepData& d, const Units& u, const FitResult& r) {
+void write_yaml(const std::string& path, const CreepData& d, const Units& u, const FitResult& r, const YamlUnits& y) {
   auto f = open_output(path, "--yaml");
   f << fmt::format("# rheodda fit: law {} fitted to {} ({} points, R^2 {}){}\n", r.law, d.source,
                    r.points, r.r2_defined() ? fmt::format("{:.6f}", r.r2) : "undefined",
                    u.text.empty() ? "" : fmt::format("; units {}", u.text));
+  if (y.scene)
+    f << fmt::format("# in the scene's units {} (length, force, time), converted from the data's {}\n", y.text, u.text);
   f << "# paste under a joint set of a scene; the comments give the standard errors\n";
   if (!r.minimum_certain) f << fmt::format("# warning: the minimum is not certain: {}\n", r.minimum_note);
   for (const auto& c : r.combinations)
@@ -407,22 +471,34 @@ void write_yaml(const std::string& path, const CreepData& d, const Units& u, con
     f << fmt::format("# the data do not determine {}: the value{} below {} one of many they allow (unidentified)\n",
                      fmt::join(unidentified, ", "), unidentified.size() == 1 ? "" : "s",
                      unidentified.size() == 1 ? "is" : "are");
-  f << fmt::format("# tested_stress and tested_duration: the stresses and duration of the data{}; the scene's "
-                   "units must be the data's\n",
-                   u.text.empty() ? "" : fmt::format(" [{}], [{}]", u.stress, u.time));
+  if (y.scene)
+    f << "# tested_stress and tested_duration: the stresses and duration of the data, in the scene's units\n";
+  else
+    f << fmt::format("# tested_stress and tested_duration: the stresses and duration of the data{}; the scene's "
+                     "units must be the data's (or write it with --scene-units)\n",
+                     u.text.empty() ? "" : fmt::format(" [{}], [{}]", u.stress, u.time));
   f << "law:\n";
   f << fmt::format("  name: {}\n", r.law);
-  for (const auto& p : r.parameters)
-    f << fmt::format("  {}: {:.7g}   # {} {}\n", p.name, p.value,
+  for (const auto& p : r.parameters) {
+    // In the scene's units: the value and its error times the factor UDUNITS-2 gives.
+    const std::string unit = !y.scene ? u.of(p.unit) : p.unit == "-" ? p.unit : units::unit_of(p.unit, *y.scene);
+    const double factor = !y.scene || p.unit == "-" ? 1.0 : units::convert(1.0, u.of(p.unit), unit);
+    f << fmt::format("  {}: {:.7g}   # {} {}{}\n", p.name, p.value * factor,
                      !p.expr.empty()        ? "= " + p.expr
                      : !p.vary              ? std::string("fixed")
                      : !p.at_bound.empty()  ? "at its bound " + p.at_bound
-                     : p.identifiable       ? fmt::format("+- {:.3g}", p.std_error)
+                     : p.identifiable       ? fmt::format("+- {:.3g}", p.std_error * factor)
                                             : std::string("+- (not identifiable)"),
-                     u.of(p.unit));
+                     unit, y.scene ? fmt::format(" (fitted {:.7g} {})", p.value, u.of(p.unit)) : "");
+  }
+  // The tested range in the units the law is written in (the data's, or the scene's).
+  auto written = [&](double v, const std::string& dimension) {
+    return y.scene ? units::convert(v, u.of(dimension), units::unit_of(dimension, *y.scene)) : v;
+  };
   if (!unidentified.empty()) f << fmt::format("  unidentified: [{}]\n", fmt::join(unidentified, ", "));
-  f << fmt::format("  tested_stress: [{:.7g}, {:.7g}]\n", tested.stress_min, tested.stress_max);
-  f << fmt::format("  tested_duration: {:.7g}\n", tested.duration);
+  f << fmt::format("  tested_stress: [{:.7g}, {:.7g}]\n", written(tested.stress_min, "stress"),
+                   written(tested.stress_max, "stress"));
+  f << fmt::format("  tested_duration: {:.7g}\n", written(tested.duration, "time"));
 }
 
 void write_plot(const std::string& path, const std::string& terminal, const CreepData& d,
@@ -526,6 +602,7 @@ void run_fit(const FitArgs& a) {
         "--stress and --stress-column both given: give one stress for the file or a stress "
         "column, not both");
   const Units units = parse_units(a.units);
+  const YamlUnits yunits = yaml_units(a.scene_units, a.scene_file, units, a.yaml);
   const std::string terminal = a.plot.empty() ? "" : plot_terminal(a.plot);
   if (a.restarts < 0 || a.restarts > 100)
     throw std::invalid_argument(fmt::format("--restarts {}: expected 0 to 100", a.restarts));
@@ -539,14 +616,14 @@ void run_fit(const FitArgs& a) {
   csv.displacement_column = a.displacement_column;
   csv.stress_column = a.stress_column;
   csv.sigma_column = a.sigma_column;
-  if (!a.stress.empty()) csv.stress = parse_stress(a.stress);
+  if (!a.stress.empty()) csv.stress = parse_stress(a.stress, units);
   if (a.absolute_sigma && a.sigma_column.empty())
     throw std::invalid_argument("--absolute-sigma takes the --sigma-column values as absolute errors; give "
                                 "--sigma-column NAME");
   fit::FitOptions opt;
   opt.restarts = a.restarts;
   opt.max_iterations = a.max_iterations;
-  opt.parameters = parse_settings(a);
+  opt.parameters = parse_settings(a, units);
   opt.scale_covariance = !a.absolute_sigma;
   const CreepData data = fit::read_creep_csv(a.data, csv);
 
@@ -582,7 +659,7 @@ void run_fit(const FitArgs& a) {
     fmt::print("{}", fit_verdict(fits, a.rank_by != "aic"));  // fit_verdict.cpp
   }
   if (!a.json.empty()) write_json(a.json, data, units, fits, skipped, a.rank_by);
-  if (!a.yaml.empty()) write_yaml(a.yaml, data, units, fits.front());
+  if (!a.yaml.empty()) write_yaml(a.yaml, data, units, fits.front(), yunits);
   if (!a.plot.empty()) write_plot(a.plot, terminal, data, units, fits);
 }
 
@@ -634,6 +711,13 @@ void add_fit_command(CLI::App& app) {
   cmd->add_option("--json", a->json, "Write the full report as JSON")->type_name("FILE");
   cmd->add_option("--yaml", a->yaml, "Write the (best) law as a YAML block for a joint set")
       ->type_name("FILE");
+  auto* su = cmd->add_option("--scene-units", a->scene_units,
+                             "Units 'LENGTH, FORCE, TIME' of the scene the --yaml law goes into, e.g. \"m, N, d\" "
+                             "(converted from --units)")
+                 ->type_name("UNITS");
+  auto* sf = cmd->add_option("--scene", a->scene_file, "Scene file whose units the --yaml law is written in")
+                 ->type_name("FILE");
+  su->excludes(sf);
   cmd->add_option("--plot", a->plot, "Draw data, fit and residuals with gnuplot (.png or .svg)")
       ->type_name("FILE");
   add_quiet_flag(*cmd, a->quiet);

@@ -35,6 +35,7 @@
 #include "rheodda/scene/plot.hpp"
 #include "rheodda/scene/progress.hpp"
 #include "rheodda/study/study.hpp"
+#include "rheodda/units/units.hpp"
 #ifdef RHEODDA_WITH_MPI
 #include "mpi_study.hpp"
 #endif
@@ -60,7 +61,7 @@ struct ForecastArgs {
   double unidentified_spread = 0.0;
   std::string column;
   std::optional<double> threshold;
-  std::optional<double> by;
+  std::string by;  ///< --by: a time, bare in the scene's unit or with its own ("100 d"); empty: the end
   std::string out;
   int jobs = 0;
   bool no_plot = false;
@@ -70,23 +71,9 @@ struct ForecastArgs {
 };
 
 
-/// A dimension ("stress*time/length") in a scene's unit labels ("N/mm^2*h/mm").
+/// A dimension ("stress*time/length") in a scene's unit labels ("N/mm^2*h/mm"); "-" stays "-".
 std::string scene_unit(const std::string& dimension, const scene::Units& u) {
-  std::string out, word;
-  const auto flush = [&] {
-    out += word == "stress" ? u.stress() : word == "length" ? u.length : word == "time" ? u.time : word;
-    word.clear();
-  };
-  for (char ch : dimension) {
-    if (std::isalpha(static_cast<unsigned char>(ch))) {
-      word += ch;
-    } else {
-      flush();
-      out += ch;
-    }
-  }
-  flush();
-  return out;
+  return dimension == "-" ? dimension : units::unit_of(dimension, {.length = u.length, .force = u.force, .time = u.time});
 }
 
 /// A YAML double-quoted scalar.
@@ -153,10 +140,10 @@ void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
   if (a.unidentified_spread != 0.0 && !(a.unidentified_spread > 1.0))
     throw std::invalid_argument(fmt::format("--unidentified-spread {:g}: a factor > 1 (or 0: held at the fitted value)",
                                             a.unidentified_spread));
-  if (a.by && !a.threshold) throw std::invalid_argument("--by needs --threshold (the probability of exceeding it by that time)");
-  const double by = a.by.value_or(s.analysis.duration);
+  if (!a.by.empty() && !a.threshold) throw std::invalid_argument("--by needs --threshold (the probability of exceeding it by that time)");
+  const double by = a.by.empty() ? s.analysis.duration : option_quantity("--by", a.by, "time", s.units);
   if (by < 0 || by > s.analysis.duration * (1 + 1e-12))
-    throw std::invalid_argument(fmt::format("--by {:g} is outside the run (0 to {:g} {})", by, s.analysis.duration, s.units.time));
+    throw std::invalid_argument(fmt::format("--by {} is outside the run (0 to {:g} {})", a.by, s.analysis.duration, s.units.time));
   const fc::FittedLaw fit = fc::read_fit_report(a.fit, a.law);
 
   // The column of the fan chart and of the probability: given, or the joint set's shear
@@ -348,7 +335,7 @@ void add_forecast_command(CLI::App& app) {
                   "when the joint set is recorded, else the first measurement point's displacement)");
   cmd->add_option("--threshold", a->threshold, "Probability that --column exceeds this value [scene length unit]")
       ->type_name("VALUE");
-  cmd->add_option("--by", a->by, "... by this time [scene time unit] (default: the end of the run)")->type_name("TIME");
+  cmd->add_option("--by", a->by, "... by this time (the scene's time unit, or with a unit: \"100 d\"; default: the end of the run)")->type_name("TIME");
   cmd->add_option("-o,--out", a->out, "Output directory (default out/<scene name>-forecast)")->type_name("OUTDIR");
   cmd->add_option("-j,--jobs", a->jobs, "Members run at once; 0 (the default): the machine's hardware threads")
       ->check(CLI::NonNegativeNumber);

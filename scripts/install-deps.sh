@@ -17,6 +17,7 @@ command_packages=(
   libgsl-dev             # nonlinear least squares (rheodda fit)
   libboost-test-dev      # unit tests (CMake looks for it while the tests are configured; 0.5 MB beside CGAL's Boost)
   libcli11-dev           # command-line parsing
+  libudunits2-dev        # quantities with units in scenes, studies, fits and on the command line
   libfmt-dev             # formatting
   nlohmann-json3-dev     # summary.json, fit reports
   gnuplot-nox            # rheodda plot: PNG/SVG pictures

@@ -69,10 +69,12 @@ class FitResult:
     :meth:`to_dataframe` the parameters as a pandas DataFrame.
     """
 
-    def __init__(self, raw, data, call=None):
+    def __init__(self, raw, data, call=None, units=None):
         self._raw = raw
         self._call = call  # (restarts, max_iterations, settings, scale_covariance) of the fit, for conf_interval
         self.data = data
+        self.data_units = units  # "MPa, mm, h" as given to fit(units=), or None
+        self._labels = _three_labels(units, "units", "'STRESS, LENGTH, TIME', e.g. \"MPa, mm, h\"") if units else None
         self.law = raw.law
         self.parameters = list(raw.parameters)
         self.names = [p.name for p in self.parameters]
@@ -80,7 +82,7 @@ class FitResult:
         self.errors = {p.name: p.std_error if _has_error(p) else _math.nan for p in self.parameters}
         self.params = {p.name: FitParameter(p, self.errors[p.name]) for p in self.parameters}
         self.expr = {p.name: p.expr for p in self.parameters if p.expr}
-        self.units = {p.name: p.unit for p in self.parameters}
+        self.units = {p.name: self._unit(p.unit) for p in self.parameters}
         self.identifiable = {p.name: p.identifiable for p in self.parameters}
         self.reasons = {p.name: p.reason for p in self.parameters if p.reason}
         self.vary = {p.name: p.vary for p in self.parameters}
@@ -133,6 +135,47 @@ class FitResult:
                               + [(lv["probability"], lv["upper"]) for lv in levels])
         return out
 
+    def _unit(self, dimension):
+        """A registry dimension spelled in the data's units (as `rheodda fit --units` spells it)."""
+        if self._labels is None or dimension == "-":
+            return dimension
+        stress, length, time = self._labels
+        return _rheodda._unit_of(dimension, length, "", time, stress)
+
+    def scene_values(self, scene_units):
+        """The fitted values in a scene's units: ``scene_units`` is 'LENGTH, FORCE, TIME' (e.g.
+        'm, N, d'), a scene file's path or a :class:`Scene`; the fit must have been given
+        ``units=``. Returns {name: (value, unit)}, converted by UDUNITS-2."""
+        return {p.name: (p.value * f, u) for p, (f, u) in zip(self.parameters, self._scene_factors(scene_units)[1])}
+
+    def _scene_factors(self, scene_units):
+        if self._labels is None:
+            raise Error("a law is written in a scene's units from the data's: give fit(..., units=\"STRESS, LENGTH, "
+                        "TIME\"), e.g. units=\"MPa, mm, h\"")
+        if isinstance(scene_units, str) and "," in scene_units:
+            length, force, time = _three_labels(scene_units, "scene_units", "'LENGTH, FORCE, TIME', e.g. \"m, N, d\"")
+        else:
+            scene = scene_units
+            if isinstance(scene_units, (str, _os.PathLike)):
+                scene = _rheodda.load_scene(_os.fspath(scene_units))
+            length, force, time = scene.units["length"], scene.units["force"], scene.units["time"]
+        out = []
+        for p in self.parameters:
+            if p.unit == "-":
+                out.append((1.0, "-"))
+            else:
+                unit = _rheodda._unit_of(p.unit, length, force, time)
+                out.append((_rheodda._convert(1.0, self._unit(p.unit), unit), unit))
+        # The tested range's factors (stress, time), as fit --yaml converts them.
+        tested = tuple(_rheodda._convert(1.0, self._unit(d), _rheodda._unit_of(d, length, force, time))
+                       for d in ("stress", "time"))
+        return "{}, {}, {}".format(length, force, time), out, tested
+
+    def scene_yaml(self, scene_units):
+        """The YAML law block in a scene's units (``scene_units`` as :meth:`scene_values`): the
+        same text as `rheodda fit --yaml FILE --units ... --scene-units ...` (or ``--scene``)."""
+        return self._yaml(self._scene_factors(scene_units))
+
     def make_law(self):
         """The fitted law, ready for curves or a scene's joint set."""
         return law(self.law, self.values)
@@ -140,27 +183,41 @@ class FitResult:
     @property
     def yaml(self):
         """The YAML law block of `rheodda fit --yaml` (paste under a joint set); the same
-        text as apps/fit_command.cpp write_yaml (tests/python/test_fit.py compares them)."""
+        text as apps/fit_command.cpp write_yaml (tests/python/test_fit.py compares them).
+        In the data's units (``units=``); :meth:`scene_yaml` writes it in a scene's."""
+        return self._yaml(None)
+
+    def _yaml(self, scene):
         r2 = "{:.6f}".format(self.r2) if _math.isfinite(self.r2) else "undefined"
         lines = [
-            "# rheodda fit: law {} fitted to {} ({} points, R^2 {})".format(
-                self.law, self.data.source, self.points, r2),
-            "# paste under a joint set of a scene; the comments give the standard errors",
+            "# rheodda fit: law {} fitted to {} ({} points, R^2 {}){}".format(
+                self.law, self.data.source, self.points, r2,
+                "; units {}".format(self.data_units) if self.data_units else ""),
         ]
+        if scene is not None:
+            lines.append("# in the scene's units {} (length, force, time), converted from the data's {}".format(
+                scene[0], self.data_units))
+        lines.append("# paste under a joint set of a scene; the comments give the standard errors")
         if not self.minimum_certain:
             lines.append("# warning: the minimum is not certain: {}".format(self.minimum_note))
         for c in self.combinations:
             lines.append("# fixed by the data: {} = {:.7g} +- {:.3g} {}".format(
-                c.expression, c.value, c.std_error, c.unit))
+                c.expression, c.value, c.std_error, self._unit(c.unit)))
         unidentified = self.unidentified
         if unidentified:
             lines.append("# the data do not determine {}: the value{} below {} one of many they allow "
                          "(unidentified)".format(", ".join(unidentified), "" if len(unidentified) == 1 else "s",
                                                  "is" if len(unidentified) == 1 else "are"))
-        lines.append("# tested_stress and tested_duration: the stresses and duration of the data; the scene's "
-                     "units must be the data's")
+        if scene is not None:
+            lines.append("# tested_stress and tested_duration: the stresses and duration of the data, in the "
+                         "scene's units")
+        else:
+            lines.append("# tested_stress and tested_duration: the stresses and duration of the data{}; the scene's "
+                         "units must be the data's (or write it with --scene-units)".format(
+                             " [{}], [{}]".format(self._unit("stress"), self._unit("time")) if self._labels else ""))
         lines += ["law:", "  name: {}".format(self.law)]
-        for p in self.parameters:
+        for i, p in enumerate(self.parameters):
+            factor, unit = (1.0, self._unit(p.unit)) if scene is None else scene[1][i]
             if p.expr:
                 note = "= {}".format(p.expr)
             elif not p.vary:
@@ -168,15 +225,17 @@ class FitResult:
             elif p.at_bound:
                 note = "at its bound " + p.at_bound
             elif p.identifiable:
-                note = "+- {:.3g}".format(p.std_error)
+                note = "+- {:.3g}".format(p.std_error * factor)
             else:
                 note = "+- (not identifiable)"
-            lines.append("  {}: {:.7g}   # {} {}".format(p.name, p.value, note, p.unit))
+            fitted = "" if scene is None else " (fitted {:.7g} {})".format(p.value, self._unit(p.unit))
+            lines.append("  {}: {:.7g}   # {} {}{}".format(p.name, p.value * factor, note, unit, fitted))
         if unidentified:
             lines.append("  unidentified: [{}]".format(", ".join(unidentified)))
         lo, hi, duration = _rheodda._tested_range(self.data)
-        lines.append("  tested_stress: [{:.7g}, {:.7g}]".format(lo, hi))
-        lines.append("  tested_duration: {:.7g}".format(duration))
+        fs, ft = (1.0, 1.0) if scene is None else scene[2]
+        lines.append("  tested_stress: [{:.7g}, {:.7g}]".format(lo * fs, hi * fs))
+        lines.append("  tested_duration: {:.7g}".format(duration * ft))
         return "\n".join(lines) + "\n"
 
     @property
@@ -363,9 +422,17 @@ def _settings(params):
     return out
 
 
+def _three_labels(text, name, what):
+    """'A, B, C' -> [A, B, C], as the command line's --units and --scene-units read them."""
+    items = [x.strip(" \t") for x in str(text).split(",")]
+    if len(items) != 3 or not all(items):
+        raise Error("{} '{}': expected three units {}".format(name, text, what))
+    return items
+
+
 def fit(law_name, data, t=None, stress=None, *, params=None, sigma=None, weights=None, absolute_sigma=False,
         time_column="t", displacement_column="displacement", stress_column=None, sigma_column=None,
-        restarts=4, max_iterations=500):
+        restarts=4, max_iterations=500, units=None):
     """Fits one registered law (``rheodda fit DATA --law LAW``).
 
     ``data``: a CSV path (columns as in docs/guide/fitting.md; ``stress`` or
@@ -385,19 +452,21 @@ def fit(law_name, data, t=None, stress=None, *, params=None, sigma=None, weights
     CSV, ``--sigma-column``): the fit minimizes sum ((model - data)/sigma)^2.
     ``absolute_sigma``: standard errors from sigma as absolute errors
     (``--absolute-sigma``); by default they are scaled by sqrt(reduced
-    chi-square) as lmfit's. Returns a :class:`FitResult`.
+    chi-square) as lmfit's. ``units``: the data's units 'STRESS, LENGTH, TIME' (e.g.
+    'MPa, mm, h', ``--units``): the result's ``units`` and ``yaml`` spell them, and
+    :meth:`FitResult.scene_yaml` writes the law in a scene's units. Returns a :class:`FitResult`.
     """
     d = _creep_data(data, t, stress, time_column, displacement_column, stress_column, sigma, weights,
                     sigma_column)
     settings = _settings(params)
     call = (restarts, max_iterations, settings, not absolute_sigma)
     return FitResult(_rheodda._fit_law(law_name, d, restarts, max_iterations, settings, not absolute_sigma), d,
-                     call)
+                     call, units)
 
 
 def fit_all(data, t=None, stress=None, *, rank_by="bic", params=None, sigma=None, weights=None,
             absolute_sigma=False, time_column="t", displacement_column="displacement", stress_column=None,
-            sigma_column=None, restarts=4, max_iterations=500):
+            sigma_column=None, restarts=4, max_iterations=500, units=None):
     """Fits every law and ranks them best first by ``rank_by`` ('bic' or 'aic'),
     as ``rheodda fit DATA --law all``; the other arguments as :func:`fit`
     (``params`` apply to every law; a law without one of the named parameters
@@ -408,7 +477,7 @@ def fit_all(data, t=None, stress=None, *, rank_by="bic", params=None, sigma=None
     settings = _settings(params)
     results, skipped = _rheodda._fit_all(d, rank_by, restarts, max_iterations, settings, not absolute_sigma)
     call = (restarts, max_iterations, settings, not absolute_sigma)
-    return [FitResult(r, d, call) for r in results], list(skipped)
+    return [FitResult(r, d, call, units) for r in results], list(skipped)
 
 
 def model_weights(results, criterion="aic"):

@@ -25,6 +25,7 @@ void bind_fit(py::module_& m);
 void bind_scene(py::module_& m);
 void bind_simulation(py::module_& m);
 void bind_run(py::module_& m);
+void bind_units(py::module_& m);
 
 /// A 1-D numpy array holding a copy of `v`.
 inline py::array_t<double> to_numpy(const std::vector<double>& v) {

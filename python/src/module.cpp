@@ -13,4 +13,5 @@ PYBIND11_MODULE(_rheodda, m) {
   rheodda::python::bind_scene(m);
   rheodda::python::bind_simulation(m);
   rheodda::python::bind_run(m);
+  rheodda::python::bind_units(m);
 }

@@ -111,6 +111,31 @@ def test_nishihara_under_one_stress_reports_what_the_data_fix(root, rheodda_bina
     assert "\n  tested_stress: [0.232, 0.232]\n  tested_duration: 200\n" in r.yaml
 
 
+def test_fit_with_units_writes_the_law_in_a_scenes_units_as_the_command_line(root, rheodda_binary, tmp_path):
+    # units= states the data's units (--units); scene_yaml() writes the law in a scene's
+    # (--scene-units, --scene), converted by UDUNITS-2: the same text as the command line.
+    csv_path = root / "examples" / "creep-data" / "table1-row1.csv"
+    r = rheodda.fit("burgers", str(csv_path), stress=0.232, units="MPa, mm, h")
+    assert r.data_units == "MPa, mm, h"
+    assert r.units["eta1"] == "MPa*h/mm" and r.units["E1"] == "MPa/mm"
+    data_yaml, scene_yaml = tmp_path / "law.yaml", tmp_path / "law-si.yaml"
+    base = [rheodda_binary, "fit", str(csv_path), "--law", "burgers", "--stress", "0.232", "--units", "MPa, mm, h"]
+    subprocess.run(base + ["--yaml", str(data_yaml)], check=True, capture_output=True)
+    subprocess.run(base + ["--yaml", str(scene_yaml), "--scene-units", "m, N, d"], check=True, capture_output=True)
+    assert r.yaml == data_yaml.read_text()
+    assert r.scene_yaml("m, N, d") == scene_yaml.read_text()
+    goodman = root / "examples" / "goodman-toppling.yaml"  # m, N, d
+    assert r.scene_yaml(goodman) == scene_yaml.read_text()
+    assert r.scene_yaml(rheodda.load_scene(str(goodman))) == scene_yaml.read_text()
+    values = r.scene_values("m, N, d")
+    assert values["E1"][0] == pytest.approx(r.values["E1"] * 1e9, rel=1e-14) and values["E1"][1] == "N/m^2/m"
+    assert values["eta1"][0] == pytest.approx(r.values["eta1"] * 1e9 / 24, rel=1e-14)
+    with pytest.raises(rheodda.Error, match="give fit"):
+        rheodda.fit("burgers", str(csv_path), stress=0.232).scene_yaml("m, N, d")
+    with pytest.raises(rheodda.Error, match="three units"):
+        rheodda.fit("burgers", str(csv_path), stress=0.232, units="MPa, mm")
+
+
 def _cli_correlation(report):
     """The lower triangle `rheodda fit` prints under "correlation of the estimates", as
     {(row, column): value or None for '-'}."""

@@ -56,6 +56,24 @@ def test_dict_scene_gives_the_yaml_scene_history_to_the_last_digit(yaml_scene):
     assert np.max(np.abs(d - exact) / exact) < 2e-5
 
 
+def test_a_dict_scene_with_units_is_the_scene_in_bare_numbers(yaml_scene):
+    # Values with units (docs/reference/scene-format.md, "Values with units") in a dict scene:
+    # converted into its mm, N, h by factors exact in binary, the same run to the last digit.
+    with_units = copy.deepcopy(SHEAR_TEST)
+    with_units["analysis"]["duration"] = "12000 min"
+    with_units["materials"]["rock"]["young_modulus"] = "20 GPa"
+    with_units["loads"][0]["force"] = [0, "-84.48 N/mm"]
+    with_units["blocks"][1]["rectangle"]["width"] = "6 cm"
+    scene = rheodda.scene_from_dict(with_units)
+    assert scene.duration == 200.0 and scene.materials["rock"]["young_modulus"] == 20000.0
+    assert same(rheodda.Simulation(yaml_scene).run().history(), rheodda.Simulation(scene).run().history())
+    wrong = copy.deepcopy(SHEAR_TEST)
+    wrong["materials"]["rock"]["young_modulus"] = "20 GPa*s"
+    with pytest.raises(rheodda.SceneError, match="has the wrong dimension") as e:
+        rheodda.scene_from_dict(wrong)
+    assert e.value.key == "materials.rock.young_modulus"
+
+
 def test_scene_analysis_holds_every_declared_key_as_summary_json_does(yaml_scene, rheodda_binary, tmp_path):
     # The keys are declared once (apps/scene/src/keys.cpp): `rheodda keys` lists them,
     # Scene.analysis and summary.json's inputs hold each with the same value.

@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "rheodda/laws/registry.hpp"
+#include "rheodda/units/units.hpp"
 #include "rheodda/scene/error.hpp"
 
 namespace rheodda::forecast {
@@ -27,34 +28,6 @@ using scene::SceneError;
 }
 
 /// Size of a unit label in SI (m, N, s); nullopt for a label not known.
-std::optional<double> si_length(const std::string& u) {
-  static const std::map<std::string, double> t{{"m", 1.0}, {"mm", 1e-3}, {"cm", 1e-2}, {"km", 1e3}, {"um", 1e-6}};
-  const auto it = t.find(u);
-  return it == t.end() ? std::nullopt : std::optional<double>(it->second);
-}
-std::optional<double> si_force(const std::string& u) {
-  static const std::map<std::string, double> t{{"N", 1.0}, {"kN", 1e3}, {"MN", 1e6}, {"GN", 1e9}};
-  const auto it = t.find(u);
-  return it == t.end() ? std::nullopt : std::optional<double>(it->second);
-}
-std::optional<double> si_time(const std::string& u) {
-  static const std::map<std::string, double> t{{"s", 1.0}, {"min", 60.0}, {"h", 3600.0}, {"d", 86400.0},
-                                               {"a", 365.25 * 86400.0}, {"yr", 365.25 * 86400.0}};
-  const auto it = t.find(u);
-  return it == t.end() ? std::nullopt : std::optional<double>(it->second);
-}
-std::optional<double> si_stress(const std::string& u) {
-  static const std::map<std::string, double> t{{"Pa", 1.0}, {"kPa", 1e3}, {"MPa", 1e6}, {"GPa", 1e9}};
-  if (const auto it = t.find(u); it != t.end()) return it->second;
-  // force/length^2, as a scene spells its stress (e.g. N/mm^2)
-  const auto slash = u.find('/');
-  if (slash == std::string::npos || u.size() < slash + 3 || u.substr(u.size() - 2) != "^2") return std::nullopt;
-  const auto f = si_force(u.substr(0, slash));
-  const auto l = si_length(u.substr(slash + 1, u.size() - slash - 3));
-  if (!f || !l) return std::nullopt;
-  return *f / (*l * *l);
-}
-
 /// A uniform draw in [0, 1) from the top 53 bits (the same on every platform).
 double uniform01(std::mt19937_64& g) { return static_cast<double>(g() >> 11) * 0x1.0p-53; }
 
@@ -240,35 +213,15 @@ Samples draw_samples(const FittedLaw& fit, std::size_t count, std::uint64_t seed
 
 double unit_factor(const std::string& dimension, const FittedLaw& fit, const std::string& length,
                    const std::string& force, const std::string& time) {
-  const auto need = [&](std::optional<double> v, const std::string& label, const char* what) {
-    if (!v)
-      throw std::invalid_argument(fmt::format(
-          "cannot convert the fit's parameters to the scene's units: unknown {} unit '{}' (known: m, mm, cm, km; "
-          "N, kN, MN; s, min, h, d; Pa, kPa, MPa, GPa or force/length^2)", what, label));
-    return *v;
-  };
-  const double stress = need(si_stress(fit.stress_unit), fit.stress_unit, "stress") /
-                        (need(si_force(force), force, "force") /
-                         std::pow(need(si_length(length), length, "length"), 2));
-  const double len = need(si_length(fit.length_unit), fit.length_unit, "length") / need(si_length(length), length, "length");
-  const double tim = need(si_time(fit.time_unit), fit.time_unit, "time") / need(si_time(time), time, "time");
-  // A dimension is a product of stress, length and time with * and / (e.g. stress*time/length).
-  double factor = 1.0;
-  int sign = 1;
-  std::size_t i = 0;
-  while (i < dimension.size()) {
-    const char ch = dimension[i];
-    if (ch == '*') { sign = 1; ++i; continue; }
-    if (ch == '/') { sign = -1; ++i; continue; }
-    std::size_t j = i;
-    while (j < dimension.size() && std::isalpha(static_cast<unsigned char>(dimension[j]))) ++j;
-    const std::string w = dimension.substr(i, j - i);
-    const double f = w == "stress" ? stress : w == "length" ? len : w == "time" ? tim : 0.0;
-    if (f == 0.0) throw std::invalid_argument(fmt::format("unknown dimension '{}' in '{}'", w, dimension));
-    factor *= sign > 0 ? f : 1.0 / f;
-    i = j == i ? i + 1 : j;
+  const units::Base report{.length = fit.length_unit, .force = "", .time = fit.time_unit, .stress = fit.stress_unit};
+  const units::Base scene{.length = length, .force = force, .time = time};
+  try {
+    return units::convert(1.0, units::unit_of(dimension, report), units::unit_of(dimension, scene));
+  } catch (const units::UnitError& e) {
+    throw std::invalid_argument(fmt::format("cannot convert the fit's {} ({}, {}, {}) to the scene's units ({}, {}, {}): {}",
+                                            dimension, fit.stress_unit, fit.length_unit, fit.time_unit, force, length,
+                                            time, e.what()));
   }
-  return factor;
 }
 
 double percentile(std::vector<double>& v, double p) {

@@ -1,5 +1,6 @@
 #include "rheodda/scene/build.hpp"
 
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -11,6 +12,7 @@
 #include "rheodda/laws/series_law.hpp"
 #include "law_choice.hpp"
 #include "rheodda/scene/geometry.hpp"
+#include "gravity_check.hpp"
 
 namespace rheodda::scene {
 
@@ -18,6 +20,7 @@ std::vector<std::string> scene_warnings(const SceneDescription& s) {
   // What a fitted law carries: its unidentified parameters, the duration it was tested for (law_choice.cpp).
   std::vector<std::string> out = detail::law_choice_warnings(s);
   const Analysis& a = s.analysis;
+  if (auto w = detail::gravity_warning(s)) out.push_back(std::move(*w));  // gravity_check.cpp
   // The lagged scheme's stability limit (only when the scene asks for lagged:
   // the automatic choice and the other schemes are stable at any step). The
   // series stiffness per unit area is the joint set's shear_stiffness or the

@@ -45,6 +45,7 @@ std::string describe_scene(const SceneDescription& s) {
 
   line(fmt::format("scene: {} ({})", s.title, s.file));
   line(fmt::format("units: {}; stress {}", key_values_text(units_keys(), "units", u, u), stress));  // keys_top.cpp
+  out += detail::describe_given_quantities(s);  // describe_quantities.cpp
   out += detail::describe_analysis(s);  // describe_analysis.cpp
 
   line(fmt::format("materials ({}):", s.materials.size()));

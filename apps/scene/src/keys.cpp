@@ -349,6 +349,12 @@ std::vector<KeySpec> declare_analysis_keys() {
       "required",
       "`[gx, gy]`"));
   keys.back().required = "gravity acceleration [gx, gy] [length/time^2]";
+  keys.push_back(flag_key("analysis", "accept_other_gravity", "–", &Analysis::accept_other_gravity,
+      "false",
+      "`true`: no warning that the magnitude of `gravity` is not 9.81 m/s² within 2 % in the "
+         "scene's units (a gravity of 0 is never warned about); for a deliberate other gravity; "
+         "`true` or `false`"));
+  keys.back().echoed = false;  // summary.json's inputs stay as they were
 
   // analysis.settle: the settling stage (docs/reference/engine.md, "Settling stage").
   keys.push_back(settle_number("until", "time", {0.0, true, kInf, false}, &Analysis::Settle::until,

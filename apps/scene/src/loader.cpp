@@ -78,6 +78,8 @@ SceneDescription parse_scene(const std::string& text_in, const std::string& file
     s.title = file.substr(file.find_last_of('/') == std::string::npos ? 0 : file.find_last_of('/') + 1);
     read_declared(ctx, top, sections, "top", s);  // title
     s.units = read_units(ctx, section("units"));
+    ctx.units = &s.units;  // from here a value may carry a unit of its own (read_quantity.cpp)
+    ctx.given = &s.given_quantities;
     s.analysis = read_analysis(ctx, section("analysis"));
     s.materials = read_materials(ctx, section("materials"), s.analysis.has_dynamic_steps());
     s.joint_sets = read_joint_sets(ctx, section("joint_sets"), s.analysis.has_dynamic_steps());

@@ -107,8 +107,12 @@ LawChoice read_law(const Ctx& ctx, const YAML::Node& n, const std::string& path,
   const std::vector<std::string> declared = key_names(law_keys(), "law");
   laws::ParameterValues given;  // the rest: the law's parameters
   for (const auto& e : m.entries())
-    if (std::find(declared.begin(), declared.end(), e.key) == declared.end())
-      given[e.key] = number(ctx, e.value, m.child(e.key), any(""));
+    if (std::find(declared.begin(), declared.end(), e.key) == declared.end()) {
+      // Its dimension from the law's declaration ("stress*time/length"): a value may carry its unit.
+      const auto spec = std::find_if(info->parameters.begin(), info->parameters.end(),
+                                     [&e](const laws::ParameterSpec& p) { return p.name == e.key; });
+      given[e.key] = number(ctx, e.value, m.child(e.key), any(spec == info->parameters.end() ? "" : spec->unit.c_str()));
+    }
   try {
     law.parameters = laws::validate_parameters(name, info->parameters, given);
   } catch (const laws::LawError& err) {

@@ -37,7 +37,7 @@ KeyValue read_value(const Ctx& ctx, const YAML::Node& v, const std::string& path
     }
     case KeyType::flag: return flag(ctx, v, path);
     case KeyType::choice: return choice(ctx, v, path, k.choices);
-    case KeyType::point: return point(ctx, v, path);
+    case KeyType::point: return point(ctx, v, path, unit.c_str());
     case KeyType::numbers: return numbers(ctx, v, path, k.count, any(unit.c_str()));
     case KeyType::name: return name_text(ctx, v, path);
     case KeyType::text: return text(ctx, v, path);

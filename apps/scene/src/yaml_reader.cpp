@@ -61,7 +61,7 @@ double number(const Ctx& ctx, const YAML::Node& n, const std::string& key, const
     try {
       v = n.as<double>();
     } catch (const YAML::Exception&) {
-      ctx.fail(n, key, fmt::format("'{}' is not a number", n.Scalar()));
+      v = quantity(ctx, n, key, n.Scalar(), r.unit);  // "2600 kg/m^3"
     }
   }
   if (!std::isfinite(v))
@@ -117,6 +117,23 @@ std::string choice(const Ctx& ctx, const YAML::Node& n, const std::string& key,
   return s;
 }
 
+namespace {
+
+/// The dimension of item i of a list of `count` numbers whose unit is `unit`: "time, force,
+/// force" gives each item its own; one dimension is every item's.
+std::string item_dimension(std::string_view unit, std::size_t i, std::size_t count) {
+  std::vector<std::string_view> parts;
+  for (std::string_view u = unit;;) {
+    const std::size_t comma = u.find(", ");
+    parts.push_back(u.substr(0, comma));
+    if (comma == std::string_view::npos) break;
+    u.remove_prefix(comma + 2);
+  }
+  return std::string(parts.size() == count ? parts[i] : unit);
+}
+
+}  // namespace
+
 std::vector<double> numbers(const Ctx& ctx, const YAML::Node& n, const std::string& key,
                             std::size_t count, const Range& r) {
   if (!n.IsSequence() || n.size() != count)
@@ -130,13 +147,20 @@ std::vector<double> numbers(const Ctx& ctx, const YAML::Node& n, const std::stri
     const auto fast = item.IsScalar() ? plain_number(item.Scalar()) : std::nullopt;
     const bool in_range = fast && (r.min_exclusive ? *fast > r.min : *fast >= r.min) &&
                           (r.max_exclusive ? *fast < r.max : *fast <= r.max);
-    out.push_back(in_range ? *fast : number(ctx, item, fmt::format("{}[{}]", key, i), r));
+    if (in_range) {
+      out.push_back(*fast);
+      continue;
+    }
+    const std::string dimension = item_dimension(r.unit, i, count);
+    Range ri = r;
+    ri.unit = dimension.c_str();
+    out.push_back(number(ctx, item, fmt::format("{}[{}]", key, i), ri));
   }
   return out;
 }
 
-Point point(const Ctx& ctx, const YAML::Node& n, const std::string& key) {
-  const auto v = numbers(ctx, n, key, 2, any("length"));
+Point point(const Ctx& ctx, const YAML::Node& n, const std::string& key, const char* dimension) {
+  const auto v = numbers(ctx, n, key, 2, any(dimension));
   return {v[0], v[1]};
 }
 

@@ -30,6 +30,11 @@ SourceLocation location(const YAML::Node& n);
 /// The file being read: every error names it.
 struct Ctx {
   std::string file;
+  /// The scene's units once `units:` is read: a value written with a unit of its own is
+  /// converted into them (read_quantity.cpp); null before, or where no scene is read.
+  const Units* units = nullptr;
+  /// Where the values written with a unit are recorded (`rheodda check` shows them); may be null.
+  std::vector<GivenQuantity>* given = nullptr;
   [[noreturn]] void fail(const YAML::Node& n, const std::string& key, const std::string& msg) const {
     throw SceneError(file, location(n), key, msg);
   }
@@ -122,8 +127,15 @@ inline Range any(const char* unit) { return {std::numeric_limits<double>::lowest
 std::string range_text(const Range& r);
 /// A plain decimal number read by std::from_chars, or nullopt (then yaml-cpp reads it).
 std::optional<double> plain_number(const std::string& s);
-/// A finite number in range r; the error names the key and the unit.
+/// A finite number in range r; the error names the key and the unit. A bare number is in
+/// the scene's units; "2600 kg/m^3" (a number and a unit) is converted into them from the
+/// unit it is written in when r.unit names a dimension ("mass/length^3"; read_quantity).
 double number(const Ctx& ctx, const YAML::Node& n, const std::string& key, const Range& r);
+/// The number of "VALUE UNIT" (`text`, as written) of `dimension` ("stress", "" for none)
+/// in the scene's units, recorded in ctx.given; refused at the node, naming both
+/// dimensions, when its unit is of another dimension (read_quantity.cpp).
+double quantity(const Ctx& ctx, const YAML::Node& n, const std::string& key, const std::string& text,
+                const std::string& dimension);
 /// A whole number in [min, max].
 int integer(const Ctx& ctx, const YAML::Node& n, const std::string& key, int min, int max);
 /// A non-empty word.
@@ -135,11 +147,12 @@ bool flag(const Ctx& ctx, const YAML::Node& n, const std::string& key);
 /// One of `values`, with a "did you mean" hint otherwise.
 std::string choice(const Ctx& ctx, const YAML::Node& n, const std::string& key,
                    const std::vector<std::string>& values);
-/// A list of exactly `count` numbers in range r.
+/// A list of exactly `count` numbers in range r; r.unit "time, force, force" gives each
+/// item its own dimension.
 std::vector<double> numbers(const Ctx& ctx, const YAML::Node& n, const std::string& key,
                             std::size_t count, const Range& r);
-/// (x, y) [length].
-Point point(const Ctx& ctx, const YAML::Node& n, const std::string& key);
+/// (x, y) [length, or `dimension`: "length/time^2" for gravity].
+Point point(const Ctx& ctx, const YAML::Node& n, const std::string& key, const char* dimension = "length");
 /// A polygon `[[x, y], ...]` of 3 to kMaxVertices vertices [length].
 std::vector<Point> polygon_points(const Ctx& ctx, const YAML::Node& v, const std::string& key);
 

@@ -9,12 +9,14 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <random>
 #include <set>
 #include <sstream>
 
 #include "rheodda/scene/describe.hpp"
 #include "rheodda/scene/loader.hpp"
+#include "rheodda/scene/quantity.hpp"
 #include "rheodda/study/study.hpp"
 #include "rheodda/scene/output.hpp"
 
@@ -384,8 +386,29 @@ StudyDescription parse_study(const std::string& text, const std::string& file) {
   const YAML::Node times = root["times"];
   if (!times) fail(file, root, "times", "missing key 'times' (times to read the outputs at, scene time unit)");
   if (!times.IsSequence() || times.size() == 0) fail(file, times, "times", "expected a non-empty list of times");
+  std::optional<scene::Units> scene_units;  // read from the base scene once a time carries its unit
   for (std::size_t i = 0; i < times.size(); ++i) {
-    const double t = number(file, times[i], fmt::format("times[{}]", i));
+    const std::string key = fmt::format("times[{}]", i);
+    const YAML::Node& n = times[i];
+    bool with_unit = n.IsScalar();
+    if (with_unit) {
+      try {
+        (void)n.as<double>();
+        with_unit = false;
+      } catch (const YAML::Exception&) {
+      }
+    }
+    double t = 0.0;
+    if (with_unit) {  // "100 d": in the scene's time unit
+      if (!scene_units) scene_units = scene::load_scene(s.scene).units;
+      try {
+        t = scene::scene_number(n.Scalar(), "time", *scene_units);
+      } catch (const scene::QuantityError& e) {
+        fail(file, n, key, e.what());
+      }
+    } else {
+      t = number(file, n, key);
+    }
     if (t < 0) fail(file, times[i], fmt::format("times[{}]", i), fmt::format("{:g} is out of range (>= 0)", t));
     s.times.push_back(t);
   }

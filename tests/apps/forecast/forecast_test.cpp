@@ -94,7 +94,10 @@ BOOST_AUTO_TEST_CASE(fitted_parameters_convert_from_the_reports_units_to_the_sce
   BOOST_TEST(fc::unit_factor("stress/length", f, "m", "N", "d") == 1e9, boost::test_tools::tolerance(1e-14));
   BOOST_TEST(fc::unit_factor("stress*time/length", f, "m", "N", "d") == 1e9 / 24, boost::test_tools::tolerance(1e-14));
   BOOST_TEST(fc::unit_factor("stress", f, "mm", "N", "h") == 1.0, boost::test_tools::tolerance(1e-14));  // N/mm^2 = MPa
-  BOOST_CHECK_THROW(fc::unit_factor("stress", f, "furlong", "N", "h"), std::invalid_argument);
+  // UDUNITS-2 (rheodda::units) does the conversion: any unit it knows, none of another dimension.
+  BOOST_TEST(fc::unit_factor("stress*time/length", f, "km", "kN", "min") == 1e9 * 60.0 * 1e6, boost::test_tools::tolerance(1e-14));
+  BOOST_CHECK_THROW(fc::unit_factor("stress", f, "blorp", "N", "h"), std::invalid_argument);  // unknown
+  BOOST_CHECK_THROW(fc::unit_factor("stress", f, "s", "N", "h"), std::invalid_argument);      // time for a length
 }
 
 BOOST_AUTO_TEST_CASE(draws_have_the_fits_mean_and_covariance_on_the_logarithms) {

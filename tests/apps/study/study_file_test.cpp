@@ -2,6 +2,7 @@
 // file, line, column and key; `rheodda study` then exits 2 and runs nothing.
 #include <boost/test/unit_test.hpp>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -187,6 +188,21 @@ BOOST_AUTO_TEST_CASE(bad_study_files_are_refused_with_line_and_key) {
   expect_study_error(with("  - {name: phi20}", "  - {name: phi10}", ok), 8, "cases[1].name", "given twice");
   expect_study_error(with("name: phi10", "name: ../x", ok), 6, "cases[0].name", "folder name");
   expect_study_error(with("times: [0.01, 0.05]", "times: [0.01, x]", ok), 4, "times[1]", "not a number");
+}
+
+BOOST_AUTO_TEST_CASE(times_and_overrides_may_carry_their_units) {
+  // sliding-block.yaml is in m, N, s: 10 ms is 0.01 s; an override's unit is the case scene's to convert.
+  const std::string ok = study_text();
+  const auto s = st::parse_study(with("times: [0.01, 0.05]", "times: [10 ms, 0.05]",
+                                      with("friction_angle: 10}", "friction_angle: 0.2 rad}", ok)),
+                                 "units.yaml");
+  BOOST_TEST(s.times[0] == 0.01, boost::test_tools::tolerance(1e-15));
+  BOOST_TEST(s.times[1] == 0.05);
+  const auto texts = st::prepare_cases(s);
+  const auto phi = rheodda::scene::parse_scene(texts[0], "case.yaml").joint_sets[0].friction_angle;
+  BOOST_TEST(phi == 0.2 * 180.0 / std::acos(-1.0), boost::test_tools::tolerance(1e-14));
+  expect_study_error(with("times: [0.01, 0.05]", "times: [0.01, 5 m]", ok), 4, "times[1]",
+                     "m is length, this key takes time");
 }
 
 BOOST_AUTO_TEST_CASE(rheodda_study_exits_2_on_a_bad_study_and_runs_nothing) {

@@ -103,6 +103,63 @@ BOOST_AUTO_TEST_CASE(yaml_block_builds_the_law_and_recovers_table1_row1_within_t
   }
 }
 
+BOOST_AUTO_TEST_CASE(yaml_in_a_scenes_units_is_the_fit_converted) {
+  // --scene-units (or --scene, the units of a scene file): the law in m, N, d from MPa, mm, h.
+  TempDir dir;
+  const std::string args = "fit '" + kExample + "' --law burgers --stress 0.232 --units 'MPa, mm, h' --quiet --json '" +
+                           (dir / "fit.json").string() + "' --yaml ";
+  Run r = run_rheodda(args + "'" + (dir / "si.yaml").string() + "' --scene-units 'm, N, d'", dir);
+  BOOST_TEST_REQUIRE(r.code == 0, r.err);
+  const std::string goodman = std::string(RHEODDA_SOURCE_DIR) + "/examples/goodman-toppling.yaml";  // m, N, d
+  r = run_rheodda(args + "'" + (dir / "scene.yaml").string() + "' --scene '" + goodman + "'", dir);
+  BOOST_TEST_REQUIRE(r.code == 0, r.err);
+  BOOST_TEST(slurp(dir / "si.yaml") == slurp(dir / "scene.yaml"));
+  const std::string text = slurp(dir / "si.yaml");
+  BOOST_TEST(text.find("# in the scene's units m, N, d (length, force, time), converted from the data's MPa, mm, h") !=
+             std::string::npos, text);
+  BOOST_TEST(text.find("N/m^2*d/m (fitted ") != std::string::npos, text);
+  const YAML::Node law = YAML::LoadFile((dir / "si.yaml").string())["law"];
+  const auto json = nlohmann::json::parse(slurp(dir / "fit.json"));
+  for (const auto& p : json["fits"][0]["parameters"]) {
+    const std::string name = p["name"];
+    // MPa/mm = 1e9 N/m^2/m; MPa*h/mm = 1e9/24 N/m^2*d/m
+    const double factor = name.rfind("eta", 0) == 0 ? 1e9 / 24.0 : 1e9;
+    BOOST_TEST(law[name].as<double>() == p["value"].get<double>() * factor, boost::test_tools::tolerance(1e-6));
+  }
+  // Refused before the fit: no --units to convert from, no --yaml to write, a label that is no unit.
+  r = run_rheodda("fit '" + kExample + "' --law burgers --stress 0.232 --yaml '" + (dir / "x.yaml").string() +
+                      "' --scene-units 'm, N, d'", dir);
+  BOOST_TEST(r.code == 2);
+  BOOST_TEST(r.err.find("give them with --units") != std::string::npos, r.err);
+  r = run_rheodda("fit '" + kExample + "' --law burgers --stress 0.232 --units 'MPa, mm, h' --scene-units 'm, N, d'", dir);
+  BOOST_TEST(r.code == 2);
+  BOOST_TEST(r.err.find("give --yaml FILE") != std::string::npos, r.err);
+  r = run_rheodda(args + "'" + (dir / "x.yaml").string() + "' --scene-units 'm, N, dx'", dir);
+  BOOST_TEST(r.code == 2);
+  BOOST_TEST(r.err.find("'dx' is not a unit UDUNITS-2 knows") != std::string::npos, r.err);
+}
+
+BOOST_AUTO_TEST_CASE(stress_and_parameter_settings_may_carry_their_units) {
+  // --stress 232 kPa is --stress 0.232 in MPa; --fix E1=26870 kPa/mm is 26.87 MPa/mm.
+  TempDir dir;
+  const std::string base = "fit '" + kExample + "' --law burgers --units 'MPa, mm, h' --quiet --json ";
+  Run r = run_rheodda(base + "'" + (dir / "a.json").string() + "' --stress 0.232 --fix E1=26.87", dir);
+  BOOST_TEST_REQUIRE(r.code == 0, r.err);
+  r = run_rheodda(base + "'" + (dir / "b.json").string() + "' --stress '232 kPa' --fix 'E1=26870 kPa/mm'", dir);
+  BOOST_TEST_REQUIRE(r.code == 0, r.err);
+  const auto a = nlohmann::json::parse(slurp(dir / "a.json"))["fits"][0]["parameters"];
+  const auto b = nlohmann::json::parse(slurp(dir / "b.json"))["fits"][0]["parameters"];
+  for (std::size_t i = 0; i < a.size(); ++i)
+    BOOST_TEST(b[i]["value"].get<double>() == a[i]["value"].get<double>(), boost::test_tools::tolerance(1e-9));
+  r = run_rheodda("fit '" + kExample + "' --law burgers --stress '232 kPa'", dir);  // no --units to convert into
+  BOOST_TEST(r.code == 2);
+  BOOST_TEST(r.err.find("give the data's units with --units") != std::string::npos, r.err);
+  r = run_rheodda(base + "'" + (dir / "c.json").string() + "' --stress 0.232 --initial 'eta1=3 MPa*h'", dir);
+  BOOST_TEST(r.code == 2);
+  BOOST_TEST(r.err.find("--initial eta1: '3 MPa*h': MPa*h is force*time/length^2, not force*time/length^3") !=
+             std::string::npos, r.err);
+}
+
 BOOST_AUTO_TEST_CASE(law_all_ranks_burgers_first_on_the_example) {
   TempDir dir;
   const Run r = run_rheodda("fit '" + kExample + "' --law all --stress 0.232 --json '" +

@@ -71,8 +71,8 @@ Samples draw_samples(const FittedLaw& fit, std::size_t count, std::uint64_t seed
 std::string band_coverage(const FittedLaw& fit, const Samples& drawn, const Unidentified& u);
 
 /// Factor that converts a parameter of `dimension` (e.g. "stress*time/length") from the
-/// report's units to a scene's (length, force, time labels; stress = force/length^2).
-/// Throws std::invalid_argument for a unit label it does not know.
+/// report's units to a scene's (length, force, time labels; stress = force/length^2), by
+/// UDUNITS-2 (rheodda::units). Throws std::invalid_argument for a unit it does not know.
 double unit_factor(const std::string& dimension, const FittedLaw& fit, const std::string& length,
                    const std::string& force, const std::string& time);
 

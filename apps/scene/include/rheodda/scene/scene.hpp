@@ -29,7 +29,9 @@ namespace rheodda::scene {
 
 using Point = std::array<double, 2>;  ///< (x, y) [length]
 
-/// Unit labels; free text, repeated in every output. The numbers in the file must be consistent with them.
+/// Unit labels, repeated in every output. A bare number in the file is in these units; a
+/// value written with a unit of its own ("2600 kg/m^3") is converted into them, which
+/// needs labels UDUNITS-2 knows (m, mm, N, kN, s, h, d, ...; docs/reference/scene-format.md, "Units").
 struct Units {
   std::string length;  ///< e.g. "m", "mm"
   std::string force;   ///< e.g. "N", "MN"
@@ -125,6 +127,9 @@ struct Analysis {
   /// a joint set's restitution does not act as given, do not change the answer: no
   /// warning about it (scene_warnings) [-].
   bool accept_unresolved_impacts = false;
+  /// `accept_other_gravity`: a gravity other than the Earth's is deliberate: no warning
+  /// that |gravity| is not 9.81 m/s^2 within 2 % in the scene's units (scene_warnings) [-].
+  bool accept_other_gravity = false;
   bool stick_keeps_force_given = false;  ///< the scene gave stick_keeps_force (else a dynamic settling
                                          ///< stage of a static analysis keeps the force, its static steps not)
   // The open-close iteration (contact::ContactSettings fields of the same names):
@@ -291,6 +296,19 @@ struct RockMassDescription {
 
 namespace rheodda::scene {
 
+/// A value the file gave with a unit of its own ("2600 kg/m^3"): `rheodda check` shows it
+/// in the scene's units beside the text it was given as.
+struct GivenQuantity {
+  std::string key;         ///< "materials.rock.density", "analysis.gravity[1]"
+  SourceLocation where;    ///< of the value in the file
+  std::string text;        ///< as written: "2600 kg/m^3"
+  double value = 0.0;      ///< in the scene's units
+  std::string unit;        ///< the scene's unit it is now in ("N*s^2/m^4"); "" for none
+  /// A force given as a bare force unit ("84.5 kN"): read as per unit thickness of the
+  /// scene's length (a 2D scene's forces are per unit thickness).
+  bool per_thickness = false;
+};
+
 struct SceneDescription {
   std::string file;   ///< the scene file's path as given
   std::string title;  ///< `title:`; default: the file name
@@ -306,6 +324,7 @@ struct SceneDescription {
   std::optional<WaterDescription> water;          ///< `water:`, if given (water.hpp)
   std::vector<StageDescription> stages;          ///< `stages:` (docs/reference/stages.md), in order
   std::vector<BoltDescription> bolts;  ///< `bolts:` (bolts.hpp); empty: none
+  std::vector<GivenQuantity> given_quantities;  ///< the values written with a unit, in file order
 };
 
 std::string_view analysis_type_name(AnalysisType t);
