@@ -59,11 +59,23 @@ IntegratorChoice choose_integrator(const SceneDescription& s) {
   }
   // A probe: the scene with the explicit step, its stable cycle on the initial state and the
   // contacts of its first step.
+  // A scene the engine refuses under the explicit step (a dynamic analysis that carries no
+  // velocity, dynamic_ratio 0) takes the implicit one; what is wrong with it otherwise, the
+  // implicit build says.
   SceneDescription probe = s;
   probe.analysis.integrator = IntegratorKind::explicit_step;
-  const BuiltScene built = build_scene(probe);
-  AssembledScene a = assemble_scene(probe, built);
-  const core::Engine::StableCycle c = a.engine->stable_cycle();
+  BuiltScene built;
+  AssembledScene a;
+  core::Engine::StableCycle c;
+  try {
+    built = build_scene(probe);
+    a = assemble_scene(probe, built);
+    c = a.engine->stable_cycle();
+  } catch (const std::exception& e) {
+    out.integrator = IntegratorKind::implicit;
+    out.reason = fmt::format("automatic: implicit, since the explicit step refuses the scene ({})", e.what());
+    return out;
+  }
   const bool staged = s.analysis.type != AnalysisType::dynamic_analysis;  // the dynamic steps are the stages'
   const double dt = staged ? s.analysis.settle->dt : s.analysis.dt;
   const double blocks = a.engine->block_count();

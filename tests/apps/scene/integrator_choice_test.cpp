@@ -83,6 +83,14 @@ BOOST_AUTO_TEST_CASE(a_scene_the_explicit_step_cannot_take_takes_the_implicit_on
   BOOST_TEST(c.reason == "automatic: implicit, since a static analysis without a dynamic settling stage has no "
                          "dynamic step");
   BOOST_TEST(c.explicit_seconds == 0.0);
+  // A dynamic analysis that carries no velocity: the engine refuses the explicit step.
+  const auto still = scene::parse_scene(
+      with("  dt: 0.01", "  dt: 0.01\n  type: dynamic\n  dynamic_ratio: 0\n  integrator: automatic"), "still.yaml");
+  const scene::IntegratorChoice d = scene::choose_integrator(still);
+  BOOST_TEST_MESSAGE("dynamic_ratio 0: " << d.reason);
+  BOOST_TEST((d.integrator == scene::IntegratorKind::implicit));
+  BOOST_TEST(d.reason.find("automatic: implicit, since the explicit step refuses the scene") == 0u);
+  BOOST_TEST((scene::build_scene(still).model.settings.integrator == core::Integrator::implicit));
   // The words given are kept; the explicit step's keys are taken under `automatic`.
   BOOST_TEST(scene::choose_integrator(scene::parse_scene(kBaseScene, "base.yaml")).reason == "given");
   const auto keys = with("  dt: 0.01", "  dt: 0.01\n  type: dynamic\n  integrator: automatic\n  explicit_safety: 0.5");
