@@ -20,6 +20,7 @@
 #include "rheodda/scene/assemble.hpp"
 #include "rheodda/scene/build.hpp"
 #include "rheodda/scene/describe.hpp"
+#include "rheodda/scene/integrator_choice.hpp"
 #include "rheodda/scene/loader.hpp"
 #include "rheodda/scene/output.hpp"
 #include "rheodda/study/refinement.hpp"
@@ -171,7 +172,9 @@ void add_check_command(CLI::App& app) {
     require_readable(args->scene);
     const scene::SceneDescription s = scene::load_scene(args->scene);
     fmt::print("{}", scene::describe_scene(s));
-    if (s.analysis.integrator == scene::IntegratorKind::explicit_step) fmt::print("{}", explicit_cycle_text(s));
+    const scene::IntegratorChoice choice = scene::choose_integrator(s);  // integrator_choice.hpp
+    if (s.analysis.integrator == scene::IntegratorKind::automatic) fmt::print("  integrator {}\n", choice.reason);
+    if (choice.integrator == scene::IntegratorKind::explicit_step) fmt::print("{}", explicit_cycle_text(s));
     fmt::print("scene OK\n");
     if (args->levels > 0)
       refine(*args, s.units);

@@ -111,6 +111,12 @@ BoltSet::EndMotion BoltSet::end_motion(const Vec2& c, const Vec2& x, const conta
   return e;  // at D = 0: G = T (contact::displacement_matrix)
 }
 
+contact::Mat6 BoltSet::end_hessian(const EndMotion& e, const Eigen::Matrix2d& K2, double curv) {
+  contact::Mat6 h = e.G.transpose() * K2 * e.G;
+  h(2, 2) += curv;
+  return h;
+}
+
 BoltSet::Point BoltSet::point(std::size_t k, const Eigen::VectorXd& D) const {
   const Bolt& bolt = model_->bolts[k];
   const Trial& t = trials_[k];
@@ -127,7 +133,7 @@ BoltSet::Point BoltSet::point(std::size_t k, const Eigen::VectorXd& D) const {
   p.L = d.norm();
   p.n = p.L > 0.0 ? Vec2(d / p.L) : Vec2(d);  // ends met: no axis, no force direction
   // (2): the force at this iterate, or the yield force.
-  p.N = t.sign != 0 ? t.sign * bolt.yield_force : t.k_eff * (t.s0 + p.L - t.length_start);
+  p.N = t.sign != 0 ? t.sign * bolt.yield_force : t.elastic_force(p.L);
   // (4): axial and geometric stiffness, the latter only in tension.
   const double tension = std::max(p.N, 0.0);
   const Eigen::Matrix2d nn = p.n * p.n.transpose();
@@ -176,13 +182,11 @@ void BoltSet::assemble(contact::SystemSink& sink) const {
     const int a = bolt.block_a, b = bolt.block_b;
     const Point& p = t.at;
     // (4) and (5): K += H, F += H D^j - dPi/dD(D^j).
-    contact::Mat6 h_aa = p.a.G.transpose() * p.K2 * p.a.G;
-    h_aa(2, 2) += p.curv_a;
+    const contact::Mat6 h_aa = end_hessian(p.a, p.K2, p.curv_a);
     sink.add_stiffness(a, a, h_aa);
     contact::Vec6 f_a = h_aa * p.D_a + p.N * p.a.G.transpose() * p.n;
     if (b >= 0) {
-      contact::Mat6 h_bb = p.b.G.transpose() * p.K2 * p.b.G;
-      h_bb(2, 2) += p.curv_b;
+      const contact::Mat6 h_bb = end_hessian(p.b, p.K2, p.curv_b);
       const contact::Mat6 h_ab = -p.a.G.transpose() * p.K2 * p.b.G;
       sink.add_stiffness(b, b, h_bb);
       sink.add_stiffness(a, b, h_ab);
@@ -205,16 +209,14 @@ int BoltSet::check(const Eigen::VectorXd& D) {
     const contact::Vec6 dDb =
         bolt.block_b >= 0 ? contact::Vec6(D.segment<6>(6 * static_cast<Eigen::Index>(bolt.block_b)) - before.D_b)
                           : contact::Vec6::Zero();
-    contact::Mat6 h_aa = before.a.G.transpose() * before.K2 * before.a.G;
-    h_aa(2, 2) += before.curv_a;
-    contact::Mat6 h_bb = before.b.G.transpose() * before.K2 * before.b.G;
-    h_bb(2, 2) += before.curv_b;
+    const contact::Mat6 h_aa = end_hessian(before.a, before.K2, before.curv_a);
+    const contact::Mat6 h_bb = end_hessian(before.b, before.K2, before.curv_b);
     const contact::Mat6 h_ab = -before.a.G.transpose() * before.K2 * before.b.G;
     const contact::Vec6 pred_a = -before.N * before.a.G.transpose() * before.n + h_aa * dDa + h_ab * dDb;
     const contact::Vec6 pred_b = before.N * before.b.G.transpose() * before.n + h_ab.transpose() * dDa + h_bb * dDb;
     // The elastic trial force at D, exact on the moved geometry (2).
     t.at = point(k, D);
-    const double trial = t.sign != 0 ? t.k_eff * (t.s0 + t.at.L - t.length_start) : t.at.N;
+    const double trial = t.sign != 0 ? t.elastic_force(t.at.L) : t.at.N;
     const double ny = bolt.yield_force;
     if (t.sign == 0 && std::abs(trial) > ny * (1.0 + kYieldMargin)) {
       t.sign = trial > 0.0 ? 1 : -1;  // beyond the yield force: it yields
@@ -269,10 +271,13 @@ BoltEnergy BoltSet::commit(const Model& m, const std::vector<BlockState>& blocks
     const Trial& t = trials_[k];
     const double kb = bolt.axial_stiffness;
     const double n_start = s.force, plastic_start = s.plastic_elongation, creep_start = s.creep_elongation();
+    // The plastic elongation the explicit step's cycles took (bolt_cycles.cpp; 0 implicitly).
+    s.plastic_elongation += t.cycle_plastic;
+    const double plastic_cycled = s.plastic_elongation;
     // The end force: the yield force, or (2) on the exact elongation; an elastic
     // trial that ends beyond N_y on the exact geometry yields as well.
     double force = t.sign != 0 ? t.sign * bolt.yield_force
-                               : t.k_eff * (s.elongation - plastic_start - creep_start - t.lin.h);
+                               : t.k_eff * (s.elongation - plastic_cycled - creep_start - t.lin.h);
     const bool yielding = t.sign != 0 || std::abs(force) > bolt.yield_force;
     if (yielding) force = std::copysign(bolt.yield_force, force);
     // Creep over the step under the law's force (laws/contact_rheology.hpp, advance).
@@ -294,9 +299,15 @@ BoltEnergy BoltSet::commit(const Model& m, const std::vector<BlockState>& blocks
     // and what its work in the step's equations, N n . (G_b D_b - G_a D_a) (bolts.hpp,
     // (3)), exceeds its work over the length's change: the integration's share of
     // the axis's turn, N L theta^2 / 2 for a turn theta (docs/reference/bolts.md, "Energy").
-    energy.dissipation += 0.5 * (force - n_start) * (force - n_start) / kb +
-                          force * (s.plastic_elongation - plastic_start) + force * (creep_now - creep_start) +
-                          force * (t.at.work - (s.length - t.length_start));
+    // A step taken in cycles follows the force along the step: no integration share and no
+    // turn of the axis, but the cycles' plastic and dashpot work (bolt_cycles.cpp).
+    if (t.cycled)
+      energy.dissipation +=
+          t.cycle_work + force * (s.plastic_elongation - plastic_cycled) + force * (creep_now - creep_start);
+    else
+      energy.dissipation += 0.5 * (force - n_start) * (force - n_start) / kb +
+                            force * (s.plastic_elongation - plastic_start) + force * (creep_now - creep_start) +
+                            force * (t.at.work - (s.length - t.length_start));
     if (previous_.size() == m.bolts.size())  // the curvature of the force (bolt_creep_error.cpp)
       previous_[k] = {true, n_start, t.constants.dt, force, s.elongation};
     if (s.elongation > bolt.rupture_elongation) {

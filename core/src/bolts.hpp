@@ -103,6 +103,27 @@ class BoltSet {
   static void extrapolate(const Model& m, const std::vector<BlockState>& blocks, std::vector<BoltState>& fine,
                           const std::vector<BoltState>& coarse);
 
+  // The explicit step's cycles (bolt_cycles.cpp; docs/reference/explicit-step.md), between
+  // begin_step and commit instead of assemble/check: begin_cycles -> { cycle_forces }* ->
+  // end_cycles.
+
+  /// Adds to K (6x6 per block) a bound of the bolts' stiffness on each block (4) at the
+  /// step start, for the stable cycle [force/length ...].
+  void cycle_stiffness(std::vector<contact::Mat6>& K) const;
+  /// Adds to C a bound of the bolts' dashpots c = tau k_eff on each block [tau: time].
+  void cycle_damping(double tau, std::vector<contact::Mat6>& C) const;
+  /// Starts the cycles of the step begun: the dashpots c = tau k_eff (tau: time; 0 none), the
+  /// bolts of each block in a fixed order for the gather, on `threads` OpenMP threads (0:
+  /// OpenMP's default).
+  void begin_cycles(double tau, int block_count, int threads);
+  /// Adds the bolts' resisting forces (3) at the displacements D since the step start and the
+  /// rates V to f (6 per block), each bolt's mode decided at D; h: the cycle that led to D,
+  /// for the work its dashpot took over it [time].
+  void cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double h, Eigen::VectorXd& f);
+  /// After the last cycle at D: each bolt's trial mode, plastic elongation and iterate where the
+  /// cycles left them, ready for commit.
+  void end_cycles(const Eigen::VectorXd& D);
+
   /// Where an end of a bolt goes for the block unknowns D, by (1).
   struct EndMotion {
     Vec2 x = Vec2::Zero();                                      ///< x'(D) [length]
@@ -137,6 +158,14 @@ class BoltSet {
     Point at;              ///< the iterate the assembly linearizes at
     laws::StepConstants constants;
     laws::Linearization lin;
+    // The explicit step's cycles (bolt_cycles.cpp); 0 in an implicit step.
+    bool cycled = false;        ///< the step was taken in cycles
+    double cycle_plastic = 0.0; ///< plastic elongation the cycles took so far [length]
+    double cycle_work = 0.0;    ///< the plastic work and the dashpot's work in the cycles [force x length]
+    double damper = 0.0;        ///< dashpot coefficient c = tau k_eff [force x time/length]
+    double damper_force = 0.0;  ///< the dashpot's axial force of the last cycle [force]
+    /// (2) on the elastic branch at the length L: k_eff (s0 - cycle_plastic + L - L0) [force].
+    double elastic_force(double L) const { return k_eff * (s0 - cycle_plastic + L - length_start); }
   };
   /// The force of the previous accepted step, for the curvature of a bolt's force
   /// in the creep error estimate (bolt_creep_error.cpp): valid while the
@@ -151,7 +180,14 @@ class BoltSet {
   std::vector<Previous> previous_;
   const Model* model_ = nullptr;
   std::vector<BoltState> start_;  ///< the states at the step start
+  // The cycles' gather (bolt_cycles.cpp): each bolt's generalized forces on its two ends'
+  // blocks, and per block the entries into them in the bolts' order (CSR).
+  std::vector<contact::Vec6> cycle_force_;
+  std::vector<int> block_first_, block_entries_;
+  int cycle_threads_ = 0;
   void linearize(std::size_t k, double guess);
+  /// The Hessian block (4) of an end: G^T K2 G with its rotation term curv on e_r.
+  static contact::Mat6 end_hessian(const EndMotion& e, const Eigen::Matrix2d& K2, double curv);
   /// The bolt k at the iterate D (its blocks' segments of D), in its trial mode.
   Point point(std::size_t k, const Eigen::VectorXd& D) const;
 };

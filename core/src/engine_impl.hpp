@@ -185,6 +185,7 @@ struct Engine::Impl {
     std::vector<double> scale;          ///< density scale of each block's mass (6) [-]
     double h_stable = std::numeric_limits<double>::infinity();  ///< [time]
     int stable_block = -1;
+    double tau = 0.0;                   ///< the dashpots' c = tau k of (5) [time]
   };
   /// unscaled: the stable cycle of the true masses, whatever the stage (Engine::stable_cycle).
   CycleBlocks cycle_blocks(double dt, bool unscaled = false) const;

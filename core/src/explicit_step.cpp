@@ -21,7 +21,9 @@
 // zeta = c / (2 omega), c bounding M^-1 C, that is h <= 2 / (sqrt(omega^2 + c^2/4) + c/2)
 // (3), smallest at the largest omega: omega_max^2 and c are bounded per block by the
 // largest eigenvalues of M^-1 K' and M^-1 C' (K', C' the block's own terms plus the
-// contacts' bounds, ContactModel::cycle_stiffness).
+// contacts' and the bolts' bounds, ContactModel::cycle_stiffness, BoltSet::cycle_stiffness).
+// The bolts (bolt_cycles.cpp) add their forces f_b(D, V) beside f_c in (1): each bolt's
+// elastic-plastic force along its axis at D, with a dashpot as the contacts' (5).
 // Damping (Settings::explicit_damping, zeta): the implicit step's scheme damps the contacts'
 // and the blocks' elastic vibrations within a step; the cycles resolve them, so what has no
 // damping of its own takes some. A block's strain modes, modal damping at zeta
@@ -97,6 +99,7 @@ Engine::Impl::CycleBlocks Engine::Impl::cycle_blocks(double dt, bool unscaled) c
   for (std::size_t k = 0; k < nb; ++k) out.frozen[k] = held[k] || is_removed(k);
   std::vector<Mat6> bound = out.K;  // K' of (3): the block's own stiffness and its contacts' bound
   contacts->cycle_stiffness(bound);
+  if (!model.bolts.empty()) bolt_set.cycle_stiffness(bound);  // (4) of bolts.hpp (bolt_cycles.cpp)
   // (6) Density scaling (Settings::stage_cycles): in a dynamic stage of a static analysis a
   // block whose stable cycle is below h_wanted has its mass matrix scaled by s >= 1, which
   // divides omega^2 by s and its damping rate by at least sqrt(s): s = (h_wanted / h)^2
@@ -153,6 +156,8 @@ void Engine::Impl::cycle_block_pass(const std::vector<Mat6>& bound, CycleBlocks&
   // (5): the contacts' dashpots, stiffness-proportional at tau = 2 zeta / omega_max.
   const double tau = s.explicit_damping > 0.0 && w2_max > 0.0 ? 2.0 * s.explicit_damping / std::sqrt(w2_max) : 0.0;
   contacts->cycle_damping(tau, damping);
+  if (!model.bolts.empty()) bolt_set.cycle_damping(tau, damping);  // the bolts' dashpots, as (5)
+  out.tau = tau;
   for (std::size_t k = 0; k < nb; ++k) {
     if (out.frozen[k] || !(w2[k] > 0.0)) continue;  // nothing stiff on it: free flight sets no limit
     const double c = largest_eigenvalue(mass[k], damping[k]);
@@ -164,6 +169,7 @@ void Engine::Impl::cycle_block_pass(const std::vector<Mat6>& bound, CycleBlocks&
 Engine::StableCycle Engine::Impl::stable_cycle() {
   StepContext ctx{st.step, st.time, model.settings.dt, search_disp};
   contacts->begin_step(views, ctx);
+  if (!model.bolts.empty()) bolt_set.begin_step(model, st.blocks, st.bolts, model.settings.dt);
   StableCycle out;
   try {
     if (contacts->begin_cycles(views, model.settings.threads)) {
@@ -188,6 +194,8 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
     throw std::logic_error("the contact model cannot take explicit cycles");
   auto t0 = Clock::now();
   const CycleBlocks blocks = cycle_blocks(dt);
+  const bool bolts = !model.bolts.empty();
+  if (bolts) bolt_set.begin_cycles(blocks.tau, static_cast<int>(nb), s.threads);  // bolt_cycles.cpp
   const std::vector<Mat6>& K = blocks.K;
   const std::vector<Mat6>& M_inv = blocks.M_inv;
   const std::vector<Eigen::Matrix3d>& C = blocks.C;
@@ -227,6 +235,7 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
     const double kick = (c == 0 || c == n) ? 0.5 * h : h;
     const bool drift = c < n;
     contacts->cycle_forces(Dn, V, h, f);
+    if (bolts) bolt_set.cycle_forces(Dn, V, h, f);  // added per block after the contacts' sum
 #pragma omp parallel for schedule(static) num_threads(threads)
     for (std::ptrdiff_t k = 0; k < nbi; ++k) {
       if (frozen[k]) continue;
@@ -280,6 +289,7 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
   Trial trial;
   trial.converged = true;
   trial.check = contacts->end_cycles(views, D);
+  if (bolts) bolt_set.end_cycles(D);
   rep.changes += trial.check.changes;
   return trial;
 }

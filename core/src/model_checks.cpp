@@ -176,8 +176,6 @@ void Engine::Impl::validate() {
       throw ModelError("settings.integrator",
                        "the explicit step integrates dynamic steps; a static analysis without a dynamic "
                        "settling stage has none");
-    if (!m.bolts.empty())
-      throw ModelError("settings.integrator", "the explicit step does not carry bolts; give the implicit one");
     if (s.step_tolerance > 0.0)
       throw ModelError("settings.integrator",
                        "step doubling (step_tolerance) estimates the implicit step's error; the explicit "

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <memory>
+#include <numbers>
 
 #include "rheodda/core/engine.hpp"
 #include "rheodda/laws/registry.hpp"
@@ -40,40 +41,182 @@ std::string refusal(const Model& m) {
 
 BOOST_AUTO_TEST_SUITE(bolts)
 
+namespace {
+
+/// A static model of a 1 m x 1 m block (rho 2600 kg/m^3) under gravity hanging from an
+/// unstretched vertical bolt (k = 1e7 N/m) at the middle of its top edge, anchored 2 m above
+/// at a fixed point, or (anchor_block) on a block held by fixed points.
+Model hanging_model(bool anchor_block) {
+  Model m = static_model(0.1);
+  m.settings.gravity = {0.0, -9.81};
+  m.blocks.push_back(block({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));
+  Bolt b;
+  b.block_a = 0;
+  b.point_a = {0.5, 1.0};
+  b.point_b = {0.5, 3.0};
+  b.axial_stiffness = 1.0e7;  // N/m
+  if (anchor_block) {
+    m.blocks.push_back(block({{0, 3}, {1, 3}, {1, 4}, {0, 4}}));
+    for (const Vec2& p : {Vec2(0, 4), Vec2(1, 4)}) m.fixed_points.push_back({.block = 1, .point = p});
+    b.block_b = 1;
+  }
+  m.bolts.push_back(b);
+  return m;
+}
+
+/// The hanging block at rest: N = W = rho g S and the elongation W/k (Hooke), the bolt
+/// elastic, its stored energy W^2 / (2k), the energy balance closed within `residual` [-].
+void check_hanging_at_rest(const Engine& e, double k, double residual) {
+  // N per m of thickness; DDA's body force acts on the current area S, which the
+  // bolt's pull has stretched by sigma_y/E ~ 1e-6.
+  const double W = 2600.0 * 9.81 * e.area(0);
+  const BoltState& s = e.bolts().at(0);
+  BOOST_TEST(std::abs(s.force - W) <= 1e-9 * W);
+  BOOST_TEST(std::abs(s.elongation - W / k) <= 1e-6 * W / k);
+  BOOST_TEST((s.state == BoltMode::elastic));
+  // The energy balance closes with the bolt's stored energy and dissipation.
+  BOOST_TEST(e.energy().max_relative_residual <= residual);
+  BOOST_TEST(std::abs(e.energy().stored.bolt - 0.5 * W * W / k) <= 1e-6 * W * W / k);
+}
+
+}  // namespace
+
 BOOST_AUTO_TEST_CASE(block_hanging_from_a_bolt_carries_its_weight) {
-  // A 1 m x 1 m block (rho 2600 kg/m^3) hangs from a vertical bolt at the
-  // middle of its top edge: at rest, N = W = rho g S and the elongation is W/k
-  // (Hooke), whichever end the bolt is anchored at: a fixed point, or a block
-  // held by fixed points.
+  // At rest, N = W and the elongation is W/k, whichever end the bolt is anchored at: a
+  // fixed point, or a block held by fixed points.
   for (const bool anchor_block : {false, true}) {
-    Model m = static_model(0.1);
-    m.settings.gravity = {0.0, -9.81};
-    m.blocks.push_back(block({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));
-    Bolt b;
-    b.block_a = 0;
-    b.point_a = {0.5, 1.0};
-    b.point_b = {0.5, 3.0};
-    b.axial_stiffness = 1.0e7;  // N/m
-    if (anchor_block) {
-      m.blocks.push_back(block({{0, 3}, {1, 3}, {1, 4}, {0, 4}}));
-      for (const Vec2& p : {Vec2(0, 4), Vec2(1, 4)}) m.fixed_points.push_back({.block = 1, .point = p});
-      b.block_b = 1;
-    }
-    m.bolts.push_back(b);
-    Engine e(m);
+    Engine e(hanging_model(anchor_block));
     e.run(60);
-    // N per m of thickness; DDA's body force acts on the current area S, which the
-    // bolt's pull has stretched by sigma_y/E ~ 1e-6.
-    const double W = 2600.0 * 9.81 * e.area(0);
-    const BoltState& s = e.bolts().at(0);
-    BOOST_TEST_CONTEXT("anchored on a block: " << anchor_block) {
-      BOOST_TEST(std::abs(s.force - W) <= 1e-9 * W);
-      BOOST_TEST(std::abs(s.elongation - W / b.axial_stiffness) <= 1e-6 * W / b.axial_stiffness);
-      BOOST_TEST((s.state == BoltMode::elastic));
-      // The energy balance closes with the bolt's stored energy and dissipation.
-      BOOST_TEST(e.energy().max_relative_residual <= 1e-6);
-      BOOST_TEST(std::abs(e.energy().stored.bolt - 0.5 * W * W / b.axial_stiffness) <= 1e-6 * W * W / b.axial_stiffness);
-    }
+    BOOST_TEST_CONTEXT("anchored on a block: " << anchor_block) { check_hanging_at_rest(e, 1.0e7, 1e-6); }
+  }
+}
+
+namespace {
+
+/// hanging_model taken by the explicit step in a dynamic analysis of 1 ms steps, released at
+/// rest on its unstretched bolt, without the cycles' dashpots (explicit_damping 0) and with
+/// the block's Young modulus at 1e12 Pa: its strain in series with the bolt (compliance
+/// (1/2)^2 / (E S) against 1/k, 2.5e-6 of it) stays below the tolerances, and so does the
+/// energy of its strain vibration, which the cycles resolve near their stable cycle (where
+/// central difference's kinetic energy at the step's end is not the one it conserves).
+/// Undamped, the block swings about the elongation W/k: with omega^2 = k/m, m = rho S,
+///     e(t) = W/k (1 - cos omega t),  N = k e                                        (E1)
+/// (the mass on a spring released at rest under a constant force; Den Hartog, "Mechanical
+/// Vibrations", 1956, ch. 2).
+Model explicit_hanging_model(bool anchor_block = false) {
+  Model m = hanging_model(anchor_block);
+  m.settings.integrator = Integrator::explicit_step;
+  m.settings.dynamic_ratio = 1.0;
+  m.settings.explicit_damping = 0.0;
+  m.settings.dt = 1e-3;  // s
+  m.settings.threads = 1;  // one block: threads would only wait for each other (same bits)
+  m.materials[0].young_modulus = 1e12;
+  return m;
+}
+
+constexpr double kHungMass = 2600.0;  // rho S of the 1 m x 1 m block [kg]
+constexpr double kHungWeight = kHungMass * 9.81;  // W [N]
+constexpr double kHungStiffness = 1.0e7;  // k [N/m]
+
+/// omega of (E1) [rad/s].
+double hung_omega() { return std::sqrt(kHungStiffness / kHungMass); }
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(explicit_step_swings_a_block_released_on_a_bolt_as_the_closed_form) {
+  // (E1) over two periods: the elongation at every step's end within 1e-4 W/k, and the
+  // energy balance closed (no dissipation: the bolt's stored energy, the kinetic energy
+  // and gravity's work).
+  Engine e(explicit_hanging_model());
+  const double w = hung_omega(), W = kHungWeight, k = kHungStiffness;
+  const double period = 2.0 * std::numbers::pi / w;
+  double worst = 0.0, largest = 0.0;
+  while (e.time() < 2.0 * period) {
+    e.step();
+    const double exact = W / k * (1.0 - std::cos(w * e.time()));
+    worst = std::max(worst, std::abs(e.bolts()[0].elongation - exact));
+    largest = std::max(largest, e.bolts()[0].elongation);
+  }
+  BOOST_TEST_MESSAGE("explicit hung block: largest departure from (E1) " << worst / (W / k) << " W/k, largest elongation "
+                     << largest / (W / k) << " W/k, " << e.reports().back().cycles << " cycles per step, residual "
+                     << e.energy().max_relative_residual);
+  BOOST_TEST(worst <= 1e-4 * W / k);
+  BOOST_TEST(largest == 2.0 * W / k, boost::test_tools::tolerance(1e-3));
+  BOOST_TEST(e.energy().max_relative_residual <= 1e-6);
+  BOOST_TEST(e.energy().total.dissipation_bolt == 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(explicit_step_yields_a_bolt_as_the_closed_form) {
+  // The bolt of explicit_hanging_model with N_y = 1.5 W: (E1) reaches N_y at
+  // cos(omega t_y) = 1 - N_y/W, at the speed v_y = (W/k) omega sin(omega t_y); the bolt then
+  // stretches at N_y, the block decelerated by (N_y - W)/m, until it stops: the plastic
+  // elongation is the kinetic energy over the net force,
+  //     e_p = m v_y^2 / (2 (N_y - W)) = W^2 sin^2(omega t_y) / (2 k (N_y - W))       (E2)
+  // after which the bolt swings elastically between 2W - N_y and N_y. Its dissipation is
+  // N_y e_p. Within 1e-3 of (E2) after three periods.
+  Model m = explicit_hanging_model();
+  const double W = kHungWeight, k = kHungStiffness, ny = 1.5 * W;
+  m.bolts[0].yield_force = ny;
+  Engine e(m);
+  const double w = hung_omega();
+  bool yielded = false;
+  while (e.time() < 3.0 * 2.0 * std::numbers::pi / w) {
+    e.step();
+    yielded = yielded || e.bolts()[0].state == BoltMode::yielding;
+    BOOST_TEST(std::abs(e.bolts()[0].force) <= ny);
+  }
+  const double c = 1.0 - ny / W;
+  const double ep = W * W * (1.0 - c * c) / (2.0 * k * (ny - W));
+  const BoltState& s = e.bolts()[0];
+  BOOST_TEST_MESSAGE("explicit yielding bolt: plastic elongation " << s.plastic_elongation << " m (E2: " << ep
+                     << "), dissipation " << e.energy().total.dissipation_bolt << " J/m (" << ny * ep
+                     << "), residual " << e.energy().max_relative_residual);
+  BOOST_TEST(yielded);
+  BOOST_TEST(s.plastic_elongation == ep, boost::test_tools::tolerance(1e-3));
+  BOOST_TEST(e.energy().total.dissipation_bolt == ny * ep, boost::test_tools::tolerance(1e-3));
+  BOOST_TEST(s.force >= 2.0 * W - ny - 1e-3 * W);
+  BOOST_TEST(e.energy().max_relative_residual <= 1e-6);
+}
+
+BOOST_AUTO_TEST_CASE(explicit_step_ruptures_a_bolt_at_the_end_of_the_step_it_passes_its_elongation) {
+  // The bolt of explicit_hanging_model with a rupture elongation e_r = 1.5 W/k: (E1) passes
+  // it at cos(omega t_r) = 1 - 1.5 = -0.5; the bolt ruptures at the end of that step, as in
+  // the implicit step, releasing its stored energy, and the block falls freely from then on.
+  Model m = explicit_hanging_model();
+  const double W = kHungWeight, k = kHungStiffness, dt = m.settings.dt;
+  m.bolts[0].rupture_elongation = 1.5 * W / k;
+  Engine e(m);
+  const double t_r = std::acos(-0.5) / hung_omega();
+  e.run_until(t_r + 0.1);
+  const BoltState& s = e.bolts()[0];
+  BOOST_TEST_MESSAGE("explicit rupture at " << s.rupture_time << " s (closed form " << t_r << " s), residual "
+                     << e.energy().max_relative_residual);
+  BOOST_TEST((s.state == BoltMode::ruptured));
+  BOOST_TEST(s.rupture_time >= t_r);
+  BOOST_TEST(s.rupture_time <= t_r + dt + 1e-12);
+  BOOST_TEST(e.energy().stored.bolt == 0.0);
+  // Free fall from the rupture: the vertical speed grows by g over the 0.1 s after it.
+  const double v = e.velocity(0)(1);
+  BOOST_TEST(v < -9.81 * (t_r + 0.1 - s.rupture_time) + 1e-3);
+  BOOST_TEST(e.energy().max_relative_residual <= 1e-6);
+}
+
+BOOST_AUTO_TEST_CASE(explicit_step_hangs_a_block_on_a_bolt_at_rest_as_the_implicit_one) {
+  // explicit_hanging_model at 10 ms steps that carry half of the velocity (dynamic_ratio 0.5,
+  // near critical damping of the swing: the velocity halves 0.6 rad into its period), with
+  // the cycles' dashpots (explicit_damping 0.5): the same rest as the implicit static steps
+  // (check_hanging_at_rest), at either anchor.
+  for (const bool anchor_block : {false, true}) {
+    Model m = explicit_hanging_model(anchor_block);
+    m.settings.dynamic_ratio = 0.5;
+    m.settings.dt = 1e-2;
+    m.settings.explicit_damping = 0.5;
+    Engine e(m);
+    e.run(400);
+    BOOST_TEST_MESSAGE("explicit, anchored on a block " << anchor_block << ": force " << e.bolts()[0].force
+                       << " N, residual " << e.energy().max_relative_residual << ", "
+                       << e.reports().back().cycles << " cycles per step");
+    BOOST_TEST_CONTEXT("anchored on a block: " << anchor_block) { check_hanging_at_rest(e, 1.0e7, 1e-6); }
   }
 }
 

@@ -7,12 +7,14 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 
 #include "rheodda/laws/registry.hpp"
 #include "rheodda/laws/series_law.hpp"
 #include "law_choice.hpp"
 #include "rheodda/scene/geometry.hpp"
 #include "gravity_check.hpp"
+#include "rheodda/scene/integrator_choice.hpp"
 
 namespace rheodda::scene {
 
@@ -199,8 +201,11 @@ BuiltScene build_scene(const SceneDescription& s) {
   st.contact_solver = a.contact_solver == ContactSolverKind::newton ? core::ContactSolver::newton
                                                                     : core::ContactSolver::open_close;
   st.contact_residual_tolerance = a.contact_residual_tolerance;
-  st.integrator = a.integrator == IntegratorKind::explicit_step ? core::Integrator::explicit_step
-                                                                : core::Integrator::implicit;
+  switch (choose_integrator(s).integrator) {  // integrator_choice.cpp: `automatic` decided here
+    case IntegratorKind::implicit: st.integrator = core::Integrator::implicit; break;
+    case IntegratorKind::explicit_step: st.integrator = core::Integrator::explicit_step; break;
+    case IntegratorKind::automatic: throw std::logic_error("choose_integrator left `automatic` undecided");
+  }
   st.explicit_safety = a.explicit_safety;
   st.stage_local_damping = a.stage_local_damping;
   st.stage_cycles = a.stage_cycles;

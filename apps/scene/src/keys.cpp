@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <stdexcept>
 
 namespace rheodda::scene {
 
@@ -271,15 +272,29 @@ std::vector<KeySpec> declare_analysis_keys() {
          "`newton` (the same iterates, a step accepted once the residual of its equations is "
          "within `contact_residual_tolerance` of the contact forces, a dynamic step starting from "
          "the states its inertia alone would give)"));
-  keys.push_back(choice_key("analysis", "integrator", "–", {"implicit", "explicit"},
-      [](const Analysis& a) { return std::string(a.integrator == IntegratorKind::explicit_step ? "explicit" : "implicit"); },
-      [](Analysis& a, const std::string& v) { a.integrator = v == "explicit" ? IntegratorKind::explicit_step : IntegratorKind::implicit; },
+  keys.push_back(choice_key("analysis", "integrator", "–", {"implicit", "explicit", "automatic"},
+      [](const Analysis& a) {
+        switch (a.integrator) {
+          case IntegratorKind::implicit: return std::string("implicit");
+          case IntegratorKind::explicit_step: return std::string("explicit");
+          case IntegratorKind::automatic: return std::string("automatic");
+        }
+        throw std::logic_error("an integrator without a word");
+      },
+      [](Analysis& a, const std::string& v) {
+        if (v == "implicit") a.integrator = IntegratorKind::implicit;
+        else if (v == "explicit") a.integrator = IntegratorKind::explicit_step;
+        else if (v == "automatic") a.integrator = IntegratorKind::automatic;
+        else throw std::logic_error("integrator: an unlisted word " + v);
+      },
       "`implicit`",
       "how dynamic steps are integrated (docs/reference/explicit-step.md): `implicit` (Shi's step: "
-         "the step's equations solved with the open–close iteration) or `explicit` (each dynamic "
+         "the step's equations solved with the open–close iteration), `explicit` (each dynamic "
          "step in cycles of central difference with every contact's state decided on its own: no "
-         "matrix, no iteration, in parallel); the static steps of a static analysis stay implicit, "
-         "its dynamic stages (`settle`) are explicit"));
+         "matrix, no iteration, in parallel; the static steps of a static analysis stay implicit, "
+         "its dynamic stages (`settle`) are explicit) or `automatic` (the one whose estimated cost "
+         "per dynamic step is lower on the scene's initial state; `rheodda check` prints which and "
+         "why)"));
   keys.push_back(number_key("analysis", "explicit_safety", "–", {0.0, true, 1.0, false}, &Analysis::explicit_safety,
       "0.8",
       "under `integrator: explicit`, the cycle as a share of the stable one 2/ω_max (ω_max bounded "

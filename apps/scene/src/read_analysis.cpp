@@ -112,6 +112,8 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
     if (a.time_integration == TimeIntegration::trapezoidal)
       ctx.fail(v, m.child("integrator"),
                "time_integration chooses the implicit step's scheme; the explicit step is central difference");
+  }
+  if (a.integrator != IntegratorKind::implicit) {  // explicit, or automatic (integrator_choice.cpp)
     if (const YAML::Node w = m.find("stage_local_damping");
         w.IsDefined() && a.stage_local_damping > 0.0 && a.type == AnalysisType::dynamic_analysis)
       ctx.fail(w, m.child("stage_local_damping"),
@@ -125,7 +127,8 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   } else {
     for (const char* key : {"explicit_safety", "explicit_damping", "stage_local_damping", "stage_cycles"})
       if (const YAML::Node w = m.find(key); w.IsDefined())
-        ctx.fail(w, m.child(key), fmt::format("{} applies to the explicit step; give integrator: explicit", key));
+        ctx.fail(w, m.child(key),
+                 fmt::format("{} applies to the explicit step; give integrator: explicit or automatic", key));
   }
   const bool adaptive = a.creep_tolerance > 0.0 || a.step_tolerance > 0.0;
   if (const YAML::Node v = m.find("step_tolerance"); v.IsDefined() && a.step_tolerance > 0.0) {

@@ -130,12 +130,44 @@ BOOST_AUTO_TEST_CASE(stack_of_blocks_stays_at_rest) {
 
 BOOST_AUTO_TEST_CASE(the_same_bits_whatever_the_number_of_threads) {
   // A small running-bond wall, 40 steps at 1, 2 and 3 threads: every vertex and velocity equal
-  // to the last bit.
-  auto run = [](int threads) {
+  // to the last bit. Bolted: each brick of the top row to the fixed base and each brick to its
+  // right-hand neighbour in its row (33 bolts, enough to be worked in parallel; several on a
+  // block, gathered in the bolts' order), the kicked brick's to its neighbour with a yield
+  // force it passes; their forces and plastic elongations as well.
+  auto run = [](int threads, bool bolted) {
     core::Model m = running_bond_wall(6, 5, core::SolverKind::cholmod);
     m.settings.integrator = core::Integrator::explicit_step;
     m.settings.threads = threads;
     m.blocks.back().initial_velocity = Vec2(0.5, -0.2);
+    if (bolted) {
+      const int n = static_cast<int>(m.blocks.size());
+      auto centre = [&m](int b) {
+        Vec2 c = Vec2::Zero();
+        for (const Vec2& v : m.blocks[b].vertices) c += v;
+        return Vec2(c / static_cast<double>(m.blocks[b].vertices.size()));
+      };
+      for (int b = n - 6; b < n; ++b) {  // the top row (6 bricks) to the base
+        core::Bolt bolt;
+        bolt.block_a = b;
+        bolt.point_a = centre(b);
+        bolt.block_b = 0;
+        bolt.point_b = Vec2(centre(b).x(), -0.25);
+        bolt.axial_stiffness = 1e7;  // N/m
+        m.bolts.push_back(bolt);
+      }
+      for (int b = 1; b + 1 < n; ++b) {  // neighbours in a row: the next brick, at the same height
+        if (std::abs(centre(b + 1).y() - centre(b).y()) > 1e-9) continue;
+        core::Bolt bolt;
+        bolt.block_a = b;
+        bolt.point_a = centre(b);
+        bolt.block_b = b + 1;
+        bolt.point_b = centre(b + 1);
+        bolt.axial_stiffness = 5e6;  // N/m
+        m.bolts.push_back(bolt);
+      }
+      BOOST_TEST_REQUIRE(m.bolts.size() == 33u);
+      m.bolts.back().yield_force = 2e3;  // N: the kicked brick pulls its neighbour's bolt beyond it
+    }
     Sim sim(std::move(m), {joint(30.0)});
     sim.engine.run(40);
     std::vector<double> out;
@@ -143,16 +175,26 @@ BOOST_AUTO_TEST_CASE(the_same_bits_whatever_the_number_of_threads) {
       for (const Vec2& v : sim.engine.vertices(b)) out.push_back(v.x()), out.push_back(v.y());
       for (int i = 0; i < 6; ++i) out.push_back(sim.engine.velocity(b)(i));
     }
+    for (const core::BoltState& s : sim.engine.bolts()) out.push_back(s.force), out.push_back(s.plastic_elongation);
+    if (bolted) {
+      const core::BoltState& kicked = sim.engine.bolts().back();
+      BOOST_TEST_MESSAGE("threads " << threads << ": the kicked brick's bolt " << core::bolt_mode_name(kicked.state)
+                                    << ", force " << kicked.force << " N, plastic elongation "
+                                    << kicked.plastic_elongation << " m");
+      BOOST_TEST(kicked.plastic_elongation != 0.0);
+    }
     return out;
   };
-  const std::vector<double> one = run(1);
-  for (int threads : {2, 3}) {
-    const std::vector<double> many = run(threads);
-    BOOST_TEST_CONTEXT("threads " << threads) {
-      BOOST_TEST_REQUIRE(many.size() == one.size());
-      std::size_t differ = 0;
-      for (std::size_t k = 0; k < one.size(); ++k) differ += many[k] != one[k];
-      BOOST_TEST(differ == 0u);
+  for (const bool bolted : {false, true}) {
+    const std::vector<double> one = run(1, bolted);
+    for (int threads : {2, 3}) {
+      const std::vector<double> many = run(threads, bolted);
+      BOOST_TEST_CONTEXT("threads " << threads << ", bolted " << bolted) {
+        BOOST_TEST_REQUIRE(many.size() == one.size());
+        std::size_t differ = 0;
+        for (std::size_t k = 0; k < one.size(); ++k) differ += many[k] != one[k];
+        BOOST_TEST(differ == 0u);
+      }
     }
   }
 }

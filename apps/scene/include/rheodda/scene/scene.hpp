@@ -44,8 +44,9 @@ enum class AnalysisType { static_analysis, dynamic_analysis };
 enum class PlaneKind { strain, stress };
 enum class SolverKind { automatic, cholmod, pcg, amg };
 /// `integrator`: how dynamic steps are integrated (docs/reference/explicit-step.md);
-/// core::Integrator's choices under the scene's words `implicit` and `explicit`.
-enum class IntegratorKind { implicit, explicit_step };
+/// core::Integrator's choices under the scene's words `implicit` and `explicit`, and
+/// `automatic`: the one of the two that choose_integrator (integrator_choice.hpp) estimates cheaper.
+enum class IntegratorKind { implicit, explicit_step, automatic };
 
 /// `contact_solver`: how a step's contact problem is solved (docs/reference/contacts.md, "Contact solves").
 enum class ContactSolverKind { open_close, newton };
@@ -149,7 +150,8 @@ struct Analysis {
   /// state) or `newton` (the same iterates, accepted on the residual of the step's
   /// equations; docs/reference/contacts.md, "Contact solves")
   ContactSolverKind contact_solver = ContactSolverKind::open_close;
-  /// `integrator`: `implicit` (Shi's step) or `explicit` (dynamic steps in explicit cycles).
+  /// `integrator`: `implicit` (Shi's step), `explicit` (dynamic steps in explicit cycles) or
+  /// `automatic` (the one estimated cheaper on the initial state, integrator_choice.hpp).
   IntegratorKind integrator = IntegratorKind::implicit;
   double explicit_safety = 0.8;        ///< the explicit cycle / the stable one [-]; in (0, 1]
   double explicit_damping = 0.5;       ///< damping ratio the explicit cycles give what has no damping
