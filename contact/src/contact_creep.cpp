@@ -12,6 +12,7 @@
 #include <string>
 
 #include "contact_geometry.hpp"
+#include "rheodda/contact/strength.hpp"
 #include "law_call_site.hpp"
 
 #include "rheodda/laws/series_law.hpp"
@@ -63,7 +64,7 @@ void ContactSystem::fail_law(size_t c, double creep) {
   if (r.rheology >= 0) work_rheology_[r.rheology] = {};  // no history left
   r.intact = false;
   const JointSet& js = joint_sets_[r.joint_set];  // its residual strength from now on
-  h.tan_phi = std::tan(js.friction_angle_of(false) * std::numbers::pi / 180.0);
+  h.tan_phi = tan_deg(js.friction_angle_of(false));
   h.cohesion = js.cohesion_of(false);
   h.tensile_strength = 0.0;
   seams_[c] = {-h.failure_creep, 0.0};

@@ -26,19 +26,12 @@
 #include <numbers>
 
 #include "contact_geometry.hpp"
+#include "rheodda/contact/strength.hpp"
 #include "rheodda/contact/contact_system.hpp"
 
 namespace rheodda::contact {
 
 namespace {
-
-double tan_deg(double deg) { return std::tan(deg * std::numbers::pi / 180.0); }
-
-/// The Mohr-Coulomb strength N tan(phi) + c l of a contact [force/length]; tension
-/// carries no friction.
-double strength(double N, double tan_phi, double cohesion, double length) {
-  return std::max(N, 0.0) * tan_phi + cohesion * length;
-}
 
 int thread_count(int requested) { return requested > 0 ? requested : omp_get_max_threads(); }
 
@@ -72,7 +65,7 @@ void ContactSystem::begin_cycles(std::span<const BlockView> blocks, int threads)
       // A contact sliding at the step start carries its friction from the first cycle:
       // its spring starts stretched by the friction force over k (the elastic part of
       // an elastic-plastic joint's shear displacement).
-      const double f = strength(h.normal_force, h.tan_phi, h.cohesion, r.length);
+      const double f = mohr_coulomb_strength(h.normal_force, h.tan_phi, h.cohesion, r.length);
       y.shift = h.dt0 + seams_[c].locking_shift - r.slide_direction * f / shear_stiffness(c);
     }
   }
@@ -170,13 +163,13 @@ void ContactSystem::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd
     }
     const double ks = shear_stiffness(c);
     double T = ks * (reach - y.shift) + Ts;
-    const double limit = strength(N, y.intact ? y.tan_phi : y.tan_phi_residual,
+    const double limit = mohr_coulomb_strength(N, y.intact ? y.tan_phi : y.tan_phi_residual,
                                   y.intact ? y.cohesion : y.cohesion_residual, r.length);
     if (std::abs(T) > limit) {
       // Slides: the spring, dragged along, carries the (residual) strength.
       y.intact = false;
       y.direction = T >= 0.0 ? 1 : -1;
-      T = y.direction * strength(N, y.tan_phi_residual, y.cohesion_residual, r.length);
+      T = y.direction * mohr_coulomb_strength(N, y.tan_phi_residual, y.cohesion_residual, r.length);
       y.shift = reach - T / ks;
       y.state = ContactState::sliding;
       y.nd = Nd;  // the shear force is the strength: friction's, not a dashpot's
