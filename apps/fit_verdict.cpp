@@ -41,6 +41,14 @@ std::string fit_verdict(const std::vector<fit::FitResult>& ranked, bool bic) {
       "supported beyond d{0} > {4:g} (ratio > {5:.3g})\n",
       crit, bic ? "" : ", the Akaike weights", fit::kSupportedDelta, std::exp(0.5 * fit::kSupportedDelta),
       fit::kUnsupportedDelta, std::exp(0.5 * fit::kUnsupportedDelta));
+  if (bic) {
+    // The Akaike weights too (on AIC, which penalises a parameter less than BIC does at more
+    // than 7 points): where the two criteria disagree, the laws' support is not settled.
+    const std::vector<double> a = ranking_weights(ranked, false);
+    std::vector<std::string> akaike;
+    for (std::size_t i = 0; i < ranked.size(); ++i) akaike.push_back(fmt::format("{} {:.3g}", ranked[i].law, a[i]));
+    out += fmt::format("  Akaike weights (on AIC): {}\n", fmt::join(akaike, ", "));
+  }
   out += fmt::format("  the data support: {}\n", fmt::join(supported, ", "));
   if (!less.empty()) out += fmt::format("  they support less: {}\n", fmt::join(less, ", "));
   if (!none.empty())

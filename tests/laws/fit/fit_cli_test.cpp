@@ -177,6 +177,12 @@ BOOST_AUTO_TEST_CASE(law_all_ranks_burgers_first_on_the_example) {
   for (std::size_t i = 1; i < json["fits"].size(); ++i)
     BOOST_TEST(json["fits"][i - 1]["bic"].get<double>() <= json["fits"][i]["bic"].get<double>());
   BOOST_TEST(r.out.find("ranking by BIC") != std::string::npos);
+  // Ranked by BIC, the verdict still gives the Akaike weights, each the JSON's.
+  std::string akaike = "  Akaike weights (on AIC): ";
+  for (std::size_t i = 0; i < json["fits"].size(); ++i)
+    akaike += fmt::format("{}{} {:.3g}", i ? ", " : "", json["fits"][i]["law"].get<std::string>(),
+                          json["fits"][i]["akaike_weight"].get<double>());
+  BOOST_TEST(r.out.find(akaike + "\n") != std::string::npos, r.out);
 }
 
 BOOST_AUTO_TEST_CASE(law_all_ends_with_a_verdict_whose_weights_are_the_hand_computed_akaike_weights) {
