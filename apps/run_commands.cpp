@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "commands.hpp"
 #include "rheodda/scene/describe.hpp"
 #include "rheodda/scene/loader.hpp"
@@ -116,7 +118,16 @@ void add_scene_commands(CLI::App& app) {
   auto plot = std::make_shared<scene::PlotOptions>();
   auto* p = app.add_subcommand("plot", "Draw the blocks and their contacts at chosen times, joint stress against strength, and the history curves (gnuplot)");
   p->add_option("OUTDIR", plot->out_dir, "Output directory of a run or a study, or a scene file (its blocks coloured by joint set)")->required();
-  p->add_option("--times", plot->times, "Times to draw the blocks at (default: first, middle, last frame)")
+  // The times as text: bare in the run's time unit, or with their own ("10 d"), converted
+  // once the run's units are known (its summary.json).
+  struct PlotTimes {
+    std::vector<std::string> times;
+    std::string from, to;
+  };
+  auto texts = std::make_shared<PlotTimes>();
+  p->add_option("--times", texts->times,
+                "Times to draw the blocks at, in the run's time unit or with their own (\"10 d\"); default: first, "
+                "middle, last frame")
       ->delimiter(',');
   p->add_option("--format", plot->format, "png or svg")->check(CLI::IsMember({"png", "svg"}))->capture_default_str();
   p->add_option("--scale", plot->scale,
@@ -125,10 +136,22 @@ void add_scene_commands(CLI::App& app) {
                 "The contacts.csv column the contacts pictures colour the contacts by")
       ->check(CLI::IsMember(scene::contact_colour_columns()))
       ->capture_default_str();
-  p->add_option("--from", plot->from, "Start of the time window: the history's axis, the default frames")->type_name("T");
-  p->add_option("--to", plot->to, "End of the time window")->type_name("T");
+  p->add_option("--from", texts->from, "Start of the time window: the history's axis, the default frames")->type_name("T");
+  p->add_option("--to", texts->to, "End of the time window")->type_name("T");
   plot->warn = [](const std::string& w) { fmt::print(stderr, "rheodda: warning: {}\n", w); };
-  p->callback([plot] {
+  p->callback([plot, texts] {
+    if (!texts->times.empty() || !texts->from.empty() || !texts->to.empty()) {
+      // The run's units (a folder without summary.json is refused by plot_run: bare numbers only).
+      scene::Units u;
+      const std::filesystem::path summary = std::filesystem::path(plot->out_dir) / "summary.json";
+      if (std::filesystem::is_regular_file(summary)) {
+        const auto units = nlohmann::json::parse(scene::read_file(summary.string())).at("units");
+        u = {units.at("length"), units.at("force"), units.at("time")};
+      }
+      for (const auto& t : texts->times) plot->times.push_back(option_quantity("--times", t, "time", u));
+      if (!texts->from.empty()) plot->from = option_quantity("--from", texts->from, "time", u);
+      if (!texts->to.empty()) plot->to = option_quantity("--to", texts->to, "time", u);
+    }
     std::vector<std::string> pictures;
     try {
       pictures = scene::plot_run(*plot);

@@ -67,6 +67,16 @@ BOOST_AUTO_TEST_CASE(run_prints_plain_lines_off_a_terminal_and_plot_draws_block_
     BOOST_TEST(png.substr(0, 4) == "\x89PNG", f);
   }
   BOOST_TEST(run_rheodda("plot " + (dir / "nothing").string()).exit_code == 2);
+  // Times with their units, converted into the run's (s): 60 ms is frame 3 of 0, 0.02, ... 0.1 s.
+  const auto u = run_rheodda("plot " + (dir / "out").string() + " --times '60 ms' --from '20 ms' --to '0.08 s'");
+  BOOST_TEST_REQUIRE(u.exit_code == 0, u.output);
+  BOOST_TEST(u.output.find("plots/blocks_000003.png") != std::string::npos, u.output);
+  BOOST_TEST(u.output.find("plots/contacts_000003.png") != std::string::npos, u.output);
+  BOOST_TEST(read_text((dir / "out" / "plots" / "history.gp").string()).find("set xrange [0.02:0.080000000000000002]") != std::string::npos);
+  const auto wrong = run_rheodda("plot " + (dir / "out").string() + " --from '5 m'");
+  BOOST_TEST(wrong.exit_code == 2);
+  BOOST_TEST(wrong.output.find("--from: '5 m' has the wrong dimension: m is length, this key takes time") !=
+             std::string::npos, wrong.output);
 }
 
 BOOST_AUTO_TEST_CASE(the_time_left_is_that_of_the_recent_rate_and_reads_as_minutes_and_hours) {
