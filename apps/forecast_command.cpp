@@ -60,7 +60,7 @@ struct ForecastArgs {
   std::vector<double> percentiles{5, 50, 95};
   double unidentified_spread = 0.0;
   std::string column;
-  std::optional<double> threshold;
+  std::string threshold_text;  ///< --threshold: a length, bare in the scene's unit or with its own ("50 mm")
   std::string by;  ///< --by: a time, bare in the scene's unit or with its own ("100 d"); empty: the end
   std::string out;
   int jobs = 0;
@@ -140,7 +140,7 @@ void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
   if (a.unidentified_spread != 0.0 && !(a.unidentified_spread > 1.0))
     throw std::invalid_argument(fmt::format("--unidentified-spread {:g}: a factor > 1 (or 0: held at the fitted value)",
                                             a.unidentified_spread));
-  if (!a.by.empty() && !a.threshold) throw std::invalid_argument("--by needs --threshold (the probability of exceeding it by that time)");
+  if (!a.by.empty() && a.threshold_text.empty()) throw std::invalid_argument("--by needs --threshold (the probability of exceeding it by that time)");
   const double by = a.by.empty() ? s.analysis.duration : option_quantity("--by", a.by, "time", s.units);
   if (by < 0 || by > s.analysis.duration * (1 + 1e-12))
     throw std::invalid_argument(fmt::format("--by {} is outside the run (0 to {:g} {})", a.by, s.analysis.duration, s.units.time));
@@ -154,6 +154,14 @@ void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
     else if (!s.measurement_points.empty()) column = s.measurement_points.front().name + ".displacement";
     else throw std::invalid_argument("--column: the scene records no joint set and has no measurement point; give a history column");
   }
+  // The threshold in the column's units: a displacement's in the scene's length unit, or
+  // with its own ("50 mm"); a column of another kind takes a bare number.
+  std::optional<double> threshold;
+  if (!a.threshold_text.empty())
+    threshold = option_quantity(
+        "--threshold", a.threshold_text,
+        scene::history_column_unit(column, s.units.length, s.units.force, s.units.time) == s.units.length ? "length" : "",
+        s.units);
 
   // Units: the fit's parameters in the scene's units.
   const bool placeholder_units = fit.stress_unit == "stress" || fit.stress_unit.empty();
@@ -262,11 +270,11 @@ void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
 
   // --- The probability that the column exceeds the threshold by time `by` (its largest value up to then).
   nlohmann::json exceed = nullptr;
-  if (a.threshold) {
-    const fc::Exceedance e = fc::exceedance(members, column, *a.threshold, by);
-    exceed = {{"column", column}, {"threshold", *a.threshold}, {"by", by}, {"members", e.members},
+  if (threshold) {
+    const fc::Exceedance e = fc::exceedance(members, column, *threshold, by);
+    exceed = {{"column", column}, {"threshold", *threshold}, {"by", by}, {"members", e.members},
               {"exceeding", e.exceeding}, {"probability", e.probability}, {"std_error", e.std_error}};
-    fmt::print("P({} > {:g} by t = {:g} {}) = {:.3f} +- {:.3f} ({} of {} members)\n", column, *a.threshold, by,
+    fmt::print("P({} > {:g} by t = {:g} {}) = {:.3f} +- {:.3f} ({} of {} members)\n", column, *threshold, by,
                s.units.time, e.probability, e.std_error, e.exceeding, e.members);
   }
 
@@ -299,7 +307,7 @@ void forecast_command(const ForecastArgs& a, study::CaseExecutor* executor) {
                           .column = column, .units_line = !first.units_line.empty(),
                           .title = fmt::format("{}: {} members, law {} of {}", s.title, members.size(), fit.law,
                                                a.joint_set),
-                          .time_unit = s.units.time, .length_unit = s.units.length, .threshold = a.threshold});
+                          .time_unit = s.units.time, .length_unit = s.units.length, .threshold = threshold});
     } catch (const std::exception& e) {
       fmt::print(stderr, "rheodda: error: {}\n", e.what());
       throw CLI::RuntimeError(kExitFailure);
@@ -333,7 +341,9 @@ void add_forecast_command(CLI::App& app) {
   cmd->add_option("--column", a->column,
                   "History column of the fan chart and of --threshold (default: JOINT_SET.shear_displacement_magnitude "
                   "when the joint set is recorded, else the first measurement point's displacement)");
-  cmd->add_option("--threshold", a->threshold, "Probability that --column exceeds this value [scene length unit]")
+  cmd->add_option("--threshold", a->threshold_text,
+                  "Probability that --column (a displacement) exceeds this value (the scene's length unit, or with a "
+                  "unit: \"50 mm\")")
       ->type_name("VALUE");
   cmd->add_option("--by", a->by, "... by this time (the scene's time unit, or with a unit: \"100 d\"; default: the end of the run)")->type_name("TIME");
   cmd->add_option("-o,--out", a->out, "Output directory (default out/<scene name>-forecast)")->type_name("OUTDIR");

@@ -258,6 +258,13 @@ BOOST_AUTO_TEST_CASE(on_the_two_block_creep_test_the_bands_equal_the_closed_form
   const std::string expected =
       fmt::format("= {:.3f} +- {:.3f} ({} of 24 members)", prob, std::sqrt(prob * (1 - prob) / 24.0), above);
   BOOST_TEST(p.output.find(expected) != std::string::npos, expected << " in " << p.output);
+  // The same threshold and time with their units (the scene's are mm and h).
+  const auto q = run_rheodda(args + fmt::format(" --resume --threshold '{:.17g} um' --by '200 h'", 1000.0 * threshold));
+  BOOST_TEST_REQUIRE(q.exit_code == 0, q.output);
+  BOOST_TEST(q.output.find(expected) != std::string::npos, expected << " in " << q.output);
+  const auto wrong = run_rheodda(args + " --resume --threshold '5 s' --by 200");
+  BOOST_TEST(wrong.exit_code == 2);
+  BOOST_TEST(wrong.output.find("--threshold: '5 s' has the wrong dimension") != std::string::npos, wrong.output);
 }
 
 BOOST_AUTO_TEST_CASE(bad_forecast_input_is_refused_with_exit_2_and_the_reason) {
