@@ -35,6 +35,12 @@ namespace {
 
 int thread_count(int requested) { return requested > 0 ? requested : omp_get_max_threads(); }
 
+/// Fewer contacts (blocks) than this are worked on one thread: a parallel region per cycle
+/// costs more than their forces, and far more when the machine is loaded and a thread
+/// waits for a core at every cycle. The results are the same bits either way.
+constexpr std::ptrdiff_t kParallelContacts = 64;
+constexpr std::ptrdiff_t kParallelBlocks = 16;
+
 }  // namespace
 
 void ContactSystem::begin_cycles(std::span<const BlockView> blocks, int threads) {
@@ -114,7 +120,7 @@ void ContactSystem::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd
   const auto n = static_cast<std::ptrdiff_t>(work_.size());
   const bool dashpots = step_dynamic_;
   const int threads = thread_count(cycle_threads_);
-#pragma omp parallel for schedule(static) num_threads(threads)
+#pragma omp parallel for schedule(static) num_threads(threads) if (n >= kParallelContacts)
   for (std::ptrdiff_t k = 0; k < n; ++k) {
     const auto c = static_cast<std::size_t>(k);
     const Contact& r = work_[c];
@@ -182,7 +188,7 @@ void ContactSystem::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd
   }
   const auto nb = static_cast<std::ptrdiff_t>(block_first_.size()) - 1;
   f.resize(6 * nb);
-#pragma omp parallel for schedule(static) num_threads(threads)
+#pragma omp parallel for schedule(static) num_threads(threads) if (nb >= kParallelBlocks)
   for (std::ptrdiff_t b = 0; b < nb; ++b) {
     Vec6 sum = Vec6::Zero();
     for (int e = block_first_[b]; e < block_first_[b + 1]; ++e) sum += cycle_force_[block_entries_[e]];

@@ -67,6 +67,10 @@ constexpr double kMaxCycles = 1.0e8;
 /// below the wanted cycle.
 constexpr int kScalingPasses = 3;
 
+/// Fewer blocks than this are kicked and drifted on one thread: a parallel region per cycle
+/// costs more than their update (the same bits either way; contact_cycles.cpp likewise).
+constexpr std::ptrdiff_t kParallelBlocks = 16;
+
 /// Largest eigenvalue of M^-1 A for the block mass M (its Cholesky factor L), A symmetric.
 double largest_eigenvalue(const Eigen::LLT<Mat6>& L, const Mat6& A) {
   Mat6 B = L.matrixL().solve(A);
@@ -236,7 +240,7 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
     const bool drift = c < n;
     contacts->cycle_forces(Dn, V, h, f);
     if (bolts) bolt_set.cycle_forces(Dn, V, h, f);  // added per block after the contacts' sum
-#pragma omp parallel for schedule(static) num_threads(threads)
+#pragma omp parallel for schedule(static) num_threads(threads) if (nbi >= kParallelBlocks)
     for (std::ptrdiff_t k = 0; k < nbi; ++k) {
       if (frozen[k]) continue;
       auto Dk = Dn.segment<6>(6 * k);
