@@ -18,6 +18,7 @@
 #include "rheodda/scene/loader.hpp"
 #include "rheodda/scene/quantity.hpp"
 #include "rheodda/study/study.hpp"
+#include "rheodda/units/units.hpp"
 #include "rheodda/scene/output.hpp"
 
 namespace rheodda::study {
@@ -469,7 +470,13 @@ StudyDescription parse_study(const std::string& text, const std::string& file) {
       std::vector<std::string> name_parts, label;
       for (std::size_t i = 0; i < s.parameters.size(); ++i) {
         const auto& p = s.parameters[i];
-        sc.set.push_back({p.key, fmt::format("{}", rows[k][i]), p.where});
+        // The values are in the parameter's `unit`: one UDUNITS-2 knows goes with each value
+        // into the case scene, whose loader converts it into the scene's units (or refuses
+        // another dimension, as a value with its unit in the scene file); a label it does not
+        // know ("-", "case") leaves the values in the scene's units.
+        const bool with_unit = p.unit != "-" && units::known(p.unit);
+        sc.set.push_back({p.key, with_unit ? fmt::format("{} {}", rows[k][i], p.unit) : fmt::format("{}", rows[k][i]),
+                          p.where});
         name_parts.push_back(p.name + "-" + name_value(rows[k][i]));
         label.push_back(fmt::format("{} = {:.4g}{}", p.name, rows[k][i], p.unit == "-" ? "" : " " + p.unit));
       }

@@ -203,6 +203,24 @@ BOOST_AUTO_TEST_CASE(times_and_overrides_may_carry_their_units) {
   BOOST_TEST(phi == 0.2 * 180.0 / std::acos(-1.0), boost::test_tools::tolerance(1e-14));
   expect_study_error(with("times: [0.01, 0.05]", "times: [0.01, 5 m]", ok), 4, "times[1]",
                      "m is length, this key takes time");
+
+  // A sweep's values are in its `unit`: kPa into the scene's N/m^2, ms into its s; a
+  // label UDUNITS-2 does not know leaves them in the scene's units.
+  const std::string sweep = "scene: " + source_path("examples/sliding-block.yaml") +
+                            "\noutputs: [centre.u]\ntimes: [0.01]\nsweep:\n  parameters:\n"
+                            "    - {name: c, key: joint_sets.slope.cohesion, unit: kPa, values: [2, 5]}\n"
+                            "    - {name: dt, key: analysis.dt, unit: ms, values: [0.5]}\n"
+                            "    - {name: phi, key: joint_sets.slope.friction_angle, unit: degrees-label, values: [25]}\n";
+  const auto w = st::parse_study(sweep, "sweep.yaml");
+  const auto cases = st::prepare_cases(w);
+  BOOST_TEST_REQUIRE(cases.size() == 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const auto c = rheodda::scene::parse_scene(cases[k], "case.yaml");
+    BOOST_TEST(c.joint_sets[0].cohesion == (k == 0 ? 2000.0 : 5000.0), boost::test_tools::tolerance(1e-12));
+    BOOST_TEST(c.analysis.dt == 5e-4, boost::test_tools::tolerance(1e-12));
+    BOOST_TEST(c.joint_sets[0].friction_angle == 25.0);
+  }
+  BOOST_TEST(w.parameters[0].values == (std::vector<double>{2, 5}));  // study.csv's column stays in kPa
 }
 
 BOOST_AUTO_TEST_CASE(rheodda_study_exits_2_on_a_bad_study_and_runs_nothing) {
