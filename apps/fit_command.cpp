@@ -161,7 +161,29 @@ double data_number(const std::string& text, const std::string& what, const std::
 }
 
 StagedHistory parse_stress(const std::string& text, const Units& u) {
-  if (text.find(':') != std::string::npos) return StagedHistory::parse(text, "--stress");
+  if (text.find(':') != std::string::npos) {
+    // Staged, T:V[,T:V...]: each time and stress bare in the data's units or with its own
+    // ("0 h:232 kPa,100 h:0.424 MPa"); plain numbers keep StagedHistory's own reading.
+    if (text.find_first_of(" \t") == std::string::npos) return StagedHistory::parse(text, "--stress");
+    std::vector<StagedHistory::Stage> stages;
+    std::size_t start = 0;
+    while (start <= text.size()) {
+      const std::size_t end = std::min(text.find(',', start), text.size());
+      const std::string piece = text.substr(start, end - start);
+      const std::size_t colon = piece.find(':');
+      if (colon == std::string::npos)
+        throw LawError("stress", fmt::format("--stress '{}': '{}' is not T:V", text, piece));
+      auto trimmed = [](std::string x) {
+        x.erase(0, x.find_first_not_of(" \t"));
+        x.erase(x.find_last_not_of(" \t") + 1);
+        return x;
+      };
+      stages.push_back({data_number(trimmed(piece.substr(0, colon)), "--stress (a stage's time)", "time", u),
+                        data_number(trimmed(piece.substr(colon + 1)), "--stress (a stage's stress)", "stress", u)});
+      start = end + 1;
+    }
+    return StagedHistory(std::move(stages));
+  }
   const std::optional<units::Quantity> q = units::split_quantity(text);
   if (!q)
     throw LawError("stress", fmt::format("--stress '{}' is neither a number (with its unit or not) nor a staged "

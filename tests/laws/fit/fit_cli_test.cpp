@@ -244,6 +244,24 @@ BOOST_AUTO_TEST_CASE(stress_column_multi_stage_with_unloading_is_fitted_at_once)
   for (const auto& p : json["fits"][0]["parameters"])
     BOOST_TEST(p["value"].get<double>() == truth.at(p["name"].get<std::string>()),
                boost::test_tools::tolerance(1e-6));
+  // The same stages given on the command line, each time and stress with its unit (the data
+  // in MPa, mm, h): the same law.
+  const Run staged = run_rheodda("fit '" + (dir / "steps.csv").string() +
+                                     "' --law burgers --stress '0 h:232 kPa,6000 min:0.424 MPa,200 h:0 MPa' "
+                                     "--units 'MPa, mm, h' --time-column hours --displacement-column u --json '" +
+                                     (dir / "staged.json").string() + "'",
+                                 dir);
+  BOOST_TEST_REQUIRE(staged.code == 0, staged.err);
+  BOOST_TEST(staged.out.find("3 stages") != std::string::npos, staged.out);
+  for (const auto& p : nlohmann::json::parse(slurp(dir / "staged.json"))["fits"][0]["parameters"])
+    BOOST_TEST(p["value"].get<double>() == truth.at(p["name"].get<std::string>()),
+               boost::test_tools::tolerance(1e-6));
+  const Run wrong = run_rheodda("fit '" + (dir / "steps.csv").string() +
+                                    "' --law burgers --stress '0 h:232 kPa,100 mm:0.424 MPa' --units 'MPa, mm, h' "
+                                    "--time-column hours --displacement-column u",
+                                dir);
+  BOOST_TEST(wrong.code == 2);
+  BOOST_TEST(wrong.err.find("--stress (a stage's time): '100 mm'") != std::string::npos, wrong.err);
 }
 
 BOOST_AUTO_TEST_CASE(plot_writes_an_svg_and_fails_clearly_without_gnuplot) {
