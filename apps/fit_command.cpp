@@ -525,11 +525,6 @@ void write_yaml(const std::string& path, const CreepData& d, const Units& u, con
 
 void write_plot(const std::string& path, const std::string& terminal, const CreepData& d,
                 const Units& u, const std::vector<FitResult>& fits) {
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
-    fmt::print(stderr, "rheodda: error: --plot needs gnuplot on the PATH (scripts/install-deps.sh "
-                       "installs it)\n");
-    throw CLI::RuntimeError(1);
-  }
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / fmt::format("rheodda-fit-{}", ::getpid());
   fs::create_directories(dir);
@@ -598,18 +593,18 @@ void write_plot(const std::string& path, const std::string& terminal, const Cree
     std::ofstream f(dir / "plot.gp");
     f << script;
   }
-  const std::string cmd = fmt::format("gnuplot {} 2>{}", quote((dir / "plot.gp").string()),
-                                      quote((dir / "gnuplot.err").string()));
-  const int rc = std::system(cmd.c_str());
-  std::string err;
-  {
-    std::ifstream e(dir / "gnuplot.err");
-    err.assign(std::istreambuf_iterator<char>(e), {});
+  // The pictures' one gnuplot runner (scene::run_gnuplot): gnuplot missing or failing is
+  // reported with its messages, and exit 1.
+  std::string failed;
+  try {
+    scene::run_gnuplot((dir / "plot.gp").string());
+  } catch (const std::runtime_error& e) {
+    failed = e.what();
   }
   std::error_code ec;
   fs::remove_all(dir, ec);
-  if (rc != 0) {
-    fmt::print(stderr, "rheodda: error: gnuplot failed drawing {}:\n{}", path, err);
+  if (!failed.empty()) {
+    fmt::print(stderr, "rheodda: error: --plot {}: {}\n", path, failed);
     throw CLI::RuntimeError(1);
   }
 }

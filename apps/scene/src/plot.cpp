@@ -1,13 +1,16 @@
 #include "rheodda/scene/plot.hpp"
 
 #include <fmt/format.h>
+#include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
 
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -26,15 +29,34 @@ extern char** environ;
 namespace rheodda::scene {
 
 void run_gnuplot(const std::string& script) {
+  // gnuplot's messages go to a file beside the script: in the error when it fails, passed on
+  // to stderr when it draws.
+  const std::string log = script + ".log";
   std::string prog = "gnuplot";
   std::vector<char*> argv{prog.data(), const_cast<char*>(script.c_str()), nullptr};
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 2, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   pid_t pid = 0;
-  if (posix_spawnp(&pid, "gnuplot", nullptr, nullptr, argv.data(), environ) != 0)
+  const int spawned = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) {
+    std::error_code ec;
+    std::filesystem::remove(log, ec);
     throw std::runtime_error("cannot start gnuplot (installed by scripts/install-deps.sh)");
+  }
   int status = 0;
   waitpid(pid, &status, 0);
+  std::string messages;
+  {
+    std::ifstream in(log);
+    messages.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  std::error_code ec;
+  std::filesystem::remove(log, ec);
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    throw std::runtime_error(fmt::format("gnuplot failed on {}", script));
+    throw std::runtime_error(fmt::format("gnuplot failed on {}{}", script, messages.empty() ? "" : ":\n" + messages));
+  if (!messages.empty()) std::fputs(messages.c_str(), stderr);
 }
 
 std::string gnuplot_text(const std::string& s) {
