@@ -1,4 +1,5 @@
-// Study files (docs/guide/studies.md): reading, checking, and building the case scenes.
+// Study files (docs/guide/studies.md): reading and checking them (the case scenes are
+// built in study_cases.cpp).
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
@@ -20,6 +21,7 @@
 #include "rheodda/study/study.hpp"
 #include "rheodda/units/units.hpp"
 #include "rheodda/scene/output.hpp"
+#include "study_internal.hpp"
 
 namespace rheodda::study {
 namespace fs = std::filesystem;
@@ -110,82 +112,7 @@ std::vector<std::string> split_key(const std::string& key) {
   return parts;
 }
 
-/// Applies one override to the scene tree; throws SceneError at the override.
-void apply(YAML::Node root, const Override& o, const std::string& file, const std::string& case_key) {
-  const auto bad = [&](const std::string& msg) -> void {
-    throw SceneError(file, o.where, case_key + "." + o.key, msg);
-  };
-  const auto parts = split_key(o.key);
-  if (parts.empty()) bad("malformed scene key (expected e.g. joint_sets.base.friction_angle or blocks[block3].fixed)");
-  YAML::Node value;
-  try {
-    value = YAML::Load(o.value_yaml);
-  } catch (const YAML::Exception& e) {
-    bad(e.what());
-  }
-  YAML::Node cur = root;
-  std::string walked;
-  for (std::size_t i = 0; i < parts.size(); ++i) {
-    const std::string& p = parts[i];
-    const bool last = i + 1 == parts.size();
-    if (p.front() == '[') {
-      const std::string inner = p.substr(1, p.size() - 2);
-      if (!cur.IsSequence()) bad(fmt::format("'{}' is not a list in the base scene", walked));
-      YAML::Node found;
-      std::size_t index = 0;
-      const bool numeric = !inner.empty() && inner.find_first_not_of("0123456789") == std::string::npos;
-      if (numeric) {
-        index = std::stoul(inner);
-        if (index >= cur.size()) bad(fmt::format("'{}' has {} elements, no [{}]", walked, cur.size(), inner));
-      } else {
-        bool hit = false;
-        for (std::size_t k = 0; k < cur.size(); ++k) {
-          const YAML::Node e = cur[k];
-          if (e.IsMap() && e["name"] && e["name"].IsScalar() && e["name"].as<std::string>() == inner) {
-            index = k;
-            hit = true;
-            break;
-          }
-        }
-        if (!hit) bad(fmt::format("no element named '{}' in '{}' of the base scene", inner, walked));
-      }
-      walked += p;
-      if (last) {
-        cur[index] = value;
-      } else {
-        YAML::Node next = cur[index];
-        cur.reset(next);
-      }
-    } else {
-      if (!cur.IsMap()) bad(fmt::format("'{}' is not a map in the base scene", walked.empty() ? "the scene" : walked));
-      walked += (walked.empty() ? "" : ".") + p;
-      if (last) {
-        if (value.IsNull()) {  // `~` removes the key (e.g. a joint set's law)
-          if (!cur[p]) bad(fmt::format("the base scene has no '{}' to remove", walked));
-          cur.remove(p);
-        } else {
-          cur[p] = value;  // a new key is allowed here; the scene loader then checks it
-        }
-      } else {
-        if (!cur[p]) bad(fmt::format("the base scene has no '{}'", walked));
-        YAML::Node next = cur[p];
-        cur.reset(next);
-      }
-    }
-  }
-}
 
-/// history.csv columns a scene's run will have (scene::history_columns, the run's own list), plus the
-/// derived POINT.displacement (and with a settling stage POINT.displacement_after_settling).
-std::set<std::string> output_columns(const scene::SceneDescription& s) {
-  const std::vector<std::string> run = scene::history_columns(s);
-  std::set<std::string> c(run.begin(), run.end());
-  for (const auto& m : s.measurement_points) {
-    c.insert(m.name + ".displacement");
-    if (s.analysis.settle) c.insert(m.name + ".displacement_after_settling");
-  }
-  return c;
-}
 
 
 bool valid_parameter_name(const std::string& s) {
@@ -307,6 +234,90 @@ std::string name_value(double v) {
 }
 
 }  // namespace
+
+namespace detail {
+
+/// Applies one override to the scene tree; throws SceneError at the override.
+void apply(YAML::Node root, const Override& o, const std::string& file, const std::string& case_key) {
+  const auto bad = [&](const std::string& msg) -> void {
+    throw SceneError(file, o.where, case_key + "." + o.key, msg);
+  };
+  const auto parts = split_key(o.key);
+  if (parts.empty()) bad("malformed scene key (expected e.g. joint_sets.base.friction_angle or blocks[block3].fixed)");
+  YAML::Node value;
+  try {
+    value = YAML::Load(o.value_yaml);
+  } catch (const YAML::Exception& e) {
+    bad(e.what());
+  }
+  YAML::Node cur = root;
+  std::string walked;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const std::string& p = parts[i];
+    const bool last = i + 1 == parts.size();
+    if (p.front() == '[') {
+      const std::string inner = p.substr(1, p.size() - 2);
+      if (!cur.IsSequence()) bad(fmt::format("'{}' is not a list in the base scene", walked));
+      YAML::Node found;
+      std::size_t index = 0;
+      const bool numeric = !inner.empty() && inner.find_first_not_of("0123456789") == std::string::npos;
+      if (numeric) {
+        index = std::stoul(inner);
+        if (index >= cur.size()) bad(fmt::format("'{}' has {} elements, no [{}]", walked, cur.size(), inner));
+      } else {
+        bool hit = false;
+        for (std::size_t k = 0; k < cur.size(); ++k) {
+          const YAML::Node e = cur[k];
+          if (e.IsMap() && e["name"] && e["name"].IsScalar() && e["name"].as<std::string>() == inner) {
+            index = k;
+            hit = true;
+            break;
+          }
+        }
+        if (!hit) bad(fmt::format("no element named '{}' in '{}' of the base scene", inner, walked));
+      }
+      walked += p;
+      if (last) {
+        cur[index] = value;
+      } else {
+        YAML::Node next = cur[index];
+        cur.reset(next);
+      }
+    } else {
+      if (!cur.IsMap()) bad(fmt::format("'{}' is not a map in the base scene", walked.empty() ? "the scene" : walked));
+      walked += (walked.empty() ? "" : ".") + p;
+      if (last) {
+        if (value.IsNull()) {  // `~` removes the key (e.g. a joint set's law)
+          if (!cur[p]) bad(fmt::format("the base scene has no '{}' to remove", walked));
+          cur.remove(p);
+        } else {
+          cur[p] = value;  // a new key is allowed here; the scene loader then checks it
+        }
+      } else {
+        if (!cur[p]) bad(fmt::format("the base scene has no '{}'", walked));
+        YAML::Node next = cur[p];
+        cur.reset(next);
+      }
+    }
+  }
+}
+
+/// history.csv columns a scene's run will have (scene::history_columns, the run's own list), plus the
+/// derived POINT.displacement (and with a settling stage POINT.displacement_after_settling).
+std::set<std::string> output_columns(const scene::SceneDescription& s) {
+  const std::vector<std::string> run = scene::history_columns(s);
+  std::set<std::string> c(run.begin(), run.end());
+  for (const auto& m : s.measurement_points) {
+    c.insert(m.name + ".displacement");
+    if (s.analysis.settle) c.insert(m.name + ".displacement_after_settling");
+  }
+  return c;
+}
+
+}  // namespace detail
+
+using detail::apply;
+using detail::output_columns;
 
 std::vector<std::vector<double>> sweep_values(const std::vector<SweepParameter>& ps, SweepMethod method,
                                               std::size_t samples, std::uint64_t seed) {
@@ -499,143 +510,6 @@ StudyDescription load_study(const std::string& path) {
   std::ostringstream b;
   b << in.rdbuf();
   return parse_study(b.str(), path);
-}
-
-std::string case_title(const std::string& base_title, const StudyCase& c, std::size_t common_count) {
-  std::vector<std::string> changes;
-  const std::size_t common = std::min(common_count, c.set.size());
-  auto describe = [&](const Override& o) {
-    bool removed = false;
-    try {
-      removed = YAML::Load(o.value_yaml).IsNull();
-    } catch (const YAML::Exception&) {
-    }
-    changes.push_back(removed ? o.key + " removed" : o.key + " = " + o.value_yaml);
-  };
-  for (std::size_t i = common; i < c.set.size(); ++i) describe(c.set[i]);
-  for (std::size_t i = 0; i < common; ++i) describe(c.set[i]);
-  if (changes.empty()) return fmt::format("{} [case {}]", base_title, c.name);
-  return fmt::format("{} [case {}: {}]", base_title, c.name, fmt::join(changes, ", "));
-}
-
-namespace {
-
-/// What a case writes (docs/guide/studies.md, "What a case writes"): a row of history.csv
-/// at each of the study's times within the case's duration (analysis.output_times), and
-/// no frames unless the study or the case asks for them (analysis.frames).
-void case_outputs(const StudyDescription& study, const StudyCase& c, YAML::Node root) {
-  YAML::Node a = root["analysis"];
-  if (!a || !a.IsMap()) return;  // the loader says what is wrong with the scene
-  double duration = 0.0;
-  std::vector<std::pair<double, std::string>> times;  // (value, text as the file gives it)
-  try {
-    duration = a["duration"].as<double>();
-    if (const YAML::Node given = a["output_times"]) {
-      if (!given.IsSequence()) return;
-      for (const YAML::Node& t : given) times.emplace_back(t.as<double>(), t.Scalar());
-    }
-  } catch (const YAML::Exception&) {
-    return;
-  }
-  for (double t : study.times)
-    if (t > 0.0 && t <= duration) times.emplace_back(t, scene::exact_number(t));
-  std::sort(times.begin(), times.end());
-  times.erase(std::unique(times.begin(), times.end(), [](const auto& x, const auto& y) { return x.first == y.first; }),
-              times.end());
-  if (!times.empty()) {
-    YAML::Node list(YAML::NodeType::Sequence);
-    list.SetStyle(YAML::EmitterStyle::Flow);
-    for (const auto& t : times) list.push_back(t.second);
-    a["output_times"] = list;
-  }
-  const bool case_sets_frames = std::any_of(c.set.begin(), c.set.end(), [](const Override& o) { return o.key == "analysis.frames"; });
-  if (!case_sets_frames) a["frames"] = study.frames;
-}
-
-}  // namespace
-
-std::string case_scene_text(const StudyDescription& study, const std::string& base_text, const StudyCase& c) {
-  YAML::Node root = YAML::Load(base_text);
-  for (const auto& o : c.set) apply(root, o, study.file, fmt::format("cases[{}].set", c.name));
-  case_outputs(study, c, root);
-  // A case scene is not the base scene: its title (run summary, summary.json, plots) says what changed.
-  bool own_title = false;
-  for (const auto& o : c.set) own_title = own_title || o.key == "title";
-  if (!own_title) {
-    const YAML::Node t = YAML::Load(base_text)["title"];
-    const std::string base = t && t.IsScalar() ? t.as<std::string>() : fs::path(study.scene).filename().string();
-    // A swept case's title is short: the base title and the parameter values.
-    root["title"] = c.sweep_label.empty() ? case_title(base, c, study.common_count)
-                                          : fmt::format("{} [{}]", base, c.sweep_label);
-  }
-  YAML::Emitter e;
-  e << root;
-  std::string head = fmt::format("# Case '{}' of the study {}: the scene {}", c.name, study.file, study.scene);
-  for (const auto& o : c.set) head += fmt::format("\n#   {}: {}", o.key, o.value_yaml);
-  return head + "\n" + e.c_str() + "\n";
-}
-
-std::string case_scene_body(const std::string& text) {
-  std::size_t at = 0;
-  while (at < text.size() && text[at] == '#') {
-    const std::size_t end = text.find('\n', at);
-    at = end == std::string::npos ? text.size() : end + 1;
-  }
-  return text.substr(at);
-}
-
-std::string drawn_case_name(std::size_t k, std::size_t count) {
-  const int width = std::max(2, static_cast<int>(std::to_string(count).size()));
-  return fmt::format("sample{:0{}}", k + 1, width);
-}
-
-std::vector<std::string> prepare_cases(const StudyDescription& study, const volatile std::sig_atomic_t* stop) {
-  std::string base_text;
-  {
-    std::ifstream in(study.scene, std::ios::binary);
-    if (!in)
-      throw SceneError(study.file, study.scene_where, "scene",
-                       fmt::format("cannot open {}: {}", study.scene, std::strerror(errno)));
-  }
-  try {
-    base_text = scene::read_scene_text(study.scene);
-    (void)scene::parse_scene(base_text, study.scene);  // the base scene's own faults are reported in its own file
-  } catch (const SceneError& e) {
-    if (!e.file().empty() && e.file() == study.scene && e.line() > 0) throw;
-    throw SceneError(study.file, {}, "scene", e.what());
-  }
-  std::vector<std::string> texts;
-  for (const auto& c : study.cases) {
-    if (stop && *stop != 0) return texts;
-    std::string text = case_scene_text(study, base_text, c);
-    scene::SceneDescription s;
-    try {
-      s = scene::parse_scene(text, fmt::format("case {}", c.name));
-    } catch (const SceneError& e) {
-      // Locate the fault at the override whose key it falls under, else at the case.
-      SourceLocation at = c.where;
-      std::string key = fmt::format("cases[{}]", c.name);
-      for (const auto& o : c.set)
-        if (e.key() == o.key || e.key().rfind(o.key + ".", 0) == 0 || e.key().rfind(o.key + "[", 0) == 0) {
-          at = o.where;
-          key = fmt::format("cases[{}].set.{}", c.name, o.key);
-        }
-      throw SceneError(study.file, at, key, fmt::format("case '{}' is not a valid scene: {}: {}", c.name, e.key(), e.message()));
-    }
-    const auto columns = output_columns(s);
-    for (std::size_t i = 0; i < study.outputs.size(); ++i)
-      if (!columns.count(study.outputs[i]))
-        throw SceneError(study.file, c.where, fmt::format("outputs[{}]", i),
-                         fmt::format("case '{}' has no history column '{}'; its columns: {}", c.name,
-                                     study.outputs[i], fmt::join(columns, ", ")));
-    for (double t : study.times)
-      if (t > s.analysis.duration * (1 + 1e-12))
-        throw SceneError(study.file, c.where, "times",
-                         fmt::format("time {:g} is after the end of case '{}' (duration {:g})", t, c.name,
-                                     s.analysis.duration));
-    texts.push_back(std::move(text));
-  }
-  return texts;
 }
 
 }  // namespace rheodda::study

@@ -1,14 +1,29 @@
-// Internal to rheodda_study: what the runner (runner.cpp), the study's record
-// (study_report.cpp) and its pictures (study_plots.cpp) share.
+// Internal to rheodda_study: what the study file's reader (study_file.cpp), its case scenes
+// (study_cases.cpp), the runner (runner.cpp), the study's record (study_report.cpp) and its
+// pictures (study_plots.cpp) share.
 #pragma once
 
 #include <filesystem>
+#include <set>
 #include <string>
 #include <vector>
 
+#include "rheodda/scene/scene.hpp"
 #include "rheodda/study/study.hpp"
 
+namespace YAML {
+class Node;
+}
+
 namespace rheodda::study::detail {
+
+/// Applies one override of a study file `file` (`case_key`: "set" or "cases[NAME].set") to a
+/// scene's YAML tree; throws SceneError at the override (study_file.cpp).
+void apply(YAML::Node root, const Override& o, const std::string& file, const std::string& case_key);
+
+/// The history.csv columns a scene's run will have (scene::history_columns), and the derived
+/// POINT.displacement (with a settling stage also POINT.displacement_after_settling).
+std::set<std::string> output_columns(const scene::SceneDescription& s);
 
 /// The whole file as bytes ("" when it cannot be read).
 std::string read_text(const std::filesystem::path& p);
