@@ -3,7 +3,8 @@
 // a collapse dynamically (Settings::collapse_dt). A stage carries velocity with
 // the settling stage's dt and g2; it ends at rest - after a step whose kinetic
 // energy is below Settings::settle_rest_tolerance of the work gravity and the
-// loads did over the stage - or at its longest, settle_until from its start.
+// loads did over the stage (with the explicit step and Settings::settle_force_ratio: after a
+// step whose unbalanced-force ratio is below it) - or at its longest, settle_until from its start.
 // Each stage is recorded as a StageEvent when it ends.
 #include <algorithm>
 #include <cmath>
@@ -70,8 +71,13 @@ void Engine::Impl::update_stage(const StepReport& rep) {
   // against the larger of that work and what it dissipated: an excavation
   // releases strain energy while gravity does little or negative work.
   const double reference = stage_opened_by_edit ? std::max(e.work, e.energy_dissipated) : e.work;
-  if (settling() && s.settle_rest_tolerance > 0.0 && e.steps >= kMinStageSteps && late_enough &&
-      reference > 0.0 && kinetic <= s.settle_rest_tolerance * reference) {
+  // An explicit step with settle_force_ratio is at rest by its unbalanced-force ratio
+  // (explicit_step.cpp (8)), UDEC's test: the kinetic energy of density-scaled masses, or of
+  // a part that creeps along at its friction limit, says little of the forces' balance.
+  const bool by_force = s.settle_force_ratio > 0.0 && rep.cycles > 0;
+  const bool rests = by_force ? cycle_force_ratio <= s.settle_force_ratio
+                              : reference > 0.0 && kinetic <= s.settle_rest_tolerance * reference;
+  if (settling() && s.settle_rest_tolerance > 0.0 && e.steps >= kMinStageSteps && late_enough && rests) {
     e.at_rest = true;
     g.until = st.time;  // the stage is over: the next step is static
   }

@@ -203,6 +203,8 @@ struct Engine::Impl {
     return settling() && model.settings.dynamic_ratio == 0.0 ? model.settings.stage_local_damping : 0.0;
   }
   std::vector<double> cycle_scale;   ///< density scales of the last explicit attempt (6)
+  /// The unbalanced-force ratio at the end of the last explicit attempt (explicit_step.cpp (8)) [-].
+  double cycle_force_ratio = 0.0;
   double cycle_block_damping = 0.0;  ///< work the blocks' damping took in its cycles [force x length]
   /// Engine::stable_cycle (explicit_step.cpp).
   StableCycle stable_cycle();

@@ -41,6 +41,9 @@
 // Local damping (Settings::stage_local_damping, alpha), in the same stages: Cundall's on each
 // of the block's mass-normalised unknowns q = L^T v (M = L L^T): |q_i| loses alpha |r_i| h  (7)
 // at each kick, r = L^-1 R, never more than it has
+// The unbalanced-force ratio (Settings::settle_force_ratio; UDEC's "ratio", Itasca): at the
+// step's end, over the blocks that move, max_k |R_k| / mean_k |F_k|, R_k the translation rows
+// of (1) at the last cycle and F_k those of the loads                                  (8)
 // Blocks held at two or more fixed points (or at one and in rotation; count_held) and
 // removed blocks do not move. Every block and
 // every contact is updated on its own: the cycles run in parallel (OpenMP) and give the
@@ -86,6 +89,21 @@ Eigen::Matrix3d modal_strain_damping(const Eigen::Matrix3d& K, const Eigen::Matr
   const Eigen::Vector3d w = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
   const Eigen::Matrix3d Mphi = M * phi;
   return Mphi * (2.0 * zeta * w).asDiagonal() * Mphi.transpose();
+}
+
+/// The unbalanced-force ratio (8): the largest unbalanced force of a moving block over the
+/// mean applied force of the moving blocks [-]; 0 when no moving block carries a load.
+double unbalanced_force_ratio(const std::vector<double>& unbalanced, const Eigen::VectorXd& F,
+                              const std::vector<char>& frozen) {
+  double largest = 0.0, applied = 0.0;
+  int counted = 0;
+  for (std::size_t k = 0; k < unbalanced.size(); ++k) {
+    if (frozen[k]) continue;
+    largest = std::max(largest, unbalanced[k]);
+    applied += F.segment<2>(6 * static_cast<Eigen::Index>(k)).norm();
+    ++counted;
+  }
+  return applied > 0.0 ? largest / (applied / counted) : 0.0;
 }
 
 }  // namespace
@@ -234,6 +252,7 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
   // The work the blocks' damping takes (strain damping, local damping), per block: its
   // forces over the drift that follows, summed over the blocks in order.
   std::vector<double> damped(nb, 0.0);
+  std::vector<double> unbalanced(nb, 0.0);  // |R| of each block's translation at the step's end
   for (int c = 0; c <= n; ++c) {
     const double w = static_cast<double>(c) / n;
     const double kick = (c == 0 || c == n) ? 0.5 * h : h;
@@ -249,6 +268,7 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
       if (loads_change) R += w * dF.segment<6>(6 * k);
       const Vec3 strain_force = C[k] * Vk.tail<3>();
       R.tail<3>() -= strain_force;
+      if (c == n) unbalanced[k] = R.head<2>().norm();
       double removed = 0.0;  // kinetic energy local damping took in this kick
       if (alpha > 0.0) {
         // (7) Local damping in the block's mass-normalised unknowns q = L^T v (M = L L^T,
@@ -281,6 +301,7 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
   }
   cycle_block_damping = 0.0;
   for (const double x : damped) cycle_block_damping += x;
+  cycle_force_ratio = unbalanced_force_ratio(unbalanced, F0 + dF, frozen);
   rep.solve_seconds += seconds_since(t0);
   D = Dn;
   cycle_velocity.resize(nb);

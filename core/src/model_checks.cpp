@@ -151,6 +151,11 @@ void Engine::Impl::validate() {
   if (s.settle_rest_tolerance > 0.0 && !(s.settle_until > 0.0 && s.settle_dynamic))
     throw ModelError("settings.settle_rest_tolerance",
                      "ends dynamic stages at rest; the analysis has no dynamic settling stage");
+  if (!(s.settle_force_ratio >= 0.0 && s.settle_force_ratio < 1.0))
+    throw ModelError("settings.settle_force_ratio", "must be in [0, 1) (0 = the kinetic-energy test)");
+  if (s.settle_force_ratio > 0.0 && !(s.settle_rest_tolerance > 0.0))
+    throw ModelError("settings.settle_force_ratio", "decides when a stage that ends at rest is at rest: "
+                                                     "give settle_rest_tolerance too");
   if (!(s.collapse_dt >= 0.0 && std::isfinite(s.collapse_dt)))
     throw ModelError("settings.collapse_dt", "must be >= 0 (time; 0 = no collapse stages)");
   if (s.collapse_dt > 0.0) {

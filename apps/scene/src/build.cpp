@@ -188,6 +188,7 @@ BuiltScene build_scene(const SceneDescription& s) {
     st.collapse_dt = a.settle->collapse_dt;
     st.settle_gravity_ramp = a.settle->gravity_ramp;
     st.settle_rest_tolerance = a.settle->rest_tolerance;
+    st.settle_force_ratio = a.settle->force_ratio;
     st.settle_max_open_close = a.settle->open_close_limit;
   }
   switch (a.solver) {

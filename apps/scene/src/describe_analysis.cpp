@@ -106,10 +106,13 @@ std::string describe_analysis(const SceneDescription& s) {
                      a.dt, u.time, a.dt_cut, a.dt_growth));
   if (a.settle && a.settle->rest_tolerance > 0.0)
     line(fmt::format("  settling stage (dynamic): until at rest (kinetic energy below {:g} of the stage's work of "
-                     "gravity and loads), at most {:g} {}, steps of at most {:g} {}, max_displacement_ratio {:g} "
+                     "gravity and loads{}), at most {:g} {}, steps of at most {:g} {}, max_displacement_ratio {:g} "
                      "(docs/reference/engine.md, \"Dynamic stages\")",
-                     a.settle->rest_tolerance, a.settle->until, u.time, a.settle->dt, u.time,
-                     a.settle->max_displacement_ratio));
+                     a.settle->rest_tolerance,
+                     a.settle->force_ratio > 0.0
+                         ? fmt::format("; explicit steps: unbalanced-force ratio below {:g}", a.settle->force_ratio)
+                         : std::string(),
+                     a.settle->until, u.time, a.settle->dt, u.time, a.settle->max_displacement_ratio));
   else if (a.settle)
     line(fmt::format("  settling stage ({}): until {:g} {}, steps of at most {:g} {}, max_displacement_ratio {:g} "
                      "(docs/reference/engine.md, \"Settling stage\")",

@@ -419,6 +419,13 @@ std::vector<KeySpec> declare_analysis_keys() {
          "the gravity ramp has ended (docs/reference/engine.md, \"Dynamic stages\", which also says how to "
          "choose it); each stage is a row of events.csv (docs/reference/outputs.md); in (0, 1); `type: "
          "dynamic` only"));
+  keys.push_back(settle_number("force_ratio", "–", {0.0, true, 1.0, true}, &Analysis::Settle::force_ratio,
+      "0 (the kinetic-energy test)",
+      "with the explicit step: a stage's explicit step is at rest when the largest unbalanced "
+         "force of a moving block is below this fraction of the mean force applied to the moving "
+         "blocks (UDEC's ratio; 1e-5 is customary), instead of the kinetic-energy test of "
+         "`rest_tolerance` (docs/reference/explicit-step.md, \"Rest by the unbalanced force\"); in "
+         "(0, 1); with `rest_tolerance` and `integrator: explicit` or `automatic`"));
   keys.push_back(settle_integer("open_close_limit", "–", {1.0, false, 1000.0, false},
       &Analysis::Settle::open_close_limit,
       "the analysis's `open_close_limit`",

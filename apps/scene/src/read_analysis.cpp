@@ -42,6 +42,10 @@ void read_settle(const Ctx& ctx, const MapReader& m, Analysis& a) {
   } else {
     sm.required("until", "end of the settling stage [time]");
   }
+  if (const YAML::Node f = sm.find("force_ratio"); f.IsDefined() && !rest.IsDefined())
+    ctx.fail(f, sm.child("force_ratio"),
+             "the unbalanced-force test decides when a stage that ends at rest is at rest: give "
+             "`rest_tolerance` too");
   if (rest.IsDefined() && !st.dynamic)
     ctx.fail(rest, sm.child("rest_tolerance"),
              "a stage ends at rest when its kinetic energy has decayed: give `type: dynamic`");
@@ -129,6 +133,11 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
       if (const YAML::Node w = m.find(key); w.IsDefined())
         ctx.fail(w, m.child(key),
                  fmt::format("{} applies to the explicit step; give integrator: explicit or automatic", key));
+    if (const YAML::Node sm = m.find("settle"); sm.IsDefined() && sm.IsMap())
+      if (const YAML::Node f = sm["force_ratio"]; f.IsDefined())
+        ctx.fail(f, m.child("settle") + ".force_ratio",
+                 "force_ratio applies to the explicit step (only its cycles find the unbalanced force); give "
+                 "integrator: explicit or automatic");
   }
   const bool adaptive = a.creep_tolerance > 0.0 || a.step_tolerance > 0.0;
   if (const YAML::Node v = m.find("step_tolerance"); v.IsDefined() && a.step_tolerance > 0.0) {

@@ -452,6 +452,17 @@ BOOST_AUTO_TEST_CASE(the_explicit_step_keys_reach_the_engine_and_are_refused_whe
                   "-1", "analysis.stage_cycles", "out of range");
   expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  type: dynamic\n  integrator: explicit\n  time_integration: trapezoidal"),
                   6, "explicit", "analysis.integrator", "central difference");
+  // settle.force_ratio (docs/reference/explicit-step.md, "Rest by the unbalanced force").
+  const auto ratio = with("  dt: 0.01", "  dt: 0.01\n  integrator: explicit\n"
+                                       "  settle: {type: dynamic, dt: 0.001, rest_tolerance: 1.0e-5, force_ratio: 1.0e-5}");
+  BOOST_TEST(scene::build_scene(scene::parse_scene(ratio, "ratio.yaml")).model.settings.settle_force_ratio == 1e-5);
+  BOOST_TEST(staged.settle_force_ratio == 0.0);
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  integrator: explicit\n"
+                                    "  settle: {type: dynamic, until: 0.1, dt: 0.001, force_ratio: 1.0e-5}"),
+                  6, "1.0e-5", "analysis.settle.force_ratio", "give `rest_tolerance` too");
+  expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  settle: {type: dynamic, dt: 0.001, rest_tolerance: 1.0e-5, "
+                                    "force_ratio: 2.0e-5}"),
+                  5, "2.0e-5", "analysis.settle.force_ratio", "give integrator: explicit or automatic");
 }
 
 BOOST_AUTO_TEST_CASE(open_close_limit_defaults_to_8_in_static_and_30_in_dynamic_analysis_and_reaches_the_engine) {

@@ -319,6 +319,50 @@ BOOST_AUTO_TEST_CASE(density_scaling_bounds_the_cycles_of_a_stage_and_keeps_its_
   BOOST_TEST(scaled.residual < std::max(2.0 * plain.residual, 1e-3));
 }
 
+BOOST_AUTO_TEST_CASE(a_stage_at_rest_by_its_unbalanced_force_ratio_holds_the_stack_in_equilibrium) {
+  // The density-scaled stack of the case above, its stage ending at rest by the unbalanced-force
+  // ratio (settle_force_ratio, UDEC's test) instead of the kinetic energy. At rest the plate's
+  // weight is carried by its contacts: the sum of their normal forces on the plate equals its
+  // weight to the ratio's order, and its settlement on the penalty springs equals the
+  // kinetic-energy stage's within 1e-3 relative; a tighter ratio takes more steps.
+  struct Run {
+    double settle_plate = 0.0, carried = 0.0, weight = 0.0;
+    int stage_steps = 0;
+    bool at_rest = false;
+  };
+  auto run = [](double force_ratio) {
+    core::Model m = explicit_settling_model(1.0);
+    m.settings.stage_local_damping = 0.8;
+    m.settings.stage_cycles = 20;
+    m.settings.settle_force_ratio = force_ratio;
+    add_fixed(m, rect(-1.0, -1.0, 2.0, 0.0));
+    m.blocks.push_back(block(rect(0.0, 0.0, 1.0, 0.5)));
+    m.blocks.push_back(block(rect(0.2, 0.5, 0.8, 0.52)));
+    const double g = -m.settings.gravity.y();
+    const double density = m.materials.front().density;
+    Sim sim(std::move(m), {joint(30.0)});
+    const Vec2 p0 = sim.engine.centroid(2);
+    sim.engine.run_until(1.2);
+    BOOST_TEST_REQUIRE(!sim.engine.events().empty());
+    Run r;
+    r.at_rest = sim.engine.events().front().at_rest;
+    r.stage_steps = sim.engine.events().front().steps;
+    r.settle_plate = -sim.engine.point_displacement(2, p0).y();
+    r.weight = density * 0.6 * 0.02 * g;
+    for (const contact::Contact& c : sim.contacts.contacts())  // the plate rests on the block alone
+      if (c.key.vblock == 2 || c.key.eblock == 2) r.carried += std::abs(c.normal_force);
+    BOOST_TEST_MESSAGE("force_ratio " << force_ratio << ": " << r.stage_steps << " stage steps, plate "
+                                      << r.settle_plate << " m, carried " << r.carried << " of " << r.weight);
+    return r;
+  };
+  const Run energy = run(0.0), loose = run(1e-3), tight = run(1e-6);
+  BOOST_TEST(loose.at_rest);
+  BOOST_TEST(tight.at_rest);
+  BOOST_TEST(tight.stage_steps >= loose.stage_steps);
+  BOOST_TEST(tight.carried == tight.weight, boost::test_tools::tolerance(1e-4));
+  BOOST_TEST(tight.settle_plate == energy.settle_plate, boost::test_tools::tolerance(1e-3));
+}
+
 BOOST_AUTO_TEST_CASE(settings_out_of_range_are_refused) {
   core::Model m = explicit_incline(deg(20.0), 1.0, 0.5, 4.0);
   m.settings.explicit_safety = 1.5;

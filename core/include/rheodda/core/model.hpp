@@ -248,6 +248,10 @@ struct Settings {
   /// longest, settle_until from its start [-]; 0 = stages run to their
   /// longest; in [0, 1)
   double settle_rest_tolerance = 0.0;
+  /// A stage's explicit step is at rest when its unbalanced-force ratio (explicit_step.cpp
+  /// (8)) is below this, instead of the kinetic-energy test of settle_rest_tolerance [-];
+  /// 0 = the kinetic-energy test; in [0, 1); with settle_rest_tolerance only.
+  double settle_force_ratio = 0.0;
   /// Open-close iterates before a step of the settling stage or a collapse
   /// stage is cut [-]; 0 = max_open_close. A static analysis limits its static
   /// steps to Shi's 8 (docs/notes/contact-solves.md, "The iteration limit in static

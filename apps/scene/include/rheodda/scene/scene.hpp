@@ -90,6 +90,12 @@ struct Analysis {
     /// stages"); `until` is then the longest a stage may last (default: the
     /// duration) [-]; 0 = stages last `until`; in (0, 1); dynamic stage only.
     double rest_tolerance = 0.0;
+    /// `force_ratio`: with the explicit step, a stage's explicit step is at rest when its
+    /// unbalanced-force ratio (the largest unbalanced force of a moving block over the mean
+    /// force applied to the moving blocks) is below this, instead of the kinetic-energy test
+    /// of `rest_tolerance` (docs/reference/explicit-step.md, "Rest by the unbalanced force")
+    /// [-]; 0 = the kinetic-energy test; in (0, 1); with `rest_tolerance` only.
+    double force_ratio = 0.0;
     /// `open_close_limit`: open-close iterates before a step of a dynamic stage
     /// is cut [-]; 0 (not given) = the analysis's `open_close_limit`.
     int open_close_limit = 0;
