@@ -1,7 +1,7 @@
 // Reading a scene file's YAML: the map reader that knows each map's valid keys, and
 // the typed readers of numbers (with their range and unit), words, flags, choices,
 // points and polygons, each failing with file:line:col and the key (SceneError).
-// Internal to the loader (scene/src/read_*.cpp); not installed.
+// Internal to the loader (scene/src/read_*.cpp) and study/src/study_file.cpp; not installed.
 #pragma once
 
 #include <yaml-cpp/yaml.h>

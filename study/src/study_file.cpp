@@ -22,45 +22,38 @@
 #include "rheodda/units/units.hpp"
 #include "rheodda/scene/output.hpp"
 #include "study_internal.hpp"
+#include "yaml_reader.hpp"  // the scene reader's (scene/src): Ctx, MapReader, location
 
 namespace rheodda::study {
 namespace fs = std::filesystem;
 namespace {
 
-SourceLocation where_of(const YAML::Node& n) {
-  const YAML::Mark m = n.Mark();
-  if (m.is_null()) return {};
-  return {m.line + 1, m.column + 1};
+// A study file is read with the scene reader's YAML helpers (scene/src/yaml_reader.hpp):
+// every error names the file, the line and column and the key, as a scene's does.
+using scene::detail::Ctx;
+using scene::detail::location;
+
+/// The keys of one of the study file's maps, checked as a scene's (scene::detail::MapReader):
+/// an unknown key is refused at its place with the valid keys and the nearest of them
+/// ("did you mean"), a key given twice at its second place.
+void check_keys(const Ctx& ctx, const YAML::Node& map, const std::string& path, std::vector<std::string> valid) {
+  (void)scene::detail::MapReader(ctx, map, path, std::move(valid));
 }
 
-[[noreturn]] void fail(const std::string& file, const YAML::Node& n, const std::string& key, const std::string& msg) {
-  throw SceneError(file, where_of(n), key, msg);
-}
-
-void check_keys(const std::string& file, const YAML::Node& map, const std::string& path,
-                const std::vector<std::string>& valid) {
-  for (const auto& kv : map) {
-    const auto k = kv.first.as<std::string>();
-    if (std::find(valid.begin(), valid.end(), k) == valid.end())
-      fail(file, kv.first, path.empty() ? k : path + "." + k,
-           fmt::format("unknown key '{}'; valid keys here: {}", k, fmt::join(valid, ", ")));
-  }
-}
-
-std::string scalar_string(const std::string& file, const YAML::Node& n, const std::string& key) {
-  if (!n.IsScalar()) fail(file, n, key, "expected a text value");
+std::string scalar_string(const Ctx& ctx, const YAML::Node& n, const std::string& key) {
+  if (!n.IsScalar()) ctx.fail(n, key, "expected a text value");
   return n.as<std::string>();
 }
 
-double number(const std::string& file, const YAML::Node& n, const std::string& key) {
-  if (!n.IsScalar()) fail(file, n, key, "expected a number");
+double number(const Ctx& ctx, const YAML::Node& n, const std::string& key) {
+  if (!n.IsScalar()) ctx.fail(n, key, "expected a number");
   double v = 0.0;
   try {
     v = n.as<double>();
   } catch (const YAML::Exception&) {
-    fail(file, n, key, fmt::format("'{}' is not a number", n.as<std::string>()));
+    ctx.fail(n, key, fmt::format("'{}' is not a number", n.as<std::string>()));
   }
-  if (!std::isfinite(v)) fail(file, n, key, "NaN and infinity are not allowed");
+  if (!std::isfinite(v)) ctx.fail(n, key, "NaN and infinity are not allowed");
   return v;
 }
 
@@ -70,13 +63,13 @@ std::string to_yaml(const YAML::Node& n) {
   return e.c_str();
 }
 
-std::vector<Override> read_set(const std::string& file, const YAML::Node& set, const std::string& path) {
-  if (!set.IsMap()) fail(file, set, path, "expected a map of dotted scene keys to values, e.g. {analysis.dt: 0.5}");
+std::vector<Override> read_set(const Ctx& ctx, const YAML::Node& set, const std::string& path) {
+  if (!set.IsMap()) ctx.fail(set, path, "expected a map of dotted scene keys to values, e.g. {analysis.dt: 0.5}");
   std::vector<Override> out;
   for (const auto& kv : set) {
-    const std::string key = scalar_string(file, kv.first, path);
-    if (key.empty()) fail(file, kv.first, path, "empty scene key");
-    out.push_back({key, to_yaml(kv.second), where_of(kv.first)});
+    const std::string key = scalar_string(ctx, kv.first, path);
+    if (key.empty()) ctx.fail(kv.first, path, "empty scene key");
+    out.push_back({key, to_yaml(kv.second), location(kv.first)});
   }
   return out;
 }
@@ -123,87 +116,87 @@ bool valid_parameter_name(const std::string& s) {
 }
 
 /// A whole number >= lo (samples, count, seed).
-std::uint64_t whole_number(const std::string& file, const YAML::Node& n, const std::string& key, std::uint64_t lo) {
-  const double v = number(file, n, key);
+std::uint64_t whole_number(const Ctx& ctx, const YAML::Node& n, const std::string& key, std::uint64_t lo) {
+  const double v = number(ctx, n, key);
   if (v != std::floor(v) || v < static_cast<double>(lo) || v > 9.0e15)
-    fail(file, n, key, fmt::format("{} is not a whole number >= {}", n.as<std::string>(), lo));
+    ctx.fail(n, key, fmt::format("{} is not a whole number >= {}", n.as<std::string>(), lo));
   return static_cast<std::uint64_t>(v);
 }
 
 /// `sweep:` (docs/guide/studies.md, "Sweeps"): the method, its draws, and each parameter.
-void read_sweep(const std::string& file, const YAML::Node& sw, StudyDescription& s) {
-  if (!sw.IsMap()) fail(file, sw, "sweep", "expected a map with keys method, parameters (samples, seed)");
-  check_keys(file, sw, "sweep", {"method", "parameters", "samples", "seed"});
-  const std::string method = sw["method"] ? scalar_string(file, sw["method"], "sweep.method") : "grid";
+void read_sweep(const Ctx& ctx, const YAML::Node& sw, StudyDescription& s) {
+  if (!sw.IsMap()) ctx.fail(sw, "sweep", "expected a map with keys method, parameters (samples, seed)");
+  check_keys(ctx, sw, "sweep", {"method", "parameters", "samples", "seed"});
+  const std::string method = sw["method"] ? scalar_string(ctx, sw["method"], "sweep.method") : "grid";
   if (method == "grid") s.method = SweepMethod::grid;
   else if (method == "random") s.method = SweepMethod::random;
   else if (method == "latin_hypercube") s.method = SweepMethod::latin_hypercube;
-  else fail(file, sw["method"], "sweep.method", fmt::format("unknown method '{}'; valid: grid, random, latin_hypercube", method));
+  else ctx.fail(sw["method"], "sweep.method", fmt::format("unknown method '{}'; valid: grid, random, latin_hypercube", method));
   const bool drawn = s.method != SweepMethod::grid;
   if (drawn) {
-    if (!sw["samples"]) fail(file, sw, "sweep.samples", fmt::format("missing key 'samples' (how many cases the {} method draws)", method));
-    s.samples = whole_number(file, sw["samples"], "sweep.samples", 1);
-    if (s.samples > 100000) fail(file, sw["samples"], "sweep.samples", "more than 100000 cases");
-    s.seed = sw["seed"] ? whole_number(file, sw["seed"], "sweep.seed", 0) : 1;
+    if (!sw["samples"]) ctx.fail(sw, "sweep.samples", fmt::format("missing key 'samples' (how many cases the {} method draws)", method));
+    s.samples = whole_number(ctx, sw["samples"], "sweep.samples", 1);
+    if (s.samples > 100000) ctx.fail(sw["samples"], "sweep.samples", "more than 100000 cases");
+    s.seed = sw["seed"] ? whole_number(ctx, sw["seed"], "sweep.seed", 0) : 1;
   } else {
     for (const char* k : {"samples", "seed"})
-      if (sw[k]) fail(file, sw[k], fmt::format("sweep.{}", k), fmt::format("'{}' is for the random and latin_hypercube methods; a grid takes every combination", k));
+      if (sw[k]) ctx.fail(sw[k], fmt::format("sweep.{}", k), fmt::format("'{}' is for the random and latin_hypercube methods; a grid takes every combination", k));
   }
   const YAML::Node ps = sw["parameters"];
-  if (!ps) fail(file, sw, "sweep.parameters", "missing key 'parameters' (the swept scene keys)");
-  if (!ps.IsSequence() || ps.size() == 0) fail(file, ps, "sweep.parameters", "expected a non-empty list of {name, key, unit, values or range}");
+  if (!ps) ctx.fail(sw, "sweep.parameters", "missing key 'parameters' (the swept scene keys)");
+  if (!ps.IsSequence() || ps.size() == 0) ctx.fail(ps, "sweep.parameters", "expected a non-empty list of {name, key, unit, values or range}");
   std::set<std::string> names, keys;
   for (std::size_t i = 0; i < ps.size(); ++i) {
     const YAML::Node p = ps[i];
     const std::string at = fmt::format("sweep.parameters[{}]", i);
-    if (!p.IsMap()) fail(file, p, at, "expected a map {name, key, unit, values or range}");
-    check_keys(file, p, at, {"name", "key", "unit", "values", "range", "count", "scale"});
+    if (!p.IsMap()) ctx.fail(p, at, "expected a map {name, key, unit, values or range}");
+    check_keys(ctx, p, at, {"name", "key", "unit", "values", "range", "count", "scale"});
     SweepParameter sp;
-    sp.where = where_of(p);
-    if (!p["key"]) fail(file, p, at + ".key", "missing key 'key' (the dotted scene key, e.g. joint_sets.base.friction_angle)");
-    sp.key = scalar_string(file, p["key"], at + ".key");
-    if (split_key(sp.key).empty()) fail(file, p["key"], at + ".key", "malformed scene key (expected e.g. joint_sets.base.friction_angle)");
-    if (!keys.insert(sp.key).second) fail(file, p["key"], at + ".key", fmt::format("'{}' is swept twice", sp.key));
+    sp.where = location(p);
+    if (!p["key"]) ctx.fail(p, at + ".key", "missing key 'key' (the dotted scene key, e.g. joint_sets.base.friction_angle)");
+    sp.key = scalar_string(ctx, p["key"], at + ".key");
+    if (split_key(sp.key).empty()) ctx.fail(p["key"], at + ".key", "malformed scene key (expected e.g. joint_sets.base.friction_angle)");
+    if (!keys.insert(sp.key).second) ctx.fail(p["key"], at + ".key", fmt::format("'{}' is swept twice", sp.key));
     if (p["name"]) {
-      sp.name = scalar_string(file, p["name"], at + ".name");
+      sp.name = scalar_string(ctx, p["name"], at + ".name");
     } else {
       const auto parts = split_key(sp.key);
       sp.name = parts.back();
     }
     if (!valid_parameter_name(sp.name))
-      fail(file, p["name"] ? p["name"] : p["key"], at + ".name",
+      ctx.fail(p["name"] ? p["name"] : p["key"], at + ".name",
            fmt::format("'{}': a parameter name is letters, digits and '_' (it names cases and a study.csv column)", sp.name));
-    if (!names.insert(sp.name).second) fail(file, p, at + ".name", fmt::format("parameter name '{}' given twice", sp.name));
-    if (!p["unit"]) fail(file, p, at + ".unit", "missing key 'unit' (written in study.csv and on the plots; '-' for none)");
-    sp.unit = scalar_string(file, p["unit"], at + ".unit");
+    if (!names.insert(sp.name).second) ctx.fail(p, at + ".name", fmt::format("parameter name '{}' given twice", sp.name));
+    if (!p["unit"]) ctx.fail(p, at + ".unit", "missing key 'unit' (written in study.csv and on the plots; '-' for none)");
+    sp.unit = scalar_string(ctx, p["unit"], at + ".unit");
     if (sp.unit.empty() || sp.unit.find_first_of(",\"[]\n") != std::string::npos)
-      fail(file, p["unit"], at + ".unit", "a unit is non-empty text without ',', '\"', '[' or ']' (e.g. deg, Pa/m, -)");
+      ctx.fail(p["unit"], at + ".unit", "a unit is non-empty text without ',', '\"', '[' or ']' (e.g. deg, Pa/m, -)");
     if (p["scale"]) {
-      const std::string sc = scalar_string(file, p["scale"], at + ".scale");
-      if (sc != "linear" && sc != "log") fail(file, p["scale"], at + ".scale", fmt::format("unknown scale '{}'; valid: linear, log", sc));
+      const std::string sc = scalar_string(ctx, p["scale"], at + ".scale");
+      if (sc != "linear" && sc != "log") ctx.fail(p["scale"], at + ".scale", fmt::format("unknown scale '{}'; valid: linear, log", sc));
       sp.log_scale = sc == "log";
     }
-    if (p["values"] && p["range"]) fail(file, p["range"], at, "give either 'values' or 'range', not both");
+    if (p["values"] && p["range"]) ctx.fail(p["range"], at, "give either 'values' or 'range', not both");
     if (p["values"]) {
-      if (drawn) fail(file, p["values"], at + ".values", fmt::format("the {} method draws from a 'range: [from, to]'", method));
-      if (p["count"]) fail(file, p["count"], at + ".count", "'count' spaces a 'range'; 'values' lists them");
+      if (drawn) ctx.fail(p["values"], at + ".values", fmt::format("the {} method draws from a 'range: [from, to]'", method));
+      if (p["count"]) ctx.fail(p["count"], at + ".count", "'count' spaces a 'range'; 'values' lists them");
       const YAML::Node v = p["values"];
-      if (!v.IsSequence() || v.size() == 0) fail(file, v, at + ".values", "expected a non-empty list of numbers");
-      for (std::size_t k = 0; k < v.size(); ++k) sp.values.push_back(number(file, v[k], fmt::format("{}.values[{}]", at, k)));
+      if (!v.IsSequence() || v.size() == 0) ctx.fail(v, at + ".values", "expected a non-empty list of numbers");
+      for (std::size_t k = 0; k < v.size(); ++k) sp.values.push_back(number(ctx, v[k], fmt::format("{}.values[{}]", at, k)));
       if (sp.log_scale)
         for (std::size_t k = 0; k < v.size(); ++k)
-          if (sp.values[k] <= 0) fail(file, v[k], fmt::format("{}.values[{}]", at, k), "a log scale needs values > 0");
+          if (sp.values[k] <= 0) ctx.fail(v[k], fmt::format("{}.values[{}]", at, k), "a log scale needs values > 0");
     } else if (p["range"]) {
       const YAML::Node r = p["range"];
-      if (!r.IsSequence() || r.size() != 2) fail(file, r, at + ".range", "expected [from, to]");
-      sp.from = number(file, r[0], at + ".range[0]");
-      sp.to = number(file, r[1], at + ".range[1]");
-      if (!(sp.from < sp.to)) fail(file, r, at + ".range", fmt::format("from {:g} is not below to {:g}", sp.from, sp.to));
-      if (sp.log_scale && sp.from <= 0) fail(file, r, at + ".range", "a log scale needs a range above 0");
+      if (!r.IsSequence() || r.size() != 2) ctx.fail(r, at + ".range", "expected [from, to]");
+      sp.from = number(ctx, r[0], at + ".range[0]");
+      sp.to = number(ctx, r[1], at + ".range[1]");
+      if (!(sp.from < sp.to)) ctx.fail(r, at + ".range", fmt::format("from {:g} is not below to {:g}", sp.from, sp.to));
+      if (sp.log_scale && sp.from <= 0) ctx.fail(r, at + ".range", "a log scale needs a range above 0");
       if (!drawn) {
-        if (!p["count"]) fail(file, p, at + ".count", "missing key 'count' (how many values a grid takes in the range, >= 2)");
-        const auto n = whole_number(file, p["count"], at + ".count", 2);
-        if (n > 100000) fail(file, p["count"], at + ".count", "more than 100000 values");
+        if (!p["count"]) ctx.fail(p, at + ".count", "missing key 'count' (how many values a grid takes in the range, >= 2)");
+        const auto n = whole_number(ctx, p["count"], at + ".count", 2);
+        if (n > 100000) ctx.fail(p["count"], at + ".count", "more than 100000 values");
         for (std::uint64_t k = 0; k < n; ++k) {
           const double f = static_cast<double>(k) / static_cast<double>(n - 1);
           // Evenly spaced in the value, or in its logarithm; the ends exactly, and the values
@@ -217,10 +210,10 @@ void read_sweep(const std::string& file, const YAML::Node& sw, StudyDescription&
           sp.values.push_back(v);
         }
       } else if (p["count"]) {
-        fail(file, p["count"], at + ".count", fmt::format("the {} method draws 'sweep.samples' values; 'count' is for a grid", method));
+        ctx.fail(p["count"], at + ".count", fmt::format("the {} method draws 'sweep.samples' values; 'count' is for a grid", method));
       }
     } else {
-      fail(file, p, at, drawn ? "missing key 'range' ([from, to] to draw from)" : "missing key 'values' or 'range'");
+      ctx.fail(p, at, drawn ? "missing key 'range' ([from, to] to draw from)" : "missing key 'values' or 'range'");
     }
     s.parameters.push_back(std::move(sp));
   }
@@ -375,29 +368,30 @@ StudyDescription parse_study(const std::string& text, const std::string& file) {
   } catch (const YAML::ParserException& e) {
     throw SceneError(file, {e.mark.line + 1, e.mark.column + 1}, "", e.msg);
   }
-  if (!root.IsMap()) fail(file, root, "", "a study file is a map with keys scene, outputs, times, cases");
-  check_keys(file, root, "", {"title", "scene", "set", "outputs", "times", "plot", "frames", "cases", "sweep"});
+  const Ctx ctx{file};
+  if (!root.IsMap()) ctx.fail(root, "", "a study file is a map with keys scene, outputs, times, cases");
+  check_keys(ctx, root, "", {"title", "scene", "set", "outputs", "times", "plot", "frames", "cases", "sweep"});
   StudyDescription s;
   s.file = file;
-  s.title = root["title"] ? scalar_string(file, root["title"], "title") : fs::path(file).filename().string();
-  if (!root["scene"]) fail(file, root, "scene", "missing key 'scene' (the base scene file)");
-  s.scene = scalar_string(file, root["scene"], "scene");
-  s.scene_where = where_of(root["scene"]);
+  s.title = root["title"] ? scalar_string(ctx, root["title"], "title") : fs::path(file).filename().string();
+  if (!root["scene"]) ctx.fail(root, "scene", "missing key 'scene' (the base scene file)");
+  s.scene = scalar_string(ctx, root["scene"], "scene");
+  s.scene_where = location(root["scene"]);
   if (fs::path(s.scene).is_relative()) s.scene = (fs::path(file).parent_path() / s.scene).lexically_normal().string();
 
   std::vector<Override> common;
-  if (root["set"]) common = read_set(file, root["set"], "set");
+  if (root["set"]) common = read_set(ctx, root["set"], "set");
   s.common_count = common.size();
 
   const YAML::Node outs = root["outputs"];
-  if (!outs) fail(file, root, "outputs", "missing key 'outputs' (history.csv columns, e.g. [block1_top.u])");
-  if (!outs.IsSequence() || outs.size() == 0) fail(file, outs, "outputs", "expected a non-empty list of columns");
+  if (!outs) ctx.fail(root, "outputs", "missing key 'outputs' (history.csv columns, e.g. [block1_top.u])");
+  if (!outs.IsSequence() || outs.size() == 0) ctx.fail(outs, "outputs", "expected a non-empty list of columns");
   for (std::size_t i = 0; i < outs.size(); ++i)
-    s.outputs.push_back(scalar_string(file, outs[i], fmt::format("outputs[{}]", i)));
+    s.outputs.push_back(scalar_string(ctx, outs[i], fmt::format("outputs[{}]", i)));
 
   const YAML::Node times = root["times"];
-  if (!times) fail(file, root, "times", "missing key 'times' (times to read the outputs at, scene time unit)");
-  if (!times.IsSequence() || times.size() == 0) fail(file, times, "times", "expected a non-empty list of times");
+  if (!times) ctx.fail(root, "times", "missing key 'times' (times to read the outputs at, scene time unit)");
+  if (!times.IsSequence() || times.size() == 0) ctx.fail(times, "times", "expected a non-empty list of times");
   std::optional<scene::Units> scene_units;  // read from the base scene once a time carries its unit
   for (std::size_t i = 0; i < times.size(); ++i) {
     const std::string key = fmt::format("times[{}]", i);
@@ -416,50 +410,50 @@ StudyDescription parse_study(const std::string& text, const std::string& file) {
       try {
         t = scene::scene_number(n.Scalar(), "time", *scene_units);
       } catch (const scene::QuantityError& e) {
-        fail(file, n, key, e.what());
+        ctx.fail(n, key, e.what());
       }
     } else {
-      t = number(file, n, key);
+      t = number(ctx, n, key);
     }
-    if (t < 0) fail(file, times[i], fmt::format("times[{}]", i), fmt::format("{:g} is out of range (>= 0)", t));
+    if (t < 0) ctx.fail(times[i], fmt::format("times[{}]", i), fmt::format("{:g} is out of range (>= 0)", t));
     s.times.push_back(t);
   }
 
   s.plot = s.outputs.front();
   if (root["plot"]) {
-    s.plot = scalar_string(file, root["plot"], "plot");
+    s.plot = scalar_string(ctx, root["plot"], "plot");
     if (std::find(s.outputs.begin(), s.outputs.end(), s.plot) == s.outputs.end())
-      fail(file, root["plot"], "plot", fmt::format("'{}' is not one of the outputs ({})", s.plot, fmt::join(s.outputs, ", ")));
+      ctx.fail(root["plot"], "plot", fmt::format("'{}' is not one of the outputs ({})", s.plot, fmt::join(s.outputs, ", ")));
   }
 
   if (const YAML::Node f = root["frames"]) {
     bool v = false;
     if (!f.IsScalar() || !YAML::convert<bool>::decode(f, v))
-      fail(file, f, "frames", "expected true or false (each case also writes contacts.csv and the VTK frames)");
+      ctx.fail(f, "frames", "expected true or false (each case also writes contacts.csv and the VTK frames)");
     s.frames = v;
   }
 
-  if (root["sweep"]) read_sweep(file, root["sweep"], s);
+  if (root["sweep"]) read_sweep(ctx, root["sweep"], s);
   const YAML::Node cases = root["cases"];
-  if (!cases && !root["sweep"]) fail(file, root, "cases", "missing key 'cases' (or a 'sweep')");
-  if (cases && (!cases.IsSequence() || cases.size() == 0)) fail(file, cases, "cases", "expected a non-empty list of cases");
+  if (!cases && !root["sweep"]) ctx.fail(root, "cases", "missing key 'cases' (or a 'sweep')");
+  if (cases && (!cases.IsSequence() || cases.size() == 0)) ctx.fail(cases, "cases", "expected a non-empty list of cases");
   std::set<std::string> names;
   for (std::size_t i = 0; cases && i < cases.size(); ++i) {
     const YAML::Node c = cases[i];
     const std::string key = fmt::format("cases[{}]", i);
-    if (!c.IsMap()) fail(file, c, key, "expected a map {name: ..., set: {...}}");
-    check_keys(file, c, key, {"name", "set"});
-    if (!c["name"]) fail(file, c, key + ".name", "missing key 'name'");
+    if (!c.IsMap()) ctx.fail(c, key, "expected a map {name: ..., set: {...}}");
+    check_keys(ctx, c, key, {"name", "set"});
+    if (!c["name"]) ctx.fail(c, key + ".name", "missing key 'name'");
     StudyCase sc;
-    sc.name = scalar_string(file, c["name"], key + ".name");
+    sc.name = scalar_string(ctx, c["name"], key + ".name");
     if (!valid_case_name(sc.name))
-      fail(file, c["name"], key + ".name",
+      ctx.fail(c["name"], key + ".name",
            fmt::format("'{}': a case name is a folder name: letters, digits, '_', '-', '.'", sc.name));
-    if (!names.insert(sc.name).second) fail(file, c["name"], key + ".name", fmt::format("case '{}' given twice", sc.name));
-    sc.where = where_of(c);
+    if (!names.insert(sc.name).second) ctx.fail(c["name"], key + ".name", fmt::format("case '{}' given twice", sc.name));
+    sc.where = location(c);
     sc.set = common;
     if (c["set"]) {
-      auto own = read_set(file, c["set"], key + ".set");
+      auto own = read_set(ctx, c["set"], key + ".set");
       sc.set.insert(sc.set.end(), own.begin(), own.end());
     }
     s.cases.push_back(std::move(sc));
@@ -469,10 +463,10 @@ StudyDescription parse_study(const std::string& text, const std::string& file) {
       double product = 1.0;
       for (const auto& p : s.parameters) product *= static_cast<double>(p.values.size());
       if (product > 100000)
-        fail(file, root["sweep"], "sweep", fmt::format("the grid makes {:g} cases (more than 100000)", product));
+        ctx.fail(root["sweep"], "sweep", fmt::format("the grid makes {:g} cases (more than 100000)", product));
     }
     const auto rows = sweep_values(s.parameters, s.method, s.samples, s.seed);
-    if (rows.size() > 100000) fail(file, root["sweep"], "sweep", fmt::format("the grid makes {} cases (more than 100000)", rows.size()));
+    if (rows.size() > 100000) ctx.fail(root["sweep"], "sweep", fmt::format("the grid makes {} cases (more than 100000)", rows.size()));
     for (std::size_t k = 0; k < rows.size(); ++k) {
       StudyCase sc;
       sc.where = s.parameters.front().where;
@@ -496,7 +490,7 @@ StudyDescription parse_study(const std::string& text, const std::string& file) {
                                               : drawn_case_name(k, rows.size());
       sc.sweep_label = fmt::format("{}", fmt::join(label, ", "));
       if (!names.insert(sc.name).second)
-        fail(file, root["sweep"], "sweep",
+        ctx.fail(root["sweep"], "sweep",
              fmt::format("two cases are named '{}' (a listed case, or values equal to 6 significant digits)", sc.name));
       s.cases.push_back(std::move(sc));
     }

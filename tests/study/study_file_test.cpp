@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #include "rheodda/scene/loader.hpp"
 #include "rheodda/study/study.hpp"
@@ -188,6 +189,43 @@ BOOST_AUTO_TEST_CASE(bad_study_files_are_refused_with_line_and_key) {
   expect_study_error(with("  - {name: phi20}", "  - {name: phi10}", ok), 8, "cases[1].name", "given twice");
   expect_study_error(with("name: phi10", "name: ../x", ok), 6, "cases[0].name", "folder name");
   expect_study_error(with("times: [0.01, 0.05]", "times: [0.01, x]", ok), 4, "times[1]", "not a number");
+}
+
+BOOST_AUTO_TEST_CASE(a_misspelt_study_key_gets_the_nearest_valid_one_as_in_a_scene) {
+  // The study file's maps are checked by the scene reader's map reader (scene/src/yaml_reader.hpp):
+  // file, line, column, the key, "did you mean" the nearest valid key, and the valid keys.
+  const std::string ok = study_text();
+  const auto error_of = [](const std::string& text) {
+    try {
+      (void)st::parse_study(text, "typo.yaml");
+    } catch (const st::SceneError& e) {
+      return e;
+    }
+    throw std::runtime_error("no error for a study with a misspelt key");
+  };
+  const auto top = error_of(with("times:", "tims:", ok));
+  BOOST_TEST(top.what() == std::string("typo.yaml:4:1: tims: unknown key 'tims' (did you mean 'times'?); valid keys "
+                                       "here: title, scene, set, outputs, times, plot, frames, cases, sweep"));
+  const auto in_case = error_of(with("  - {name: phi20}", "  - {nmae: phi20}", ok));
+  BOOST_TEST(in_case.line() == 8);
+  BOOST_TEST(in_case.column() == 6);
+  BOOST_TEST(in_case.key() == "cases[1].nmae");
+  BOOST_TEST(in_case.message() == "unknown key 'nmae' (did you mean 'name'?); valid keys here: name, set");
+  const auto in_sweep = error_of(ok + "sweep:\n  method: random\n  sampels: 3\n"
+                                      "  parameters: [{key: analysis.dt, unit: s, range: [0.001, 0.01]}]\n");
+  BOOST_TEST(in_sweep.line() == 11);
+  BOOST_TEST(in_sweep.column() == 3);
+  BOOST_TEST(in_sweep.key() == "sweep.sampels");
+  BOOST_TEST(in_sweep.message().find("unknown key 'sampels' (did you mean 'samples'?)") == 0u, in_sweep.message());
+  const auto in_parameter = error_of(ok + "sweep:\n  parameters: [{key: analysis.dt, unit: s, valeus: [0.001]}]\n");
+  BOOST_TEST(in_parameter.key() == "sweep.parameters[0].valeus");
+  BOOST_TEST(in_parameter.message().find("(did you mean 'values'?)") != std::string::npos, in_parameter.message());
+  // A word near none of the valid keys gets no suggestion; a key given twice is refused at its second place.
+  BOOST_TEST(error_of(with("times:", "zzzzzz:", ok)).message().find("unknown key 'zzzzzz'; valid keys here:") == 0u);
+  const auto twice = error_of(ok + "times: [0.02]\n");
+  BOOST_TEST(twice.line() == 9);
+  BOOST_TEST(twice.key() == "times");
+  BOOST_TEST(twice.message() == "key 'times' is given twice (first at line 4)");
 }
 
 BOOST_AUTO_TEST_CASE(times_and_overrides_may_carry_their_units) {
