@@ -33,7 +33,7 @@ struct GenerateOptions {
 /// one flow map a line after the hand-written ones. Coordinates are written in the
 /// shortest form that reads back to the same double (fmt's "{}", Ryu-like), names as
 /// they are (the loader allows letters, digits, '_', '-' and '.' only: plain YAML), so
-/// the explicit scene loads to the very same blocks (tests/apps/rockmass/scene_test.cpp).
+/// the explicit scene loads to the very same blocks (tests/rockmass/scene_test.cpp).
 /// The block lines are formatted directly: yaml-cpp's emitter, and reading the file
 /// back, took 28 of the 33 s `generate` spent on 93 000 blocks.
 std::string explicit_scene(const scene::SceneDescription& s, const std::string& text) {

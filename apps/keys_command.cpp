@@ -1,4 +1,4 @@
-// `rheodda keys`: the declared scene keys (apps/scene/include/rheodda/scene/keys.hpp)
+// `rheodda keys`: the declared scene keys (scene/include/rheodda/scene/keys.hpp)
 // with their units, meanings and defaults; `--markdown` prints the key tables that
 // docs/reference/scene-format.md holds (scripts/scene-format-tables.sh splices them in).
 #include <fmt/format.h>

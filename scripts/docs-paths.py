@@ -12,8 +12,9 @@ What it does, each step idempotent (a second run changes nothing):
    (a branch edited a page that was split or moved here) nothing is moved: the
    script names the page, to be merged by hand.
 2. Every mention of an old path in README.md, docs/**, examples/**/README.md and
-   the source and build files (core/ contact/ laws/ apps/ python/ bench/ tests/
-   scripts/ examples/ CMakeLists.txt .ci) is rewritten:
+   the source and build files (core/ contact/ laws/ units/ rockmass/ scene/
+   study/ forecast/ apps/ python/ bench/ tests/ scripts/ examples/ CMakeLists.txt
+   .ci) is rewritten:
    - `docs/X.md, "Section"` (also `docs/X.md "Section"`, `docs/X.md ("Section"`,
      `docs/X.md, section "Section"`): to the page the section went to (SECTIONS,
      matched on the start of the title), else to PAGES[X];
@@ -121,8 +122,9 @@ MARKERS = {
 }
 
 # Where references are rewritten (relative to the root); files and folders.
-SCOPE = ["README.md", "docs", "core", "contact", "laws", "apps", "python", "bench", "tests",
-         "scripts", "examples", "CMakeLists.txt", ".ci", "cmake"]
+SCOPE = ["README.md", "docs", "core", "contact", "laws", "units", "rockmass", "scene", "study",
+         "forecast", "apps", "python", "bench", "tests", "scripts", "examples", "CMakeLists.txt",
+         ".ci", "cmake"]
 TEXT = {".md", ".cpp", ".hpp", ".h", ".c", ".py", ".sh", ".txt", ".cmake", ".in", ".yaml",
         ".yml", ".toml", ".cfg", ".json", ".patch", ".pyi"}
 SELF = {"scripts/docs-paths.py"}     # holds the map itself

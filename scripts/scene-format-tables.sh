@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates the key tables of docs/reference/scene-format.md from the keys' declarations
-# (apps/scene/src/keys*.cpp) through `rheodda keys --markdown MAP`, between each pair of
-# <!-- keys-MAP:begin/end --> markers the doc holds. tests/apps/scene/schema_test.cpp checks that
+# (scene/src/keys*.cpp) through `rheodda keys --markdown MAP`, between each pair of
+# <!-- keys-MAP:begin/end --> markers the doc holds. tests/scene/schema_test.cpp checks that
 # the doc holds what this writes.
 # Usage: scripts/scene-format-tables.sh     (RHEODDA_BUILD_DIR: the build to use, default build/)
 set -euo pipefail

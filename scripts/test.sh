@@ -13,10 +13,10 @@ asan="${RHEODDA_ASAN_BUILD_DIR:-$root/build-asan}"
 cmake -S "$root" -B "$asan" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRHEODDA_SANITIZE=ON \
   "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DRHEODDA_BUILD_BENCH=OFF >/dev/null
 cmake --build "$asan" -j "$(nproc)" --target scene_fuzz_test
-"$asan/tests/apps/scene_fuzz_test" --report_level=short
+"$asan/tests/scene/scene_fuzz_test" --report_level=short
 # The rock-mass cutter fuzzed over random joint sets under the same sanitizers (docs/guide/rockmass.md).
 cmake --build "$asan" -j "$(nproc)" --target rockmass_fuzz_test
-"$asan/tests/apps/rockmass/rockmass_fuzz_test" --report_level=short
+"$asan/tests/rockmass/rockmass_fuzz_test" --report_level=short
 # The Python module's tests (pytest, tests/python) against the module of the same build, with
 # Debian's interpreter (the one python3-numpy, -pandas and -pytest are installed for).
 # (The shell is in the build folder since `cd "$build"` above: a relative RHEODDA_BUILD_DIR is it.)

@@ -64,7 +64,7 @@ py::dict entry_dict(const std::vector<scene::EntryKey<E>>& keys, const std::stri
   return d;
 }
 
-/// summary.json's "inputs" (scene::scene_json_text, apps/scene/src/scene_json.cpp) parsed
+/// summary.json's "inputs" (scene::scene_json_text, scene/src/scene_json.cpp) parsed
 /// afresh by Python's json module: every section the run writes, with every key and value.
 py::dict inputs_of(const Scene& s) {
   return py::module_::import("json").attr("loads")(scene::scene_json_text(s.description));

@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "rheodda/version.hpp"
-#include "test_support.hpp"
+#include "../scene/test_support.hpp"
 
 using namespace rheodda::test;
 namespace fs = std::filesystem;

@@ -4,7 +4,7 @@
 
 #include "rheodda/scene/plot.hpp"
 #include "rheodda/scene/progress.hpp"
-#include "test_support.hpp"
+#include "../scene/test_support.hpp"
 
 using namespace rheodda::test;
 namespace fs = std::filesystem;

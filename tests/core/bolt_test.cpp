@@ -2,7 +2,7 @@
 // forms: a block hanging from a bolt, two bolts in parallel of which one yields
 // and ruptures, a Burgers bolt relaxing at constant length (at fixed steps and
 // under adaptive creep stepping), and the refusals of bad bolts. The incline and the pretensioned joint need contacts: they are
-// scene-level tests (tests/apps/scene/bolts_test.cpp).
+// scene-level tests (tests/scene/bolts_test.cpp).
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>

@@ -87,7 +87,7 @@ void scene_run(const std::string& file) {
     ++failures;
     return;
   }
-  // Same tolerance as tests/apps/scene/run_test.cpp on the full example.
+  // Same tolerance as tests/scene/run_test.cpp on the full example.
   expect_close("scene joint shear displacement at 20 h [mm]", std::abs(sum / n),
                burgers_closed_form(kTau, kE1, kE2, kEta1, kEta2, s.analysis.duration), 1e-3);
 }

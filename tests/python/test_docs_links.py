@@ -18,8 +18,9 @@ import pathlib
 import re
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-SCOPE = ["README.md", "docs", "core", "contact", "laws", "apps", "python", "bench", "tests",
-         "scripts", "examples", "CMakeLists.txt", ".ci", "cmake"]
+SCOPE = ["README.md", "docs", "core", "contact", "laws", "units", "rockmass", "scene", "study",
+         "forecast", "apps", "python", "bench", "tests", "scripts", "examples", "CMakeLists.txt",
+         ".ci", "cmake"]
 TEXT = {".md", ".cpp", ".hpp", ".h", ".c", ".py", ".sh", ".txt", ".cmake", ".in", ".yaml",
         ".yml", ".toml", ".cfg", ".json", ".pyi"}
 SKIP_DIRS = {"build", ".git", "__pycache__", "prototypes"}

@@ -16,7 +16,7 @@ from conftest import TABLE1
 from test_scene import SHEAR_TEST
 
 # A rock mass with a hole, a generated persistent set, a set of traces with gaps and an
-# explicit trace (the scene the C++ fuzz test mutates, tests/apps/scene/fuzz_test.cpp).
+# explicit trace (the scene the C++ fuzz test mutates, tests/scene/fuzz_test.cpp).
 ROCK_MASS = {
     "units": {"length": "m", "force": "N", "time": "d"},
     "analysis": {"type": "static", "duration": 1, "dt": 0.5, "gravity": [0, -7.32313e10]},

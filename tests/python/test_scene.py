@@ -75,7 +75,7 @@ def test_a_dict_scene_with_units_is_the_scene_in_bare_numbers(yaml_scene):
 
 
 def test_scene_analysis_holds_every_declared_key_as_summary_json_does(yaml_scene, rheodda_binary, tmp_path):
-    # The keys are declared once (apps/scene/src/keys.cpp): `rheodda keys` lists them,
+    # The keys are declared once (scene/src/keys.cpp): `rheodda keys` lists them,
     # Scene.analysis and summary.json's inputs hold each with the same value.
     listed = subprocess.run([rheodda_binary, "keys"], capture_output=True, text=True, check=True).stdout
     declared = [line.split(" ", 1)[0] for line in listed.splitlines()]
@@ -100,7 +100,7 @@ def test_scene_analysis_holds_every_declared_key_as_summary_json_does(yaml_scene
 
 
 def test_scene_materials_hold_every_declared_key(yaml_scene, rheodda_binary):
-    # The materials' keys are declared once (apps/scene/src/keys_joints.cpp): `rheodda keys
+    # The materials' keys are declared once (scene/src/keys_joints.cpp): `rheodda keys
     # materials` lists them, Scene.materials holds each with its value, defaults filled in.
     listed = subprocess.run([rheodda_binary, "keys", "materials"], capture_output=True, text=True, check=True).stdout
     declared = [line.split(" ", 1)[0].removeprefix("materials.") for line in listed.splitlines()]

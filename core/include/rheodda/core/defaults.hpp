@@ -1,5 +1,5 @@
 // The defaults that depend on the model, in one place: the scene loader fills them
-// into a scene (apps/scene/src/loader.cpp), the contact adapter and the engine apply
+// into a scene (scene/src/loader.cpp), the contact adapter and the engine apply
 // them to a Model that leaves them at 0 (a test's hand-written model).
 #pragma once
 

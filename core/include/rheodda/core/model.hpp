@@ -1,5 +1,5 @@
 // The input of a DDA analysis: plain structs, one per idea, every field with
-// its unit and default. A scene reader (apps/) or a test fills a Model; the
+// its unit and default. A scene reader (scene/) or a test fills a Model; the
 // Engine (engine.hpp) validates it once and owns the run-time state.
 //
 // Why plain structs: the reader and the engine stay independent, a model can

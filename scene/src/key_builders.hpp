@@ -1,0 +1,88 @@
+// How the declarations of keys*.cpp are written: a KeyInfo (designated initializers)
+// and how the key reaches its field. Internal to scene/; not installed.
+#pragma once
+
+#include <array>
+#include <limits>
+#include <optional>
+#include <utility>
+
+#include "rheodda/scene/keys.hpp"
+
+namespace rheodda::scene::detail {
+
+constexpr double kInf = std::numeric_limits<double>::max();
+inline constexpr KeyRange kPositive{0.0, true, kInf, false};     ///< > 0
+inline constexpr KeyRange kNonNegative{0.0, false, kInf, false};  ///< >= 0
+
+/// A key that reads and writes the field `field` of its entry as is.
+template <class E, class T>
+EntryKey<E> field_key(KeyInfo info, T E::*field) {
+  EntryKey<E> k;
+  static_cast<KeyInfo&>(k) = std::move(info);
+  k.get = [field](const E& e) -> KeyValue { return e.*field; };
+  k.set = [field](E& e, const KeyValue& v) { e.*field = std::get<T>(v); };
+  return k;
+}
+
+/// A key of an optional field: not set (std::monostate) until the file gives it.
+template <class E, class T>
+EntryKey<E> optional_key(KeyInfo info, std::optional<T> E::*field) {
+  EntryKey<E> k;
+  static_cast<KeyInfo&>(k) = std::move(info);
+  k.get = [field](const E& e) -> KeyValue {
+    if (!(e.*field)) return std::monostate{};
+    return *(e.*field);
+  };
+  k.set = [field](E& e, const KeyValue& v) { e.*field = std::get<T>(v); };
+  return k;
+}
+
+/// An optional name kept as text (`field`): not set (std::monostate) while empty.
+template <class E>
+EntryKey<E> optional_name_key(KeyInfo info, std::string E::*field) {
+  EntryKey<E> k = field_key(std::move(info), field);
+  k.get = [field](const E& e) -> KeyValue {
+    if ((e.*field).empty()) return std::monostate{};
+    return e.*field;
+  };
+  return k;
+}
+
+/// A key with its own getter and setter (a choice kept as an enum, a field of a member).
+template <class E>
+EntryKey<E> custom_key(KeyInfo info, std::function<KeyValue(const E&)> get, std::function<void(E&, const KeyValue&)> set) {
+  EntryKey<E> k;
+  static_cast<KeyInfo&>(k) = std::move(info);
+  k.get = std::move(get);
+  k.set = std::move(set);
+  return k;
+}
+
+/// `force: [fx, fy]` of a load: the one sample (0, fx, fy) of its history `field`
+/// (not set when the history has other samples).
+template <class E>
+EntryKey<E> constant_force_key(KeyInfo info, std::vector<std::array<double, 3>> E::*field) {
+  return custom_key<E>(
+      std::move(info),
+      [field](const E& e) -> KeyValue {
+        if ((e.*field).size() != 1) return std::monostate{};
+        return std::vector<double>{(e.*field)[0][1], (e.*field)[0][2]};
+      },
+      [field](E& e, const KeyValue& v) {
+        const auto& f = std::get<std::vector<double>>(v);
+        e.*field = {{0.0, f[0], f[1]}};
+      });
+}
+
+/// A key its section's reader reads (a map, a list, a reference, a point that must lie
+/// on its block): declared for the schema, the docs and the required check; no setter.
+template <class E>
+EntryKey<E> reader_key(KeyInfo info, std::function<KeyValue(const E&)> get = {}) {
+  EntryKey<E> k;
+  static_cast<KeyInfo&>(k) = std::move(info);
+  k.get = get ? std::move(get) : [](const E&) -> KeyValue { return std::monostate{}; };
+  return k;
+}
+
+}  // namespace rheodda::scene::detail

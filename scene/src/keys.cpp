@@ -1,0 +1,445 @@
+// The declared keys of `analysis:` and `analysis.settle` (keys.hpp), one entry per key.
+//
+// Each entry: map, key, unit, range (or choices), the field it fills, the default and the
+// meaning as docs/reference/scene-format.md shows them (its tables are generated from here
+// by scripts/scene-format-tables.sh, through `rheodda keys --markdown MAP`). Checks that tie
+// several keys together stay in the loader (scene/src/read_analysis.cpp).
+#include "rheodda/scene/keys.hpp"
+
+#include "key_builders.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace rheodda::scene {
+
+namespace {
+
+using detail::kInf;
+
+KeyInfo info(const std::string& map, const std::string& name, KeyType type, const std::string& unit, KeyRange range,
+             std::string default_text, std::string meaning) {
+  return KeyInfo{.map = map, .name = name, .type = type, .unit = unit, .range = range,
+                 .default_text = std::move(default_text), .meaning = std::move(meaning)};
+}
+
+KeySpec number_key(const std::string& map, const std::string& name, const std::string& unit, KeyRange range,
+                   double Analysis::*field, std::string default_text, std::string meaning) {
+  return detail::field_key(info(map, name, KeyType::number, unit, range, std::move(default_text), std::move(meaning)),
+                           field);
+}
+
+KeySpec integer_key(const std::string& map, const std::string& name, const std::string& unit, KeyRange range,
+                    int Analysis::*field, std::string default_text, std::string meaning) {
+  return detail::field_key(info(map, name, KeyType::integer, unit, range, std::move(default_text), std::move(meaning)),
+                           field);
+}
+
+KeySpec flag_key(const std::string& map, const std::string& name, const std::string& unit,
+                 bool Analysis::*field, std::string default_text, std::string meaning) {
+  return detail::field_key(info(map, name, KeyType::flag, unit, {}, std::move(default_text), std::move(meaning)),
+                           field);
+}
+
+KeySpec choice_key(const std::string& map, const std::string& name, const std::string& unit,
+                   std::vector<std::string> choices, std::function<std::string(const Analysis&)> get,
+                   std::function<void(Analysis&, const std::string&)> set, std::string default_text,
+                   std::string meaning) {
+  KeyInfo i = info(map, name, KeyType::choice, unit, {}, std::move(default_text), std::move(meaning));
+  i.choices = std::move(choices);
+  return detail::custom_key<Analysis>(
+      std::move(i), [get](const Analysis& a) -> KeyValue { return get(a); },
+      [set](Analysis& a, const KeyValue& v) { set(a, std::get<std::string>(v)); });
+}
+
+KeySpec point_key(const std::string& map, const std::string& name, const std::string& unit,
+                  std::function<Point(const Analysis&)> get, std::function<void(Analysis&, const Point&)> set,
+                  std::string default_text, std::string meaning) {
+  return detail::custom_key<Analysis>(
+      info(map, name, KeyType::point, unit, {}, std::move(default_text), std::move(meaning)),
+      [get](const Analysis& a) -> KeyValue { return get(a); },
+      [set](Analysis& a, const KeyValue& v) { set(a, std::get<Point>(v)); });
+}
+
+/// A sub-map (`settle`): read by read_analysis.cpp.
+KeySpec map_key(const std::string& map, const std::string& name, std::string default_text, std::string meaning) {
+  return detail::reader_key<Analysis>(info(map, name, KeyType::map, "–", {}, std::move(default_text), std::move(meaning)));
+}
+
+/// A key of `analysis.settle`: its field of Analysis::Settle; not applicable without `settle:`.
+template <class T>
+KeySpec settle_key(const std::string& name, KeyType type, const std::string& unit, KeyRange range,
+                   T Analysis::Settle::*field, std::string default_text, std::string meaning) {
+  return detail::custom_key<Analysis>(
+      info("analysis.settle", name, type, unit, range, std::move(default_text), std::move(meaning)),
+      [field](const Analysis& a) -> KeyValue {
+        if (!a.settle) return std::monostate{};
+        return (*a.settle).*field;
+      },
+      [field](Analysis& a, const KeyValue& v) { (*a.settle).*field = std::get<T>(v); });
+}
+
+KeySpec settle_number(const std::string& name, const std::string& unit, KeyRange range,
+                      double Analysis::Settle::*field, std::string default_text, std::string meaning) {
+  return settle_key(name, KeyType::number, unit, range, field, std::move(default_text), std::move(meaning));
+}
+
+KeySpec settle_integer(const std::string& name, const std::string& unit, KeyRange range,
+                       int Analysis::Settle::*field, std::string default_text, std::string meaning) {
+  return settle_key(name, KeyType::integer, unit, range, field, std::move(default_text), std::move(meaning));
+}
+
+std::vector<KeySpec> declare_analysis_keys() {
+  std::vector<KeySpec> keys;
+  keys.push_back(choice_key("analysis", "type", "–", {"static", "dynamic"},
+      [](const Analysis& a) { return std::string(analysis_type_name(a.type)); },
+      [](Analysis& a, const std::string& v) { a.type = v == "dynamic" ? AnalysisType::dynamic_analysis : AnalysisType::static_analysis; },
+      "`static`",
+      "`static` (no velocity carried between steps) or `dynamic`"));
+  keys.push_back(number_key("analysis", "duration", "time", {0.0, true, kInf, false}, &Analysis::duration,
+      "required",
+      "simulated time, > 0"));
+  keys.back().required = "simulated time [time]";
+  keys.push_back(number_key("analysis", "dt", "time", {0.0, true, kInf, false}, &Analysis::dt,
+      "required",
+      "first and largest time step, 0 < dt ≤ duration"));
+  keys.back().required = "first and largest time step [time]";
+  keys.push_back(number_key("analysis", "dt_growth", "–", {1.0, false, kInf, false}, &Analysis::dt_growth,
+      "1.5",
+      "fixed-step runs: after a cut, each accepted step is `dt_growth` × the last one, up to "
+         "`dt`; ≥ 1 (1: the step stays cut); refused under `creep_tolerance` or `step_tolerance` "
+         "(the control sizes the steps)"));
+  keys.push_back(number_key("analysis", "dt_cut", "–", {0.0, true, 1.0, true}, &Analysis::dt_cut,
+      "0.3",
+      "factor on the step when a step is cut (open–close iteration not converged, or a step "
+         "displacement above `max_displacement_ratio` × half model size); also the smallest factor "
+         "an adaptive control shrinks a step by at once; in (0, 1)"));
+  keys.push_back(integer_key("analysis", "max_cuts", "–", {0.0, false, 200.0, false}, &Analysis::max_cuts,
+      "30",
+      "times dt may be cut (× `dt_cut` each) in one step before the run fails, 0–200"));
+  keys.push_back(number_key("analysis", "max_displacement_ratio", "–", {0.0, true, 1.0, false}, &Analysis::max_displacement_ratio,
+      "0.01",
+      "Shi's g2: allowed displacement per step / half model size, (0, 1]"));
+  keys.push_back(map_key("analysis", "settle",
+      "none",
+      "a settling stage at the start of the run (docs/reference/engine.md, \"Settling "
+         "stage\"); its keys are in the table `analysis.settle` below. For a static model that "
+         "settles as a mechanism when gravity comes on: every run, whatever its `dt`, starts its "
+         "creep from the same settled state"));
+  keys.push_back(number_key("analysis", "dynamic_ratio", "–", {0.0, false, 1.0, false}, &Analysis::dynamic_ratio,
+      "1 (dynamic), 0 (static)",
+      "share of velocity carried to the next step, [0, 1]; only with `type: dynamic`"));
+  keys.push_back(choice_key("analysis", "time_integration", "–", {"shi", "trapezoidal"},
+      [](const Analysis& a) { return std::string(time_integration_name(a.time_integration)); },
+      [](Analysis& a, const std::string& v) { a.time_integration = v == "trapezoidal" ? TimeIntegration::trapezoidal : TimeIntegration::shi; },
+      "`shi`",
+      "integration of the inertia terms (docs/reference/engine.md, \"Time integration\"): `shi` (Shi's "
+         "scheme, Newmark β = 1/2, γ = 1: exact for constant acceleration, damps vibrations "
+         "numerically, for quasi-static and creep runs) or `trapezoidal` (β = 1/4, γ = 1/2: keeps "
+         "the energy of linear vibrations); `trapezoidal` only with `type: dynamic` and "
+         "`dynamic_ratio` > 0"));
+  keys.push_back(choice_key("analysis", "scheme", "–", {"automatic", "lagged", "implicit", "exponential-linear"},
+      [](const Analysis& a) { return a.scheme ? std::string(laws::scheme_name(*a.scheme)) : std::string("automatic"); },
+      [](Analysis& a, const std::string& v) { if (v == "automatic") a.scheme.reset(); else a.scheme = laws::parse_scheme(v); },
+      "`automatic`",
+      "creep integration scheme of the joint laws: `lagged`, `implicit`, `exponential-linear` "
+         "(docs/reference/laws.md), or `automatic`: per joint set and step, exponential-linear where the "
+         "step is below its no-ringing limit, implicit otherwise"));
+  keys.push_back(number_key("analysis", "creep_tolerance", "length", {0.0, false, kInf, false}, &Analysis::creep_tolerance,
+      "0",
+      "adaptive creep stepping (docs/guide/choosing-step-controls.md): the creep error allowed per step; the "
+         "step grows (up to ×2) while the estimate stays below it, restarts from `dt` after a load "
+         "change, and a step whose estimate exceeds 2× the tolerance is redone smaller (not below "
+         "`dt`); 0 = fixed `dt`"));
+  keys.push_back(number_key("analysis", "step_tolerance", "length", {0.0, false, kInf, false}, &Analysis::step_tolerance,
+      "0",
+      "adaptive stepping by step doubling (docs/reference/step-controls.md, \"Step doubling\"): each "
+         "step is taken once with dt and twice with dt/2 from the same state; the largest "
+         "difference over the block vertices must stay below the tolerance; the step grows (up to "
+         "×2) while it does, restarts from `dt` after a load change, never falls below `dt`, and a "
+         "step whose difference exceeds 2× the tolerance is redone smaller; 3 solves per step; not "
+         "with `creep_tolerance`; 0 = off"));
+  keys.push_back(flag_key("analysis", "step_extrapolation", "–", &Analysis::step_extrapolation,
+      "true",
+      "under `step_tolerance`: accept 2 y(dt/2) − y(dt) (Richardson: second order) when both "
+         "runs end with the same contacts in the same states, else y(dt/2); `false`: always "
+         "y(dt/2) (first order); `true` or `false`; only with `step_tolerance`"));
+  keys.push_back(number_key("analysis", "dt_max", "time", {0.0, false, kInf, false}, &Analysis::dt_max,
+      "0",
+      "largest step under `creep_tolerance` or `step_tolerance` (refused without one); 0 = no "
+         "limit; >= `dt` when given"));
+  keys.push_back(flag_key("analysis", "creep_restart_on_contact_change", "–", &Analysis::creep_restart_on_contact_change,
+      "false",
+      "under `creep_tolerance`: the step after one in which a creeping contact locked, slid or "
+         "opened restarts from `dt` (as after a load change); `true` or `false`"));
+  keys.push_back(number_key("analysis", "penalty", "stress", {0.0, true, kInf, false}, &Analysis::penalty,
+      "40 × the largest `young_modulus`",
+      "normal contact penalty p_n (the seed's eq. 17, p_n = k1·E, k1 = 10–100)"));
+  keys.push_back(number_key("analysis", "shear_normal_ratio", "–", {0.0, true, kInf, false}, &Analysis::shear_normal_ratio,
+      "2.5",
+      "p_n / p_s of penalty shear springs"));
+  keys.push_back(number_key("analysis", "search_factor", "–", {0.0, true, kInf, false}, &Analysis::search_factor,
+      "2.5",
+      "contact search distance / (g2 · half model size)"));
+  keys.push_back(number_key("analysis", "angle_tolerance", "deg", {0.0, true, 45.0, false}, &Analysis::angle_tolerance,
+      "3",
+      "angle rule tolerance, (0, 45]"));
+  keys.push_back(number_key("analysis", "penetration_ratio", "–", {0.0, true, 1.0, false}, &Analysis::penetration_ratio,
+      "1e-4",
+      "allowed penetration / half model size; above it the penalty is raised"));
+  keys.push_back(number_key("analysis", "friction_tolerance", "–", {0.0, true, kInf, false}, &Analysis::friction_tolerance,
+      "0.01",
+      "a sliding contact whose normal force moved by more than this fraction between two "
+         "iterates asks for another iterate (its friction is taken from the last iterate's N), > 0"));
+  keys.push_back(number_key("analysis", "force_resolution", "–", {0.0, false, 1.0, true}, &Analysis::force_resolution,
+      "1e-3",
+      "force resolution of the open–close decisions as a fraction of the largest contact normal "
+         "force of the last iterate: a contact closes, opens, slides or sticks only when the force "
+         "at stake exceeds it, [0, 1)"));
+  keys.push_back(integer_key("analysis", "max_flips", "–", {1.0, false, 1000.0, false}, &Analysis::max_flips,
+      "2",
+      "state changes of one contact in one step after which it may only change to locked "
+         "(anti-chattering), 1–1000"));
+  keys.push_back(integer_key("analysis", "max_refinements", "–", {0.0, false, 1000.0, false}, &Analysis::max_refinements,
+      "3",
+      "friction refinements (see `friction_tolerance`) one contact may ask for in one step, "
+         "0–1000"));
+  keys.push_back(number_key("analysis", "penalty_raise", "–", {1.0, false, kInf, false}, &Analysis::penalty_raise,
+      "2",
+      "factor on the penalty when a step's largest penetration exceeds `penetration_ratio` × "
+         "the half model size, ≥ 1"));
+  keys.push_back(number_key("analysis", "penalty_max_factor", "–", {1.0, false, kInf, false}, &Analysis::penalty_max_factor,
+      "64",
+      "largest penalty / initial penalty, ≥ 1"));
+  keys.push_back(flag_key("analysis", "stick_keeps_force", "–", &Analysis::stick_keeps_force,
+      "`true` in a dynamic analysis (Shi's rule ratchets a slope that stands down its friction "
+         "limit at small steps) and in a static one with collapse stages (`settle.collapse_dt`: "
+         "the static steps keep the stages' rule, docs/reference/engine.md \"Collapse stages\"), `false` in "
+         "other static ones",
+      "`true`: a sliding contact that sticks keeps the friction force it slid against in its "
+         "shear spring (an elastic–plastic joint); `false`: the spring restarts unstretched (Shi's "
+         "rule). Fewer iterates and cuts on walls and slopes at their friction limit, but a "
+         "creeping slope at its limit then takes step-dependent paths "
+         "(docs/notes/contact-solves.md, \"Stick and slip\")"));
+  keys.push_back(flag_key("analysis", "accept_unresolved_impacts", "–", &Analysis::accept_unresolved_impacts,
+      "false",
+      "`true`: no warning that the dynamic steps (`dt`, or `settle.dt`) are above a tenth of the "
+         "contacts' vibration period, where a joint set's `restitution` does not act as given and "
+         "impacts are left to the time integration. For scenes whose answer was shown not to "
+         "depend on it (`rheodda check --refine`; docs/reference/contacts.md, \"Contact damping\"); "
+         "`true` or `false`"));
+  keys.push_back(integer_key("analysis", "open_close_limit", "–", {1.0, false, 1000.0, false}, &Analysis::open_close_limit,
+      "8 (Shi's) in a static analysis, 30 in a dynamic one",
+      "open–close iterations before a step is cut, 1–1000 (docs/notes/contact-solves.md, \"The "
+         "iteration limit in static analysis\")"));
+  keys.push_back(number_key("analysis", "fixed_point_stiffness", "force/length", {0.0, true, kInf, false}, &Analysis::fixed_point_stiffness,
+      "100 × the largest `young_modulus`",
+      "spring holding a fixed point (times J/S, the block's polar radius of gyration squared: the rotational "
+      "spring of `hold: rotation` [force·length/rad])"));
+  keys.push_back(choice_key("analysis", "solver", "–", {"automatic", "cholmod", "pcg", "amg"},
+      [](const Analysis& a) { return std::string(solver_name(a.solver)); },
+      [](Analysis& a, const std::string& v) {
+        for (SolverKind k : {SolverKind::automatic, SolverKind::cholmod, SolverKind::pcg, SolverKind::amg})
+          if (solver_name(k) == v) a.solver = k;
+      },
+      "`automatic`",
+      "`automatic` (`cholmod` below 2 000 blocks, `amg` from 2 000), `cholmod` (sparse "
+         "Cholesky), `amg` (conjugate gradient with a multigrid V-cycle whose coarse unknowns are "
+         "the DDA unknowns of groups of blocks; O(N) per iteration, for large models) or `pcg` "
+         "(block-Jacobi conjugate gradient, a reference); docs/reference/engine.md, \"Solvers\""));
+  keys.push_back(number_key("analysis", "solver_tolerance", "–", {0.0, true, 1.0, true}, &Analysis::solver_tolerance,
+      "1e-10",
+      "`amg` and `pcg` stop when ‖F − K D‖ ≤ solver_tolerance ‖F‖ (the true residual); in (0, "
+         "1)"));
+  keys.push_back(integer_key("analysis", "solver_max_iterations", "–", {1.0, false, 1.0e9, false}, &Analysis::solver_max_iterations,
+      "10000",
+      "conjugate-gradient iterations allowed per solve of `amg` and `pcg`; a solve that reaches "
+         "it without meeting `solver_tolerance` stops the run with an error; 1–1e9"));
+  keys.push_back(number_key("analysis", "solver_iterate_tolerance", "–", {0.0, false, 1.0, true}, &Analysis::solver_iterate_tolerance,
+      "1e-4",
+      "`amg` and `pcg` stop at this relative residual in an open–close iterate whose contact "
+         "states are still changing; a step is accepted only on a check of a solve at "
+         "`solver_tolerance` (docs/notes/contact-solves.md, \"Inexact iterates\"); in [0, 1), 0 = "
+         "every solve at `solver_tolerance`; no effect with `cholmod` (exact)"));
+  keys.push_back(choice_key("analysis", "contact_solver", "–", {"open-close", "newton"},
+      [](const Analysis& a) { return std::string(a.contact_solver == ContactSolverKind::newton ? "newton" : "open-close"); },
+      [](Analysis& a, const std::string& v) { a.contact_solver = v == "newton" ? ContactSolverKind::newton : ContactSolverKind::open_close; },
+      "`open-close`",
+      "how a step's contacts are solved (docs/reference/contacts.md, \"Contact solves\"): `open-close` "
+         "(Shi's iteration: solve, check every contact, repeat until none changes its state) or "
+         "`newton` (the same iterates, a step accepted once the residual of its equations is "
+         "within `contact_residual_tolerance` of the contact forces, a dynamic step starting from "
+         "the states its inertia alone would give)"));
+  keys.push_back(choice_key("analysis", "integrator", "–", {"implicit", "explicit", "automatic"},
+      [](const Analysis& a) {
+        switch (a.integrator) {
+          case IntegratorKind::implicit: return std::string("implicit");
+          case IntegratorKind::explicit_step: return std::string("explicit");
+          case IntegratorKind::automatic: return std::string("automatic");
+        }
+        throw std::logic_error("an integrator without a word");
+      },
+      [](Analysis& a, const std::string& v) {
+        if (v == "implicit") a.integrator = IntegratorKind::implicit;
+        else if (v == "explicit") a.integrator = IntegratorKind::explicit_step;
+        else if (v == "automatic") a.integrator = IntegratorKind::automatic;
+        else throw std::logic_error("integrator: an unlisted word " + v);
+      },
+      "`implicit`",
+      "how dynamic steps are integrated (docs/reference/explicit-step.md): `implicit` (Shi's step: "
+         "the step's equations solved with the open–close iteration), `explicit` (each dynamic "
+         "step in cycles of central difference with every contact's state decided on its own: no "
+         "matrix, no iteration, in parallel; the static steps of a static analysis stay implicit, "
+         "its dynamic stages (`settle`) are explicit) or `automatic` (the one whose estimated cost "
+         "per dynamic step is lower on the scene's initial state; `rheodda check` prints which and "
+         "why)"));
+  keys.push_back(number_key("analysis", "explicit_safety", "–", {0.0, true, 1.0, false}, &Analysis::explicit_safety,
+      "0.8",
+      "under `integrator: explicit`, the cycle as a share of the stable one 2/ω_max (ω_max bounded "
+         "per block from its mass and the stiffness of its contacts, elasticity and fixed points); "
+         "(0, 1]"));
+  keys.push_back(number_key("analysis", "explicit_damping", "–", {0.0, false, 1.0, false}, &Analysis::explicit_damping,
+      "0.5",
+      "under `integrator: explicit`, the damping ratio the cycles give what has no damping of its own: "
+         "contacts whose joint set has no `restitution` (dashpots beside their springs, the scene's "
+         "highest mode at this ratio) and the strain modes of blocks whose material has no "
+         "`damping_ratio` (each at this ratio). The implicit step damps both within a step; undamped "
+         "they rattle for ever (docs/reference/explicit-step.md, \"Damping\"); [0, 1], 0 = none"));
+  keys.push_back(number_key("analysis", "stage_local_damping", "–", {0.0, false, 1.0, true}, &Analysis::stage_local_damping,
+      "0",
+      "under `integrator: explicit`, local (non-viscous) damping α of the cycles in the dynamic "
+         "stages of a static analysis, where only the state at rest matters: each degree of freedom "
+         "takes −α \\|R\\| sign(v) beside its unbalanced force R (UDEC's default is 0.8); [0, 1), "
+         "0 = none; never in a dynamic analysis"));
+  keys.push_back(integer_key("analysis", "stage_cycles", "–", {0.0, false, 1.0e8, false}, &Analysis::stage_cycles,
+      "0",
+      "under `integrator: explicit`, density scaling in the dynamic stages of a static analysis, "
+         "where only the state at rest matters: the most cycles a step of a stage takes; a block whose "
+         "stable cycle is shorter has its mass scaled up until it is not, its loads unchanged "
+         "(docs/reference/explicit-step.md, \"Density scaling\"); 0 = none; never in a dynamic analysis"));
+  keys.push_back(number_key("analysis", "contact_residual_tolerance", "–", {0.0, true, 1.0, true}, &Analysis::contact_residual_tolerance,
+      "1e-4",
+      "under `contact_solver: newton`, a step is accepted when the residual of its equations, "
+         "\\|F0 − K0 D − f(D)\\|, is at most this fraction of the contact forces \\|f(D)\\| "
+         "(rotation and strain rows divided by the block's size); in (0, 1)"));
+  keys.push_back(number_key("analysis", "output_interval", "time", {0.0, true, kInf, false}, &Analysis::output_interval,
+      "duration / 100, `dt` when longer",
+      "time between output times, ≤ duration: at k × `output_interval` (and at the end) a step "
+         "ends, a frame is written and history.csv has a row (docs/reference/outputs.md); shorter "
+         "than `dt`, it shortens the steps to it"));
+  keys.push_back(detail::reader_key<Analysis>(
+      info("analysis", "output_times", KeyType::list, "time", {}, "none",
+           "`[t1, t2, ...]`: output times besides those of `output_interval`, strictly increasing, in "
+              "(0, `duration`]; a step ends on each (a study adds its `times` here)"),
+      [](const Analysis& a) -> KeyValue {
+        if (a.output_times.empty()) return std::monostate{};
+        return a.output_times;
+      }));
+  keys.push_back(choice_key("analysis", "history", "–", {"outputs", "steps"},
+      [](const Analysis& a) { return std::string(history_rows_name(a.history)); },
+      [](Analysis& a, const std::string& v) { a.history = v == "steps" ? HistoryRows::steps : HistoryRows::outputs; },
+      "`outputs`",
+      "the rows of history.csv: `outputs` (at t = 0, at each output time, and at the steps that end a "
+         "dynamic stage, open a collapse stage or bring a contact's damage law to failure) or `steps` "
+         "(after every accepted step: for a step-by-step look at the step control; large)"));
+  keys.push_back(flag_key("analysis", "frames", "–", &Analysis::frames,
+      "true",
+      "`true`: contacts.csv, bolts.csv and the VTK frames at each output time; `false`: history.csv, "
+         "events.csv and summary.json only (what a study's cases write unless the study asks for "
+         "`frames`); `true` or `false`"));
+  keys.push_back(number_key("analysis", "max_travel_ratio", "–", {0.0, false, kInf, false}, &Analysis::max_travel_ratio,
+      "10",
+      "run guard: the run stops (exit 1, outputs kept, summary.json says why) when a block "
+         "vertex has moved more than this × the model size (the larger extent of the initial "
+         "blocks), as unbounded motion (no friction, a near-zero viscosity, an unsupported block) "
+         "would; ≥ 0, 0 = no limit"));
+  keys.push_back(number_key("analysis", "max_output_size", "MB", {0.0, false, kInf, false}, &Analysis::max_output_size,
+      "10000",
+      "run guard: the run stops when history.csv, contacts.csv and the frames written together "
+         "exceed this size; ≥ 0, 0 = no limit"));
+  keys.push_back(point_key("analysis", "gravity", "length/time²",
+      [](const Analysis& a) { return a.gravity; }, [](Analysis& a, const Point& p) { a.gravity = p; },
+      "required",
+      "`[gx, gy]`"));
+  keys.back().required = "gravity acceleration [gx, gy] [length/time^2]";
+  keys.push_back(flag_key("analysis", "accept_other_gravity", "–", &Analysis::accept_other_gravity,
+      "false",
+      "`true`: no warning that the magnitude of `gravity` is not 9.81 m/s² within 2 % in the "
+         "scene's units (a gravity of 0 is never warned about); for a deliberate other gravity; "
+         "`true` or `false`"));
+  keys.back().echoed = false;  // summary.json's inputs stay as they were
+
+  // analysis.settle: the settling stage (docs/reference/engine.md, "Settling stage").
+  keys.push_back(settle_number("until", "time", {0.0, true, kInf, false}, &Analysis::Settle::until,
+      "required; with `rest_tolerance`: `duration`",
+      "end of the settling stage, > 0, before `duration`; with `rest_tolerance` optional: the "
+         "longest the stage may last. Until then the steps are at most `dt`, with the "
+         "displacement limit `max_displacement_ratio` and without `creep_tolerance` or "
+         "`step_tolerance`; then the analysis's `dt` and `max_displacement_ratio` take over"));
+  keys.push_back(settle_number("dt", "time", {0.0, true, kInf, false}, &Analysis::Settle::dt,
+      "required",
+      "largest step of the settling stage, > 0, ≤ `until`"));
+  keys.back().required = "largest step of the settling stage [time]";
+  keys.push_back(settle_number("max_displacement_ratio", "–", {0.0, true, 1.0, false},
+      &Analysis::Settle::max_displacement_ratio,
+      "the analysis's `max_displacement_ratio`",
+      "Shi's g2 of the stage's steps, (0, 1]"));
+  keys.push_back(choice_key("analysis.settle", "type", "–", {"static", "dynamic"},
+      [](const Analysis& a) { return std::string(a.settle && a.settle->dynamic ? "dynamic" : "static"); },
+      [](Analysis& a, const std::string& v) { a.settle->dynamic = v == "dynamic"; },
+      "`static` (the stage's steps are the analysis's kind)",
+      "`static` or `dynamic`: in a static analysis the stage's steps carry velocity (the blocks "
+         "move with their inertia, with the materials' `damping_ratio` and the joint sets' "
+         "`restitution`, which a static analysis then accepts; a sticking contact keeps its force "
+         "unless `stick_keeps_force` is given), and the first static step after it starts at "
+         "rest; a dynamic analysis's stage is dynamic (`type: static` is refused there)"));
+  keys.back().get = [](const Analysis& a) -> KeyValue {
+    if (!a.settle) return std::monostate{};
+    return std::string(a.settle->dynamic ? "dynamic" : "static");
+  };
+  keys.push_back(settle_number("collapse_dt", "time", {0.0, true, kInf, false}, &Analysis::Settle::collapse_dt,
+      "0 (none)",
+      "collapse stages (docs/reference/engine.md, \"Collapse stages\"): a later static step that moves as "
+         "a mechanism (its inertia share above 0.1) is cut down to `collapse_dt`, and there taken "
+         "as a dynamic stage as long as this one, with its `dt` and `max_displacement_ratio`; > 0, "
+         "below the analysis's `dt`; a dynamic stage in a static analysis only; not with "
+         "`step_tolerance`; `rheodda check --refine` halves it with the other step controls"));
+  keys.push_back(settle_number("gravity_ramp", "time", {0.0, true, kInf, false}, &Analysis::Settle::gravity_ramp,
+      "0 (gravity at once)",
+      "gravity rises linearly from zero at t = 0 to its full value at this time, so that a "
+         "model that stands is loaded slowly instead of at once (docs/reference/engine.md, \"Gravity "
+         "ramp\"); > 0, ≤ `until`; a physical loading time, not a step control: `check --refine` "
+         "keeps it"));
+  keys.push_back(settle_number("rest_tolerance", "–", {0.0, true, 1.0, true}, &Analysis::Settle::rest_tolerance,
+      "0 (stages last `until`)",
+      "the stage, and every collapse stage, ends at rest — after a step whose kinetic energy is "
+         "below this fraction of the work gravity and the loads did over the stage, not before "
+         "the gravity ramp has ended (docs/reference/engine.md, \"Dynamic stages\", which also says how to "
+         "choose it); each stage is a row of events.csv (docs/reference/outputs.md); in (0, 1); `type: "
+         "dynamic` only"));
+  keys.push_back(settle_number("force_ratio", "–", {0.0, true, 1.0, true}, &Analysis::Settle::force_ratio,
+      "0 (the kinetic-energy test)",
+      "with the explicit step: a stage's explicit step is at rest when the largest unbalanced "
+         "force of a moving block is below this fraction of the mean force applied to the moving "
+         "blocks (UDEC's ratio; 1e-5 is customary), instead of the kinetic-energy test of "
+         "`rest_tolerance` (docs/reference/explicit-step.md, \"Rest by the unbalanced force\"); in "
+         "(0, 1); with `rest_tolerance` and `integrator: explicit` or `automatic`"));
+  keys.push_back(settle_integer("open_close_limit", "–", {1.0, false, 1000.0, false},
+      &Analysis::Settle::open_close_limit,
+      "the analysis's `open_close_limit`",
+      "open–close iterates before a step of the settling stage or a collapse stage is cut, "
+         "1–1000 (a dynamic stage of a static analysis needs more than the 8 of its static steps "
+         "where many contacts change at once; docs/reference/contacts.md, \"Contact solves\")"));
+  return keys;
+}
+
+}  // namespace
+
+std::vector<KeySpec>& analysis_keys() {
+  static std::vector<KeySpec> keys = declare_analysis_keys();
+  return keys;
+}
+
+}  // namespace rheodda::scene
