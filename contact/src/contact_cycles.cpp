@@ -148,13 +148,22 @@ void ContactSystem::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd
     const double slip = p.ti.dot(Di) + p.tj.dot(Dj);
     const double reach = p.reach0 + slip;  // stretch from the step's locking point
     const double N = p.pn * dn;
+    // The normal and shear rates, for the dashpots' work and their forces alike.
+    double vn = 0.0, vt = 0.0;
+    bool rates = false;
+    const auto find_rates = [&] {
+      const auto Vi = V.segment<6>(6 * p.i);
+      const auto Vj = V.segment<6>(6 * p.j);
+      vn = p.ni.dot(Vi) + p.nj.dot(Vj);
+      vt = p.ti.dot(Vi) + p.tj.dot(Vj);
+      rates = true;
+    };
     if (y.nd != 0.0 || y.ts != 0.0) {
       // The dashpot forces of the last cycle did work over the drift just made, h V (the
       // scheme's discrete work; their power at the lagged rate would overstate it for the
       // modes near the stable cycle, whose rates change sign from cycle to cycle).
-      const auto Vi = V.segment<6>(6 * p.i);
-      const auto Vj = V.segment<6>(6 * p.j);
-      y.damped += h_work * (y.nd * (p.ni.dot(Vi) + p.nj.dot(Vj)) + y.ts * (p.ti.dot(Vi) + p.tj.dot(Vj)));
+      find_rates();
+      y.damped += h_work * (y.nd * vn + y.ts * vt);
       y.nd = y.ts = 0.0;
     }
     if (y.state == ContactState::open) {
@@ -175,11 +184,10 @@ void ContactSystem::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd
     // carries no more shear than its strength, whatever the rate (else a locked contact's
     // dashpot holds a block at the speed it slides with).
     double Nd = 0.0, Ts = 0.0;
-    if (dashpots) {
-      const auto Vi = V.segment<6>(6 * p.i);
-      const auto Vj = V.segment<6>(6 * p.j);
-      if (p.cn > 0.0) Nd = p.cn * (p.ni.dot(Vi) + p.nj.dot(Vj));
-      if (p.cs > 0.0) Ts = p.cs * (p.ti.dot(Vi) + p.tj.dot(Vj));
+    if (dashpots && (p.cn > 0.0 || p.cs > 0.0)) {
+      if (!rates) find_rates();
+      if (p.cn > 0.0) Nd = p.cn * vn;
+      if (p.cs > 0.0) Ts = p.cs * vt;
     }
     double T = p.ks * (reach - y.shift) + Ts;
     const double limit = y.intact ? strength(N, p.tan_phi, p.cohesion) : strength(N, p.tan_phi_residual, p.cohesion_residual);
