@@ -91,15 +91,15 @@ void ContactSystem::begin_cycles(std::span<const BlockView> blocks, int threads)
       y.shift = p.reach0 - r.slide_direction * f / p.ks;
     }
   }
-  // The contacts of each block in the order of the records: the gather's fixed order.
+  // The contacts of each block in the order of the records (vertex side before edge side
+  // where a contact has a block on both): the gather's fixed order.
   a.block_first.assign(static_cast<std::size_t>(block_count) + 1, 0);
   for (const Contact& r : work_) ++a.block_first[r.key.vblock + 1], ++a.block_first[r.key.eblock + 1];
   for (int b = 0; b < block_count; ++b) a.block_first[b + 1] += a.block_first[b];
-  a.block_entries.resize(2 * n);
   a.next.assign(a.block_first.begin(), a.block_first.end() - 1);
   for (std::size_t c = 0; c < n; ++c) {
-    a.block_entries[a.next[work_[c].key.vblock]++] = static_cast<int>(2 * c);
-    a.block_entries[a.next[work_[c].key.eblock]++] = static_cast<int>(2 * c + 1);
+    a.springs[c].slot_i = a.next[work_[c].key.vblock]++;
+    a.springs[c].slot_j = a.next[work_[c].key.eblock]++;
   }
 }
 
@@ -140,8 +140,8 @@ void ContactSystem::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd
   for (std::ptrdiff_t k = 0; k < n; ++k) {
     const cycles::Spring& p = springs[k];
     cycles::State& y = states[k];
-    Vec6& fi = force[2 * k];
-    Vec6& fj = force[2 * k + 1];
+    Vec6& fi = force[p.slot_i];
+    Vec6& fj = force[p.slot_j];
     const auto Di = D.segment<6>(6 * p.i);
     const auto Dj = D.segment<6>(6 * p.j);
     const double dn = p.dn0 + p.ni.dot(Di) + p.nj.dot(Dj);
@@ -207,13 +207,12 @@ void ContactSystem::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd
     fj.noalias() = (N + Nd) * p.nj + T * p.tj;
   }
   const int* first = cycles_.block_first.data();
-  const int* entries = cycles_.block_entries.data();
   const auto nb = static_cast<std::ptrdiff_t>(cycles_.block_first.size()) - 1;
   f.resize(6 * nb);
 #pragma omp parallel for schedule(static) num_threads(threads) if (nb >= kParallelBlocks)
   for (std::ptrdiff_t b = 0; b < nb; ++b) {
     Vec6 sum = Vec6::Zero();
-    for (int e = first[b]; e < first[b + 1]; ++e) sum += force[entries[e]];
+    for (int e = first[b]; e < first[b + 1]; ++e) sum += force[e];
     f.segment<6>(6 * b) = sum;
   }
 }

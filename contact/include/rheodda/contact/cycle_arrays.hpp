@@ -30,6 +30,7 @@ struct Spring {
   double tan_phi = 0.0, tan_phi_residual = 0.0;    ///< [-]
   double cn = 0.0, cs = 0.0;  ///< normal and shear dashpots [force time / length^2 per unit thickness]
   int i = 0, j = 0;           ///< vertex block, edge block
+  int slot_i = 0, slot_j = 0; ///< where its forces on them go in Arrays::force
 };
 
 /// One contact's state, changed cycle by cycle.
@@ -50,9 +51,11 @@ struct Arrays {
   /// where the other block does not move (held: infinite mass), so the spring acts on one
   /// block alone.
   std::vector<double> bounds;
-  std::vector<Vec6> force;  ///< per contact: force on its vertex block, then its edge block
-  /// CSR: entries 2c (vertex side) / 2c+1 (edge side) by block, in the records' order.
-  std::vector<int> block_first, block_entries, next;
+  /// The contacts' forces on their blocks, by block (CSR: block b's from block_first[b] to
+  /// block_first[b + 1]) and within a block in the order of the records: the gather reads
+  /// them in a row, in a fixed order.
+  std::vector<Vec6> force;
+  std::vector<int> block_first, next;
 };
 
 }  // namespace cycles
