@@ -35,16 +35,97 @@ namespace {
 
 int thread_count(int requested) { return requested > 0 ? requested : omp_get_max_threads(); }
 
-/// Fewer contacts (blocks) than this are worked on one thread: a parallel region per cycle
-/// costs more than their forces, and far more when the machine is loaded and a thread
-/// waits for a core at every cycle. The results are the same bits either way.
+/// Fewer contacts than this are worked on one thread: a parallel region per cycle costs
+/// more than their forces, and far more when the machine is loaded and a thread waits for a
+/// core at every cycle. The results are the same bits either way.
 constexpr std::ptrdiff_t kParallelContacts = 64;
-constexpr std::ptrdiff_t kParallelBlocks = 16;
+
+/// Contacts worked between two looks for the blocks they complete (cycle_forces).
+constexpr std::ptrdiff_t kGatherChunk = 256;
 
 /// Mohr-Coulomb strength (strength.hpp) with the cohesion times length taken once per step.
 inline double strength(double normal_force, double tan_phi, double cohesion_length) {
   return std::max(normal_force, 0.0) * tan_phi + cohesion_length;
 }
+
+/// One contact at one cycle (the file's head): its state, and its forces on its blocks
+/// into their slots of `force`.
+inline void cycle_contact(const cycles::Spring& p, cycles::State& y, Vec6* force, const Eigen::VectorXd& D,
+                          const Eigen::VectorXd& V, double h_work, bool dashpots) {
+  Vec6& fi = force[p.slot_i];
+  Vec6& fj = force[p.slot_j];
+  const auto Di = D.segment<6>(6 * p.i);
+  const auto Dj = D.segment<6>(6 * p.j);
+  const double dn = p.dn0 + p.ni.dot(Di) + p.nj.dot(Dj);
+  const double slip = p.ti.dot(Di) + p.tj.dot(Dj);
+  const double reach = p.reach0 + slip;  // stretch from the step's locking point
+  const double N = p.pn * dn;
+  // The normal and shear rates, for the dashpots' work and their forces alike.
+  double vn = 0.0, vt = 0.0;
+  bool rates = false;
+  const auto find_rates = [&] {
+    const auto Vi = V.segment<6>(6 * p.i);
+    const auto Vj = V.segment<6>(6 * p.j);
+    vn = p.ni.dot(Vi) + p.nj.dot(Vj);
+    vt = p.ti.dot(Vi) + p.tj.dot(Vj);
+    rates = true;
+  };
+  if (y.nd != 0.0 || y.ts != 0.0) {
+    // The dashpot forces of the last cycle did work over the drift just made, h V (the
+    // scheme's discrete work; their power at the lagged rate would overstate it for the
+    // modes near the stable cycle, whose rates change sign from cycle to cycle).
+    find_rates();
+    y.damped += h_work * (y.nd * vn + y.ts * vt);
+    y.nd = y.ts = 0.0;
+  }
+  if (y.state == ContactState::open) {
+    if (!(N > 0.0)) {
+      fi.setZero(), fj.setZero();
+      return;
+    }
+    y.state = ContactState::locked;  // touches: the shear spring locks here, unstretched
+    y.shift = reach;
+  } else if (N < -(y.intact ? p.tension : 0.0)) {
+    y.state = ContactState::open;
+    y.intact = false;
+    fi.setZero(), fj.setZero();
+    return;
+  }
+  // Dashpots on the rates (JointSet::restitution, or explicit_damping), dynamic
+  // steps only. The shear dashpot counts in the Mohr-Coulomb check with the spring: a joint
+  // carries no more shear than its strength, whatever the rate (else a locked contact's
+  // dashpot holds a block at the speed it slides with).
+  double Nd = 0.0, Ts = 0.0;
+  if (dashpots && (p.cn > 0.0 || p.cs > 0.0)) {
+    if (!rates) find_rates();
+    if (p.cn > 0.0) Nd = p.cn * vn;
+    if (p.cs > 0.0) Ts = p.cs * vt;
+  }
+  double T = p.ks * (reach - y.shift) + Ts;
+  const double limit = y.intact ? strength(N, p.tan_phi, p.cohesion) : strength(N, p.tan_phi_residual, p.cohesion_residual);
+  if (std::abs(T) > limit) {
+    // Slides: the spring, dragged along, carries the (residual) strength.
+    y.intact = false;
+    y.direction = T >= 0.0 ? 1 : -1;
+    T = y.direction * strength(N, p.tan_phi_residual, p.cohesion_residual);
+    y.shift = reach - T / p.ks;
+    y.state = ContactState::sliding;
+    y.nd = Nd;  // the shear force is the strength: friction's, not a dashpot's
+  } else {
+    y.state = ContactState::locked;
+    y.nd = Nd, y.ts = Ts;
+  }
+  fi.noalias() = (N + Nd) * p.ni + T * p.ti;
+  fj.noalias() = (N + Nd) * p.nj + T * p.tj;
+}
+
+/// Block b's contact forces summed in the fixed order of its slots.
+inline void gather_block(const int* first, const Vec6* force, std::ptrdiff_t b, Eigen::VectorXd& f) {
+  Vec6 sum = Vec6::Zero();
+  for (int e = first[b]; e < first[b + 1]; ++e) sum += force[e];
+  f.segment<6>(6 * b) = sum;
+}
+
 
 }  // namespace
 
@@ -101,6 +182,18 @@ void ContactSystem::begin_cycles(std::span<const BlockView> blocks, int threads)
     a.springs[c].slot_i = a.next[work_[c].key.vblock]++;
     a.springs[c].slot_j = a.next[work_[c].key.eblock]++;
   }
+  // The first and last contact on each block, and the blocks by their last contact: the
+  // order in which the cycles can gather them.
+  a.block_first_contact.assign(static_cast<std::size_t>(block_count), static_cast<int>(n));
+  a.block_last_contact.assign(static_cast<std::size_t>(block_count), -1);
+  for (std::size_t c = n; c-- > 0;)
+    for (const int b : {work_[c].key.vblock, work_[c].key.eblock}) a.block_first_contact[b] = static_cast<int>(c);
+  for (std::size_t c = 0; c < n; ++c)
+    for (const int b : {work_[c].key.vblock, work_[c].key.eblock}) a.block_last_contact[b] = static_cast<int>(c);
+  a.completion.resize(static_cast<std::size_t>(block_count));
+  for (int b = 0; b < block_count; ++b) a.completion[b] = b;
+  std::stable_sort(a.completion.begin(), a.completion.end(),
+                   [&](int x, int y) { return a.block_last_contact[x] < a.block_last_contact[y]; });
 }
 
 void ContactSystem::cycle_stiffness(std::vector<Mat6>& K) const {
@@ -131,89 +224,47 @@ void ContactSystem::cycle_damping(double tau, std::vector<Mat6>& C) {
 void ContactSystem::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double h_work,
                                  Eigen::VectorXd& f) {
   const auto n = static_cast<std::ptrdiff_t>(cycles_.springs.size());
+  const auto nb = static_cast<std::ptrdiff_t>(cycles_.block_first.size()) - 1;
   const bool dashpots = step_dynamic_;
   const int threads = thread_count(cycle_threads_);
   const cycles::Spring* springs = cycles_.springs.data();
   cycles::State* states = cycles_.states.data();
   Vec6* force = cycles_.force.data();
-#pragma omp parallel for schedule(static) num_threads(threads) if (n >= kParallelContacts)
-  for (std::ptrdiff_t k = 0; k < n; ++k) {
-    const cycles::Spring& p = springs[k];
-    cycles::State& y = states[k];
-    Vec6& fi = force[p.slot_i];
-    Vec6& fj = force[p.slot_j];
-    const auto Di = D.segment<6>(6 * p.i);
-    const auto Dj = D.segment<6>(6 * p.j);
-    const double dn = p.dn0 + p.ni.dot(Di) + p.nj.dot(Dj);
-    const double slip = p.ti.dot(Di) + p.tj.dot(Dj);
-    const double reach = p.reach0 + slip;  // stretch from the step's locking point
-    const double N = p.pn * dn;
-    // The normal and shear rates, for the dashpots' work and their forces alike.
-    double vn = 0.0, vt = 0.0;
-    bool rates = false;
-    const auto find_rates = [&] {
-      const auto Vi = V.segment<6>(6 * p.i);
-      const auto Vj = V.segment<6>(6 * p.j);
-      vn = p.ni.dot(Vi) + p.nj.dot(Vj);
-      vt = p.ti.dot(Vi) + p.tj.dot(Vj);
-      rates = true;
-    };
-    if (y.nd != 0.0 || y.ts != 0.0) {
-      // The dashpot forces of the last cycle did work over the drift just made, h V (the
-      // scheme's discrete work; their power at the lagged rate would overstate it for the
-      // modes near the stable cycle, whose rates change sign from cycle to cycle).
-      find_rates();
-      y.damped += h_work * (y.nd * vn + y.ts * vt);
-      y.nd = y.ts = 0.0;
-    }
-    if (y.state == ContactState::open) {
-      if (!(N > 0.0)) {
-        fi.setZero(), fj.setZero();
-        continue;
-      }
-      y.state = ContactState::locked;  // touches: the shear spring locks here, unstretched
-      y.shift = reach;
-    } else if (N < -(y.intact ? p.tension : 0.0)) {
-      y.state = ContactState::open;
-      y.intact = false;
-      fi.setZero(), fj.setZero();
-      continue;
-    }
-    // Dashpots on the rates (JointSet::restitution, or explicit_damping), dynamic
-    // steps only. The shear dashpot counts in the Mohr-Coulomb check with the spring: a joint
-    // carries no more shear than its strength, whatever the rate (else a locked contact's
-    // dashpot holds a block at the speed it slides with).
-    double Nd = 0.0, Ts = 0.0;
-    if (dashpots && (p.cn > 0.0 || p.cs > 0.0)) {
-      if (!rates) find_rates();
-      if (p.cn > 0.0) Nd = p.cn * vn;
-      if (p.cs > 0.0) Ts = p.cs * vt;
-    }
-    double T = p.ks * (reach - y.shift) + Ts;
-    const double limit = y.intact ? strength(N, p.tan_phi, p.cohesion) : strength(N, p.tan_phi_residual, p.cohesion_residual);
-    if (std::abs(T) > limit) {
-      // Slides: the spring, dragged along, carries the (residual) strength.
-      y.intact = false;
-      y.direction = T >= 0.0 ? 1 : -1;
-      T = y.direction * strength(N, p.tan_phi_residual, p.cohesion_residual);
-      y.shift = reach - T / p.ks;
-      y.state = ContactState::sliding;
-      y.nd = Nd;  // the shear force is the strength: friction's, not a dashpot's
-    } else {
-      y.state = ContactState::locked;
-      y.nd = Nd, y.ts = Ts;
-    }
-    fi.noalias() = (N + Nd) * p.ni + T * p.ti;
-    fj.noalias() = (N + Nd) * p.nj + T * p.tj;
-  }
   const int* first = cycles_.block_first.data();
-  const auto nb = static_cast<std::ptrdiff_t>(cycles_.block_first.size()) - 1;
+  const int* first_contact = cycles_.block_first_contact.data();
+  const int* last_contact = cycles_.block_last_contact.data();
+  const int* done = cycles_.completion.data();
   f.resize(6 * nb);
-#pragma omp parallel for schedule(static) num_threads(threads) if (nb >= kParallelBlocks)
-  for (std::ptrdiff_t b = 0; b < nb; ++b) {
-    Vec6 sum = Vec6::Zero();
-    for (int e = first[b]; e < first[b + 1]; ++e) sum += force[e];
-    f.segment<6>(6 * b) = sum;
+  // Each thread works a contiguous range of the contacts, in chunks, and gathers a block as
+  // soon as the last contact on it is done, while its slots are still in the cache; a
+  // block whose contacts lie in the ranges of two threads is gathered after them all. Each
+  // block's sum is over its slots in their fixed order whoever makes it: the same bits
+  // whatever the threads.
+#pragma omp parallel num_threads(threads) if (n >= kParallelContacts)
+  {
+    const int nt = omp_get_num_threads(), t = omp_get_thread_num();
+    const std::ptrdiff_t lo = n * t / nt, hi = n * (t + 1) / nt;
+    // The blocks whose last contact is in [lo, hi), by their last contact.
+    std::ptrdiff_t next = std::lower_bound(done, done + nb, lo, [&](int b, std::ptrdiff_t c) {
+                            return last_contact[b] < c;
+                          }) - done;
+    for (std::ptrdiff_t c0 = lo; c0 < hi; c0 += kGatherChunk) {
+      const std::ptrdiff_t c1 = std::min(hi, c0 + kGatherChunk);
+      for (std::ptrdiff_t k = c0; k < c1; ++k) cycle_contact(springs[k], states[k], force, D, V, h_work, dashpots);
+      for (; next < nb && last_contact[done[next]] < c1; ++next)
+        if (first_contact[done[next]] >= lo) gather_block(first, force, done[next], f);
+    }
+#pragma omp barrier
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t b = 0; b < nb; ++b) {
+      // A block with no contact, or one whose contacts span two threads' ranges.
+      bool spans = last_contact[b] < 0;
+      for (int u = 1; u < nt && !spans; ++u) {
+        const std::ptrdiff_t split = n * u / nt;
+        spans = first_contact[b] < split && last_contact[b] >= split;
+      }
+      if (spans) gather_block(first, force, b, f);
+    }
   }
 }
 

@@ -56,6 +56,9 @@ struct Arrays {
   /// them in a row, in a fixed order.
   std::vector<Vec6> force;
   std::vector<int> block_first, next;
+  /// Per block the first and the last contact on it (records' order; none: the contact
+  /// count and -1), and the blocks by their last contact (completion order).
+  std::vector<int> block_first_contact, block_last_contact, completion;
 };
 
 }  // namespace cycles
