@@ -35,11 +35,97 @@ namespace {
 
 int thread_count(int requested) { return requested > 0 ? requested : omp_get_max_threads(); }
 
-/// Fewer contacts (blocks) than this are worked on one thread: a parallel region per cycle
-/// costs more than their forces, and far more when the machine is loaded and a thread
-/// waits for a core at every cycle. The results are the same bits either way.
+/// Fewer contacts than this are worked on one thread: a parallel region per cycle costs
+/// more than their forces, and far more when the machine is loaded and a thread waits for a
+/// core at every cycle. The results are the same bits either way.
 constexpr std::ptrdiff_t kParallelContacts = 64;
-constexpr std::ptrdiff_t kParallelBlocks = 16;
+
+/// Contacts worked between two looks for the blocks they complete (cycle_forces).
+constexpr std::ptrdiff_t kGatherChunk = 256;
+
+/// Mohr-Coulomb strength (strength.hpp) with the cohesion times length taken once per step.
+inline double strength(double normal_force, double tan_phi, double cohesion_length) {
+  return std::max(normal_force, 0.0) * tan_phi + cohesion_length;
+}
+
+/// One contact at one cycle (the file's head): its state, and its forces on its blocks
+/// into their slots of `force`.
+inline void cycle_contact(const cycles::Spring& p, cycles::State& y, Vec6* force, const Eigen::VectorXd& D,
+                          const Eigen::VectorXd& V, double h_work, bool dashpots) {
+  Vec6& fi = force[p.slot_i];
+  Vec6& fj = force[p.slot_j];
+  const auto Di = D.segment<6>(6 * p.i);
+  const auto Dj = D.segment<6>(6 * p.j);
+  const double dn = p.dn0 + p.ni.dot(Di) + p.nj.dot(Dj);
+  const double slip = p.ti.dot(Di) + p.tj.dot(Dj);
+  const double reach = p.reach0 + slip;  // stretch from the step's locking point
+  const double N = p.pn * dn;
+  // The normal and shear rates, for the dashpots' work and their forces alike.
+  double vn = 0.0, vt = 0.0;
+  bool rates = false;
+  const auto find_rates = [&] {
+    const auto Vi = V.segment<6>(6 * p.i);
+    const auto Vj = V.segment<6>(6 * p.j);
+    vn = p.ni.dot(Vi) + p.nj.dot(Vj);
+    vt = p.ti.dot(Vi) + p.tj.dot(Vj);
+    rates = true;
+  };
+  if (y.nd != 0.0 || y.ts != 0.0) {
+    // The dashpot forces of the last cycle did work over the drift just made, h V (the
+    // scheme's discrete work; their power at the lagged rate would overstate it for the
+    // modes near the stable cycle, whose rates change sign from cycle to cycle).
+    find_rates();
+    y.damped += h_work * (y.nd * vn + y.ts * vt);
+    y.nd = y.ts = 0.0;
+  }
+  if (y.state == ContactState::open) {
+    if (!(N > 0.0)) {
+      fi.setZero(), fj.setZero();
+      return;
+    }
+    y.state = ContactState::locked;  // touches: the shear spring locks here, unstretched
+    y.shift = reach;
+  } else if (N < -(y.intact ? p.tension : 0.0)) {
+    y.state = ContactState::open;
+    y.intact = false;
+    fi.setZero(), fj.setZero();
+    return;
+  }
+  // Dashpots on the rates (JointSet::restitution, or explicit_damping), dynamic
+  // steps only. The shear dashpot counts in the Mohr-Coulomb check with the spring: a joint
+  // carries no more shear than its strength, whatever the rate (else a locked contact's
+  // dashpot holds a block at the speed it slides with).
+  double Nd = 0.0, Ts = 0.0;
+  if (dashpots && (p.cn > 0.0 || p.cs > 0.0)) {
+    if (!rates) find_rates();
+    if (p.cn > 0.0) Nd = p.cn * vn;
+    if (p.cs > 0.0) Ts = p.cs * vt;
+  }
+  double T = p.ks * (reach - y.shift) + Ts;
+  const double limit = y.intact ? strength(N, p.tan_phi, p.cohesion) : strength(N, p.tan_phi_residual, p.cohesion_residual);
+  if (std::abs(T) > limit) {
+    // Slides: the spring, dragged along, carries the (residual) strength.
+    y.intact = false;
+    y.direction = T >= 0.0 ? 1 : -1;
+    T = y.direction * strength(N, p.tan_phi_residual, p.cohesion_residual);
+    y.shift = reach - T / p.ks;
+    y.state = ContactState::sliding;
+    y.nd = Nd;  // the shear force is the strength: friction's, not a dashpot's
+  } else {
+    y.state = ContactState::locked;
+    y.nd = Nd, y.ts = Ts;
+  }
+  fi.noalias() = (N + Nd) * p.ni + T * p.ti;
+  fj.noalias() = (N + Nd) * p.nj + T * p.tj;
+}
+
+/// Block b's contact forces summed in the fixed order of its slots.
+inline void gather_block(const int* first, const Vec6* force, std::ptrdiff_t b, Eigen::VectorXd& f) {
+  Vec6 sum = Vec6::Zero();
+  for (int e = first[b]; e < first[b + 1]; ++e) sum += force[e];
+  f.segment<6>(6 * b) = sum;
+}
+
 
 }  // namespace
 
@@ -48,151 +134,137 @@ void ContactSystem::begin_cycles(std::span<const BlockView> blocks, int threads)
   cycle_threads_ = threads;
   cycled_ = true;
   const std::size_t n = work_.size();
-  cycles_.resize(n);
-  cycle_force_.assign(2 * n, Vec6::Zero());
+  cycles::Arrays& a = cycles_;
+  a.springs.resize(n);
+  a.states.resize(n);
+  a.bounds.resize(2 * n);
+  a.force.assign(2 * n, Vec6::Zero());
   for (std::size_t c = 0; c < n; ++c) {
     const Contact& r = work_[c];
     const Hot& h = hot_[c];
     const JointSet& js = joint_sets_[r.joint_set];
-    Cycle& y = cycles_[c];
+    cycles::Spring& p = a.springs[c];
+    p.ni = h.ni, p.nj = h.nj, p.ti = h.ti, p.tj = h.tj;
+    p.dn0 = h.dn0;
+    p.reach0 = h.dt0 + seams_[c].locking_shift;
+    p.pn = h.pn;
+    p.ks = shear_stiffness(c);
+    p.tension = js.tensile_strength * r.length;
+    p.tan_phi = tan_deg(js.friction_angle_of(true));
+    p.tan_phi_residual = tan_deg(js.friction_angle_of(false));
+    p.cohesion = js.cohesion_of(true) * r.length;
+    p.cohesion_residual = js.cohesion_of(false) * r.length;
+    p.cn = p.cs = 0.0;
+    p.i = r.key.vblock, p.j = r.key.eblock;
+    cycles::State& y = a.states[c];
     y.state = r.state;
-    y.direction = r.slide_direction;
+    y.direction = static_cast<std::int8_t>(r.slide_direction);
     y.intact = r.intact;
-    y.tan_phi = tan_deg(js.friction_angle_of(true));
-    y.tan_phi_residual = tan_deg(js.friction_angle_of(false));
-    y.cohesion = js.cohesion_of(true);
-    y.cohesion_residual = js.cohesion_of(false);
     y.shift = 0.0;
-    y.cn = y.cs = 0.0;
     y.damped = y.nd = y.ts = 0.0;
-    y.bound_i = std::isfinite(blocks[r.key.eblock].mass) ? 2.0 : 1.0;
-    y.bound_j = std::isfinite(blocks[r.key.vblock].mass) ? 2.0 : 1.0;
+    a.bounds[2 * c] = std::isfinite(blocks[r.key.eblock].mass) ? 2.0 : 1.0;
+    a.bounds[2 * c + 1] = std::isfinite(blocks[r.key.vblock].mass) ? 2.0 : 1.0;
     if (r.state == ContactState::sliding) {
       // A contact sliding at the step start carries its friction from the first cycle:
       // its spring starts stretched by the friction force over k (the elastic part of
       // an elastic-plastic joint's shear displacement).
       const double f = mohr_coulomb_strength(h.normal_force, h.tan_phi, h.cohesion, r.length);
-      y.shift = h.dt0 + seams_[c].locking_shift - r.slide_direction * f / shear_stiffness(c);
+      y.shift = p.reach0 - r.slide_direction * f / p.ks;
     }
   }
-  // The contacts of each block in the order of the records: the gather's fixed order.
-  block_first_.assign(static_cast<std::size_t>(block_count) + 1, 0);
-  for (const Contact& r : work_) ++block_first_[r.key.vblock + 1], ++block_first_[r.key.eblock + 1];
-  for (int b = 0; b < block_count; ++b) block_first_[b + 1] += block_first_[b];
-  block_entries_.resize(2 * n);
-  std::vector<int> next(block_first_.begin(), block_first_.end() - 1);
+  // The contacts of each block in the order of the records (vertex side before edge side
+  // where a contact has a block on both): the gather's fixed order.
+  a.block_first.assign(static_cast<std::size_t>(block_count) + 1, 0);
+  for (const Contact& r : work_) ++a.block_first[r.key.vblock + 1], ++a.block_first[r.key.eblock + 1];
+  for (int b = 0; b < block_count; ++b) a.block_first[b + 1] += a.block_first[b];
+  a.next.assign(a.block_first.begin(), a.block_first.end() - 1);
   for (std::size_t c = 0; c < n; ++c) {
-    block_entries_[next[work_[c].key.vblock]++] = static_cast<int>(2 * c);
-    block_entries_[next[work_[c].key.eblock]++] = static_cast<int>(2 * c + 1);
+    a.springs[c].slot_i = a.next[work_[c].key.vblock]++;
+    a.springs[c].slot_j = a.next[work_[c].key.eblock]++;
   }
+  // The first and last contact on each block, and the blocks by their last contact: the
+  // order in which the cycles can gather them.
+  a.block_first_contact.assign(static_cast<std::size_t>(block_count), static_cast<int>(n));
+  a.block_last_contact.assign(static_cast<std::size_t>(block_count), -1);
+  for (std::size_t c = n; c-- > 0;)
+    for (const int b : {work_[c].key.vblock, work_[c].key.eblock}) a.block_first_contact[b] = static_cast<int>(c);
+  for (std::size_t c = 0; c < n; ++c)
+    for (const int b : {work_[c].key.vblock, work_[c].key.eblock}) a.block_last_contact[b] = static_cast<int>(c);
+  a.completion.resize(static_cast<std::size_t>(block_count));
+  for (int b = 0; b < block_count; ++b) a.completion[b] = b;
+  std::stable_sort(a.completion.begin(), a.completion.end(),
+                   [&](int x, int y) { return a.block_last_contact[x] < a.block_last_contact[y]; });
 }
 
 void ContactSystem::cycle_stiffness(std::vector<Mat6>& K) const {
-  for (std::size_t c = 0; c < work_.size(); ++c) {
-    const Contact& r = work_[c];
-    const Hot& h = hot_[c];
-    const Cycle& y = cycles_[c];
-    const double ps = shear_stiffness(c);
-    K[r.key.vblock].noalias() += y.bound_i * (h.pn * h.ni * h.ni.transpose() + ps * h.ti * h.ti.transpose());
-    K[r.key.eblock].noalias() += y.bound_j * (h.pn * h.nj * h.nj.transpose() + ps * h.tj * h.tj.transpose());
+  for (std::size_t c = 0; c < cycles_.springs.size(); ++c) {
+    const cycles::Spring& p = cycles_.springs[c];
+    const double bi = cycles_.bounds[2 * c], bj = cycles_.bounds[2 * c + 1];
+    K[p.i].noalias() += bi * (p.pn * p.ni * p.ni.transpose() + p.ks * p.ti * p.ti.transpose());
+    K[p.j].noalias() += bj * (p.pn * p.nj * p.nj.transpose() + p.ks * p.tj * p.tj.transpose());
   }
 }
 
 void ContactSystem::cycle_damping(double tau, std::vector<Mat6>& C) {
-  for (std::size_t c = 0; c < work_.size(); ++c) {
-    const Contact& r = work_[c];
-    const Hot& h = hot_[c];
-    Cycle& y = cycles_[c];
-    if (joint_sets_[r.joint_set].restitution) {
-      y.cn = h.cn, y.cs = h.cs;
+  for (std::size_t c = 0; c < cycles_.springs.size(); ++c) {
+    cycles::Spring& p = cycles_.springs[c];
+    if (joint_sets_[work_[c].joint_set].restitution) {
+      p.cn = hot_[c].cn, p.cs = hot_[c].cs;
     } else {
-      y.cn = tau * h.pn;
-      y.cs = tau * shear_stiffness(c);
+      p.cn = tau * p.pn;
+      p.cs = tau * p.ks;
     }
-    if (!step_dynamic_ || (y.cn == 0.0 && y.cs == 0.0)) continue;
-    C[r.key.vblock].noalias() += y.bound_i * (y.cn * h.ni * h.ni.transpose() + y.cs * h.ti * h.ti.transpose());
-    C[r.key.eblock].noalias() += y.bound_j * (y.cn * h.nj * h.nj.transpose() + y.cs * h.tj * h.tj.transpose());
+    if (!step_dynamic_ || (p.cn == 0.0 && p.cs == 0.0)) continue;
+    const double bi = cycles_.bounds[2 * c], bj = cycles_.bounds[2 * c + 1];
+    C[p.i].noalias() += bi * (p.cn * p.ni * p.ni.transpose() + p.cs * p.ti * p.ti.transpose());
+    C[p.j].noalias() += bj * (p.cn * p.nj * p.nj.transpose() + p.cs * p.tj * p.tj.transpose());
   }
 }
 
 void ContactSystem::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double h_work,
                                  Eigen::VectorXd& f) {
-  const auto n = static_cast<std::ptrdiff_t>(work_.size());
+  const auto n = static_cast<std::ptrdiff_t>(cycles_.springs.size());
+  const auto nb = static_cast<std::ptrdiff_t>(cycles_.block_first.size()) - 1;
   const bool dashpots = step_dynamic_;
   const int threads = thread_count(cycle_threads_);
-#pragma omp parallel for schedule(static) num_threads(threads) if (n >= kParallelContacts)
-  for (std::ptrdiff_t k = 0; k < n; ++k) {
-    const auto c = static_cast<std::size_t>(k);
-    const Contact& r = work_[c];
-    const Hot& h = hot_[c];
-    Cycle& y = cycles_[c];
-    Vec6& fi = cycle_force_[2 * c];
-    Vec6& fj = cycle_force_[2 * c + 1];
-    const auto Di = D.segment<6>(6 * r.key.vblock);
-    const auto Dj = D.segment<6>(6 * r.key.eblock);
-    const double dn = h.dn0 + h.ni.dot(Di) + h.nj.dot(Dj);
-    const double slip = h.ti.dot(Di) + h.tj.dot(Dj);
-    const double reach = h.dt0 + seams_[c].locking_shift + slip;  // stretch from the step's locking point
-    const double N = h.pn * dn;
-    if (y.nd != 0.0 || y.ts != 0.0) {
-      // The dashpot forces of the last cycle did work over the drift just made, h V (the
-      // scheme's discrete work; their power at the lagged rate would overstate it for the
-      // modes near the stable cycle, whose rates change sign from cycle to cycle).
-      const auto Vi = V.segment<6>(6 * r.key.vblock);
-      const auto Vj = V.segment<6>(6 * r.key.eblock);
-      y.damped += h_work * (y.nd * (h.ni.dot(Vi) + h.nj.dot(Vj)) + y.ts * (h.ti.dot(Vi) + h.tj.dot(Vj)));
-      y.nd = y.ts = 0.0;
-    }
-    if (y.state == ContactState::open) {
-      if (!(N > 0.0)) {
-        fi.setZero(), fj.setZero();
-        continue;
-      }
-      y.state = ContactState::locked;  // touches: the shear spring locks here, unstretched
-      y.shift = reach;
-    } else if (N < -(y.intact ? joint_sets_[r.joint_set].tensile_strength * r.length : 0.0)) {
-      y.state = ContactState::open;
-      y.intact = false;
-      fi.setZero(), fj.setZero();
-      continue;
-    }
-    // Dashpots on the rates (JointSet::restitution, or explicit_damping), dynamic
-    // steps only. The shear dashpot counts in the Mohr-Coulomb check with the spring: a joint
-    // carries no more shear than its strength, whatever the rate (else a locked contact's
-    // dashpot holds a block at the speed it slides with).
-    double Nd = 0.0, Ts = 0.0;
-    if (dashpots) {
-      const auto Vi = V.segment<6>(6 * r.key.vblock);
-      const auto Vj = V.segment<6>(6 * r.key.eblock);
-      if (y.cn > 0.0) Nd = y.cn * (h.ni.dot(Vi) + h.nj.dot(Vj));
-      if (y.cs > 0.0) Ts = y.cs * (h.ti.dot(Vi) + h.tj.dot(Vj));
-    }
-    const double ks = shear_stiffness(c);
-    double T = ks * (reach - y.shift) + Ts;
-    const double limit = mohr_coulomb_strength(N, y.intact ? y.tan_phi : y.tan_phi_residual,
-                                  y.intact ? y.cohesion : y.cohesion_residual, r.length);
-    if (std::abs(T) > limit) {
-      // Slides: the spring, dragged along, carries the (residual) strength.
-      y.intact = false;
-      y.direction = T >= 0.0 ? 1 : -1;
-      T = y.direction * mohr_coulomb_strength(N, y.tan_phi_residual, y.cohesion_residual, r.length);
-      y.shift = reach - T / ks;
-      y.state = ContactState::sliding;
-      y.nd = Nd;  // the shear force is the strength: friction's, not a dashpot's
-    } else {
-      y.state = ContactState::locked;
-      y.nd = Nd, y.ts = Ts;
-    }
-    fi.noalias() = (N + Nd) * h.ni + T * h.ti;
-    fj.noalias() = (N + Nd) * h.nj + T * h.tj;
-  }
-  const auto nb = static_cast<std::ptrdiff_t>(block_first_.size()) - 1;
+  const cycles::Spring* springs = cycles_.springs.data();
+  cycles::State* states = cycles_.states.data();
+  Vec6* force = cycles_.force.data();
+  const int* first = cycles_.block_first.data();
+  const int* first_contact = cycles_.block_first_contact.data();
+  const int* last_contact = cycles_.block_last_contact.data();
+  const int* done = cycles_.completion.data();
   f.resize(6 * nb);
-#pragma omp parallel for schedule(static) num_threads(threads) if (nb >= kParallelBlocks)
-  for (std::ptrdiff_t b = 0; b < nb; ++b) {
-    Vec6 sum = Vec6::Zero();
-    for (int e = block_first_[b]; e < block_first_[b + 1]; ++e) sum += cycle_force_[block_entries_[e]];
-    f.segment<6>(6 * b) = sum;
+  // Each thread works a contiguous range of the contacts, in chunks, and gathers a block as
+  // soon as the last contact on it is done, while its slots are still in the cache; a
+  // block whose contacts lie in the ranges of two threads is gathered after them all. Each
+  // block's sum is over its slots in their fixed order whoever makes it: the same bits
+  // whatever the threads.
+#pragma omp parallel num_threads(threads) if (n >= kParallelContacts)
+  {
+    const int nt = omp_get_num_threads(), t = omp_get_thread_num();
+    const std::ptrdiff_t lo = n * t / nt, hi = n * (t + 1) / nt;
+    // The blocks whose last contact is in [lo, hi), by their last contact.
+    std::ptrdiff_t next = std::lower_bound(done, done + nb, lo, [&](int b, std::ptrdiff_t c) {
+                            return last_contact[b] < c;
+                          }) - done;
+    for (std::ptrdiff_t c0 = lo; c0 < hi; c0 += kGatherChunk) {
+      const std::ptrdiff_t c1 = std::min(hi, c0 + kGatherChunk);
+      for (std::ptrdiff_t k = c0; k < c1; ++k) cycle_contact(springs[k], states[k], force, D, V, h_work, dashpots);
+      for (; next < nb && last_contact[done[next]] < c1; ++next)
+        if (first_contact[done[next]] >= lo) gather_block(first, force, done[next], f);
+    }
+#pragma omp barrier
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t b = 0; b < nb; ++b) {
+      // A block with no contact, or one whose contacts span two threads' ranges.
+      bool spans = last_contact[b] < 0;
+      for (int u = 1; u < nt && !spans; ++u) {
+        const std::ptrdiff_t split = n * u / nt;
+        spans = first_contact[b] < split && last_contact[b] >= split;
+      }
+      if (spans) gather_block(first, force, b, f);
+    }
   }
 }
 
@@ -202,15 +274,17 @@ CheckResult ContactSystem::end_cycles(std::span<const BlockView> blocks, const E
   for (std::size_t c = 0; c < work_.size(); ++c) {
     Contact& r = work_[c];
     Hot& h = hot_[c];
-    const Cycle& y = cycles_[c];
+    const cycles::State& y = cycles_.states[c];
+    const cycles::Spring& p = cycles_.springs[c];
     const ContactState before = h.start_state;
     r.state = y.state;
     if (y.state == ContactState::sliding) r.slide_direction = y.direction;
     if (!y.intact && r.intact) {
       // No longer intact: end_step's friction and the next step take the residual values.
       r.intact = false;
-      h.tan_phi = y.tan_phi_residual;
-      h.cohesion = y.cohesion_residual;
+      const JointSet& js = joint_sets_[r.joint_set];
+      h.tan_phi = p.tan_phi_residual;
+      h.cohesion = js.cohesion_of(false);
       h.tensile_strength = 0.0;
     }
     if (y.state == ContactState::locked && y.shift != 0.0) {
@@ -238,7 +312,7 @@ CheckResult ContactSystem::end_cycles(std::span<const BlockView> blocks, const E
   force_scale_ = scale;
   step_max_penetration_ = res.max_penetration;
   cycle_damping_ = 0.0;  // in the records' order: the same sum whatever the threads
-  for (const Cycle& y : cycles_) cycle_damping_ += y.damped;
+  for (const cycles::State& y : cycles_.states) cycle_damping_ += y.damped;
   return res;
 }
 

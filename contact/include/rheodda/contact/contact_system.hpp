@@ -37,6 +37,7 @@
 
 #include "rheodda/contact/broad_phase.hpp"
 #include "rheodda/contact/contact_energy.hpp"
+#include "rheodda/contact/cycle_arrays.hpp"
 #include "rheodda/contact/detection.hpp"
 #include "rheodda/contact/joint_set.hpp"
 #include "rheodda/contact/kinematics.hpp"
@@ -463,25 +464,7 @@ class ContactSystem {
   std::unordered_map<std::uint64_t, double> retract_prev_tau_;  ///< prev_tau_ before the last end_step
   double retract_prev_dt_ = 0.0;                                ///< prev_dt_ before the last end_step [time]
   std::vector<ContactKey> previous_keys_;
-  /// One contact's state within the explicit cycles of a step (contact_cycles.cpp).
-  struct Cycle {
-    ContactState state = ContactState::open;
-    int direction = 0;     ///< slide direction (+1 / -1) while sliding
-    bool intact = true;    ///< cohesion and tensile strength still act
-    double shift = 0.0;    ///< how far the cycles dragged the locking point along the edge [length]
-    double tan_phi = 0.0;  ///< friction of the contact while intact / once not [-]
-    double tan_phi_residual = 0.0;
-    double cohesion = 0.0, cohesion_residual = 0.0;  ///< [stress]
-    double cn = 0.0, cs = 0.0;  ///< normal and shear dashpots [force time / length^2 per unit thickness]
-    /// Factors of the stiffness bound on its vertex and edge blocks: 2, or 1 where the other
-    /// block does not move (held: infinite mass), so the spring acts on one block alone.
-    double bound_i = 2.0, bound_j = 2.0;
-    double damped = 0.0;  ///< work its dashpots took over the cycles [force x length per unit thickness]
-    double nd = 0.0, ts = 0.0;  ///< its dashpots' forces at the last cycle [force per unit thickness]
-  };
-  std::vector<Cycle> cycles_;
-  std::vector<Vec6> cycle_force_;          ///< per contact: force on its vertex block, then its edge block
-  std::vector<int> block_first_, block_entries_;  ///< CSR: entries 2c (vertex side) / 2c+1 (edge side) by block
+  cycles::Arrays cycles_;  ///< the explicit cycles of the step (contact_cycles.cpp)
   int cycle_threads_ = 0;
   bool cycled_ = false;                  ///< the step being solved is taken in cycles (begin_cycles)
   double cycle_damping_ = 0.0;            ///< the dashpots' work in the cycles of the step (end_cycles)
