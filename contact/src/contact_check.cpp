@@ -152,26 +152,26 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
         }
       }
       if (r.state != before) {
-        // Diagnosis (CheckResult::cycled): a change that undoes this contact's
+        // Diagnosis (ContactChanges::cycled): a change that undoes this contact's
         // last one in the step (A -> B -> A; for sliding, in the same direction).
         if (h.flips > 0 && r.state == h.undo_state &&
             (r.state != ContactState::sliding || r.slide_direction == h.undo_direction)) {
-          ++res.cycled;
-          if (r.kind == ContactKind::vertex_vertex) ++res.cycled_corners;
+          ++res.changes.cycled;
+          if (r.kind == ContactKind::vertex_vertex) ++res.changes.cycled_corners;
         }
         h.undo_state = before;
         h.undo_direction = direction_before;
         ++h.flips;
         ++res.state_changes;
-        if (before == ContactState::open) ++res.closed;
-        else if (r.state == ContactState::open) ++res.opened;
-        else if (r.state == ContactState::sliding) ++res.slipped;
-        else ++res.stuck;
+        if (before == ContactState::open) ++res.changes.closed;
+        else if (r.state == ContactState::open) ++res.changes.opened;
+        else if (r.state == ContactState::sliding) ++res.changes.slipped;
+        else ++res.changes.stuck;
       }
     } else if (refine && h.refinements < settings_.max_refinements) {
       ++h.refinements;
       ++res.state_changes;
-      ++res.refinements;
+      ++res.changes.refinements;
     }
     // The normal force that drives friction in the next iterate. A contact that
     // just closed has N from a trial without its spring (the whole free
@@ -203,7 +203,7 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
         const laws::CallSiteScope at(law_call_site(r));
         fail_law(c, law.advance(step_constants_of(c), work_rheology_[r.rheology], h.tau_start, tau, at_failure));
         ++res.state_changes;
-        ++res.slipped;
+        ++res.changes.slipped;
         continue;
       }
       linearize(c, tau);
@@ -221,14 +221,14 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
             h.newton < settings_.max_creep_newton) {
           ++h.newton;
           ++res.state_changes;
-          ++res.refinements;
+          ++res.changes.refinements;
         }
       } else if ((seams_[c].compliance != before_seam.compliance ||
                   seams_[c].locking_shift != before_seam.locking_shift) &&
                  h.refinements < settings_.max_refinements) {
         ++h.refinements;
         ++res.state_changes;
-        ++res.refinements;
+        ++res.changes.refinements;
       }
     }
   }

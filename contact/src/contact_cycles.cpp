@@ -304,10 +304,10 @@ CheckResult ContactSystem::end_cycles(std::span<const BlockView> blocks, const E
     }
     if (y.state == before) continue;
     ++res.state_changes;
-    if (before == ContactState::open) ++res.closed;
-    else if (y.state == ContactState::open) ++res.opened;
-    else if (y.state == ContactState::sliding) ++res.slipped;
-    else ++res.stuck;
+    if (before == ContactState::open) ++res.changes.closed;
+    else if (y.state == ContactState::open) ++res.changes.opened;
+    else if (y.state == ContactState::sliding) ++res.changes.slipped;
+    else ++res.changes.stuck;
   }
   force_scale_ = scale;
   step_max_penetration_ = res.max_penetration;

@@ -53,7 +53,7 @@
 #include <vector>
 
 #include "rheodda/core/block_system.hpp"
-#include "rheodda/core/engine.hpp"
+#include "rheodda/core/solver_state.hpp"
 
 namespace rheodda::core {
 

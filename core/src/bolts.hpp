@@ -45,7 +45,8 @@
 #include <vector>
 
 #include "rheodda/contact/kinematics.hpp"
-#include "rheodda/core/engine.hpp"
+#include "rheodda/core/block_state.hpp"
+#include "rheodda/core/model.hpp"
 
 namespace rheodda::core {
 

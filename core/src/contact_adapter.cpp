@@ -19,14 +19,6 @@ contact::ContactSettings contact_settings_for(const Model& model, double penalty
   return s;
 }
 
-namespace {
-/// The contact layer's check result in the host's words.
-ContactCheck contact_check(const contact::CheckResult& r) {
-  return {r.state_changes, r.max_penetration,
-          ContactChanges{r.closed, r.opened, r.slipped, r.stuck, r.refinements, r.cycled, r.cycled_corners}};
-}
-}  // namespace
-
 void ContactAdapter::begin_step(std::span<const contact::BlockView> blocks, const StepContext& ctx) {
   system_.begin_step(blocks, ctx.max_displacement, ctx.dt, ctx.dynamic, ctx.inertia, ctx.creep_error_wanted);
 }
@@ -38,11 +30,11 @@ void ContactAdapter::assemble(std::span<const contact::BlockView> blocks,
 
 ContactCheck ContactAdapter::check(std::span<const contact::BlockView> blocks,
                                    const Eigen::VectorXd& D) {
-  return contact_check(system_.check(blocks, D));
+  return system_.check(blocks, D);
 }
 
 ContactCheck ContactAdapter::end_cycles(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) {
-  return contact_check(system_.end_cycles(blocks, D));
+  return system_.end_cycles(blocks, D);
 }
 
 void ContactAdapter::end_step(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) {

@@ -31,7 +31,7 @@
 
 #include "block_terms.hpp"
 #include "rheodda/contact/kinematics.hpp"
-#include "rheodda/core/engine.hpp"
+#include "rheodda/core/block_state.hpp"
 
 namespace rheodda::core {
 

@@ -8,43 +8,6 @@
 
 namespace rheodda::laws {
 
-std::string_view scheme_name(Scheme s) {
-  switch (s) {
-    case Scheme::lagged: return "lagged";
-    case Scheme::implicit: return "implicit";
-    case Scheme::exponential_linear: return "exponential-linear";
-  }
-  return "?";
-}
-
-Scheme parse_scheme(std::string_view name) {
-  if (name == "lagged") return Scheme::lagged;
-  if (name == "implicit") return Scheme::implicit;
-  if (name == "exponential-linear") return Scheme::exponential_linear;
-  throw LawError("scheme", "unknown integration scheme '" + std::string(name) +
-                               "'; use one of: lagged, implicit, exponential-linear");
-}
-
-double ContactRheology::displacement_closed_form(double force, double t) const {
-  const auto e1 = instantaneous_stiffness();
-  return (e1 ? force / *e1 : 0.0) + creep_closed_form(force, t);
-}
-
-std::optional<double> ContactRheology::relaxation_modulus(double) const { return std::nullopt; }
-
-double ContactRheology::linear_limit() const { return std::numeric_limits<double>::infinity(); }
-
-std::optional<double> ContactRheology::failure_time(double) const { return std::nullopt; }
-
-double ContactRheology::time_to_failure(const RheologyState&, double) const {
-  return std::numeric_limits<double>::infinity();
-}
-
-std::optional<double> ContactRheology::failure_in_step(const StepConstants&, const RheologyState&,
-                                                       double, double) const {
-  return std::nullopt;
-}
-
 double kelvin_b(double r) { return -std::expm1(-r); }
 
 double kelvin_phi(double r) {

@@ -322,8 +322,8 @@ BOOST_AUTO_TEST_CASE(slide_to_lock_counts_as_a_state_change) {
   D(7) = -1e-7;  // and presses on the base (N = 1e10 x 1e-7 per contact): friction acts
   const CheckResult r = cs.check(s.views(), D);
   BOOST_TEST(r.state_changes == 2);
-  BOOST_TEST(r.stuck == 2);  // told apart by kind
-  BOOST_TEST(r.closed + r.opened + r.slipped + r.refinements == 0);
+  BOOST_TEST(r.changes.stuck == 2);  // told apart by kind
+  BOOST_TEST(r.changes.closed + r.changes.opened + r.changes.slipped + r.changes.refinements == 0);
   for (const Contact& c : cs.trial_contacts()) BOOST_TEST((c.state == ContactState::locked));
   cs.abandon_step();
 }
@@ -359,7 +359,7 @@ BOOST_AUTO_TEST_CASE(stick_keeps_force_keeps_the_friction_force_through_a_stick_
   Eigen::VectorXd D = Eigen::VectorXd::Zero(12);
   D(6) = +1e-8;  // back against the slip
   D(7) = -1e-6;  // pressed on the base harder than before: the stuck spring holds
-  BOOST_TEST_REQUIRE(cs.check(s.views(), D).stuck == 2);
+  BOOST_TEST_REQUIRE(cs.check(s.views(), D).changes.stuck == 2);
   cs.end_step(s.views(), D);
   const double ks = 1e10 / 2.5;  // penalty shear spring p_n / shear_normal_ratio [Pa]
   for (size_t k = 0; k < friction.size(); ++k) {
@@ -396,9 +396,9 @@ BOOST_AUTO_TEST_CASE(check_tells_closing_opening_and_slipping_apart) {
   D(7) = 1e-4;     // block 1 lifts off: its two contacts open
   D(13) = -2e-3;   // block 2 moves 2 mm down: its two contacts close
   CheckResult r = cs.check(s.views(), D);
-  BOOST_TEST(r.opened == 2);
-  BOOST_TEST(r.closed == 2);
-  BOOST_TEST(r.slipped + r.stuck + r.refinements == 0);
+  BOOST_TEST(r.changes.opened == 2);
+  BOOST_TEST(r.changes.closed == 2);
+  BOOST_TEST(r.changes.slipped + r.changes.stuck + r.changes.refinements == 0);
   BOOST_TEST(r.state_changes == 4);
   cs.abandon_step();
 
@@ -410,9 +410,9 @@ BOOST_AUTO_TEST_CASE(check_tells_closing_opening_and_slipping_apart) {
   D(7) = -1e-6;
   D(6) = 1e-5;
   r = cs.check(s.views(), D);
-  BOOST_TEST(r.slipped == 2);
-  BOOST_TEST(r.closed == 0);  // block 2 stays clear of the base
-  BOOST_TEST(r.opened + r.stuck + r.refinements == 0);
+  BOOST_TEST(r.changes.slipped == 2);
+  BOOST_TEST(r.changes.closed == 0);  // block 2 stays clear of the base
+  BOOST_TEST(r.changes.opened + r.changes.stuck + r.changes.refinements == 0);
   BOOST_TEST(r.state_changes == 2);
   cs.abandon_step();
 }

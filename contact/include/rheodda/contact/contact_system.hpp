@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "rheodda/contact/broad_phase.hpp"
+#include "rheodda/contact/check_result.hpp"
 #include "rheodda/contact/contact_energy.hpp"
 #include "rheodda/contact/cycle_arrays.hpp"
 #include "rheodda/contact/detection.hpp"
@@ -113,24 +114,6 @@ struct Contact {
 struct ShearSeam {
   double locking_shift = 0.0;  ///< -h: minus the history part of the step's creep [length]
   double compliance = 0.0;     ///< step creep compliance c / l [length/(force/length)]
-};
-
-/// Result of checking a trial solution.
-struct CheckResult {
-  int state_changes = 0;         ///< open<->closed and slide<->lock changes, plus sliding
-                                 ///< contacts whose friction force is not yet settled
-  double max_penetration = 0.0;  ///< largest d_n over closed contacts [length]
-  // The changes above by kind (they add up to state_changes) [-]:
-  int closed = 0;       ///< open -> locked or sliding
-  int opened = 0;       ///< locked or sliding -> open
-  int slipped = 0;      ///< locked -> sliding
-  int stuck = 0;        ///< sliding -> locked
-  int refinements = 0;  ///< sliding contacts whose friction force moved, and piecewise laws
-                        ///< that changed piece (one more iterate, no state change)
-  /// Of the changes, those that undo the contact's last change in this step
-  /// (A -> B -> A, a 2-cycle; docs/notes/rock-mass-steps.md) [-], and of those
-  /// the vertex-vertex (corner) contacts [-].
-  int cycled = 0, cycled_corners = 0;
 };
 
 /// Counters of the last begin_step (for benchmarks and logs).

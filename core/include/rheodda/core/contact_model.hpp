@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "rheodda/contact/check_result.hpp"
 #include "rheodda/contact/contact_energy.hpp"
 #include "rheodda/contact/joint_set.hpp"
 #include "rheodda/contact/kinematics.hpp"
@@ -37,35 +38,11 @@ struct StepContext {
   double inertia = 0.0;
 };
 
-/// What the open-close iteration changed, by kind (docs/reference/contacts.md, "States and
-/// the open-close iteration") [contacts].
-struct ContactChanges {
-  int closed = 0;       ///< open -> locked or sliding
-  int opened = 0;       ///< locked or sliding -> open
-  int slipped = 0;      ///< locked -> sliding
-  int stuck = 0;        ///< sliding -> locked
-  int refinements = 0;  ///< no state change, but one more iterate asked for (a sliding
-                        ///< contact's friction force moved, a piecewise law changed piece)
-  /// Of closed ... stuck, the changes that undo the contact's last change in the
-  /// step (2-cycles), and of those the corner (vertex-vertex) contacts'
-  /// (diagnosis; not counted in total()).
-  int cycled = 0, cycled_corners = 0;
-  int total() const { return closed + opened + slipped + stuck + refinements; }
-  ContactChanges& operator+=(const ContactChanges& o) {
-    closed += o.closed, opened += o.opened, slipped += o.slipped, stuck += o.stuck;
-    refinements += o.refinements;
-    cycled += o.cycled, cycled_corners += o.cycled_corners;
-    return *this;
-  }
-};
-
-/// Result of checking a trial solution against the contact states.
-struct ContactCheck {
-  int state_changes = 0;         ///< changes that ask for another iterate (0: converged)
-  double max_penetration = 0.0;  ///< largest normal penetration [length]
-  ContactChanges changes;        ///< state_changes by kind (left zero by models that do not
-                                 ///< tell the kinds apart)
-};
+/// What the open-close iteration changed, by kind, and the result of one check
+/// of trial displacements: the contact layer's types (contact/check_result.hpp),
+/// which ContactSystem produces and a ContactModel returns as they are.
+using ContactChanges = contact::ContactChanges;
+using ContactCheck = contact::CheckResult;
 
 /// An opaque copy of a contact model's state after an accepted step, taken by
 /// ContactModel::snapshot for step doubling (Settings::step_tolerance).

@@ -23,13 +23,12 @@
 #include <Eigen/Dense>
 #include <vector>
 
+#include "rheodda/core/block_state.hpp"
 #include "rheodda/core/contact_model.hpp"
 #include "rheodda/core/model.hpp"
 #include "rheodda/core/polygon.hpp"
 
 namespace rheodda::core {
-
-struct BlockState;
 
 /// Energies stored in a state [force x length].
 struct StoredEnergy {

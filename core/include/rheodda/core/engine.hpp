@@ -28,13 +28,13 @@
 
 #include "rheodda/contact/joint_set.hpp"
 #include "rheodda/contact/kinematics.hpp"
+#include "rheodda/core/block_state.hpp"
 #include "rheodda/core/contact_model.hpp"
 #include "rheodda/core/energy.hpp"
 #include "rheodda/core/model.hpp"
+#include "rheodda/core/solver_state.hpp"
 
 namespace rheodda::core {
-
-using Mat2 = Eigen::Matrix2d;
 
 /// What happened in one accepted step.
 struct StepReport {
@@ -73,57 +73,6 @@ struct StepReport {
   EnergyFlows energy;             ///< the step's energy flows and residual (energy.hpp) [force x length]
   double assembly_seconds = 0.0;  ///< wall time spent assembling K and F (all attempts) [s]
   double solve_seconds = 0.0;     ///< wall time spent in the linear solver (all attempts) [s]
-};
-
-/// Counters of the linear solver since the engine was built.
-struct SolverStats {
-  long analyses = 0;        ///< CHOLMOD symbolic analyses (pattern changes) [-]
-  long factorizations = 0;  ///< CHOLMOD numeric factorisations [-]
-  long solves = 0;          ///< linear solves [-]
-  long pcg_iterations = 0;  ///< total PCG iterations [-]
-  /// Under `automatic`: the step at whose solve amg's conjugate gradient did not
-  /// converge and CHOLMOD took over for the rest of the run (-1: never) [-].
-  long amg_fallback_solve = -1;
-};
-
-/// What the linear solver carries from one solve to the next (solver.hpp):
-/// enough for a solver restored from it to solve the next systems bit for bit
-/// as the one it was taken from (a resumed run, docs/reference/outputs.md "Interrupting
-/// and resuming"). CHOLMOD keeps nothing that a fresh analysis of the same
-/// pattern would not give again; amg keeps its warm start and the part of its
-/// hierarchy that depends on earlier systems (block_amg.hpp, "Reuse").
-struct SolverState {
-  bool amg_failed = false;       ///< automatic: amg gave way to CHOLMOD for the rest of the run
-  long amg_fallback_solve = -1;  ///< SolverStats::amg_fallback_solve of that event [-]
-  std::vector<double> warm_start;  ///< amg: the last solution, start of the next solve
-  /// amg: the hierarchy's aggregates as they were built for the block pattern
-  /// `pattern` (level-0 block pairs (i, j)); empty when there is none.
-  std::vector<std::pair<int, int>> pattern;
-  std::vector<Vec2> positions;     ///< level-0 block points at the last refresh that moved them [length]
-  std::vector<std::vector<int>> aggregates;  ///< per level but the coarsest: coarse block of each block
-  std::vector<int> coarse_blocks;  ///< per level but the coarsest: blocks of the next level [-]
-  std::vector<double> omega;       ///< per level but the coarsest: prolongator smoothing weight [-]
-};
-
-/// Run-time state of one block.
-struct BlockState {
-  std::vector<Vec2> vertices;       ///< current vertices, counter-clockwise [length]
-  std::vector<int> edge_joint_set;  ///< joint set of edge k (vertex k -> k+1)
-  int material = 0;                 ///< index into Model::materials
-  Vec2 centroid = Vec2::Zero();     ///< current centroid [length]
-  Vec3 stress = Vec3::Zero();       ///< (sigma_x, sigma_y, tau_xy) [stress]
-  Vec6 velocity = Vec6::Zero();     ///< (u0, v0, r0, ex, ey, gxy) rates [length/time, 1/time];
-                                    ///< stays zero in a static analysis
-  Vec6 acceleration = Vec6::Zero(); ///< at the end of the last step [length/time^2, 1/time^2];
-                                    ///< kept by the trapezoidal rule only (zero otherwise)
-  /// The factor on the block's mass matrix in a density-scaled dynamic stage
-  /// (Settings::stage_cycles; docs/reference/explicit-step.md, "Density scaling") [-]; 1 otherwise.
-  /// The velocity is that of the scaled block and the kinetic energy v^T (s M) v / 2.
-  double mass_scale = 1.0;
-  /// Affine map from initial to current position of a material point:
-  /// x = map_A x0 + map_b (composed from every accepted step).
-  Mat2 map_A = Mat2::Identity();    ///< [-]
-  Vec2 map_b = Vec2::Zero();        ///< [length]
 };
 
 /// One recorded sample of a measurement point.

@@ -19,7 +19,7 @@
 #include <string>
 
 #include "rheodda/core/block_system.hpp"
-#include "rheodda/core/engine.hpp"
+#include "rheodda/core/solver_state.hpp"
 #include "rheodda/core/model.hpp"
 
 namespace rheodda::core {

@@ -110,10 +110,91 @@ struct Linearization {
   double c = 0.0;  ///< creep compliance of the step [length/force]
 };
 
-/// Abstract contact rheology law. Implementations are immutable after construction.
-class ContactRheology {
+// ---- What a law must give, and what it may ------------------------------------
+//
+// The essence, ContactRheology's pure virtual functions, is what every law gives
+// and all a running analysis needs to creep a contact: its name and parameters,
+// how many state slots it keeps, and the creep increment of a step with the state
+// after it (step_constants, linearize, advance). What only some laws have, or
+// only some callers ask, is in the small capability interfaces below, whose
+// defaults are the answers of a law that lacks it; a law overrides those it has.
+// ContactRheology takes them all, so the host and the tools call one object and a
+// new law writes nothing for a capability it does not have
+// (docs/design/law-interface.md, "What a law must give, and what it may").
+
+/// Capability: an elastic spring in series with the creep elements.
+class SeriesSpringCapability {
  public:
-  virtual ~ContactRheology() = default;
+  virtual ~SeriesSpringCapability() = default;
+  /// The instantaneous series spring E1 [force/length], if the law has one
+  /// (Maxwell, Burgers, Nishihara): a contact's shear spring is then E1 times its
+  /// tributary length. Default: none (Kelvin), the joint set's shear stiffness is
+  /// the spring.
+  virtual std::optional<double> instantaneous_stiffness() const { return std::nullopt; }
+};
+
+/// Capability: how creep depends on the force. The defaults claim nothing: a law
+/// that does not say it is linear is linearized again at every open-close iterate,
+/// which is right for any law (an affine law that says so is solved in one).
+class ForceDependenceCapability {
+ public:
+  virtual ~ForceDependenceCapability() = default;
+  /// True when creep is linear in force (Boltzmann superposition holds). Default: false.
+  virtual bool is_linear() const { return false; }
+  /// How the step's creep increment depends on F_e; by default affine for a
+  /// linear law and piecewise affine otherwise (the built-in SeriesLaw laws).
+  virtual Linearity linearity() const {
+    return is_linear() ? Linearity::affine : Linearity::piecewise_affine;
+  }
+  /// Force below which the law is linear [force]. Default: infinity (as for linear laws).
+  virtual double linear_limit() const;
+};
+
+/// Capability: closed-form responses, for the verification, `rheodda law curve`'s
+/// exact column and exact_displacement / exact_force (history.hpp); a running
+/// analysis never asks for them.
+class ClosedFormCapability {
+ public:
+  virtual ~ClosedFormCapability() = default;
+  /// Closed-form creep displacement (without the instantaneous spring) at time t
+  /// [time] under a constant force F applied at t = 0 [length]. Default: NaN, the
+  /// law has none (the closed-form displacements derived from it are NaN too).
+  virtual double creep_closed_form(double force, double t) const;
+  /// Relaxation modulus G(t) [force/length]: force per unit displacement held
+  /// from t = 0, where the law has a closed form (nullopt otherwise, the default).
+  /// For a law with a threshold it holds only while |force| stays below it.
+  virtual std::optional<double> relaxation_modulus(double t) const;
+};
+
+/// Capability: failure of a damage-coupled law (RheologyState::damage reaching 1;
+/// docs/reference/rheology-in-dda.md, "Failure"). The defaults are those of a law
+/// that never fails.
+class FailureCapability {
+ public:
+  virtual ~FailureCapability() = default;
+  /// Failure time [time] under a constant force applied at t = 0 to an intact
+  /// law (closed form): when its damage reaches 1. nullopt for laws that never
+  /// fail or at a force that does not damage.
+  virtual std::optional<double> failure_time(double force) const;
+  /// Time [time] left before failure from state `s` if the force stays at
+  /// `force` (infinity for laws without damage or at zero damage rate).
+  virtual double time_to_failure(const RheologyState& s, double force) const;
+  /// Time from the start of a step [time] at which the law fails within it,
+  /// under the scheme's force (the force linear from force_start to force_end
+  /// over the step where the scheme uses both); nullopt if it does not fail
+  /// within the step (always for laws without damage).
+  virtual std::optional<double> failure_in_step(const StepConstants& k, const RheologyState& old,
+                                                double force_start, double force_end) const;
+};
+
+/// A contact rheology law: the essence (pure virtual, below) and the optional
+/// capabilities above. Implementations are immutable after construction.
+class ContactRheology : public SeriesSpringCapability,
+                        public ForceDependenceCapability,
+                        public ClosedFormCapability,
+                        public FailureCapability {
+ public:
+  ~ContactRheology() override = default;
 
   /// Registry name, e.g. "burgers".
   virtual std::string_view name() const = 0;
@@ -121,16 +202,6 @@ class ContactRheology {
   virtual const ParameterValues& parameters() const = 0;
   /// Number of RheologyState slots the law uses (1..kMaxInternal).
   virtual int internal_count() const = 0;
-  /// The instantaneous series spring E1 [force/length], if the law has one
-  /// (Maxwell, Burgers, Nishihara); Kelvin has none.
-  virtual std::optional<double> instantaneous_stiffness() const = 0;
-  /// True when creep is linear in force (Boltzmann superposition holds).
-  virtual bool is_linear() const = 0;
-  /// How the step's creep increment depends on F_e; by default affine for a
-  /// linear law and piecewise affine otherwise (the built-in SeriesLaw laws).
-  virtual Linearity linearity() const {
-    return is_linear() ? Linearity::affine : Linearity::piecewise_affine;
-  }
 
   /// Constants of a step of size dt [time] for a scheme.
   virtual StepConstants step_constants(double dt, Scheme scheme) const = 0;
@@ -145,31 +216,9 @@ class ContactRheology {
   virtual double advance(const StepConstants& k, const RheologyState& old, double force_start,
                          double force_end, RheologyState& next) const = 0;
 
-  /// Closed-form creep displacement (without the instantaneous spring) at time t
-  /// [time] under a constant force F applied at t = 0 [length].
-  virtual double creep_closed_form(double force, double t) const = 0;
-  /// Closed-form total displacement under constant force: F/E1 + creep [length].
+  /// Closed-form total displacement under constant force: F/E1 + creep [length]
+  /// (from the series spring and closed-form capabilities).
   double displacement_closed_form(double force, double t) const;
-  /// Relaxation modulus G(t) [force/length]: force per unit displacement held
-  /// from t = 0, where the law has a closed form (nullopt otherwise).
-  /// For a law with a threshold it holds only while |force| stays below it.
-  virtual std::optional<double> relaxation_modulus(double t) const;
-  /// Force below which the law is linear (infinity for linear laws) [force].
-  virtual double linear_limit() const;
-
-  /// Failure time [time] under a constant force applied at t = 0 to an intact
-  /// law (closed form): when its damage reaches 1. nullopt for laws that never
-  /// fail or at a force that does not damage.
-  virtual std::optional<double> failure_time(double force) const;
-  /// Time [time] left before failure from state `s` if the force stays at
-  /// `force` (infinity for laws without damage or at zero damage rate).
-  virtual double time_to_failure(const RheologyState& s, double force) const;
-  /// Time from the start of a step [time] at which the law fails within it,
-  /// under the scheme's force (the force linear from force_start to force_end
-  /// over the step where the scheme uses both); nullopt if it does not fail
-  /// within the step (always for laws without damage).
-  virtual std::optional<double> failure_in_step(const StepConstants& k, const RheologyState& old,
-                                                double force_start, double force_end) const;
 };
 
 }  // namespace rheodda::laws
