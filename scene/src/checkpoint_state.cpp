@@ -214,7 +214,13 @@ void Writer::put(const T& v) {
 
 template <class T>
 void Reader::get(T& v) {
-  if constexpr (Scalar<T>) {
+  if constexpr (Is<T, bool>) {
+    // A flag is a byte of 0 or 1: any other byte copied into a bool would be undefined.
+    unsigned char byte = 0;
+    raw(&byte, 1);
+    if (byte > 1) throw std::runtime_error("its payload holds a flag that is neither 0 nor 1");
+    v = byte == 1;
+  } else if constexpr (Scalar<T>) {
     raw(&v, sizeof v);
   } else if constexpr (Is<T, std::string>) {
     raw(v.data(), v.size());  // a tag: its length is the caller's
