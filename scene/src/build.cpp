@@ -199,8 +199,7 @@ BuiltScene build_scene(const SceneDescription& s) {
   }
   st.pcg_tolerance = a.solver_tolerance;
   st.pcg_iterate_tolerance = a.solver_iterate_tolerance;
-  st.contact_solver = a.contact_solver == ContactSolverKind::newton ? core::ContactSolver::newton
-                                                                    : core::ContactSolver::open_close;
+  st.contact_solver = a.contact_solver;
   st.contact_residual_tolerance = a.contact_residual_tolerance;
   switch (choose_integrator(s).integrator) {  // integrator_choice.cpp: `automatic` decided here
     case IntegratorKind::implicit: st.integrator = core::Integrator::implicit; break;

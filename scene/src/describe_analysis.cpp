@@ -78,7 +78,7 @@ std::string describe_analysis(const SceneDescription& s) {
   }
   line(settings);
   line(fmt::format("  solver {}", solver_text(s)));
-  if (a.contact_solver == ContactSolverKind::newton)
+  if (a.contact_solver == core::ContactSolver::newton)
     line(fmt::format("  contact_solver newton: open-close iterates accepted when the residual of the step's equations "
                      "is at most {:g} of the contact forces (docs/reference/contacts.md, \"Contact solves\")",
                      a.contact_residual_tolerance));

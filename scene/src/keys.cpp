@@ -7,6 +7,7 @@
 #include "rheodda/scene/keys.hpp"
 
 #include "key_builders.hpp"
+#include "rheodda/core/contact_solve.hpp"
 
 #include <fmt/format.h>
 
@@ -41,6 +42,30 @@ KeySpec flag_key(const std::string& map, const std::string& name, const std::str
                  bool Analysis::*field, std::string default_text, std::string meaning) {
   return detail::field_key(info(map, name, KeyType::flag, unit, {}, std::move(default_text), std::move(meaning)),
                            field);
+}
+
+/// The words of a registry of methods (core/methods.hpp: rows with `method` and `word`), in its order.
+template <class Rows>
+std::vector<std::string> method_words(const Rows& rows) {
+  std::vector<std::string> words;
+  for (const auto& r : rows) words.emplace_back(r.word);
+  return words;
+}
+
+/// The word of `method` in its registry.
+template <class Rows, class Method>
+std::string word_of(const Rows& rows, Method method) {
+  for (const auto& r : rows)
+    if (r.method == method) return std::string(r.word);
+  throw std::logic_error("a method without a row in its registry");
+}
+
+/// The method a word names (the key's reader has checked the word against method_words).
+template <class Rows>
+auto method_of(const Rows& rows, const std::string& word) {
+  for (const auto& r : rows)
+    if (r.word == word) return r.method;
+  throw std::logic_error("an unlisted word " + word);
 }
 
 KeySpec choice_key(const std::string& map, const std::string& name, const std::string& unit,
@@ -263,9 +288,9 @@ std::vector<KeySpec> declare_analysis_keys() {
          "states are still changing; a step is accepted only on a check of a solve at "
          "`solver_tolerance` (docs/notes/contact-solves.md, \"Inexact iterates\"); in [0, 1), 0 = "
          "every solve at `solver_tolerance`; no effect with `cholmod` (exact)"));
-  keys.push_back(choice_key("analysis", "contact_solver", "–", {"open-close", "newton"},
-      [](const Analysis& a) { return std::string(a.contact_solver == ContactSolverKind::newton ? "newton" : "open-close"); },
-      [](Analysis& a, const std::string& v) { a.contact_solver = v == "newton" ? ContactSolverKind::newton : ContactSolverKind::open_close; },
+  keys.push_back(choice_key("analysis", "contact_solver", "–", method_words(core::contact_solves()),
+      [](const Analysis& a) { return word_of(core::contact_solves(), a.contact_solver); },
+      [](Analysis& a, const std::string& v) { a.contact_solver = method_of(core::contact_solves(), v); },
       "`open-close`",
       "how a step's contacts are solved (docs/reference/contacts.md, \"Contact solves\"): `open-close` "
          "(Shi's iteration: solve, check every contact, repeat until none changes its state) or "

@@ -239,7 +239,7 @@ void read_stage_bolts(const Ctx& ctx, const MapReader& m, const SceneDescription
   }
   // What the engine refuses for every bolt, refused here at the stage's line (bolt_checks.cpp).
   const Analysis& a = s.analysis;
-  if (a.contact_solver == ContactSolverKind::newton)
+  if (a.contact_solver == core::ContactSolver::newton)
     ctx.fail(v, m.child("add_bolts"),
              "the newton contact solve's residual does not hold the bolts' forces: give analysis.contact_solver: "
              "open_close (docs/reference/bolts.md, \"Limits\")");

@@ -23,7 +23,9 @@
 #include <sstream>
 
 #include "test_support.hpp"
+#include "rheodda/core/contact_solve.hpp"
 #include "rheodda/laws/registry.hpp"
+#include "rheodda/scene/build.hpp"
 #include "rheodda/scene/describe.hpp"
 #include "rheodda/scene/keys.hpp"
 #include "rheodda/scene/loader.hpp"
@@ -436,3 +438,23 @@ BOOST_AUTO_TEST_CASE(a_key_declared_once_in_any_map_reaches_the_loader_the_schem
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_CASE(every_registered_contact_solve_is_a_word_the_scene_reads_and_the_engine_makes) {
+  // A contact solve is one row of core::contact_solves() (core/contact_solve.hpp): the scene's
+  // `contact_solver` key takes its words from the rows, in their order, reads each word into its
+  // method, build_scene hands the method to the engine, and the engine makes it from the row.
+  const auto& keys = scene::analysis_keys();
+  const auto key = std::find_if(keys.begin(), keys.end(), [](const scene::KeySpec& k) {
+    return k.map == "analysis" && k.name == "contact_solver";
+  });
+  BOOST_TEST_REQUIRE((key != keys.end()));
+  std::vector<std::string> words;
+  for (const core::ContactSolveEntry& e : core::contact_solves()) words.emplace_back(e.word);
+  BOOST_TEST(key->choices == words, boost::test_tools::per_element());
+  for (const core::ContactSolveEntry& e : core::contact_solves()) {
+    const std::string text = with("  dt: 0.01", "  dt: 0.01\n  contact_solver: " + std::string(e.word));
+    const scene::BuiltScene built = scene::build_scene(scene::parse_scene(text, "solve.yaml"));
+    BOOST_TEST((built.model.settings.contact_solver == e.method), e.word);
+    BOOST_TEST(core::make_contact_solve(e.method) != nullptr);
+  }
+}

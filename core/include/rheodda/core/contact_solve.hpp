@@ -15,12 +15,14 @@
 // the pair; others (a semismooth Newton method, the dual form over contact
 // forces) trade cost per iterate against iterates per step differently, and
 // which wins depends on the scene (docs/notes/contact-solves.md). Adding one
-// is a class in one file and a line in make_contact_solve.
+// is a class in one file, its value in ContactSolver (methods.hpp) and its row in
+// contact_solves(): the scene's `contact_solver` key reads its word from that row.
 #pragma once
 
 #include <Eigen/Dense>
 #include <memory>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "rheodda/contact/kinematics.hpp"
@@ -80,7 +82,17 @@ class ContactSolve {
   virtual ContactSolveResult solve(StepProblem& problem, Eigen::VectorXd& D) = 0;
 };
 
-/// The contact solve of `kind` (Settings::contact_solver).
+/// A registered contact solve: its Settings value, its scene word and its maker.
+struct ContactSolveEntry {
+  ContactSolver method;
+  std::string_view word;  ///< the scene's `contact_solver` word
+  std::unique_ptr<ContactSolve> (*make)();
+};
+
+/// Every contact solve, one row each (contact_solve.cpp).
+std::span<const ContactSolveEntry> contact_solves();
+
+/// The contact solve of `kind` (Settings::contact_solver), made from its row.
 std::unique_ptr<ContactSolve> make_contact_solve(ContactSolver kind);
 
 }  // namespace rheodda::core

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "rheodda/core/methods.hpp"
 #include "rheodda/core/water.hpp"
 #include "rheodda/core/bolt.hpp"
 
@@ -164,28 +165,10 @@ enum class SolverKind {
             ///< coarse unknowns are the six DDA unknowns of groups of blocks (O(N) per solve)
 };
 
-/// How a step's contact problem is solved (contact_solve.hpp; docs/reference/contacts.md,
-/// "Contact solves").
-enum class ContactSolver {
-  open_close,  ///< Shi's open-close iteration: solve, check every contact, repeat until no
-               ///< state changes (the reference)
-  newton,      ///< the same Newton iterates, converged on the residual of the step's
-               ///< equations (Settings::contact_residual_tolerance)
-};
-
 /// Time integration of the inertia terms (Newmark family; docs/reference/engine.md).
 enum class TimeIntegration {
   shi,          ///< beta = 1/2, gamma = 1 (Shi 1988): exact for constant acceleration, dissipative
   trapezoidal,  ///< beta = 1/4, gamma = 1/2: keeps the energy of linear vibrations (dynamic only)
-};
-
-/// How dynamic steps are integrated (docs/reference/explicit-step.md). The scene's words are
-/// `implicit` and `explicit` (`explicit` is a C++ keyword: Integrator::explicit_step).
-enum class Integrator {
-  implicit,       ///< Shi's implicit step: the step's equations solved with the open-close
-                  ///< iteration (the reference; every step of a static analysis is one)
-  explicit_step,  ///< dynamic steps in explicit cycles (central difference, each contact's state
-                  ///< decided on its own, no matrix); static steps stay implicit
 };
 
 /// Analysis settings (Shi's control parameters).

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "rheodda/core/methods.hpp"
 #include "rheodda/laws/contact_rheology.hpp"
 #include "rheodda/laws/parameters.hpp"
 #include "rheodda/rockmass/cut.hpp"
@@ -48,8 +49,6 @@ enum class SolverKind { automatic, cholmod, pcg, amg };
 /// `automatic`: the one of the two that choose_integrator (integrator_choice.hpp) estimates cheaper.
 enum class IntegratorKind { implicit, explicit_step, automatic };
 
-/// `contact_solver`: how a step's contact problem is solved (docs/reference/contacts.md, "Contact solves").
-enum class ContactSolverKind { open_close, newton };
 enum class TimeIntegration { shi, trapezoidal };
 /// `history`: history.csv's rows at the output times (and the steps that end a dynamic
 /// stage, open a collapse stage or fail a contact's law), or at every accepted step.
@@ -155,7 +154,7 @@ struct Analysis {
   /// `contact_solver`: `open-close` (Shi's iteration, until no contact changes its
   /// state) or `newton` (the same iterates, accepted on the residual of the step's
   /// equations; docs/reference/contacts.md, "Contact solves")
-  ContactSolverKind contact_solver = ContactSolverKind::open_close;
+  core::ContactSolver contact_solver = core::ContactSolver::open_close;
   /// `integrator`: `implicit` (Shi's step), `explicit` (dynamic steps in explicit cycles) or
   /// `automatic` (the one estimated cheaper on the initial state, integrator_choice.hpp).
   IntegratorKind integrator = IntegratorKind::implicit;
