@@ -111,13 +111,20 @@ std::string block_name(const scene::SceneDescription& s, int b) {
 /// The explicit step's cycle on the scene's initial state (docs/reference/explicit-step.md):
 /// its length, the block that sets it, the cycles a simulated time unit costs.
 std::string explicit_cycle_text(const scene::SceneDescription& s) {
+  const std::string& tu = s.units.time;
+  std::string statics;
+  if (s.analysis.static_force_ratio > 0.0)
+    statics = fmt::format("  integrator explicit: static steps by cycles from rest to an unbalanced-force ratio of "
+                          "{:g} (at most {} cycles, local damping {:g}; docs/reference/explicit-step.md, \"Static "
+                          "steps by cycles\")\n",
+                          s.analysis.static_force_ratio, s.analysis.static_max_cycles, s.analysis.static_local_damping);
+  if (!s.analysis.has_dynamic_steps()) return statics;
   const scene::BuiltScene built = scene::build_scene(s);
   scene::AssembledScene a = scene::assemble_scene(s, built);
   const core::Engine::StableCycle c = a.engine->stable_cycle();
-  const std::string& tu = s.units.time;
   if (c.block < 0)
-    return fmt::format("  integrator explicit: nothing stiff holds a block at the start; its cycles are set once "
-                       "contacts close\n");
+    return statics + fmt::format("  integrator explicit: nothing stiff holds a block at the start; its cycles are "
+                                 "set once contacts close\n");
   // The dynamic steps are the analysis's own in a dynamic analysis, the stages' in a static one.
   const bool staged = s.analysis.type != scene::AnalysisType::dynamic_analysis && s.analysis.settle;
   const double dt = staged ? s.analysis.settle->dt : s.analysis.dt;
@@ -129,7 +136,7 @@ std::string explicit_cycle_text(const scene::SceneDescription& s) {
       staged ? "dynamic stages' " : "", dt, tu, cycles);
   if (staged && s.analysis.stage_cycles > 0 && cycles > s.analysis.stage_cycles)
     text += fmt::format(", {} with the blocks' masses scaled (stage_cycles)", s.analysis.stage_cycles);
-  return text + " (docs/reference/explicit-step.md)\n";
+  return statics + text + " (docs/reference/explicit-step.md)\n";
 }
 
 }  // namespace

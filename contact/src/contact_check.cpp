@@ -188,7 +188,6 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
     if (r.state == ContactState::locked && r.rheology >= 0 && r.tributary_length > 0.0 &&
         law_steps_[r.joint_set].active && !r.creep_failed &&
         !joint_sets_[r.joint_set].law->is_linear()) {
-      const ShearSeam before_seam = seams_[c];
       const double tau =
           shear_stiffness(c) * (h.dt0 + seams_[c].locking_shift + slip) / r.tributary_length;
       const laws::ContactRheology& law = *joint_sets_[r.joint_set].law;
@@ -206,27 +205,7 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
         ++res.changes.slipped;
         continue;
       }
-      linearize(c, tau);
-      if (law.linearity() == laws::Linearity::nonlinear) {
-        // Newton (docs/reference/rheology-in-dda.md, "Nonlinear laws"): the iterate was
-        // solved with the tangent at the last stress; the law's increment at
-        // this stress, Delta d_c(tau) = h + c tau of the new tangent, differs
-        // from that model by e [length], which moves the stress by about
-        // k_eff e / l_t. Another iterate while that exceeds the tolerance.
-        const double lt = r.tributary_length;
-        const double model = -before_seam.locking_shift + before_seam.compliance * lt * tau;
-        const double actual = -seams_[c].locking_shift + seams_[c].compliance * lt * tau;
-        const double stress_error = shear_stiffness(c) * std::abs(actual - model) / lt;
-        if (stress_error > settings_.creep_newton_tolerance * std::max(std::abs(tau), f_res / lt) &&
-            h.newton < settings_.max_creep_newton) {
-          ++h.newton;
-          ++res.state_changes;
-          ++res.changes.refinements;
-        }
-      } else if ((seams_[c].compliance != before_seam.compliance ||
-                  seams_[c].locking_shift != before_seam.locking_shift) &&
-                 h.refinements < settings_.max_refinements) {
-        ++h.refinements;
+      if (relinearize_seam(c, tau, f_res)) {
         ++res.state_changes;
         ++res.changes.refinements;
       }
@@ -235,6 +214,39 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
   force_scale_ = scale;
   step_max_penetration_ = res.max_penetration;
   return res;
+}
+
+bool ContactSystem::relinearize_seam(size_t c, double tau, double f_res) {
+  // A piecewise-affine law (Nishihara's threshold) takes the piece that holds at tau, a
+  // nonlinear one its tangent there; another iterate is wanted when the seam changed,
+  // bounded by max_refinements so that a switch cannot chatter.
+  Hot& h = hot_[c];
+  const ShearSeam before_seam = seams_[c];
+  linearize(c, tau);
+  const Contact& r = work_[c];
+  if (joint_sets_[r.joint_set].law->linearity() == laws::Linearity::nonlinear) {
+    // Newton (docs/reference/rheology-in-dda.md, "Nonlinear laws"): the iterate was
+    // solved with the tangent at the last stress; the law's increment at
+    // this stress, Delta d_c(tau) = h + c tau of the new tangent, differs
+    // from that model by e [length], which moves the stress by about
+    // k_eff e / l_t. Another iterate while that exceeds the tolerance.
+    const double lt = r.tributary_length;
+    const double model = -before_seam.locking_shift + before_seam.compliance * lt * tau;
+    const double actual = -seams_[c].locking_shift + seams_[c].compliance * lt * tau;
+    const double stress_error = shear_stiffness(c) * std::abs(actual - model) / lt;
+    if (stress_error > settings_.creep_newton_tolerance * std::max(std::abs(tau), f_res / lt) &&
+        h.newton < settings_.max_creep_newton) {
+      ++h.newton;
+      return true;
+    }
+    return false;
+  }
+  if ((seams_[c].compliance != before_seam.compliance || seams_[c].locking_shift != before_seam.locking_shift) &&
+      h.refinements < settings_.max_refinements) {
+    ++h.refinements;
+    return true;
+  }
+  return false;
 }
 
 }  // namespace rheodda::contact

@@ -268,6 +268,29 @@ void ContactSystem::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd
   }
 }
 
+int ContactSystem::cycle_relinearize(const Eigen::VectorXd& D) {
+  // As check does for an iterate of the implicit step: each locked contact of a law that
+  // is not linear takes the seam of the stress its spring carries at D (relinearize_seam);
+  // the cycles' springs follow.
+  const double f_res = settings_.force_resolution * force_scale_;
+  int changed = 0;
+  for (std::size_t c = 0; c < work_.size(); ++c) {
+    const Contact& r = work_[c];
+    const cycles::State& y = cycles_.states[c];
+    if (y.state != ContactState::locked || r.rheology < 0 || !(r.tributary_length > 0.0) ||
+        !law_steps_[r.joint_set].active || r.creep_failed || joint_sets_[r.joint_set].law->is_linear())
+      continue;
+    cycles::Spring& p = cycles_.springs[c];
+    const double slip = p.ti.dot(D.segment<6>(6 * p.i)) + p.tj.dot(D.segment<6>(6 * p.j));
+    const double tau = p.ks * (p.reach0 + slip - y.shift) / r.tributary_length;
+    if (!relinearize_seam(c, tau, f_res)) continue;
+    p.ks = shear_stiffness(c);
+    p.reach0 = hot_[c].dt0 + seams_[c].locking_shift;
+    ++changed;
+  }
+  return changed;
+}
+
 CheckResult ContactSystem::end_cycles(std::span<const BlockView> blocks, const Eigen::VectorXd& D) {
   CheckResult res;
   double scale = 0.0;

@@ -164,6 +164,9 @@ struct Engine::Impl {
     /// terms 2M/dt^2; after max_cuts the error is thrown with this diagnosis).
     std::string singular;
     int singular_block = -1, singular_unknown = -1;
+    /// Why a static step by cycles did not converge (explicit_static.cpp); empty for the
+    /// contact solves, whose reason is the open-close iteration.
+    std::string unsettled;
   };
   Trial solve_trial(double dt, bool creep_error_wanted, StepReport& rep);
   /// The step starting now is taken in explicit cycles (Settings::integrator; a dynamic step).
@@ -172,6 +175,17 @@ struct Engine::Impl {
   /// central-difference cycles, the end velocities in cycle_velocity, the contacts left in
   /// their cycles' states.
   Trial cycle_trial(double dt, StepReport& rep);
+  /// The step starting now is a static step taken by cycles to equilibrium
+  /// (Settings::static_force_ratio with the explicit integrator).
+  bool relax_now() const {
+    return model.settings.integrator == Integrator::explicit_step && model.settings.static_force_ratio > 0.0 &&
+           !dynamic_now();
+  }
+  /// A static step of dt by cycles from rest to equilibrium, after begin_step
+  /// (explicit_static.cpp): D where the unbalanced-force ratio fell to static_force_ratio,
+  /// the contacts left in their cycles' states; not converged (and the contacts to be
+  /// abandoned) when it did not within static_max_cycles.
+  Trial relax_trial(double dt, StepReport& rep);
   /// What the explicit step's cycles of a step of dt need of the blocks, after begin_step and
   /// begin_cycles (explicit_step.cpp): stiffness, inverse masses, strain damping, loads, the
   /// stable cycle and the block that sets it; the contacts' dashpots set for the step.

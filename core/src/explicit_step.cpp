@@ -57,6 +57,7 @@
 #include <string>
 
 #include "block_terms.hpp"
+#include "cycle_kernels.hpp"
 #include "engine_impl.hpp"
 
 namespace rheodda::core {
@@ -74,14 +75,6 @@ constexpr int kScalingPasses = 3;
 /// costs more than their update (the same bits either way; contact_cycles.cpp likewise).
 constexpr std::ptrdiff_t kParallelBlocks = 16;
 
-/// Largest eigenvalue of M^-1 A for the block mass M (its Cholesky factor L), A symmetric.
-double largest_eigenvalue(const Eigen::LLT<Mat6>& L, const Mat6& A) {
-  Mat6 B = L.matrixL().solve(A);
-  B = L.matrixL().solve(B.transpose()).eval();  // L^-1 A L^-T, symmetric
-  Eigen::SelfAdjointEigenSolver<Mat6> es(0.5 * (B + B.transpose()), Eigen::EigenvaluesOnly);
-  return std::max(es.eigenvalues().maxCoeff(), 0.0);
-}
-
 /// (4): each strain mode of a block damped at the ratio zeta.
 Eigen::Matrix3d modal_strain_damping(const Eigen::Matrix3d& K, const Eigen::Matrix3d& M, double zeta) {
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix3d> es(K, M);
@@ -89,21 +82,6 @@ Eigen::Matrix3d modal_strain_damping(const Eigen::Matrix3d& K, const Eigen::Matr
   const Eigen::Vector3d w = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
   const Eigen::Matrix3d Mphi = M * phi;
   return Mphi * (2.0 * zeta * w).asDiagonal() * Mphi.transpose();
-}
-
-/// The unbalanced-force ratio (8): the largest unbalanced force of a moving block over the
-/// mean applied force of the moving blocks [-]; 0 when no moving block carries a load.
-double unbalanced_force_ratio(const std::vector<double>& unbalanced, const Eigen::VectorXd& F,
-                              const std::vector<char>& frozen) {
-  double largest = 0.0, applied = 0.0;
-  int counted = 0;
-  for (std::size_t k = 0; k < unbalanced.size(); ++k) {
-    if (frozen[k]) continue;
-    largest = std::max(largest, unbalanced[k]);
-    applied += F.segment<2>(6 * static_cast<Eigen::Index>(k)).norm();
-    ++counted;
-  }
-  return applied > 0.0 ? largest / (applied / counted) : 0.0;
 }
 
 }  // namespace
@@ -172,7 +150,7 @@ void Engine::Impl::cycle_block_pass(const std::vector<Mat6>& bound, CycleBlocks&
     else if (s.explicit_damping > 0.0)
       out.C[k] = modal_strain_damping(Ke, M.block<3, 3>(3, 3), s.explicit_damping);  // (4)
     damping[k].block<3, 3>(3, 3) += out.C[k];
-    w2[k] = largest_eigenvalue(mass[k], bound[k]);
+    w2[k] = cycles::largest_eigenvalue(mass[k], bound[k]);
     w2_max = std::max(w2_max, w2[k]);
   }
   // (5): the contacts' dashpots, stiffness-proportional at tau = 2 zeta / omega_max.
@@ -182,7 +160,7 @@ void Engine::Impl::cycle_block_pass(const std::vector<Mat6>& bound, CycleBlocks&
   out.tau = tau;
   for (std::size_t k = 0; k < nb; ++k) {
     if (out.frozen[k] || !(w2[k] > 0.0)) continue;  // nothing stiff on it: free flight sets no limit
-    const double c = largest_eigenvalue(mass[k], damping[k]);
+    const double c = cycles::largest_eigenvalue(mass[k], damping[k]);
     h[k] = 2.0 / (std::sqrt(w2[k] + 0.25 * c * c) + 0.5 * c);  // (3)
     if (h[k] < out.h_stable) out.h_stable = h[k], out.stable_block = static_cast<int>(k);
   }
@@ -273,23 +251,7 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
       if (force_ratio_wanted && c == n) unbalanced[k] = R.head<2>().norm();
       double taken = 0.0;  // kinetic energy local damping took in this kick
       if (alpha > 0.0) {
-        // (7) Local damping in the block's mass-normalised unknowns q = L^T v (M = L L^T,
-        // kinetic energy |q|^2 / 2), where it is Cundall's on decoupled unit masses: each
-        // component of the kicked q loses alpha |r_i| kick in magnitude (r = L^-1 R), never
-        // more than it has. Applied to the kicked velocity, it cannot reverse a motion or pump
-        // energy in (a force -alpha |R_i| sign(v_i) on DDA's coupled rotation and strain
-        // unknowns, or beside a force that already reverses the motion, can), and what it takes
-        // is that kick's kinetic energy, booked exactly.
-        const auto L = blocks.L[k].triangularView<Eigen::Lower>();
-        const Vec6 r = L.solve(R);
-        const Vec6 u = blocks.L[k].transpose() * Vk + kick * r;
-        Vec6 q;
-        for (int i = 0; i < 6; ++i) {
-          const double m = std::abs(u(i)) - kick * alpha * std::abs(r(i));
-          q(i) = m > 0.0 ? std::copysign(m, u(i)) : 0.0;
-        }
-        taken = 0.5 * (u.squaredNorm() - q.squaredNorm());
-        Vk = L.transpose().solve(q);
+        taken = cycles::damped_kick(blocks.L[k], R, kick, alpha, Vk);  // (7)
       } else {
         Vk += kick * (M_inv[k] * R);
       }
@@ -303,7 +265,7 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
   }
   cycle_block_damping = 0.0;
   for (const double x : damped) cycle_block_damping += x;
-  cycle_force_ratio = force_ratio_wanted ? unbalanced_force_ratio(unbalanced, F0 + dF, frozen) : 0.0;
+  cycle_force_ratio = force_ratio_wanted ? cycles::unbalanced_force_ratio(unbalanced, F0 + dF, frozen) : 0.0;
   rep.solve_seconds += seconds_since(t0);
   D = Dn;
   cycle_velocity.resize(nb);

@@ -176,11 +176,24 @@ void Engine::Impl::validate() {
   if (!(s.explicit_damping >= 0.0 && s.explicit_damping <= 1.0))
     throw ModelError("settings.explicit_damping", "must be in [0, 1]");
   if (s.threads < 0) throw ModelError("settings.threads", "must be >= 0 (0: OpenMP's default)");
+  if (!(s.static_force_ratio >= 0.0 && s.static_force_ratio < 1.0))
+    throw ModelError("settings.static_force_ratio", "must be in [0, 1) (0 = static steps implicit)");
+  if (s.static_force_ratio > 0.0) {
+    if (s.integrator != Integrator::explicit_step)
+      throw ModelError("settings.static_force_ratio", "static steps by cycles are the explicit step's: give "
+                                                       "integrator explicit_step");
+    if (s.dynamic_ratio != 0.0)
+      throw ModelError("settings.static_force_ratio", "a dynamic analysis has no static steps (dynamic_ratio 0 "
+                                                       "is a static analysis)");
+  }
+  if (s.static_max_cycles < 1) throw ModelError("settings.static_max_cycles", "must be >= 1");
+  if (!(s.static_local_damping > 0.0 && s.static_local_damping < 1.0))
+    throw ModelError("settings.static_local_damping", "must be in (0, 1): undamped cycles never come to rest");
   if (s.integrator == Integrator::explicit_step) {
-    if (!s.has_dynamic_steps())
+    if (!s.has_dynamic_steps() && s.static_force_ratio == 0.0)
       throw ModelError("settings.integrator",
-                       "the explicit step integrates dynamic steps; a static analysis without a dynamic "
-                       "settling stage has none");
+                       "the explicit step integrates dynamic steps, and static ones with static_force_ratio; a "
+                       "static analysis without a dynamic settling stage or static_force_ratio has none");
     if (s.step_tolerance > 0.0)
       throw ModelError("settings.integrator",
                        "step doubling (step_tolerance) estimates the implicit step's error; the explicit "

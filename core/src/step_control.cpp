@@ -234,7 +234,8 @@ void Engine::Impl::cut(double& dt, const Trial& trial, StepReport& rep) const {
         "step " + std::to_string(st.step) + " at time " + std::to_string(st.time) + ": " +
         (trial.converged ? "displacement " + std::to_string(trial.max_disp) +
                                " exceeds g2 * w0 = " + std::to_string(g2_now() * w0)
-                         : "open-close iteration did not converge" + last_changes(trial.check)) +
+                         : !trial.unsettled.empty() ? trial.unsettled
+                                                   : "open-close iteration did not converge" + last_changes(trial.check)) +
         " after " + std::to_string(rep.cuts) + " cuts of dt (settings.max_cuts)");
   dt *= s.dt_cut;
   ++rep.cuts;

@@ -64,10 +64,11 @@ Engine::Impl::Trial Engine::Impl::solve_trial(double dt, bool creep_error_wanted
   contacts->begin_step(views, ctx);
   if (!model.bolts.empty()) bolt_set.begin_step(model, st.blocks, st.bolts, dt);
   Trial trial;
-  if (explicit_now()) {
-    // The explicit step (explicit_step.cpp): cycles instead of the contact solve.
+  if (explicit_now() || relax_now()) {
+    // The explicit step (explicit_step.cpp), or a static step by cycles (explicit_static.cpp):
+    // cycles instead of the contact solve.
     try {
-      trial = cycle_trial(dt, rep);
+      trial = explicit_now() ? cycle_trial(dt, rep) : relax_trial(dt, rep);
     } catch (...) {
       contacts->abandon_step();
       throw;

@@ -209,6 +209,9 @@ BuiltScene build_scene(const SceneDescription& s) {
   st.explicit_safety = a.explicit_safety;
   st.stage_local_damping = a.stage_local_damping;
   st.stage_cycles = a.stage_cycles;
+  st.static_force_ratio = a.static_force_ratio;
+  st.static_max_cycles = a.static_max_cycles;
+  st.static_local_damping = a.static_local_damping;
   st.explicit_damping = a.explicit_damping;
   st.pcg_max_iterations = a.solver_max_iterations;
 

@@ -344,6 +344,22 @@ std::vector<KeySpec> declare_analysis_keys() {
          "where only the state at rest matters: the most cycles a step of a stage takes; a block whose "
          "stable cycle is shorter has its mass scaled up until it is not, its loads unchanged "
          "(docs/reference/explicit-step.md, \"Density scaling\"); 0 = none; never in a dynamic analysis"));
+  keys.push_back(number_key("analysis", "static_force_ratio", "–", {0.0, false, 1.0, true}, &Analysis::static_force_ratio,
+      "0 (static steps implicit)",
+      "under `integrator: explicit`, the static steps of a static analysis (its creep steps) taken by "
+         "cycles from rest, each block's mass scaled to a common cycle and locally damped, until the "
+         "largest unbalanced force of a block is at most this fraction of the mean applied force (UDEC's "
+         "ratio; 1e-5 is customary) (docs/reference/explicit-step.md, \"Static steps by cycles\"); "
+         "[0, 1), 0 = the static steps implicit; a static analysis only"));
+  keys.push_back(integer_key("analysis", "static_max_cycles", "–", {1.0, false, 1.0e9, false}, &Analysis::static_max_cycles,
+      "100000",
+      "with `static_force_ratio`, the most cycles a static step takes; a step that has not settled by "
+         "then is cut as an open–close iteration that does not settle is (and taken as a collapse stage "
+         "where `settle.collapse_dt` asks for them); ≥ 1"));
+  keys.push_back(number_key("analysis", "static_local_damping", "–", {0.0, true, 1.0, true}, &Analysis::static_local_damping,
+      "0.8",
+      "with `static_force_ratio`, the local (non-viscous) damping α of the static steps' cycles "
+         "(UDEC's default 0.8); (0, 1)"));
   keys.push_back(number_key("analysis", "contact_residual_tolerance", "–", {0.0, true, 1.0, true}, &Analysis::contact_residual_tolerance,
       "1e-4",
       "under `contact_solver: newton`, a step is accepted when the residual of its equations, "

@@ -105,10 +105,10 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   if (const YAML::Node v = m.find("integrator"); v.IsDefined() && a.integrator == IntegratorKind::explicit_step) {
     // The explicit step takes dynamic steps (docs/reference/explicit-step.md); the engine
     // refuses the same (settings.integrator), but only at `run`.
-    if (!a.has_dynamic_steps())
+    if (!a.has_dynamic_steps() && a.static_force_ratio == 0.0)
       ctx.fail(v, m.child("integrator"),
-               "the explicit step integrates dynamic steps; a static analysis without a dynamic settling "
-               "stage (settle.dynamic: true) has none");
+               "the explicit step integrates dynamic steps, and static ones with static_force_ratio; a static "
+               "analysis without a dynamic settling stage (settle.dynamic: true) or static_force_ratio has none");
     if (a.step_tolerance > 0.0)
       ctx.fail(v, m.child("integrator"),
                "step doubling (step_tolerance) estimates the implicit step's error: give the implicit integrator "
@@ -117,6 +117,18 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
       ctx.fail(v, m.child("integrator"),
                "time_integration chooses the implicit step's scheme; the explicit step is central difference");
   }
+  // Static steps by cycles (docs/reference/explicit-step.md, "Static steps by cycles").
+  if (const YAML::Node w = m.find("static_force_ratio"); w.IsDefined() && a.static_force_ratio > 0.0) {
+    if (a.integrator != IntegratorKind::explicit_step)
+      ctx.fail(w, m.child("static_force_ratio"),
+               "static steps by cycles are the explicit step's: give integrator: explicit");
+    if (a.type == AnalysisType::dynamic_analysis)
+      ctx.fail(w, m.child("static_force_ratio"), "a dynamic analysis has no static steps");
+  }
+  for (const char* key : {"static_max_cycles", "static_local_damping"})
+    if (const YAML::Node w = m.find(key); w.IsDefined() && !(a.static_force_ratio > 0.0))
+      ctx.fail(w, m.child(key),
+               fmt::format("{} applies to the static steps by cycles; give static_force_ratio too", key));
   if (a.integrator != IntegratorKind::implicit) {  // explicit, or automatic (integrator_choice.cpp)
     if (const YAML::Node w = m.find("stage_local_damping");
         w.IsDefined() && a.stage_local_damping > 0.0 && a.type == AnalysisType::dynamic_analysis)

@@ -107,6 +107,8 @@ RefinementStudy refinement_study(const std::string& scene_path, const std::strin
     if (a.stage_cycles > 0)  // density scaling (explicit-step.md): twice the cycles, so that the
       // stages' cycles shorten with their dt and explicit_safety instead of scaling more mass
       control("analysis.stage_cycles", a.stage_cycles, "stage_cycles", "", std::ldexp(1.0, k));
+    if (a.static_force_ratio > 0.0)  // static steps by cycles (explicit-step.md): their equilibrium tolerance
+      control("analysis.static_force_ratio", a.static_force_ratio, "static_force_ratio", "");
     if (a.step_tolerance > 0.0) control("analysis.step_tolerance", a.step_tolerance, "step_tolerance", lu);
     if (a.creep_tolerance > 0.0) control("analysis.creep_tolerance", a.creep_tolerance, "creep_tolerance", lu);
     if (a.dt_max > 0.0) control("analysis.dt_max", a.dt_max, "dt_max", tu);

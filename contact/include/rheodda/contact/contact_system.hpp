@@ -199,6 +199,10 @@ class ContactSystem {
   /// forces over the drift since, h V (h: the cycle [time]), is booked per contact for the
   /// energy balance (energy()).
   void cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double h, Eigen::VectorXd& f);
+  /// At a state of rest D of the cycles: each locked contact whose law is not linear takes
+  /// the seam of the stress its spring carries at D (as check does for an iterate of the
+  /// implicit step), its cycle spring with it. Returns how many changed.
+  int cycle_relinearize(const Eigen::VectorXd& D);
   /// After the last cycle, at the step's D: the trial records take the cycles' states
   /// (the locking point dragged by the slip, the slide direction, intact or not, the
   /// normal force), ready for end_step. Returns the changes from the step-start states.
@@ -400,6 +404,10 @@ class ContactSystem {
   void start_laws(double dt);
   /// Sets seams_[c] from the law's affine form at a guessed end stress [stress].
   void linearize(size_t c, double tau_guess);
+  /// Contact c (locked, its law not linear) takes the seam at the stress tau it carries
+  /// [stress]; true when that asks for another iterate (the seam changed, within the bounds
+  /// max_refinements and max_creep_newton). f_res: the force resolution [force/length].
+  bool relinearize_seam(size_t c, double tau, double f_res);
   /// Contact c's damage law failed: residual frictional joint (no creep, cohesion, tension)
   /// from now on; `creep` [length], the law's creep of this step up to the failure, still
   /// moves its locking point in this step (0 where it is not finite).

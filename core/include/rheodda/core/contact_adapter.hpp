@@ -49,6 +49,7 @@ class ContactAdapter final : public ContactModel {
   void cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double h, Eigen::VectorXd& f) override {
     system_.cycle_forces(D, V, h, f);
   }
+  int cycle_relinearize(const Eigen::VectorXd& D) override { return system_.cycle_relinearize(D); }
   ContactCheck end_cycles(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) override;
   void abandon_step() override;
   /// contact::ContactSystem::creep_error_estimate (asked for by the step context).

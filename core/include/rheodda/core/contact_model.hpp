@@ -89,6 +89,11 @@ class ContactModel {
     (void)V, (void)h;
     f = Eigen::VectorXd::Zero(D.size());
   }
+  /// Between cycles at a state of rest D (the static steps by cycles): each contact whose
+  /// creep law is not linear takes the linearization of the stress it carries at D, as an
+  /// iterate of the implicit step does; returns how many changed (0: the cycles' state is
+  /// consistent with its laws).
+  virtual int cycle_relinearize(const Eigen::VectorXd& /*D*/) { return 0; }
   /// After the last cycle: the trial states take the cycles' states, ready for end_step.
   virtual ContactCheck end_cycles(std::span<const contact::BlockView> /*blocks*/, const Eigen::VectorXd& /*D*/) {
     return {};

@@ -274,6 +274,18 @@ struct Settings {
   /// explicit_safety) has its mass matrix scaled up (BlockState::mass_scale) until it is
   /// not; its loads stay (gravity acts on the block's true mass). Never in a dynamic analysis.
   int stage_cycles = 0;
+  /// Static steps by explicit cycles (docs/reference/explicit-step.md, "Static steps by
+  /// cycles"; core/src/explicit_static.cpp): with the explicit integrator, each static step
+  /// (a creep step) is taken by cycles from rest, every block's mass scaled to a common
+  /// cycle and locally damped (static_local_damping), until the unbalanced-force ratio is at
+  /// most this (UDEC's "solve ratio") [-]; 0 = static steps implicit; in [0, 1).
+  double static_force_ratio = 0.0;
+  /// The most cycles a static step by cycles takes before it counts as not settling (it is
+  /// then cut as an open-close iteration that does not settle is) [-]; >= 1.
+  int static_max_cycles = 100000;
+  /// Local damping alpha of the static steps by cycles (Cundall's; UDEC's default 0.8) [-];
+  /// in (0, 1).
+  double static_local_damping = 0.8;
   /// Damping ratio the explicit cycles give what has no damping of its own [-], in [0, 1]:
   /// each contact whose joint set has no restitution (dashpots c = tau k beside its springs,
   /// tau = 2 zeta / omega_max: the scene's highest mode at zeta, the lower ones less), and

@@ -165,6 +165,10 @@ struct Analysis {
                                        ///< of a static analysis [-]; in [0, 1)
   int stage_cycles = 0;                ///< density scaling: the most explicit cycles per step of a
                                        ///< dynamic stage of a static analysis [-]; 0 = none
+  double static_force_ratio = 0.0;     ///< static steps by explicit cycles until the unbalanced-force
+                                       ///< ratio is at most this [-]; in [0, 1); 0 = static steps implicit
+  int static_max_cycles = 100000;      ///< the most cycles of a static step by cycles [-]; >= 1
+  double static_local_damping = 0.8;   ///< local damping of the static steps by cycles [-]; in (0, 1)
   /// `contact_residual_tolerance`: under `newton`, a step is accepted when the
   /// residual of its equations is at most this fraction of the contact forces [-]; in (0, 1)
   double contact_residual_tolerance = 1e-4;

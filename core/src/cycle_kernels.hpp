@@ -1,0 +1,65 @@
+// What the explicit cycles do per block, shared by the dynamic step's cycles
+// (explicit_step.cpp) and the static steps by cycles (explicit_static.cpp): the bound of a
+// block's highest frequency, Cundall's local damping on a kick, and the unbalanced-force
+// ratio. The equations cited are those of explicit_step.cpp's header.
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "rheodda/core/block_system.hpp"
+#include "rheodda/core/model.hpp"
+
+namespace rheodda::core::cycles {
+
+/// Largest eigenvalue of M^-1 A for the block mass M (its Cholesky factor L), A symmetric:
+/// omega_max^2 of (3) when A is the block's stiffness bound [1/time^2].
+inline double largest_eigenvalue(const Eigen::LLT<Mat6>& L, const Mat6& A) {
+  Mat6 B = L.matrixL().solve(A);
+  B = L.matrixL().solve(B.transpose()).eval();  // L^-1 A L^-T, symmetric
+  Eigen::SelfAdjointEigenSolver<Mat6> es(0.5 * (B + B.transpose()), Eigen::EigenvaluesOnly);
+  return std::max(es.eigenvalues().maxCoeff(), 0.0);
+}
+
+/// (7): a kick of `kick` [time] of the velocity v of a block under its unbalanced force R,
+/// with local damping alpha, in the block's mass-normalised unknowns q = L^T v (M = L L^T,
+/// kinetic energy |q|^2 / 2), where it is Cundall's on decoupled unit masses: each component
+/// of the kicked q loses alpha |r_i| kick in magnitude (r = L^-1 R), never more than it has.
+/// Applied to the kicked velocity, it cannot reverse a motion or pump energy in (a force
+/// -alpha |R_i| sign(v_i) on DDA's coupled rotation and strain unknowns, or beside a force
+/// that already reverses the motion, can). Returns the kinetic energy it took, booked exactly
+/// [force x length].
+template <class V>
+double damped_kick(const Mat6& L_lower, const Vec6& R, double kick, double alpha, V&& v) {
+  const auto L = L_lower.triangularView<Eigen::Lower>();
+  const Vec6 r = L.solve(R);
+  const Vec6 u = L_lower.transpose() * v + kick * r;
+  Vec6 q;
+  for (int i = 0; i < 6; ++i) {
+    const double m = std::abs(u(i)) - kick * alpha * std::abs(r(i));
+    q(i) = m > 0.0 ? std::copysign(m, u(i)) : 0.0;
+  }
+  v = L.transpose().solve(q);
+  return 0.5 * (u.squaredNorm() - q.squaredNorm());
+}
+
+/// The unbalanced-force ratio (8): the largest unbalanced force of a moving block over the
+/// mean applied force of the moving blocks [-]; 0 when no moving block carries a load.
+/// `unbalanced`: |R| of each block's translation rows [force]; F: the loads [force].
+inline double unbalanced_force_ratio(const std::vector<double>& unbalanced, const Eigen::VectorXd& F,
+                                     const std::vector<char>& frozen) {
+  double largest = 0.0, applied = 0.0;
+  int counted = 0;
+  for (std::size_t k = 0; k < unbalanced.size(); ++k) {
+    if (frozen[k]) continue;
+    largest = std::max(largest, unbalanced[k]);
+    applied += F.segment<2>(6 * static_cast<Eigen::Index>(k)).norm();
+    ++counted;
+  }
+  return applied > 0.0 ? largest / (applied / counted) : 0.0;
+}
+
+}  // namespace rheodda::core::cycles
