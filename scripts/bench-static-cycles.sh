@@ -38,7 +38,7 @@ measure() {
 import csv, json, sys
 out, name, cpu, ref = sys.argv[1:5]
 summary = json.load(open(f"{out}/summary.json"))
-rows = list(csv.DictReader(open(f"{out}/history.csv")))
+rows = list(csv.DictReader(line for line in open(f"{out}/history.csv") if not line.startswith("#")))
 last = rows[-1]
 points = summary.get("measurement_points") or []
 disp = [((float(last[f"{p}.u"]) ** 2 + float(last[f"{p}.v"]) ** 2) ** 0.5) for p in points]

@@ -167,6 +167,8 @@ struct Engine::Impl {
     /// Why a static step by cycles did not converge (explicit_static.cpp); empty for the
     /// contact solves, whose reason is the open-close iteration.
     std::string unsettled;
+    /// A static step by cycles that ended short of rest at the step limit (explicit_static.cpp (3)).
+    bool short_of_rest = false;
   };
   Trial solve_trial(double dt, bool creep_error_wanted, StepReport& rep);
   /// The step starting now is taken in explicit cycles (Settings::integrator; a dynamic step).

@@ -18,7 +18,13 @@
 // every block; the kicks are locally damped at Settings::static_local_damping ((7) of
 // explicit_step.cpp). The step has settled when the unbalanced-force ratio ((8) of
 // explicit_step.cpp) is at most static_force_ratio, at the D it was found at, with every
-// contact's creep seam linearized at the stress it carries there. A step that
+// contact's creep seam linearized at the stress it carries there. The contacts are the
+// step start's, linearized there, so a step moves no vertex further than the step limit
+// (max_displacement_ratio w0, as every step): where the way to rest is longer (gravity
+// switched on, a load applied at once) the step ends where a cycle would pass the limit,
+// short of rest, and the next step goes on from there on contacts detected anew, as Shi's
+// static steps approach rest over several steps                                      (3)
+// (where the analysis has collapse stages, such a creep step counts as a mechanism). A step that
 // does not settle within static_max_cycles is not taken: it is cut as an open-close
 // iteration that does not settle is (and so located and taken as a collapse stage where
 // the analysis has them). Unlike the implicit static step, the cycles keep no inertia term
@@ -96,7 +102,9 @@ Engine::Impl::Trial Engine::Impl::relax_trial(double dt, StepReport& rep) {
   Eigen::VectorXd V = Eigen::VectorXd::Zero(6 * nbi), Dn = Eigen::VectorXd::Zero(6 * nbi), f, R(6 * nbi);
   int n = 0;
   double ratio = 0.0;
-  bool settled = false;
+  bool settled = false, partial = false;
+  const double allowed = g2_now() * w0;  // (3): the step's displacement limit
+  Eigen::VectorXd D_before;
   for (;; ++n) {
     contacts->cycle_forces(Dn, V, kCycle, f);
     if (bolts) bolt_set.cycle_forces(Dn, V, kCycle, f);
@@ -116,6 +124,7 @@ Engine::Impl::Trial Engine::Impl::relax_trial(double dt, StepReport& rep) {
     }
     if (n == s.static_max_cycles) break;
     if (ratio <= s.static_force_ratio) continue;  // the forces again, at the new seams
+    D_before = Dn;
 #pragma omp parallel for schedule(static) num_threads(threads) if (nbi >= kParallelBlocks)
     for (std::ptrdiff_t k = 0; k < nbi; ++k) {
       if (frozen[k]) continue;
@@ -124,6 +133,13 @@ Engine::Impl::Trial Engine::Impl::relax_trial(double dt, StepReport& rep) {
       cycles::damped_kick(L[k], R.segment<6>(6 * k), n == 0 ? 0.5 * kCycle : kCycle, alpha, Vk);
       Dn.segment<6>(6 * k) += kCycle * Vk;
     }
+    if (max_vertex_displacement(Dn) > allowed) {
+      // The way to rest is longer than a step may move on its step-start contacts: the step
+      // ends short of rest, where the limit is reached, and the next goes on (3).
+      Dn = D_before;
+      partial = true;
+      break;
+    }
   }
   rep.solve_seconds += seconds_since(t0);
   cycle_force_ratio = ratio;
@@ -131,7 +147,12 @@ Engine::Impl::Trial Engine::Impl::relax_trial(double dt, StepReport& rep) {
   rep.cycle_dt = 0.0;  // fictitious: the cycles of a static step span no time
   Trial trial;
   trial.iterations = n;
-  if (!settled) {
+  if (partial && n == 0) {
+    // Its first cycle would already pass the limit: nothing holds a block (a free body).
+    trial.unsettled = "the static step's first cycle moves a vertex beyond the step limit (a block that nothing holds)";
+    return trial;
+  }
+  if (!settled && !partial) {
     std::ostringstream why;
     why << "the static step's cycles did not settle: unbalanced-force ratio " << ratio << " after " << n
         << " cycles, static_force_ratio " << s.static_force_ratio << " (settings.static_max_cycles)";
@@ -140,6 +161,7 @@ Engine::Impl::Trial Engine::Impl::relax_trial(double dt, StepReport& rep) {
   }
   D = Dn;
   trial.converged = true;
+  trial.short_of_rest = partial;
   trial.check = contacts->end_cycles(views, D);
   if (bolts) bolt_set.end_cycles(D);
   rep.changes += trial.check.changes;

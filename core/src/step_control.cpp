@@ -78,7 +78,7 @@ StepReport Engine::Impl::step(double dt_cap) {
   for (;;) {
     const Trial trial = solve_trial(dt, adaptive, rep);
     if (watch && !settle && trial.singular.empty() &&
-        (!trial.converged || trial.max_disp > allowed || collapses(dt))) {
+        (!trial.converged || trial.max_disp > allowed || trial.short_of_rest || collapses(dt))) {
       // A static step that moves as a mechanism: its path would be set by dt
       // and g2. Cut it down to collapse_dt (locating the onset); at collapse_dt,
       // take the collapse from the step's start in a dynamic stage. Beyond the
@@ -87,7 +87,8 @@ StepReport Engine::Impl::step(double dt_cap) {
       // moves by that force times dt^2 / 2M; and so does an open-close
       // iteration that does not settle at collapse_dt, where the static steps
       // would otherwise go on cutting into a crawl of the mechanism
-      // (docs/reference/engine.md, "Collapse stages").
+      // (docs/reference/engine.md, "Collapse stages"); and so does a static step
+      // by cycles that ended short of rest at the step limit.
       contacts->abandon_step();
       if (open_collapse_stage(dt, rep)) {
         settle = true;
