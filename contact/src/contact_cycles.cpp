@@ -43,11 +43,6 @@ constexpr std::ptrdiff_t kParallelContacts = 64;
 /// Contacts worked between two looks for the blocks they complete (cycle_forces).
 constexpr std::ptrdiff_t kGatherChunk = 256;
 
-/// Mohr-Coulomb strength (strength.hpp) with the cohesion times length taken once per step.
-inline double strength(double normal_force, double tan_phi, double cohesion_length) {
-  return std::max(normal_force, 0.0) * tan_phi + cohesion_length;
-}
-
 /// One contact at one cycle (the file's head): its state, and its forces on its blocks
 /// into their slots of `force`.
 inline void cycle_contact(const cycles::Spring& p, cycles::State& y, Vec6* force, const Eigen::VectorXd& D,
@@ -102,12 +97,13 @@ inline void cycle_contact(const cycles::Spring& p, cycles::State& y, Vec6* force
     if (p.cs > 0.0) Ts = p.cs * vt;
   }
   double T = p.ks * (reach - y.shift) + Ts;
-  const double limit = y.intact ? strength(N, p.tan_phi, p.cohesion) : strength(N, p.tan_phi_residual, p.cohesion_residual);
+  const double limit = y.intact ? mohr_coulomb_strength(N, p.tan_phi, p.cohesion)
+                                 : mohr_coulomb_strength(N, p.tan_phi_residual, p.cohesion_residual);
   if (std::abs(T) > limit) {
     // Slides: the spring, dragged along, carries the (residual) strength.
     y.intact = false;
     y.direction = T >= 0.0 ? 1 : -1;
-    T = y.direction * strength(N, p.tan_phi_residual, p.cohesion_residual);
+    T = y.direction * mohr_coulomb_strength(N, p.tan_phi_residual, p.cohesion_residual);
     y.shift = reach - T / p.ks;
     y.state = ContactState::sliding;
     y.nd = Nd;  // the shear force is the strength: friction's, not a dashpot's

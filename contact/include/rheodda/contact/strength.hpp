@@ -17,8 +17,14 @@ inline double tan_deg(double degrees) { return std::tan(degrees * std::numbers::
 /// The Mohr-Coulomb shear strength N tan(phi) + c l of a contact [force/length]: N the
 /// normal force [force/length] (compression > 0; a contact in tension carries no
 /// friction), tan(phi) [-], c the cohesion [stress], l the contact length [length].
+/// The same with the cohesion force C = c l given [force/length] (the explicit cycles take
+/// it once per step).
+inline double mohr_coulomb_strength(double normal_force, double tan_phi, double cohesion_force) {
+  return std::max(normal_force, 0.0) * tan_phi + cohesion_force;
+}
+
 inline double mohr_coulomb_strength(double normal_force, double tan_phi, double cohesion, double length) {
-  return std::max(normal_force, 0.0) * tan_phi + cohesion * length;
+  return mohr_coulomb_strength(normal_force, tan_phi, cohesion * length);
 }
 
 /// The strength of a contact of joint set `js` [force/length], peak while it is intact and
