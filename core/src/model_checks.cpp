@@ -176,6 +176,11 @@ void Engine::Impl::validate() {
   if (!(s.explicit_damping >= 0.0 && s.explicit_damping <= 1.0))
     throw ModelError("settings.explicit_damping", "must be in [0, 1]");
   if (s.threads < 0) throw ModelError("settings.threads", "must be >= 0 (0: OpenMP's default)");
+  if (const IntegratorEntry& in = integrator_entry(s.integrator); !in.dynamic_trial)
+    throw ModelError("settings.integrator",
+                     std::string(in.word) + " chooses between the integrators before the engine runs "
+                     "(scene/integrator_choice.hpp: the one estimated cheaper on the scene's initial state); "
+                     "give the engine the integrator chosen");
   if (s.integrator == Integrator::explicit_step) {
     if (!s.has_dynamic_steps())
       throw ModelError("settings.integrator",

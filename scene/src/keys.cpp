@@ -8,6 +8,7 @@
 
 #include "key_builders.hpp"
 #include "rheodda/core/contact_solve.hpp"
+#include "rheodda/core/integrator.hpp"
 
 #include <fmt/format.h>
 
@@ -297,21 +298,9 @@ std::vector<KeySpec> declare_analysis_keys() {
          "`newton` (the same iterates, a step accepted once the residual of its equations is "
          "within `contact_residual_tolerance` of the contact forces, a dynamic step starting from "
          "the states its inertia alone would give)"));
-  keys.push_back(choice_key("analysis", "integrator", "–", {"implicit", "explicit", "automatic"},
-      [](const Analysis& a) {
-        switch (a.integrator) {
-          case IntegratorKind::implicit: return std::string("implicit");
-          case IntegratorKind::explicit_step: return std::string("explicit");
-          case IntegratorKind::automatic: return std::string("automatic");
-        }
-        throw std::logic_error("an integrator without a word");
-      },
-      [](Analysis& a, const std::string& v) {
-        if (v == "implicit") a.integrator = IntegratorKind::implicit;
-        else if (v == "explicit") a.integrator = IntegratorKind::explicit_step;
-        else if (v == "automatic") a.integrator = IntegratorKind::automatic;
-        else throw std::logic_error("integrator: an unlisted word " + v);
-      },
+  keys.push_back(choice_key("analysis", "integrator", "–", method_words(core::integrators()),
+      [](const Analysis& a) { return word_of(core::integrators(), a.integrator); },
+      [](Analysis& a, const std::string& v) { a.integrator = method_of(core::integrators(), v); },
       "`implicit`",
       "how dynamic steps are integrated (docs/reference/explicit-step.md): `implicit` (Shi's step: "
          "the step's equations solved with the open–close iteration), `explicit` (each dynamic "

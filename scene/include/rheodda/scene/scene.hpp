@@ -44,10 +44,6 @@ struct Units {
 enum class AnalysisType { static_analysis, dynamic_analysis };
 enum class PlaneKind { strain, stress };
 enum class SolverKind { automatic, cholmod, pcg, amg };
-/// `integrator`: how dynamic steps are integrated (docs/reference/explicit-step.md);
-/// core::Integrator's choices under the scene's words `implicit` and `explicit`, and
-/// `automatic`: the one of the two that choose_integrator (integrator_choice.hpp) estimates cheaper.
-enum class IntegratorKind { implicit, explicit_step, automatic };
 
 enum class TimeIntegration { shi, trapezoidal };
 /// `history`: history.csv's rows at the output times (and the steps that end a dynamic
@@ -156,8 +152,9 @@ struct Analysis {
   /// equations; docs/reference/contacts.md, "Contact solves")
   core::ContactSolver contact_solver = core::ContactSolver::open_close;
   /// `integrator`: `implicit` (Shi's step), `explicit` (dynamic steps in explicit cycles) or
-  /// `automatic` (the one estimated cheaper on the initial state, integrator_choice.hpp).
-  IntegratorKind integrator = IntegratorKind::implicit;
+  /// `automatic` (the one estimated cheaper on the initial state, resolved by build_scene through
+  /// choose_integrator, integrator_choice.hpp); the words are core::integrators()'.
+  core::Integrator integrator = core::Integrator::implicit;
   double explicit_safety = 0.8;        ///< the explicit cycle / the stable one [-]; in (0, 1]
   double explicit_damping = 0.5;       ///< damping ratio the explicit cycles give what has no damping
                                        ///< of its own (contacts, blocks' strain modes) [-]; in [0, 1]
