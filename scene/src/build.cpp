@@ -191,12 +191,7 @@ BuiltScene build_scene(const SceneDescription& s) {
     st.settle_force_ratio = a.settle->force_ratio;
     st.settle_max_open_close = a.settle->open_close_limit;
   }
-  switch (a.solver) {
-    case SolverKind::automatic: st.solver = core::SolverKind::automatic; break;
-    case SolverKind::cholmod: st.solver = core::SolverKind::cholmod; break;
-    case SolverKind::pcg: st.solver = core::SolverKind::pcg; break;
-    case SolverKind::amg: st.solver = core::SolverKind::amg; break;
-  }
+  st.solver = a.solver;
   st.pcg_tolerance = a.solver_tolerance;
   st.pcg_iterate_tolerance = a.solver_iterate_tolerance;
   st.contact_solver = a.contact_solver;

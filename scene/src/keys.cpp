@@ -9,6 +9,7 @@
 #include "key_builders.hpp"
 #include "rheodda/core/contact_solve.hpp"
 #include "rheodda/core/integrator.hpp"
+#include "rheodda/core/solver.hpp"
 
 #include <fmt/format.h>
 
@@ -264,12 +265,9 @@ std::vector<KeySpec> declare_analysis_keys() {
       "100 × the largest `young_modulus`",
       "spring holding a fixed point (times J/S, the block's polar radius of gyration squared: the rotational "
       "spring of `hold: rotation` [force·length/rad])"));
-  keys.push_back(choice_key("analysis", "solver", "–", {"automatic", "cholmod", "pcg", "amg"},
-      [](const Analysis& a) { return std::string(solver_name(a.solver)); },
-      [](Analysis& a, const std::string& v) {
-        for (SolverKind k : {SolverKind::automatic, SolverKind::cholmod, SolverKind::pcg, SolverKind::amg})
-          if (solver_name(k) == v) a.solver = k;
-      },
+  keys.push_back(choice_key("analysis", "solver", "–", method_words(core::linear_solvers()),
+      [](const Analysis& a) { return word_of(core::linear_solvers(), a.solver); },
+      [](Analysis& a, const std::string& v) { a.solver = method_of(core::linear_solvers(), v); },
       "`automatic`",
       "`automatic` (`cholmod` below 2 000 blocks, `amg` from 2 000), `cholmod` (sparse "
          "Cholesky), `amg` (conjugate gradient with a multigrid V-cycle whose coarse unknowns are "

@@ -25,6 +25,7 @@
 #include "test_support.hpp"
 #include "rheodda/core/contact_solve.hpp"
 #include "rheodda/core/integrator.hpp"
+#include "rheodda/core/solver.hpp"
 #include "rheodda/laws/registry.hpp"
 #include "rheodda/scene/assemble.hpp"
 #include "rheodda/scene/build.hpp"
@@ -499,5 +500,24 @@ BOOST_AUTO_TEST_CASE(every_registered_integrator_is_a_word_the_scene_reads_and_t
       BOOST_TEST(rep.time > 0.0);
       BOOST_TEST((rep.cycles > 0) == (used == core::Integrator::explicit_step));  // only the explicit step cycles
     }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(every_registered_linear_solver_is_a_word_the_scene_reads_and_hands_the_engine) {
+  // A linear solver is one row of core::linear_solvers() (core/solver.hpp): the scene's `solver`
+  // key takes its words from the rows, in their order, reads each word into its method, and
+  // build_scene hands the method to the engine.
+  const auto& keys = scene::analysis_keys();
+  const auto key = std::find_if(keys.begin(), keys.end(), [](const scene::KeySpec& k) {
+    return k.map == "analysis" && k.name == "solver";
+  });
+  BOOST_TEST_REQUIRE((key != keys.end()));
+  std::vector<std::string> words;
+  for (const core::LinearSolverEntry& e : core::linear_solvers()) words.emplace_back(e.word);
+  BOOST_TEST(key->choices == words, boost::test_tools::per_element());
+  for (const core::LinearSolverEntry& e : core::linear_solvers()) {
+    const std::string text = with("  dt: 0.01", "  dt: 0.01\n  solver: " + std::string(e.word));
+    const scene::BuiltScene built = scene::build_scene(scene::parse_scene(text, "solver.yaml"));
+    BOOST_TEST((built.model.settings.solver == e.method), e.word);
   }
 }

@@ -1,12 +1,24 @@
 // The engine's choices between methods (docs/reference/contacts.md, "Contact solves";
-// docs/reference/explicit-step.md; docs/design/methods.md), apart from the settings that hold them
-// so that the scene's description can hold them too. A contact solve is one value here and one
+// docs/reference/explicit-step.md; docs/reference/engine.md, "Solvers"; docs/design/methods.md),
+// apart from the settings that hold them so that the scene's description can hold them too. A
+// linear solver is one value here and one row of linear_solvers() (solver.cpp: its scene word). A
+// contact solve is one value here and one
 // row of contact_solves() (contact_solve.cpp: its scene word and its maker), an integrator one
 // value here and one row of integrators() (integrator.cpp: its scene word and the engine's member
 // that takes a dynamic step); the scene's keys take their words from those rows.
 #pragma once
 
 namespace rheodda::core {
+
+/// Linear solver of the global system K D = F (solver.hpp; its scene words are those of the rows
+/// of linear_solvers()).
+enum class SolverKind {
+  automatic,  ///< cholmod below LinearSolver::kAmgBlocks blocks, amg from there on
+  cholmod,  ///< sparse Cholesky LL' (SuiteSparse CHOLMOD), symbolic analysis reused
+  pcg,      ///< conjugate gradient with a block-Jacobi (6x6) preconditioner
+  amg,      ///< conjugate gradient preconditioned by an aggregation multigrid V-cycle whose
+            ///< coarse unknowns are the six DDA unknowns of groups of blocks (O(N) per solve)
+};
 
 /// How a step's contact problem is solved (contact_solve.hpp; docs/reference/contacts.md,
 /// "Contact solves").
