@@ -180,8 +180,8 @@ void add_check_command(CLI::App& app) {
     const scene::SceneDescription s = scene::load_scene(args->scene);
     fmt::print("{}", scene::describe_scene(s));
     const scene::IntegratorChoice choice = scene::choose_integrator(s);  // integrator_choice.hpp
-    if (s.analysis.integrator == scene::IntegratorKind::automatic) fmt::print("  integrator {}\n", choice.reason);
-    if (choice.integrator == scene::IntegratorKind::explicit_step) fmt::print("{}", explicit_cycle_text(s));
+    if (s.analysis.integrator == core::Integrator::automatic) fmt::print("  integrator {}\n", choice.reason);
+    if (choice.integrator == core::Integrator::explicit_step) fmt::print("{}", explicit_cycle_text(s));
     fmt::print("scene OK\n");
     if (args->levels > 0)
       refine(*args, s.units);

@@ -2,7 +2,8 @@
 // each): engine.cpp (state, geometry, accepting a step, the public API),
 // model_checks.cpp (validation of the model), block_assembly.cpp (the block
 // sub-matrices), step_trial.cpp (one attempt at a step: contacts and the
-// contact solve), step_control.cpp (step size, cuts, adaptive creep stepping,
+// contact solve), integrator.cpp (which member takes a dynamic step's attempt),
+// step_control.cpp (step size, cuts, adaptive creep stepping,
 // settling and collapse stages), step_doubling.cpp (step doubling with
 // Richardson extrapolation).
 #pragma once
@@ -18,6 +19,7 @@
 #include "rheodda/core/block_system.hpp"
 #include "rheodda/core/contact_solve.hpp"
 #include "rheodda/core/engine.hpp"
+#include "rheodda/core/integrator.hpp"
 #include "rheodda/core/polygon.hpp"
 #include "rheodda/core/solver.hpp"
 
@@ -42,6 +44,25 @@ constexpr double kSearchFloor = 0.1;
 
 /// Is p inside the polygon v or within tol of its boundary (model_checks.cpp)?
 bool inside_or_near(std::span<const Vec2> v, const Vec2& p, double tol);
+
+/// One attempt at a step (integrator.hpp): D (Engine::Impl::D) and contact states that agree,
+/// or a failure the step control cuts dt for.
+struct StepTrial {
+  bool converged = false;
+  int iterations = 0;
+  double max_disp = 0.0;  // largest vertex displacement of the converged D [length]
+  ContactCheck check;
+  /// Set when a solve found the matrix not positive definite (the attempt is
+  /// cut like one that did not converge: a shorter step stiffens the inertia
+  /// terms 2M/dt^2; after max_cuts the error is thrown with this diagnosis).
+  std::string singular;
+  int singular_block = -1, singular_unknown = -1;
+  /// Why a static step by cycles did not converge (explicit_static.cpp); empty for the
+  /// contact solves, whose reason is the open-close iteration.
+  std::string unsettled;
+  /// A static step by cycles that ended short of rest at the step limit (explicit_static.cpp (3)).
+  bool short_of_rest = false;
+};
 
 struct Engine::Impl {
   Model model;
@@ -151,38 +172,33 @@ struct Engine::Impl {
   /// stage's first step and returns true.
   bool open_collapse_stage(double& dt, StepReport& rep);
 
+  using Trial = StepTrial;
   /// One attempt at a step of dt from the current state: begin_step, then the
-  /// contact solve (Settings::contact_solver). The contacts are left in their
+  /// trial of the step's integrator (trial_now). The contacts are left in their
   /// trial states: the caller ends or abandons the step (step_trial.cpp).
-  struct Trial {
-    bool converged = false;
-    int iterations = 0;
-    double max_disp = 0.0;  // largest vertex displacement of the converged D [length]
-    ContactCheck check;
-    /// Set when a solve found the matrix not positive definite (the attempt is
-    /// cut like one that did not converge: a shorter step stiffens the inertia
-    /// terms 2M/dt^2; after max_cuts the error is thrown with this diagnosis).
-    std::string singular;
-    int singular_block = -1, singular_unknown = -1;
-    /// Why a static step by cycles did not converge (explicit_static.cpp); empty for the
-    /// contact solves, whose reason is the open-close iteration.
-    std::string unsettled;
-    /// A static step by cycles that ended short of rest at the step limit (explicit_static.cpp (3)).
-    bool short_of_rest = false;
-  };
   Trial solve_trial(double dt, bool creep_error_wanted, StepReport& rep);
-  /// The step starting now is taken in explicit cycles (Settings::integrator; a dynamic step).
-  bool explicit_now() const { return model.settings.integrator == Integrator::explicit_step && dynamic_now(); }
+  /// The member that takes a step's trial after begin_step (integrator.hpp).
+  using TrialMember = StepTrial (Impl::*)(double dt, StepReport& rep);
+  /// The trial of the step starting now, from its integrator's row (Settings::integrator): its
+  /// dynamic trial for a dynamic step; for a static one its static trial where the scene asks
+  /// for it (Settings::static_force_ratio), else Shi's implicit step, which every integrator
+  /// takes (a static step carries no inertia to integrate; docs/reference/explicit-step.md).
+  TrialMember trial_now() const {
+    const IntegratorEntry& row = integrator_entry(model.settings.integrator);
+    if (dynamic_now()) return row.dynamic_trial;
+    if (row.static_trial != nullptr && model.settings.static_force_ratio > 0.0) return row.static_trial;
+    return &Impl::implicit_trial;
+  }
+  /// Shi's implicit step's trial of a step of dt: the block terms assembled, then the contact
+  /// solve (Settings::contact_solver) finds D and the contact states (step_trial.cpp).
+  Trial implicit_trial(double dt, StepReport& rep);
+  /// The step starting now is taken in explicit cycles (cycle_trial), which leave its end
+  /// velocities and mass scales for accept (cycle_velocity, cycle_scale).
+  bool explicit_now() const { return trial_now() == &Impl::cycle_trial; }
   /// The explicit step's attempt at a step of dt, after begin_step (explicit_step.cpp): D by
   /// central-difference cycles, the end velocities in cycle_velocity, the contacts left in
   /// their cycles' states.
   Trial cycle_trial(double dt, StepReport& rep);
-  /// The step starting now is a static step taken by cycles to equilibrium
-  /// (Settings::static_force_ratio with the explicit integrator).
-  bool relax_now() const {
-    return model.settings.integrator == Integrator::explicit_step && model.settings.static_force_ratio > 0.0 &&
-           !dynamic_now();
-  }
   /// A static step of dt by cycles from rest to equilibrium, after begin_step
   /// (explicit_static.cpp): D where the unbalanced-force ratio fell to static_force_ratio,
   /// the contacts left in their cycles' states; not converged (and the contacts to be

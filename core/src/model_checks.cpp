@@ -176,10 +176,15 @@ void Engine::Impl::validate() {
   if (!(s.explicit_damping >= 0.0 && s.explicit_damping <= 1.0))
     throw ModelError("settings.explicit_damping", "must be in [0, 1]");
   if (s.threads < 0) throw ModelError("settings.threads", "must be >= 0 (0: OpenMP's default)");
+  if (const IntegratorEntry& in = integrator_entry(s.integrator); !in.dynamic_trial)
+    throw ModelError("settings.integrator",
+                     std::string(in.word) + " chooses between the integrators before the engine runs "
+                     "(scene/integrator_choice.hpp: the one estimated cheaper on the scene's initial state); "
+                     "give the engine the integrator chosen");
   if (!(s.static_force_ratio >= 0.0 && s.static_force_ratio < 1.0))
     throw ModelError("settings.static_force_ratio", "must be in [0, 1) (0 = static steps implicit)");
   if (s.static_force_ratio > 0.0) {
-    if (s.integrator != Integrator::explicit_step)
+    if (!integrator_entry(s.integrator).static_trial)
       throw ModelError("settings.static_force_ratio", "static steps by cycles are the explicit step's: give "
                                                        "integrator explicit_step");
     if (s.dynamic_ratio != 0.0)

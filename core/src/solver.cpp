@@ -5,6 +5,7 @@
 
 #include "block_amg.hpp"
 
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -260,6 +261,25 @@ Eigen::VectorXd LinearSolver::solve_cholmod(const BlockSystem& system) {
   Eigen::VectorXd out = Eigen::Map<const Eigen::VectorXd>(static_cast<double*>(x->x), f.size());
   cholmod_free_dense(&x, &c.common);
   return out;
+}
+
+namespace {
+
+constexpr std::array<LinearSolverEntry, 4> kLinearSolvers{{
+    {SolverKind::automatic, "automatic"},
+    {SolverKind::cholmod, "cholmod"},
+    {SolverKind::pcg, "pcg"},
+    {SolverKind::amg, "amg"},
+}};
+
+}  // namespace
+
+std::span<const LinearSolverEntry> linear_solvers() { return kLinearSolvers; }
+
+const LinearSolverEntry& linear_solver_entry(SolverKind method) {
+  for (const LinearSolverEntry& e : kLinearSolvers)
+    if (e.method == method) return e;
+  throw std::logic_error("a linear solver without a row in linear_solvers()");
 }
 
 SolverKind LinearSolver::resolve(SolverKind kind, int blocks) {

@@ -1,8 +1,9 @@
 // One attempt at a step (docs/reference/engine.md, "A step"): the contacts are detected
-// on the step-start geometry (begin_step), the block terms assembled, and the
-// contact solve (Settings::contact_solver; contact_solve.hpp) finds D and the
-// contact states that agree. A step whose motion outran the contact search is
-// redone with a wider one.
+// on the step-start geometry (begin_step), then the step's integrator takes its trial
+// (integrator.hpp): Shi's implicit step here, the block terms assembled and the
+// contact solve (Settings::contact_solver; contact_solve.hpp) finding D and the
+// contact states that agree, or the explicit step's cycles (explicit_step.cpp). A step
+// whose motion outran the contact search is redone with a wider one.
 #include <algorithm>
 
 #include "engine_impl.hpp"
@@ -64,16 +65,28 @@ Engine::Impl::Trial Engine::Impl::solve_trial(double dt, bool creep_error_wanted
   contacts->begin_step(views, ctx);
   if (!model.bolts.empty()) bolt_set.begin_step(model, st.blocks, st.bolts, dt);
   Trial trial;
-  if (explicit_now() || relax_now()) {
-    // The explicit step (explicit_step.cpp), or a static step by cycles (explicit_static.cpp):
-    // cycles instead of the contact solve.
-    try {
-      trial = explicit_now() ? cycle_trial(dt, rep) : relax_trial(dt, rep);
-    } catch (...) {
-      contacts->abandon_step();
-      throw;
-    }
-  } else {
+  try {
+    trial = (this->*trial_now())(dt, rep);  // the integrator's trial (integrator.hpp)
+  } catch (...) {
+    contacts->abandon_step();  // leave the contacts at their step-start states
+    throw;
+  }
+  trial.max_disp = trial.converged ? max_vertex_displacement(D) : 0.0;
+  if (trial.converged && trial.max_disp > search_disp && search_disp < g2_now() * w0) {
+    // The step moved a vertex further than the contact search reached: a
+    // contact beyond the search distance may have closed unseen. Redo the step
+    // (same dt) with the search widened to cover the motion (docs/reference/engine.md,
+    // "Contact search reach"); beyond g2 w0 the caller cuts dt as before.
+    contacts->abandon_step();
+    search_disp = std::min(g2_now() * w0, 2.0 * trial.max_disp);
+    ++rep.search_widenings;
+    return solve_trial(dt, creep_error_wanted, rep);
+  }
+  return trial;
+}
+
+Engine::Impl::Trial Engine::Impl::implicit_trial(double dt, StepReport& rep) {
+  Trial trial;
   auto t0 = Clock::now();
   assemble_blocks(dt, st.time + dt, base_diag, base_rhs);
   rep.assembly_seconds += seconds_since(t0);
@@ -88,22 +101,6 @@ Engine::Impl::Trial Engine::Impl::solve_trial(double dt, bool creep_error_wanted
     trial.singular = e.what();
     trial.singular_block = e.block;
     trial.singular_unknown = e.unknown;
-    return trial;
-  } catch (...) {
-    contacts->abandon_step();  // leave the contacts at their step-start states
-    throw;
-  }
-  }
-  trial.max_disp = trial.converged ? max_vertex_displacement(D) : 0.0;
-  if (trial.converged && trial.max_disp > search_disp && search_disp < g2_now() * w0) {
-    // The step moved a vertex further than the contact search reached: a
-    // contact beyond the search distance may have closed unseen. Redo the step
-    // (same dt) with the search widened to cover the motion (docs/reference/engine.md,
-    // "Contact search reach"); beyond g2 w0 the caller cuts dt as before.
-    contacts->abandon_step();
-    search_disp = std::min(g2_now() * w0, 2.0 * trial.max_disp);
-    ++rep.search_widenings;
-    return solve_trial(dt, creep_error_wanted, rep);
   }
   return trial;
 }

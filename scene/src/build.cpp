@@ -191,21 +191,12 @@ BuiltScene build_scene(const SceneDescription& s) {
     st.settle_force_ratio = a.settle->force_ratio;
     st.settle_max_open_close = a.settle->open_close_limit;
   }
-  switch (a.solver) {
-    case SolverKind::automatic: st.solver = core::SolverKind::automatic; break;
-    case SolverKind::cholmod: st.solver = core::SolverKind::cholmod; break;
-    case SolverKind::pcg: st.solver = core::SolverKind::pcg; break;
-    case SolverKind::amg: st.solver = core::SolverKind::amg; break;
-  }
+  st.solver = a.solver;
   st.pcg_tolerance = a.solver_tolerance;
   st.pcg_iterate_tolerance = a.solver_iterate_tolerance;
   st.contact_solver = a.contact_solver;
   st.contact_residual_tolerance = a.contact_residual_tolerance;
-  switch (choose_integrator(s).integrator) {  // integrator_choice.cpp: `automatic` decided here
-    case IntegratorKind::implicit: st.integrator = core::Integrator::implicit; break;
-    case IntegratorKind::explicit_step: st.integrator = core::Integrator::explicit_step; break;
-    case IntegratorKind::automatic: throw std::logic_error("choose_integrator left `automatic` undecided");
-  }
+  st.integrator = choose_integrator(s).integrator;  // integrator_choice.cpp: `automatic` decided here
   st.explicit_safety = a.explicit_safety;
   st.stage_local_damping = a.stage_local_damping;
   st.stage_cycles = a.stage_cycles;

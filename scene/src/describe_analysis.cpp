@@ -19,15 +19,12 @@ namespace {
 std::string solver_text(const SceneDescription& s) {
   const Analysis& a = s.analysis;
   const int n = static_cast<int>(s.blocks.size());
-  const core::SolverKind used = core::LinearSolver::resolve(
-      a.solver == SolverKind::automatic ? core::SolverKind::automatic : core::SolverKind::cholmod, n);
-  std::string name(solver_name(a.solver));
-  bool iterative = a.solver == SolverKind::pcg || a.solver == SolverKind::amg;
-  if (a.solver == SolverKind::automatic) {
-    iterative = used == core::SolverKind::amg;
-    name += fmt::format(" ({} for {} blocks; amg from {})", iterative ? "amg" : "cholmod", n,
+  const core::SolverKind used = core::LinearSolver::resolve(a.solver, n);
+  std::string name(core::linear_solver_entry(a.solver).word);
+  const bool iterative = used != core::SolverKind::cholmod;
+  if (a.solver == core::SolverKind::automatic)
+    name += fmt::format(" ({} for {} blocks; amg from {})", core::linear_solver_entry(used).word, n,
                         core::LinearSolver::kAmgBlocks);
-  }
   if (iterative)
     name += fmt::format(", solver_tolerance {:g}, solver_max_iterations {}, solver_iterate_tolerance {:g}",
                         a.solver_tolerance, a.solver_max_iterations, a.solver_iterate_tolerance);

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <exception>
 
+#include "rheodda/core/integrator.hpp"
 #include "rheodda/scene/assemble.hpp"
 #include "rheodda/scene/build.hpp"
 
@@ -41,19 +42,13 @@ std::string explicit_refusal(const Analysis& a) {
 
 IntegratorChoice choose_integrator(const SceneDescription& s) {
   IntegratorChoice out;
-  switch (s.analysis.integrator) {
-    case IntegratorKind::implicit:
-      out.integrator = IntegratorKind::implicit;
-      out.reason = "given";
-      return out;
-    case IntegratorKind::explicit_step:
-      out.integrator = IntegratorKind::explicit_step;
-      out.reason = "given";
-      return out;
-    case IntegratorKind::automatic: break;
+  if (s.analysis.integrator != core::Integrator::automatic) {
+    out.integrator = s.analysis.integrator;
+    out.reason = "given";
+    return out;
   }
   if (const std::string no = explicit_refusal(s.analysis); !no.empty()) {
-    out.integrator = IntegratorKind::implicit;
+    out.integrator = core::Integrator::implicit;
     out.reason = "automatic: implicit, since " + no;
     return out;
   }
@@ -63,7 +58,7 @@ IntegratorChoice choose_integrator(const SceneDescription& s) {
   // velocity, dynamic_ratio 0) takes the implicit one; what is wrong with it otherwise, the
   // implicit build says.
   SceneDescription probe = s;
-  probe.analysis.integrator = IntegratorKind::explicit_step;
+  probe.analysis.integrator = core::Integrator::explicit_step;
   BuiltScene built;
   AssembledScene a;
   core::Engine::StableCycle c;
@@ -72,7 +67,7 @@ IntegratorChoice choose_integrator(const SceneDescription& s) {
     a = assemble_scene(probe, built);
     c = a.engine->stable_cycle();
   } catch (const std::exception& e) {
-    out.integrator = IntegratorKind::implicit;
+    out.integrator = core::Integrator::implicit;
     out.reason = fmt::format("automatic: implicit, since the explicit step refuses the scene ({})", e.what());
     return out;
   }
@@ -81,25 +76,26 @@ IntegratorChoice choose_integrator(const SceneDescription& s) {
   const double blocks = a.engine->block_count();
   out.implicit_seconds = kImplicitSolves * kSolveSecondsPerBlock2 * blocks * blocks;  // (2)
   if (c.block < 0) {
-    out.integrator = IntegratorKind::implicit;
+    out.integrator = core::Integrator::implicit;
     out.reason = "automatic: implicit, since nothing stiff holds a block at the start (no cycle to estimate by)";
     return out;
   }
   try {
     a.engine->step();
   } catch (const std::exception& e) {
-    out.integrator = IntegratorKind::implicit;
+    out.integrator = core::Integrator::implicit;
     out.reason = fmt::format("automatic: implicit, since the explicit step's first step failed ({})", e.what());
     return out;
   }
   const double contacts = static_cast<double>(a.contacts->contacts().size());
   const double cycles = std::ceil(dt / c.cycle - 1e-9);
   out.explicit_seconds = cycles * (contacts + blocks) * kContactUpdateSeconds;  // (1)
-  out.integrator = out.explicit_seconds < out.implicit_seconds ? IntegratorKind::explicit_step : IntegratorKind::implicit;
+  out.integrator =
+      out.explicit_seconds < out.implicit_seconds ? core::Integrator::explicit_step : core::Integrator::implicit;
   out.reason = fmt::format(
       "automatic: {}, estimated CPU per dynamic step: explicit {:.3g} s ({:g} cycles x ({:g} contacts + {:g} blocks) x "
       "{:g} ns), implicit {:.3g} s ({:g} solves x {:g} ns x {:g} blocks^2)",
-      out.integrator == IntegratorKind::explicit_step ? "explicit" : "implicit", out.explicit_seconds, cycles, contacts,
+      core::integrator_entry(out.integrator).word, out.explicit_seconds, cycles, contacts,
       blocks, kContactUpdateSeconds * 1e9, out.implicit_seconds, kImplicitSolves, kSolveSecondsPerBlock2 * 1e9, blocks);
   return out;
 }

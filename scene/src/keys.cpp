@@ -8,6 +8,8 @@
 
 #include "key_builders.hpp"
 #include "rheodda/core/contact_solve.hpp"
+#include "rheodda/core/integrator.hpp"
+#include "rheodda/core/solver.hpp"
 
 #include <fmt/format.h>
 
@@ -263,12 +265,9 @@ std::vector<KeySpec> declare_analysis_keys() {
       "100 × the largest `young_modulus`",
       "spring holding a fixed point (times J/S, the block's polar radius of gyration squared: the rotational "
       "spring of `hold: rotation` [force·length/rad])"));
-  keys.push_back(choice_key("analysis", "solver", "–", {"automatic", "cholmod", "pcg", "amg"},
-      [](const Analysis& a) { return std::string(solver_name(a.solver)); },
-      [](Analysis& a, const std::string& v) {
-        for (SolverKind k : {SolverKind::automatic, SolverKind::cholmod, SolverKind::pcg, SolverKind::amg})
-          if (solver_name(k) == v) a.solver = k;
-      },
+  keys.push_back(choice_key("analysis", "solver", "–", method_words(core::linear_solvers()),
+      [](const Analysis& a) { return word_of(core::linear_solvers(), a.solver); },
+      [](Analysis& a, const std::string& v) { a.solver = method_of(core::linear_solvers(), v); },
       "`automatic`",
       "`automatic` (`cholmod` below 2 000 blocks, `amg` from 2 000), `cholmod` (sparse "
          "Cholesky), `amg` (conjugate gradient with a multigrid V-cycle whose coarse unknowns are "
@@ -297,21 +296,9 @@ std::vector<KeySpec> declare_analysis_keys() {
          "`newton` (the same iterates, a step accepted once the residual of its equations is "
          "within `contact_residual_tolerance` of the contact forces, a dynamic step starting from "
          "the states its inertia alone would give)"));
-  keys.push_back(choice_key("analysis", "integrator", "–", {"implicit", "explicit", "automatic"},
-      [](const Analysis& a) {
-        switch (a.integrator) {
-          case IntegratorKind::implicit: return std::string("implicit");
-          case IntegratorKind::explicit_step: return std::string("explicit");
-          case IntegratorKind::automatic: return std::string("automatic");
-        }
-        throw std::logic_error("an integrator without a word");
-      },
-      [](Analysis& a, const std::string& v) {
-        if (v == "implicit") a.integrator = IntegratorKind::implicit;
-        else if (v == "explicit") a.integrator = IntegratorKind::explicit_step;
-        else if (v == "automatic") a.integrator = IntegratorKind::automatic;
-        else throw std::logic_error("integrator: an unlisted word " + v);
-      },
+  keys.push_back(choice_key("analysis", "integrator", "–", method_words(core::integrators()),
+      [](const Analysis& a) { return word_of(core::integrators(), a.integrator); },
+      [](Analysis& a, const std::string& v) { a.integrator = method_of(core::integrators(), v); },
       "`implicit`",
       "how dynamic steps are integrated (docs/reference/explicit-step.md): `implicit` (Shi's step: "
          "the step's equations solved with the open–close iteration), `explicit` (each dynamic "

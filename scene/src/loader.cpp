@@ -38,15 +38,6 @@ std::string_view time_integration_name(TimeIntegration t) {
   return t == TimeIntegration::trapezoidal ? "trapezoidal" : "shi";
 }
 std::string_view history_rows_name(HistoryRows h) { return h == HistoryRows::steps ? "steps" : "outputs"; }
-std::string_view solver_name(SolverKind s) {
-  switch (s) {
-    case SolverKind::automatic: return "automatic";
-    case SolverKind::cholmod: return "cholmod";
-    case SolverKind::pcg: return "pcg";
-    case SolverKind::amg: return "amg";
-  }
-  return "?";
-}
 
 SceneError::SceneError(std::string file, SourceLocation where, std::string key, std::string message)
     : std::runtime_error(where.line > 0 ? fmt::format("{}:{}:{}: {}{}", file, where.line, where.column,

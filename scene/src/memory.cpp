@@ -39,13 +39,11 @@ std::optional<double> read_number(const std::string& path) {
 
 MemoryEstimate estimate_memory(const SceneDescription& scene) {
   const double n = static_cast<double>(scene.blocks.size());
-  SolverKind solver = scene.analysis.solver;
-  if (solver == SolverKind::automatic)  // as core::LinearSolver::resolve decides
-    solver = scene.blocks.size() < static_cast<std::size_t>(core::LinearSolver::kAmgBlocks) ? SolverKind::cholmod
-                                                                                          : SolverKind::amg;
+  const core::SolverKind solver =
+      core::LinearSolver::resolve(scene.analysis.solver, static_cast<int>(scene.blocks.size()));
   MemoryEstimate e;
-  e.solver = std::string(solver_name(solver));
-  const double per_block = solver == SolverKind::cholmod
+  e.solver = std::string(core::linear_solver_entry(solver).word);
+  const double per_block = solver == core::SolverKind::cholmod
                                ? kPerBlockCholmod * std::max(1.0, std::log10(std::max(n, 1.0)) / 4.0)
                                : kPerBlockIterative;
   e.bytes = kBaseBytes + per_block * n;

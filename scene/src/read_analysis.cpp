@@ -102,7 +102,7 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
       ctx.fail(v, m.child("time_integration"),
                "dynamic_ratio = 0 carries no velocity; time_integration: trapezoidal needs dynamic_ratio > 0");
   }
-  if (const YAML::Node v = m.find("integrator"); v.IsDefined() && a.integrator == IntegratorKind::explicit_step) {
+  if (const YAML::Node v = m.find("integrator"); v.IsDefined() && a.integrator == core::Integrator::explicit_step) {
     // The explicit step takes dynamic steps (docs/reference/explicit-step.md); the engine
     // refuses the same (settings.integrator), but only at `run`.
     if (!a.has_dynamic_steps() && a.static_force_ratio == 0.0)
@@ -119,7 +119,7 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   }
   // Static steps by cycles (docs/reference/explicit-step.md, "Static steps by cycles").
   if (const YAML::Node w = m.find("static_force_ratio"); w.IsDefined() && a.static_force_ratio > 0.0) {
-    if (a.integrator != IntegratorKind::explicit_step)
+    if (a.integrator != core::Integrator::explicit_step)
       ctx.fail(w, m.child("static_force_ratio"),
                "static steps by cycles are the explicit step's: give integrator: explicit");
     if (a.type == AnalysisType::dynamic_analysis)
@@ -129,7 +129,7 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
     if (const YAML::Node w = m.find(key); w.IsDefined() && !(a.static_force_ratio > 0.0))
       ctx.fail(w, m.child(key),
                fmt::format("{} applies to the static steps by cycles; give static_force_ratio too", key));
-  if (a.integrator != IntegratorKind::implicit) {  // explicit, or automatic (integrator_choice.cpp)
+  if (a.integrator != core::Integrator::implicit) {  // explicit, or automatic (integrator_choice.cpp)
     if (const YAML::Node w = m.find("stage_local_damping");
         w.IsDefined() && a.stage_local_damping > 0.0 && a.type == AnalysisType::dynamic_analysis)
       ctx.fail(w, m.child("stage_local_damping"),

@@ -165,9 +165,7 @@ void write_summary(Run& run, const std::string& status, const std::string& error
         ss.amg_fallback_solve >= 0
             ? core::SolverKind::cholmod
             : core::LinearSolver::resolve(engine.model().settings.solver, engine.block_count());
-    j["solver"] = {{"used", used == core::SolverKind::amg       ? "amg"
-                            : used == core::SolverKind::pcg     ? "pcg"
-                                                                : "cholmod"},
+    j["solver"] = {{"used", std::string(core::linear_solver_entry(used).word)},
                    {"solves", ss.solves},
                    {"cg_iterations", ss.pcg_iterations},
                    {"analyses", ss.analyses},

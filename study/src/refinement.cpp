@@ -101,7 +101,7 @@ RefinementStudy refinement_study(const std::string& scene_path, const std::strin
       if (a.settle->collapse_dt > 0.0)
         control("analysis.settle.collapse_dt", a.settle->collapse_dt, "collapse_dt", tu);
     }
-    if (a.integrator != scene::IntegratorKind::implicit)  // the explicit step's cycle (explicit-step.md);
+    if (a.integrator != core::Integrator::implicit)  // the explicit step's cycle (explicit-step.md);
       // under `automatic` each level decides for itself (its halved explicit_safety may tip it)
       control("analysis.explicit_safety", a.explicit_safety, "explicit_safety", "");
     if (a.stage_cycles > 0)  // density scaling (explicit-step.md): twice the cycles, so that the

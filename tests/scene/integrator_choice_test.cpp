@@ -59,7 +59,7 @@ BOOST_AUTO_TEST_CASE(a_small_wall_takes_the_implicit_step_and_a_large_one_the_ex
   const scene::SceneDescription small = scene::parse_scene(wall_scene(10, 10), "small.yaml");
   const scene::IntegratorChoice a = scene::choose_integrator(small);
   BOOST_TEST_MESSAGE("10 x 10: " << a.reason);
-  BOOST_TEST((a.integrator == scene::IntegratorKind::implicit));
+  BOOST_TEST((a.integrator == core::Integrator::implicit));
   BOOST_TEST(a.reason.find("automatic: implicit, estimated CPU per dynamic step") != std::string::npos);
   BOOST_TEST(a.implicit_seconds > 0.0);
   BOOST_TEST(a.explicit_seconds > a.implicit_seconds);
@@ -68,7 +68,7 @@ BOOST_AUTO_TEST_CASE(a_small_wall_takes_the_implicit_step_and_a_large_one_the_ex
   const scene::SceneDescription large = scene::parse_scene(wall_scene(50, 50), "large.yaml");
   const scene::IntegratorChoice b = scene::choose_integrator(large);
   BOOST_TEST_MESSAGE("50 x 50: " << b.reason);
-  BOOST_TEST((b.integrator == scene::IntegratorKind::explicit_step));
+  BOOST_TEST((b.integrator == core::Integrator::explicit_step));
   BOOST_TEST(b.reason.find("automatic: explicit, estimated CPU per dynamic step") != std::string::npos);
   BOOST_TEST(b.explicit_seconds > 0.0);
   BOOST_TEST(b.explicit_seconds < b.implicit_seconds);
@@ -79,7 +79,7 @@ BOOST_AUTO_TEST_CASE(a_scene_the_explicit_step_cannot_take_takes_the_implicit_on
   // The base scene is static without a dynamic settling stage: no dynamic step.
   const auto s = scene::parse_scene(with("  dt: 0.01", "  dt: 0.01\n  integrator: automatic"), "static.yaml");
   const scene::IntegratorChoice c = scene::choose_integrator(s);
-  BOOST_TEST((c.integrator == scene::IntegratorKind::implicit));
+  BOOST_TEST((c.integrator == core::Integrator::implicit));
   BOOST_TEST(c.reason == "automatic: implicit, since a static analysis without a dynamic settling stage has no "
                          "dynamic step");
   BOOST_TEST(c.explicit_seconds == 0.0);
@@ -88,7 +88,7 @@ BOOST_AUTO_TEST_CASE(a_scene_the_explicit_step_cannot_take_takes_the_implicit_on
       with("  dt: 0.01", "  dt: 0.01\n  type: dynamic\n  dynamic_ratio: 0\n  integrator: automatic"), "still.yaml");
   const scene::IntegratorChoice d = scene::choose_integrator(still);
   BOOST_TEST_MESSAGE("dynamic_ratio 0: " << d.reason);
-  BOOST_TEST((d.integrator == scene::IntegratorKind::implicit));
+  BOOST_TEST((d.integrator == core::Integrator::implicit));
   BOOST_TEST(d.reason.find("automatic: implicit, since the explicit step refuses the scene") == 0u);
   BOOST_TEST((scene::build_scene(still).model.settings.integrator == core::Integrator::implicit));
   // The words given are kept; the explicit step's keys are taken under `automatic`.

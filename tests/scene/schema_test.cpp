@@ -24,7 +24,10 @@
 
 #include "test_support.hpp"
 #include "rheodda/core/contact_solve.hpp"
+#include "rheodda/core/integrator.hpp"
+#include "rheodda/core/solver.hpp"
 #include "rheodda/laws/registry.hpp"
+#include "rheodda/scene/assemble.hpp"
 #include "rheodda/scene/build.hpp"
 #include "rheodda/scene/describe.hpp"
 #include "rheodda/scene/keys.hpp"
@@ -456,5 +459,65 @@ BOOST_AUTO_TEST_CASE(every_registered_contact_solve_is_a_word_the_scene_reads_an
     const scene::BuiltScene built = scene::build_scene(scene::parse_scene(text, "solve.yaml"));
     BOOST_TEST((built.model.settings.contact_solver == e.method), e.word);
     BOOST_TEST(core::make_contact_solve(e.method) != nullptr);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(every_registered_integrator_is_a_word_the_scene_reads_and_the_engine_steps_with) {
+  // An integrator is one row of core::integrators() (core/integrator.hpp): the scene's `integrator`
+  // key takes its words from the rows, in their order, and reads each word into its method;
+  // build_scene hands the engine the method, a choice between the others (a row without a trial of
+  // its own: `automatic`) resolved to one that has a trial; the engine refuses an unresolved
+  // choice, naming the setting, and takes a dynamic step with each.
+  const auto& keys = scene::analysis_keys();
+  const auto key = std::find_if(keys.begin(), keys.end(), [](const scene::KeySpec& k) {
+    return k.map == "analysis" && k.name == "integrator";
+  });
+  BOOST_TEST_REQUIRE((key != keys.end()));
+  std::vector<std::string> words;
+  for (const core::IntegratorEntry& e : core::integrators()) words.emplace_back(e.word);
+  BOOST_TEST(key->choices == words, boost::test_tools::per_element());
+  for (const core::IntegratorEntry& e : core::integrators()) {
+    BOOST_TEST_CONTEXT(e.word) {
+      const std::string text = with("  dt: 0.01", "  dt: 0.01\n  type: dynamic\n  integrator: " + std::string(e.word));
+      const scene::SceneDescription s = scene::parse_scene(text, "integrator.yaml");
+      BOOST_TEST((s.analysis.integrator == e.method));
+      const scene::BuiltScene built = scene::build_scene(s);
+      const core::Integrator used = built.model.settings.integrator;
+      BOOST_TEST(core::integrator_entry(used).dynamic_trial != nullptr);
+      if (e.dynamic_trial) {
+        BOOST_TEST((used == e.method));
+      } else {
+        core::Model unresolved = built.model;
+        unresolved.settings.integrator = e.method;
+        BOOST_CHECK_EXCEPTION(core::Engine{unresolved}, core::ModelError, [&](const core::ModelError& err) {
+          return err.key() == "settings.integrator" &&
+                 std::string(err.what()).find(std::string(e.word) + " chooses between the integrators") !=
+                     std::string::npos;
+        });
+      }
+      const scene::AssembledScene a = scene::assemble_scene(s, built);
+      const core::StepReport rep = a.engine->step();
+      BOOST_TEST(rep.time > 0.0);
+      BOOST_TEST((rep.cycles > 0) == (used == core::Integrator::explicit_step));  // only the explicit step cycles
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(every_registered_linear_solver_is_a_word_the_scene_reads_and_hands_the_engine) {
+  // A linear solver is one row of core::linear_solvers() (core/solver.hpp): the scene's `solver`
+  // key takes its words from the rows, in their order, reads each word into its method, and
+  // build_scene hands the method to the engine.
+  const auto& keys = scene::analysis_keys();
+  const auto key = std::find_if(keys.begin(), keys.end(), [](const scene::KeySpec& k) {
+    return k.map == "analysis" && k.name == "solver";
+  });
+  BOOST_TEST_REQUIRE((key != keys.end()));
+  std::vector<std::string> words;
+  for (const core::LinearSolverEntry& e : core::linear_solvers()) words.emplace_back(e.word);
+  BOOST_TEST(key->choices == words, boost::test_tools::per_element());
+  for (const core::LinearSolverEntry& e : core::linear_solvers()) {
+    const std::string text = with("  dt: 0.01", "  dt: 0.01\n  solver: " + std::string(e.word));
+    const scene::BuiltScene built = scene::build_scene(scene::parse_scene(text, "solver.yaml"));
+    BOOST_TEST((built.model.settings.solver == e.method), e.word);
   }
 }

@@ -312,8 +312,11 @@ class Engine {
   /// reports() starts again from empty.
   void restore(const EngineState& state);
 
- private:
+  /// The engine's internals (core/src/engine_impl.hpp), complete only inside core/. Named here
+  /// so that the integrators' rows (integrator.hpp) can point at the member that takes a step.
   struct Impl;
+
+ private:
   std::unique_ptr<Impl> impl_;
 };
 

@@ -156,15 +156,6 @@ struct MeasurementPoint {
   Vec2 point = Vec2::Zero();    ///< initial position of the material point [length]
 };
 
-/// Linear solver of the global system K D = F.
-enum class SolverKind {
-  automatic,  ///< cholmod below LinearSolver::kAmgBlocks blocks, amg from there on
-  cholmod,  ///< sparse Cholesky LL' (SuiteSparse CHOLMOD), symbolic analysis reused
-  pcg,      ///< conjugate gradient with a block-Jacobi (6x6) preconditioner
-  amg,      ///< conjugate gradient preconditioned by an aggregation multigrid V-cycle whose
-            ///< coarse unknowns are the six DDA unknowns of groups of blocks (O(N) per solve)
-};
-
 /// Time integration of the inertia terms (Newmark family; docs/reference/engine.md).
 enum class TimeIntegration {
   shi,          ///< beta = 1/2, gamma = 1 (Shi 1988): exact for constant acceleration, dissipative

@@ -15,8 +15,10 @@
 #pragma once
 
 #include <memory>
+#include <span>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "rheodda/core/block_system.hpp"
 #include "rheodda/core/solver_state.hpp"
@@ -25,6 +27,18 @@
 namespace rheodda::core {
 
 class BlockAmg;
+
+/// A registered linear solver: its Settings value and its scene word.
+struct LinearSolverEntry {
+  SolverKind method;
+  std::string_view word;  ///< the scene's `solver` word
+};
+
+/// Every linear solver, one row each (solver.cpp).
+std::span<const LinearSolverEntry> linear_solvers();
+
+/// The row of `method` (Settings::solver).
+const LinearSolverEntry& linear_solver_entry(SolverKind method);
 
 /// The system matrix is not positive definite: the first unknown at which the
 /// factorisation broke down, as a block and one of its six DDA unknowns

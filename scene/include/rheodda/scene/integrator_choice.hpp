@@ -12,7 +12,7 @@ namespace rheodda::scene {
 
 /// The integrator a scene's dynamic steps take, and why.
 struct IntegratorChoice {
-  IntegratorKind integrator = IntegratorKind::implicit;  ///< implicit or explicit_step, never automatic
+  core::Integrator integrator = core::Integrator::implicit;  ///< one with a trial of its own, never automatic
   std::string reason;           ///< one sentence: the given word, or the estimate and its figures
   double explicit_seconds = 0.0;  ///< the explicit step's estimated CPU per dynamic step [s]; 0: not estimated
   double implicit_seconds = 0.0;  ///< the implicit step's estimated CPU per dynamic step [s]; 0: not estimated

@@ -43,11 +43,6 @@ struct Units {
 
 enum class AnalysisType { static_analysis, dynamic_analysis };
 enum class PlaneKind { strain, stress };
-enum class SolverKind { automatic, cholmod, pcg, amg };
-/// `integrator`: how dynamic steps are integrated (docs/reference/explicit-step.md);
-/// core::Integrator's choices under the scene's words `implicit` and `explicit`, and
-/// `automatic`: the one of the two that choose_integrator (integrator_choice.hpp) estimates cheaper.
-enum class IntegratorKind { implicit, explicit_step, automatic };
 
 enum class TimeIntegration { shi, trapezoidal };
 /// `history`: history.csv's rows at the output times (and the steps that end a dynamic
@@ -148,7 +143,7 @@ struct Analysis {
   int open_close_limit = 30;           ///< open-close iterations before a step is cut [-];
                                        ///< the loader's default: 8 (Shi's) in a static analysis, 30 in a dynamic one
   double fixed_point_stiffness = 0.0;  ///< fixed-point spring [force/length]; default 100 x largest young_modulus
-  SolverKind solver = SolverKind::automatic;  ///< `solver: automatic|cholmod|pcg|amg`
+  core::SolverKind solver = core::SolverKind::automatic;  ///< `solver`: the words are core::linear_solvers()'
   double solver_tolerance = 1e-10;     ///< relative residual at which pcg and amg stop [-]
   double solver_iterate_tolerance = 1e-4;  ///< the same in open-close iterates whose states still change [-]
   /// `contact_solver`: `open-close` (Shi's iteration, until no contact changes its
@@ -156,8 +151,9 @@ struct Analysis {
   /// equations; docs/reference/contacts.md, "Contact solves")
   core::ContactSolver contact_solver = core::ContactSolver::open_close;
   /// `integrator`: `implicit` (Shi's step), `explicit` (dynamic steps in explicit cycles) or
-  /// `automatic` (the one estimated cheaper on the initial state, integrator_choice.hpp).
-  IntegratorKind integrator = IntegratorKind::implicit;
+  /// `automatic` (the one estimated cheaper on the initial state, resolved by build_scene through
+  /// choose_integrator, integrator_choice.hpp); the words are core::integrators()'.
+  core::Integrator integrator = core::Integrator::implicit;
   double explicit_safety = 0.8;        ///< the explicit cycle / the stable one [-]; in (0, 1]
   double explicit_damping = 0.5;       ///< damping ratio the explicit cycles give what has no damping
                                        ///< of its own (contacts, blocks' strain modes) [-]; in [0, 1]
@@ -340,7 +336,6 @@ struct SceneDescription {
 
 std::string_view analysis_type_name(AnalysisType t);
 std::string_view plane_name(PlaneKind p);
-std::string_view solver_name(SolverKind s);
 std::string_view time_integration_name(TimeIntegration t);
 std::string_view history_rows_name(HistoryRows h);
 
