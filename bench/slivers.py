@@ -81,11 +81,6 @@ def simulation(text, out, tag, callback=None):
     return rheodda.Simulation(path, callback=callback)
 
 
-def moving(sim):
-    """Indices of the blocks that move (those with a finite cycle: not fixed, touching something)."""
-    return np.flatnonzero(np.isfinite(sim.block_cycles()))
-
-
 def cycles(sim):
     """Per moving block: cycle [s], area [m^2], 2A/P [m]; the scene's cycle [s] and block."""
     to_s = SECONDS[sim.units["time"]]
@@ -125,7 +120,7 @@ def distribution(name, texts, out):
     lo = math.floor(2 * math.log10(min(h.min() for _, h in hists))) / 2
     hi = math.ceil(2 * math.log10(max(h.max() for _, h in hists))) / 2
     edges = 10.0 ** np.arange(lo, hi + 0.25, 0.5)
-    print(f"\nBlocks per half-decade of cycle [s]:\n")
+    print("\nBlocks per half-decade of cycle [s]:\n")
     print("| cycle [s] | " + " | ".join(f"sliver_area {a:g}" for a, _ in hists) + " |")
     print("|---|" + "---:|" * len(hists))
     counts = [np.histogram(h, edges)[0] for _, h in hists]
