@@ -233,7 +233,7 @@ def main():
     ap.add_argument("--scaling-scene", default="tunnel", help="the scene of --scaling, slope or tunnel")
     ap.add_argument("--scaling-blocks", type=int, default=100, help="--scaling's scene at about this many blocks")
     ap.add_argument("--unscaled", action="store_true",
-                    help="--scaling: also the explicit stage unscaled (its impacts take up to 1e5 cycles a step)")
+                    help="--scaling: also the explicit stage unscaled (some of its steps take 1e5 cycles)")
     ap.add_argument("--scaling-steps", type=int, default=3000, help="most steps of a --scaling stage")
     ap.add_argument("--stage-cycles", default="1000,50", help="stage_cycles values of --scaling")
     ap.add_argument("--out", help="scratch directory for the scenes (default: a temporary one)")
