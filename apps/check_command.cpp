@@ -8,6 +8,7 @@
 //   rheodda check examples/sliding-block.yaml --refine=5 --until 0.5 -o out/sliding-refine
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <csignal>
 #include <filesystem>
@@ -108,6 +109,29 @@ std::string block_name(const scene::SceneDescription& s, int b) {
   return k < s.blocks.size() ? "'" + s.blocks[k].name + "'" : fmt::format("{}", b);
 }
 
+/// How the blocks' own cycles spread (Engine::block_cycles): a few small blocks setting the
+/// scene's cycle far below the others' are what rock_mass.sliver_area and stage_cycles are for
+/// (docs/reference/explicit-step.md, "Small blocks").
+std::string block_cycles_text(const scene::SceneDescription& s, core::Engine& e) {
+  const std::vector<double> h = e.block_cycles();
+  std::vector<int> order;
+  for (std::size_t k = 0; k < h.size(); ++k)
+    if (std::isfinite(h[k])) order.push_back(static_cast<int>(k));
+  if (order.empty()) return {};
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return h[a] < h[b] || (h[a] == h[b] && a < b); });
+  // Nearest rank: the value below which the share q of the blocks' cycles lies.
+  auto rank = [&](double q) {
+    return h[order[static_cast<std::size_t>(std::floor(q * static_cast<double>(order.size() - 1)))]];
+  };
+  std::string shortest;
+  for (std::size_t i = 0; i < std::min<std::size_t>(3, order.size()); ++i)
+    shortest += fmt::format("{}{} ({:.3g} {}, area {:.3g} {}^2)", i ? ", " : "", block_name(s, order[i]),
+                            h[order[i]], s.units.time, e.area(order[i]), s.units.length);
+  return fmt::format("  the blocks' cycles ({} blocks): smallest {:.3g} {}, 1st percentile {:.3g}, median {:.3g}; "
+                     "the shortest: {}\n",
+                     order.size(), rank(0.0), s.units.time, rank(0.01), rank(0.5), shortest);
+}
+
 /// The explicit step's cycle on the scene's initial state (docs/reference/explicit-step.md):
 /// its length, the block that sets it, the cycles a simulated time unit costs.
 std::string explicit_cycle_text(const scene::SceneDescription& s) {
@@ -136,7 +160,7 @@ std::string explicit_cycle_text(const scene::SceneDescription& s) {
       staged ? "dynamic stages' " : "", dt, tu, cycles);
   if (staged && s.analysis.stage_cycles > 0 && cycles > s.analysis.stage_cycles)
     text += fmt::format(", {} with the blocks' masses scaled (stage_cycles)", s.analysis.stage_cycles);
-  return statics + text + " (docs/reference/explicit-step.md)\n";
+  return statics + text + " (docs/reference/explicit-step.md)\n" + block_cycles_text(s, *a.engine);
 }
 
 }  // namespace

@@ -251,6 +251,7 @@ bool Engine::in_stage() const { return impl_->settling(); }
 const std::vector<BoltState>& Engine::bolts() const { return impl_->st.bolts; }
 
 Engine::StableCycle Engine::stable_cycle() { return impl_->stable_cycle(); }
+std::vector<double> Engine::block_cycles() { return impl_->block_cycles(); }
 
 EngineState Engine::save() const {
   EngineState s = impl_->st;

@@ -240,6 +240,8 @@ struct Engine::Impl {
   double cycle_block_damping = 0.0;  ///< work the blocks' damping took in its cycles [force x length]
   /// Engine::stable_cycle (explicit_step.cpp).
   StableCycle stable_cycle();
+  /// Engine::block_cycles (explicit_step.cpp).
+  std::vector<double> block_cycles();
   std::vector<Vec6> cycle_velocity;  ///< block velocities at the end of the last explicit attempt
   class Problem;  ///< the StepProblem of a trial (step_trial.cpp)
   /// Cuts dt after a failed attempt (dt *= dt_cut), or throws after max_cuts cuts.

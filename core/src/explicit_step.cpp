@@ -185,6 +185,30 @@ Engine::StableCycle Engine::Impl::stable_cycle() {
   return out;
 }
 
+std::vector<double> Engine::Impl::block_cycles() {
+  // cycle_blocks keeps each block's cycle (3) to itself; a second pass over its blocks, on
+  // the same bound and masses, gives them.
+  std::vector<double> h(st.blocks.size(), std::numeric_limits<double>::infinity());
+  StepContext ctx{st.step, st.time, model.settings.dt, search_disp};
+  contacts->begin_step(views, ctx);
+  if (!model.bolts.empty()) bolt_set.begin_step(model, st.blocks, st.bolts, model.settings.dt);
+  try {
+    if (contacts->begin_cycles(views, model.settings.threads)) {
+      CycleBlocks b = cycle_blocks(model.settings.dt, true);
+      std::vector<Mat6> bound = b.K;
+      contacts->cycle_stiffness(bound);
+      if (!model.bolts.empty()) bolt_set.cycle_stiffness(bound);
+      cycle_block_pass(bound, b, h);
+      for (double& x : h) x *= model.settings.explicit_safety;
+    }
+  } catch (...) {
+    contacts->abandon_step();
+    throw;
+  }
+  contacts->abandon_step();
+  return h;
+}
+
 Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
   const Settings& s = model.settings;
   const std::size_t nb = st.blocks.size();

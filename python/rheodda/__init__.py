@@ -246,6 +246,25 @@ class Simulation:
                      doc="the scene's unit names: dict of length, force, time, stress")
     columns = property(lambda self: self._sim.columns, doc="history columns (those of history.csv)")
 
+    in_stage = property(lambda self: self._sim.in_stage,
+                        doc="True while the run is in a dynamic stage (the next step is dynamic; "
+                            "docs/reference/engine.md, \"Dynamic stages\")")
+
+    def stable_cycle(self):
+        """The explicit step's cycle on the current state and the block that sets it, as
+        ``rheodda check`` gives it for the initial state: ``(cycle [time], block index)``,
+        ``(inf, -1)`` where nothing stiff holds a block (docs/reference/explicit-step.md,
+        "The cycle"). The true masses, whatever the stage."""
+        return self._sim._stable_cycle()
+
+    def block_cycles(self):
+        """Each block's explicit cycle on the current state, shape (blocks,) [time]: the
+        cycle each block alone would allow, found as :meth:`stable_cycle` finds the scene's;
+        ``inf`` for a block held, removed or touching nothing. Its minimum is
+        ``stable_cycle()[0]``. Tells the few small blocks that set a rock mass's cycle from the
+        rest (docs/reference/explicit-step.md, "Small blocks")."""
+        return self._sim._block_cycles()
+
     @property
     def blocks(self):
         """The blocks (:class:`Blocks`): ``sim.blocks[i]`` or ``['name']`` a :class:`Block`,

@@ -372,6 +372,13 @@ void bind_simulation(py::module_& m) {
                     "(else 0) [length]")
       .def_readonly("extrapolated", &core::StepReport::extrapolated,
                     "under analysis.step_tolerance: the step was extrapolated (2 y(dt/2) - y(dt))")
+      .def_readonly("cycles", &core::StepReport::cycles,
+                    "explicit cycles of the accepted attempt (0: the step was implicit) [-]")
+      .def_readonly("cycle_dt", &core::StepReport::cycle_dt, "length of those cycles [time]")
+      .def_readonly("stable_block", &core::StepReport::stable_block,
+                    "the block whose stable cycle set their length (-1: none) [-]")
+      .def_readonly("mass_scale", &core::StepReport::mass_scale,
+                    "the largest density scale of the blocks' masses in those cycles (analysis.stage_cycles) [-]")
       .def("__repr__", [](const core::StepReport& r) {
         return fmt::format("<StepReport step {} t {:g} dt {:g} iterations {} cuts {}>", r.step, r.time, r.dt,
                            r.iterations, r.cuts);
@@ -391,6 +398,12 @@ void bind_simulation(py::module_& m) {
       .def_property_readonly("step_count", &Simulation::step_count)
       .def_property_readonly("duration", [](const Simulation& s) { return s.scene().analysis.duration; })
       .def_property_readonly("failed", &Simulation::failed)
+      .def_property_readonly("in_stage", &Simulation::in_stage)
+      .def("_stable_cycle", &Simulation::stable_cycle)
+      .def("_block_cycles", [](const Simulation& s) {
+        const std::vector<double> h = s.block_cycles();
+        return py::array_t<double>(static_cast<py::ssize_t>(h.size()), h.data());
+      })
       .def("_history", &Simulation::history)
       .def_property_readonly("columns", &Simulation::columns)
       .def("set_load", &Simulation::set_load, py::arg("index"), py::arg("fx"), py::arg("fy"))

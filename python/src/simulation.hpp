@@ -34,6 +34,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common.hpp"
@@ -67,6 +68,14 @@ class Simulation {
   const std::string& text() const { return text_; }
   int joint_set_index(const std::string& name) const;
   bool failed() const { return failed_; }
+  /// Engine::stable_cycle on the current state: (cycle [time], block; -1 where none).
+  std::pair<double, int> stable_cycle() const {
+    const core::Engine::StableCycle c = eng().stable_cycle();
+    return {c.cycle, c.block};
+  }
+  /// Engine::block_cycles on the current state [time].
+  std::vector<double> block_cycles() const { return eng().block_cycles(); }
+  bool in_stage() const { return eng().in_stage(); }
   py::object callback() const { return callback_; }
   void set_callback(py::object f) { callback_ = std::move(f); }
 

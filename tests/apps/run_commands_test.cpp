@@ -33,6 +33,24 @@ BOOST_AUTO_TEST_CASE(check_prints_blocks_joint_sets_laws_and_estimated_contacts)
   BOOST_TEST(o.find("block10_top") != std::string::npos);
 }
 
+BOOST_AUTO_TEST_CASE(check_of_an_explicit_scene_prints_the_spread_of_the_blocks_cycles) {
+  // The sliding block on its incline: one block moves, so it sets the scene's cycle and the
+  // spread's every figure, and it is the shortest.
+  const fs::path dir = fresh_dir("cycles");
+  const fs::path scene = dir / "explicit.yaml";
+  std::ofstream(scene) << with("  type: dynamic\n", "  type: dynamic\n  integrator: explicit\n",
+                               read_text(source_path("examples/sliding-block.yaml")));
+  const auto r = run_rheodda("check " + scene.string());
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.output);
+  const std::string& o = r.output;
+  const auto at = o.find("the blocks' cycles (1 blocks): smallest ");
+  BOOST_TEST_REQUIRE(at != std::string::npos, o);
+  const auto set_by = o.find("set by block 'block'");
+  BOOST_TEST(set_by != std::string::npos, o);
+  BOOST_TEST(o.find("the shortest: 'block' (", at) != std::string::npos, o);
+  BOOST_TEST(o.find("area 0.5 m^2)", at) != std::string::npos, o);
+}
+
 BOOST_AUTO_TEST_CASE(bad_scene_exits_2_with_file_line_column_and_writes_nothing) {
   const fs::path dir = fresh_dir("bad");
   const fs::path file = dir / "bad.yaml";

@@ -187,6 +187,7 @@ BOOST_AUTO_TEST_CASE(a_block_held_in_rotation_alone_is_pushed_off_centre_as_a_fr
       const Engine::StableCycle c = e.stable_cycle();
       BOOST_TEST(c.block == 0);
       BOOST_TEST(c.cycle == 0.8 * 2.0 / std::sqrt(penalty() / mass), boost::test_tools::tolerance(1e-9));
+      BOOST_TEST(e.block_cycles() == std::vector<double>{c.cycle}, boost::test_tools::per_element());
     }
     e.run(50);
     const double t = 0.5;

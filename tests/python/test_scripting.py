@@ -124,6 +124,19 @@ def test_a_spinning_block_rotates_by_omega_t_without_strain():
     assert np.all(np.abs(b.strain) < 1e-12)
 
 
+def test_the_explicit_cycle_of_each_block_has_the_scenes_at_its_minimum():
+    scene = incline()
+    scene["analysis"]["integrator"] = "explicit"
+    sim = rheodda.Simulation(scene)
+    cycle, block = sim.stable_cycle()
+    h = sim.block_cycles()
+    assert h.shape == (2,)
+    assert math.isinf(h[0])  # the fixed base has no cycle
+    assert block == 1 and h[1] == cycle
+    assert 0.0 < cycle < 1e-3  # s: the scene's 1 ms steps take several cycles
+    assert not sim.in_stage  # a dynamic analysis has no stages
+
+
 def test_blocks_are_fixed_freed_removed_and_loaded_between_steps():
     sim = rheodda.Simulation(incline(20))
     base, block = sim.blocks

@@ -1,7 +1,7 @@
 // The explicit step (docs/reference/explicit-step.md) against closed forms and against the
 // implicit step: free fall, a block sliding down an incline, a block at rest on a slope it
 // holds, a block pushed down a slope it holds that stops and sticks, a stack at rest, and
-// the same bits whatever the number of threads.
+// the same bits whatever the number of threads; each block's cycle against its size.
 #include <boost/test/unit_test.hpp>
 
 #include "sim.hpp"
@@ -317,6 +317,33 @@ BOOST_AUTO_TEST_CASE(density_scaling_bounds_the_cycles_of_a_stage_and_keeps_its_
   BOOST_TEST(scaled.settle_block == plain.settle_block, boost::test_tools::tolerance(0.01));
   BOOST_TEST(scaled.settle_plate == plain.settle_plate, boost::test_tools::tolerance(0.01));
   BOOST_TEST(scaled.residual < std::max(2.0 * plain.residual, 1e-3));
+}
+
+BOOST_AUTO_TEST_CASE(each_blocks_cycle_shrinks_with_its_size_and_the_smallest_is_the_scenes) {
+  // Two squares on a fixed base, 1 m and 0.25 m, apart, undamped (explicit_damping 0: no
+  // dashpot, no strain damping, so that (3) is 2/omega_max). Each rests on two corner
+  // contacts of the same penalty springs; its mass and its strain inertia scale as L^2 and
+  // L^4, its springs' levers as L: omega_max ~ 1/L, and the small square's cycle is a quarter
+  // of the large one's. The scene's cycle is the smaller, set by the small square; the base,
+  // held, has none.
+  core::Model m;
+  m.settings.dt = 1e-3;
+  m.settings.integrator = core::Integrator::explicit_step;
+  m.settings.explicit_damping = 0.0;
+  add_fixed(m, rect(-1.0, -1.0, 4.0, 0.0));
+  m.blocks.push_back(block(rect(0.0, 0.0, 1.0, 1.0)));
+  m.blocks.push_back(block(rect(2.0, 0.0, 2.25, 0.25)));
+  Sim sim(std::move(m), {joint(30.0)});
+  const std::vector<double> h = sim.engine.block_cycles();
+  const core::Engine::StableCycle c = sim.engine.stable_cycle();
+  BOOST_TEST_MESSAGE("cycles: large " << h[1] << " s, small " << h[2] << " s, scene " << c.cycle << " s (block "
+                                      << c.block << ")");
+  BOOST_TEST_REQUIRE(h.size() == 3u);
+  BOOST_TEST(std::isinf(h[0]));
+  BOOST_TEST(std::isfinite(h[1]));
+  BOOST_TEST(h[2] == 0.25 * h[1], boost::test_tools::tolerance(1e-6));
+  BOOST_TEST(c.block == 2);
+  BOOST_TEST(c.cycle == h[2]);
 }
 
 BOOST_AUTO_TEST_CASE(a_stage_at_rest_by_its_unbalanced_force_ratio_holds_the_stack_in_equilibrium) {

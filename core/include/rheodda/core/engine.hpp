@@ -292,6 +292,13 @@ class Engine {
     int block = -1;
   };
   StableCycle stable_cycle();
+  /// The explicit step's cycle of each block on the current state, found as stable_cycle()
+  /// finds the scene's: explicit_safety x the block's stable cycle, its true mass, its contacts
+  /// as a step of Settings::dt would find them, the contacts' dashpots of the whole scene.
+  /// Infinite for a block held or removed, or on which nothing stiff acts. Its smallest value is
+  /// stable_cycle().cycle, at stable_cycle().block (docs/reference/explicit-step.md, "The
+  /// cycle") [time].
+  std::vector<double> block_cycles();
 
   /// Applies `edit` between two steps (model_edits.cpp; docs/reference/stages.md).
   /// Validates it first and throws ModelError naming the field ("remove_blocks[0]",
