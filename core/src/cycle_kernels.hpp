@@ -4,16 +4,28 @@
 // ratio. The equations cited are those of explicit_step.cpp's header.
 #pragma once
 
+#include <omp.h>
+
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <span>
+#include <stdexcept>
 #include <vector>
 
 #include "rheodda/core/block_system.hpp"
+#include "rheodda/core/contact_model.hpp"
 #include "rheodda/core/model.hpp"
 
 namespace rheodda::core::cycles {
+
+/// The contacts take their cycles' arrays (ContactModel::begin_cycles) for cycles on `threads`
+/// (Settings::threads); returns the threads the blocks' loops run on (0: OpenMP's default).
+inline int begin(ContactModel& contacts, std::span<const contact::BlockView> views, int threads) {
+  if (!contacts.begin_cycles(views, threads)) throw std::logic_error("the contact model cannot take explicit cycles");
+  return threads > 0 ? threads : omp_get_max_threads();
+}
 
 /// Largest eigenvalue of M^-1 A for the block mass M (its Cholesky factor L), A symmetric:
 /// omega_max^2 of (3) when A is the block's stiffness bound [1/time^2].

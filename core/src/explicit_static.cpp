@@ -59,9 +59,7 @@ Engine::Impl::Trial Engine::Impl::relax_trial(double dt, StepReport& rep) {
   const Settings& s = model.settings;
   const std::size_t nb = st.blocks.size();
   const auto nbi = static_cast<std::ptrdiff_t>(nb);
-  const int threads = s.threads > 0 ? s.threads : omp_get_max_threads();
-  if (!contacts->begin_cycles(views, s.threads))
-    throw std::logic_error("the contact model cannot take explicit cycles");
+  const int threads = cycles::begin(*contacts, views, s.threads);
   auto t0 = Clock::now();
   std::vector<Mat6> K;
   Eigen::VectorXd F;
