@@ -4,9 +4,10 @@
 # taken by explicit cycles at several unbalanced-force ratios (analysis.static_force_ratio,
 # docs/reference/explicit-step.md), one thread each. Prints a Markdown table: CPU seconds
 # (user + system of `rheodda run`), steps, cycles per static step, and the measurement
-# points' displacement at the end with its difference from the implicit answer.
+# points' displacement at the end with its difference from the implicit answer, into
+# docs/notes/explicit-step.md between the static-cycles-table markers.
 #
-#   scripts/bench-static-cycles.sh                 # the Goodman creep slope (16 blocks), minutes
+#   scripts/bench-static-cycles.sh                 # the Goodman creep slope (16 blocks), 5 minutes
 #   TUNNEL=1 scripts/bench-static-cycles.sh        # and the 945-block tunnel's first DAYS days
 #   DAYS=5 TUNNEL=1 scripts/bench-static-cycles.sh
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
@@ -63,7 +64,9 @@ header() {
   printf '|---|---:|---:|---:|---:|---|---|\n'
 }
 
+{
 echo "Goodman toppling slope with Burgers creep (examples/goodman-toppling-creep.yaml), 100 d:"
+echo
 header
 slope="$root/examples/goodman-toppling-creep.yaml"
 implicit_disp=""
@@ -76,6 +79,7 @@ done
 if [[ -n "${TUNNEL:-}" ]]; then
   echo
   echo "Generated tunnel (examples/rockmass/tunnel.yaml, rockmass_bench --creep 1000), first $days d:"
+  echo
   header
   "$build/bench/rockmass_bench" --example tunnel --creep 1000 --rest-tolerance 1e-5 --write-scenes "$work/tunnel" \
     --duration 0 >/dev/null 2>&1 || true
@@ -90,3 +94,5 @@ if [[ -n "${TUNNEL:-}" ]]; then
     measure "tunnel cycles $r" "$work/tunnel-$r.yaml"
   done
 fi
+} | tee "$work/table.md"
+"$root/scripts/splice-doc.sh" "$root/docs/notes/explicit-step.md" static-cycles-table "$work/table.md"
