@@ -18,10 +18,11 @@
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # strict mode; root, build, work (removed at exit)
 ensure_built rheodda
 # example | analysis keys replaced in a shortened copy ("" = as shipped) | refinement tolerance [%]
-# The tunnel's explicit settling stage stalls after about ten of its 1 ms steps (a run of it
-# cut to 0.05 s was stopped at the CPU limit before its end): it is compared on its settling
-# stage cut to those ten steps (0.01 s, gravity at once), followed by one static step of that
-# length (implicit for both integrators) and the analysis ending there.
+# The tunnel's explicit run as shipped, and one with its settling stage cut to 0.05 s, did not
+# end within 300 s of CPU (why is not found; docs/notes/integrator-comparison.md): it is
+# compared on its settling stage cut to its first ten 1 ms steps (0.01 s, gravity at once),
+# followed by one static step of that length (implicit for both integrators) and the analysis
+# ending there.
 examples=(
   "examples/sliding-block.yaml||5"
   "examples/excavation-stages.yaml||5"
