@@ -17,6 +17,7 @@
 #include "rheodda/core/block_system.hpp"
 #include "rheodda/core/contact_model.hpp"
 #include "rheodda/core/model.hpp"
+#include "engine_impl.hpp"
 
 namespace rheodda::core::cycles {
 
@@ -25,6 +26,18 @@ namespace rheodda::core::cycles {
 inline int begin(ContactModel& contacts, std::span<const contact::BlockView> views, int threads) {
   if (!contacts.begin_cycles(views, threads)) throw std::logic_error("the contact model cannot take explicit cycles");
   return threads > 0 ? threads : omp_get_max_threads();
+}
+
+/// After the last cycle, at D: the contacts (and the bolts, `with_bolts`) take the cycles'
+/// states, their changes counted into rep; the trial converged there.
+inline StepTrial end(ContactModel& contacts, BoltSet& bolts, bool with_bolts, std::span<const contact::BlockView> views,
+                     const Eigen::VectorXd& D, StepReport& rep) {
+  StepTrial trial;
+  trial.converged = true;
+  trial.check = contacts.end_cycles(views, D);
+  if (with_bolts) bolts.end_cycles(D);
+  rep.changes += trial.check.changes;
+  return trial;
 }
 
 /// Largest eigenvalue of M^-1 A for the block mass M (its Cholesky factor L), A symmetric:

@@ -158,12 +158,10 @@ Engine::Impl::Trial Engine::Impl::relax_trial(double dt, StepReport& rep) {
     return trial;  // the caller abandons the step
   }
   D = Dn;
-  trial.converged = true;
-  trial.short_of_rest = partial;
-  trial.check = contacts->end_cycles(views, D);
-  if (bolts) bolt_set.end_cycles(D);
-  rep.changes += trial.check.changes;
-  return trial;
+  Trial taken = cycles::end(*contacts, bolt_set, bolts, views, D, rep);
+  taken.iterations = n;
+  taken.short_of_rest = partial;
+  return taken;
 }
 
 }  // namespace rheodda::core

@@ -297,12 +297,7 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
   rep.cycles = n;
   rep.cycle_dt = h;
   rep.stable_block = stable_block;
-  Trial trial;
-  trial.converged = true;
-  trial.check = contacts->end_cycles(views, D);
-  if (bolts) bolt_set.end_cycles(D);
-  rep.changes += trial.check.changes;
-  return trial;
+  return cycles::end(*contacts, bolt_set, bolts, views, D, rep);
 }
 
 }  // namespace rheodda::core

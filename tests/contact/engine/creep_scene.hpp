@@ -5,7 +5,9 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "rheodda/laws/registry.hpp"
 #include "rheodda/laws/seed_table1.hpp"
@@ -59,6 +61,28 @@ struct CreepScene {
     joint.law = std::move(law);
   }
 };
+
+/// A law on the creep scene's joint: its name, parameters, and the joint's elastic
+/// shear_stiffness where the law has no instantaneous spring (Kelvin: tau/k_s) [MPa/mm].
+struct LawCase {
+  std::string name, law;
+  laws::ParameterValues p;
+  std::optional<double> shear_stiffness;
+};
+
+/// The laws besides Burgers with Table 1's first row's constants: Maxwell, Kelvin, and
+/// Nishihara below its threshold (no viscoplastic creep) and above it.
+inline std::vector<LawCase> other_law_cases() {
+  const Table1Row& r = kTable1[0];
+  return {
+      {"maxwell", "maxwell", {{"E1", r.E1}, {"eta1", r.eta1}}, std::nullopt},
+      {"kelvin", "kelvin", {{"E2", r.E2}, {"eta2", r.eta2}}, 30.0},
+      {"nishihara below Fs", "nishihara",
+       {{"E1", r.E1}, {"E2", r.E2}, {"eta2", r.eta2}, {"eta3", 5000.0}, {"Fs", 0.3}}, std::nullopt},
+      {"nishihara above Fs", "nishihara",
+       {{"E1", r.E1}, {"E2", r.E2}, {"eta2", r.eta2}, {"eta3", 5000.0}, {"Fs", 0.15}}, std::nullopt},
+  };
+}
 
 /// Joint's relative shear displacement [mm], in the direction of F2 (+x): mean
 /// over the contacts of A's base (B's top edge runs in -x).

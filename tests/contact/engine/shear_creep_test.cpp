@@ -195,21 +195,8 @@ BOOST_AUTO_TEST_CASE(maxwell_kelvin_and_nishihara_joints_follow_their_closed_for
   // Same scene, 0-200 h, dt = 2 h, both accurate schemes. Kelvin has no
   // instantaneous spring: the joint's shear_stiffness k_s gives tau/k_s.
   // Nishihara below its threshold (no viscoplastic creep) and above it.
-  struct Case {
-    std::string name, law;
-    laws::ParameterValues p;
-    std::optional<double> shear_stiffness;
-  };
   const Table1Row& r = kTable1[0];
-  const Case cases[] = {
-      {"maxwell", "maxwell", {{"E1", r.E1}, {"eta1", r.eta1}}, std::nullopt},
-      {"kelvin", "kelvin", {{"E2", r.E2}, {"eta2", r.eta2}}, 30.0},
-      {"nishihara below Fs", "nishihara",
-       {{"E1", r.E1}, {"E2", r.E2}, {"eta2", r.eta2}, {"eta3", 5000.0}, {"Fs", 0.3}}, std::nullopt},
-      {"nishihara above Fs", "nishihara",
-       {{"E1", r.E1}, {"E2", r.E2}, {"eta2", r.eta2}, {"eta3", 5000.0}, {"Fs", 0.15}}, std::nullopt},
-  };
-  for (const Case& c : cases)
+  for (const LawCase& c : other_law_cases())
     for (laws::Scheme scheme : {laws::Scheme::implicit, laws::Scheme::exponential_linear}) {
       BOOST_TEST_CONTEXT(c.name << " " << laws::scheme_name(scheme)) {
         auto law = make_law(c.law, c.p);
