@@ -21,6 +21,10 @@
 
 namespace rheodda::core::cycles {
 
+/// Fewer blocks than this are kicked and drifted on one thread: a parallel region per cycle
+/// costs more than their update (the same bits either way; contact_cycles.cpp likewise).
+constexpr std::ptrdiff_t kParallelBlocks = 16;
+
 /// The contacts take their cycles' arrays (ContactModel::begin_cycles) for cycles on `threads`
 /// (Settings::threads); returns the threads the blocks' loops run on (0: OpenMP's default).
 inline int begin(ContactModel& contacts, std::span<const contact::BlockView> views, int threads) {

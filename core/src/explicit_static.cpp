@@ -50,9 +50,6 @@ namespace {
 /// go with h^2), only the velocities' units depend on it.
 constexpr double kCycle = 1.0;
 
-/// Fewer blocks than this are kicked on one thread (explicit_step.cpp likewise).
-constexpr std::ptrdiff_t kParallelBlocks = 16;
-
 }  // namespace
 
 Engine::Impl::Trial Engine::Impl::relax_trial(double dt, StepReport& rep) {
@@ -106,7 +103,7 @@ Engine::Impl::Trial Engine::Impl::relax_trial(double dt, StepReport& rep) {
   for (;; ++n) {
     contacts->cycle_forces(Dn, V, kCycle, f);
     if (bolts) bolt_set.cycle_forces(Dn, V, kCycle, f);
-#pragma omp parallel for schedule(static) num_threads(threads) if (nbi >= kParallelBlocks)
+#pragma omp parallel for schedule(static) num_threads(threads) if (nbi >= cycles::kParallelBlocks)
     for (std::ptrdiff_t k = 0; k < nbi; ++k) {
       if (frozen[k]) continue;
       R.segment<6>(6 * k) = F.segment<6>(6 * k) - K[k] * Dn.segment<6>(6 * k) - f.segment<6>(6 * k);
@@ -123,7 +120,7 @@ Engine::Impl::Trial Engine::Impl::relax_trial(double dt, StepReport& rep) {
     if (n == s.static_max_cycles) break;
     if (ratio <= s.static_force_ratio) continue;  // the forces again, at the new seams
     D_before = Dn;
-#pragma omp parallel for schedule(static) num_threads(threads) if (nbi >= kParallelBlocks)
+#pragma omp parallel for schedule(static) num_threads(threads) if (nbi >= cycles::kParallelBlocks)
     for (std::ptrdiff_t k = 0; k < nbi; ++k) {
       if (frozen[k]) continue;
       auto Vk = V.segment<6>(6 * k);

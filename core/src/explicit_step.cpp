@@ -71,10 +71,6 @@ constexpr double kMaxCycles = 1.0e8;
 /// below the wanted cycle.
 constexpr int kScalingPasses = 3;
 
-/// Fewer blocks than this are kicked and drifted on one thread: a parallel region per cycle
-/// costs more than their update (the same bits either way; contact_cycles.cpp likewise).
-constexpr std::ptrdiff_t kParallelBlocks = 16;
-
 /// (4): each strain mode of a block damped at the ratio zeta.
 Eigen::Matrix3d modal_strain_damping(const Eigen::Matrix3d& K, const Eigen::Matrix3d& M, double zeta) {
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix3d> es(K, M);
@@ -261,7 +257,7 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
     const bool drift = c < n;
     contacts->cycle_forces(Dn, V, h, f);
     if (bolts) bolt_set.cycle_forces(Dn, V, h, f);  // added per block after the contacts' sum
-#pragma omp parallel for schedule(static) num_threads(threads) if (nbi >= kParallelBlocks)
+#pragma omp parallel for schedule(static) num_threads(threads) if (nbi >= cycles::kParallelBlocks)
     for (std::ptrdiff_t k = 0; k < nbi; ++k) {
       if (frozen[k]) continue;
       auto Dk = Dn.segment<6>(6 * k);
