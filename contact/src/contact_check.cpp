@@ -102,7 +102,7 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
           const double flight =
               (settings_.lock_at_touch && step_dynamic_ && gap > 0.0) ? gap / (gap + dn) * slip : 0.0;
           const double S = shear_stiffness(c) * (dt - flight);
-          if (std::abs(S) > N * h.tan_phi + h.cohesion * r.length + f_res) {
+          if (std::abs(S) > mohr_coulomb_strength(N, h.tan_phi, h.cohesion, r.length) + f_res) {
             r.state = ContactState::sliding;
             r.slide_direction = S >= 0.0 ? 1 : -1;
           } else {
@@ -116,11 +116,9 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
         if (N < -h.tensile_strength * r.length - f_res) {
           r.state = ContactState::open;
         } else if (r.state == ContactState::locked) {
-          // Mohr-Coulomb: slip when |F_T| > N tan(phi) + c l. In tension (N < 0, within the
-          // tensile strength) this takes N tan(phi) < 0, where strength.hpp, the committed force
-          // and the explicit cycles take no friction: not yet one rule.
+          // Mohr-Coulomb (strength.hpp): slip when |F_T| > N tan(phi) + c l.
           const double S = shear_stiffness(c) * dt;
-          if (std::abs(S) > N * h.tan_phi + h.cohesion * r.length + f_res) {
+          if (std::abs(S) > mohr_coulomb_strength(N, h.tan_phi, h.cohesion, r.length) + f_res) {
             r.state = ContactState::sliding;
             r.slide_direction = dt >= 0.0 ? 1 : -1;
           }

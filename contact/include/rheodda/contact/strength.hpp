@@ -15,12 +15,15 @@ namespace rheodda::contact {
 inline double tan_deg(double degrees) { return std::tan(degrees * std::numbers::pi / 180.0); }
 
 /// The Mohr-Coulomb shear strength N tan(phi) + c l of a contact [force/length]: N the
-/// normal force [force/length] (compression > 0; a contact in tension carries no
-/// friction), tan(phi) [-], c the cohesion [stress], l the contact length [length].
+/// normal force [force/length] (compression > 0), tan(phi) [-], c the cohesion [stress], l
+/// the contact length [length]. The linear envelope holds in tension too (N < 0, down to the
+/// tensile cut-off N = -T l, where the contact opens), as in UDEC's Coulomb slip joint model
+/// (Itasca, UDEC Constitutive Models: tau_max = c + sigma_n tan(phi)); beyond the envelope's
+/// apex (c l + N tan(phi) < 0) the strength is nil, never negative.
 /// The same with the cohesion force C = c l given [force/length] (the explicit cycles take
 /// it once per step).
 inline double mohr_coulomb_strength(double normal_force, double tan_phi, double cohesion_force) {
-  return std::max(normal_force, 0.0) * tan_phi + cohesion_force;
+  return std::max(normal_force * tan_phi + cohesion_force, 0.0);
 }
 
 inline double mohr_coulomb_strength(double normal_force, double tan_phi, double cohesion, double length) {
