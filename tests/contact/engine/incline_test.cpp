@@ -197,4 +197,52 @@ BOOST_AUTO_TEST_CASE(four_cases_stable_slides_topples_slides_and_topples) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(a_joint_in_tension_holds_by_the_mohr_coulomb_envelope_below_its_cohesion) {
+  // Mohr-Coulomb with a tension cut-off (docs/reference/contacts.md, "Friction, cohesion,
+  // tension"; contact/strength.hpp): within the tensile strength the envelope holds as it
+  // is, tau_max = c + sigma_n tan(phi) with sigma_n < 0, as UDEC's Coulomb slip. A 1 x 0.5 m
+  // block glued to a flat base by c = 10 kPa and T = 20 kPa, phi = 30 deg, under a body
+  // force that pulls it off the base by rho h g_n = 6.5 kPa and along it by rho h g_t: the
+  // joint's strength is c - 6.5 kPa tan(30 deg) = 6.247 kPa. At a shear of 3 kPa it holds
+  // (every contact intact and locked, the block still), at 8 kPa it slips in its first step
+  // (the cohesion alone, 10 kPa, would hold it). A static step, implicit and by cycles.
+  const double rho = 2600.0, h = 0.5, g_n = 5.0, c = 1.0e4, T = 2.0e4, phi = 30.0;
+  const double strength = c - rho * h * g_n * std::tan(deg(phi));  // [Pa]
+  BOOST_TEST(strength == 6247.2, boost::test_tools::tolerance(1e-4));
+  for (const bool cycles : {false, true})
+    for (const double shear : {3000.0, 8000.0}) {  // rho h g_t [Pa]
+      BOOST_TEST_CONTEXT((cycles ? "by cycles" : "implicit") << ", shear " << shear << " Pa") {
+        core::Model m = incline_scene(0.0, 1.0, h, 2.0);
+        m.settings.dynamic_ratio = 0.0;  // static
+        m.settings.gravity = Vec2(-shear / (rho * h), g_n);
+        if (cycles) {
+          m.settings.integrator = core::Integrator::explicit_step;
+          m.settings.static_force_ratio = 1e-6;
+        }
+        contact::JointSet j = joint(phi);
+        j.cohesion = c;
+        j.tensile_strength = T;
+        Sim sim(m, {j});
+        const Vec2 c0 = sim.engine.centroid(1);
+        sim.engine.step();
+        bool closed = false, all_intact = true;
+        for (const contact::Contact& k : sim.contacts.contacts()) {
+          if (k.state == contact::ContactState::open) continue;
+          closed = true;
+          all_intact = all_intact && k.intact && k.state == contact::ContactState::locked;
+        }
+        const double moved = sim.engine.point_displacement(1, c0).norm();
+        BOOST_TEST_MESSAGE("closed " << closed << ", intact and locked " << all_intact << ", moved " << moved
+                                     << " m");
+        if (shear < strength) {
+          BOOST_TEST(closed);
+          BOOST_TEST(all_intact);
+          BOOST_TEST(moved < 1e-5);
+        } else {
+          BOOST_TEST(!(closed && all_intact));
+        }
+      }
+    }
+}
+
 BOOST_AUTO_TEST_SUITE_END()
