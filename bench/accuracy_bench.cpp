@@ -166,21 +166,23 @@ std::string fmt_error(double e) {
 // ---- The toppling model (docs/notes/step-controls.md, "The toppling model") ----
 // Every run starts from one settled state: the scene's settling stage
 // (analysis.settle), or, for a scene without one, fixed steps of
-// kSettleStep up to kSettleEnd with g2 = kSettleG2: the columns' settling
-// under gravity applied at once (a quasi-static collapse whose path, in static
-// DDA, depends on the step: taken once, in small steps, it is the same for all
-// runs). From there each run creeps to T_END with its own fixed step or
-// creep_tolerance, with the scene's g2; error = largest |u - u_ref| of the
-// measurement points at T_END / largest u_ref, u_ref from a fixed step kFine.
+// kSettleStep up to kSettleEnd with max_displacement_ratio =
+// kSettleMaxDisplacementRatio: the columns' settling under gravity applied at
+// once (a quasi-static collapse whose path, in static DDA, depends on the step:
+// taken once, in small steps, it is the same for all runs). From there each run
+// creeps to T_END with its own fixed step or creep_tolerance, with the scene's
+// max_displacement_ratio; error = largest |u - u_ref| of the measurement points
+// at T_END / largest u_ref, u_ref from a fixed step kFine.
 constexpr double kSettleStep = 1e-4, kSettleEnd = 0.01;  // [d]
-constexpr double kSettleG2 = 0.0005;                     // [-] (docs/guide/toppling-study.md)
+constexpr double kSettleMaxDisplacementRatio = 0.0005;  // [-] (docs/guide/toppling-study.md)
 constexpr double kFine = 1.0 / 1024;  // reference step [d]; a run at 2 kFine checks it
 
 struct Settled {
   core::EngineState engine;
   contact::ContactSystem contacts;
   long steps = 0;
-  double step = 0.0, end = 0.0, g2 = 0.0;  ///< the settling's steps, end [d] and g2 [-]
+  double step = 0.0, end = 0.0;          ///< the settling's steps and end [d]
+  double max_displacement_ratio = 0.0;  ///< the settling's max_displacement_ratio [-]
 };
 
 /// The scene's own settling stage (`analysis.settle`) when it has one, else the
@@ -192,7 +194,7 @@ Settled settle(const scene::BuiltScene& built) {
   const bool own = m.settings.settle_until > 0.0;
   const double end = own ? m.settings.settle_until : kSettleEnd;
   if (!own) {
-    m.settings.g2 = kSettleG2;
+    m.settings.max_displacement_ratio = kSettleMaxDisplacementRatio;
     m.settings.dt = kSettleStep;
   }
   contact::ContactSystem contacts(built.joint_sets, built.contact_settings);
@@ -200,7 +202,7 @@ Settled settle(const scene::BuiltScene& built) {
   core::Engine engine(m, adapter);
   engine.run_until(end);
   return Settled{engine.save(), contacts, engine.step_count(), own ? m.settings.settle_dt : kSettleStep, end,
-                 own ? m.settings.settle_g2 : kSettleG2};
+                 own ? m.settings.settle_max_displacement_ratio : kSettleMaxDisplacementRatio};
 }
 
 struct CreepRun {
@@ -294,7 +296,8 @@ int toppling(const std::string& path, double t_end) {
               built.contact_settings.scheme
                   ? std::string(laws::scheme_name(*built.contact_settings.scheme)).c_str()
                   : "default",
-              built.model.settings.g2, settled.steps, settled.step, settled.end, settled.g2, t_end,
+              built.model.settings.max_displacement_ratio, settled.steps, settled.step, settled.end,
+              settled.max_displacement_ratio, t_end,
               1.0 / kFine, 0.5 / kFine, fine.r.steps, fine2.r.steps,
               fmt_error(fine_gap / peak).c_str());
   for (double v : ref_u) std::printf(" %.6f", v);

@@ -34,7 +34,7 @@
 // A wall of NX x NY bricks 0.2 m x 0.1 m in running bond (odd rows start and
 // end with a half brick, so the sides are straight) stands on a fixed base
 // block; gravity, friction 30 deg on every joint, E = 5 GPa, nu = 0.2 (--poisson),
-// density 2600 kg/m^3, dynamic analysis, dt = 1e-3 s, g2 w0 = 1 mm, 50 steps,
+// density 2600 kg/m^3, dynamic analysis, dt = 1e-3 s, max_displacement_ratio w0 = 1 mm, 50 steps,
 // default open-close limit (30) and contact settings. Prints the
 // time of contact detection and of a full step (open-close iteration
 // included), block-steps per second, the growth exponent of the step time
@@ -137,7 +137,7 @@ int main(int argc, char** argv) {
   int steps = 50;
   bool detect_only = false;
   double pcg_tol = 0.0;
-  double iterate_tol = -1.0;  // < 0: the engine's default (Settings::pcg_iterate_tolerance)
+  double iterate_tol = -1.0;  // < 0: the engine's default (Settings::solver_iterate_tolerance)
   std::string solver = "automatic";
   int open_close = 0;
   double penalty = 40.0;  // [E]
@@ -222,9 +222,9 @@ int main(int argc, char** argv) {
   for (const auto& [nx, ny] : sizes) {
     core::Model model = brick_wall(nx, ny, poisson);
     model.settings.solver = solver_kind;
-    if (pcg_tol > 0.0) model.settings.pcg_tolerance = pcg_tol;
-    if (iterate_tol >= 0.0) model.settings.pcg_iterate_tolerance = iterate_tol;
-    if (open_close > 0) model.settings.max_open_close = open_close;
+    if (pcg_tol > 0.0) model.settings.solver_tolerance = pcg_tol;
+    if (iterate_tol >= 0.0) model.settings.solver_iterate_tolerance = iterate_tol;
+    if (open_close > 0) model.settings.open_close_limit = open_close;
     if (contact_solver == "newton") model.settings.contact_solver = core::ContactSolver::newton;
     else if (contact_solver != "open-close") {
       std::fprintf(stderr, "contact_bench: unknown --contact-solver '%s'\n", contact_solver.c_str());

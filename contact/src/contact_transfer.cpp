@@ -37,7 +37,7 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
   const double w0 = nb > 0 ? 0.5 * (model.hi - model.lo).maxCoeff() : 0.0;
   allowed_penetration_ = settings_.penetration_ratio * w0;
   double d0 = std::max(settings_.search_factor * max_displacement, settings_.min_search_distance);
-  if (!(d0 > 0.0)) d0 = settings_.search_factor * 0.01 * w0;  // g2 = 0.01 when the host gives none
+  if (!(d0 > 0.0)) d0 = settings_.search_factor * 0.01 * w0;  // max_displacement_ratio = 0.01 when the host gives none
 
   for (int i = 0; i < nb; ++i) boxes_[i] = bounding_box(blocks[i], 0.5 * d0);
   const std::vector<std::pair<int, int>>* found_pairs = &broad_.find_pairs(boxes_);

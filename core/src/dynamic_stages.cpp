@@ -1,7 +1,7 @@
 // Dynamic stages of a static analysis (docs/reference/engine.md, "Dynamic stages"): the
 // settling stage at the start (Settings::settle_until) and the stages that take
 // a collapse dynamically (Settings::collapse_dt). A stage carries velocity with
-// the settling stage's dt and g2; it ends at rest - after a step whose kinetic
+// settle_dt and settle_max_displacement_ratio; it ends at rest - after a step whose kinetic
 // energy is below Settings::settle_rest_tolerance of the work gravity and the
 // loads did over the stage (with the explicit step and Settings::settle_force_ratio: after a
 // step whose unbalanced-force ratio is below it) - or at its longest, settle_until from its start.
@@ -83,7 +83,7 @@ void Engine::Impl::update_stage(const StepReport& rep) {
   }
   if (settling()) return;
   // The stage has ended (at rest or at its longest): its event.
-  const double reach = s.settle_g2 * w0;  // the stage's step limit [length]
+  const double reach = s.settle_max_displacement_ratio * w0;  // the stage's step limit [length]
   for (std::size_t k = 0; k < st.blocks.size(); ++k) {
     double moved = 0.0;
     const auto& v = st.blocks[k].vertices;

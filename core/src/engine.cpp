@@ -54,9 +54,9 @@ void Engine::Impl::initialise() {
   st.step = 0;
   st.time = 0.0;
   if (s.settle_until > 0.0) start_stage(StageKind::settling, s.settle_until);
-  search_disp = std::min(g2_now() * w0, search_floor);
+  search_disp = std::min(max_displacement_ratio_now() * w0, search_floor);
   st.next_dt = settling() ? std::min(s.dt, s.settle_dt) : s.dt;
-  solver = std::make_unique<LinearSolver>(s.solver, s.pcg_tolerance, s.pcg_max_iterations);
+  solver = std::make_unique<LinearSolver>(s.solver, s.solver_tolerance, s.solver_max_iterations);
   contact_solve = make_contact_solve(s.contact_solver);
   D = Eigen::VectorXd::Zero(6 * static_cast<Eigen::Index>(st.blocks.size()));
   refresh_geometry();
@@ -189,9 +189,9 @@ void Engine::Impl::record_measurements(int step_index) {
 
 double Engine::Impl::search_reach(const Eigen::VectorXd& d) const {
   // After an accepted step with displacements d: twice its largest vertex
-  // displacement, not below the floor, never beyond g2 w0 (Shi's reach,
-  // search_factor x g2 w0).
-  return std::min(g2_now() * w0, std::max(search_floor, 2.0 * max_vertex_displacement(d)));
+  // displacement, not below the floor, never beyond max_displacement_ratio w0 (Shi's reach,
+  // search_factor x max_displacement_ratio w0).
+  return std::min(max_displacement_ratio_now() * w0, std::max(search_floor, 2.0 * max_vertex_displacement(d)));
 }
 
 StepReport Engine::step() {
@@ -226,7 +226,7 @@ int Engine::block_count() const { return static_cast<int>(impl_->st.blocks.size(
 int Engine::step_count() const { return impl_->st.step; }
 double Engine::time() const { return impl_->st.time; }
 double Engine::half_model_size() const { return impl_->w0; }
-double Engine::allowed_displacement() const { return impl_->g2_now() * impl_->w0; }
+double Engine::allowed_displacement() const { return impl_->max_displacement_ratio_now() * impl_->w0; }
 const BlockState& Engine::block(int b) const { return impl_->st.blocks.at(b); }
 std::span<const Vec2> Engine::vertices(int b) const { return impl_->st.blocks.at(b).vertices; }
 Vec2 Engine::centroid(int b) const { return impl_->st.blocks.at(b).centroid; }

@@ -37,7 +37,7 @@ constexpr double kRejectFactor = 2.0;
 /// Adaptive creep stepping steps onto a damage law's failure when it is within
 /// this many steps (docs/reference/rheology-in-dda.md, "Failure") [-].
 constexpr double kFailureReach = 8.0;
-/// The contact search of a large model (g2 w0 above this fraction of the median
+/// The contact search of a large model (max_displacement_ratio w0 above this fraction of the median
 /// block size) reaches only as far as the motion needs, not below this fraction
 /// (docs/reference/engine.md, "Contact search reach") [-].
 constexpr double kSearchFloor = 0.1;
@@ -85,7 +85,7 @@ struct Engine::Impl {
   double w0 = 0.0;                        // half model size [length]
   /// The displacement per step the contact search covers (StepContext::
   /// max_displacement; contacts are looked for within search_factor x it):
-  /// g2 w0 where that is below search_floor, else adapted to the motion
+  /// max_displacement_ratio w0 where that is below search_floor, else adapted to the motion
   /// (search_reach(), docs/reference/engine.md, "Contact search reach") [length].
   double search_disp = 0.0;
   double search_floor = 0.0;  // kSearchFloor x the median block size [length]
@@ -161,8 +161,8 @@ struct Engine::Impl {
     return EnergyAccount::static_trial_share(energy_inputs(), D, dt, newmark().beta, st.time + dt) >
            kMechanismStepShare;
   }
-  /// The displacement limit g2 in force now: settle_g2 in the settling stage.
-  double g2_now() const { return settling() ? model.settings.settle_g2 : model.settings.g2; }
+  /// The displacement limit (max_displacement_ratio) in force now: settle_max_displacement_ratio in the settling stage.
+  double max_displacement_ratio_now() const { return settling() ? model.settings.settle_max_displacement_ratio : model.settings.max_displacement_ratio; }
   void accept(const Eigen::VectorXd& d, double dt, int step_index, double t_end);
   void record_measurements(int step_index);
   StepReport step(double dt_cap);
@@ -247,7 +247,7 @@ struct Engine::Impl {
   /// Cuts dt after a failed attempt (dt *= dt_cut), or throws after max_cuts cuts.
   void cut(double& dt, const Trial& trial, StepReport& rep) const;
   /// Attempts a step of dt and accepts it (contacts end_step, blocks move) when
-  /// it converges within g2 w0; otherwise abandons it. No creep estimate.
+  /// it converges within max_displacement_ratio w0; otherwise abandons it. No creep estimate.
   bool take(double dt, StepReport& rep, Trial& trial);
   /// A step under Settings::step_tolerance: step doubling with local extrapolation.
   StepReport doubling_step(double dt_cap);

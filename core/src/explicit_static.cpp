@@ -98,7 +98,7 @@ Engine::Impl::Trial Engine::Impl::relax_trial(double dt, StepReport& rep) {
   int n = 0;
   double ratio = 0.0;
   bool settled = false, partial = false;
-  const double allowed = g2_now() * w0;  // (3): the step's displacement limit
+  const double allowed = max_displacement_ratio_now() * w0;  // (3): the step's displacement limit
   Eigen::VectorXd D_before;
   for (;; ++n) {
     contacts->cycle_forces(Dn, V, kCycle, f);

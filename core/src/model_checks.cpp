@@ -139,13 +139,13 @@ void Engine::Impl::validate() {
     throw ModelError("settings.dt_max", "must be >= dt (the first step) under step_tolerance");
   if (!(s.dt_max >= 0.0 && std::isfinite(s.dt_max)))
     throw ModelError("settings.dt_max", "must be >= 0 (time; 0 = no limit)");
-  if (!(s.g2 > 0.0 && std::isfinite(s.g2))) throw ModelError("settings.g2", "must be > 0");
+  if (!(s.max_displacement_ratio > 0.0 && std::isfinite(s.max_displacement_ratio))) throw ModelError("settings.max_displacement_ratio", "must be > 0");
   if (!(s.settle_until >= 0.0 && std::isfinite(s.settle_until)))
     throw ModelError("settings.settle_until", "must be >= 0 (time; 0 = no settling stage)");
   if (s.settle_until > 0.0 && !(s.settle_dt > 0.0 && std::isfinite(s.settle_dt)))
     throw ModelError("settings.settle_dt", "must be > 0 (time) with a settling stage");
-  if (s.settle_until > 0.0 && !(s.settle_g2 > 0.0 && std::isfinite(s.settle_g2)))
-    throw ModelError("settings.settle_g2", "must be > 0 with a settling stage");
+  if (s.settle_until > 0.0 && !(s.settle_max_displacement_ratio > 0.0 && std::isfinite(s.settle_max_displacement_ratio)))
+    throw ModelError("settings.settle_max_displacement_ratio", "must be > 0 with a settling stage");
   if (!(s.settle_rest_tolerance >= 0.0 && s.settle_rest_tolerance < 1.0))
     throw ModelError("settings.settle_rest_tolerance", "must be in [0, 1) (0 = stages run to their longest)");
   if (s.settle_rest_tolerance > 0.0 && !(s.settle_until > 0.0 && s.settle_dynamic))
@@ -216,15 +216,15 @@ void Engine::Impl::validate() {
                      "must end within the settling stage (<= settle_until), so that the creep starts under full gravity");
   if (!(s.fixed_point_stiffness >= 0.0 && std::isfinite(s.fixed_point_stiffness)))
     throw ModelError("settings.fixed_point_stiffness", "must be >= 0 (0 = automatic)");
-  if (s.max_open_close < 1) throw ModelError("settings.max_open_close", "must be >= 1");
-  if (s.settle_max_open_close < 0)
-    throw ModelError("settings.settle_max_open_close", "must be >= 0 (0 = max_open_close)");
+  if (s.open_close_limit < 1) throw ModelError("settings.open_close_limit", "must be >= 1");
+  if (s.settle_open_close_limit < 0)
+    throw ModelError("settings.settle_open_close_limit", "must be >= 0 (0 = open_close_limit)");
   if (!(s.contact_residual_tolerance > 0.0 && s.contact_residual_tolerance < 1.0))
     throw ModelError("settings.contact_residual_tolerance", "must be in (0, 1)");
-  if (!(s.pcg_tolerance > 0.0)) throw ModelError("settings.pcg_tolerance", "must be > 0");
-  if (s.pcg_max_iterations < 1) throw ModelError("settings.pcg_max_iterations", "must be >= 1");
-  if (!(s.pcg_iterate_tolerance >= 0.0 && s.pcg_iterate_tolerance < 1.0))
-    throw ModelError("settings.pcg_iterate_tolerance", "must be in [0, 1) (0 = every solve at pcg_tolerance)");
+  if (!(s.solver_tolerance > 0.0)) throw ModelError("settings.solver_tolerance", "must be > 0");
+  if (s.solver_max_iterations < 1) throw ModelError("settings.solver_max_iterations", "must be >= 1");
+  if (!(s.solver_iterate_tolerance >= 0.0 && s.solver_iterate_tolerance < 1.0))
+    throw ModelError("settings.solver_iterate_tolerance", "must be in [0, 1) (0 = every solve at solver_tolerance)");
   if (s.time_integration == TimeIntegration::trapezoidal && s.dynamic_ratio == 0.0)
     throw ModelError("settings.time_integration",
                      "the trapezoidal rule needs a dynamic analysis (settings.dynamic_ratio > 0)");

@@ -160,8 +160,8 @@ std::vector<char> Engine::Impl::check_edit(const ModelEdit& e) const {
     validate_water(*e.water, x_min, x_max);  // keys water.*
   }
   const Settings& s = m.model.settings;
-  if (e.settle && !(s.settle_until > 0.0 && s.settle_dt > 0.0 && s.settle_g2 > 0.0))
-    throw ModelError("settle", "a settling stage needs settings.settle_until, settle_dt and settle_g2");
+  if (e.settle && !(s.settle_until > 0.0 && s.settle_dt > 0.0 && s.settle_max_displacement_ratio > 0.0))
+    throw ModelError("settle", "a settling stage needs settings.settle_until, settle_dt and settle_max_displacement_ratio");
   return gone;
 }
 

@@ -192,7 +192,7 @@ EditReport Engine::edit(const ModelEdit& e) {
     if (g.open) {  // ends now, not at rest: its event as update_stage records one
       StageEvent& ev = g.event;
       ev.end_time = m.st.time;
-      const double reach = s.settle_g2 * m.w0;  // the stage's step limit [length]
+      const double reach = s.settle_max_displacement_ratio * m.w0;  // the stage's step limit [length]
       for (std::size_t k = 0; k < nb && k < g.start_vertices.size(); ++k) {
         double moved = 0.0;
         const auto& v = m.st.blocks[k].vertices;
@@ -210,7 +210,7 @@ EditReport Engine::edit(const ModelEdit& e) {
   }
   m.count_held();
   m.refresh_geometry();
-  m.search_disp = std::min(m.g2_now() * m.w0, std::max(m.search_disp, m.search_floor));
+  m.search_disp = std::min(m.max_displacement_ratio_now() * m.w0, std::max(m.search_disp, m.search_floor));
   // Stored energies of the edited model: what was removed leaves the balance
   // here, outside the flows of any step (docs/reference/stages.md, "Energy").
   const StoredEnergy blocks = EnergyAccount::stored_in_blocks(m.energy_inputs());

@@ -1,7 +1,7 @@
 // Shi's open-close iteration (Shi 1988; docs/reference/contacts.md, "States and the
 // open-close iteration"): solve K(S) D = F(S) for the trial states S, let the
 // contacts check D and update S, repeat until a check changes nothing, at most
-// Settings::max_open_close iterates. The reference contact solve.
+// Settings::open_close_limit iterates. The reference contact solve.
 #include "contact_solves.hpp"
 
 namespace rheodda::core {
@@ -21,7 +21,7 @@ ContactSolveResult iterate_contacts(StepProblem& p, Eigen::VectorXd& D,
                                     const std::function<bool(const ContactCheck&)>& accept) {
   const Settings& s = p.settings();
   ContactSolveResult out;
-  const bool may_loosen = s.pcg_iterate_tolerance > s.pcg_tolerance && p.iterative_solver();
+  const bool may_loosen = s.solver_iterate_tolerance > s.solver_tolerance && p.iterative_solver();
   bool tight_next = false;
   int loose_iterates = 0;
   const int limit = p.iteration_limit();

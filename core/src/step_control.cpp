@@ -38,7 +38,7 @@ std::string last_changes(const ContactCheck& c) {
 StepReport Engine::Impl::step(double dt_cap) {
   const Settings& s = model.settings;
   // Settling stage (docs/reference/engine.md, "Settling stage"): steps of at most
-  // settle_dt with g2 = settle_g2, ending on settle_until, no adaptive control.
+  // settle_dt with max_displacement_ratio = settle_max_displacement_ratio, ending on settle_until, no adaptive control.
   bool settle = settling();
   if (settle) dt_cap = std::min(dt_cap, stage_end() - st.time);
   if (s.step_tolerance > 0.0 && !settle) return doubling_step(dt_cap);
@@ -73,16 +73,16 @@ StepReport Engine::Impl::step(double dt_cap) {
   const bool within_dt_max = s.dt_max <= 0.0 || failure_step <= s.dt_max;
   if (failure_step < dt || (failure_step <= kFailureReach * dt && failure_step <= dt_cap && within_dt_max))
     dt = failure_step;
-  double allowed = g2_now() * w0;
+  double allowed = max_displacement_ratio_now() * w0;
   const bool watch = s.collapse_dt > 0.0;  // collapse stages (docs/reference/engine.md, "Collapse stages")
   for (;;) {
     const Trial trial = solve_trial(dt, adaptive, rep);
     if (watch && !settle && trial.singular.empty() &&
         (!trial.converged || trial.max_disp > allowed || trial.short_of_rest || collapses(dt))) {
       // A static step that moves as a mechanism: its path would be set by dt
-      // and g2. Cut it down to collapse_dt (locating the onset); at collapse_dt,
+      // and max_displacement_ratio. Cut it down to collapse_dt (locating the onset); at collapse_dt,
       // take the collapse from the step's start in a dynamic stage. Beyond the
-      // step limit g2 w0 counts as well: a part sliding at its friction limit
+      // step limit max_displacement_ratio w0 counts as well: a part sliding at its friction limit
       // gives the inertia term only the unbalanced share of the work, yet
       // moves by that force times dt^2 / 2M; and so does an open-close
       // iteration that does not settle at collapse_dt, where the static steps
@@ -94,7 +94,7 @@ StepReport Engine::Impl::step(double dt_cap) {
         settle = true;
         adaptive = false;
         capped = true;
-        allowed = g2_now() * w0;
+        allowed = max_displacement_ratio_now() * w0;
       }
       continue;
     }
@@ -214,7 +214,7 @@ double Engine::Impl::next_adaptive_dt(double dt, double tolerance, double err,
 
 bool Engine::Impl::take(double dt, StepReport& rep, Trial& trial) {
   trial = solve_trial(dt, false, rep);
-  if (trial.converged && trial.max_disp <= g2_now() * w0) {
+  if (trial.converged && trial.max_disp <= max_displacement_ratio_now() * w0) {
     contacts->end_step(views, D);
     accept(D, dt, st.step, st.time + dt);
     return true;
@@ -234,7 +234,7 @@ void Engine::Impl::cut(double& dt, const Trial& trial, StepReport& rep) const {
     throw std::runtime_error(
         "step " + std::to_string(st.step) + " at time " + std::to_string(st.time) + ": " +
         (trial.converged ? "displacement " + std::to_string(trial.max_disp) +
-                               " exceeds g2 * w0 = " + std::to_string(g2_now() * w0)
+                               " exceeds max_displacement_ratio * w0 = " + std::to_string(max_displacement_ratio_now() * w0)
                          : !trial.unsettled.empty() ? trial.unsettled
                                                    : "open-close iteration did not converge" + last_changes(trial.check)) +
         " after " + std::to_string(rep.cuts) + " cuts of dt (settings.max_cuts)");

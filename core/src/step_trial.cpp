@@ -32,7 +32,7 @@ class Engine::Impl::Problem final : public StepProblem {
     e_.system.finalize();
     rep_.assembly_seconds += seconds_since(t0);
     t0 = Clock::now();
-    Eigen::VectorXd d = loose ? e_.solver->solve(e_.system, e_.model.settings.pcg_iterate_tolerance)
+    Eigen::VectorXd d = loose ? e_.solver->solve(e_.system, e_.model.settings.solver_iterate_tolerance)
                               : e_.solver->solve(e_.system);
     rep_.solve_seconds += seconds_since(t0);
     return d;
@@ -40,7 +40,7 @@ class Engine::Impl::Problem final : public StepProblem {
   bool dynamic() const override { return e_.dynamic_now(); }
   int iteration_limit() const override {
     const Settings& s = e_.model.settings;
-    return e_.settling() && s.settle_max_open_close > 0 ? s.settle_max_open_close : s.max_open_close;
+    return e_.settling() && s.settle_open_close_limit > 0 ? s.settle_open_close_limit : s.open_close_limit;
   }
   ContactCheck check(const Eigen::VectorXd& d) override {
     ContactCheck c = e_.contacts->check(e_.views, d);
@@ -72,13 +72,13 @@ Engine::Impl::Trial Engine::Impl::solve_trial(double dt, bool creep_error_wanted
     throw;
   }
   trial.max_disp = trial.converged ? max_vertex_displacement(D) : 0.0;
-  if (trial.converged && trial.max_disp > search_disp && search_disp < g2_now() * w0) {
+  if (trial.converged && trial.max_disp > search_disp && search_disp < max_displacement_ratio_now() * w0) {
     // The step moved a vertex further than the contact search reached: a
     // contact beyond the search distance may have closed unseen. Redo the step
     // (same dt) with the search widened to cover the motion (docs/reference/engine.md,
-    // "Contact search reach"); beyond g2 w0 the caller cuts dt as before.
+    // "Contact search reach"); beyond max_displacement_ratio w0 the caller cuts dt as before.
     contacts->abandon_step();
-    search_disp = std::min(g2_now() * w0, 2.0 * trial.max_disp);
+    search_disp = std::min(max_displacement_ratio_now() * w0, 2.0 * trial.max_disp);
     ++rep.search_widenings;
     return solve_trial(dt, creep_error_wanted, rep);
   }

@@ -230,15 +230,15 @@ bool Simulation::apply_settings(core::Settings& s, const json& values) {
     } else if (key == "dt_growth") s.dt_growth = unhex(v);
     else if (key == "dt_cut") s.dt_cut = unhex(v);
     else if (key == "max_cuts") s.max_cuts = v.get<int>();
-    else if (key == "max_displacement_ratio") s.g2 = unhex(v);
+    else if (key == "max_displacement_ratio") s.max_displacement_ratio = unhex(v);
     else if (key == "creep_tolerance") s.creep_tolerance = unhex(v);
     else if (key == "step_tolerance") s.step_tolerance = unhex(v);
     else if (key == "step_extrapolation") s.step_extrapolation = v.get<bool>();
     else if (key == "dt_max") s.dt_max = unhex(v);
-    else if (key == "open_close_limit") s.max_open_close = v.get<int>();
-    else if (key == "solver_tolerance") s.pcg_tolerance = unhex(v);
-    else if (key == "solver_max_iterations") s.pcg_max_iterations = v.get<int>();
-    else if (key == "solver_iterate_tolerance") s.pcg_iterate_tolerance = unhex(v);
+    else if (key == "open_close_limit") s.open_close_limit = v.get<int>();
+    else if (key == "solver_tolerance") s.solver_tolerance = unhex(v);
+    else if (key == "solver_max_iterations") s.solver_max_iterations = v.get<int>();
+    else if (key == "solver_iterate_tolerance") s.solver_iterate_tolerance = unhex(v);
   }
   return dt_changed;
 }
@@ -250,15 +250,15 @@ py::dict Simulation::settings() const {
   d["dt_growth"] = s.dt_growth;
   d["dt_cut"] = s.dt_cut;
   d["max_cuts"] = s.max_cuts;
-  d["max_displacement_ratio"] = s.g2;
+  d["max_displacement_ratio"] = s.max_displacement_ratio;
   d["creep_tolerance"] = s.creep_tolerance;
   d["step_tolerance"] = s.step_tolerance;
   d["step_extrapolation"] = s.step_extrapolation;
   d["dt_max"] = s.dt_max;
-  d["open_close_limit"] = s.max_open_close;
-  d["solver_tolerance"] = s.pcg_tolerance;
-  d["solver_max_iterations"] = s.pcg_max_iterations;
-  d["solver_iterate_tolerance"] = s.pcg_iterate_tolerance;
+  d["open_close_limit"] = s.open_close_limit;
+  d["solver_tolerance"] = s.solver_tolerance;
+  d["solver_max_iterations"] = s.solver_max_iterations;
+  d["solver_iterate_tolerance"] = s.solver_iterate_tolerance;
   return d;
 }
 

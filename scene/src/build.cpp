@@ -173,27 +173,27 @@ BuiltScene build_scene(const SceneDescription& s) {
   st.step_tolerance = a.step_tolerance;
   st.step_extrapolation = a.step_extrapolation;
   st.creep_restart_on_contact_change = a.creep_restart_on_contact_change;
-  st.g2 = a.max_displacement_ratio;
+  st.max_displacement_ratio = a.max_displacement_ratio;
   st.dynamic_ratio = a.dynamic_ratio;
   st.time_integration = a.time_integration == TimeIntegration::trapezoidal ? core::TimeIntegration::trapezoidal
                                                                           : core::TimeIntegration::shi;
   st.gravity = {a.gravity[0], a.gravity[1]};
   st.fixed_point_stiffness = a.fixed_point_stiffness;
-  st.max_open_close = a.open_close_limit;
+  st.open_close_limit = a.open_close_limit;
   if (a.settle) {  // docs/reference/engine.md, "Settling stage"
     st.settle_until = a.settle->until;
     st.settle_dt = a.settle->dt;
-    st.settle_g2 = a.settle->max_displacement_ratio;
+    st.settle_max_displacement_ratio = a.settle->max_displacement_ratio;
     st.settle_dynamic = a.settle->dynamic;
     st.collapse_dt = a.settle->collapse_dt;
     st.settle_gravity_ramp = a.settle->gravity_ramp;
     st.settle_rest_tolerance = a.settle->rest_tolerance;
     st.settle_force_ratio = a.settle->force_ratio;
-    st.settle_max_open_close = a.settle->open_close_limit;
+    st.settle_open_close_limit = a.settle->open_close_limit;
   }
   st.solver = a.solver;
-  st.pcg_tolerance = a.solver_tolerance;
-  st.pcg_iterate_tolerance = a.solver_iterate_tolerance;
+  st.solver_tolerance = a.solver_tolerance;
+  st.solver_iterate_tolerance = a.solver_iterate_tolerance;
   st.contact_solver = a.contact_solver;
   st.contact_residual_tolerance = a.contact_residual_tolerance;
   st.integrator = choose_integrator(s).integrator;  // integrator_choice.cpp: `automatic` decided here
@@ -204,7 +204,7 @@ BuiltScene build_scene(const SceneDescription& s) {
   st.static_max_cycles = a.static_max_cycles;
   st.static_local_damping = a.static_local_damping;
   st.explicit_damping = a.explicit_damping;
-  st.pcg_max_iterations = a.solver_max_iterations;
+  st.solver_max_iterations = a.solver_max_iterations;
 
   contact::ContactSettings& cs = out.contact_settings;
   cs.penalty = a.penalty;

@@ -209,7 +209,7 @@ std::vector<KeySpec> declare_analysis_keys() {
       "p_n / p_s of penalty shear springs"));
   keys.push_back(number_key("analysis", "search_factor", "–", {0.0, true, kInf, false}, &Analysis::search_factor,
       "2.5",
-      "contact search distance / (g2 · half model size)"));
+      "contact search distance / (max_displacement_ratio · half model size)"));
   keys.push_back(number_key("analysis", "angle_tolerance", "deg", {0.0, true, 45.0, false}, &Analysis::angle_tolerance,
       "3",
       "angle rule tolerance, (0, 45]"));

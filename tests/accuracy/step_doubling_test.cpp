@@ -239,7 +239,7 @@ BOOST_AUTO_TEST_CASE(a_model_without_contacts_is_stepped_by_doubling_too) {
   m.settings.dt = 1e-3;
   m.settings.dt_max = 0.064;
   m.settings.step_tolerance = 1e-6;
-  m.settings.g2 = 1e3;  // free fall over 1 s: no displacement limit
+  m.settings.max_displacement_ratio = 1e3;  // free fall over 1 s: no displacement limit
   core::Engine e(m);
   e.run_until(1.0);
   double largest = 0.0;

@@ -103,7 +103,7 @@ BOOST_AUTO_TEST_CASE(a_block_hung_off_centre_settles_below_the_bolt_at_creep_ste
   BOOST_TEST_MESSAGE("2 cm off centre, dt = 0.01 d: " << h.steps << " steps (" << h.short_steps << " shorter than dt), "
                                                      << h.cuts << " cuts, the last in step " << h.cut_steps);
   // The cuts: the first step's, until the inertia holds the block on its
-  // unstressed bolt, then one wherever a step would move it further than g2 w0
+  // unstressed bolt, then one wherever a step would move it further than max_displacement_ratio w0
   // while it turns (0.04 rad); after c cuts by dt_cut = 0.3 the steps grow back
   // by dt_growth = 1.5 per step, c ln(1/0.3)/ln(1.5) ~ 3 c steps (measured: 11
   // cuts, the last in step 12, 33 steps shorter than dt).
@@ -129,7 +129,7 @@ std::pair<double, double> pendulum(double dt, double theta0, Integrator integrat
   m.settings.dt = dt;
   m.settings.dynamic_ratio = 1.0;
   m.settings.gravity = {0.0, -kG};
-  m.settings.g2 = 0.1;  // 1 cm per step (w0 is half the block's size): no step is cut
+  m.settings.max_displacement_ratio = 0.1;  // 1 cm per step (w0 is half the block's size): no step is cut
   m.settings.integrator = integrator;
   if (integrator == Integrator::implicit) m.settings.time_integration = TimeIntegration::trapezoidal;
   m.settings.explicit_damping = 0.0;

@@ -66,7 +66,7 @@ BOOST_AUTO_TEST_CASE(shi_scheme_damps_a_free_vibration) {
 BOOST_AUTO_TEST_CASE(trapezoidal_rule_integrates_free_fall_exactly) {
   Model m;
   m.settings.dt = 0.01;
-  m.settings.g2 = 1.0;
+  m.settings.max_displacement_ratio = 1.0;
   m.settings.time_integration = TimeIntegration::trapezoidal;
   m.blocks.push_back(block({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));
   Engine e(m);

@@ -21,7 +21,7 @@ namespace {
 Model falling_square(double dynamic_ratio) {
   Model m;
   m.settings.dt = 0.01;
-  m.settings.g2 = 1.0;  // no cut: the fall is 0.5 m in 100 steps
+  m.settings.max_displacement_ratio = 1.0;  // no cut: the fall is 0.5 m in 100 steps
   m.settings.dynamic_ratio = dynamic_ratio;
   m.blocks.push_back(block({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));
   return m;

@@ -16,7 +16,7 @@ namespace {
 Model falling_square(double dt) {
   Model m;
   m.settings.dt = dt;
-  m.settings.g2 = 1.0;  // allow large steps: the scheme is exact, no cut needed
+  m.settings.max_displacement_ratio = 1.0;  // allow large steps: the scheme is exact, no cut needed
   m.settings.dynamic_ratio = 1.0;
   m.settings.gravity = {0.0, -9.81};
   m.blocks.push_back(block({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));
@@ -65,7 +65,7 @@ BOOST_AUTO_TEST_CASE(a_dynamic_settling_stage_carries_velocity_then_the_static_a
   m.settings.dynamic_ratio = 0.0;
   m.settings.settle_until = t1;
   m.settings.settle_dt = dt;
-  m.settings.settle_g2 = 1.0;
+  m.settings.settle_max_displacement_ratio = 1.0;
   m.settings.settle_dynamic = true;
   m.materials[0].damping_ratio = 0.05;  // allowed: the stage has dynamic steps
   const double mass = m.materials[0].density * 1.0;  // 1 m x 1 m

@@ -23,7 +23,7 @@ constexpr double kG = 9.81;
 Model falling_square(double vx) {
   Model m;
   m.settings.dt = 0.01;
-  m.settings.g2 = 1.0;
+  m.settings.max_displacement_ratio = 1.0;
   m.settings.dynamic_ratio = 1.0;
   m.settings.gravity = {0.0, -kG};
   m.blocks.push_back(block({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));

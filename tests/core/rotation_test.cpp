@@ -21,7 +21,7 @@ Model spinning(std::vector<Vec2> vertices, double omega, double dt) {
   m.settings.dt = dt;
   m.settings.dynamic_ratio = 1.0;
   m.settings.gravity = Vec2::Zero();
-  m.settings.g2 = 0.01;
+  m.settings.max_displacement_ratio = 0.01;
   m.blocks.push_back(block(std::move(vertices)));
   m.blocks.back().initial_angular_velocity = omega;
   return m;
@@ -70,7 +70,7 @@ BOOST_AUTO_TEST_CASE(spinning_concave_block_keeps_its_area_and_shape) {
 BOOST_AUTO_TEST_CASE(restored_state_replays_the_same_run) {
   Model m = spinning({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 1.0, 1e-3);
   m.settings.gravity = {0.0, -9.81};
-  m.settings.g2 = 1.0;
+  m.settings.max_displacement_ratio = 1.0;
   m.measurement_points.push_back({.block = 0, .point = {1.0, 0.0}});
   Engine e(m);
   e.run(10);

@@ -145,7 +145,7 @@ BOOST_AUTO_TEST_CASE(block_diagonal_system_is_solved_exactly_by_both) {
 BOOST_AUTO_TEST_CASE(engine_without_contacts_analyses_once) {
   Model m;
   m.settings.dt = 0.01;
-  m.settings.g2 = 1.0;
+  m.settings.max_displacement_ratio = 1.0;
   for (int k = 0; k < 5; ++k)
     m.blocks.push_back(block({{2.0 * k, 0}, {2.0 * k + 1, 0}, {2.0 * k + 1, 1}, {2.0 * k, 1}}));
   Engine e(m);

@@ -3,7 +3,7 @@
 //   abandon_step and a dt cut (x0.3) when the open-close limit is reached;
 // - contact terms given through the SystemSink couple blocks, and CHOLMOD and
 //   PCG runs of the same coupled model agree;
-// - a step whose displacement exceeds g2 * w0 is cut and redone, and dt grows
+// - a step whose displacement exceeds max_displacement_ratio * w0 is cut and redone, and dt grows
 //   back afterwards;
 // - a settling stage (Settings::settle_*) takes its own steps and limit, then hands over.
 #include <boost/test/unit_test.hpp>
@@ -73,9 +73,9 @@ class SpringContacts : public ContactModel {
 Model hanging_chain(SolverKind solver) {
   Model m;
   m.settings.dt = 1e-3;
-  m.settings.g2 = 0.05;
+  m.settings.max_displacement_ratio = 0.05;
   m.settings.solver = solver;
-  m.settings.pcg_tolerance = 1e-14;
+  m.settings.solver_tolerance = 1e-14;
   for (int k = 0; k < 4; ++k)
     m.blocks.push_back(block({{1.0 * k, 0}, {1.0 * k + 1, 0}, {1.0 * k + 1, 1}, {1.0 * k, 1}}));
   m.fixed_points.push_back({.block = 0, .point = {0.0, 0.0}});
@@ -96,7 +96,7 @@ Model failing_chain(SpringContacts& c, int attempts) {
   link_chain(c);
   c.failing_attempts = attempts;
   Model m = hanging_chain(SolverKind::cholmod);
-  m.settings.max_open_close = 3;
+  m.settings.open_close_limit = 3;
   return m;
 }
 
@@ -170,10 +170,10 @@ BOOST_AUTO_TEST_CASE(cholmod_and_pcg_runs_of_a_coupled_model_agree) {
 }
 
 BOOST_AUTO_TEST_CASE(steps_exceeding_the_allowed_displacement_are_cut) {
-  // A falling 1 m square, w0 = 0.5 m, g2 = 0.001: at most 0.5 mm per step.
+  // A falling 1 m square, w0 = 0.5 m, max_displacement_ratio = 0.001: at most 0.5 mm per step.
   Model m;
   m.settings.dt = 0.05;  // first trial step would fall 12 mm
-  m.settings.g2 = 0.001;
+  m.settings.max_displacement_ratio = 0.001;
   m.blocks.push_back(block({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));
   Engine e(m);
   BOOST_TEST(e.allowed_displacement() == 5e-4, boost::test_tools::tolerance(1e-15));
@@ -197,7 +197,7 @@ BOOST_AUTO_TEST_CASE(steps_exceeding_the_allowed_displacement_are_cut) {
 BOOST_AUTO_TEST_CASE(a_step_that_cannot_be_made_small_enough_throws_after_max_cuts) {
   Model m;
   m.settings.dt = 0.05;
-  m.settings.g2 = 1e-9;  // would need dt ~ 1e-5: more than 2 cuts of x0.3
+  m.settings.max_displacement_ratio = 1e-9;  // would need dt ~ 1e-5: more than 2 cuts of x0.3
   m.settings.max_cuts = 2;
   m.blocks.push_back(block({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));
   Engine e(m);
@@ -208,15 +208,15 @@ BOOST_AUTO_TEST_CASE(a_step_that_cannot_be_made_small_enough_throws_after_max_cu
 
 BOOST_AUTO_TEST_CASE(a_settling_stage_takes_its_own_steps_and_limit_then_hands_over) {
   // docs/reference/engine.md, "Settling stage": a falling 1 m square (w0 = 0.5 m). Until
-  // t = 0.03 the steps are at most 0.01 with g2 = 0.01 (5 mm; the 0.01 steps fall
+  // t = 0.03 the steps are at most 0.01 with max_displacement_ratio = 0.01 (5 mm; the 0.01 steps fall
   // less, so none is cut), the stage's last step ends on 0.03; then dt = 0.05 and
-  // g2 = 1 (no limit here) apply, the first step after the stage at 0.05.
+  // max_displacement_ratio = 1 (no limit here) apply, the first step after the stage at 0.05.
   Model m;
   m.settings.dt = 0.05;
-  m.settings.g2 = 1.0;
+  m.settings.max_displacement_ratio = 1.0;
   m.settings.settle_until = 0.03;
   m.settings.settle_dt = 0.01;
-  m.settings.settle_g2 = 0.01;
+  m.settings.settle_max_displacement_ratio = 0.01;
   m.blocks.push_back(block({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));
   Engine e(m);
   BOOST_TEST(e.allowed_displacement() == 0.005, boost::test_tools::tolerance(1e-15));
@@ -226,15 +226,15 @@ BOOST_AUTO_TEST_CASE(a_settling_stage_takes_its_own_steps_and_limit_then_hands_o
     BOOST_TEST(r.cuts == 0);
   }
   BOOST_TEST(e.time() == 0.03, boost::test_tools::tolerance(1e-12));
-  BOOST_TEST(e.allowed_displacement() == 0.5, boost::test_tools::tolerance(1e-15));  // g2 = 1 now
+  BOOST_TEST(e.allowed_displacement() == 0.5, boost::test_tools::tolerance(1e-15));  // max_displacement_ratio = 1 now
   const StepReport after = e.step();
   BOOST_TEST(after.dt == 0.05, boost::test_tools::tolerance(1e-12));
   // A static analysis (no carried velocity) would fall g dt^2/2 per step; this
   // one is dynamic: free fall is exact through the hand-over.
   BOOST_TEST(e.centroid(0).y() == 0.5 - 0.5 * 9.81 * 0.08 * 0.08, boost::test_tools::tolerance(1e-12));
-  // The stage's limit cuts its steps as g2 does: settle_g2 1e-4 (0.05 mm).
+  // The stage's limit cuts its steps as max_displacement_ratio does: settle_max_displacement_ratio 1e-4 (0.05 mm).
   Model tight = m;
-  tight.settings.settle_g2 = 1e-4;
+  tight.settings.settle_max_displacement_ratio = 1e-4;
   Engine t(tight);
   const StepReport r = t.step();
   BOOST_TEST(r.cuts > 0);
@@ -247,7 +247,7 @@ BOOST_AUTO_TEST_CASE(a_settling_stage_takes_its_own_steps_and_limit_then_hands_o
 
 BOOST_AUTO_TEST_CASE(observers_see_every_accepted_step) {
   Model m;
-  m.settings.g2 = 1.0;
+  m.settings.max_displacement_ratio = 1.0;
   m.blocks.push_back(block({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));
   Engine e(m);
   std::vector<int> seen;

@@ -20,8 +20,8 @@ inline std::vector<core::Vec2> rectangle(double x0, double y0, double x1, double
   return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
 }
 
-/// The wall; the allowed displacement per step g2 w0 is 1 mm (1 % of a brick's height)
-/// at every size, so that the contact search distance 2.5 g2 w0 stays below the brick
+/// The wall; the allowed displacement per step max_displacement_ratio w0 is 1 mm (1 % of a brick's height)
+/// at every size, so that the contact search distance 2.5 max_displacement_ratio w0 stays below the brick
 /// size (Shi's g2 = 0.01 of a 10 m wall would search 0.26 m around 0.1 m bricks).
 inline core::Model running_bond_wall(int nx, int ny, double poisson_ratio = 0.2) {
   core::Model m;
@@ -33,7 +33,7 @@ inline core::Model running_bond_wall(int nx, int ny, double poisson_ratio = 0.2)
   m.settings.dt = 1e-3;  // [s]
   m.settings.dynamic_ratio = 1.0;
   const double width = nx * kBrickWidth;
-  m.settings.g2 = 1e-3 / core::half_model_size(width + 1.0, ny * kBrickHeight + 0.5);
+  m.settings.max_displacement_ratio = 1e-3 / core::half_model_size(width + 1.0, ny * kBrickHeight + 0.5);
   auto add = [&m](std::vector<core::Vec2> v) {
     core::BlockDef b;
     b.vertices = std::move(v);

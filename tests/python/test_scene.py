@@ -320,7 +320,7 @@ def test_errors_carry_the_command_line_messages(root, rheodda_binary, tmp_path):
     assert sim.settings["solver_iterate_tolerance"] == 1e-4
     sim.set_settings(solver_iterate_tolerance=0.0)
     assert sim.settings["solver_iterate_tolerance"] == 0.0
-    with pytest.raises(rheodda.ModelError, match="settings.pcg_iterate_tolerance"):
+    with pytest.raises(rheodda.ModelError, match="settings.solver_iterate_tolerance"):
         rheodda.Simulation(SHEAR_TEST).set_settings(solver_iterate_tolerance=1.0)
     with pytest.raises(rheodda.Error, match="load 5 does not exist"):
         rheodda.Simulation(SHEAR_TEST).set_load(5, (0.0, 0.0))
@@ -450,7 +450,7 @@ def test_dict_scene_takes_numpy_values():
 
 
 def test_a_failing_run_raises_run_error_with_the_command_line_message(rheodda_binary, tmp_path):
-    # g2 w0 ~ 0 and no cuts allowed: the first step cannot be accepted.
+    # max_displacement_ratio w0 ~ 0 and no cuts allowed: the first step cannot be accepted.
     d = copy.deepcopy(SHEAR_TEST)
     d["analysis"].update(max_displacement_ratio=1e-9, max_cuts=0)
     scene = rheodda.scene_from_dict(d)

@@ -190,8 +190,8 @@ BOOST_AUTO_TEST_CASE(a_settling_stage_reaches_the_engine_settings_and_bad_ones_a
   const scene::BuiltScene built = scene::build_scene(s);
   BOOST_TEST(built.model.settings.settle_until == 0.1);
   BOOST_TEST(built.model.settings.settle_dt == 0.001);
-  BOOST_TEST(built.model.settings.settle_g2 == 0.0005);
-  // Its g2 defaults to the analysis's; no stage by default.
+  BOOST_TEST(built.model.settings.settle_max_displacement_ratio == 0.0005);
+  // Its max_displacement_ratio defaults to the analysis's; no stage by default.
   BOOST_TEST(scene::parse_scene(with("  dt: 0.01", "  dt: 0.01\n  max_displacement_ratio: 0.002\n"
                                                    "  settle: {until: 0.1, dt: 0.001}"), "d.yaml")
                  .analysis.settle->max_displacement_ratio == 0.002);
@@ -325,11 +325,11 @@ BOOST_AUTO_TEST_CASE(a_stage_takes_its_own_open_close_limit) {
   const auto s = scene::parse_scene(text, "limit.yaml");
   BOOST_TEST(s.analysis.settle->open_close_limit == 30);
   const scene::BuiltScene built = scene::build_scene(s);
-  BOOST_TEST(built.model.settings.settle_max_open_close == 30);
-  BOOST_TEST(built.model.settings.max_open_close == s.analysis.open_close_limit);
+  BOOST_TEST(built.model.settings.settle_open_close_limit == 30);
+  BOOST_TEST(built.model.settings.open_close_limit == s.analysis.open_close_limit);
   BOOST_TEST(scene::describe_scene(s).find("cut after 30 open-close iterates") != std::string::npos);
   const auto plain = scene::parse_scene(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001}"), "limit.yaml");
-  BOOST_TEST(scene::build_scene(plain).model.settings.settle_max_open_close == 0);
+  BOOST_TEST(scene::build_scene(plain).model.settings.settle_open_close_limit == 0);
   expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, open_close_limit: 0}"), 5, "0}",
                   "analysis.settle.open_close_limit", "out of range");
 }
@@ -369,11 +369,11 @@ BOOST_AUTO_TEST_CASE(solver_and_solver_tolerances_reach_the_engine_settings_and_
   // Default: automatic with the iterative stop 1e-10.
   const scene::BuiltScene base = scene::build_scene(scene::parse_scene(kBaseScene, "base.yaml"));
   BOOST_TEST((base.model.settings.solver == core::SolverKind::automatic));
-  BOOST_TEST(base.model.settings.pcg_tolerance == 1e-10);
+  BOOST_TEST(base.model.settings.solver_tolerance == 1e-10);
   const auto text = with("  dt: 0.01", "  dt: 0.01\n  solver: amg\n  solver_tolerance: 1.0e-8");
   const scene::BuiltScene built = scene::build_scene(scene::parse_scene(text, "amg.yaml"));
   BOOST_TEST((built.model.settings.solver == core::SolverKind::amg));
-  BOOST_TEST(built.model.settings.pcg_tolerance == 1e-8);
+  BOOST_TEST(built.model.settings.solver_tolerance == 1e-8);
   for (auto [name, kind] : {std::pair{"cholmod", core::SolverKind::cholmod}, {"pcg", core::SolverKind::pcg},
                             {"automatic", core::SolverKind::automatic}}) {
     const auto t = with("  dt: 0.01", std::string("  dt: 0.01\n  solver: ") + name);
@@ -384,10 +384,10 @@ BOOST_AUTO_TEST_CASE(solver_and_solver_tolerances_reach_the_engine_settings_and_
   expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  solver_tolerance: 0"), 5, "0", "analysis.solver_tolerance",
                   "out of range (0, 1)");
   // The stop of iterates whose states still change: default 1e-4, 0 allowed (off).
-  BOOST_TEST(base.model.settings.pcg_iterate_tolerance == 1e-4);
+  BOOST_TEST(base.model.settings.solver_iterate_tolerance == 1e-4);
   for (double v : {0.0, 1e-6}) {
     const auto t = with("  dt: 0.01", "  dt: 0.01\n  solver_iterate_tolerance: " + std::to_string(v));
-    BOOST_TEST(scene::build_scene(scene::parse_scene(t, "s.yaml")).model.settings.pcg_iterate_tolerance == v);
+    BOOST_TEST(scene::build_scene(scene::parse_scene(t, "s.yaml")).model.settings.solver_iterate_tolerance == v);
   }
   expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  solver_iterate_tolerance: 1"), 5, "1",
                   "analysis.solver_iterate_tolerance", "out of range [0, 1)");
@@ -467,13 +467,13 @@ BOOST_AUTO_TEST_CASE(the_explicit_step_keys_reach_the_engine_and_are_refused_whe
 
 BOOST_AUTO_TEST_CASE(open_close_limit_defaults_to_8_in_static_and_30_in_dynamic_analysis_and_reaches_the_engine) {
   // docs/notes/contact-solves.md, "The iteration limit in static analysis".
-  BOOST_TEST(scene::build_scene(scene::parse_scene(kBaseScene, "base.yaml")).model.settings.max_open_close == 8);
+  BOOST_TEST(scene::build_scene(scene::parse_scene(kBaseScene, "base.yaml")).model.settings.open_close_limit == 8);
   const auto dynamic = with("  dt: 0.01", "  dt: 0.01\n  type: dynamic");
-  BOOST_TEST(scene::build_scene(scene::parse_scene(dynamic, "dyn.yaml")).model.settings.max_open_close == 30);
+  BOOST_TEST(scene::build_scene(scene::parse_scene(dynamic, "dyn.yaml")).model.settings.open_close_limit == 30);
   const auto given = with("  dt: 0.01", "  dt: 0.01\n  open_close_limit: 30");
-  BOOST_TEST(scene::build_scene(scene::parse_scene(given, "given.yaml")).model.settings.max_open_close == 30);
+  BOOST_TEST(scene::build_scene(scene::parse_scene(given, "given.yaml")).model.settings.open_close_limit == 30);
   const auto given_dynamic = with("  dt: 0.01", "  dt: 0.01\n  type: dynamic\n  open_close_limit: 8");
-  BOOST_TEST(scene::build_scene(scene::parse_scene(given_dynamic, "gd.yaml")).model.settings.max_open_close == 8);
+  BOOST_TEST(scene::build_scene(scene::parse_scene(given_dynamic, "gd.yaml")).model.settings.open_close_limit == 8);
 }
 
 BOOST_AUTO_TEST_CASE(stick_keeps_force_reaches_the_contact_settings_default_on_only_in_dynamic_analysis) {
@@ -524,7 +524,7 @@ BOOST_AUTO_TEST_CASE(dt_growth_dt_cut_and_solver_max_iterations_reach_the_engine
   const core::Settings base = scene::build_scene(scene::parse_scene(kBaseScene, "base.yaml")).model.settings;
   BOOST_TEST(base.dt_growth == defaults.dt_growth);
   BOOST_TEST(base.dt_cut == defaults.dt_cut);
-  BOOST_TEST(base.pcg_max_iterations == defaults.pcg_max_iterations);
+  BOOST_TEST(base.solver_max_iterations == defaults.solver_max_iterations);
   const auto text = with("  dt: 0.01", "  dt: 0.01\n  dt_growth: 1.2\n  dt_cut: 0.5\n  solver_max_iterations: 250");
   const scene::SceneDescription s = scene::parse_scene(text, "steps.yaml");
   BOOST_TEST(s.analysis.dt_growth == 1.2);
@@ -533,7 +533,7 @@ BOOST_AUTO_TEST_CASE(dt_growth_dt_cut_and_solver_max_iterations_reach_the_engine
   const core::Settings built = scene::build_scene(s).model.settings;
   BOOST_TEST(built.dt_growth == 1.2);
   BOOST_TEST(built.dt_cut == 0.5);
-  BOOST_TEST(built.pcg_max_iterations == 250);
+  BOOST_TEST(built.solver_max_iterations == 250);
   // dt_growth = 1 (the step stays cut) is allowed; below 1 it would shrink steps.
   BOOST_CHECK_NO_THROW(scene::parse_scene(with("  dt: 0.01", "  dt: 0.01\n  dt_growth: 1"), "g.yaml"));
   expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  dt_growth: 0.9"), 5, "0.9", "analysis.dt_growth",

@@ -303,7 +303,7 @@ BOOST_AUTO_TEST_CASE(the_toppling_example_settles_in_its_stage_then_converges_wi
   // docs/reference/engine.md, "Settling stage"; docs/notes/step-controls.md, "The shipped toppling
   // example": examples/goodman-toppling-creep.yaml settles in steps of at most
   // 5e-5 d to 0.01 d, then creeps with dt = 1/32 d. Its steps obey the stage; with
-  // every step control halved (the stage's too: dt, g2, the stage's dt and g2) it
+  // every step control halved (the stage's too: dt, max_displacement_ratio, the stage's dt and max_displacement_ratio) it
   // ends 100 d within the 0.5 % that the six levels of `check --refine` span
   // (block 10 at 3.276-3.281 m), neither run moving as a mechanism.
   auto s = example("goodman-toppling-creep.yaml", 100.0, 100.0);

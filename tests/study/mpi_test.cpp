@@ -24,7 +24,7 @@ CommandResult mpirun_rheodda(int ranks, const std::string& args) {
 }
 
 /// Five cases of the sliding block; `broken` fails at its first step (a step displacement
-/// above g2, no cuts allowed), `crash` is killed by SIGSEGV through the case program.
+/// above max_displacement_ratio, no cuts allowed), `crash` is killed by SIGSEGV through the case program.
 fs::path write_study(const fs::path& dir) {
   const fs::path study = dir / "five.yaml";
   std::ofstream(study) << "scene: " << source_path("examples/sliding-block.yaml") << "\n"
@@ -69,7 +69,7 @@ BOOST_AUTO_TEST_CASE(over_mpi_a_failing_and_a_crashing_case_are_isolated_and_the
   const auto rows = results_of(dir / "mpi" / "study.csv");
   BOOST_TEST_REQUIRE(rows.size() == 5u);
   BOOST_TEST(rows[1].at("status") == "failed");
-  BOOST_TEST(rows[1].at("message").find("exceeds g2") != std::string::npos, rows[1].at("message"));
+  BOOST_TEST(rows[1].at("message").find("exceeds max_displacement_ratio") != std::string::npos, rows[1].at("message"));
   BOOST_TEST(rows[2].at("status") == "failed");
   BOOST_TEST(rows[2].at("message").find("killed by signal 11") != std::string::npos, rows[2].at("message"));
   for (std::size_t i : {0u, 3u, 4u}) BOOST_TEST(rows[i].at("status") == "completed", rows[i].at("case"));

@@ -75,7 +75,7 @@ BOOST_AUTO_TEST_CASE(every_step_control_the_scene_uses_is_halved_level_by_level)
   BOOST_TEST_REQUIRE(r.study.cases.size() == 3u);
   BOOST_TEST(r.study.cases[0].set.empty());  // L0 is the scene as written
   const auto& l2 = r.study.cases[2];
-  // The example: dt 1/32 d, g2 0.01 (default), settle {until 0.01, dt 5e-5, g2 2.5e-4}.
+  // The example: dt 1/32 d, max_displacement_ratio 0.01 (default), settle {until 0.01, dt 5e-5, max_displacement_ratio 2.5e-4}.
   BOOST_TEST_REQUIRE(find(l2, "analysis.dt") != nullptr);
   BOOST_TEST(std::stod(find(l2, "analysis.dt")->value_yaml) == 0.0078125);
   BOOST_TEST(std::stod(find(l2, "analysis.max_displacement_ratio")->value_yaml) == 0.0025);
@@ -99,7 +99,7 @@ BOOST_AUTO_TEST_CASE(every_step_control_the_scene_uses_is_halved_level_by_level)
 
 BOOST_AUTO_TEST_CASE(the_explicit_steps_cycle_is_refined_with_the_other_step_controls) {
   // docs/reference/explicit-step.md: under integrator: explicit, explicit_safety is a step
-  // control, halved level by level with dt and g2; the study reads back as the same levels.
+  // control, halved level by level with dt and max_displacement_ratio; the study reads back as the same levels.
   const fs::path dir = fresh_dir("refine-explicit");
   std::string t = read_text(source_path("examples/sliding-block.yaml"));
   t = with("  type: dynamic\n", "  type: dynamic\n  integrator: explicit\n", t);

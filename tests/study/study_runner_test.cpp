@@ -93,7 +93,7 @@ BOOST_AUTO_TEST_CASE(a_study_of_4_cases_gives_the_results_of_each_case_run_alone
 BOOST_AUTO_TEST_CASE(a_failing_case_is_reported_and_does_not_lose_the_others) {
   const fs::path dir = fresh_dir("failing");
   const fs::path study = dir / "failing.yaml";
-  // The middle case allows a step displacement of 5e-6 m (g2 = 1e-6), which its 0.01 s
+  // The middle case allows a step displacement of 5e-6 m (max_displacement_ratio = 1e-6), which its 0.01 s
   // steps exceed, and may not cut them: its run fails at the first step.
   std::ofstream(study) << "scene: " << source_path("examples/sliding-block.yaml") << "\n"
                        << "set: {analysis.duration: 0.05, analysis.output_interval: 0.01}\n"
@@ -116,7 +116,7 @@ BOOST_AUTO_TEST_CASE(a_failing_case_is_reported_and_does_not_lose_the_others) {
   BOOST_TEST(rows[1].at("case") == "broken");
   BOOST_TEST(rows[1].at("status") == "failed");
   BOOST_TEST(rows[1].at("centre.u@0.05").empty());
-  BOOST_TEST(rows[1].at("message").find("exceeds g2") != std::string::npos, "the failure says why: " << rows[1].at("message"));
+  BOOST_TEST(rows[1].at("message").find("exceeds max_displacement_ratio") != std::string::npos, "the failure says why: " << rows[1].at("message"));
   BOOST_TEST(fs::exists(dir / "out" / "cases" / "broken" / "log.txt"));
 }
 

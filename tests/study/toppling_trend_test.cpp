@@ -23,10 +23,10 @@ BOOST_AUTO_TEST_CASE(reduced_toppling_study_displacement_falls_with_phi_and_cree
   const std::string scene = source_path("bench/scenes/goodman-toppling-seed-steps.yaml");
 
   // Without creep (the laws removed, the joints keep E1 = 1e8 Pa/m as elastic shear stiffness),
-  // on step controls the refinement study justifies: g2 6.25e-5 with dt 1/32 d is
+  // on step controls the refinement study justifies: max_displacement_ratio 6.25e-5 with dt 1/32 d is
   // level L4 of scripts/refinement-goodman.sh (docs/reference/contacts.md), where block 10
   // agrees with level L3 within 2 % at 35 and 55 deg and 6 % at 45 deg; the
-  // shipped g2 0.0005 with dt 0.5 d is not converged (block 1 at 45 deg: 0.094 m
+  // shipped max_displacement_ratio 0.0005 with dt 0.5 d is not converged (block 1 at 45 deg: 0.094 m
   // there, 0.062 m at L4).
   const fs::path phi = dir / "phi.yaml";
   std::ofstream(phi) << "scene: " << scene << "\n"
@@ -66,11 +66,11 @@ BOOST_AUTO_TEST_CASE(reduced_toppling_study_displacement_falls_with_phi_and_cree
   }
 
   // With the seed's Table 3 Burgers joints at phi = 50 deg, 20 days, on levels L3
-  // (g2 1.25e-4, dt 1/16 d) and L2 (2.5e-4, 1/8 d) of the same refinement
+  // (max_displacement_ratio 1.25e-4, dt 1/16 d) and L2 (2.5e-4, 1/8 d) of the same refinement
   // (scripts/refinement-goodman-creep.sh, docs/notes/step-controls.md "The seed's
   // slope itself, refined": levels L2-L4 lie within 5 % of each other at 10 and
   // 20 d, L3 and L4 up to 4.9 % apart). (Coarser controls do not show the
-  // trend: at g2 0.01, dt 0.5 d block 1 is at 0.73 m at 5 d and 0.19 m at 10 d.)
+  // trend: at max_displacement_ratio 0.01, dt 0.5 d block 1 is at 0.73 m at 5 d and 0.19 m at 10 d.)
   const fs::path creep = dir / "creep.yaml";
   std::ofstream(creep) << "scene: " << scene << "\n"
                        << "set: {analysis.duration: 20, analysis.max_displacement_ratio: 1.25e-4, analysis.dt: 0.0625}\n"
@@ -111,13 +111,13 @@ BOOST_AUTO_TEST_CASE(seed_slope_settled_dynamically_is_the_same_at_two_steps) {
   // The phi sweep of docs/guide/toppling-study.md (examples/studies/toppling-phi.yaml):
   // no creep, gravity at t = 0, dynamic with plastic impacts and damped blocks,
   // 20 s. Levels L1 and L2 of `scripts/refinement-goodman.sh --dynamic` (dt 1 and
-  // 0.5 ms, g2 halved with it): block 10 settles at 1.979 and 1.978 m at 45 deg,
+  // 0.5 ms, max_displacement_ratio halved with it): block 10 settles at 1.979 and 1.978 m at 45 deg,
   // and every level from 2 ms down lies within 0.05 % of the next
   // (docs/notes/contact-solves.md, "The same slope settled dynamically"). Before the
   // slide-reversal fix ("Friction that pushed") the 0.5 ms run never came to
   // rest; before the joint's springs took the tributary length on point
   // contacts too ("Springs of a joint on point contacts") the settled state
-  // changed with g2 through the contact search distance. At 33 deg the slope
+  // changed with max_displacement_ratio through the contact search distance. At 33 deg the slope
   // slides along its base.
   const fs::path dir = fresh_dir("toppling_dynamic");
   const std::string scene = source_path("bench/scenes/goodman-toppling-seed-steps.yaml");

@@ -25,7 +25,7 @@ core::Model pushed_block(double dt, double collapse_dt, double& push) {
   m.settings.dt = dt;
   m.settings.settle_until = 0.05;
   m.settings.settle_dt = 1e-3;
-  m.settings.settle_g2 = 0.01;
+  m.settings.settle_max_displacement_ratio = 0.01;
   m.settings.settle_dynamic = true;
   m.settings.collapse_dt = collapse_dt;
   add_fixed(m, rect(-1.0, -1.0, 5.0, 0.0));

@@ -27,7 +27,7 @@ core::Model pushed_block(double dt, double rest_tolerance, double& push) {
   m.settings.dt = dt;
   m.settings.settle_until = 0.5;  // the longest a stage may last
   m.settings.settle_dt = 1e-3;
-  m.settings.settle_g2 = 0.01;
+  m.settings.settle_max_displacement_ratio = 0.01;
   m.settings.settle_dynamic = true;
   m.settings.settle_rest_tolerance = rest_tolerance;
   m.settings.collapse_dt = 0.01;

@@ -26,7 +26,7 @@ BOOST_AUTO_TEST_CASE(free_fall_is_exact) {
   // Central difference integrates a constant acceleration exactly: y = g t^2 / 2.
   core::Model m;
   m.settings.dt = 1e-2;
-  m.settings.g2 = 1.0;  // steps of 1e-2 s are not cut by the displacement limit
+  m.settings.max_displacement_ratio = 1.0;  // steps of 1e-2 s are not cut by the displacement limit
   m.settings.integrator = core::Integrator::explicit_step;
   m.blocks.push_back(block(rect(0.0, 0.0, 1.0, 1.0), Vec2(1.0, 0.0)));
   core::Engine e(std::move(m));
@@ -207,7 +207,7 @@ core::Model explicit_settling_model(double until) {
   m.settings.dynamic_ratio = 0.0;
   m.settings.settle_until = until;
   m.settings.settle_dt = 1e-3;
-  m.settings.settle_g2 = 1e-3;
+  m.settings.settle_max_displacement_ratio = 1e-3;
   m.settings.settle_dynamic = true;
   m.settings.settle_rest_tolerance = 1e-6;
   m.settings.integrator = core::Integrator::explicit_step;

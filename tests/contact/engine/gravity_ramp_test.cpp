@@ -28,7 +28,7 @@ core::Model resting_block(double ramp) {
   m.settings.dt = kDt;
   m.settings.settle_until = kStage;
   m.settings.settle_dt = kDt;
-  m.settings.settle_g2 = 0.01;
+  m.settings.settle_max_displacement_ratio = 0.01;
   m.settings.settle_dynamic = true;
   m.settings.settle_gravity_ramp = ramp;
   add_fixed(m, rect(-1.0, -1.0, 3.0, 0.0));

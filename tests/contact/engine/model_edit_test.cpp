@@ -23,7 +23,7 @@ core::Model stack(bool without_d) {
   core::Model m;
   m.settings.dynamic_ratio = 0.0;
   m.settings.dt = 1e-3;
-  m.settings.max_open_close = 30;
+  m.settings.open_close_limit = 30;
   add_fixed(m, rect(-2.0, -1.0, 2.0, 0.0));
   m.blocks.push_back(block(rect(-1.25, 0.0, -0.25, 0.5)));
   m.blocks.push_back(block(rect(0.25, 0.0, 1.25, 0.5)));

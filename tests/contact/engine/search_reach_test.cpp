@@ -1,6 +1,6 @@
 // The contact search of a large model reaches only as far as the motion needs
 // (docs/reference/engine.md, "Contact search reach"): the answer is the one the full
-// reach (search_factor x g2 x w0) gives, and a step that moves a block beyond
+// reach (search_factor x max_displacement_ratio x w0) gives, and a step that moves a block beyond
 // the reach is redone with a wider search instead of missing a contact.
 #include <boost/test/unit_test.hpp>
 
@@ -22,13 +22,13 @@ struct Outcome {
 };
 
 // A 1 m square thrown down at 10 m/s from 1 m above a fixed base 200 m wide
-// (w0 = 100 m: with g2 = 0.01 Shi's reach is 2.5 m, while the floor of the
+// (w0 = 100 m: with max_displacement_ratio = 0.01 Shi's reach is 2.5 m, while the floor of the
 // adaptive reach is 0.1 m of the 1 m blocks), steps of 0.02 s (0.2 m per step
 // before the impact); a second block at rest on the base far away.
 Outcome drop(double min_search_distance) {
   core::Model m;
   m.settings.dt = 0.02;
-  m.settings.g2 = 0.01;
+  m.settings.max_displacement_ratio = 0.01;
   add_fixed(m, rect(-100.0, -1.0, 100.0, 0.0));
   m.blocks.push_back(block(rect(0.0, 1.0, 1.0, 2.0), Vec2(0.0, -10.0)));
   m.blocks.push_back(block(rect(50.0, 0.0, 51.0, 1.0)));
@@ -52,7 +52,7 @@ Outcome drop(double min_search_distance) {
 
 BOOST_AUTO_TEST_CASE(a_block_thrown_faster_than_the_search_reaches_lands_as_with_shis_full_reach) {
   const Outcome adaptive = drop(0.0);
-  const Outcome full = drop(2.5 * 0.01 * 100.0);  // search_factor x g2 x w0
+  const Outcome full = drop(2.5 * 0.01 * 100.0);  // search_factor x max_displacement_ratio x w0
   BOOST_TEST_MESSAGE("widenings " << adaptive.widenings << ", lowest vertex " << adaptive.lowest_y
                                   << " m, final centroid " << adaptive.centroid.transpose());
   // The first steps move the block 0.2 m, twice the floor: the search widened.

@@ -78,7 +78,7 @@ double slide_down(S& sim, double alpha, double distance) {
 inline core::Model running_bond_wall(int nx, int ny, core::SolverKind solver, double dynamic_ratio = 1.0,
                                      double iterate_tolerance = 0.0) {
   core::Model m = models::running_bond_wall(nx, ny);
-  m.settings.pcg_iterate_tolerance = iterate_tolerance;
+  m.settings.solver_iterate_tolerance = iterate_tolerance;
   m.settings.dynamic_ratio = dynamic_ratio;
   m.settings.solver = solver;
   return m;

@@ -3,7 +3,7 @@
 // gravity, with many contacts changing state at every step, gives the same
 // open-close iterations, step cuts, contact states and displacements with
 // amg as with CHOLMOD when every iterate is solved to the full tolerance; with
-// inexact iterates (Settings::pcg_iterate_tolerance) every accepted step is
+// inexact iterates (Settings::solver_iterate_tolerance) every accepted step is
 // still a solve to the full tolerance whose contact states the check accepts.
 #include <boost/test/unit_test.hpp>
 

@@ -40,7 +40,7 @@ namespace {
 /// Running-bond wall of `courses` courses of bricks 0.2 m x 0.1 m, `bricks`
 /// long, on a fixed base; E 5 GPa, nu 0.25, critically damped blocks and
 /// plastic impacts (the damped wall of docs/notes/step-controls.md, smaller), penalty
-/// 50 E, stick_keeps_force (a dynamic scene's default), dt and g2 from the level (halved per level). Returns the mean over the
+/// 50 E, stick_keeps_force (a dynamic scene's default), dt and max_displacement_ratio from the level (halved per level). Returns the mean over the
 /// closed contacts of |shear displacement| [m] after 20 ms and counts the
 /// contacts sliding then.
 struct WallRest {
@@ -55,7 +55,7 @@ WallRest damped_wall_at_rest(int bricks, int courses, int level) {
   m.materials[0].poisson_ratio = 0.25;
   m.materials[0].damping_ratio = 1.0;
   m.settings.dt = 3.125e-5 * scale;     // s
-  m.settings.g2 = 1.25e-5 * scale;
+  m.settings.max_displacement_ratio = 1.25e-5 * scale;
   add_fixed(m, rect(-0.5, -0.5, bricks * w + 0.5, 0.0));
   for (int r = 0; r < courses; ++r) {
     std::vector<double> cuts{0.0};
@@ -86,7 +86,7 @@ WallRest damped_wall_at_rest(int bricks, int courses, int level) {
 
 BOOST_AUTO_TEST_CASE(damped_wall_at_rest_has_no_more_sliding_joints_the_smaller_the_step) {
   // A 3-brick, 14-course damped wall stands. At 20 ms, at dt 31, 16, 7.8 and
-  // 3.9 us (g2 halved with it), the contacts still sliding - at their
+  // 3.9 us (max_displacement_ratio halved with it), the contacts still sliding - at their
   // friction limit - are a few, and no more at the finer steps than at the
   // coarser ones. Before the slide-reversal test counted the step's inertia
   // (ContactSettings::reversal_at_normal_resolution; docs/reference/contacts.md,

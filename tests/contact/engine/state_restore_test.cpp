@@ -77,7 +77,7 @@ BOOST_AUTO_TEST_CASE(a_restored_falling_block_searches_as_far_as_its_motion_need
   // from the floor (0.1 m) and widen its first step's search again.
   core::Model m;
   m.settings.dt = 0.02;
-  m.settings.g2 = 0.01;
+  m.settings.max_displacement_ratio = 0.01;
   add_fixed(m, rect(-100.0, -1.0, 100.0, 0.0));
   m.blocks.push_back(block(rect(0.0, 1.0, 1.0, 2.0), Vec2(0.0, -10.0)));
   m.blocks.push_back(block(rect(50.0, 0.0, 51.0, 1.0)));  // at rest: the median block is 1 m

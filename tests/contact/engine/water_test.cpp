@@ -128,7 +128,7 @@ BOOST_AUTO_TEST_CASE(under_a_gravity_ramp_the_water_weighs_with_gravity_and_a_su
     m.settings.dynamic_ratio = 0.0;
     m.settings.settle_until = 1.0;
     m.settings.settle_dt = 0.01;
-    m.settings.settle_g2 = 0.01;
+    m.settings.settle_max_displacement_ratio = 0.01;
     m.settings.settle_gravity_ramp = 1.0;
     m.settings.gravity = {0.0, water ? -kG : -(kG - kGammaW / 2600.0)};
     // A base that does not move: under water its exposed top is loaded too, and a

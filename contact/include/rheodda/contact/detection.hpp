@@ -81,7 +81,7 @@ double point_tributary_length(const BlockView& vb, int v, const Vec2& t);
 
 /// Narrow-phase tolerances.
 struct DetectionParams {
-  double search_distance = 0.0;  ///< d0 = 2.5 g2 w0 [length]
+  double search_distance = 0.0;  ///< d0 = 2.5 max_displacement_ratio w0 [length]
   double angle_tolerance = 3.0;  ///< [deg]
   /// A corner in a notch touches a notch edge while its projection lies on the
   /// edge or beyond the notch's vertex by at most this much (docs/reference/contacts.md,

@@ -112,7 +112,7 @@ struct ContactSettings {
   /// p_n / p_s for penalty shear springs [-]; Shi: 2.5 = 2 (1 + nu) with nu = 0.25 (eq. 17).
   double shear_normal_ratio = 2.5;
   /// Contact search distance as a multiple of the allowed step displacement
-  /// g2 w0 (StepContext::max_displacement) [-]; Shi: 2.5.
+  /// max_displacement_ratio w0 (StepContext::max_displacement) [-]; Shi: 2.5.
   double search_factor = 2.5;
   /// Search distance used when the host gives no allowed displacement [length].
   double min_search_distance = 0.0;

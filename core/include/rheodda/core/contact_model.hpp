@@ -27,7 +27,7 @@ struct StepContext {
   int step = 0;         ///< index of the step being solved (0-based)
   double time = 0.0;    ///< time at the start of the step [time]
   double dt = 0.0;      ///< step size [time]
-  double max_displacement = 0.0;  ///< allowed displacement per step (g2 * half model size) [length]
+  double max_displacement = 0.0;  ///< allowed displacement per step (max_displacement_ratio * half model size) [length]
   bool creep_error_wanted = false;  ///< the host will ask creep_error_estimate() after end_step
   /// The step carries velocity (a dynamic analysis, or a dynamic settling
   /// stage): contact dashpots act, and the contacts follow their dynamic rules

@@ -49,7 +49,7 @@ class StepProblem {
   virtual const Settings& settings() const = 0;
   /// Assembles K0, F0 and the contacts' terms for their current trial states
   /// and solves K D = F; `loose`: an iterative solver may stop at
-  /// Settings::pcg_iterate_tolerance instead of its own tolerance (docs/notes/contact-solves.md,
+  /// Settings::solver_iterate_tolerance instead of its own tolerance (docs/notes/contact-solves.md,
   /// "Inexact iterates"). Throws SingularSystemError (solver.hpp) when K is not
   /// positive definite. Times itself into the step report.
   virtual Eigen::VectorXd solve_system(bool loose) = 0;
@@ -60,8 +60,8 @@ class StepProblem {
   virtual ContactCheck check(const Eigen::VectorXd& D) = 0;
   /// The step carries velocity (a dynamic step).
   virtual bool dynamic() const = 0;
-  /// Iterates a solve may take before the step is cut (Settings::max_open_close,
-  /// or settle_max_open_close in the settling stage and collapse stages).
+  /// Iterates a solve may take before the step is cut (Settings::open_close_limit,
+  /// or settle_open_close_limit in the settling stage and collapse stages).
   virtual int iteration_limit() const = 0;
 };
 

@@ -53,7 +53,7 @@ inline double rotation_hold_stiffness(double fixed_point_stiffness, std::span<co
 }
 
 /// Shi's half model size w0: half the larger side of the model's bounding box [length];
-/// the step limit is g2 w0 and the contact search reaches search_factor g2 w0.
+/// the step limit is max_displacement_ratio w0 and the contact search reaches search_factor max_displacement_ratio w0.
 inline double half_model_size(double width, double height) { return 0.5 * std::max(width, height); }
 
 }  // namespace rheodda::core

@@ -103,7 +103,7 @@ struct StageEvent {
   bool at_rest = false;              ///< ended because its kinetic energy had decayed
                                      ///< (Settings::settle_rest_tolerance), not at its longest
   int blocks_involved = 0;           ///< blocks with a vertex that moved more than the stage's
-                                     ///< step limit (settle_g2 w0) over the stage [-]
+                                     ///< step limit (settle_max_displacement_ratio w0) over the stage [-]
   double largest_displacement = 0.0; ///< largest vertex displacement over the stage [length]
   double kinetic_energy_peak = 0.0;  ///< largest kinetic energy after a step of the stage [force x length]
   double kinetic_energy_end = 0.0;   ///< kinetic energy left at its end (dropped by the next
@@ -193,7 +193,7 @@ struct ModelEdit {
   /// The kinetic energy it adds is booked (EnergyFlows::dissipation_edits).
   std::vector<std::pair<int, Vec6>> set_velocities;
   /// Opens a settling stage from now (Settings::settle_until long, with
-  /// settle_dt, settle_g2, settle_dynamic and settle_rest_tolerance; docs/reference/engine.md,
+  /// settle_dt, settle_max_displacement_ratio, settle_dynamic and settle_rest_tolerance; docs/reference/engine.md,
   /// "Dynamic stages"); a dynamic stage in progress ends here.
   bool settle = false;
 };
@@ -250,7 +250,7 @@ class Engine {
   int step_count() const;
   double time() const;        ///< [time]
   double half_model_size() const;  ///< w0: half the larger side of the initial bounding box [length]
-  double allowed_displacement() const;  ///< g2 * w0 [length]
+  double allowed_displacement() const;  ///< max_displacement_ratio * w0 [length]
 
   const BlockState& block(int b) const;
   std::span<const Vec2> vertices(int b) const;  ///< [length]

@@ -40,11 +40,11 @@ struct ModelEntry {
 };
 
 /// Bad model input (geometry, parameters, indices). key() names the offending
-/// entry, e.g. "blocks[3].vertices" or "settings.g2"; an error in an entry of a
+/// entry, e.g. "blocks[3].vertices" or "settings.max_displacement_ratio"; an error in an entry of a
 /// list says which as data (entry()), its message() apart from the key.
 class ModelError : public std::invalid_argument {
  public:
-  /// An error in a setting or a list as a whole (`key`: "settings.g2", "blocks").
+  /// An error in a setting or a list as a whole (`key`: "settings.max_displacement_ratio", "blocks").
   ModelError(std::string key, const std::string& message)
       : std::invalid_argument(key + ": " + message), key_(std::move(key)), message_(message) {}
   /// An error in the part `field` ("" for the whole) of the list entry `entry`.
@@ -192,15 +192,16 @@ struct Settings {
                                  ///< which a contact on a creeping joint set locked, slid, opened,
                                  ///< appeared or vanished restarts from dt [-]
   int max_cuts = 30;             ///< cuts allowed in one step before the engine gives up [-]; >= 0
-  double g2 = 0.01;              ///< allowed displacement per step as a fraction of the half
-                                 ///< model size (Shi's g2) [-]; > 0
+  double max_displacement_ratio = 0.01;  ///< allowed displacement per step as a fraction of the
+                                        ///< half model size (Shi's g2) [-]; > 0
   /// Settling stage (docs/reference/engine.md, "Settling stage"): until this time the
-  /// steps are at most settle_dt, with the displacement limit settle_g2 and
-  /// without the adaptive controls; from it on, dt and g2 (the next step
+  /// steps are at most settle_dt, with the displacement limit settle_max_displacement_ratio and
+  /// without the adaptive controls; from it on, dt and max_displacement_ratio (the next step
   /// starts at dt) [time]; 0 = no settling stage; >= 0
   double settle_until = 0.0;
   double settle_dt = 0.0;        ///< largest step of the settling stage [time]; > 0 with settle_until
-  double settle_g2 = 0.0;        ///< g2 of the settling stage [-]; > 0 with settle_until
+  double settle_max_displacement_ratio = 0.0;  ///< max_displacement_ratio of the settling stage [-];
+                                               ///< > 0 with settle_until
   /// The settling stage is dynamic (docs/reference/engine.md, "Settling stage"): its
   /// steps carry the whole velocity (dynamic_ratio 1, with the materials'
   /// damping_ratio and the joint sets' restitution), whatever the analysis's
@@ -212,7 +213,7 @@ struct Settings {
   /// settling stage, a later static step that moves as a mechanism (its
   /// inertia share above kMechanismStepShare) is cut down to this size; one
   /// that still does at it is not taken, and a dynamic stage as long as the
-  /// settling stage (settle_until, with settle_dt and settle_g2) carries the
+  /// settling stage (settle_until, with settle_dt and settle_max_displacement_ratio) carries the
   /// collapse from the step's start [time]; 0 = off; >= 0, < dt
   double collapse_dt = 0.0;
   /// Dynamic stages end at rest (docs/reference/engine.md, "Dynamic stages"): a settling
@@ -227,11 +228,11 @@ struct Settings {
   /// 0 = the kinetic-energy test; in [0, 1); with settle_rest_tolerance only.
   double settle_force_ratio = 0.0;
   /// Open-close iterates before a step of the settling stage or a collapse
-  /// stage is cut [-]; 0 = max_open_close. A static analysis limits its static
+  /// stage is cut [-]; 0 = open_close_limit. A static analysis limits its static
   /// steps to Shi's 8 (docs/notes/contact-solves.md, "The iteration limit in static
   /// analysis"); its dynamic stages are dynamic steps, which a dynamic analysis
   /// gives 30.
-  int settle_max_open_close = 0;
+  int settle_open_close_limit = 0;
   /// Gravity ramp of the settling stage (docs/reference/engine.md, "Gravity ramp"): the
   /// body force rises linearly from zero at t = 0 to its full value at this
   /// time, which lies within the stage (0 < settle_gravity_ramp <= settle_until),
@@ -296,23 +297,23 @@ struct Settings {
   Vec2 gravity{0.0, -9.81};      ///< body acceleration (gx, gy) [length/time^2]
   double fixed_point_stiffness = 0.0;  ///< penalty spring of fixed points [force/length];
                                        ///< 0 = automatic: 100 x the largest Young's modulus
-  int max_open_close = 30;       ///< open-close iterations before a step is cut [-]; >= 1 (docs/notes/contact-solves.md, "The wall converges when the iteration is not cut")
+  int open_close_limit = 30;     ///< open-close iterations before a step is cut [-]; >= 1 (docs/notes/contact-solves.md, "The wall converges when the iteration is not cut")
   SolverKind solver = SolverKind::automatic;  ///< default automatic
   ContactSolver contact_solver = ContactSolver::open_close;  ///< default open_close
   /// ContactSolver::newton accepts a step when the residual of its equations,
   /// |F0 - K0 D - f(D)|, is at most this fraction of the contact forces |f(D)|
   /// (docs/reference/contacts.md, "Contact solves") [-]; in (0, 1)
   double contact_residual_tolerance = 1.0e-4;
-  double pcg_tolerance = 1.0e-10;  ///< stop of the iterative solvers (pcg, amg):
-                                   ///< ||F - K D|| <= tol ||F|| [-]; > 0. 1e-10: what double
-                                   ///< precision attains on contact-dominated systems
-                                   ///< (condition numbers 1e5-1e6)
-  int pcg_max_iterations = 10000;  ///< iteration limit per solve of pcg and amg [-]; >= 1
+  double solver_tolerance = 1.0e-10;  ///< stop of the iterative solvers (pcg, amg):
+                                      ///< ||F - K D|| <= tol ||F|| [-]; > 0. 1e-10: what double
+                                      ///< precision attains on contact-dominated systems
+                                      ///< (condition numbers 1e5-1e6)
+  int solver_max_iterations = 10000;  ///< iteration limit per solve of pcg and amg [-]; >= 1
   /// Stop of the iterative solvers in an open-close iterate whose contact
-  /// states are still changing [-]: ||F - K D|| <= pcg_iterate_tolerance ||F||;
-  /// a trial is accepted only on a check of a solve at pcg_tolerance (docs/notes/contact-solves.md,
-  /// "Inexact iterates"). 0 = every solve at pcg_tolerance; in [0, 1)
-  double pcg_iterate_tolerance = 1.0e-4;
+  /// states are still changing [-]: ||F - K D|| <= solver_iterate_tolerance ||F||;
+  /// a trial is accepted only on a check of a solve at solver_tolerance (docs/notes/contact-solves.md,
+  /// "Inexact iterates"). 0 = every solve at solver_tolerance; in [0, 1)
+  double solver_iterate_tolerance = 1.0e-4;
 };
 
 /// A complete DDA model.

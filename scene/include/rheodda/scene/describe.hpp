@@ -22,7 +22,7 @@ std::string scheme_text(const Analysis& analysis);
 /// (parameters in `check`, values written into scene and study files).
 std::string exact_number(double v);
 
-/// Contact search distance at the start: search_factor * g2 * w0 [length] (Shi's rule).
+/// Contact search distance at the start: search_factor * max_displacement_ratio * w0 [length] (Shi's rule).
 double search_distance(const SceneDescription& scene);
 
 }  // namespace rheodda::scene

@@ -58,14 +58,14 @@ struct Analysis {
                                        ///< up to dt [-]; >= 1; not under creep_tolerance or step_tolerance
   double dt_cut = 0.3;                 ///< factor on the step when a step is cut [-]; in (0, 1)
   int max_cuts = 30;                   ///< cuts of dt (x dt_cut each) allowed in one step before the run fails [-]
-  double max_displacement_ratio = 0.01;  ///< g2: allowed step displacement / half model size [-]
+  double max_displacement_ratio = 0.01;  ///< Shi's g2: allowed step displacement / half model size [-]
   /// `settle: {until, dt, max_displacement_ratio, type, collapse_dt, gravity_ramp, rest_tolerance}`: a settling stage at the start
   /// (docs/reference/engine.md, "Settling stage"): steps of at most `dt` with the displacement
   /// limit `max_displacement_ratio` until `until`, then the analysis's own.
   struct Settle {
     double until = 0.0;                   ///< end of the stage [time]; > 0, < duration
     double dt = 0.0;                      ///< largest step in it [time]; > 0, <= until
-    double max_displacement_ratio = 0.0;  ///< its g2 [-]; default the analysis's
+    double max_displacement_ratio = 0.0;  ///< Shi's g2 of the stage's steps [-]; default the analysis's
     /// `type: dynamic`: the stage's steps carry velocity (with the materials'
     /// damping_ratio and the joint sets' restitution), and a static analysis
     /// goes on from rest after it; default `static` (the analysis's own kind).
@@ -117,7 +117,7 @@ struct Analysis {
                                                 ///< in which a creeping contact changed state
   double penalty = 0.0;                ///< normal contact penalty p_n [stress]; default 40 x largest young_modulus (seed eq. 17)
   double shear_normal_ratio = 2.5;     ///< p_n / p_s of penalty shear springs [-]
-  double search_factor = 2.5;          ///< contact search distance / (g2 w0) [-]
+  double search_factor = 2.5;          ///< contact search distance / (max_displacement_ratio w0) [-]
   double angle_tolerance = 3.0;        ///< angle rule tolerance [deg]
   double penetration_ratio = 1e-4;     ///< allowed penetration / half model size [-]
   bool stick_keeps_force = false;      ///< a sliding contact that sticks keeps its friction force
