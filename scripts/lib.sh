@@ -20,3 +20,20 @@ ensure_built() {
   cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
   cmake --build "$build" -j "$(nproc)" --target "${missing[@]}"
 }
+
+# prototype_build PATCH TARGET...: a temporary copy of the tree (its working changes
+# included) with PATCH applied (bench/prototypes/, ideas tried and not adopted), the
+# CMake targets built in the copy's own build folder; sets proto_build to that folder.
+# The copy is removed when the script exits.
+prototype_build() {
+  local patch="$1"
+  shift
+  local copy="$work/prototype"
+  git -C "$root" worktree add --detach "$copy" HEAD >/dev/null 2>&1
+  trap 'git -C "$root" worktree remove --force "'"$copy"'" >/dev/null 2>&1; rm -rf "$work"' EXIT
+  git -C "$root" diff HEAD | git -C "$copy" apply --allow-empty
+  git -C "$copy" apply "$patch"
+  cmake -S "$copy" -B "$copy/build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake --build "$copy/build" -j "$(nproc)" --target "$@" >/dev/null
+  proto_build="$copy/build"
+}

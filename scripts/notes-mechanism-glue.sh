@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# The 744-block cohesionless slope's mechanism stage that never rests (docs/notes/rock-mass-steps.md,
+# "A mechanism stage that never rests"): writes the benchmark's slope (rockmass_bench --creep
+# 1000), steps it through the Python API to the static steps that find its mechanism and prints,
+# step by step, the energies and the contacts committed locked outside their Mohr-Coulomb
+# envelope (bench/stage_glue.py). With PROTOTYPE=1 it also builds a copy of the tree with
+# bench/prototypes/anti-chattering-opens.patch and prints the slope's stages with it
+# (bench/stage_motion.py, 6 000 steps).
+#
+#   scripts/notes-mechanism-glue.sh [FROM TO]     # steps, default 3312 3320
+#   PROTOTYPE=1 scripts/notes-mechanism-glue.sh
+#
+# About 3 minutes (the slope's first 3 300 steps); PROTOTYPE=1 adds a build and 2 minutes.
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
+from="${1:-3312}"
+to="${2:-3320}"
+ensure_built rockmass_bench
+"$build/bench/rockmass_bench" --no-generation --scene "$root/bench/scenes/jointed-slope-cohesionless.yaml" \
+  --write-scenes "$work" --creep 1000 --max-wall 0 >/dev/null
+scene="$work/jointed-slope-cohesionless-1000.yaml"
+RHEODDA_BUILD_DIR="$build" /usr/bin/python3 "$root/bench/stage_glue.py" "$scene" "$from" "$to" 3
+if [[ "${PROTOTYPE:-0}" == 1 ]]; then
+  prototype_build "$root/bench/prototypes/anti-chattering-opens.patch" _rheodda
+  echo "# with bench/prototypes/anti-chattering-opens.patch:"
+  RHEODDA_ANTI_CHATTERING_OPENS=1 RHEODDA_BUILD_DIR="$proto_build" \
+    /usr/bin/python3 "$root/bench/stage_motion.py" "$scene" 6000 100
+fi
