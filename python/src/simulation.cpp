@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <optional>
+#include <type_traits>
+#include <variant>
 
 #include "laws.hpp"
 
@@ -18,28 +20,31 @@ namespace {
 /// Thrown by the step observer to leave Engine::run_until between two steps.
 struct LeaveRun {};
 
-/// The step settings by their scene names (analysis.*) and their kinds: r real, i integer, b flag.
-constexpr std::pair<const char*, char> kSettings[] = {
-    {"dt", 'r'},
-    {"dt_growth", 'r'},
-    {"dt_cut", 'r'},
-    {"max_cuts", 'i'},
-    {"max_displacement_ratio", 'r'},
-    {"creep_tolerance", 'r'},
-    {"step_tolerance", 'r'},
-    {"step_extrapolation", 'b'},
-    {"dt_max", 'r'},
-    {"open_close_limit", 'i'},
-    {"solver_tolerance", 'r'},
-    {"solver_max_iterations", 'i'},
-    {"solver_iterate_tolerance", 'r'},
+/// The step settings Simulation.set_settings takes, by their scene names (analysis.*), each
+/// bound to the core::Settings member of the same name: the one list the setter, the getter
+/// and the error's list of valid names read.
+using SettingMember = std::variant<double core::Settings::*, int core::Settings::*, bool core::Settings::*>;
+const std::pair<const char*, SettingMember> kSettings[] = {
+    {"dt", &core::Settings::dt},
+    {"dt_growth", &core::Settings::dt_growth},
+    {"dt_cut", &core::Settings::dt_cut},
+    {"max_cuts", &core::Settings::max_cuts},
+    {"max_displacement_ratio", &core::Settings::max_displacement_ratio},
+    {"creep_tolerance", &core::Settings::creep_tolerance},
+    {"step_tolerance", &core::Settings::step_tolerance},
+    {"step_extrapolation", &core::Settings::step_extrapolation},
+    {"dt_max", &core::Settings::dt_max},
+    {"open_close_limit", &core::Settings::open_close_limit},
+    {"solver_tolerance", &core::Settings::solver_tolerance},
+    {"solver_max_iterations", &core::Settings::solver_max_iterations},
+    {"solver_iterate_tolerance", &core::Settings::solver_iterate_tolerance},
 };
 
-char setting_kind(const std::string& key) {
-  for (const auto& [name, kind] : kSettings)
-    if (key == name) return kind;
+const SettingMember& setting(const std::string& key) {
+  for (const auto& [name, member] : kSettings)
+    if (key == name) return member;
   std::vector<std::string> names;
-  for (const auto& [name, kind] : kSettings) names.emplace_back(name);
+  for (const auto& [name, member] : kSettings) names.emplace_back(name);
   throw InputError(fmt::format("set_settings: unknown setting '{}'; valid: {}", key, fmt::join(names, ", ")));
 }
 
@@ -208,11 +213,15 @@ void Simulation::set_settings(const py::kwargs& kw) {
   json values = json::object();
   for (auto item : kw) {
     const auto key = item.first.cast<std::string>();
-    switch (setting_kind(key)) {
-      case 'i': values[key] = item.second.cast<int>(); break;
-      case 'b': values[key] = item.second.cast<bool>(); break;
-      default: values[key] = hex(item.second.cast<double>());
-    }
+    std::visit(
+        [&](auto member) {
+          using T = std::remove_reference_t<decltype(std::declval<core::Settings>().*member)>;
+          if constexpr (std::is_same_v<T, double>)
+            values[key] = hex(item.second.cast<double>());  // exact through the change log
+          else
+            values[key] = item.second.cast<T>();
+        },
+        setting(key));
   }
   core::Model m = next_model();
   const bool dt_changed = apply_settings(m.settings, values);
@@ -223,22 +232,16 @@ void Simulation::set_settings(const py::kwargs& kw) {
 bool Simulation::apply_settings(core::Settings& s, const json& values) {
   bool dt_changed = false;
   for (const auto& [key, v] : values.items()) {
-    setting_kind(key);
-    if (key == "dt") {
-      s.dt = unhex(v);
-      dt_changed = true;
-    } else if (key == "dt_growth") s.dt_growth = unhex(v);
-    else if (key == "dt_cut") s.dt_cut = unhex(v);
-    else if (key == "max_cuts") s.max_cuts = v.get<int>();
-    else if (key == "max_displacement_ratio") s.max_displacement_ratio = unhex(v);
-    else if (key == "creep_tolerance") s.creep_tolerance = unhex(v);
-    else if (key == "step_tolerance") s.step_tolerance = unhex(v);
-    else if (key == "step_extrapolation") s.step_extrapolation = v.get<bool>();
-    else if (key == "dt_max") s.dt_max = unhex(v);
-    else if (key == "open_close_limit") s.open_close_limit = v.get<int>();
-    else if (key == "solver_tolerance") s.solver_tolerance = unhex(v);
-    else if (key == "solver_max_iterations") s.solver_max_iterations = v.get<int>();
-    else if (key == "solver_iterate_tolerance") s.solver_iterate_tolerance = unhex(v);
+    std::visit(
+        [&](auto member) {
+          using T = std::remove_reference_t<decltype(s.*member)>;
+          if constexpr (std::is_same_v<T, double>)
+            s.*member = unhex(v);
+          else
+            s.*member = v.template get<T>();
+        },
+        setting(key));
+    dt_changed = dt_changed || key == "dt";
   }
   return dt_changed;
 }
@@ -246,19 +249,7 @@ bool Simulation::apply_settings(core::Settings& s, const json& values) {
 py::dict Simulation::settings() const {
   const core::Settings& s = eng().model().settings;
   py::dict d;
-  d["dt"] = s.dt;
-  d["dt_growth"] = s.dt_growth;
-  d["dt_cut"] = s.dt_cut;
-  d["max_cuts"] = s.max_cuts;
-  d["max_displacement_ratio"] = s.max_displacement_ratio;
-  d["creep_tolerance"] = s.creep_tolerance;
-  d["step_tolerance"] = s.step_tolerance;
-  d["step_extrapolation"] = s.step_extrapolation;
-  d["dt_max"] = s.dt_max;
-  d["open_close_limit"] = s.open_close_limit;
-  d["solver_tolerance"] = s.solver_tolerance;
-  d["solver_max_iterations"] = s.solver_max_iterations;
-  d["solver_iterate_tolerance"] = s.solver_iterate_tolerance;
+  for (const auto& [name, member] : kSettings) std::visit([&](auto m) { d[name] = s.*m; }, member);
   return d;
 }
 

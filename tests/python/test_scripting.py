@@ -188,6 +188,29 @@ def test_blocks_are_fixed_freed_removed_and_loaded_between_steps():
     assert "removed" in repr(block)
 
 
+def test_every_step_setting_is_set_and_read_back_by_its_scene_name():
+    # Simulation.set_settings and Simulation.settings read one list of the core's settings,
+    # each by its scene name (python/src/simulation.cpp, kSettings): every one set reads back
+    # exactly, of its own type; an unknown name is refused with the valid ones.
+    sim = rheodda.Simulation(SHEAR_TEST)
+    before = sim.settings
+    wanted = {}
+    for name, value in before.items():
+        if isinstance(value, bool):
+            wanted[name] = value  # a flag: set as it is (its partner settings are not changed)
+        elif isinstance(value, int):
+            wanted[name] = value + 1
+        else:
+            wanted[name] = value * 2 if value else value
+    sim.set_settings(**wanted)
+    after = sim.settings
+    assert after == wanted
+    assert all(type(after[k]) is type(before[k]) for k in before)
+    assert all(after[k] != before[k] for k in before if before[k] and not isinstance(before[k], bool))
+    with pytest.raises(rheodda.Error, match="unknown setting 'max_displacment_ratio'; valid: dt, "):
+        sim.set_settings(max_displacment_ratio=0.01)
+
+
 def test_loads_of_the_scene_are_removed_by_their_handles_and_the_indices_follow():
     sim = rheodda.Simulation(SHEAR_TEST)
     assert len(sim.loads) == 2
