@@ -30,6 +30,7 @@
 // the analysis has them). Unlike the implicit static step, the cycles keep no inertia term
 // 2M/dt^2 (Shi's static step starts at rest but keeps the step's inertia): the state they
 // find is the equilibrium itself, which the implicit step approaches as dt grows.
+// The cycles look at the run's stop request as the dynamic step's do (explicit_step.cpp).
 #include <omp.h>
 
 #include <algorithm>
@@ -101,6 +102,7 @@ Engine::Impl::Trial Engine::Impl::relax_trial(double dt, StepReport& rep) {
   const double allowed = g2_now() * w0;  // (3): the step's displacement limit
   Eigen::VectorXd D_before;
   for (;; ++n) {
+    poll_stop(n);  // a stop asked within the step: abandoned by the caller (solve_trial)
     contacts->cycle_forces(Dn, V, kCycle, f);
     if (bolts) bolt_set.cycle_forces(Dn, V, kCycle, f);
 #pragma omp parallel for schedule(static) num_threads(threads) if (nbi >= cycles::kParallelBlocks)

@@ -48,6 +48,8 @@
 // removed blocks do not move. Every block and
 // every contact is updated on its own: the cycles run in parallel (OpenMP) and give the
 // same bits whatever the number of threads (contacts gathered per block in a fixed order).
+// Every Engine::kStopPollCycles cycles they look at the run's stop request
+// (Engine::set_stop_request): a stop asked abandons the step as a cut step is.
 #include <omp.h>
 
 #include <algorithm>
@@ -252,6 +254,7 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
   const bool force_ratio_wanted = s.settle_force_ratio > 0.0 && settling();
   std::vector<double> unbalanced(force_ratio_wanted ? nb : 0, 0.0);
   for (int c = 0; c <= n; ++c) {
+    poll_stop(c);  // a stop asked within the step: abandoned by the caller (solve_trial)
     const double w = static_cast<double>(c) / n;
     const double kick = (c == 0 || c == n) ? 0.5 * h : h;
     const bool drift = c < n;
