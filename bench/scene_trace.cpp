@@ -17,6 +17,7 @@
 //
 // Runs the scene as `rheodda run` does (same model, joint sets and contact
 // settings) without writing outputs. A diagnostic tool: it asserts nothing.
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -112,6 +113,19 @@ class Tracer final : public core::ContactModel {
     inner_.abandon_step();
   }
   bool retract_step() override { return inner_.retract_step(); }
+  // The explicit step's cycles, passed through (--cycles).
+  bool begin_cycles(std::span<const contact::BlockView> b, int threads) override {
+    return inner_.begin_cycles(b, threads);
+  }
+  void cycle_stiffness(std::vector<core::Mat6>& K) const override { inner_.cycle_stiffness(K); }
+  void cycle_damping(double tau, std::vector<core::Mat6>& C) override { inner_.cycle_damping(tau, C); }
+  void cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double h, Eigen::VectorXd& f) override {
+    inner_.cycle_forces(D, V, h, f);
+  }
+  int cycle_relinearize(const Eigen::VectorXd& D) override { return inner_.cycle_relinearize(D); }
+  core::ContactCheck end_cycles(std::span<const contact::BlockView> b, const Eigen::VectorXd& D) override {
+    return inner_.end_cycles(b, D);
+  }
   double creep_error_estimate() const override { return inner_.creep_error_estimate(); }
   int creep_state_changes() const override { return inner_.creep_state_changes(); }
   double time_to_failure() const override { return inner_.time_to_failure(); }
@@ -135,7 +149,7 @@ int trace(int argc, char** argv);
 int main(int argc, char** argv) {
   const char* usage =
       "usage: scene_trace SCENE.yaml [--steps N] [--from S] [--to S] [--contacts] "
-      "[--dt DT] [--duration T] [--summary] [--diagnose]\n";
+      "[--dt DT] [--duration T] [--summary] [--diagnose] [--cycles]\n";
   if (argc >= 2 && (!std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h"))) {
     std::printf("%s", usage);
     return 0;
@@ -155,7 +169,7 @@ int main(int argc, char** argv) {
 int trace(int argc, char** argv) {
   int steps = -1;
   double dt = 0.0, duration = 0.0;
-  bool summary = false, diagnose = false;
+  bool summary = false, diagnose = false, cycles = false;
   scene::SceneDescription sd = scene::load_scene(argv[1]);
   scene::BuiltScene built = scene::build_scene(sd);
   contact::ContactSystem sys(built.joint_sets, built.contact_settings);
@@ -170,6 +184,7 @@ int trace(int argc, char** argv) {
     else if (!std::strcmp(argv[k], "--duration") && k + 1 < argc) duration = std::atof(argv[++k]);
     else if (!std::strcmp(argv[k], "--summary")) summary = true;
     else if (!std::strcmp(argv[k], "--diagnose")) diagnose = summary = true;
+    else if (!std::strcmp(argv[k], "--cycles")) cycles = summary = true;
     else {
       std::fprintf(stderr, "scene_trace: unknown option '%s'\n", argv[k]);
       return 2;
@@ -178,6 +193,16 @@ int trace(int argc, char** argv) {
   tracer.quiet = summary;
   if (dt > 0.0) built.model.settings.dt = dt;
   core::Engine engine(built.model, tracer);
+  auto last = std::chrono::steady_clock::now();
+  if (cycles)
+    engine.add_observer([&](const core::Engine& e, const core::StepReport& r) {
+      const auto now = std::chrono::steady_clock::now();
+      std::printf("step %d t %.6g dt %.3g cuts %d: %d cycles of %.3g (block %d), %zu contacts, %.3f s\n", r.step,
+                  r.time, r.dt, r.cuts, r.cycles, r.cycle_dt, r.stable_block, sys.contacts().size(),
+                  std::chrono::duration<double>(now - last).count());
+      last = now;
+      (void)e;
+    });
   if (steps >= 0)
     engine.run(steps);
   else

@@ -236,9 +236,9 @@ void ContactSystem::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd
   // block whose contacts lie in the ranges of two threads is gathered after them all. Each
   // block's sum is over its slots in their fixed order whoever makes it: the same bits
   // whatever the threads.
-#pragma omp parallel num_threads(threads) if (n >= kParallelContacts)
-  {
-    const int nt = omp_get_num_threads(), t = omp_get_thread_num();
+  // A team of one still wakes a futex at its barriers (a system call per cycle): one thread
+  // works without a parallel region.
+  const auto work_range = [&](int nt, int t) {
     const std::ptrdiff_t lo = n * t / nt, hi = n * (t + 1) / nt;
     // The blocks whose last contact is in [lo, hi), by their last contact.
     std::ptrdiff_t next = std::lower_bound(done, done + nb, lo, [&](int b, std::ptrdiff_t c) {
@@ -250,17 +250,28 @@ void ContactSystem::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd
       for (; next < nb && last_contact[done[next]] < c1; ++next)
         if (first_contact[done[next]] >= lo) gather_block(first, force, done[next], f);
     }
+  };
+  const auto gather_left = [&](std::ptrdiff_t b, int nt) {
+    // A block with no contact, or one whose contacts span two threads' ranges.
+    bool spans = last_contact[b] < 0;
+    for (int u = 1; u < nt && !spans; ++u) {
+      const std::ptrdiff_t split = n * u / nt;
+      spans = first_contact[b] < split && last_contact[b] >= split;
+    }
+    if (spans) gather_block(first, force, b, f);
+  };
+  if (threads > 1 && n >= kParallelContacts) {
+#pragma omp parallel num_threads(threads)
+    {
+      const int nt = omp_get_num_threads();
+      work_range(nt, omp_get_thread_num());
 #pragma omp barrier
 #pragma omp for schedule(static)
-    for (std::ptrdiff_t b = 0; b < nb; ++b) {
-      // A block with no contact, or one whose contacts span two threads' ranges.
-      bool spans = last_contact[b] < 0;
-      for (int u = 1; u < nt && !spans; ++u) {
-        const std::ptrdiff_t split = n * u / nt;
-        spans = first_contact[b] < split && last_contact[b] >= split;
-      }
-      if (spans) gather_block(first, force, b, f);
+      for (std::ptrdiff_t b = 0; b < nb; ++b) gather_left(b, nt);
     }
+  } else {
+    work_range(1, 0);
+    for (std::ptrdiff_t b = 0; b < nb; ++b) gather_left(b, 1);
   }
 }
 

@@ -104,12 +104,13 @@ void BoltSet::begin_cycles(double tau, int block_count, int threads) {
 void BoltSet::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double h, Eigen::VectorXd& f) {
   const auto n = static_cast<std::ptrdiff_t>(trials_.size());
   const int threads = cycle_threads_ > 0 ? cycle_threads_ : omp_get_max_threads();
-  const bool parallel = n >= kParallelBolts;
-#pragma omp parallel for schedule(static) num_threads(threads) if (parallel)
-  for (std::ptrdiff_t i = 0; i < n; ++i) {
+  // One thread works without a parallel region: a team of one still wakes a futex at the
+  // region's barrier, a system call per cycle (cycle_kernels.hpp, kParallelBlocks).
+  const bool parallel = threads > 1 && n >= kParallelBolts;
+  const auto bolt_force = [&](std::ptrdiff_t i) {
     const auto k = static_cast<std::size_t>(i);
     Trial& t = trials_[k];
-    if (!t.active) continue;
+    if (!t.active) return;
     const Bolt& bolt = model_->bolts[k];
     const Point p = point(k, D);  // the ends and the axis at D
     const contact::Vec6 g_a = p.a.G.transpose() * p.n;  // d L / d D_a = -g_a, d L / d D_b = g_b
@@ -145,14 +146,25 @@ void BoltSet::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, d
     // (3): -N g_a on block a, N g_b on block b.
     cycle_force_[2 * k].noalias() = -N * g_a;
     cycle_force_[2 * k + 1].noalias() = N * g_b;
-  }
+  };
   const auto nb = static_cast<std::ptrdiff_t>(block_first_.size()) - 1;
-#pragma omp parallel for schedule(static) num_threads(threads) if (parallel)
-  for (std::ptrdiff_t b = 0; b < nb; ++b) {
-    if (block_first_[b] == block_first_[b + 1]) continue;
+  const auto gather = [&](std::ptrdiff_t b) {
+    if (block_first_[b] == block_first_[b + 1]) return;
     contact::Vec6 sum = contact::Vec6::Zero();
     for (int e = block_first_[b]; e < block_first_[b + 1]; ++e) sum += cycle_force_[block_entries_[e]];
     f.segment<6>(6 * b) += sum;
+  };
+  if (parallel) {
+#pragma omp parallel num_threads(threads)
+    {
+#pragma omp for schedule(static)
+      for (std::ptrdiff_t i = 0; i < n; ++i) bolt_force(i);
+#pragma omp for schedule(static)
+      for (std::ptrdiff_t b = 0; b < nb; ++b) gather(b);
+    }
+  } else {
+    for (std::ptrdiff_t i = 0; i < n; ++i) bolt_force(i);
+    for (std::ptrdiff_t b = 0; b < nb; ++b) gather(b);
   }
 }
 

@@ -22,7 +22,9 @@
 namespace rheodda::core::cycles {
 
 /// Fewer blocks than this are kicked and drifted on one thread: a parallel region per cycle
-/// costs more than their update (the same bits either way; contact_cycles.cpp likewise).
+/// costs more than their update (the same bits either way; contact_cycles.cpp likewise). One
+/// thread works without a parallel region at all: a team of one still wakes a futex at the
+/// region's barrier, a system call per cycle.
 constexpr std::ptrdiff_t kParallelBlocks = 16;
 
 /// The contacts take their cycles' arrays (ContactModel::begin_cycles) for cycles on `threads`

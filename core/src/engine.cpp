@@ -220,6 +220,7 @@ void Engine::run_until(double end_time, double horizon) {
 }
 
 void Engine::add_observer(StepObserver observer) { impl_->observers.push_back(std::move(observer)); }
+void Engine::set_stop_request(StopRequest asked) { impl_->stop_request = std::move(asked); }
 
 const Model& Engine::model() const { return impl_->model; }
 int Engine::block_count() const { return static_cast<int>(impl_->st.blocks.size()); }

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -123,6 +124,14 @@ struct Engine::Impl {
   Eigen::VectorXd base_rhs;
   std::vector<StepReport> reports;
   std::vector<StepObserver> observers;
+  StopRequest stop_request;  ///< Engine::set_stop_request; empty: never asked
+  /// Within the cycles of a step, at cycle `cycle`: every Engine::kStopPollCycles cycles, asks the
+  /// stop request and throws StepInterrupted when it answers yes (the caller abandons the step).
+  void poll_stop(long cycle) const {
+    if (stop_request && cycle % Engine::kStopPollCycles == Engine::kStopPollCycles - 1 && stop_request())
+      throw StepInterrupted("step " + std::to_string(st.step) + " at time " + std::to_string(st.time) +
+                            ": stopped within its cycles on request; the step is not taken");
+  }
   EnergyAccount energy;  // the balance itself is st.energy (energy.hpp)
   BoltSet bolt_set;      // the bolts' step terms (bolts.hpp); idle without Model::bolts
   EnergyInputs energy_inputs() const {
@@ -165,7 +174,18 @@ struct Engine::Impl {
   double max_displacement_ratio_now() const { return settling() ? model.settings.settle_max_displacement_ratio : model.settings.max_displacement_ratio; }
   void accept(const Eigen::VectorXd& d, double dt, int step_index, double t_end);
   void record_measurements(int step_index);
+  /// One accepted step (step_control.cpp). On StepInterrupted from within it, what the step's
+  /// attempts changed of the engine (the contact search's reach, a collapse stage it opened;
+  /// the contacts are abandoned where the attempt fails, the blocks move only on acceptance) is
+  /// set back before the exception goes on.
   StepReport step(double dt_cap);
+  /// What step() sets back on StepInterrupted: the engine's members its attempts change.
+  struct StepStart {
+    double search_disp = 0.0;
+    bool stage_opened_by_edit = false;
+    std::optional<StageState> stage;  ///< kept before a collapse stage is opened
+  };
+  StepReport step_attempts(double dt_cap, StepStart& start);
   /// After a static trial of dt that moved as a mechanism (docs/reference/engine.md,
   /// "Collapse stages"): cuts dt towards collapse_dt and returns false, or, at
   /// collapse_dt, opens a collapse stage from the step's start, sets dt to the

@@ -30,6 +30,7 @@
 // the analysis has them). Unlike the implicit static step, the cycles keep no inertia term
 // 2M/dt^2 (Shi's static step starts at rest but keeps the step's inertia): the state they
 // find is the equilibrium itself, which the implicit step approaches as dt grows.
+// The cycles look at the run's stop request as the dynamic step's do (explicit_step.cpp).
 #include <omp.h>
 
 #include <algorithm>
@@ -100,14 +101,21 @@ Engine::Impl::Trial Engine::Impl::relax_trial(double dt, StepReport& rep) {
   bool settled = false, partial = false;
   const double allowed = max_displacement_ratio_now() * w0;  // (3): the step's displacement limit
   Eigen::VectorXd D_before;
+  const bool parallel_blocks = threads > 1 && nbi >= cycles::kParallelBlocks;  // (cycle_kernels.hpp)
   for (;; ++n) {
+    poll_stop(n);  // a stop asked within the step: abandoned by the caller (solve_trial)
     contacts->cycle_forces(Dn, V, kCycle, f);
     if (bolts) bolt_set.cycle_forces(Dn, V, kCycle, f);
-#pragma omp parallel for schedule(static) num_threads(threads) if (nbi >= cycles::kParallelBlocks)
-    for (std::ptrdiff_t k = 0; k < nbi; ++k) {
-      if (frozen[k]) continue;
+    const auto residual = [&](std::ptrdiff_t k) {
+      if (frozen[k]) return;
       R.segment<6>(6 * k) = F.segment<6>(6 * k) - K[k] * Dn.segment<6>(6 * k) - f.segment<6>(6 * k);
       unbalanced[k] = R.segment<2>(6 * k).norm();
+    };
+    if (parallel_blocks) {
+#pragma omp parallel for schedule(static) num_threads(threads)
+      for (std::ptrdiff_t k = 0; k < nbi; ++k) residual(k);
+    } else {
+      for (std::ptrdiff_t k = 0; k < nbi; ++k) residual(k);
     }
     ratio = cycles::unbalanced_force_ratio(unbalanced, F, frozen);
     // At rest, each contact whose creep law is not linear takes the seam of the stress it
@@ -120,13 +128,18 @@ Engine::Impl::Trial Engine::Impl::relax_trial(double dt, StepReport& rep) {
     if (n == s.static_max_cycles) break;
     if (ratio <= s.static_force_ratio) continue;  // the forces again, at the new seams
     D_before = Dn;
-#pragma omp parallel for schedule(static) num_threads(threads) if (nbi >= cycles::kParallelBlocks)
-    for (std::ptrdiff_t k = 0; k < nbi; ++k) {
-      if (frozen[k]) continue;
+    const auto kick_block = [&](std::ptrdiff_t k) {
+      if (frozen[k]) return;
       auto Vk = V.segment<6>(6 * k);
       // Leapfrog from rest: the first kick is half a cycle, as (2) of explicit_step.cpp.
       cycles::damped_kick(L[k], R.segment<6>(6 * k), n == 0 ? 0.5 * kCycle : kCycle, alpha, Vk);
       Dn.segment<6>(6 * k) += kCycle * Vk;
+    };
+    if (parallel_blocks) {
+#pragma omp parallel for schedule(static) num_threads(threads)
+      for (std::ptrdiff_t k = 0; k < nbi; ++k) kick_block(k);
+    } else {
+      for (std::ptrdiff_t k = 0; k < nbi; ++k) kick_block(k);
     }
     if (max_vertex_displacement(Dn) > allowed) {
       // The way to rest is longer than a step may move on its step-start contacts: the step

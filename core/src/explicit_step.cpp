@@ -48,6 +48,8 @@
 // removed blocks do not move. Every block and
 // every contact is updated on its own: the cycles run in parallel (OpenMP) and give the
 // same bits whatever the number of threads (contacts gathered per block in a fixed order).
+// Every Engine::kStopPollCycles cycles they look at the run's stop request
+// (Engine::set_stop_request): a stop asked abandons the step as a cut step is.
 #include <omp.h>
 
 #include <algorithm>
@@ -251,15 +253,17 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
   // |R| of each block's translation at the step's end, where a stage's rest test asks for it (8).
   const bool force_ratio_wanted = s.settle_force_ratio > 0.0 && settling();
   std::vector<double> unbalanced(force_ratio_wanted ? nb : 0, 0.0);
+  // One thread works without a parallel region (cycle_kernels.hpp, kParallelBlocks).
+  const bool parallel_blocks = threads > 1 && nbi >= cycles::kParallelBlocks;
   for (int c = 0; c <= n; ++c) {
+    poll_stop(c);  // a stop asked within the step: abandoned by the caller (solve_trial)
     const double w = static_cast<double>(c) / n;
     const double kick = (c == 0 || c == n) ? 0.5 * h : h;
     const bool drift = c < n;
     contacts->cycle_forces(Dn, V, h, f);
     if (bolts) bolt_set.cycle_forces(Dn, V, h, f);  // added per block after the contacts' sum
-#pragma omp parallel for schedule(static) num_threads(threads) if (nbi >= cycles::kParallelBlocks)
-    for (std::ptrdiff_t k = 0; k < nbi; ++k) {
-      if (frozen[k]) continue;
+    const auto kick_block = [&](std::ptrdiff_t k) {
+      if (frozen[k]) return;
       auto Dk = Dn.segment<6>(6 * k);
       auto Vk = V.segment<6>(6 * k);
       Vec6 R = F0.segment<6>(6 * k) - K[k] * Dk - f.segment<6>(6 * k);
@@ -279,6 +283,12 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
         damped[k] += h * strain_force.dot(Vk.tail<3>());
         Dk += h * Vk;
       }
+    };
+    if (parallel_blocks) {
+#pragma omp parallel for schedule(static) num_threads(threads)
+      for (std::ptrdiff_t k = 0; k < nbi; ++k) kick_block(k);
+    } else {
+      for (std::ptrdiff_t k = 0; k < nbi; ++k) kick_block(k);
     }
   }
   cycle_block_damping = 0.0;

@@ -36,6 +36,20 @@ std::string last_changes(const ContactCheck& c) {
 }  // namespace
 
 StepReport Engine::Impl::step(double dt_cap) {
+  StepStart start{search_disp, stage_opened_by_edit, std::nullopt};
+  try {
+    return step_attempts(dt_cap, start);
+  } catch (const StepInterrupted&) {
+    // The contacts were abandoned where the attempt stopped (solve_trial; doubling_step
+    // restores its snapshot): the engine as after the last accepted step.
+    search_disp = start.search_disp;
+    stage_opened_by_edit = start.stage_opened_by_edit;
+    if (start.stage) st.stage = std::move(*start.stage);
+    throw;
+  }
+}
+
+StepReport Engine::Impl::step_attempts(double dt_cap, StepStart& start) {
   const Settings& s = model.settings;
   // Settling stage (docs/reference/engine.md, "Settling stage"): steps of at most
   // settle_dt with max_displacement_ratio = settle_max_displacement_ratio, ending on settle_until, no adaptive control.
@@ -90,6 +104,7 @@ StepReport Engine::Impl::step(double dt_cap) {
       // (docs/reference/engine.md, "Collapse stages"); and so does a static step
       // by cycles that ended short of rest at the step limit.
       contacts->abandon_step();
+      if (!start.stage) start.stage = st.stage;  // set back if the step is interrupted
       if (open_collapse_stage(dt, rep)) {
         settle = true;
         adaptive = false;

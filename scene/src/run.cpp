@@ -196,6 +196,14 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
   run.law_stresses_done = !detail::law_stresses_checked(s);
   run.engine.add_observer([&run](const core::Engine& e, const core::StepReport&) { check_law_stresses(run, e, false); });
   run.engine.add_observer([&run](const core::Engine& e, const core::StepReport& r) { record_step(run, e, r); });
+  // Within a step's cycles (the explicit step's thousands): a signal, or the tests' scripted
+  // stop; not while steps are run again to write a lost frame (resume_run), which record_step
+  // does not stop either.
+  run.engine.set_stop_request([&run] {
+    const RunOptions& o = run.opt;
+    return run.mode == Run::Mode::record &&
+           ((o.stop && *o.stop) || (o.stop_within_step >= 0 && run.engine.step_count() >= o.stop_within_step));
+  });
   if (!s.stages.empty()) {  // docs/reference/stages.md
     if (opt.resume)
       throw std::invalid_argument("--resume: a scene with stages cannot be resumed yet (docs/reference/stages.md); run it again");
@@ -207,17 +215,16 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
   else
     create_csv_files(run);
   run.progress.start(run);
+  bool stopped = false;
   try {
     if (s.stages.empty())
       run_to_end(run);
     else
       run_staged_to_end(run);
   } catch (const StopAfterStep&) {
-    run.progress.end(run, "interrupted");
-    write_checkpoint(run);
-    write_summary(run, "interrupted", "");
-    result.status = RunStatus::interrupted;
-    return result;
+    stopped = true;
+  } catch (const core::StepInterrupted&) {  // within a step's cycles: the engine is at the step before
+    stopped = true;
   } catch (const NonFinite& e) {
     // Nothing of the bad step was written; the last checkpoint (at the last frame)
     // stays the one to resume from.
@@ -232,6 +239,13 @@ RunResult run_scene(const SceneDescription& s, const std::string& scene_text, co
     throw std::runtime_error(msg);
   } catch (const std::exception& e) {
     fail(run, e);
+  }
+  if (stopped) {
+    run.progress.end(run, "interrupted");
+    write_checkpoint(run);
+    write_summary(run, "interrupted", "");
+    result.status = RunStatus::interrupted;
+    return result;
   }
   run.progress.end(run, "completed");
   write_checkpoint(run);

@@ -2,7 +2,8 @@
 // a run stopped at 90 % and resumed computes only the steps after its
 // checkpoint and writes the files an uninterrupted run writes, byte for byte
 // (a creeping run with adaptive steps and a damage law, a static run with
-// dynamic settling and collapse stages, an amg run); a state file of another
+// dynamic settling and collapse stages, an amg run, a run stopped within an explicit step's
+// cycles); a state file of another
 // scene, a corrupt one, one of another version, and one that is not the file
 // the checkpoint recorded are refused with the file named and nothing changed.
 #include <boost/test/unit_test.hpp>
@@ -174,6 +175,39 @@ BOOST_AUTO_TEST_CASE(a_static_slide_resumed_within_its_dynamic_stages_gives_the_
   same_outputs(whole, settling);
 
   stop_at_90_percent_and_resume(s, whole, dir / "late");
+  fs::remove_all(dir);
+}
+
+BOOST_AUTO_TEST_CASE(a_run_stopped_within_an_explicit_steps_cycles_resumes_to_the_uninterrupted_files) {
+  // A stop asked while an explicit step cycles (a signal, here the scripted stop_within_step)
+  // abandons that step at its cycles' next look (core::Engine::set_stop_request): the run ends
+  // interrupted at the step before, with its checkpoint there, and resumed it writes the files
+  // of the run that was never stopped, byte for byte. The sliding block at 10 ms steps: 400
+  // cycles each, looked at after 256.
+  auto s = sliding(0.2, 0.05);
+  s.analysis.integrator = core::Integrator::explicit_step;
+  s.analysis.dt = 0.01;
+  const fs::path dir = fresh_dir("resume-within-cycles");
+  const fs::path whole = dir / "whole", split = dir / "split";
+  const auto all = run(s, whole);
+  BOOST_TEST_REQUIRE((all.status == scene::RunStatus::completed));
+  BOOST_TEST_REQUIRE(all.steps > 12);
+
+  scene::RunOptions o;
+  o.out_dir = split.string();
+  o.stop_within_step = 12;
+  const auto first = scene::run_scene(s, read_text(s.file), o);
+  BOOST_TEST_REQUIRE((first.status == scene::RunStatus::interrupted));
+  BOOST_TEST(first.steps == 12);  // the 13th step was abandoned within its cycles
+  BOOST_TEST(first.steps_computed == 12);
+  BOOST_TEST(summary(split).at("status").get<std::string>() == "interrupted");
+  BOOST_TEST(summary(split).at("steps").get<int>() == 12);
+
+  const auto rest = run(s, split, -1, true);
+  BOOST_TEST_REQUIRE((rest.status == scene::RunStatus::completed));
+  BOOST_TEST(rest.resumed_from_step == 12);
+  BOOST_TEST(rest.steps == all.steps);
+  same_outputs(whole, split);
   fs::remove_all(dir);
 }
 

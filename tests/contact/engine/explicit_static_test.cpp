@@ -1,8 +1,8 @@
 // Static steps by explicit cycles (docs/reference/explicit-step.md, "Static steps by cycles";
 // core/src/explicit_static.cpp): the seed's shear creep test with every law against its closed
 // form and against the implicit static step, a stack under gravity in equilibrium, a block on
-// a slope it cannot hold refused with the reason, the same bits whatever the threads, and the
-// settings' ranges.
+// a slope it cannot hold refused with the reason, the same bits whatever the threads, a stop
+// asked within a step's cycles, and the settings' ranges.
 #include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <optional>
@@ -110,6 +110,48 @@ BOOST_AUTO_TEST_CASE(a_stack_under_gravity_is_held_in_equilibrium) {
     BOOST_TEST_MESSAGE("under block " << b << ": " << carried << " N/m, weight above " << (4 - b) * weight);
     BOOST_TEST(carried == (4 - b) * weight, boost::test_tools::tolerance(1e-6));
   }
+}
+
+BOOST_AUTO_TEST_CASE(a_stop_asked_within_a_static_steps_cycles_abandons_it_and_the_steps_after_are_the_same_bits) {
+  // The stack of a_stack_under_gravity_is_held_in_equilibrium: its static steps by cycles look
+  // at the stop request as the dynamic step's do (Engine::set_stop_request). Answered yes
+  // within the first step's cycles (gravity on at once: thousands of them), the step is
+  // abandoned (StepInterrupted) with the blocks and the contacts as at the start; the steps
+  // taken from there are those of the run that was never stopped, to the last bit.
+  auto stack = [] {
+    core::Model m;
+    m.materials[0].young_modulus = 5e10;
+    m.settings.dt = 1.0;
+    m.settings.dynamic_ratio = 0.0;
+    by_cycles(m, 1e-9);
+    add_fixed(m, rect(0.0, -1.0, 3.0, 0.0));
+    for (int k = 0; k < 3; ++k) m.blocks.push_back(block(rect(1.0, 0.25 * k, 2.0, 0.25 * (k + 1))));
+    return m;
+  };
+  auto state = [](const Sim& sim) {
+    std::vector<double> out;
+    for (int b = 0; b < sim.engine.block_count(); ++b)
+      for (const Vec2& v : sim.engine.vertices(b)) out.push_back(v.x()), out.push_back(v.y());
+    for (const contact::Contact& c : sim.contacts.contacts())
+      out.push_back(static_cast<double>(c.state)), out.push_back(c.normal_force), out.push_back(c.locking_ratio);
+    out.push_back(sim.engine.time());
+    return out;
+  };
+  Sim whole(stack(), {joint(30.0)});
+  const std::vector<double> start = state(whole);
+  whole.engine.run(3);
+  BOOST_TEST_REQUIRE(whole.engine.reports().front().cycles > core::Engine::kStopPollCycles);
+
+  Sim stopped(stack(), {joint(30.0)});
+  bool stop = false;
+  stopped.engine.set_stop_request([&stop] { return stop; });
+  stop = true;
+  BOOST_CHECK_THROW(stopped.engine.step(), core::StepInterrupted);
+  BOOST_TEST(stopped.engine.step_count() == 0);
+  BOOST_TEST((state(stopped) == start));
+  stop = false;
+  stopped.engine.run(3);
+  BOOST_TEST((state(stopped) == state(whole)));
 }
 
 BOOST_AUTO_TEST_CASE(a_block_on_a_slope_it_cannot_hold_does_not_settle_and_says_why) {

@@ -1,7 +1,8 @@
 // The explicit step (docs/reference/explicit-step.md) against closed forms and against the
 // implicit step: free fall, a block sliding down an incline, a block at rest on a slope it
 // holds, a block pushed down a slope it holds that stops and sticks, a stack at rest, and
-// the same bits whatever the number of threads; each block's cycle against its size.
+// the same bits whatever the number of threads; each block's cycle against its size; a stop
+// asked within the cycles, which abandons the step and changes no bit of the steps after it.
 #include <boost/test/unit_test.hpp>
 
 #include "sim.hpp"
@@ -197,6 +198,56 @@ BOOST_AUTO_TEST_CASE(the_same_bits_whatever_the_number_of_threads) {
       }
     }
   }
+}
+
+BOOST_AUTO_TEST_CASE(a_stop_asked_within_the_cycles_abandons_the_step_and_the_run_goes_on_to_the_same_bits) {
+  // Engine::set_stop_request: the cycles look at it every kStopPollCycles cycles. Asked and
+  // never answered yes, it changes no bit; answered yes within step 10's cycles, the step is
+  // abandoned (StepInterrupted) with the engine and the contacts as after step 9, and the
+  // steps taken from there are those of the run that was never stopped, to the last bit.
+  auto state = [](const Sim& sim) {
+    std::vector<double> out;
+    for (int b = 0; b < sim.engine.block_count(); ++b) {
+      for (const Vec2& v : sim.engine.vertices(b)) out.push_back(v.x()), out.push_back(v.y());
+      for (int i = 0; i < 6; ++i) out.push_back(sim.engine.velocity(b)(i));
+    }
+    for (const contact::Contact& c : sim.contacts.contacts())
+      out.push_back(static_cast<double>(c.state)), out.push_back(c.locking_ratio), out.push_back(c.penetration);
+    out.push_back(sim.engine.time());
+    out.push_back(sim.engine.energy().total.work_gravity);
+    return out;
+  };
+  auto wall = [] {
+    core::Model m = running_bond_wall(6, 5, core::SolverKind::cholmod);
+    m.settings.integrator = core::Integrator::explicit_step;
+    m.blocks.back().initial_velocity = Vec2(0.5, -0.2);
+    return m;
+  };
+  Sim whole(wall(), {joint(30.0)});
+  long asked = 0;
+  whole.engine.set_stop_request([&asked] { return ++asked < 0; });  // asked, never yes
+  whole.engine.run(10);
+  const std::vector<double> after_10 = state(whole);
+  whole.engine.run(10);
+  BOOST_TEST_REQUIRE(whole.engine.reports().front().cycles > core::Engine::kStopPollCycles);
+  BOOST_TEST(asked > 0);
+
+  Sim plain(wall(), {joint(30.0)});  // never asked
+  plain.engine.run(20);
+  BOOST_TEST((state(plain) == state(whole)));
+
+  Sim stopped(wall(), {joint(30.0)});
+  bool stop = false;
+  stopped.engine.set_stop_request([&stop] { return stop; });
+  stopped.engine.run(10);
+  stop = true;
+  BOOST_CHECK_THROW(stopped.engine.step(), core::StepInterrupted);
+  BOOST_TEST(stopped.engine.step_count() == 10);
+  BOOST_TEST((state(stopped) == after_10));
+  stop = false;
+  stopped.engine.run(10);
+  BOOST_TEST(stopped.engine.step_count() == 20);
+  BOOST_TEST((state(stopped) == state(whole)));
 }
 
 /// A static analysis whose dynamic settling stage (1 ms steps, at most `until` long, ending at

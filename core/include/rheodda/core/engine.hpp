@@ -23,6 +23,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -215,6 +216,18 @@ struct EditReport {
   ModelEdit replay;
 };
 
+/// Asked within a step whether the run is to stop (Engine::set_stop_request).
+using StopRequest = std::function<bool()>;
+
+/// Thrown out of Engine::step, run and run_until when the stop request answered yes within a
+/// step: the step was abandoned as a cut step is (the contacts and bolts back at its start), and
+/// the engine is as it was after the last accepted step: a state saved now (save()) is that of
+/// the last accepted step, from which the run goes on as if it had not been stopped.
+class StepInterrupted : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 /// Called after every accepted step.
 using StepObserver = std::function<void(const class Engine&, const StepReport&)>;
 
@@ -244,6 +257,15 @@ class Engine {
   void run_until(double end_time, double horizon);
   /// Called after every accepted step, in the order added.
   void add_observer(StepObserver observer);
+  /// A stop request the cycles of a step look at every kStopPollCycles cycles (the explicit
+  /// step's and the static steps by cycles: thousands of cycles per step; docs/reference/
+  /// explicit-step.md, "Stopping within a step"): when it answers true, the step is abandoned
+  /// and StepInterrupted thrown. Looking changes no result, whether or not it answers true
+  /// later. Empty (the default): the cycles never look. Steps not taken in cycles are not
+  /// interrupted: the caller stops between steps (an observer).
+  void set_stop_request(StopRequest asked);
+  /// The cycles between two looks at the stop request [-].
+  static constexpr int kStopPollCycles = 256;
 
   const Model& model() const;
   int block_count() const;

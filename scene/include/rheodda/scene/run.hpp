@@ -33,11 +33,17 @@ struct RunOptions {
   bool progress = false;
   std::FILE* progress_stream = stderr;
   /// When non-null and set non-zero (e.g. by a SIGINT handler), the run stops after
-  /// the current step, leaving every file consistent and a checkpoint to resume from.
+  /// the current step, leaving every file consistent and a checkpoint to resume from; a step
+  /// taken in cycles (the explicit step, static steps by cycles) is abandoned within its
+  /// cycles instead (core::Engine::set_stop_request), the checkpoint at the step before it.
   const volatile std::sig_atomic_t* stop = nullptr;
   /// When >= 0: stop exactly as on a signal once this many steps are accepted
   /// (scripted pauses; the tests' way to interrupt at a known step).
   int stop_after_step = -1;
+  /// When >= 0: stop as on a signal within the step that follows this many accepted steps,
+  /// at the first look its cycles take at the stop request (the tests' way to interrupt a
+  /// step while it cycles); a step not taken in cycles is not stopped by it.
+  int stop_within_step = -1;
 };
 
 enum class RunStatus { completed, interrupted };
