@@ -114,10 +114,17 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
     rec.joint_set = js;
     const Vec2 a = edge_start(eb, d.key.edge), b = edge_end(eb, d.key.edge);
     const Vec2& p = blocks[d.key.vblock].vertices[d.key.vertex];
-    rec.tributary_length = d.length > 0.0
-                               ? d.length
-                               : point_tributary_length(blocks[d.key.vblock], d.key.vertex,
-                                                        (b - a).normalized());
+    // The joint length the contact stands for, l_t (docs/reference/rheology-in-dda.md, "The
+    // tributary length"): a point contact's from its vertex, (3) there; an edge-edge contact's
+    // half the overlap l, never less than Q - l with Q that point length clipped to half the
+    // entrance edge (4). As the overlap shrinks to nothing (two corners meeting) l_t tends to
+    // Q instead of to zero: with l_t -> 0 the joint's springs (k l_t) lose their stiffness,
+    // a stick locks such a spring F / k behind its vertex (kilometres away) and the change of
+    // kind that follows starts that stretch on a point contact's spring, energy no force put
+    // there (docs/notes/rock-mass-steps.md, "A mechanism stage that never rests").
+    const double point = point_tributary_length(blocks[d.key.vblock], d.key.vertex, (b - a).normalized());
+    rec.tributary_length =
+        d.length > 0.0 ? std::max(d.length, std::min(point, 0.5 * (b - a).norm()) - d.length) : point;
     // An open contact locks where the vertex projects at the start of the step.
     if (rec.state == ContactState::open) rec.locking_ratio = line_ratio(a, b, p);
     Hot h;

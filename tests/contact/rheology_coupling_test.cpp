@@ -303,6 +303,44 @@ BOOST_AUTO_TEST_CASE(mixed_joint_sets_each_contact_follows_its_law_and_only_lawf
   BOOST_TEST(rig.cs.creep_increments().size() == rig.cs.contacts().size());
 }
 
+BOOST_AUTO_TEST_CASE(an_edge_edge_contact_stands_for_half_its_overlap_and_for_its_point_length_as_it_vanishes) {
+  // docs/reference/rheology-in-dda.md, (4): a 100 mm square overhanging the end of a 300 mm
+  // base by all but an overlap L. Both ends of the overlap are edge-edge contacts of length
+  // l = L/2; each vertex's point length clipped to half the entrance edge is Q = 50 mm (the
+  // square's vertex: half its 100 mm bottom edge; the base's corner: half its 300 mm top edge,
+  // clipped to half the square's). l_t = max(l, Q - l): the seed's half overlap from L = Q on
+  // (L = 80 mm: 40 mm), 30 mm at L = 40 mm, and 50 mm as the overlap vanishes (L = 1e-4 mm),
+  // where the contact is about to become a point contact of that length, instead of 5e-5 mm.
+  auto law = make_law("burgers", burgers_row1());
+  for (const double L : {80.0, 40.0, 1e-4}) {
+    BOOST_TEST_CONTEXT("overlap " << L << " mm") {
+      ContactSystem cs({joint("b", law)}, Rig::defaults());
+      Scene scene;
+      scene.add_rect(-100, -100, 200, 0);
+      scene.block(0).edge_joint_set = {0, 0, 0, 0};
+      scene.add_rect(200 - L, -1e-6, 300 - L, 100 - 1e-6);
+      scene.block(1).edge_joint_set = {0, 0, 0, 0};
+      scene.rebuild();
+      cs.begin_step(scene.views(), 1.0, 0.1);
+      // (A vanishing overlap's corners lie within the search distance of each other: one end
+      // may be taken as the two vertices' contact, the other keeps the edge-edge kind.)
+      const bool vanishing = L < 1.0;
+      int edge_edge = 0;
+      for (const Contact& c : cs.trial_contacts()) {
+        if (c.kind != ContactKind::edge_edge) continue;
+        ++edge_edge;
+        if (!vanishing) BOOST_TEST(c.length == 0.5 * L, boost::test_tools::tolerance(1e-9));
+        BOOST_TEST(c.length <= 0.5 * L * (1.0 + 1e-9));
+        BOOST_TEST(c.tributary_length == std::max(c.length, 50.0 - c.length), boost::test_tools::tolerance(1e-12));
+        if (vanishing) BOOST_TEST(c.tributary_length > 49.9999);
+        if (!vanishing) BOOST_TEST(c.tributary_length == std::max(0.5 * L, 50.0 - 0.5 * L), boost::test_tools::tolerance(1e-9));
+      }
+      BOOST_TEST(edge_edge == (vanishing ? 1 : 2));
+      cs.abandon_step();
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(a_point_contact_creeps_over_its_tributary_length) {
   // A square (side 100 mm) standing on its corner on a burgers joint, rotated
   // by 30 deg: its vertex-edge contact has no contact length, but it stands
