@@ -42,6 +42,19 @@ CreepRun run_creep(const CreepScene& scene, double t_end) {
   return out;
 }
 
+/// Three 1 x 0.25 m blocks stacked on a fixed base, a static analysis of 1 s steps by cycles
+/// to an unbalanced-force ratio of 1e-9.
+core::Model stack_model() {
+  core::Model m;
+  m.materials[0].young_modulus = 5e10;
+  m.settings.dt = 1.0;
+  m.settings.dynamic_ratio = 0.0;
+  by_cycles(m, 1e-9);
+  add_fixed(m, rect(0.0, -1.0, 3.0, 0.0));
+  for (int k = 0; k < 3; ++k) m.blocks.push_back(block(rect(1.0, 0.25 * k, 2.0, 0.25 * (k + 1))));
+  return m;
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(explicit_static)
@@ -90,13 +103,7 @@ BOOST_AUTO_TEST_CASE(a_stack_under_gravity_is_held_in_equilibrium) {
   // Three blocks on a fixed base, a static analysis of 1 s steps by cycles to 1e-9: each
   // block's contacts below carry the weight of the blocks above it and its own, rho g A per
   // unit thickness, within 1e-6; every contact locked.
-  core::Model m;
-  m.materials[0].young_modulus = 5e10;
-  m.settings.dt = 1.0;
-  m.settings.dynamic_ratio = 0.0;
-  by_cycles(m, 1e-9);
-  add_fixed(m, rect(0.0, -1.0, 3.0, 0.0));
-  for (int k = 0; k < 3; ++k) m.blocks.push_back(block(rect(1.0, 0.25 * k, 2.0, 0.25 * (k + 1))));
+  core::Model m = stack_model();
   const double weight = m.materials[0].density * 9.81 * 0.25;  // one block's [N/m]
   Sim sim(std::move(m), {joint(30.0)});
   sim.engine.run(3);
@@ -118,40 +125,21 @@ BOOST_AUTO_TEST_CASE(a_stop_asked_within_a_static_steps_cycles_abandons_it_and_t
   // within the first step's cycles (gravity on at once: thousands of them), the step is
   // abandoned (StepInterrupted) with the blocks and the contacts as at the start; the steps
   // taken from there are those of the run that was never stopped, to the last bit.
-  auto stack = [] {
-    core::Model m;
-    m.materials[0].young_modulus = 5e10;
-    m.settings.dt = 1.0;
-    m.settings.dynamic_ratio = 0.0;
-    by_cycles(m, 1e-9);
-    add_fixed(m, rect(0.0, -1.0, 3.0, 0.0));
-    for (int k = 0; k < 3; ++k) m.blocks.push_back(block(rect(1.0, 0.25 * k, 2.0, 0.25 * (k + 1))));
-    return m;
-  };
-  auto state = [](const Sim& sim) {
-    std::vector<double> out;
-    for (int b = 0; b < sim.engine.block_count(); ++b)
-      for (const Vec2& v : sim.engine.vertices(b)) out.push_back(v.x()), out.push_back(v.y());
-    for (const contact::Contact& c : sim.contacts.contacts())
-      out.push_back(static_cast<double>(c.state)), out.push_back(c.normal_force), out.push_back(c.locking_ratio);
-    out.push_back(sim.engine.time());
-    return out;
-  };
-  Sim whole(stack(), {joint(30.0)});
-  const std::vector<double> start = state(whole);
+  Sim whole(stack_model(), {joint(30.0)});
+  const std::vector<double> start = engine_state(whole);
   whole.engine.run(3);
   BOOST_TEST_REQUIRE(whole.engine.reports().front().cycles > core::Engine::kStopPollCycles);
 
-  Sim stopped(stack(), {joint(30.0)});
+  Sim stopped(stack_model(), {joint(30.0)});
   bool stop = false;
   stopped.engine.set_stop_request([&stop] { return stop; });
   stop = true;
   BOOST_CHECK_THROW(stopped.engine.step(), core::StepInterrupted);
   BOOST_TEST(stopped.engine.step_count() == 0);
-  BOOST_TEST((state(stopped) == start));
+  BOOST_TEST((engine_state(stopped) == start));
   stop = false;
   stopped.engine.run(3);
-  BOOST_TEST((state(stopped) == state(whole)));
+  BOOST_TEST((engine_state(stopped) == engine_state(whole)));
 }
 
 BOOST_AUTO_TEST_CASE(a_block_on_a_slope_it_cannot_hold_does_not_settle_and_says_why) {

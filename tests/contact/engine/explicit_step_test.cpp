@@ -205,18 +205,7 @@ BOOST_AUTO_TEST_CASE(a_stop_asked_within_the_cycles_abandons_the_step_and_the_ru
   // never answered yes, it changes no bit; answered yes within step 10's cycles, the step is
   // abandoned (StepInterrupted) with the engine and the contacts as after step 9, and the
   // steps taken from there are those of the run that was never stopped, to the last bit.
-  auto state = [](const Sim& sim) {
-    std::vector<double> out;
-    for (int b = 0; b < sim.engine.block_count(); ++b) {
-      for (const Vec2& v : sim.engine.vertices(b)) out.push_back(v.x()), out.push_back(v.y());
-      for (int i = 0; i < 6; ++i) out.push_back(sim.engine.velocity(b)(i));
-    }
-    for (const contact::Contact& c : sim.contacts.contacts())
-      out.push_back(static_cast<double>(c.state)), out.push_back(c.locking_ratio), out.push_back(c.penetration);
-    out.push_back(sim.engine.time());
-    out.push_back(sim.engine.energy().total.work_gravity);
-    return out;
-  };
+  const auto state = engine_state;
   auto wall = [] {
     core::Model m = running_bond_wall(6, 5, core::SolverKind::cholmod);
     m.settings.integrator = core::Integrator::explicit_step;

@@ -103,4 +103,24 @@ struct Sim {
   }
 };
 
+/// What a step leaves that the next ones depend on, as numbers to compare bit for bit: the
+/// blocks' vertices and velocities, the contacts' states, locking points, normal forces and
+/// penetrations, the time and the work of gravity so far.
+inline std::vector<double> engine_state(const Sim& sim) {
+  std::vector<double> out;
+  for (int b = 0; b < sim.engine.block_count(); ++b) {
+    for (const Vec2& v : sim.engine.vertices(b)) out.push_back(v.x()), out.push_back(v.y());
+    for (int i = 0; i < 6; ++i) out.push_back(sim.engine.velocity(b)(i));
+  }
+  for (const contact::Contact& c : sim.contacts.contacts()) {
+    out.push_back(static_cast<double>(c.state));
+    out.push_back(c.locking_ratio);
+    out.push_back(c.normal_force);
+    out.push_back(c.penetration);
+  }
+  out.push_back(sim.engine.time());
+  out.push_back(sim.engine.energy().total.work_gravity);
+  return out;
+}
+
 }  // namespace rheodda::testing
