@@ -47,13 +47,16 @@
 #include <ctime>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "rheodda/contact/contact_system.hpp"
 #include "rheodda/core/contact_adapter.hpp"
+#include "rheodda/core/contact_solve.hpp"
 #include "rheodda/core/engine.hpp"
+#include "rheodda/core/integrator.hpp"
 #include "rheodda/core/solver.hpp"
 #include "brick_wall.hpp"  // tests/models
 
@@ -62,6 +65,19 @@ using core::Vec2;
 using Clock = std::chrono::steady_clock;
 
 namespace {
+
+/// The method whose row (core::linear_solvers(), contact_solves(), integrators()) has `word`,
+/// as the scene's keys read them; else a message naming the option and the words it takes.
+template <class Rows>
+auto method_of(const Rows& rows, const std::string& word, const char* option)
+    -> std::optional<decltype(rows.front().method)> {
+  for (const auto& r : rows)
+    if (r.word == word) return r.method;
+  std::string words;
+  for (const auto& r : rows) words += (words.empty() ? "" : "|") + std::string(r.word);
+  std::fprintf(stderr, "contact_bench: unknown %s '%s' (%s)\n", option, word.c_str(), words.c_str());
+  return std::nullopt;
+}
 
 /// NX x NY running-bond wall on a fixed base (block 0): tests/models/brick_wall.hpp.
 core::Model brick_wall(int nx, int ny, double poisson) { return models::running_bond_wall(nx, ny, poisson); }
@@ -197,14 +213,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "contact_bench: --penalty must be > 0 (in units of E)\n");
     return 2;
   }
-  core::SolverKind solver_kind = core::SolverKind::automatic;
-  if (solver == "cholmod") solver_kind = core::SolverKind::cholmod;
-  else if (solver == "pcg") solver_kind = core::SolverKind::pcg;
-  else if (solver == "amg") solver_kind = core::SolverKind::amg;
-  else if (solver != "automatic") {
-    std::fprintf(stderr, "contact_bench: unknown --solver '%s'\n", solver.c_str());
-    return 2;
-  }
+  const auto solver_kind = method_of(core::linear_solvers(), solver, "--solver");
+  const auto contact_solve = method_of(core::contact_solves(), contact_solver, "--contact-solver");
+  const auto integrator_method = method_of(core::integrators(), integrator, "--integrator");
+  if (!solver_kind || !contact_solve || !integrator_method) return 2;
   contact::JointSet joint;
   joint.name = "mortar";
   joint.friction_angle = 30.0;
@@ -221,21 +233,13 @@ int main(int argc, char** argv) {
   double prev_n = 0.0, prev_step = 0.0;
   for (const auto& [nx, ny] : sizes) {
     core::Model model = brick_wall(nx, ny, poisson);
-    model.settings.solver = solver_kind;
+    model.settings.solver = *solver_kind;
     if (pcg_tol > 0.0) model.settings.solver_tolerance = pcg_tol;
     if (iterate_tol >= 0.0) model.settings.solver_iterate_tolerance = iterate_tol;
     if (open_close > 0) model.settings.open_close_limit = open_close;
-    if (contact_solver == "newton") model.settings.contact_solver = core::ContactSolver::newton;
-    else if (contact_solver != "open-close") {
-      std::fprintf(stderr, "contact_bench: unknown --contact-solver '%s'\n", contact_solver.c_str());
-      return 2;
-    }
+    model.settings.contact_solver = *contact_solve;
     if (residual_tol > 0.0) model.settings.contact_residual_tolerance = residual_tol;
-    if (integrator == "explicit") model.settings.integrator = core::Integrator::explicit_step;
-    else if (integrator != "implicit") {
-      std::fprintf(stderr, "contact_bench: unknown --integrator '%s'\n", integrator.c_str());
-      return 2;
-    }
+    model.settings.integrator = *integrator_method;
     model.settings.threads = threads;
     if (safety > 0.0) model.settings.explicit_safety = safety;
     if (damping >= 0.0) model.settings.explicit_damping = damping;
