@@ -75,6 +75,13 @@ struct Engine::Impl {
   std::vector<char> held;                 // block held by two or more fixed points (count_held)
   std::vector<char> removed;              // block removed by an edit (model_edits.cpp); empty: none
   bool is_removed(std::size_t k) const { return !removed.empty() && removed[k]; }
+  /// Per block, 1 where the cycles leave it where it stands: held at two or more fixed points
+  /// (or at one and in rotation; count_held) or removed.
+  std::vector<char> frozen_blocks() const {
+    std::vector<char> out(st.blocks.size(), 0);
+    for (std::size_t k = 0; k < out.size(); ++k) out[k] = held[k] || is_removed(k);
+    return out;
+  }
   /// The dynamic stage in progress was opened by a model edit (ModelEdit::settle;
   /// docs/reference/stages.md): it ends at rest relative to the larger of the work done
   /// on it and the energy it dissipated (an excavation releases strain energy

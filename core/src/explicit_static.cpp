@@ -62,8 +62,7 @@ Engine::Impl::Trial Engine::Impl::relax_trial(double dt, StepReport& rep) {
   std::vector<Mat6> K;
   Eigen::VectorXd F;
   assemble_blocks(dt, st.time + dt, K, F, false);  // (1): the loads at the step's end, K
-  std::vector<char> frozen(nb, 0);
-  for (std::size_t k = 0; k < nb; ++k) frozen[k] = held[k] || is_removed(k);
+  const std::vector<char> frozen = frozen_blocks();
   std::vector<Mat6> bound = K;
   contacts->cycle_stiffness(bound);
   const bool bolts = !model.bolts.empty();

@@ -93,8 +93,7 @@ Engine::Impl::CycleBlocks Engine::Impl::cycle_blocks(double dt, bool unscaled) c
   assemble_blocks(dt, st.time + dt, K_end, out.dF, false);
   out.dF -= out.F0;
   out.loads_change = out.dF.lpNorm<Eigen::Infinity>() > 0.0;
-  out.frozen.assign(nb, 0);
-  for (std::size_t k = 0; k < nb; ++k) out.frozen[k] = held[k] || is_removed(k);
+  out.frozen = frozen_blocks();
   std::vector<Mat6> bound = out.K;  // K' of (3): the block's own stiffness and its contacts' bound
   contacts->cycle_stiffness(bound);
   if (!model.bolts.empty()) bolt_set.cycle_stiffness(bound);  // (4) of bolts.hpp (bolt_cycles.cpp)
