@@ -102,7 +102,7 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
           const double flight =
               (settings_.lock_at_touch && step_dynamic_ && gap > 0.0) ? gap / (gap + dn) * slip : 0.0;
           const double S = shear_stiffness(c) * (dt - flight);
-          if (std::abs(S) > mohr_coulomb_strength(N, h.tan_phi, h.cohesion, r.length) + f_res) {
+          if (beyond_strength(S, N, h.tan_phi, h.cohesion, r.length, f_res)) {
             r.state = ContactState::sliding;
             r.slide_direction = S >= 0.0 ? 1 : -1;
           } else {
@@ -113,12 +113,12 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
         break;
       case ContactState::locked:
       case ContactState::sliding:
-        if (N < -h.tensile_strength * r.length - f_res) {
+        if (beyond_tensile_cutoff(N, h.tensile_strength, r.length, f_res)) {
           r.state = ContactState::open;
         } else if (r.state == ContactState::locked) {
           // Mohr-Coulomb (strength.hpp): slip when |F_T| > N tan(phi) + c l.
           const double S = shear_stiffness(c) * dt;
-          if (std::abs(S) > mohr_coulomb_strength(N, h.tan_phi, h.cohesion, r.length) + f_res) {
+          if (beyond_strength(S, N, h.tan_phi, h.cohesion, r.length, f_res)) {
             r.state = ContactState::sliding;
             r.slide_direction = dt >= 0.0 ? 1 : -1;
           }
@@ -143,7 +143,9 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
         // this step (typically a vertex that stops within the step: sliding
         // reverses it, locking needs more than friction to stop it) may only
         // go to the most constrained state, locked, for the rest of the step.
-        // Any Mohr-Coulomb excess lasts one step: the next step starts from it.
+        // The state it is held in may lie outside its Mohr-Coulomb envelope: the
+        // commit projects it onto the envelope (end_step), so that no step starts
+        // from a force its joint cannot carry.
         if (before == ContactState::locked) {
           r.state = before;
         } else {

@@ -16,6 +16,55 @@
 
 namespace rheodda::contact {
 
+namespace {
+
+void follow_vertex(std::span<const BlockView> blocks, Contact& r, const Eigen::Ref<const Vec6>& Di,
+                   const Eigen::Ref<const Vec6>& Dj) {
+  // The locking point follows the vertex: its projection on the displaced edge.
+  const BlockView& bi = blocks[r.key.vblock];
+  const BlockView& bj = blocks[r.key.eblock];
+  const Vec2& p = bi.vertices[r.key.vertex];
+  const Vec2 a = edge_start(bj, r.key.edge), b = edge_end(bj, r.key.edge);
+  r.locking_ratio = line_ratio(a + displacement_matrix(bj.centroid, a) * Dj, b + displacement_matrix(bj.centroid, b) * Dj,
+                               p + displacement_matrix(bi.centroid, p) * Di);
+}
+
+}  // namespace
+
+void ContactSystem::project_onto_envelope(std::span<const BlockView> blocks, size_t c) {
+  // Admissible states at commit (docs/reference/contacts.md, "States and the open-close
+  // iteration"): the open-close iteration's anti-chattering rule may end a step with a
+  // contact held locked outside its Mohr-Coulomb envelope - pulled beyond its tensile
+  // cut-off, or sheared beyond N tan(phi) + c l. Committed as it is, the next step would
+  // start from a force the joint cannot carry, and its spring would store energy no force
+  // put there. It is committed onto the envelope instead: beyond the cut-off open (both
+  // springs released); beyond the strength locked at it, the spring slipping plastically
+  // by (|F| - f) / k_s (a return mapping; its locking point moved that far, as a stick
+  // with stick_keeps_force leaves it at the friction force). Committed sliding instead,
+  // the next step's vertex, stopped, chatters between stick and slip again. The spring
+  // energy this releases is booked with the springs detached in the step
+  // (ContactEnergy::release; contact_energy.cpp).
+  Contact& r = work_[c];
+  const Hot& h = hot_[c];
+  const double f_res = settings_.force_resolution * force_scale_;
+  if (beyond_tensile_cutoff(r.normal_force, h.tensile_strength, r.length, f_res)) {
+    r.state = ContactState::open;
+    r.normal_force = r.shear_force = 0.0;
+    r.intact = false;
+    ++projections_;
+  } else if (beyond_strength(r.shear_force, r.normal_force, h.tan_phi, h.cohesion, r.length, f_res)) {
+    // Return mapping: the spring slips plastically by (|F| - f) / k_s along its stretch,
+    // its locking point moved that far, and stays locked at the strength f.
+    const double f = (r.shear_force >= 0.0 ? 1.0 : -1.0) *
+                     mohr_coulomb_strength(r.normal_force, h.tan_phi, h.cohesion, r.length);
+    const BlockView& eb = blocks[r.key.eblock];
+    r.locking_ratio += (r.shear_force - f) / h.ps / (edge_end(eb, r.key.edge) - edge_start(eb, r.key.edge)).norm();
+    r.shear_force = f;
+    r.intact = false;
+    ++projections_;
+  }
+}
+
 void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::VectorXd& D) {
   assert(D.size() == 6 * static_cast<Eigen::Index>(blocks.size()));
   // A step that may be retracted (begin_step's creep_error_wanted) keeps what
@@ -24,6 +73,7 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
   if (creep_error_wanted_)
     retract_ = {creep_counters_, last_max_penetration_, penalty_, stored_before_};
   double max_pen = 0.0;
+  projections_ = 0;
   stored_before_ = stored_energy(committed_, committed_work_);  // energy balance
   step_work_.resize(work_.size());                              // energy balance
   for (size_t c = 0; c < work_.size(); ++c) {
@@ -40,7 +90,8 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
                      r.slide_direction * mohr_coulomb_strength(h.assembled_normal_force, h.tan_phi, h.cohesion, r.length),
                      // (the dashpots of a step taken in cycles: booked cycle by cycle, contact_cycles.cpp)
                      !cycled_ && r.state != ContactState::open ? normal_dashpot(c) * (dn - h.dn_ref) : 0.0,
-                     !cycled_ && r.state == ContactState::locked ? shear_dashpot(c) * slip : 0.0};
+                     !cycled_ && r.state == ContactState::locked ? shear_dashpot(c) * slip : 0.0,
+                     r.state, 0.0};
     switch (r.state) {
       case ContactState::open:
         if (h.law_failed) ++creep_counters_[r.joint_set].failures;  // failed at an iterate (check)
@@ -94,6 +145,8 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
           r.creep_displacement += creep;
         }
         if (h.law_failed) ++creep_counters_[r.joint_set].failures;
+        step_work_[c].solved_shear_force = r.shear_force;
+        project_onto_envelope(blocks, c);
         break;
       }
       case ContactState::sliding: {
@@ -103,15 +156,7 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
         r.shear_displacement += slip;
         r.intact = false;
         max_pen = std::max(max_pen, dn);
-        // The locking point follows the vertex: its projection on the displaced edge.
-        const BlockView& bi = blocks[r.key.vblock];
-        const BlockView& bj = blocks[r.key.eblock];
-        const Vec2& p = bi.vertices[r.key.vertex];
-        const Vec2 a = edge_start(bj, r.key.edge), b = edge_end(bj, r.key.edge);
-        const Vec2 p1 = p + displacement_matrix(bi.centroid, p) * Di;
-        const Vec2 a1 = a + displacement_matrix(bj.centroid, a) * Dj;
-        const Vec2 b1 = b + displacement_matrix(bj.centroid, b) * Dj;
-        r.locking_ratio = line_ratio(a1, b1, p1);
+        follow_vertex(blocks, r, Di, Dj);
         break;
       }
     }

@@ -44,14 +44,22 @@ ContactEnergy ContactSystem::energy() const {
   for (size_t c = 0; c < committed_.size() && c < committed_work_.size(); ++c) {
     const Contact& r = committed_[c];
     const StepWork& w = committed_work_[c];
+    // The springs' work follows the state the solve ended with (w.solved_state); what is
+    // stored follows the committed one. They differ where the commit projected a locked
+    // contact onto its Mohr-Coulomb envelope (end_step): the spring energy that released
+    // is booked with the springs detached (`release`).
     // Normal spring: attached while the contact is closed.
     const bool n_start = w.start_state != ContactState::open;
-    const bool n_end = r.state != ContactState::open;
+    const bool n_end = w.solved_state != ContactState::open;
     const double un0 = 0.5 * w.pn * w.dn0 * w.dn0;
     if (n_start) start += un0;
     if (n_end) {
       const double d = w.dn - w.dn0;
-      e.normal += 0.5 * w.pn * r.penetration * r.penetration;
+      const double un1 = 0.5 * w.pn * r.penetration * r.penetration;
+      if (r.state != ContactState::open)
+        e.normal += un1;
+      else
+        e.release += un1;  // projected open at the commit
       // The normal dashpot (JointSet::restitution): its end force times the
       // approach of the step.
       e.damping += w.normal_damping * d;
@@ -64,14 +72,18 @@ ContactEnergy ContactSystem::energy() const {
     }
     // Shear spring: attached while the contact is locked.
     const bool s_start = w.start_state == ContactState::locked;
-    const bool s_end = r.state == ContactState::locked;
+    const bool s_end = w.solved_state == ContactState::locked;
     const double us0 = 0.5 * w.ps * w.st0 * w.st0;
     if (s_start) start += us0;
     if (s_end) {
-      const double s1 = r.shear_force / w.ps;
+      const double F1 = w.solved_shear_force;
+      const double s1 = F1 / w.ps;
       const double d = s1 - w.st0;  // slip - Delta d_c
-      e.shear += 0.5 * r.shear_force * s1;
-      e.creep += r.shear_force * (c < committed_creep_.size() ? committed_creep_[c] : 0.0);
+      // Committed: F1 itself, or (projected) nothing when open, the strength when locked.
+      const double us1 = r.state == ContactState::locked ? 0.5 * r.shear_force * r.shear_force / w.ps : 0.0;
+      e.shear += us1;
+      e.release += 0.5 * F1 * s1 - us1;
+      e.creep += F1 * (c < committed_creep_.size() ? committed_creep_[c] : 0.0);
       if (s_start)
         e.integration += 0.5 * w.ps * d * d;
       else
@@ -83,7 +95,7 @@ ContactEnergy ContactSystem::energy() const {
     // before it; the record's shear_force takes the final N) times the slip,
     // both signed along the edge: > 0 when the vertex slides the way friction
     // resists.
-    if (r.state == ContactState::sliding) e.friction += w.friction * w.slip;
+    if (w.solved_state == ContactState::sliding) e.friction += w.friction * w.slip;
     // Shear dashpot (locked; JointSet::restitution): its end force over the slip.
     e.damping += w.shear_damping * w.slip;
   }

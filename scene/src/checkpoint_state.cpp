@@ -52,7 +52,7 @@ static_assert(field_count<core::MeasurementSample>() == 4);
 static_assert(field_count<contact::Contact>() == 19);
 static_assert(field_count<contact::ContactKey>() == 4);
 static_assert(field_count<contact::CreepCounters>() == 3);
-static_assert(field_count<contact::ContactSystem::StepWork>() == 10);
+static_assert(field_count<contact::ContactSystem::StepWork>() == 12);
 static_assert(field_count<contact::ContactSystem::State>() == 14);
 static_assert(field_count<laws::RheologyState>() == 2);
 static_assert(field_count<core::ContactChanges>() == 7);
@@ -176,7 +176,8 @@ void io(auto& ar, Is<contact::Contact> auto& c) {
 void io(auto& ar, Is<laws::RheologyState> auto& r) { ar(r.q, r.damage); }
 void io(auto& ar, Is<contact::CreepCounters> auto& k) { ar(k.contacts, k.contact_time, k.failures); }
 void io(auto& ar, Is<contact::ContactSystem::StepWork> auto& w) {
-  ar(w.pn, w.ps, w.dn0, w.dn, w.st0, w.slip, w.start_state, w.friction, w.normal_damping, w.shear_damping);
+  ar(w.pn, w.ps, w.dn0, w.dn, w.st0, w.slip, w.start_state, w.friction, w.normal_damping, w.shear_damping,
+     w.solved_state, w.solved_shear_force);
 }
 void io(auto& ar, Is<contact::ContactSystem::State> auto& s) {
   ar(s.contacts, s.rheology, s.creep, s.work, s.counters, s.penalty, s.allowed_penetration, s.last_max_penetration,

@@ -6,6 +6,7 @@
 // every case the residual of the balance stays below 1 % of the work put in.
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -110,6 +111,50 @@ BOOST_AUTO_TEST_CASE(block_dropped_on_an_incline_closes_the_balance_at_two_steps
                                                     << (sim.engine.centroid(1) - c0).norm() << " m; "
                                                     << summary(sim.engine));
     BOOST_TEST(sim.engine.energy().max_relative_residual < 0.01);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(contacts_held_locked_outside_their_envelope_are_committed_onto_it_with_the_energy_booked) {
+  // A block pushed down a 20 deg slope it holds (phi = 30 deg) stops within a step: its
+  // corners chatter between sliding and stuck, and with max_flips 1 the open-close
+  // iteration's anti-chattering rule holds them locked after their first change, with
+  // shear beyond N tan(phi) (docs/reference/contacts.md, "States and the open-close
+  // iteration"). No step may commit such a state: each is committed sliding at its strength
+  // or open, and the spring energy that releases is booked, so the balance stays closed.
+  const double alpha = deg(20.0), v0 = 1.0;
+  const Vec2 down(-std::cos(alpha), -std::sin(alpha));
+  for (const double dt : {1e-3, 1e-4}) {
+    BOOST_TEST_CONTEXT("dt " << dt) {
+      core::Model m = incline_scene(alpha, 1.0, 0.5, 4.0);
+      m.settings.dt = dt;
+      m.blocks[1].initial_velocity = v0 * down;
+      contact::JointSet j = joint(30.0);
+      contact::ContactSettings settings = core::contact_settings_for(m, 40.0);
+      settings.max_flips = 1;
+      Sim sim(std::move(m), {j}, settings);
+      std::size_t projected = 0;
+      double worst = 0.0;  // largest committed excess over the envelope / the largest N
+      while (sim.engine.time() < 0.4 - 0.5 * dt) {
+        sim.engine.step();
+        projected += sim.contacts.last_projections();
+        double largest = 0.0, excess = 0.0;
+        for (const contact::Contact& c : sim.contacts.contacts()) {
+          if (c.state == contact::ContactState::open) continue;
+          largest = std::max(largest, std::abs(c.normal_force));
+          if (c.state != contact::ContactState::locked) continue;
+          excess = std::max({excess, std::abs(c.shear_force) - c.normal_force * std::tan(deg(30.0)),
+                             -c.normal_force});
+        }
+        if (largest > 0.0) worst = std::max(worst, excess / largest);
+      }
+      const core::EnergyBalance& b = sim.engine.energy();
+      BOOST_TEST_MESSAGE("dt " << dt << ": " << projected << " contacts projected, worst committed excess "
+                               << worst << " of the largest N; " << summary(sim.engine));
+      BOOST_TEST(projected > 0u);             // the rule was exercised
+      BOOST_TEST(worst <= 1e-3);              // within the force resolution (1e-3 of the largest N)
+      BOOST_TEST(b.total.dissipation_contact_release > 0.0);
+      BOOST_TEST(b.max_relative_residual < 0.01);
+    }
   }
 }
 

@@ -46,7 +46,10 @@ struct ContactEnergy {
   double closing = 0.0;   ///< springs attached during the step: k Delta^2/2 - k s0^2/2
                           ///< = F1 Delta - k s1^2/2 (the end force over the gap closed)
   double release = 0.0;   ///< springs detached during the step: k s0^2/2, their energy at
-                          ///< the step start, released without work
+                          ///< the step start, released without work; and springs detached
+                          ///< at its end by the commit's projection onto the Mohr-Coulomb
+                          ///< envelope (a contact held locked outside it committed open or
+                          ///< sliding): their end energy k s1^2/2
   double restart = 0.0;   ///< energy the springs gained without work between the steps: the
                           ///< sum of k s0^2/2 over the springs attached at the step start
                           ///< (step-start geometry, this step's stiffness) minus the stored

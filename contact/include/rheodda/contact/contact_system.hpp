@@ -273,6 +273,9 @@ class ContactSystem {
   double penalty() const { return penalty_; }  ///< current normal penalty [stress]
   double allowed_penetration() const { return allowed_penetration_; }  ///< [length]
   double last_max_penetration() const { return last_max_penetration_; }  ///< of the last accepted step [length]
+  /// Contacts the last accepted step's commit projected onto their Mohr-Coulomb envelope
+  /// (held locked outside it by the open-close iteration's anti-chattering rule) [-].
+  std::size_t last_projections() const { return projections_; }
   const DetectionStats& stats() const { return stats_; }
 
   /// What the energy balance needs of one contact's last accepted step,
@@ -287,6 +290,11 @@ class ContactSystem {
                                  ///< (sliding; from the N that solve assembled) [force/length]
     double normal_damping = 0.0;  ///< normal dashpot force at the end (closed; JointSet::restitution) [force/length]
     double shear_damping = 0.0;   ///< shear dashpot force at the end, along the edge (locked) [force/length]
+    /// State the step's solve ended with; the committed one differs where that was a
+    /// locked state outside the Mohr-Coulomb envelope (held by anti-chattering), which
+    /// the commit projects onto it (end_step, "Admissible states at commit").
+    ContactState solved_state = ContactState::open;
+    double solved_shear_force = 0.0;  ///< the shear spring's end force of the solve (locked) [force/length]
   };
 
   /// Everything of the system that the next steps depend on, between two
@@ -412,12 +420,17 @@ class ContactSystem {
   /// from now on; `creep` [length], the law's creep of this step up to the failure, still
   /// moves its locking point in this step (0 where it is not finite).
   void fail_law(size_t c, double creep);
+  /// Commits contact c of the working records, locked by the solve, onto its Mohr-Coulomb
+  /// envelope when it lies outside (contact_commit.cpp): open beyond the tensile cut-off,
+  /// locked at the strength beyond it (its locking point moved by the plastic slip).
+  void project_onto_envelope(std::span<const BlockView> blocks, size_t c);
 
   std::vector<JointSet> joint_sets_;
   ContactSettings settings_;
   double penalty_ = 0.0;
   double allowed_penetration_ = 0.0;
   double last_max_penetration_ = 0.0;
+  std::size_t projections_ = 0;  ///< last_projections()
   double step_max_penetration_ = 0.0;
   double force_scale_ = 0.0;  ///< largest |N| of the last iterate [force/length]
   bool step_dynamic_ = true;  ///< the step being solved carries velocity (begin_step)

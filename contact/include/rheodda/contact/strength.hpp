@@ -36,4 +36,18 @@ inline double mohr_coulomb_strength(const JointSet& js, double normal_force, dou
   return mohr_coulomb_strength(normal_force, tan_deg(js.friction_angle_of(intact)), js.cohesion_of(intact), length);
 }
 
+/// Whether a closed contact's normal force N [force/length] is beyond its tensile cut-off
+/// -T l (T the tensile strength [stress], l the contact length): it opens. f_res is the
+/// force resolution [force/length] (ContactSettings::force_resolution).
+inline bool beyond_tensile_cutoff(double normal_force, double tensile_strength, double length, double f_res) {
+  return normal_force < -tensile_strength * length - f_res;
+}
+
+/// Whether a shear force S [force/length] exceeds the Mohr-Coulomb strength of a contact of
+/// normal force N (mohr_coulomb_strength) by more than f_res: a locked contact slides.
+inline bool beyond_strength(double shear_force, double normal_force, double tan_phi, double cohesion,
+                            double length, double f_res) {
+  return std::abs(shear_force) > mohr_coulomb_strength(normal_force, tan_phi, cohesion, length) + f_res;
+}
+
 }  // namespace rheodda::contact
