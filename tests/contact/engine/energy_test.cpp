@@ -119,8 +119,9 @@ BOOST_AUTO_TEST_CASE(contacts_held_locked_outside_their_envelope_are_committed_o
   // corners chatter between sliding and stuck, and with max_flips 1 the open-close
   // iteration's anti-chattering rule holds them locked after their first change, with
   // shear beyond N tan(phi) (docs/reference/contacts.md, "States and the open-close
-  // iteration"). No step may commit such a state: each is committed sliding at its strength
-  // or open, and the spring energy that releases is booked, so the balance stays closed.
+  // iteration"). No step may commit such a state: each is committed locked at its strength
+  // (its spring slipping plastically) or open, and the spring energy that releases is
+  // booked, so the balance stays closed.
   const double alpha = deg(20.0), v0 = 1.0;
   const Vec2 down(-std::cos(alpha), -std::sin(alpha));
   for (const double dt : {1e-3, 1e-4}) {

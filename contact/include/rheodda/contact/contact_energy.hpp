@@ -48,8 +48,9 @@ struct ContactEnergy {
   double release = 0.0;   ///< springs detached during the step: k s0^2/2, their energy at
                           ///< the step start, released without work; and springs detached
                           ///< at its end by the commit's projection onto the Mohr-Coulomb
-                          ///< envelope (a contact held locked outside it committed open or
-                          ///< sliding): their end energy k s1^2/2
+                          ///< envelope (a contact held locked outside it committed open, or
+                          ///< locked at its strength): the end energy k s1^2/2 beyond what
+                          ///< the committed state stores
   double restart = 0.0;   ///< energy the springs gained without work between the steps: the
                           ///< sum of k s0^2/2 over the springs attached at the step start
                           ///< (step-start geometry, this step's stiffness) minus the stored
