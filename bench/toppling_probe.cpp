@@ -57,8 +57,17 @@ int main(int argc, char** argv) {
   }
   o.integrator = integrator == "explicit" ? core::Integrator::explicit_step : core::Integrator::implicit;
   o.solver = solver == "newton" ? core::ContactSolver::newton : core::ContactSolver::open_close;
-  std::printf("phi_LE = %.4f deg; %s (%s), dt %g s, E %g Pa, penalty %g E%s\n", phi_le, integrator.c_str(),
-              solver.c_str(), o.dt, o.young_modulus, o.penalty_factor, o.stick_keeps_force ? ", stick_keeps_force" : "");
+  std::printf("phi_LE = %.4f deg; %s (%s), dt %g s, E %g Pa, penalty %g E", phi_le, integrator.c_str(), solver.c_str(),
+              o.dt, o.young_modulus, o.penalty_factor);
+  if (o.integrator == core::Integrator::explicit_step) {
+    const core::Settings defaults;
+    std::printf(", explicit_safety %g, explicit_damping %g",
+                o.explicit_safety > 0.0 ? o.explicit_safety : defaults.explicit_safety,
+                o.explicit_damping >= 0.0 ? o.explicit_damping : defaults.explicit_damping);
+  } else {
+    std::printf(", %s", o.stick_keeps_force ? "stick_keeps_force" : "Shi's stick rule");
+  }
+  std::printf("\n");
   for (const double d : dphis) {
     o.phi_deg = phi_le + d;
     const auto t0 = std::chrono::steady_clock::now();

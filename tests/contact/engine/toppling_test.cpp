@@ -1,7 +1,7 @@
 // Goodman & Bray block toppling: the limit-equilibrium analysis of the textbook 16-block
 // slope against the textbook's critical angle, and DDA's critical friction angle against
-// it: within 0.5 deg by the implicit step with elastic-plastic joints and by the explicit
-// step (within 2 deg by the implicit step with Shi's stick rule, under which it creeps).
+// it: within 0.5 deg by the explicit step; within 2 deg by the implicit step, whose
+// critical angle is not converged in its step (docs/notes/explicit-step.md, "Toppling").
 #include <boost/test/unit_test.hpp>
 
 #include <vector>
@@ -49,11 +49,12 @@ BOOST_AUTO_TEST_CASE(limit_equilibrium_analysis_reproduces_the_textbook_critical
 }
 
 BOOST_AUTO_TEST_CASE(dda_critical_friction_angle_is_within_2_deg_of_limit_equilibrium) {
-  // With Shi's stick rule (a contact that stops sliding locks with its shear spring
-  // unstretched, ContactSettings::stick_keeps_force false): 3 s of motion, a failing slope
-  // moves metres, a stable one centimetres. Only this contrast is asserted: under Shi's
-  // rule the slope above its limit does not come to rest but creeps (at phi_LE + 2 deg about
-  // 7 mm/s, at phi_LE + 0.5 deg it topples after 30 s; docs/notes/explicit-step.md, "Toppling").
+  // The implicit step with Shi's stick rule (a contact that stops sliding locks with its
+  // shear spring unstretched, ContactSettings::stick_keeps_force false), 5 ms steps: 3 s of
+  // motion, a failing slope moves metres, a stable one centimetres. Only this contrast is
+  // asserted: above its limit the slope does not come to rest but creeps (at phi_LE + 2 deg
+  // about 7 mm/s; at phi_LE + 0.5 deg it topples after 30 s), and with either stick rule the
+  // angle at which it stands moves with the step (docs/notes/explicit-step.md, "Toppling").
   // Either contact solve (docs/reference/contacts.md, "Contact solves").
   const goodman_bray::Slope s;
   const double phi_le = goodman_bray::critical_friction_angle(s);
@@ -64,31 +65,6 @@ BOOST_AUTO_TEST_CASE(dda_critical_friction_angle_is_within_2_deg_of_limit_equili
                        << ": phi_LE - 2 deg: " << below << " m; phi_LE + 2 deg: " << above << " m");
     BOOST_TEST(below > 1.0);   // topples
     BOOST_TEST(above < 0.1);   // moves centimetres
-  }
-}
-
-BOOST_AUTO_TEST_CASE(implicit_step_with_elastic_plastic_joints_critical_friction_angle_is_within_half_a_degree) {
-  // The implicit step with elastic-plastic joints (a contact that stops sliding keeps the
-  // friction force in its shear spring: ContactSettings::stick_keeps_force, the default of a
-  // scene's dynamic steps): 0.5 deg below the limit-equilibrium angle the slope topples
-  // (metres in 6 s), 0.5 deg above it it comes to rest (no motion between 6 s and 10 s beyond
-  // a millimetre). Either contact solve.
-  const goodman_bray::Slope s;
-  const double phi_le = goodman_bray::critical_friction_angle(s);
-  goodman_bray::DdaOptions o;
-  o.stick_keeps_force = true;
-  for (const auto solver : {core::ContactSolver::open_close, core::ContactSolver::newton}) {
-    o.solver = solver;
-    o.phi_deg = phi_le - 0.5;
-    const std::vector<double> below = goodman_bray::largest_displacements(s, o, {6.0});
-    o.phi_deg = phi_le + 0.5;
-    const std::vector<double> above = goodman_bray::largest_displacements(s, o, {6.0, 10.0});
-    BOOST_TEST_MESSAGE((solver == core::ContactSolver::newton ? "newton" : "open-close")
-                       << ": - 0.5 deg: " << below[0] << " m at 6 s; + 0.5 deg: " << above[0] << " m at 6 s, "
-                       << above[1] << " m at 10 s");
-    BOOST_TEST(below[0] > 1.0);                        // topples
-    BOOST_TEST(std::abs(above[1] - above[0]) < 1e-3);  // at rest
-    BOOST_TEST(above[1] < 1.0);
   }
 }
 
