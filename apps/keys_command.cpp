@@ -1,6 +1,8 @@
 // `rheodda keys`: the declared scene keys (scene/include/rheodda/scene/keys.hpp)
 // with their units, meanings and defaults; `--markdown` prints the key tables that
-// docs/reference/scene-format.md holds (scripts/scene-format-tables.sh splices them in).
+// docs/reference/scene-format.md holds (scripts/scene-format-tables.sh splices them in);
+// `rheodda keys settings` the engine's declared settings (core/settings.hpp), whose
+// table docs/reference/engine.md holds.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -8,6 +10,7 @@
 #include <set>
 
 #include "commands.hpp"
+#include "rheodda/core/settings.hpp"
 #include "rheodda/scene/keys.hpp"
 
 namespace rheodda::apps {
@@ -17,14 +20,25 @@ void add_keys_command(CLI::App& app) {
                                          "rock_mass, the points, water, bolts, ...) with unit, default and meaning");
   auto map = std::make_shared<std::string>();
   auto markdown = std::make_shared<bool>(false);
-  cmd->add_option("map", *map, "Only this map, as `rheodda keys` names it: analysis, analysis.settle, materials, ...");
-  cmd->add_flag("--markdown", *markdown, "Print Markdown tables, as docs/reference/scene-format.md holds them");
+  cmd->add_option("map", *map, "Only this map, as `rheodda keys` names it: analysis, analysis.settle, materials, ...; "
+                               "`settings`: the engine's settings (docs/reference/engine.md)");
+  cmd->add_flag("--markdown", *markdown, "Print Markdown tables, as docs/reference/scene-format.md (and engine.md) hold them");
   cmd->callback([map, markdown] {
+    if (*map == "settings") {  // the engine's settings (core/settings.hpp): docs/reference/engine.md's table
+      if (*markdown) {
+        std::cout << core::settings_table_markdown();
+        return;
+      }
+      for (const core::SettingSpec& s : core::setting_specs())
+        std::cout << fmt::format("settings.{} [{}] {} default {}: {}\n", s.name(), s.parameter.unit, s.range_text(),
+                                 s.default_text(), s.parameter.meaning);
+      return;
+    }
     std::vector<std::string> maps;
     for (const auto& m : scene::declared_maps()) maps.push_back(m.name);
     if (!map->empty()) {
       if (std::find(maps.begin(), maps.end(), *map) == maps.end())
-        throw CLI::ValidationError("map", fmt::format("'{}' has no declared keys; declared maps: {}", *map,
+        throw CLI::ValidationError("map", fmt::format("'{}' has no declared keys; declared maps: {}, settings", *map,
                                                       fmt::join(maps, ", ")));
       maps = {*map};
     }
@@ -34,7 +48,9 @@ void add_keys_command(CLI::App& app) {
         continue;
       }
       for (const auto& k : scene::declared_keys(m))
-        std::cout << fmt::format("{}.{} [{}] default {}: {}\n", m, k.name, k.unit, k.default_text, k.meaning);
+        std::cout << fmt::format("{}.{} [{}]{} default {}: {}\n", m, k.name, k.unit,
+                                 scene::key_range_text(k).empty() ? "" : " " + scene::key_range_text(k), k.default_text,
+                                 k.meaning);
     }
   });
 }

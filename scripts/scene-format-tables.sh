@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Regenerates the key tables of docs/reference/scene-format.md from the keys' declarations
 # (scene/src/keys*.cpp) through `rheodda keys --markdown MAP`, between each pair of
-# <!-- keys-MAP:begin/end --> markers the doc holds. tests/scene/schema_test.cpp checks that
-# the doc holds what this writes.
+# <!-- keys-MAP:begin/end --> markers the doc holds, and the table of the engine's settings
+# in docs/reference/engine.md from their declarations (core/src/settings.cpp) through
+# `rheodda keys --markdown settings`, between <!-- settings:begin/end -->.
+# tests/scene/schema_test.cpp checks that the docs hold what this writes.
 # Usage: scripts/scene-format-tables.sh     (RHEODDA_BUILD_DIR: the build to use, default build/)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -14,4 +16,6 @@ for map in $(sed -n 's/^<!-- keys-\(.*\):begin -->$/\1/p' "$doc"); do
   "$build/apps/rheodda" keys --markdown "$map" >"$tmp"
   "$root/scripts/splice-doc.sh" "$doc" "keys-$map" "$tmp"
 done
-echo "scene-format-tables: docs/reference/scene-format.md key tables regenerated"
+"$build/apps/rheodda" keys --markdown settings >"$tmp"
+"$root/scripts/splice-doc.sh" "$root/docs/reference/engine.md" settings "$tmp"
+echo "scene-format-tables: docs/reference/scene-format.md key tables and engine.md's settings regenerated"

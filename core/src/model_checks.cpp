@@ -6,6 +6,7 @@
 #include <string>
 
 #include "engine_impl.hpp"
+#include "rheodda/core/settings.hpp"
 
 namespace rheodda::core {
 
@@ -121,25 +122,16 @@ void Engine::Impl::validate() {
     check_point(ModelEntry{"measurement_points", k}, m.measurement_points[k].block,
                 m.measurement_points[k].point);
 
-  if (!(s.dt > 0.0 && std::isfinite(s.dt))) throw ModelError("settings.dt", "must be > 0 (time)");
-  if (!(s.dt_growth >= 1.0 && std::isfinite(s.dt_growth)))
-    throw ModelError("settings.dt_growth", "must be >= 1");
-  if (!(s.dt_cut > 0.0 && s.dt_cut < 1.0)) throw ModelError("settings.dt_cut", "must be in (0, 1)");
-  if (s.max_cuts < 0) throw ModelError("settings.max_cuts", "must be >= 0");
-  if (!(s.creep_tolerance >= 0.0 && std::isfinite(s.creep_tolerance)))
-    throw ModelError("settings.creep_tolerance", "must be >= 0 (length; 0 = fixed dt)");
+  // Each declared setting within its range (settings.cpp); the checks that tie settings
+  // together follow.
+  check_setting_ranges(s);
   if (s.creep_tolerance > 0.0 && s.dt_max > 0.0 && s.dt_max < s.dt)
     throw ModelError("settings.dt_max", "must be >= dt (the first step) under creep_tolerance");
-  if (!(s.step_tolerance >= 0.0 && std::isfinite(s.step_tolerance)))
-    throw ModelError("settings.step_tolerance", "must be >= 0 (length; 0 = off)");
   if (s.step_tolerance > 0.0 && s.creep_tolerance > 0.0)
     throw ModelError("settings.step_tolerance",
                      "give step_tolerance or creep_tolerance, not both (two step controls)");
   if (s.step_tolerance > 0.0 && s.dt_max > 0.0 && s.dt_max < s.dt)
     throw ModelError("settings.dt_max", "must be >= dt (the first step) under step_tolerance");
-  if (!(s.dt_max >= 0.0 && std::isfinite(s.dt_max)))
-    throw ModelError("settings.dt_max", "must be >= 0 (time; 0 = no limit)");
-  if (!(s.max_displacement_ratio > 0.0 && std::isfinite(s.max_displacement_ratio))) throw ModelError("settings.max_displacement_ratio", "must be > 0");
   if (!(s.settle_until >= 0.0 && std::isfinite(s.settle_until)))
     throw ModelError("settings.settle_until", "must be >= 0 (time; 0 = no settling stage)");
   if (s.settle_until > 0.0 && !(s.settle_dt > 0.0 && std::isfinite(s.settle_dt)))
@@ -166,23 +158,12 @@ void Engine::Impl::validate() {
     if (s.step_tolerance > 0.0)
       throw ModelError("settings.collapse_dt", "not with step_tolerance (step doubling takes no collapse stage)");
   }
-  if (!(s.dynamic_ratio >= 0.0 && s.dynamic_ratio <= 1.0))
-    throw ModelError("settings.dynamic_ratio", "must be in [0, 1]");
-  if (!(s.explicit_safety > 0.0 && s.explicit_safety <= 1.0))
-    throw ModelError("settings.explicit_safety", "must be in (0, 1]");
-  if (!(s.stage_local_damping >= 0.0 && s.stage_local_damping < 1.0))
-    throw ModelError("settings.stage_local_damping", "must be in [0, 1)");
-  if (s.stage_cycles < 0) throw ModelError("settings.stage_cycles", "must be >= 0 (0: no density scaling)");
-  if (!(s.explicit_damping >= 0.0 && s.explicit_damping <= 1.0))
-    throw ModelError("settings.explicit_damping", "must be in [0, 1]");
   if (s.threads < 0) throw ModelError("settings.threads", "must be >= 0 (0: OpenMP's default)");
   if (const IntegratorEntry& in = integrator_entry(s.integrator); !in.dynamic_trial)
     throw ModelError("settings.integrator",
                      std::string(in.word) + " chooses between the integrators before the engine runs "
                      "(scene/integrator_choice.hpp: the one estimated cheaper on the scene's initial state); "
                      "give the engine the integrator chosen");
-  if (!(s.static_force_ratio >= 0.0 && s.static_force_ratio < 1.0))
-    throw ModelError("settings.static_force_ratio", "must be in [0, 1) (0 = static steps implicit)");
   if (s.static_force_ratio > 0.0) {
     if (!integrator_entry(s.integrator).static_trial)
       throw ModelError("settings.static_force_ratio", "static steps by cycles are the explicit step's: give "
@@ -191,9 +172,6 @@ void Engine::Impl::validate() {
       throw ModelError("settings.static_force_ratio", "a dynamic analysis has no static steps (dynamic_ratio 0 "
                                                        "is a static analysis)");
   }
-  if (s.static_max_cycles < 1) throw ModelError("settings.static_max_cycles", "must be >= 1");
-  if (!(s.static_local_damping > 0.0 && s.static_local_damping < 1.0))
-    throw ModelError("settings.static_local_damping", "must be in (0, 1): undamped cycles never come to rest");
   if (s.integrator == Integrator::explicit_step) {
     if (!s.has_dynamic_steps() && s.static_force_ratio == 0.0)
       throw ModelError("settings.integrator",
@@ -214,17 +192,8 @@ void Engine::Impl::validate() {
   if (s.settle_gravity_ramp > 0.0 && !(s.settle_gravity_ramp <= s.settle_until))
     throw ModelError("settings.settle_gravity_ramp",
                      "must end within the settling stage (<= settle_until), so that the creep starts under full gravity");
-  if (!(s.fixed_point_stiffness >= 0.0 && std::isfinite(s.fixed_point_stiffness)))
-    throw ModelError("settings.fixed_point_stiffness", "must be >= 0 (0 = automatic)");
-  if (s.open_close_limit < 1) throw ModelError("settings.open_close_limit", "must be >= 1");
   if (s.settle_open_close_limit < 0)
     throw ModelError("settings.settle_open_close_limit", "must be >= 0 (0 = open_close_limit)");
-  if (!(s.contact_residual_tolerance > 0.0 && s.contact_residual_tolerance < 1.0))
-    throw ModelError("settings.contact_residual_tolerance", "must be in (0, 1)");
-  if (!(s.solver_tolerance > 0.0)) throw ModelError("settings.solver_tolerance", "must be > 0");
-  if (s.solver_max_iterations < 1) throw ModelError("settings.solver_max_iterations", "must be >= 1");
-  if (!(s.solver_iterate_tolerance >= 0.0 && s.solver_iterate_tolerance < 1.0))
-    throw ModelError("settings.solver_iterate_tolerance", "must be in [0, 1) (0 = every solve at solver_tolerance)");
   if (s.time_integration == TimeIntegration::trapezoidal && s.dynamic_ratio == 0.0)
     throw ModelError("settings.time_integration",
                      "the trapezoidal rule needs a dynamic analysis (settings.dynamic_ratio > 0)");

@@ -24,7 +24,7 @@ std::string ParameterSpec::range_text() const {
     if (v == std::numeric_limits<double>::max()) return std::string("1.8e308");
     return fmt::format("{:g}", v);
   };
-  return fmt::format("{}{}, {}]", min_exclusive ? "(" : "[", num(min), num(max));
+  return fmt::format("{}{}, {}{}", min_exclusive ? "(" : "[", num(min), num(max), max_exclusive ? ")" : "]");
 }
 
 std::string nearest_name(std::string_view word, const std::vector<std::string>& candidates) {
@@ -83,8 +83,7 @@ ParameterValues validate_parameters(std::string_view law, const std::vector<Para
       throw LawError(s.name, fmt::format("law '{}': parameter '{}' is {}; it must be a finite "
                                          "number in {} ({})",
                                          law, s.name, v, s.range_text(), s.unit));
-    const bool low_ok = s.min_exclusive ? v > s.min : v >= s.min;
-    if (!low_ok || v > s.max)
+    if (!s.admits(v))
       throw LawError(s.name, fmt::format("law '{}': parameter '{}' = {:g} is out of range {} ({}: {})",
                                          law, s.name, v, s.range_text(), s.unit, s.meaning));
     out.emplace(s.name, v);

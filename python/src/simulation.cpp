@@ -2,6 +2,7 @@
 // callback, the history, the step settings and the loads' histories.
 #include "simulation.hpp"
 
+#include <rheodda/core/settings.hpp>
 #include <rheodda/laws/registry.hpp>
 #include <rheodda/scene/assemble.hpp>
 #include <rheodda/scene/output.hpp>
@@ -20,31 +21,24 @@ namespace {
 /// Thrown by the step observer to leave Engine::run_until between two steps.
 struct LeaveRun {};
 
-/// The step settings Simulation.set_settings takes, by their scene names (analysis.*), each
-/// bound to the core::Settings member of the same name: the one list the setter, the getter
-/// and the error's list of valid names read.
-using SettingMember = std::variant<double core::Settings::*, int core::Settings::*, bool core::Settings::*>;
-const std::pair<const char*, SettingMember> kSettings[] = {
-    {"dt", &core::Settings::dt},
-    {"dt_growth", &core::Settings::dt_growth},
-    {"dt_cut", &core::Settings::dt_cut},
-    {"max_cuts", &core::Settings::max_cuts},
-    {"max_displacement_ratio", &core::Settings::max_displacement_ratio},
-    {"creep_tolerance", &core::Settings::creep_tolerance},
-    {"step_tolerance", &core::Settings::step_tolerance},
-    {"step_extrapolation", &core::Settings::step_extrapolation},
-    {"dt_max", &core::Settings::dt_max},
-    {"open_close_limit", &core::Settings::open_close_limit},
-    {"solver_tolerance", &core::Settings::solver_tolerance},
-    {"solver_max_iterations", &core::Settings::solver_max_iterations},
-    {"solver_iterate_tolerance", &core::Settings::solver_iterate_tolerance},
-};
+/// The step settings Simulation.set_settings takes: the engine's declared settings that
+/// may change between steps (core/settings.hpp, SettingSpec::between_steps), by their
+/// scene names (analysis.*); the one list the setter, the getter and the error's list of
+/// valid names read.
+using SettingMember = decltype(core::SettingSpec::field);
+
+std::vector<const core::SettingSpec*> step_settings() {
+  std::vector<const core::SettingSpec*> out;
+  for (const core::SettingSpec& s : core::setting_specs())
+    if (s.between_steps) out.push_back(&s);
+  return out;
+}
 
 const SettingMember& setting(const std::string& key) {
-  for (const auto& [name, member] : kSettings)
-    if (key == name) return member;
+  for (const core::SettingSpec* s : step_settings())
+    if (key == s->name()) return s->field;
   std::vector<std::string> names;
-  for (const auto& [name, member] : kSettings) names.emplace_back(name);
+  for (const core::SettingSpec* s : step_settings()) names.push_back(s->name());
   throw InputError(fmt::format("set_settings: unknown setting '{}'; valid: {}", key, fmt::join(names, ", ")));
 }
 
@@ -249,7 +243,8 @@ bool Simulation::apply_settings(core::Settings& s, const json& values) {
 py::dict Simulation::settings() const {
   const core::Settings& s = eng().model().settings;
   py::dict d;
-  for (const auto& [name, member] : kSettings) std::visit([&](auto m) { d[name] = s.*m; }, member);
+  for (const core::SettingSpec* spec : step_settings())
+    std::visit([&](auto m) { d[spec->name().c_str()] = s.*m; }, spec->field);
   return d;
 }
 

@@ -9,12 +9,14 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "rheodda/core/settings.hpp"
 #include "rheodda/laws/registry.hpp"
 #include "rheodda/laws/series_law.hpp"
 #include "law_choice.hpp"
 #include "rheodda/scene/geometry.hpp"
 #include "gravity_check.hpp"
 #include "rheodda/scene/integrator_choice.hpp"
+#include "rheodda/scene/keys.hpp"
 
 namespace rheodda::scene {
 
@@ -164,22 +166,12 @@ BuiltScene build_scene(const SceneDescription& s) {
   for (const auto& b : s.bolts) m.bolts.push_back(build_bolt(b));  // docs/reference/bolts.md
 
   core::Settings& st = m.settings;
-  st.dt = a.dt;
-  st.dt_growth = a.dt_growth;
-  st.dt_cut = a.dt_cut;
-  st.max_cuts = a.max_cuts;
-  st.creep_tolerance = a.creep_tolerance;
-  st.dt_max = a.dt_max;
-  st.step_tolerance = a.step_tolerance;
-  st.step_extrapolation = a.step_extrapolation;
-  st.creep_restart_on_contact_change = a.creep_restart_on_contact_change;
-  st.max_displacement_ratio = a.max_displacement_ratio;
-  st.dynamic_ratio = a.dynamic_ratio;
+  // The engine's declared settings (core/settings.hpp), each from the key of its name.
+  for (const core::SettingSpec& spec : core::setting_specs())
+    spec.set(st, key_number(analysis_key(spec.name()).get(a)));
   st.time_integration = a.time_integration == TimeIntegration::trapezoidal ? core::TimeIntegration::trapezoidal
                                                                           : core::TimeIntegration::shi;
   st.gravity = {a.gravity[0], a.gravity[1]};
-  st.fixed_point_stiffness = a.fixed_point_stiffness;
-  st.open_close_limit = a.open_close_limit;
   if (a.settle) {  // docs/reference/engine.md, "Settling stage"
     st.settle_until = a.settle->until;
     st.settle_dt = a.settle->dt;
@@ -192,19 +184,8 @@ BuiltScene build_scene(const SceneDescription& s) {
     st.settle_open_close_limit = a.settle->open_close_limit;
   }
   st.solver = a.solver;
-  st.solver_tolerance = a.solver_tolerance;
-  st.solver_iterate_tolerance = a.solver_iterate_tolerance;
   st.contact_solver = a.contact_solver;
-  st.contact_residual_tolerance = a.contact_residual_tolerance;
   st.integrator = choose_integrator(s).integrator;  // integrator_choice.cpp: `automatic` decided here
-  st.explicit_safety = a.explicit_safety;
-  st.stage_local_damping = a.stage_local_damping;
-  st.stage_cycles = a.stage_cycles;
-  st.static_force_ratio = a.static_force_ratio;
-  st.static_max_cycles = a.static_max_cycles;
-  st.static_local_damping = a.static_local_damping;
-  st.explicit_damping = a.explicit_damping;
-  st.solver_max_iterations = a.solver_max_iterations;
 
   contact::ContactSettings& cs = out.contact_settings;
   cs.penalty = a.penalty;

@@ -3,6 +3,10 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <cmath>
+#include <stdexcept>
+
+#include "rheodda/core/settings.hpp"
 #include "rheodda/scene/keys.hpp"
 
 namespace rheodda::scene {
@@ -101,8 +105,44 @@ std::string key_value_text(const KeyInfo& k, const KeyValue& v, const Units& u) 
   return "none";
 }
 
+const KeySpec& analysis_key(const std::string& name) {
+  for (const KeySpec& k : analysis_keys())
+    if (k.map == "analysis" && k.name == name) return k;
+  throw std::logic_error("analysis: declares no key " + name);
+}
+
+double key_number(const KeyValue& v) {
+  if (const auto* d = std::get_if<double>(&v)) return *d;
+  if (const auto* i = std::get_if<int>(&v)) return *i;
+  if (const auto* b = std::get_if<bool>(&v)) return *b ? 1.0 : 0.0;
+  throw std::logic_error("key_number: not the value of a number, integer or flag key");
+}
+
+KeyValue key_value_of(KeyType type, double v) {
+  switch (type) {
+    case KeyType::number: return v;
+    case KeyType::integer: return static_cast<int>(v);
+    case KeyType::flag: return v != 0.0;
+    default: throw std::logic_error("key_value_of: not a number, integer or flag key");
+  }
+}
+
+std::string key_range_text(const KeyInfo& k) {
+  if (k.type != KeyType::number && k.type != KeyType::integer) return "";
+  auto bound = [&k](double v) {
+    if (v == std::numeric_limits<double>::max()) return std::string("∞");
+    if (v == std::numeric_limits<double>::lowest()) return std::string("−∞");
+    return k.type == KeyType::integer && std::abs(v) < 1e6 ? fmt::format("{:.0f}", v) : core::setting_number_text(v);
+  };
+  const KeyRange& r = k.range;
+  if (r.min == std::numeric_limits<double>::lowest() && r.max == std::numeric_limits<double>::max()) return "";  // any value
+  const bool low_open = r.min_exclusive || r.min == std::numeric_limits<double>::lowest();
+  const bool high_open = r.max_exclusive || r.max == std::numeric_limits<double>::max();
+  return fmt::format("{}{}, {}{}", low_open ? "(" : "[", bound(r.min), bound(r.max), high_open ? ")" : "]");
+}
+
 std::string key_table_markdown(const std::string& map) {
-  std::string out = "| key | unit | meaning | default |\n|---|---|---|---|\n";
+  std::string out = "| key | unit | range | meaning | default |\n|---|---|---|---|---|\n";
   for (const KeyInfo& k : declared_keys(map)) {
     std::string meaning = k.meaning;
     if (k.type == KeyType::map && !k.own_table) {
@@ -110,7 +150,7 @@ std::string key_table_markdown(const std::string& map) {
       const std::vector<std::string> sub = declared_key_names(k.submap.empty() ? map + "." + k.name : k.submap);
       meaning = fmt::format("`{{{}}}`: {}", fmt::join(sub, ", "), meaning);
     }
-    out += fmt::format("| `{}` | {} | {} | {} |\n", k.name, k.unit, meaning, k.default_text);
+    out += fmt::format("| `{}` | {} | {} | {} | {} |\n", k.name, k.unit, key_range_text(k), meaning, k.default_text);
   }
   return out;
 }

@@ -9,12 +9,14 @@
 #include "key_builders.hpp"
 #include "rheodda/core/contact_solve.hpp"
 #include "rheodda/core/integrator.hpp"
+#include "rheodda/core/settings.hpp"
 #include "rheodda/core/solver.hpp"
 
 #include <fmt/format.h>
 
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
 
 namespace rheodda::scene {
 
@@ -44,6 +46,23 @@ KeySpec flag_key(const std::string& map, const std::string& name, const std::str
                  bool Analysis::*field, std::string default_text, std::string meaning) {
   return detail::field_key(info(map, name, KeyType::flag, unit, {}, std::move(default_text), std::move(meaning)),
                            field);
+}
+
+/// A key of `analysis:` that is a setting of the engine, of the same name: its type, unit,
+/// range, default and meaning are the setting's declaration (core/settings.hpp).
+template <class T>
+KeySpec setting_key(const std::string& name, T Analysis::*field) {
+  const core::SettingSpec& s = core::setting_spec(name);
+  const KeyType type = s.type == core::SettingType::number    ? KeyType::number
+                       : s.type == core::SettingType::integer ? KeyType::integer
+                                                              : KeyType::flag;
+  constexpr KeyType field_type = std::is_same_v<T, double> ? KeyType::number
+                                 : std::is_same_v<T, int>  ? KeyType::integer
+                                                           : KeyType::flag;
+  if (type != field_type) throw std::logic_error("analysis." + name + ": the field is not of the setting's type");
+  const laws::ParameterSpec& p = s.parameter;
+  const KeyRange range = type == KeyType::flag ? KeyRange{} : KeyRange{p.min, p.min_exclusive, p.max, p.max_exclusive};
+  return detail::field_key(info("analysis", name, type, p.unit, range, s.default_text(), p.meaning), field);
 }
 
 /// The words of a registry of methods (core/methods.hpp: rows with `method` and `word`), in its order.
@@ -129,35 +148,20 @@ std::vector<KeySpec> declare_analysis_keys() {
       "required",
       "simulated time, > 0"));
   keys.back().required = "simulated time [time]";
-  keys.push_back(number_key("analysis", "dt", "time", {0.0, true, kInf, false}, &Analysis::dt,
-      "required",
-      "first and largest time step, 0 < dt ≤ duration"));
+  keys.push_back(setting_key("dt", &Analysis::dt));
   keys.back().required = "first and largest time step [time]";
-  keys.push_back(number_key("analysis", "dt_growth", "–", {1.0, false, kInf, false}, &Analysis::dt_growth,
-      "1.5",
-      "fixed-step runs: after a cut, each accepted step is `dt_growth` × the last one, up to "
-         "`dt`; ≥ 1 (1: the step stays cut); refused under `creep_tolerance` or `step_tolerance` "
-         "(the control sizes the steps)"));
-  keys.push_back(number_key("analysis", "dt_cut", "–", {0.0, true, 1.0, true}, &Analysis::dt_cut,
-      "0.3",
-      "factor on the step when a step is cut (open–close iteration not converged, or a step "
-         "displacement above `max_displacement_ratio` × half model size); also the smallest factor "
-         "an adaptive control shrinks a step by at once; in (0, 1)"));
-  keys.push_back(integer_key("analysis", "max_cuts", "–", {0.0, false, 200.0, false}, &Analysis::max_cuts,
-      "30",
-      "times dt may be cut (× `dt_cut` each) in one step before the run fails, 0–200"));
-  keys.push_back(number_key("analysis", "max_displacement_ratio", "–", {0.0, true, 1.0, false}, &Analysis::max_displacement_ratio,
-      "0.01",
-      "Shi's g2: allowed displacement per step / half model size, (0, 1]"));
+  keys.back().default_text = "required";
+  keys.push_back(setting_key("dt_growth", &Analysis::dt_growth));
+  keys.push_back(setting_key("dt_cut", &Analysis::dt_cut));
+  keys.push_back(setting_key("max_cuts", &Analysis::max_cuts));
+  keys.push_back(setting_key("max_displacement_ratio", &Analysis::max_displacement_ratio));
   keys.push_back(map_key("analysis", "settle",
       "none",
       "a settling stage at the start of the run (docs/reference/engine.md, \"Settling "
          "stage\"); its keys are in the table `analysis.settle` below. For a static model that "
          "settles as a mechanism when gravity comes on: every run, whatever its `dt`, starts its "
          "creep from the same settled state"));
-  keys.push_back(number_key("analysis", "dynamic_ratio", "–", {0.0, false, 1.0, false}, &Analysis::dynamic_ratio,
-      "1 (dynamic), 0 (static)",
-      "share of velocity carried to the next step, [0, 1]; only with `type: dynamic`"));
+  keys.push_back(setting_key("dynamic_ratio", &Analysis::dynamic_ratio));
   keys.push_back(choice_key("analysis", "time_integration", "–", {"shi", "trapezoidal"},
       [](const Analysis& a) { return std::string(time_integration_name(a.time_integration)); },
       [](Analysis& a, const std::string& v) { a.time_integration = v == "trapezoidal" ? TimeIntegration::trapezoidal : TimeIntegration::shi; },
@@ -174,33 +178,11 @@ std::vector<KeySpec> declare_analysis_keys() {
       "creep integration scheme of the joint laws: `lagged`, `implicit`, `exponential-linear` "
          "(docs/reference/laws.md), or `automatic`: per joint set and step, exponential-linear where the "
          "step is below its no-ringing limit, implicit otherwise"));
-  keys.push_back(number_key("analysis", "creep_tolerance", "length", {0.0, false, kInf, false}, &Analysis::creep_tolerance,
-      "0",
-      "adaptive creep stepping (docs/guide/choosing-step-controls.md): the creep error allowed per step; the "
-         "step grows (up to ×2) while the estimate stays below it, restarts from `dt` after a load "
-         "change, and a step whose estimate exceeds 2× the tolerance is redone smaller (not below "
-         "`dt`); 0 = fixed `dt`"));
-  keys.push_back(number_key("analysis", "step_tolerance", "length", {0.0, false, kInf, false}, &Analysis::step_tolerance,
-      "0",
-      "adaptive stepping by step doubling (docs/reference/step-controls.md, \"Step doubling\"): each "
-         "step is taken once with dt and twice with dt/2 from the same state; the largest "
-         "difference over the block vertices must stay below the tolerance; the step grows (up to "
-         "×2) while it does, restarts from `dt` after a load change, never falls below `dt`, and a "
-         "step whose difference exceeds 2× the tolerance is redone smaller; 3 solves per step; not "
-         "with `creep_tolerance`; 0 = off"));
-  keys.push_back(flag_key("analysis", "step_extrapolation", "–", &Analysis::step_extrapolation,
-      "true",
-      "under `step_tolerance`: accept 2 y(dt/2) − y(dt) (Richardson: second order) when both "
-         "runs end with the same contacts in the same states, else y(dt/2); `false`: always "
-         "y(dt/2) (first order); `true` or `false`; only with `step_tolerance`"));
-  keys.push_back(number_key("analysis", "dt_max", "time", {0.0, false, kInf, false}, &Analysis::dt_max,
-      "0",
-      "largest step under `creep_tolerance` or `step_tolerance` (refused without one); 0 = no "
-         "limit; >= `dt` when given"));
-  keys.push_back(flag_key("analysis", "creep_restart_on_contact_change", "–", &Analysis::creep_restart_on_contact_change,
-      "false",
-      "under `creep_tolerance`: the step after one in which a creeping contact locked, slid or "
-         "opened restarts from `dt` (as after a load change); `true` or `false`"));
+  keys.push_back(setting_key("creep_tolerance", &Analysis::creep_tolerance));
+  keys.push_back(setting_key("step_tolerance", &Analysis::step_tolerance));
+  keys.push_back(setting_key("step_extrapolation", &Analysis::step_extrapolation));
+  keys.push_back(setting_key("dt_max", &Analysis::dt_max));
+  keys.push_back(setting_key("creep_restart_on_contact_change", &Analysis::creep_restart_on_contact_change));
   keys.push_back(number_key("analysis", "penalty", "stress", {0.0, true, kInf, false}, &Analysis::penalty,
       "40 × the largest `young_modulus`",
       "normal contact penalty p_n (the seed's eq. 17, p_n = k1·E, k1 = 10–100)"));
@@ -257,14 +239,8 @@ std::vector<KeySpec> declare_analysis_keys() {
          "impacts are left to the time integration. For scenes whose answer was shown not to "
          "depend on it (`rheodda check --refine`; docs/reference/contacts.md, \"Contact damping\"); "
          "`true` or `false`"));
-  keys.push_back(integer_key("analysis", "open_close_limit", "–", {1.0, false, 1000.0, false}, &Analysis::open_close_limit,
-      "8 (Shi's) in a static analysis, 30 in a dynamic one",
-      "open–close iterations before a step is cut, 1–1000 (docs/notes/contact-solves.md, \"The "
-         "iteration limit in static analysis\")"));
-  keys.push_back(number_key("analysis", "fixed_point_stiffness", "force/length", {0.0, true, kInf, false}, &Analysis::fixed_point_stiffness,
-      "100 × the largest `young_modulus`",
-      "spring holding a fixed point (times J/S, the block's polar radius of gyration squared: the rotational "
-      "spring of `hold: rotation` [force·length/rad])"));
+  keys.push_back(setting_key("open_close_limit", &Analysis::open_close_limit));
+  keys.push_back(setting_key("fixed_point_stiffness", &Analysis::fixed_point_stiffness));
   keys.push_back(choice_key("analysis", "solver", "–", method_words(core::linear_solvers()),
       [](const Analysis& a) { return word_of(core::linear_solvers(), a.solver); },
       [](Analysis& a, const std::string& v) { a.solver = method_of(core::linear_solvers(), v); },
@@ -273,20 +249,9 @@ std::vector<KeySpec> declare_analysis_keys() {
          "Cholesky), `amg` (conjugate gradient with a multigrid V-cycle whose coarse unknowns are "
          "the DDA unknowns of groups of blocks; O(N) per iteration, for large models) or `pcg` "
          "(block-Jacobi conjugate gradient, a reference); docs/reference/engine.md, \"Solvers\""));
-  keys.push_back(number_key("analysis", "solver_tolerance", "–", {0.0, true, 1.0, true}, &Analysis::solver_tolerance,
-      "1e-10",
-      "`amg` and `pcg` stop when ‖F − K D‖ ≤ solver_tolerance ‖F‖ (the true residual); in (0, "
-         "1)"));
-  keys.push_back(integer_key("analysis", "solver_max_iterations", "–", {1.0, false, 1.0e9, false}, &Analysis::solver_max_iterations,
-      "10000",
-      "conjugate-gradient iterations allowed per solve of `amg` and `pcg`; a solve that reaches "
-         "it without meeting `solver_tolerance` stops the run with an error; 1–1e9"));
-  keys.push_back(number_key("analysis", "solver_iterate_tolerance", "–", {0.0, false, 1.0, true}, &Analysis::solver_iterate_tolerance,
-      "1e-4",
-      "`amg` and `pcg` stop at this relative residual in an open–close iterate whose contact "
-         "states are still changing; a step is accepted only on a check of a solve at "
-         "`solver_tolerance` (docs/notes/contact-solves.md, \"Inexact iterates\"); in [0, 1), 0 = "
-         "every solve at `solver_tolerance`; no effect with `cholmod` (exact)"));
+  keys.push_back(setting_key("solver_tolerance", &Analysis::solver_tolerance));
+  keys.push_back(setting_key("solver_max_iterations", &Analysis::solver_max_iterations));
+  keys.push_back(setting_key("solver_iterate_tolerance", &Analysis::solver_iterate_tolerance));
   keys.push_back(choice_key("analysis", "contact_solver", "–", method_words(core::contact_solves()),
       [](const Analysis& a) { return word_of(core::contact_solves(), a.contact_solver); },
       [](Analysis& a, const std::string& v) { a.contact_solver = method_of(core::contact_solves(), v); },
@@ -307,51 +272,14 @@ std::vector<KeySpec> declare_analysis_keys() {
          "its dynamic stages (`settle`) are explicit) or `automatic` (the one whose estimated cost "
          "per dynamic step is lower on the scene's initial state; `rheodda check` prints which and "
          "why)"));
-  keys.push_back(number_key("analysis", "explicit_safety", "–", {0.0, true, 1.0, false}, &Analysis::explicit_safety,
-      "0.8",
-      "under `integrator: explicit`, the cycle as a share of the stable one 2/ω_max (ω_max bounded "
-         "per block from its mass and the stiffness of its contacts, elasticity and fixed points); "
-         "(0, 1]"));
-  keys.push_back(number_key("analysis", "explicit_damping", "–", {0.0, false, 1.0, false}, &Analysis::explicit_damping,
-      "0.5",
-      "under `integrator: explicit`, the damping ratio the cycles give what has no damping of its own: "
-         "contacts whose joint set has no `restitution` (dashpots beside their springs, the scene's "
-         "highest mode at this ratio) and the strain modes of blocks whose material has no "
-         "`damping_ratio` (each at this ratio). The implicit step damps both within a step; undamped "
-         "they rattle for ever (docs/reference/explicit-step.md, \"Damping\"); [0, 1], 0 = none"));
-  keys.push_back(number_key("analysis", "stage_local_damping", "–", {0.0, false, 1.0, true}, &Analysis::stage_local_damping,
-      "0",
-      "under `integrator: explicit`, local (non-viscous) damping α of the cycles in the dynamic "
-         "stages of a static analysis, where only the state at rest matters: each degree of freedom "
-         "takes −α \\|R\\| sign(v) beside its unbalanced force R (UDEC's default is 0.8); [0, 1), "
-         "0 = none; never in a dynamic analysis"));
-  keys.push_back(integer_key("analysis", "stage_cycles", "–", {0.0, false, 1.0e8, false}, &Analysis::stage_cycles,
-      "0",
-      "under `integrator: explicit`, density scaling in the dynamic stages of a static analysis, "
-         "where only the state at rest matters: the most cycles a step of a stage takes; a block whose "
-         "stable cycle is shorter has its mass scaled up until it is not, its loads unchanged "
-         "(docs/reference/explicit-step.md, \"Density scaling\"); 0 = none; never in a dynamic analysis"));
-  keys.push_back(number_key("analysis", "static_force_ratio", "–", {0.0, false, 1.0, true}, &Analysis::static_force_ratio,
-      "0 (static steps implicit)",
-      "under `integrator: explicit`, the static steps of a static analysis (its creep steps) taken by "
-         "cycles from rest, each block's mass scaled to a common cycle and locally damped, until the "
-         "largest unbalanced force of a block is at most this fraction of the mean applied force (UDEC's "
-         "ratio; 1e-5 is customary) (docs/reference/explicit-step.md, \"Static steps by cycles\"); "
-         "[0, 1), 0 = the static steps implicit; a static analysis only"));
-  keys.push_back(integer_key("analysis", "static_max_cycles", "–", {1.0, false, 1.0e9, false}, &Analysis::static_max_cycles,
-      "100000",
-      "with `static_force_ratio`, the most cycles a static step takes; a step that has not settled by "
-         "then is cut as an open–close iteration that does not settle is (and taken as a collapse stage "
-         "where `settle.collapse_dt` asks for them); ≥ 1"));
-  keys.push_back(number_key("analysis", "static_local_damping", "–", {0.0, true, 1.0, true}, &Analysis::static_local_damping,
-      "0.8",
-      "with `static_force_ratio`, the local (non-viscous) damping α of the static steps' cycles "
-         "(UDEC's default 0.8); (0, 1)"));
-  keys.push_back(number_key("analysis", "contact_residual_tolerance", "–", {0.0, true, 1.0, true}, &Analysis::contact_residual_tolerance,
-      "1e-4",
-      "under `contact_solver: newton`, a step is accepted when the residual of its equations, "
-         "\\|F0 − K0 D − f(D)\\|, is at most this fraction of the contact forces \\|f(D)\\| "
-         "(rotation and strain rows divided by the block's size); in (0, 1)"));
+  keys.push_back(setting_key("explicit_safety", &Analysis::explicit_safety));
+  keys.push_back(setting_key("explicit_damping", &Analysis::explicit_damping));
+  keys.push_back(setting_key("stage_local_damping", &Analysis::stage_local_damping));
+  keys.push_back(setting_key("stage_cycles", &Analysis::stage_cycles));
+  keys.push_back(setting_key("static_force_ratio", &Analysis::static_force_ratio));
+  keys.push_back(setting_key("static_max_cycles", &Analysis::static_max_cycles));
+  keys.push_back(setting_key("static_local_damping", &Analysis::static_local_damping));
+  keys.push_back(setting_key("contact_residual_tolerance", &Analysis::contact_residual_tolerance));
   keys.push_back(number_key("analysis", "output_interval", "time", {0.0, true, kInf, false}, &Analysis::output_interval,
       "duration / 100, `dt` when longer",
       "time between output times, ≤ duration: at k × `output_interval` (and at the end) a step "

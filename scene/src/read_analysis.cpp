@@ -9,6 +9,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "read_keys.hpp"
+#include "rheodda/core/settings.hpp"
 #include "scene_readers.hpp"
 
 namespace rheodda::scene::detail {
@@ -85,11 +86,15 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   if (a.dt > a.duration)
     ctx.fail(m.find("dt"), m.child("dt"), fmt::format("dt = {:g} is longer than duration = {:g}", a.dt, a.duration));
   if (m.has("settle")) read_settle(ctx, m, a);
-  if (const YAML::Node v = m.find("dynamic_ratio"); !v.IsDefined()) {
-    a.dynamic_ratio = dynamic ? 1.0 : 0.0;
-  } else if (!dynamic) {
+  // The engine's settings whose default depends on the analysis type (core/settings.hpp:
+  // dynamic_ratio, open_close_limit), where the scene does not give them.
+  for (const core::SettingSpec& s : core::setting_specs())
+    if (s.static_default && !m.has(s.name())) {
+      const KeySpec& k = analysis_key(s.name());
+      k.set(a, key_value_of(k.type, s.default_for(dynamic)));
+    }
+  if (const YAML::Node v = m.find("dynamic_ratio"); v.IsDefined() && !dynamic)
     ctx.fail(v, m.child("dynamic_ratio"), "a static analysis carries no velocity; dynamic_ratio needs `type: dynamic`");
-  }
   if (const YAML::Node v = m.find("time_integration");
       v.IsDefined() && a.time_integration == TimeIntegration::trapezoidal) {
     // The trapezoidal rule carries velocity and acceleration from step to step;
@@ -188,10 +193,6 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   // every 0.007 d, 23 in 4 d of the seed's slope against 4 with the force kept).
   a.stick_keeps_force_given = m.has("stick_keeps_force");
   if (!a.stick_keeps_force_given) a.stick_keeps_force = dynamic || (a.settle && a.settle->collapse_dt > 0.0);
-  // Static: Shi's 8, so that a step whose contacts do not settle is cut and retaken
-  // smaller rather than settled into a sliding state at a large dt; dynamic: 30
-  // (brick walls). Measured in docs/notes/contact-solves.md, "The iteration limit in static analysis".
-  if (!m.has("open_close_limit")) a.open_close_limit = dynamic ? 30 : 8;
   if (const YAML::Node v = m.find("output_interval"); !v.IsDefined()) {
     // A step ends on each output time (docs/reference/outputs.md, "Output times"): the
     // default asks for no step shorter than dt.

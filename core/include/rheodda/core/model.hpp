@@ -4,7 +4,7 @@
 //
 // Why plain structs: the reader and the engine stay independent, a model can
 // be written by hand in a test in a few lines, and defaults live in one place
-// (here). Units: any consistent system (the numbers in the defaults are SI:
+// (here; settings.hpp reads them). Units: any consistent system (defaults in SI:
 // kg, m, s, Pa). Bodies are plates of unit thickness, so "force" below is
 // force per unit thickness and "stress" is force/length^2.
 #pragma once
@@ -162,7 +162,7 @@ enum class TimeIntegration {
   trapezoidal,  ///< beta = 1/4, gamma = 1/2: keeps the energy of linear vibrations (dynamic only)
 };
 
-/// Analysis settings (Shi's control parameters).
+/// Analysis settings (Shi's control parameters); settings.hpp declares most once (scene word, unit, range, meaning).
 struct Settings {
   double dt = 1.0e-3;            ///< largest (and first) step size [time]; > 0
   double dt_growth = 1.5;        ///< after a cut, each accepted step lets dt grow by this factor,

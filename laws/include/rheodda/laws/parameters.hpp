@@ -25,17 +25,23 @@ class LawError : public std::runtime_error {
   std::string key_;
 };
 
-/// One parameter of a law.
+/// One parameter of a law, or one setting of the engine (core/settings.hpp declares
+/// core::Settings with it): the one declaration type of a number the user gives.
 struct ParameterSpec {
   std::string name;     ///< key in YAML, on the command line and in fits, e.g. "eta1"
   std::string unit;     ///< dimension per unit joint area, e.g. "stress/length"
   std::string meaning;  ///< one line for `rheodda law list`
   double min = 0.0;     ///< lower bound of the valid range
   bool min_exclusive = true;  ///< true: value > min; false: value >= min
-  double max = std::numeric_limits<double>::max();  ///< upper bound (inclusive)
+  double max = std::numeric_limits<double>::max();  ///< upper bound
   std::optional<double> default_value{};  ///< used when the key is absent
+  bool max_exclusive = false;  ///< true: value < max; false: value <= max
   /// "(0, 1.8e308]"-style text of the valid range.
   std::string range_text() const;
+  /// `v` lies in the valid range.
+  bool admits(double v) const {
+    return (min_exclusive ? v > min : v >= min) && (max_exclusive ? v < max : v <= max);
+  }
   /// What the parameter's value decides in the law's creep, by its dimension, for a
   /// value the data do not determine: a threshold [stress] decides whether a contact
   /// near it flows at all; a viscosity, the rate of its element; a stiffness, its size.

@@ -102,6 +102,19 @@ struct EntryKey : KeyInfo {
 /// A key of `analysis:` or `analysis.settle`.
 using KeySpec = EntryKey<Analysis>;
 
+/// The key `name` of `analysis:` (not of `analysis.settle`); std::logic_error if none is declared.
+const KeySpec& analysis_key(const std::string& name);
+
+/// The value of a number, integer or flag key as a double (a flag as 0 or 1);
+/// std::logic_error for a value of another kind.
+double key_number(const KeyValue& v);
+
+/// The value of a number, integer or flag key (`type`) that is `v`.
+KeyValue key_value_of(KeyType type, double v);
+
+/// A number or integer key's valid values as text: "(0, 1]", "[1, ∞)"; "" for other keys.
+std::string key_range_text(const KeyInfo& k);
+
 /// `rectangle:` or `grid:` of a block as written: the lower-left corner and size
 /// [length], the rotation [deg], a grid's counts.
 struct BlockShape {
@@ -205,7 +218,7 @@ std::vector<EntryKey<E>> keys_except(const std::vector<EntryKey<E>>& keys, const
   return out;
 }
 
-/// The Markdown key table of one map (`| key | unit | meaning | default |`), as
+/// The Markdown key table of one map (`| key | unit | range | meaning | default |`), as
 /// docs/reference/scene-format.md holds it between `<!-- keys-MAP:begin/end -->` markers.
 /// A map key's meaning starts with its keys, `{a, b, ...}`, from their declarations.
 std::string key_table_markdown(const std::string& map);

@@ -16,9 +16,11 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "rheodda/core/methods.hpp"
+#include "rheodda/core/setting_defaults.hpp"
 #include "rheodda/laws/contact_rheology.hpp"
 #include "rheodda/laws/parameters.hpp"
 #include "rheodda/rockmass/cut.hpp"
@@ -50,15 +52,25 @@ enum class TimeIntegration { shi, trapezoidal };
 enum class HistoryRows { outputs, steps };
 
 /// `analysis:` — time stepping, contact numerics, outputs.
+///
+/// A field named as a setting of the engine (core/settings.hpp: dt_growth, dt_cut,
+/// max_cuts, ...) is that setting as the scene gives it: its key's unit, range, default
+/// and meaning are the setting's declaration (keys.cpp), its default here the engine's
+/// in a static analysis (the default `type`; the loader gives a dynamic one the
+/// engine's dynamic default where it differs: dynamic_ratio, open_close_limit), and
+/// build_scene copies it into core::Settings through the declarations.
 struct Analysis {
+  /// The default of the engine's setting `name` in a static analysis.
+  template <class T>
+  static T default_of(std::string_view name) { return core::setting_default_as<T>(name, false); }
   AnalysisType type = AnalysisType::static_analysis;  ///< `type: static|dynamic`
   double duration = 0.0;               ///< simulated time [time]; required, > 0
   double dt = 0.0;                     ///< first and largest time step [time]; required, > 0
-  double dt_growth = 1.5;              ///< fixed dt: after a cut, each accepted step grows by this factor,
+  double dt_growth = default_of<double>("dt_growth");              ///< fixed dt: after a cut, each accepted step grows by this factor,
                                        ///< up to dt [-]; >= 1; not under creep_tolerance or step_tolerance
-  double dt_cut = 0.3;                 ///< factor on the step when a step is cut [-]; in (0, 1)
-  int max_cuts = 30;                   ///< cuts of dt (x dt_cut each) allowed in one step before the run fails [-]
-  double max_displacement_ratio = 0.01;  ///< Shi's g2: allowed step displacement / half model size [-]
+  double dt_cut = default_of<double>("dt_cut");                 ///< factor on the step when a step is cut [-]; in (0, 1)
+  int max_cuts = default_of<int>("max_cuts");                   ///< cuts of dt (x dt_cut each) allowed in one step before the run fails [-]
+  double max_displacement_ratio = default_of<double>("max_displacement_ratio");  ///< Shi's g2: allowed step displacement / half model size [-]
   /// `settle: {until, dt, max_displacement_ratio, type, collapse_dt, gravity_ramp, rest_tolerance}`: a settling stage at the start
   /// (docs/reference/engine.md, "Settling stage"): steps of at most `dt` with the displacement
   /// limit `max_displacement_ratio` until `until`, then the analysis's own.
@@ -99,7 +111,7 @@ struct Analysis {
     return type == AnalysisType::dynamic_analysis || (settle && settle->dynamic);
   }
   std::optional<Settle> settle;
-  double dynamic_ratio = 0.0;          ///< share of velocity carried to the next step [-]; default 1 dynamic, 0 static
+  double dynamic_ratio = default_of<double>("dynamic_ratio");  ///< share of velocity carried to the next step [-]
   /// Inertia terms `time_integration: shi|trapezoidal` (docs/reference/engine.md); trapezoidal needs
   /// a dynamic analysis with dynamic_ratio > 0.
   TimeIntegration time_integration = TimeIntegration::shi;
@@ -107,13 +119,13 @@ struct Analysis {
   /// per joint set and step, exponential-linear where the step is below its no-ringing
   /// limit, implicit otherwise (contact::ContactSettings::scheme).
   std::optional<laws::Scheme> scheme;
-  double creep_tolerance = 0.0;        ///< adaptive creep stepping: creep error allowed per step [length]; 0 = fixed dt
-  double step_tolerance = 0.0;         ///< step doubling: vertex difference allowed between one step of dt
+  double creep_tolerance = default_of<double>("creep_tolerance");        ///< adaptive creep stepping: creep error allowed per step [length]; 0 = fixed dt
+  double step_tolerance = default_of<double>("step_tolerance");         ///< step doubling: vertex difference allowed between one step of dt
                                        ///< and two of dt/2 [length]; 0 = off; not with creep_tolerance
-  bool step_extrapolation = true;      ///< under step_tolerance: accept 2 y(dt/2) - y(dt) (second order)
-  double dt_max = 0.0;                 ///< largest step under creep_tolerance or step_tolerance [time];
+  bool step_extrapolation = default_of<bool>("step_extrapolation");      ///< under step_tolerance: accept 2 y(dt/2) - y(dt) (second order)
+  double dt_max = default_of<double>("dt_max");                 ///< largest step under creep_tolerance or step_tolerance [time];
                                        ///< 0 = no limit
-  bool creep_restart_on_contact_change = false;  ///< under creep_tolerance: restart from dt after a step
+  bool creep_restart_on_contact_change = default_of<bool>("creep_restart_on_contact_change");  ///< under creep_tolerance: restart from dt after a step
                                                 ///< in which a creeping contact changed state
   double penalty = 0.0;                ///< normal contact penalty p_n [stress]; default 40 x largest young_modulus (seed eq. 17)
   double shear_normal_ratio = 2.5;     ///< p_n / p_s of penalty shear springs [-]
@@ -140,12 +152,11 @@ struct Analysis {
   int max_refinements = 3;             ///< friction refinements per contact and step [-]
   double penalty_raise = 2.0;          ///< factor on the penalty when penetration exceeds its limit [-]
   double penalty_max_factor = 64.0;    ///< largest penalty / initial penalty [-]
-  int open_close_limit = 30;           ///< open-close iterations before a step is cut [-];
-                                       ///< the loader's default: 8 (Shi's) in a static analysis, 30 in a dynamic one
-  double fixed_point_stiffness = 0.0;  ///< fixed-point spring [force/length]; default 100 x largest young_modulus
+  int open_close_limit = default_of<int>("open_close_limit");  ///< open-close iterations before a step is cut [-]
+  double fixed_point_stiffness = default_of<double>("fixed_point_stiffness");  ///< fixed-point spring [force/length]; 0: automatic
   core::SolverKind solver = core::SolverKind::automatic;  ///< `solver`: the words are core::linear_solvers()'
-  double solver_tolerance = 1e-10;     ///< relative residual at which pcg and amg stop [-]
-  double solver_iterate_tolerance = 1e-4;  ///< the same in open-close iterates whose states still change [-]
+  double solver_tolerance = default_of<double>("solver_tolerance");     ///< relative residual at which pcg and amg stop [-]
+  double solver_iterate_tolerance = default_of<double>("solver_iterate_tolerance");  ///< the same in open-close iterates whose states still change [-]
   /// `contact_solver`: `open-close` (Shi's iteration, until no contact changes its
   /// state) or `newton` (the same iterates, accepted on the residual of the step's
   /// equations; docs/reference/contacts.md, "Contact solves")
@@ -154,21 +165,21 @@ struct Analysis {
   /// `automatic` (the one estimated cheaper on the initial state, resolved by build_scene through
   /// choose_integrator, integrator_choice.hpp); the words are core::integrators()'.
   core::Integrator integrator = core::Integrator::implicit;
-  double explicit_safety = 0.8;        ///< the explicit cycle / the stable one [-]; in (0, 1]
-  double explicit_damping = 0.5;       ///< damping ratio the explicit cycles give what has no damping
+  double explicit_safety = default_of<double>("explicit_safety");        ///< the explicit cycle / the stable one [-]; in (0, 1]
+  double explicit_damping = default_of<double>("explicit_damping");       ///< damping ratio the explicit cycles give what has no damping
                                        ///< of its own (contacts, blocks' strain modes) [-]; in [0, 1]
-  double stage_local_damping = 0.0;    ///< local damping of explicit cycles in the dynamic stages
+  double stage_local_damping = default_of<double>("stage_local_damping");    ///< local damping of explicit cycles in the dynamic stages
                                        ///< of a static analysis [-]; in [0, 1)
-  int stage_cycles = 0;                ///< density scaling: the most explicit cycles per step of a
+  int stage_cycles = default_of<int>("stage_cycles");                ///< density scaling: the most explicit cycles per step of a
                                        ///< dynamic stage of a static analysis [-]; 0 = none
-  double static_force_ratio = 0.0;     ///< static steps by explicit cycles until the unbalanced-force
+  double static_force_ratio = default_of<double>("static_force_ratio");     ///< static steps by explicit cycles until the unbalanced-force
                                        ///< ratio is at most this [-]; in [0, 1); 0 = static steps implicit
-  int static_max_cycles = 100000;      ///< the most cycles of a static step by cycles [-]; >= 1
-  double static_local_damping = 0.8;   ///< local damping of the static steps by cycles [-]; in (0, 1)
+  int static_max_cycles = default_of<int>("static_max_cycles");      ///< the most cycles of a static step by cycles [-]; >= 1
+  double static_local_damping = default_of<double>("static_local_damping");   ///< local damping of the static steps by cycles [-]; in (0, 1)
   /// `contact_residual_tolerance`: under `newton`, a step is accepted when the
   /// residual of its equations is at most this fraction of the contact forces [-]; in (0, 1)
-  double contact_residual_tolerance = 1e-4;
-  int solver_max_iterations = 10000;   ///< CG iteration limit per solve of pcg and amg [-]; >= 1
+  double contact_residual_tolerance = default_of<double>("contact_residual_tolerance");
+  int solver_max_iterations = default_of<int>("solver_max_iterations");   ///< CG iteration limit per solve of pcg and amg [-]; >= 1
   double output_interval = 0.0;        ///< time between output times [time]; default duration / 100
   /// `output_times`: output times besides every output_interval [time]; strictly
   /// increasing, in (0, duration]; empty: none. A study adds its `times` here.

@@ -1,0 +1,254 @@
+// The declarations of core::Settings (settings.hpp), one entry per setting, in the order
+// of the docs. Each entry: the member, its unit, its range and its meaning; the default
+// is the member's initializer (model.hpp), read from Settings{}.
+#include "rheodda/core/settings.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "rheodda/core/defaults.hpp"
+#include "rheodda/core/setting_defaults.hpp"
+
+namespace rheodda::core {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::max();
+
+/// A range: [min or (min, max] or max).
+struct Range {
+  double min = 0.0;
+  bool min_exclusive = false;
+  double max = kInf;
+  bool max_exclusive = false;
+};
+constexpr Range kPositive{0.0, true, kInf, false};     ///< > 0
+constexpr Range kNonNegative{0.0, false, kInf, false};  ///< >= 0
+constexpr Range kFraction{0.0, false, 1.0, true};      ///< [0, 1)
+constexpr Range kOpenFraction{0.0, true, 1.0, true};   ///< (0, 1)
+
+template <class T>
+constexpr SettingType type_of() {
+  if constexpr (std::is_same_v<T, double>) return SettingType::number;
+  else if constexpr (std::is_same_v<T, int>) return SettingType::integer;
+  else return SettingType::flag;
+}
+
+/// The declaration of the member `field`, named `name` (the scene's word).
+template <class T>
+SettingSpec declare(const char* name, const char* unit, Range r, T Settings::*field, const char* meaning) {
+  static_assert(std::is_same_v<T, double> || std::is_same_v<T, int> || std::is_same_v<T, bool>);
+  SettingSpec s;
+  s.parameter.name = name;
+  s.parameter.unit = unit;
+  s.parameter.meaning = meaning;
+  s.type = type_of<T>();
+  if (s.type == SettingType::flag) r = {0.0, false, 1.0, false};
+  s.parameter.min = r.min;
+  s.parameter.min_exclusive = r.min_exclusive;
+  s.parameter.max = r.max;
+  s.parameter.max_exclusive = r.max_exclusive;
+  s.field = field;
+  s.parameter.default_value = static_cast<double>(Settings{}.*field);
+  return s;
+}
+
+std::vector<SettingSpec> declare_settings() {
+  std::vector<SettingSpec> out;
+  auto add = [&out](SettingSpec s) -> SettingSpec& { return out.emplace_back(std::move(s)); };
+
+  add(declare("dt", "time", kPositive, &Settings::dt,
+              "first and largest time step; ≤ `duration`")).between_steps = true;
+  add(declare("dt_growth", "–", {1.0, false, kInf, false}, &Settings::dt_growth,
+              "fixed-step runs: after a cut, each accepted step is `dt_growth` × the last one, up to "
+              "`dt` (1: the step stays cut); refused under `creep_tolerance` or `step_tolerance` "
+              "(the control sizes the steps)")).between_steps = true;
+  add(declare("dt_cut", "–", kOpenFraction, &Settings::dt_cut,
+              "factor on the step when a step is cut (open–close iteration not converged, or a step "
+              "displacement above `max_displacement_ratio` × half model size); also the smallest factor "
+              "an adaptive control shrinks a step by at once")).between_steps = true;
+  add(declare("max_cuts", "–", {0.0, false, 200.0, false}, &Settings::max_cuts,
+              "times dt may be cut (× `dt_cut` each) in one step before the run fails")).between_steps = true;
+  add(declare("max_displacement_ratio", "–", kPositive, &Settings::max_displacement_ratio,
+              "Shi's g2: allowed displacement per step / half model size")).between_steps = true;
+  SettingSpec& dynamic_ratio = add(declare("dynamic_ratio", "–", {0.0, false, 1.0, false}, &Settings::dynamic_ratio,
+              "share of velocity carried to the next step (0: a static analysis, no velocity at all); "
+              "given only with `type: dynamic`"));
+  dynamic_ratio.static_default = 0.0;
+  add(declare("creep_tolerance", "length", kNonNegative, &Settings::creep_tolerance,
+              "adaptive creep stepping (docs/guide/choosing-step-controls.md): the creep error allowed per step; the "
+              "step grows (up to ×2) while the estimate stays below it, restarts from `dt` after a load "
+              "change, and a step whose estimate exceeds 2× the tolerance is redone smaller (not below "
+              "`dt`); 0 = fixed `dt`")).between_steps = true;
+  add(declare("step_tolerance", "length", kNonNegative, &Settings::step_tolerance,
+              "adaptive stepping by step doubling (docs/reference/step-controls.md, \"Step doubling\"): each "
+              "step is taken once with dt and twice with dt/2 from the same state; the largest "
+              "difference over the block vertices must stay below the tolerance; the step grows (up to "
+              "×2) while it does, restarts from `dt` after a load change, never falls below `dt`, and a "
+              "step whose difference exceeds 2× the tolerance is redone smaller; 3 solves per step; not "
+              "with `creep_tolerance`; 0 = off")).between_steps = true;
+  add(declare("step_extrapolation", "–", {}, &Settings::step_extrapolation,
+              "under `step_tolerance`: accept 2 y(dt/2) − y(dt) (Richardson: second order) when both "
+              "runs end with the same contacts in the same states, else y(dt/2); `false`: always "
+              "y(dt/2) (first order); only with `step_tolerance`")).between_steps = true;
+  add(declare("dt_max", "time", kNonNegative, &Settings::dt_max,
+              "largest step under `creep_tolerance` or `step_tolerance` (refused without one); 0 = no "
+              "limit; >= `dt` when given")).between_steps = true;
+  add(declare("creep_restart_on_contact_change", "–", {}, &Settings::creep_restart_on_contact_change,
+              "under `creep_tolerance`: the step after one in which a creeping contact locked, slid or "
+              "opened restarts from `dt` (as after a load change)"));
+  SettingSpec& open_close = add(declare("open_close_limit", "–", {1.0, false, 1000.0, false}, &Settings::open_close_limit,
+              "open–close iterations before a step is cut (the static default is Shi's; docs/notes/contact-solves.md, \"The "
+              "iteration limit in static analysis\")"));
+  open_close.static_default = 8.0;
+  open_close.between_steps = true;
+  SettingSpec& fixed = add(declare("fixed_point_stiffness", "force/length", kPositive, &Settings::fixed_point_stiffness,
+              "spring holding a fixed point (times J/S, the block's polar radius of gyration squared: the rotational "
+              "spring of `hold: rotation` [force·length/rad])"));
+  fixed.default_meaning = fmt::format("{:g} × the largest `young_modulus`", kFixedPointFactor);
+  add(declare("solver_tolerance", "–", kOpenFraction, &Settings::solver_tolerance,
+              "`amg` and `pcg` stop when ‖F − K D‖ ≤ solver_tolerance ‖F‖ (the true residual)")).between_steps = true;
+  add(declare("solver_max_iterations", "–", {1.0, false, 1.0e9, false}, &Settings::solver_max_iterations,
+              "conjugate-gradient iterations allowed per solve of `amg` and `pcg`; a solve that reaches "
+              "it without meeting `solver_tolerance` stops the run with an error")).between_steps = true;
+  add(declare("solver_iterate_tolerance", "–", kFraction, &Settings::solver_iterate_tolerance,
+              "`amg` and `pcg` stop at this relative residual in an open–close iterate whose contact "
+              "states are still changing; a step is accepted only on a check of a solve at "
+              "`solver_tolerance` (docs/notes/contact-solves.md, \"Inexact iterates\"); 0 = "
+              "every solve at `solver_tolerance`; no effect with `cholmod` (exact)")).between_steps = true;
+  add(declare("explicit_safety", "–", {0.0, true, 1.0, false}, &Settings::explicit_safety,
+              "under `integrator: explicit`, the cycle as a share of the stable one 2/ω_max (ω_max bounded "
+              "per block from its mass and the stiffness of its contacts, elasticity and fixed points)"));
+  add(declare("explicit_damping", "–", {0.0, false, 1.0, false}, &Settings::explicit_damping,
+              "under `integrator: explicit`, the damping ratio the cycles give what has no damping of its own: "
+              "contacts whose joint set has no `restitution` (dashpots beside their springs, the scene's "
+              "highest mode at this ratio) and the strain modes of blocks whose material has no "
+              "`damping_ratio` (each at this ratio). The implicit step damps both within a step; undamped "
+              "they rattle for ever (docs/reference/explicit-step.md, \"Damping\"); 0 = none"));
+  add(declare("stage_local_damping", "–", kFraction, &Settings::stage_local_damping,
+              "under `integrator: explicit`, local (non-viscous) damping α of the cycles in the dynamic "
+              "stages of a static analysis, where only the state at rest matters: each degree of freedom "
+              "takes −α \\|R\\| sign(v) beside its unbalanced force R (UDEC's default is 0.8); "
+              "0 = none; never in a dynamic analysis"));
+  add(declare("stage_cycles", "–", {0.0, false, 1.0e8, false}, &Settings::stage_cycles,
+              "under `integrator: explicit`, density scaling in the dynamic stages of a static analysis, "
+              "where only the state at rest matters: the most cycles a step of a stage takes; a block whose "
+              "stable cycle is shorter has its mass scaled up until it is not, its loads unchanged "
+              "(docs/reference/explicit-step.md, \"Density scaling\"); 0 = none; never in a dynamic analysis"));
+  add(declare("static_force_ratio", "–", kFraction, &Settings::static_force_ratio,
+              "under `integrator: explicit`, the static steps of a static analysis (its creep steps) taken by "
+              "cycles from rest, each block's mass scaled to a common cycle and locally damped, until the "
+              "largest unbalanced force of a block is at most this fraction of the mean applied force (UDEC's "
+              "ratio; 1e-5 is customary) (docs/reference/explicit-step.md, \"Static steps by cycles\"); "
+              "0 = the static steps implicit; a static analysis only"));
+  add(declare("static_max_cycles", "–", {1.0, false, 1.0e9, false}, &Settings::static_max_cycles,
+              "with `static_force_ratio`, the most cycles a static step takes; a step that has not settled by "
+              "then is cut as an open–close iteration that does not settle is (and taken as a collapse stage "
+              "where `settle.collapse_dt` asks for them)"));
+  add(declare("static_local_damping", "–", kOpenFraction, &Settings::static_local_damping,
+              "with `static_force_ratio`, the local (non-viscous) damping α of the static steps' cycles "
+              "(UDEC's default 0.8)"));
+  add(declare("contact_residual_tolerance", "–", kOpenFraction, &Settings::contact_residual_tolerance,
+              "under `contact_solver: newton`, a step is accepted when the residual of its equations, "
+              "\\|F0 − K0 D − f(D)\\|, is at most this fraction of the contact forces \\|f(D)\\| "
+              "(rotation and strain rows divided by the block's size)"));
+  return out;
+}
+
+std::string bound_text(double v, SettingType t) {
+  if (v == kInf) return "∞";
+  return t == SettingType::integer && v < 1e6 ? fmt::format("{:.0f}", v) : setting_number_text(v);
+}
+
+}  // namespace
+
+double SettingSpec::value(const Settings& s) const {
+  return std::visit([&s](auto m) { return static_cast<double>(s.*m); }, field);
+}
+
+void SettingSpec::set(Settings& s, double v) const {
+  std::visit(
+      [&s, v](auto m) {
+        using T = std::remove_reference_t<decltype(s.*m)>;
+        if constexpr (std::is_same_v<T, bool>)
+          s.*m = v != 0.0;
+        else
+          s.*m = static_cast<T>(v);
+      },
+      field);
+}
+
+double SettingSpec::default_for(bool dynamic) const {
+  return !dynamic && static_default ? *static_default : *parameter.default_value;
+}
+
+bool SettingSpec::admits(double v) const {
+  if (!std::isfinite(v)) return false;
+  if (!default_meaning.empty() && v == *parameter.default_value) return true;
+  if (type == SettingType::integer && v != std::floor(v)) return false;
+  return parameter.admits(v);
+}
+
+std::string SettingSpec::range_text() const {
+  if (type == SettingType::flag) return "true or false";
+  return fmt::format("{}{}, {}{}", parameter.min_exclusive ? "(" : "[", bound_text(parameter.min, type),
+                     bound_text(parameter.max, type), parameter.max_exclusive || parameter.max == kInf ? ")" : "]");
+}
+
+std::string SettingSpec::default_text() const {
+  if (!default_meaning.empty()) return default_meaning;
+  auto text = [this](double v) {
+    if (type == SettingType::flag) return std::string(v != 0.0 ? "true" : "false");
+    return type == SettingType::integer ? fmt::format("{:.0f}", v) : setting_number_text(v);
+  };
+  if (static_default)
+    return fmt::format("{} (dynamic), {} (static)", text(default_for(true)), text(default_for(false)));
+  return text(*parameter.default_value);
+}
+
+std::string setting_number_text(double v) {
+  if (!std::isfinite(v) || v == 0.0 || (std::abs(v) >= 0.01 && std::abs(v) < 1e6)) return fmt::format("{:g}", v);
+  // 1.000000e-04 -> 1e-4, 1.000000e+09 -> 1e9: the mantissa without trailing zeros, the exponent without padding.
+  const std::string e = fmt::format("{:e}", v);
+  const auto at = e.find('e');
+  std::string mantissa = e.substr(0, at);
+  if (mantissa.find('.') != std::string::npos) {
+    mantissa.erase(mantissa.find_last_not_of('0') + 1);
+    if (mantissa.back() == '.') mantissa.pop_back();
+  }
+  return mantissa + "e" + std::to_string(std::stoi(e.substr(at + 1)));
+}
+
+const std::vector<SettingSpec>& setting_specs() {
+  static const std::vector<SettingSpec> specs = declare_settings();
+  return specs;
+}
+
+const SettingSpec& setting_spec(std::string_view name) {
+  for (const SettingSpec& s : setting_specs())
+    if (s.name() == name) return s;
+  throw std::out_of_range("core::Settings declares no setting " + std::string(name));
+}
+
+double setting_default(std::string_view name, bool dynamic) { return setting_spec(name).default_for(dynamic); }
+
+std::string settings_table_markdown() {
+  std::string out = "| setting | unit | range | default | meaning |\n|---|---|---|---|---|\n";
+  for (const SettingSpec& s : setting_specs())
+    out += fmt::format("| `{}` | {} | {} | {} | {} |\n", s.name(), s.parameter.unit, s.range_text(), s.default_text(),
+                       s.parameter.meaning);
+  return out;
+}
+
+void check_setting_ranges(const Settings& s) {
+  for (const SettingSpec& spec : setting_specs())
+    if (const double v = spec.value(s); !spec.admits(v))
+      throw ModelError("settings." + spec.name(),
+                       fmt::format("{} is not in {}{}", setting_number_text(v), spec.range_text(),
+                                   spec.parameter.unit == "–" ? "" : " (" + spec.parameter.unit + ")"));
+}
+
+}  // namespace rheodda::core

@@ -1,0 +1,186 @@
+// The engine's settings (core/settings.hpp) and the scene's `analysis:` keys: each
+// declared setting is the key of its name with the declaration's type, unit, range,
+// default and meaning; the loader gives it the declaration's default for the
+// analysis type; build_scene hands the engine the value read; the engine refuses a
+// value outside the declared range under the key `settings.NAME`; and
+// docs/reference/engine.md's table is the declarations'. The reverse: every key of
+// `analysis:` is either a declared setting or one of the keys the scene keeps for
+// itself or hands to the contact layer (listed below), so that a new key is one or
+// the other on purpose.
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include "test_support.hpp"
+#include "rheodda/core/engine.hpp"
+#include "rheodda/core/settings.hpp"
+#include "rheodda/scene/build.hpp"
+#include "rheodda/scene/keys.hpp"
+#include "rheodda/scene/loader.hpp"
+
+using namespace rheodda;
+using namespace rheodda::test;
+
+namespace {
+
+scene::KeyType key_type(core::SettingType t) {
+  switch (t) {
+    case core::SettingType::number: return scene::KeyType::number;
+    case core::SettingType::integer: return scene::KeyType::integer;
+    case core::SettingType::flag: return scene::KeyType::flag;
+  }
+  return scene::KeyType::text;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(engine_settings)
+
+BOOST_AUTO_TEST_CASE(every_engine_setting_is_the_analysis_key_of_its_name_with_its_declaration) {
+  BOOST_TEST_REQUIRE(core::setting_specs().size() >= 20u);
+  const scene::Analysis fresh{};
+  for (const core::SettingSpec& s : core::setting_specs()) {
+    BOOST_TEST_CONTEXT("setting " << s.name()) {
+      const scene::KeySpec& k = scene::analysis_key(s.name());
+      BOOST_TEST((k.type == key_type(s.type)));
+      BOOST_TEST(k.unit == s.parameter.unit);
+      BOOST_TEST(k.meaning == s.parameter.meaning);
+      if (s.type != core::SettingType::flag) {
+        BOOST_TEST(k.range.min == s.parameter.min);
+        BOOST_TEST(k.range.min_exclusive == s.parameter.min_exclusive);
+        BOOST_TEST(k.range.max == s.parameter.max);
+        BOOST_TEST(k.range.max_exclusive == s.parameter.max_exclusive);
+        BOOST_TEST(scene::key_range_text(k) == s.range_text());
+      }
+      // Settings{} holds the default of a dynamic analysis; Analysis{}, of the scene's
+      // default type, a static one. A key the scene requires has no default of its own.
+      BOOST_TEST(*s.parameter.default_value == s.value(core::Settings{}));
+      if (k.required.empty()) {
+        BOOST_TEST(k.default_text == s.default_text());
+        BOOST_TEST(scene::key_number(k.get(fresh)) == s.default_for(false));
+      } else {
+        BOOST_TEST(k.default_text == "required");
+      }
+      BOOST_TEST(s.admits(s.default_for(true)));
+      BOOST_TEST(s.admits(s.default_for(false)));
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(every_analysis_key_is_an_engine_setting_or_one_the_scene_keeps_or_hands_the_contacts) {
+  // Not settings of core::Settings declared in core/settings.hpp: the scene's own keys
+  // (type, duration, outputs, guards, warnings), the contact layer's (ContactSettings), the
+  // settling stage and the choices, which core does not declare yet (engine.md, "Parameters").
+  const std::set<std::string> others{
+      "type", "duration", "settle", "time_integration", "scheme", "penalty", "shear_normal_ratio",
+      "search_factor", "angle_tolerance", "penetration_ratio", "friction_tolerance", "force_resolution",
+      "max_flips", "max_refinements", "penalty_raise", "penalty_max_factor", "stick_keeps_force",
+      "accept_unresolved_impacts", "solver", "contact_solver", "integrator", "output_interval", "output_times",
+      "history", "frames", "max_travel_ratio", "max_output_size", "gravity", "accept_other_gravity"};
+  std::set<std::string> declared;
+  for (const core::SettingSpec& s : core::setting_specs()) declared.insert(s.name());
+  for (const std::string& key : scene::declared_key_names("analysis")) {
+    BOOST_TEST_CONTEXT("analysis." << key) {
+      BOOST_TEST((declared.count(key) + others.count(key) == 1u),
+                 "each key of analysis: is a declared setting of the engine or one the scene keeps (not both)");
+    }
+  }
+  for (const std::string& name : declared)
+    BOOST_TEST(scene::analysis_key(name).name == name);
+}
+
+BOOST_AUTO_TEST_CASE(the_loader_gives_each_setting_its_default_by_analysis_type_and_build_hands_it_over) {
+  for (const bool dynamic : {false, true}) {
+    BOOST_TEST_CONTEXT((dynamic ? "dynamic" : "static")) {
+      const std::string text = dynamic ? with("  dt: 0.01", "  dt: 0.01\n  type: dynamic") : kBaseScene;
+      const scene::SceneDescription d = scene::parse_scene(text, "defaults.yaml");
+      const scene::BuiltScene built = scene::build_scene(d);
+      for (const core::SettingSpec& s : core::setting_specs()) {
+        BOOST_TEST_CONTEXT("setting " << s.name()) {
+          const scene::KeySpec& k = scene::analysis_key(s.name());
+          const double read = scene::key_number(k.get(d.analysis));
+          // What the engine gets is what the scene read.
+          BOOST_TEST(s.value(built.model.settings) == read);
+          if (!k.required.empty()) continue;  // dt: the scene's
+          if (!s.default_meaning.empty()) continue;  // a mark the loader replaces (fixed_point_stiffness)
+          BOOST_TEST(read == s.default_for(dynamic));
+        }
+      }
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(a_setting_given_reaches_the_engine_and_out_of_range_is_refused_by_both) {
+  // One value inside each declared range, other than the default, through the scene; and
+  // the engine's own refusal of a value outside it, under settings.NAME.
+  for (const core::SettingSpec& s : core::setting_specs()) {
+    if (s.type == core::SettingType::flag) continue;
+    BOOST_TEST_CONTEXT("setting " << s.name()) {
+      // Below the lower bound, or on it where it is excluded (not on a default mark).
+      const double lo = s.parameter.min;
+      const bool mark = !s.default_meaning.empty() && lo == *s.parameter.default_value;
+      const double bad = s.parameter.min_exclusive && !mark ? lo : lo - 1.0;
+      BOOST_TEST(!s.admits(bad));
+      core::Model m;
+      core::BlockDef b;
+      b.vertices = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+      m.blocks = {b};
+      s.set(m.settings, bad);
+      try {
+        core::Engine e(m);
+        BOOST_ERROR("the engine took " << s.name() << " = " << s.value(m.settings));
+      } catch (const core::ModelError& err) {
+        BOOST_TEST(err.key() == "settings." + s.name());
+        BOOST_TEST(err.message().find(s.range_text()) != std::string::npos, err.what());
+      }
+      // The scene refuses it at its key.
+      const std::string line = "  " + s.name() + ": " + core::setting_number_text(bad);
+      const std::string text =
+          s.name() == "dt" ? with("  dt: 0.01", line) : with("  dt: 0.01", "  dt: 0.01\n" + line);
+      try {
+        (void)scene::parse_scene(text, "range.yaml");
+        BOOST_ERROR("the scene took " << line);
+      } catch (const scene::SceneError& err) {
+        BOOST_TEST(err.key() == "analysis." + s.name(), err.what());
+        BOOST_TEST(err.line() == (s.name() == "dt" ? 4 : 5), err.what());
+      }
+      // Inside, away from the default: the value the scene gives is the engine's.
+      const double hi = s.parameter.max;
+      const bool integer = s.type == core::SettingType::integer;
+      double good = std::numeric_limits<double>::quiet_NaN();
+      for (double c : {hi < 1e300 ? (lo + hi) / 2.0 : lo + 2.0, lo + 2.0, lo + 0.25})
+        if (const double v = integer ? std::floor(c) : c; s.admits(v) && v != s.default_for(false)) {
+          good = v;
+          break;
+        }
+      BOOST_TEST(std::isfinite(good));
+      if (std::isfinite(good) && s.name() != "dt" && s.name() != "dynamic_ratio") {
+        const std::string given = with("  dt: 0.01", "  dt: 0.01\n  " + s.name() + ": " + core::setting_number_text(good));
+        try {
+          const scene::BuiltScene built = scene::build_scene(scene::parse_scene(given, "given.yaml"));
+          BOOST_TEST(s.value(built.model.settings) == good);
+        } catch (const scene::SceneError& err) {
+          // Refused for what it ties to another key (dt_max without a step control, ...): the
+          // key named is its own.
+          BOOST_TEST(err.key() == "analysis." + s.name(), err.what());
+        }
+      }
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(the_engine_docs_table_is_the_declarations) {
+  // docs/reference/engine.md holds, between its settings markers, what `rheodda keys
+  // --markdown settings` prints (scripts/scene-format-tables.sh writes it).
+  const std::string doc = read_text(source_path("docs/reference/engine.md"));
+  const std::string begin = "<!-- settings:begin -->\n", end = "<!-- settings:end -->";
+  const auto b = doc.find(begin), e = doc.find(end);
+  BOOST_TEST_REQUIRE((b != std::string::npos && e != std::string::npos), "no settings markers in engine.md");
+  BOOST_TEST(doc.substr(b + begin.size(), e - b - begin.size()) == core::settings_table_markdown(),
+             "docs/reference/engine.md's table of the settings is not the declarations': run "
+             "scripts/scene-format-tables.sh");
+}
+
+BOOST_AUTO_TEST_SUITE_END()
