@@ -6,13 +6,16 @@
 # envelope (bench/stage_glue.py). With PROTOTYPE=opens it also builds a copy of the tree with
 # bench/prototypes/anti-chattering-opens.patch and prints the slope's stages with it
 # (bench/stage_motion.py, 6 000 steps), then runs the slope with `rheodda run` for 480 s of wall
-# time (its last lines and events.csv); with PROTOTYPE=commit, the run alone, with
-# bench/prototypes/commit-admissible.patch.
+# time (its last lines and events.csv). With RUN=1, the slope by `rheodda run` of the tree as
+# it is, for 600 s of wall time (the commit projecting glued contacts onto their envelope,
+# docs/reference/contacts.md).
 #
 #   scripts/notes-mechanism-glue.sh [FROM TO]     # steps, default 3312 3320
-#   PROTOTYPE=opens|commit scripts/notes-mechanism-glue.sh
+#   PROTOTYPE=opens scripts/notes-mechanism-glue.sh
+#   RUN=1 scripts/notes-mechanism-glue.sh
 #
-# About 3 minutes (the slope's first 3 300 steps); a prototype adds a build and 8-10 minutes.
+# About 3 minutes (the slope's first 3 300 steps); a prototype adds a build and 8-10 minutes,
+# RUN=1 10 minutes.
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 from="${1:-3312}"
 to="${2:-3320}"
@@ -21,10 +24,12 @@ ensure_built rockmass_bench
   --write-scenes "$work" --creep 1000 --max-wall 0 >/dev/null
 scene="$work/jointed-slope-cohesionless-1000.yaml"
 RHEODDA_BUILD_DIR="$build" /usr/bin/python3 "$root/bench/stage_glue.py" "$scene" "$from" "$to" 3
-# run_for ENV_VAR: the slope by `rheodda run` of the prototype's build for 480 s of wall time.
+# run_for ENV_VAR BUILD SECONDS: the slope by `rheodda run` of BUILD for SECONDS of wall time
+# (ENV_VAR set to 1 unless empty).
 run_for() {
-  env "$1=1" /usr/bin/time -f "# CPU: %U s user, %S s system" timeout -s INT 480 "$proto_build/apps/rheodda" run \
+  env ${1:+"$1=1"} /usr/bin/time -f "# CPU: %U s user, %S s system" timeout -s INT "$3" "$2/apps/rheodda" run \
     "$scene" -o "$work/run" --threads 1 >"$work/run.log" 2>&1 || true
+  grep '^rheodda run:' "$work/run.log" | tail -n 1
   grep -v '^rheodda run:' "$work/run.log" | tail -n 9
   cat "$work/run/events.csv"
 }
@@ -34,13 +39,13 @@ case "${PROTOTYPE:-}" in
     echo "# with bench/prototypes/anti-chattering-opens.patch:"
     RHEODDA_ANTI_CHATTERING_OPENS=1 RHEODDA_BUILD_DIR="$proto_build" \
       /usr/bin/python3 "$root/bench/stage_motion.py" "$scene" 6000 100
-    run_for RHEODDA_ANTI_CHATTERING_OPENS
-    ;;
-  commit)
-    prototype_build "$root/bench/prototypes/commit-admissible.patch" rheodda
-    echo "# with bench/prototypes/commit-admissible.patch, rheodda run for 480 s:"
-    run_for RHEODDA_COMMIT_ADMISSIBLE
+    run_for RHEODDA_ANTI_CHATTERING_OPENS "$proto_build" 480
     ;;
   "") ;;
-  *) echo "PROTOTYPE: opens or commit" >&2; exit 2 ;;
+  *) echo "PROTOTYPE: opens" >&2; exit 2 ;;
 esac
+if [[ -n "${RUN:-}" ]]; then
+  ensure_built rheodda
+  echo "# rheodda run for 600 s:"
+  run_for "" "$build" 600
+fi
