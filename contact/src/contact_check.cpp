@@ -47,7 +47,7 @@ void ContactSystem::lock_at_touch(std::span<const BlockView> blocks, size_t c, d
   // before the touch, so the spring's stretch counts from there.
   Contact& r = work_[c];
   const BlockView& eb = blocks[r.key.eblock];
-  r.locking_ratio += flight / (edge_end(eb, r.key.edge) - edge_start(eb, r.key.edge)).norm();
+  r.locking_ratio += flight / edge_length(eb, r.key.edge);
   prepare(blocks, r, hot_[c]);
 }
 

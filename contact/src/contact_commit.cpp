@@ -58,7 +58,7 @@ void ContactSystem::project_onto_envelope(std::span<const BlockView> blocks, siz
     const double f = (r.shear_force >= 0.0 ? 1.0 : -1.0) *
                      mohr_coulomb_strength(r.normal_force, h.tan_phi, h.cohesion, r.length);
     const BlockView& eb = blocks[r.key.eblock];
-    r.locking_ratio += (r.shear_force - f) / h.ps / (edge_end(eb, r.key.edge) - edge_start(eb, r.key.edge)).norm();
+    r.locking_ratio += (r.shear_force - f) / h.ps / edge_length(eb, r.key.edge);
     r.shear_force = f;
     r.intact = false;
     ++projections_;
@@ -139,7 +139,7 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
         }
         if (crept) {
           const BlockView& eb = blocks[r.key.eblock];
-          r.locking_ratio += creep / (edge_end(eb, r.key.edge) - edge_start(eb, r.key.edge)).norm();
+          r.locking_ratio += creep / edge_length(eb, r.key.edge);
           r.shear_force = h.ps * (h.dt0 + slip - creep);
           work_creep_[c] = creep;
           r.creep_displacement += creep;

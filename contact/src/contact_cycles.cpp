@@ -320,7 +320,7 @@ CheckResult ContactSystem::end_cycles(std::span<const BlockView> blocks, const E
     if (y.state == ContactState::locked && y.shift != 0.0) {
       // The locking point where the cycles left it: end_step's stretch d_t0 + slip counts from there.
       const BlockView& eb = blocks[r.key.eblock];
-      r.locking_ratio += y.shift / (edge_end(eb, r.key.edge) - edge_start(eb, r.key.edge)).norm();
+      r.locking_ratio += y.shift / edge_length(eb, r.key.edge);
       h.dt0 -= y.shift;
     }
     const auto Di = D.segment<6>(6 * r.key.vblock);

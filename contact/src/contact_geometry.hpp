@@ -23,6 +23,8 @@ inline Vec2 edge_start(const BlockView& b, int e) { return b.vertices[e]; }
 inline Vec2 edge_end(const BlockView& b, int e) {
   return b.vertices[wrap(e + 1, static_cast<int>(b.vertices.size()))];
 }
+/// Length of edge e of block b [length]: what a locking ratio along it is a fraction of.
+inline double edge_length(const BlockView& b, int e) { return (edge_end(b, e) - edge_start(b, e)).norm(); }
 
 /// Fraction along a -> b of the projection of p, clamped to [0, 1].
 inline double projection_ratio(const Vec2& a, const Vec2& b, const Vec2& p) {
