@@ -128,10 +128,20 @@ void Engine::Impl::accept(const Eigen::VectorXd& d_solved, double dt, int step_i
   // Central difference is Newmark's beta = 0, gamma = 1/2 (energy.cpp books no integration loss).
   energy.begin(energy_inputs(), d, dt, cycled ? 0.0 : nm.beta, cycled ? 0.5 : nm.gamma, t_end);
   if (cycled) energy.add_block_damping(cycle_block_damping);  // booked cycle by cycle (explicit_step.cpp)
+  step_motion_kinetic = 0.0;
   for (std::size_t k = 0; k < st.blocks.size(); ++k) {
     if (is_removed(k)) continue;  // frozen where it was removed, at rest
     BlockState& b = st.blocks[k];
     const Vec6 Dk = d.segment<6>(6 * static_cast<Eigen::Index>(k));
+    // The step's motion as kinetic energy, (D/dt)^T s M (D/dt) / 2 with the step-start mass
+    // and the scale the block moved with: what a dynamic stage's rest test reads
+    // (dynamic_stages.cpp), not the end velocity, which in Shi's scheme also carries the
+    // stiff modes the step does not resolve.
+    if (dynamic || cycled) {
+      const double s = cycled ? cycle_scale[k] : b.mass_scale;
+      step_motion_kinetic += 0.5 * s * model.materials[b.material].density *
+                             Dk.dot(unit_mass_matrix(moments[k]) * Dk) / (dt * dt);
+    }
     // Geometry with the exact-rotation post-correction: the first-order T
     // moves a point by r0 (-dy, dx), which scales areas by (1 + r0^2); instead
     // rotate exactly: x' = c + u + R(r0) (I + eps) (x - c), where eps is the

@@ -82,12 +82,6 @@ struct Engine::Impl {
     for (std::size_t k = 0; k < out.size(); ++k) out[k] = held[k] || is_removed(k);
     return out;
   }
-  /// The dynamic stage in progress was opened by a model edit (ModelEdit::settle;
-  /// docs/reference/stages.md): it ends at rest relative to the larger of the work done
-  /// on it and the energy it dissipated (an excavation releases strain energy
-  /// while gravity does little or negative work). Set by Engine::edit, reset by
-  /// start_stage; not part of EngineState (a run with stages is not resumed).
-  bool stage_opened_by_edit = false;
   std::vector<contact::BlockView> views;
   std::vector<Eigen::Matrix3d> elastic;   // per material
   double w0 = 0.0;                        // half model size [length]
@@ -189,7 +183,6 @@ struct Engine::Impl {
   /// What step() sets back on StepInterrupted: the engine's members its attempts change.
   struct StepStart {
     double search_disp = 0.0;
-    bool stage_opened_by_edit = false;
     std::optional<StageState> stage;  ///< kept before a collapse stage is opened
   };
   StepReport step_attempts(double dt_cap, StepStart& start);
@@ -264,6 +257,10 @@ struct Engine::Impl {
   std::vector<double> cycle_scale;   ///< density scales of the last explicit attempt (6)
   /// The unbalanced-force ratio at the end of the last explicit attempt (explicit_step.cpp (8)) [-].
   double cycle_force_ratio = 0.0;
+  /// Kinetic energy of the last accepted step's motion, 1/2 sum (D/dt)^T s M (D/dt) over the
+  /// blocks (D the step's displacement, s M the mass it moved with): the rest test of a
+  /// dynamic stage (dynamic_stages.cpp) [force x length].
+  double step_motion_kinetic = 0.0;
   double cycle_block_damping = 0.0;  ///< work the blocks' damping took in its cycles [force x length]
   /// Engine::stable_cycle (explicit_step.cpp).
   StableCycle stable_cycle();

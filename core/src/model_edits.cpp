@@ -205,7 +205,6 @@ EditReport Engine::edit(const ModelEdit& e) {
       g.open = false;
     }
     m.start_stage(StageKind::settling, s.settle_until);
-    m.stage_opened_by_edit = true;
     m.st.next_dt = std::min(s.dt, s.settle_dt);
   }
   m.count_held();

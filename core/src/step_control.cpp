@@ -36,14 +36,13 @@ std::string last_changes(const ContactCheck& c) {
 }  // namespace
 
 StepReport Engine::Impl::step(double dt_cap) {
-  StepStart start{search_disp, stage_opened_by_edit, std::nullopt};
+  StepStart start{search_disp, std::nullopt};
   try {
     return step_attempts(dt_cap, start);
   } catch (const StepInterrupted&) {
     // The contacts were abandoned where the attempt stopped (solve_trial; doubling_step
     // restores its snapshot): the engine as after the last accepted step.
     search_disp = start.search_disp;
-    stage_opened_by_edit = start.stage_opened_by_edit;
     if (start.stage) st.stage = std::move(*start.stage);
     throw;
   }

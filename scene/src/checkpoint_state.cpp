@@ -43,7 +43,7 @@ static_assert(field_count<core::StoredEnergy>() == 6);
 static_assert(field_count<core::EnergyFlows>() == 15);
 static_assert(field_count<core::EnergyBalance>() == 5);
 static_assert(field_count<core::StageEvent>() == 12);
-static_assert(field_count<core::StageState>() == 5);
+static_assert(field_count<core::StageState>() == 6);
 static_assert(field_count<core::EngineState>() == 11);
 static_assert(field_count<core::BoltState>() == 7);
 static_assert(field_count<core::SolverState>() == 8);
@@ -146,7 +146,9 @@ void io(auto& ar, Is<core::StageEvent> auto& e) {
   ar(e.kind, e.start_time, e.end_time, e.start_step, e.steps, e.at_rest, e.blocks_involved, e.largest_displacement,
      e.kinetic_energy_peak, e.kinetic_energy_end, e.work, e.energy_dissipated);
 }
-void io(auto& ar, Is<core::StageState> auto& g) { ar(g.until, g.not_before, g.open, g.event, g.start_vertices); }
+void io(auto& ar, Is<core::StageState> auto& g) {
+  ar(g.until, g.not_before, g.open, g.event, g.motion_kinetic, g.start_vertices);
+}
 void io(auto& ar, Is<core::SolverState> auto& s) {
   ar(s.amg_failed, s.amg_fallback_solve, s.warm_start, s.pattern, s.positions, s.aggregates, s.coarse_blocks, s.omega);
 }

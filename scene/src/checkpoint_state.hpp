@@ -22,7 +22,7 @@ namespace rheodda::scene {
 
 /// Version of the state file's format: raised with any change of what it holds
 /// (a file of another version is refused, not misread).
-inline constexpr int kStateFormat = 6;
+inline constexpr int kStateFormat = 7;
 
 /// The two names a state file alternates between, so that the file the current
 /// checkpoint names is never the one being written.

@@ -124,6 +124,9 @@ struct StageState {
   double not_before = 0.0;
   bool open = false;              ///< a stage has started and its event is not yet recorded
   StageEvent event;               ///< the stage's figures so far
+  /// Kinetic energy of the last step's motion, 1/2 sum (D/dt)^T M (D/dt) (the stage's rest
+  /// test, docs/reference/engine.md, "Dynamic stages") [force x length].
+  double motion_kinetic = 0.0;
   std::vector<std::vector<Vec2>> start_vertices;  ///< block vertices at its start [length]
 };
 
