@@ -194,6 +194,11 @@ void detect_pair(std::span<const BlockView> blocks, int ia, int ib, const Detect
             if ((c < 2 ? p_in_notch : q_in_notch) && score[c] >= -sin_tol) emit(c);
         continue;
       }
+      // The angle rule admits no candidate (the best one's wedge crosses its edge's line:
+      // a corner paired with a vertex that only subdivides a straight side, its edges
+      // along the corner's own): the pair does not touch. Taken all the same, the entrance
+      // was an edge the vertex lies beyond, whose line's distance measures no overlap.
+      if (best < -sin_tol) continue;
       bool kept = false;
       for (int c = 0; c < 4; ++c)
         if (score[c] >= best - sin_tol && was[c]) emit(c), kept = true;

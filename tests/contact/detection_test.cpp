@@ -230,4 +230,39 @@ BOOST_AUTO_TEST_CASE(a_vertex_near_a_corner_enters_the_edge_it_lies_along_not_on
   }
 }
 
+BOOST_AUTO_TEST_CASE(a_corner_paired_with_a_vertex_of_a_straight_side_enters_no_edge_the_angle_rule_refuses) {
+  // Two blocks of the generated 744-block slope (bench/scenes/jointed-slope-cohesionless.yaml,
+  // blocks 98 and 106 at 52 d) sharing a face, its two ends 0.7 and 1.2 mm apart and open.
+  // The first block's side beyond the shared face is straight through its vertex 1, 58.8 mm
+  // from its corner 0. With a search distance of 62.5 mm (the static step's) the second
+  // block's corner (vertex 2) was paired with vertex 1 too, and entered edge 0, whose line
+  // it lies 0.3 mm behind beyond the corner: a spring pushing with p_n x 0.3 mm from the
+  // step start, where the blocks do not touch. Vertex 1 is no corner, and the corner's
+  // wedge crosses the line of either edge at it (score -0.91, below -sin 3 deg): the angle
+  // rule admits no candidate of that pair, and the contacts are the shared face's two
+  // ends, whatever the last step's were.
+  Scene s;
+  s.add({{9.668130344720666, 8.270402047691343}, {9.613391426416978, 8.250579284301999},
+         {8.983200640486231, 8.022366465584913}, {9.42930387294238, 7.574814153707516},
+         {10.114233577176808, 7.822849735814109}});
+  s.add({{12.46785402996989, 9.28737045051805}, {10.790403224816506, 8.677852745193416},
+         {9.668802023017575, 8.270308280277025}, {10.115393895874774, 7.823263912967147},
+         {10.638795381782717, 8.013446821267097}, {12.663439526704952, 8.749120528967172}});
+  const std::vector<std::pair<int, int>> pairs{{0, 1}};
+  const std::vector<ContactKey> last{{0, 0, 1, 2}, {0, 4, 1, 2}};  // the face's two ends
+  for (const auto& previous : {std::vector<ContactKey>{}, last}) {
+    const auto found = detect_contacts(s.views(), pairs, {0.0625, 3.0}, previous);
+    BOOST_TEST_CONTEXT("with the last step's contacts: " << !previous.empty()) {
+      BOOST_TEST(found.size() == 2u);
+      for (const auto& c : found) {
+        BOOST_TEST_CONTEXT("vertex " << c.key.vblock << "." << c.key.vertex << " edge " << c.key.eblock << "."
+                                     << c.key.edge) {
+          BOOST_TEST((c.kind == ContactKind::edge_edge));
+          BOOST_TEST(!(c.key.vblock == 1 && c.key.vertex == 2 && c.key.edge == 0));
+        }
+      }
+    }
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()
