@@ -39,7 +39,9 @@ RefinementStudy refinement_study(const std::string& scene_path, const std::strin
   if (!(until > 0.0) || until > a.duration * (1.0 + 1e-12))
     throw std::invalid_argument(fmt::format("--until {:g}: must be in (0, {:g}], the scene's duration [{}]", until,
                                             a.duration, s.units.time));
-  if (a.settle && until <= a.settle->until)
+  // A settling stage that ends at rest (rest_tolerance) has `until` only as its longest:
+  // where it ends is the run's to find.
+  if (a.settle && !(a.settle->rest_tolerance > 0.0) && until <= a.settle->until)
     throw std::invalid_argument(fmt::format("--until {:g}: must be after the end of the settling stage ({:g} {})",
                                             until, a.settle->until, s.units.time));
 

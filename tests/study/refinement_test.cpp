@@ -199,6 +199,24 @@ BOOST_AUTO_TEST_CASE(until_shortens_every_level_and_options_out_of_range_are_ref
   BOOST_CHECK_THROW(st::refinement_study(scene, file, o), std::invalid_argument);
 }
 
+BOOST_AUTO_TEST_CASE(a_settling_stage_that_ends_at_rest_bounds_no_until) {
+  // The bench slope's settling stage has no `until`: it ends at rest (rest_tolerance), its
+  // longest the analysis's duration. Where it ends is the run's to find, so the study
+  // compares the levels at the duration, or at an earlier --until, as for any scene.
+  const fs::path dir = fresh_dir("refine-rest");
+  const std::string scene = source_path("bench/scenes/jointed-slope-cohesionless.yaml");
+  const std::string file = (dir / "r.yaml").string();
+  st::RefinementOptions o;
+  const auto r = st::refinement_study(scene, file, o);
+  BOOST_TEST_REQUIRE(r.study.cases.size() == 4u);
+  o.until = 50.0;
+  const auto half = st::refinement_study(scene, file, o);
+  for (const auto& c : half.study.cases) {
+    BOOST_TEST_REQUIRE(find(c, "analysis.duration") != nullptr);
+    BOOST_TEST(find(c, "analysis.duration")->value_yaml == "50");
+  }
+}
+
 BOOST_AUTO_TEST_CASE(the_verdict_follows_the_levels) {
   const st::RefinementOptions o;  // tolerance 5 %, converged 1 %
   {  // Converging to first order towards 1: 1 + 0.16 / 2^k. L0 is 16 % off the limit.
