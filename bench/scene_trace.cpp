@@ -8,6 +8,9 @@
 //       # block/vertex, edge block/edge, state, N, shear force, penetration
 //   build/bench/scene_trace scene.yaml --dt 1e-4 --duration 0.5 --summary
 //       # only the totals: steps, cuts, solves per step, changes by kind
+//   build/bench/scene_trace scene.yaml --restore saved.state --steps 2 --contacts
+//       # from a state rheodda.Simulation.save wrote for this scene file (the
+//       # Python API steps to where a run goes wrong; the trace goes on from there)
 //   build/bench/scene_trace scene.yaml --duration 1e-4 --diagnose
 //       # why attempts were cut, by class (docs/notes/rock-mass-steps.md): iterates
 //       # that still changed states (and of their changes the 2-cycles, at corners),
@@ -21,6 +24,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "rheodda/contact/contact_system.hpp"
@@ -28,6 +33,7 @@
 #include "rheodda/core/engine.hpp"
 #include "rheodda/scene/build.hpp"
 #include "rheodda/scene/loader.hpp"
+#include "rheodda/scene/saved_state.hpp"
 
 using namespace rheodda;
 
@@ -52,8 +58,8 @@ class Tracer final : public core::ContactModel {
   void begin_step(std::span<const contact::BlockView> b, const core::StepContext& ctx) override {
     step_ = ctx.step;
     checked_ = false;
-    if (on()) std::printf("step %d t %.6g dt %.3g:", ctx.step, ctx.time, ctx.dt);
     inner_.begin_step(b, ctx);
+    if (on()) std::printf("step %d t %.6g dt %.3g (search distance %.3g):", ctx.step, ctx.time, ctx.dt, sys_.stats().search_distance);
   }
   void assemble(std::span<const contact::BlockView> b, contact::SystemSink& s) override {
     inner_.assemble(b, s);
@@ -149,7 +155,7 @@ int trace(int argc, char** argv);
 int main(int argc, char** argv) {
   const char* usage =
       "usage: scene_trace SCENE.yaml [--steps N] [--from S] [--to S] [--contacts] "
-      "[--dt DT] [--duration T] [--summary] [--diagnose] [--cycles]\n";
+      "[--dt DT] [--duration T] [--summary] [--diagnose] [--cycles] [--restore STATE]\n";
   if (argc >= 2 && (!std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h"))) {
     std::printf("%s", usage);
     return 0;
@@ -170,6 +176,7 @@ int trace(int argc, char** argv) {
   int steps = -1;
   double dt = 0.0, duration = 0.0;
   bool summary = false, diagnose = false, cycles = false;
+  std::string restore;
   scene::SceneDescription sd = scene::load_scene(argv[1]);
   scene::BuiltScene built = scene::build_scene(sd);
   contact::ContactSystem sys(built.joint_sets, built.contact_settings);
@@ -185,6 +192,7 @@ int trace(int argc, char** argv) {
     else if (!std::strcmp(argv[k], "--summary")) summary = true;
     else if (!std::strcmp(argv[k], "--diagnose")) diagnose = summary = true;
     else if (!std::strcmp(argv[k], "--cycles")) cycles = summary = true;
+    else if (!std::strcmp(argv[k], "--restore") && k + 1 < argc) restore = argv[++k];
     else {
       std::fprintf(stderr, "scene_trace: unknown option '%s'\n", argv[k]);
       return 2;
@@ -193,6 +201,23 @@ int trace(int argc, char** argv) {
   tracer.quiet = summary;
   if (dt > 0.0) built.model.settings.dt = dt;
   core::Engine engine(built.model, tracer);
+  if (!restore.empty()) {
+    // Simulation.save's bytes: one header line (JSON), then the snapshot of the engine and
+    // the contacts (python/src/simulation_state.cpp), keyed to the scene file's text.
+    auto read = [](const std::string& path) {
+      std::ifstream in(path, std::ios::binary);
+      if (!in) throw std::runtime_error("cannot open " + path);
+      std::ostringstream ss;
+      ss << in.rdbuf();
+      return ss.str();
+    };
+    const std::string bytes = read(restore);
+    const auto eol = bytes.find('\n');
+    if (eol == std::string::npos) throw std::runtime_error(restore + ": not a saved simulation");
+    const scene::EngineSnapshot snap = scene::decode_snapshot(bytes.substr(eol + 1), restore, read(argv[1]));
+    engine.restore(snap.engine);
+    sys.restore(snap.contacts);
+  }
   auto last = std::chrono::steady_clock::now();
   if (cycles)
     engine.add_observer([&](const core::Engine& e, const core::StepReport& r) {

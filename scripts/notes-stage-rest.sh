@@ -9,8 +9,13 @@
 # (bench/save_state.py) and its next
 # step traced (scene_trace --restore --diagnose: the spring energy new contacts start with).
 #
+# With NEAREST=1, examples/rockmass/tunnel-stages.yaml with
+# bench/prototypes/detection-nearest-vertex.patch (the first fix tried: a vertex paired only with
+# the nearest vertex of the other block): its events.csv after 120 s.
+#
 #   scripts/notes-stage-rest.sh [SECONDS]
 #   BEFORE=1 scripts/notes-stage-rest.sh
+#   NEAREST=1 scripts/notes-stage-rest.sh
 #
 # SECONDS plus a minute; BEFORE=1 adds a build of the copy, its run and about 6 minutes.
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
@@ -34,6 +39,13 @@ if [[ -n "${BEFORE:-}" ]]; then
   run_for "$proto_build"
   RHEODDA_BUILD_DIR="$proto_build" /usr/bin/python3 "$root/bench/save_state.py" "$scene" 52.15 "$work/s52.state" 5
   "$proto_build/bench/scene_trace" "$scene" --restore "$work/s52.state" --steps 1 --diagnose | grep 'spring energy'
+fi
+if [[ -n "${NEAREST:-}" ]]; then
+  prototype_build "$root/bench/prototypes/detection-nearest-vertex.patch" rheodda
+  echo "# examples/rockmass/tunnel-stages.yaml with bench/prototypes/detection-nearest-vertex.patch, 120 s:"
+  timeout -s INT 120 "$proto_build/apps/rheodda" run "$root/examples/rockmass/tunnel-stages.yaml" -o "$work/tunnel" \
+    >/dev/null 2>&1 || true
+  cut -d, -f1,2,5,6,9,11,12 "$work/tunnel/events.csv"
 fi
 echo "# rheodda run for $seconds s:"
 run_for "$build"
