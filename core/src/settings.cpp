@@ -18,15 +18,9 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::max();
 
-/// A range: [min or (min, max] or max).
-struct Range {
-  double min = 0.0;
-  bool min_exclusive = false;
-  double max = kInf;
-  bool max_exclusive = false;
-};
-constexpr Range kPositive{0.0, true, kInf, false};     ///< > 0
-constexpr Range kNonNegative{0.0, false, kInf, false};  ///< >= 0
+using Range = laws::ParameterRange;  ///< [min or (min, max] or max)
+constexpr Range kPositive = laws::kPositiveRange;        ///< > 0
+constexpr Range kNonNegative = laws::kNonNegativeRange;  ///< >= 0
 constexpr Range kFraction{0.0, false, 1.0, true};      ///< [0, 1)
 constexpr Range kOpenFraction{0.0, true, 1.0, true};   ///< (0, 1)
 
@@ -42,15 +36,9 @@ template <class T>
 SettingSpec declare(const char* name, const char* unit, Range r, T Settings::*field, const char* meaning) {
   static_assert(std::is_same_v<T, double> || std::is_same_v<T, int> || std::is_same_v<T, bool>);
   SettingSpec s;
-  s.parameter.name = name;
-  s.parameter.unit = unit;
-  s.parameter.meaning = meaning;
   s.type = type_of<T>();
   if (s.type == SettingType::flag) r = {0.0, false, 1.0, false};
-  s.parameter.min = r.min;
-  s.parameter.min_exclusive = r.min_exclusive;
-  s.parameter.max = r.max;
-  s.parameter.max_exclusive = r.max_exclusive;
+  s.parameter = laws::declare_parameter(name, unit, r, meaning);
   s.field = field;
   s.parameter.default_value = static_cast<double>(Settings{}.*field);
   return s;

@@ -210,15 +210,8 @@ BuiltScene build_scene(const SceneDescription& s) {
   const auto& registry = laws::LawRegistry::builtin();
   for (const auto& js : s.joint_sets) {
     contact::JointSet j;
+    static_cast<contact::JointProperties&>(j) = js;  // the declared properties (contact/joint_set_specs.hpp), whole
     j.name = js.name;
-    j.friction_angle = js.friction_angle;
-    j.cohesion = js.cohesion;
-    j.tensile_strength = js.tensile_strength;
-    j.residual_friction_angle = js.residual_friction_angle;
-    j.residual_cohesion = js.residual_cohesion;
-    j.normal_stiffness = js.normal_stiffness;
-    j.shear_stiffness = js.shear_stiffness;
-    j.restitution = js.restitution;
     if (js.law) j.law = registry.create(js.law->name, js.law->parameters);
     out.joint_sets.push_back(std::move(j));
   }

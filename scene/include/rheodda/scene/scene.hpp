@@ -19,6 +19,7 @@
 #include <string_view>
 #include <vector>
 
+#include "rheodda/contact/joint_set.hpp"
 #include "rheodda/core/methods.hpp"
 #include "rheodda/core/setting_defaults.hpp"
 #include "rheodda/laws/contact_rheology.hpp"
@@ -223,17 +224,12 @@ struct LawChoice {
   std::optional<double> tested_duration;
 };
 
-/// `joint_sets: {NAME: {...}}` — joints: strength, stiffness, optional creep law.
-struct JointSetDescription {
+/// `joint_sets: {NAME: {...}}` — joints: strength, stiffness, optional creep law. Its
+/// strength and stiffness are the contact layer's JointProperties (friction_angle,
+/// cohesion, ... restitution), whose declarations (contact/joint_set_specs.hpp) are the
+/// keys of the same names; friction_angle is required in a scene.
+struct JointSetDescription : contact::JointProperties {
   std::string name;
-  double friction_angle = 0.0;    ///< phi [deg]; required, in [0, 90)
-  double cohesion = 0.0;          ///< c [stress], >= 0
-  double tensile_strength = 0.0;  ///< [stress], >= 0
-  std::optional<double> residual_friction_angle;  ///< phi_r [deg] in [0, friction_angle]; unset: friction_angle
-  double residual_cohesion = 0.0;  ///< c_r [stress] in [0, cohesion]
-  std::optional<double> normal_stiffness;  ///< per unit joint area [stress/length]; unset: penalty
-  std::optional<double> shear_stiffness;   ///< per unit joint area [stress/length]; unset: penalty / shear_normal_ratio
-  std::optional<double> restitution;       ///< coefficient of restitution e [-] in [0, 1] (contact dashpots); unset: none
   std::optional<LawChoice> law;   ///< creep of the shear spring; unset: none
   bool record = false;            ///< history.csv gets this set's mean shear displacement and force
   SourceLocation where{};
