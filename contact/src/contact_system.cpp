@@ -15,6 +15,7 @@
 #include <string>
 
 #include "contact_geometry.hpp"
+#include "rheodda/contact/contact_settings_specs.hpp"
 #include "rheodda/contact/joint_set_specs.hpp"
 
 namespace rheodda::contact {
@@ -42,8 +43,7 @@ ContactSystem::ContactSystem(std::vector<JointSet> joint_sets, ContactSettings s
   if (!(settings_.penalty > 0.0))
     throw std::invalid_argument("contact penalty = " + std::to_string(settings_.penalty) +
                                 " must be > 0 (Shi: 10-100 x Young's modulus)");
-  if (!(settings_.shear_normal_ratio > 0.0))
-    throw std::invalid_argument("shear_normal_ratio must be > 0");
+  check_contact_setting_ranges(settings_);  // the declared settings (contact_settings_specs.hpp)
   if (joint_sets_.empty()) {
     JointSet js;
     js.name = "default";

@@ -5,11 +5,14 @@
 // properties together.
 #include "rheodda/contact/joint_set_specs.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <type_traits>
+
+#include "rheodda/laws/spec_lookup.hpp"
 
 namespace rheodda::contact {
 
@@ -64,12 +67,8 @@ std::vector<JointPropertySpec> declare_properties() {
   return out;
 }
 
-/// A number in its shortest form, as the scene loader prints it ({:g}: 60, 0.25, 1e+09).
-std::string shortest(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", v);
-  return text;
-}
+/// A number in its shortest form, as the scene loader prints it (60, 0.25, 1e+09).
+std::string shortest(double v) { return fmt::format("{:g}", v); }
 
 }  // namespace
 
@@ -99,9 +98,7 @@ const std::vector<JointPropertySpec>& joint_property_specs() {
 }
 
 const JointPropertySpec& joint_property_spec(std::string_view name) {
-  for (const JointPropertySpec& s : joint_property_specs())
-    if (s.name() == name) return s;
-  throw std::out_of_range("contact::JointProperties declares no property " + std::string(name));
+  return laws::spec_named(joint_property_specs(), name, "contact::JointProperties", "property");
 }
 
 void check_joint_set(const JointSet& js, std::size_t index) {

@@ -14,6 +14,7 @@
 #include <map>
 #include <set>
 
+#include "declared_key_checks.hpp"
 #include "test_support.hpp"
 #include "rheodda/contact/contact_system.hpp"
 #include "rheodda/contact/joint_set_specs.hpp"
@@ -60,12 +61,7 @@ BOOST_AUTO_TEST_CASE(every_declared_property_is_the_joint_sets_key_of_its_name_w
       declared.insert(s.name());
       const scene::KeyInfo& k = key_of(keys, s.name());
       BOOST_TEST((k.type == scene::KeyType::number));
-      BOOST_TEST(k.unit == s.parameter.unit);
-      BOOST_TEST(k.meaning == s.parameter.meaning);
-      BOOST_TEST(k.range.min == s.parameter.min);
-      BOOST_TEST(k.range.min_exclusive == s.parameter.min_exclusive);
-      BOOST_TEST(k.range.max == s.parameter.max);
-      BOOST_TEST(k.range.max_exclusive == s.parameter.max_exclusive);
+      check_key_is_declaration(k, s.parameter);
       // The default is JointProperties{}'s; friction_angle the scene requires.
       BOOST_TEST((s.value(contact::JointProperties{}) == s.parameter.default_value));
       if (s.name() == "friction_angle")
