@@ -7,6 +7,7 @@
 
 #include "contact_geometry.hpp"
 #include "rheodda/contact/contact_system.hpp"
+#include "rheodda/contact/joint_set_specs.hpp"
 
 namespace rheodda::contact {
 

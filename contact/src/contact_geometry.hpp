@@ -9,11 +9,6 @@
 
 namespace rheodda::contact {
 
-struct JointSet;
-/// Throws std::invalid_argument naming joint set `index` when one of its values
-/// is out of range (contact_system.cpp; the constructor and set_joint_set).
-void check_joint_set(const JointSet& js, size_t index);
-
 inline int wrap(int k, int n) { return (k % n + n) % n; }
 
 /// perp(w) = (-w_y, w_x): perp(w).u = w x u.

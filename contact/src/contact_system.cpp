@@ -10,12 +10,13 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 #include <stdexcept>
 #include <string>
 
 #include "contact_geometry.hpp"
+#include "rheodda/contact/contact_settings_specs.hpp"
+#include "rheodda/contact/joint_set_specs.hpp"
 
 namespace rheodda::contact {
 
@@ -37,54 +38,12 @@ const char* creep_state_name(CreepState s) {
   return "?";
 }
 
-namespace {
-
-/// A number in its shortest form, as the scene loader prints it ({:g}: 60, 0.25, 1e+09).
-std::string shortest(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", v);
-  return text;
-}
-
-}  // namespace
-
-void check_joint_set(const JointSet& js, size_t index) {
-  // The loader's words for the same values (read_joint_sets.cpp, keys_joints.cpp).
-  auto refuse = [&](const char* key, const std::string& message) {
-    throw JointSetError(index, js.name, key, message);
-  };
-  auto bad = [&](const char* key, double v) { refuse(key, shortest(v) + " must be > 0"); };
-  if (!(js.friction_angle >= 0.0) || !(js.friction_angle < 90.0))
-    refuse("friction_angle", shortest(js.friction_angle) + " is out of range [0, 90) [deg]");
-  if (!(js.cohesion >= 0.0)) refuse("cohesion", shortest(js.cohesion) + " must be >= 0");
-  if (js.residual_friction_angle && !(*js.residual_friction_angle >= 0.0))
-    refuse("residual_friction_angle", shortest(*js.residual_friction_angle) + " is out of range [0, 90) [deg]");
-  if (js.residual_friction_angle && !(*js.residual_friction_angle <= js.friction_angle))
-    refuse("residual_friction_angle", shortest(*js.residual_friction_angle) + " deg is above the peak friction_angle " +
-                                          shortest(js.friction_angle) +
-                                          " deg: a residual strength is at most the peak");
-  if (!(js.residual_cohesion >= 0.0)) refuse("residual_cohesion", shortest(js.residual_cohesion) + " must be >= 0");
-  if (!(js.residual_cohesion <= js.cohesion))
-    refuse("residual_cohesion", shortest(js.residual_cohesion) + " is above the peak cohesion " +
-                                    shortest(js.cohesion) + ": a residual strength is at most the peak");
-  if (!(js.tensile_strength >= 0.0)) refuse("tensile_strength", shortest(js.tensile_strength) + " must be >= 0");
-  if (js.normal_stiffness && !(*js.normal_stiffness > 0.0)) bad("normal_stiffness", *js.normal_stiffness);
-  if (js.shear_stiffness && !(*js.shear_stiffness > 0.0)) bad("shear_stiffness", *js.shear_stiffness);
-  if (js.restitution && !(*js.restitution >= 0.0 && *js.restitution <= 1.0))
-    refuse("restitution", shortest(*js.restitution) + " is out of range [0, 1]");
-  // One elastic shear stiffness per joint: a law's instantaneous spring E1 is it.
-  if (js.law && js.law->instantaneous_stiffness() && js.shear_stiffness)
-    refuse("shear_stiffness", "shear_stiffness and the E1 of law '" + std::string(js.law->name()) +
-                                  "' both set the joint's elastic shear stiffness; give only E1");
-}
-
 ContactSystem::ContactSystem(std::vector<JointSet> joint_sets, ContactSettings settings)
     : joint_sets_(std::move(joint_sets)), settings_(settings), penalty_(settings.penalty) {
   if (!(settings_.penalty > 0.0))
     throw std::invalid_argument("contact penalty = " + std::to_string(settings_.penalty) +
                                 " must be > 0 (Shi: 10-100 x Young's modulus)");
-  if (!(settings_.shear_normal_ratio > 0.0))
-    throw std::invalid_argument("shear_normal_ratio must be > 0");
+  check_contact_setting_ranges(settings_);  // the declared settings (contact_settings_specs.hpp)
   if (joint_sets_.empty()) {
     JointSet js;
     js.name = "default";

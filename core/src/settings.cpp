@@ -11,6 +11,7 @@
 
 #include "rheodda/core/defaults.hpp"
 #include "rheodda/core/setting_defaults.hpp"
+#include "rheodda/laws/spec_lookup.hpp"
 
 namespace rheodda::core {
 
@@ -18,42 +19,16 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::max();
 
-/// A range: [min or (min, max] or max).
-struct Range {
-  double min = 0.0;
-  bool min_exclusive = false;
-  double max = kInf;
-  bool max_exclusive = false;
-};
-constexpr Range kPositive{0.0, true, kInf, false};     ///< > 0
-constexpr Range kNonNegative{0.0, false, kInf, false};  ///< >= 0
+using Range = laws::ParameterRange;  ///< [min or (min, max] or max)
+constexpr Range kPositive = laws::kPositiveRange;        ///< > 0
+constexpr Range kNonNegative = laws::kNonNegativeRange;  ///< >= 0
 constexpr Range kFraction{0.0, false, 1.0, true};      ///< [0, 1)
 constexpr Range kOpenFraction{0.0, true, 1.0, true};   ///< (0, 1)
-
-template <class T>
-constexpr SettingType type_of() {
-  if constexpr (std::is_same_v<T, double>) return SettingType::number;
-  else if constexpr (std::is_same_v<T, int>) return SettingType::integer;
-  else return SettingType::flag;
-}
 
 /// The declaration of the member `field`, named `name` (the scene's word).
 template <class T>
 SettingSpec declare(const char* name, const char* unit, Range r, T Settings::*field, const char* meaning) {
-  static_assert(std::is_same_v<T, double> || std::is_same_v<T, int> || std::is_same_v<T, bool>);
-  SettingSpec s;
-  s.parameter.name = name;
-  s.parameter.unit = unit;
-  s.parameter.meaning = meaning;
-  s.type = type_of<T>();
-  if (s.type == SettingType::flag) r = {0.0, false, 1.0, false};
-  s.parameter.min = r.min;
-  s.parameter.min_exclusive = r.min_exclusive;
-  s.parameter.max = r.max;
-  s.parameter.max_exclusive = r.max_exclusive;
-  s.field = field;
-  s.parameter.default_value = static_cast<double>(Settings{}.*field);
-  return s;
+  return laws::declare_setting(name, unit, r, field, meaning);
 }
 
 std::vector<SettingSpec> declare_settings() {
@@ -158,69 +133,7 @@ std::vector<SettingSpec> declare_settings() {
   return out;
 }
 
-std::string bound_text(double v, SettingType t) {
-  if (v == kInf) return "∞";
-  return t == SettingType::integer && v < 1e6 ? fmt::format("{:.0f}", v) : setting_number_text(v);
-}
-
 }  // namespace
-
-double SettingSpec::value(const Settings& s) const {
-  return std::visit([&s](auto m) { return static_cast<double>(s.*m); }, field);
-}
-
-void SettingSpec::set(Settings& s, double v) const {
-  std::visit(
-      [&s, v](auto m) {
-        using T = std::remove_reference_t<decltype(s.*m)>;
-        if constexpr (std::is_same_v<T, bool>)
-          s.*m = v != 0.0;
-        else
-          s.*m = static_cast<T>(v);
-      },
-      field);
-}
-
-double SettingSpec::default_for(bool dynamic) const {
-  return !dynamic && static_default ? *static_default : *parameter.default_value;
-}
-
-bool SettingSpec::admits(double v) const {
-  if (!std::isfinite(v)) return false;
-  if (!default_meaning.empty() && v == *parameter.default_value) return true;
-  if (type == SettingType::integer && v != std::floor(v)) return false;
-  return parameter.admits(v);
-}
-
-std::string SettingSpec::range_text() const {
-  if (type == SettingType::flag) return "true or false";
-  return fmt::format("{}{}, {}{}", parameter.min_exclusive ? "(" : "[", bound_text(parameter.min, type),
-                     bound_text(parameter.max, type), parameter.max_exclusive || parameter.max == kInf ? ")" : "]");
-}
-
-std::string SettingSpec::default_text() const {
-  if (!default_meaning.empty()) return default_meaning;
-  auto text = [this](double v) {
-    if (type == SettingType::flag) return std::string(v != 0.0 ? "true" : "false");
-    return type == SettingType::integer ? fmt::format("{:.0f}", v) : setting_number_text(v);
-  };
-  if (static_default)
-    return fmt::format("{} (dynamic), {} (static)", text(default_for(true)), text(default_for(false)));
-  return text(*parameter.default_value);
-}
-
-std::string setting_number_text(double v) {
-  if (!std::isfinite(v) || v == 0.0 || (std::abs(v) >= 0.01 && std::abs(v) < 1e6)) return fmt::format("{:g}", v);
-  // 1.000000e-04 -> 1e-4, 1.000000e+09 -> 1e9: the mantissa without trailing zeros, the exponent without padding.
-  const std::string e = fmt::format("{:e}", v);
-  const auto at = e.find('e');
-  std::string mantissa = e.substr(0, at);
-  if (mantissa.find('.') != std::string::npos) {
-    mantissa.erase(mantissa.find_last_not_of('0') + 1);
-    if (mantissa.back() == '.') mantissa.pop_back();
-  }
-  return mantissa + "e" + std::to_string(std::stoi(e.substr(at + 1)));
-}
 
 const std::vector<SettingSpec>& setting_specs() {
   static const std::vector<SettingSpec> specs = declare_settings();
@@ -228,27 +141,17 @@ const std::vector<SettingSpec>& setting_specs() {
 }
 
 const SettingSpec& setting_spec(std::string_view name) {
-  for (const SettingSpec& s : setting_specs())
-    if (s.name() == name) return s;
-  throw std::out_of_range("core::Settings declares no setting " + std::string(name));
+  return laws::spec_named(setting_specs(), name, "core::Settings", "setting");
 }
 
 double setting_default(std::string_view name, bool dynamic) { return setting_spec(name).default_for(dynamic); }
 
-std::string settings_table_markdown() {
-  std::string out = "| setting | unit | range | default | meaning |\n|---|---|---|---|---|\n";
-  for (const SettingSpec& s : setting_specs())
-    out += fmt::format("| `{}` | {} | {} | {} | {} |\n", s.name(), s.parameter.unit, s.range_text(), s.default_text(),
-                       s.parameter.meaning);
-  return out;
-}
+std::string settings_table_markdown() { return laws::settings_table_markdown(setting_specs()); }
 
 void check_setting_ranges(const Settings& s) {
   for (const SettingSpec& spec : setting_specs())
     if (const double v = spec.value(s); !spec.admits(v))
-      throw ModelError("settings." + spec.name(),
-                       fmt::format("{} is not in {}{}", setting_number_text(v), spec.range_text(),
-                                   spec.parameter.unit == "–" ? "" : " (" + spec.parameter.unit + ")"));
+      throw ModelError("settings." + spec.name(), laws::setting_refusal(spec, v));
 }
 
 }  // namespace rheodda::core

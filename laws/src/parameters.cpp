@@ -6,6 +6,18 @@
 
 namespace rheodda::laws {
 
+ParameterSpec declare_parameter(std::string name, std::string unit, const ParameterRange& range, std::string meaning) {
+  ParameterSpec p;
+  p.name = std::move(name);
+  p.unit = std::move(unit);
+  p.meaning = std::move(meaning);
+  p.min = range.min;
+  p.min_exclusive = range.min_exclusive;
+  p.max = range.max;
+  p.max_exclusive = range.max_exclusive;
+  return p;
+}
+
 std::string ParameterSpec::what_its_value_decides() const {
   // The laws' elements (laws.md): a Bingham threshold [stress], dashpots [stress*time/length],
   // springs [stress/length].

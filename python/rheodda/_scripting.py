@@ -257,14 +257,15 @@ def _joint_set_value(key, doc, settable=True):
 
 class JointSet:
     """One joint set: ``sim.joint_sets['name']`` or ``sim.joint_sets[i]``. Its values are the contact
-    system's now, by the scene file's keys: ``friction_angle`` [deg], ``cohesion`` [stress],
-    ``tensile_strength`` [stress], ``residual_friction_angle`` [deg] (None: the friction angle),
-    ``residual_cohesion`` [stress] are settable (from the next step on, as a stage's
-    ``joint_sets:``; checked as the loader checks them, refused with its key and message as
-    ModelError); ``normal_stiffness``, ``shear_stiffness`` [stress/length], ``restitution`` [-]
-    (None when unset) are read-only; ``law`` the law's name (None: no law) and
-    ``law_parameters`` its parameters [their registry units], settable as a dict of the
-    parameters to change (the others kept; as ``sim.set_law_parameters``)."""
+    system's now, by the scene file's keys: one attribute per property the contact layer
+    declares (contact/joint_set_specs.hpp: ``friction_angle``, ``cohesion``, ...; each
+    attribute's doc is its declaration's meaning, unit, range and default; None while an
+    optional one is unset). Those the declarations let change between steps (the strengths) are
+    settable (from the next step on, as a stage's ``joint_sets:``; checked as the
+    loader checks them, refused with its key and message as ModelError); the others are
+    read-only. ``law`` is the law's name (None: no law) and ``law_parameters`` its parameters
+    [their registry units], settable as a dict of the parameters to change (the others kept; as
+    ``sim.set_law_parameters``)."""
 
     __slots__ = ("_sim", "index")
 
@@ -280,18 +281,6 @@ class JointSet:
         """The joint set's name in the scene."""
         return self._sim._sim.joint_set_names[self.index]
 
-    friction_angle = _joint_set_value("friction_angle", "Mohr-Coulomb friction angle phi [deg], 0 <= phi < 90")
-    cohesion = _joint_set_value("cohesion", "cohesion c [stress], >= 0")
-    tensile_strength = _joint_set_value("tensile_strength", "tensile strength [stress], >= 0")
-    residual_friction_angle = _joint_set_value(
-        "residual_friction_angle", "friction angle once a contact is no longer intact [deg]; None: friction_angle")
-    residual_cohesion = _joint_set_value("residual_cohesion",
-                                         "cohesion once a contact is no longer intact [stress]")
-    normal_stiffness = _joint_set_value("normal_stiffness", "joint normal stiffness [stress/length] or None",
-                                        settable=False)
-    shear_stiffness = _joint_set_value("shear_stiffness", "joint shear stiffness [stress/length] or None",
-                                       settable=False)
-    restitution = _joint_set_value("restitution", "coefficient of restitution [-] or None", settable=False)
     law = _joint_set_value("law", "the law's registry name, or None", settable=False)
 
     @property
@@ -305,10 +294,9 @@ class JointSet:
         self._sim.set_law_parameters(self.name, dict(values))
 
     def set(self, **values):
-        """Changes several values at once by their scene keys (friction_angle, cohesion,
-        tensile_strength, residual_friction_angle, residual_cohesion) from the next step on;
-        checked together as a stage's ``joint_sets: {NAME: {...}}`` (ModelError with the loader's
-        key and message)."""
+        """Changes several values at once by their scene keys (the settable properties, e.g.
+        friction_angle, cohesion) from the next step on; checked together as a stage's
+        ``joint_sets: {NAME: {...}}`` (ModelError with the loader's key and message)."""
         self._sim._sim._change_joint_set(self.index, values)
 
     def __repr__(self):
@@ -317,6 +305,21 @@ class JointSet:
         return "<JointSet {} '{}': friction_angle {:g} deg, cohesion {:g}, tensile_strength {:g} {}{}>".format(
             self.index, v["name"], v["friction_angle"], v["cohesion"], v["tensile_strength"],
             self._sim.units["stress"], law)
+
+
+def _joint_set_property(p):
+    """The property of :class:`JointSet` that the declaration ``p`` describes (contact/joint_set_specs.hpp,
+    ``_Simulation._joint_set_properties()``): its doc the declaration's meaning, unit, range and
+    default; settable when it may change between steps."""
+    unit = "" if p["unit"] == "\u2013" else " [{}]".format(p["unit"])
+    doc = "{}{}; in {}; default {}{}".format(p["meaning"], unit, p["range"], p["default"],
+                                             "" if p["between_steps"] else "; read-only (None: unset)")
+    return _joint_set_value(p["name"], doc, settable=p["between_steps"])
+
+
+for _p in _rheodda._Simulation._joint_set_properties():
+    setattr(JointSet, _p["name"], _joint_set_property(_p))
+del _p
 
 
 class JointSets(_Collection):

@@ -3,6 +3,7 @@
 // (docs/reference/scene-format.md, "stages.joint_sets"): the values are read by
 // the stage reader (scene/edits.hpp), so a value is refused with the loader's
 // key and message, and handed to the engine (ModelEdit::joint_sets).
+#include <rheodda/contact/joint_set_specs.hpp>
 #include <rheodda/laws/registry.hpp>
 #include <rheodda/scene/edits.hpp>
 
@@ -30,20 +31,31 @@ json value_json(const py::handle& v) {
   return d;
 }
 
+/// The declared properties of a joint set (contact/joint_set_specs.hpp), in their order:
+/// what rheodda.JointSet's properties say of themselves and which of them it may change.
+py::list joint_set_properties() {
+  py::list out;
+  for (const contact::JointPropertySpec& s : contact::joint_property_specs()) {
+    py::dict e;
+    e["name"] = s.name();
+    e["unit"] = s.parameter.unit;
+    e["range"] = s.range_text();
+    e["default"] = s.default_text();
+    e["meaning"] = s.parameter.meaning;
+    e["between_steps"] = s.between_steps;
+    out.append(e);
+  }
+  return out;
+}
+
 }  // namespace
 
 py::dict Simulation::joint_set(int j) const {
   const contact::JointSet& js = contacts_->joint_sets()[static_cast<std::size_t>(j)];
   py::dict d;
   d["name"] = js.name;
-  d["friction_angle"] = js.friction_angle;
-  d["cohesion"] = js.cohesion;
-  d["tensile_strength"] = js.tensile_strength;
-  d["residual_friction_angle"] = optional(js.residual_friction_angle);
-  d["residual_cohesion"] = js.residual_cohesion;
-  d["normal_stiffness"] = optional(js.normal_stiffness);
-  d["shear_stiffness"] = optional(js.shear_stiffness);
-  d["restitution"] = optional(js.restitution);
+  for (const contact::JointPropertySpec& s : contact::joint_property_specs())  // contact/joint_set_specs.hpp
+    d[py::str(s.name())] = optional(s.value(js));
   d["law"] = js.law ? py::object(py::str(std::string(js.law->name()))) : py::object(py::none());
   py::dict p;
   if (js.law)
@@ -116,7 +128,8 @@ void bind_simulation_joint_sets(py::class_<Simulation>& c) {
   c.def("_joint_set", &Simulation::joint_set, py::arg("index"))
       .def("_change_joint_set", &Simulation::change_joint_set, py::arg("index"), py::arg("values"))
       .def("set_law_parameters", &Simulation::set_law_parameters, py::arg("joint_set"), py::arg("parameters"))
-      .def("law_parameters", &Simulation::law_parameters, py::arg("joint_set"));
+      .def("law_parameters", &Simulation::law_parameters, py::arg("joint_set"))
+      .def_static("_joint_set_properties", &joint_set_properties);
 }
 
 }  // namespace rheodda::python

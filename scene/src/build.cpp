@@ -9,6 +9,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "rheodda/contact/contact_settings_specs.hpp"
 #include "rheodda/core/settings.hpp"
 #include "rheodda/laws/registry.hpp"
 #include "rheodda/laws/series_law.hpp"
@@ -188,37 +189,22 @@ BuiltScene build_scene(const SceneDescription& s) {
   st.integrator = choose_integrator(s).integrator;  // integrator_choice.cpp: `automatic` decided here
 
   contact::ContactSettings& cs = out.contact_settings;
-  cs.penalty = a.penalty;
-  cs.shear_normal_ratio = a.shear_normal_ratio;
-  cs.search_factor = a.search_factor;
-  cs.angle_tolerance = a.angle_tolerance;
-  cs.penetration_ratio = a.penetration_ratio;
+  // The contact layer's declared settings (contact/contact_settings_specs.hpp), each from the key of its name.
+  for (const contact::ContactSettingSpec& spec : contact::contact_setting_specs())
+    spec.set(cs, key_number(analysis_key(spec.name()).get(a)));
   cs.stick_keeps_force = a.stick_keeps_force;
   // A dynamic settling stage of a static analysis keeps the dynamic default.
   if (a.type == AnalysisType::static_analysis && a.has_dynamic_steps() && !a.stick_keeps_force_given)
     cs.stick_keeps_force_dynamic = true;
   cs.lock_at_touch = a.has_dynamic_steps();  // the static steps turn it off (StepContext::dynamic)
   cs.reversal_at_normal_resolution = cs.lock_at_touch;
-  cs.friction_tolerance = a.friction_tolerance;
-  cs.force_resolution = a.force_resolution;
-  cs.max_flips = a.max_flips;
-  cs.max_refinements = a.max_refinements;
-  cs.penalty_raise = a.penalty_raise;
-  cs.penalty_max_factor = a.penalty_max_factor;
   cs.scheme = a.scheme;
 
   const auto& registry = laws::LawRegistry::builtin();
   for (const auto& js : s.joint_sets) {
     contact::JointSet j;
+    static_cast<contact::JointProperties&>(j) = js;  // the declared properties (contact/joint_set_specs.hpp), whole
     j.name = js.name;
-    j.friction_angle = js.friction_angle;
-    j.cohesion = js.cohesion;
-    j.tensile_strength = js.tensile_strength;
-    j.residual_friction_angle = js.residual_friction_angle;
-    j.residual_cohesion = js.residual_cohesion;
-    j.normal_stiffness = js.normal_stiffness;
-    j.shear_stiffness = js.shear_stiffness;
-    j.restitution = js.restitution;
     if (js.law) j.law = registry.create(js.law->name, js.law->parameters);
     out.joint_sets.push_back(std::move(j));
   }

@@ -2,6 +2,7 @@
 // stage reader on a text of their own, and the joint set a change makes.
 #include <yaml-cpp/yaml.h>
 
+#include "rheodda/contact/joint_set_specs.hpp"
 #include "rheodda/laws/registry.hpp"
 #include "rheodda/scene/edits.hpp"
 #include "scene_readers.hpp"
@@ -22,11 +23,7 @@ std::vector<StageJointSet> read_joint_set_changes(const SceneDescription& s, con
 
 contact::JointSet changed_joint_set(const contact::JointSet& now, const StageJointSet& c) {
   contact::JointSet j = now;
-  if (c.friction_angle) j.friction_angle = *c.friction_angle;
-  if (c.cohesion) j.cohesion = *c.cohesion;
-  if (c.tensile_strength) j.tensile_strength = *c.tensile_strength;
-  if (c.residual_friction_angle) j.residual_friction_angle = *c.residual_friction_angle;
-  if (c.residual_cohesion) j.residual_cohesion = *c.residual_cohesion;
+  for (const auto& [name, v] : c.properties) contact::joint_property_spec(name).set(j, v);
   if (c.law_name) j.law = laws::LawRegistry::builtin().create(*c.law_name, c.law_parameters);
   return j;
 }

@@ -15,6 +15,11 @@ constexpr double kInf = std::numeric_limits<double>::max();
 inline constexpr KeyRange kPositive{0.0, true, kInf, false};     ///< > 0
 inline constexpr KeyRange kNonNegative{0.0, false, kInf, false};  ///< >= 0
 
+/// The key `name` of `map` that is a joint set's property of the same name: its type (a
+/// number), unit, range, default and meaning are the property's declaration
+/// (contact/joint_set_specs.hpp; keys_joints.cpp).
+KeyInfo joint_property_info(const std::string& map, const std::string& name);
+
 /// A key that reads and writes the field `field` of its entry as is.
 template <class E, class T>
 EntryKey<E> field_key(KeyInfo info, T E::*field) {

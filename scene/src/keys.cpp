@@ -7,7 +7,9 @@
 #include "rheodda/scene/keys.hpp"
 
 #include "key_builders.hpp"
+#include "rheodda/contact/contact_settings_specs.hpp"
 #include "rheodda/core/contact_solve.hpp"
+#include "rheodda/core/defaults.hpp"
 #include "rheodda/core/integrator.hpp"
 #include "rheodda/core/settings.hpp"
 #include "rheodda/core/solver.hpp"
@@ -36,33 +38,39 @@ KeySpec number_key(const std::string& map, const std::string& name, const std::s
                            field);
 }
 
-KeySpec integer_key(const std::string& map, const std::string& name, const std::string& unit, KeyRange range,
-                    int Analysis::*field, std::string default_text, std::string meaning) {
-  return detail::field_key(info(map, name, KeyType::integer, unit, range, std::move(default_text), std::move(meaning)),
-                           field);
-}
-
 KeySpec flag_key(const std::string& map, const std::string& name, const std::string& unit,
                  bool Analysis::*field, std::string default_text, std::string meaning) {
   return detail::field_key(info(map, name, KeyType::flag, unit, {}, std::move(default_text), std::move(meaning)),
                            field);
 }
 
-/// A key of `analysis:` that is a setting of the engine, of the same name: its type, unit,
-/// range, default and meaning are the setting's declaration (core/settings.hpp).
-template <class T>
-KeySpec setting_key(const std::string& name, T Analysis::*field) {
-  const core::SettingSpec& s = core::setting_spec(name);
-  const KeyType type = s.type == core::SettingType::number    ? KeyType::number
-                       : s.type == core::SettingType::integer ? KeyType::integer
+/// A key of `analysis:` that is a declared setting of the same name (of the engine,
+/// core/settings.hpp, or of the contact layer, contact/contact_settings_specs.hpp): its
+/// type, unit, range, default and meaning are the setting's declaration.
+template <class S, class T>
+KeySpec declared_setting_key(const laws::SettingSpec<S>& s, T Analysis::*field) {
+  const KeyType type = s.type == laws::SettingType::number    ? KeyType::number
+                       : s.type == laws::SettingType::integer ? KeyType::integer
                                                               : KeyType::flag;
   constexpr KeyType field_type = std::is_same_v<T, double> ? KeyType::number
                                  : std::is_same_v<T, int>  ? KeyType::integer
                                                            : KeyType::flag;
-  if (type != field_type) throw std::logic_error("analysis." + name + ": the field is not of the setting's type");
+  if (type != field_type) throw std::logic_error("analysis." + s.name() + ": the field is not of the setting's type");
   const laws::ParameterSpec& p = s.parameter;
   const KeyRange range = type == KeyType::flag ? KeyRange{} : KeyRange{p.min, p.min_exclusive, p.max, p.max_exclusive};
-  return detail::field_key(info("analysis", name, type, p.unit, range, s.default_text(), p.meaning), field);
+  return detail::field_key(info("analysis", s.name(), type, p.unit, range, s.default_text(), p.meaning), field);
+}
+
+/// The key of the engine's setting `name` (core/settings.hpp).
+template <class T>
+KeySpec setting_key(const std::string& name, T Analysis::*field) {
+  return declared_setting_key(core::setting_spec(name), field);
+}
+
+/// The key of the contact layer's setting `name` (contact/contact_settings_specs.hpp).
+template <class T>
+KeySpec contact_setting_key(const std::string& name, T Analysis::*field) {
+  return declared_setting_key(contact::contact_setting_spec(name), field);
 }
 
 /// The words of a registry of methods (core/methods.hpp: rows with `method` and `word`), in its order.
@@ -183,45 +191,18 @@ std::vector<KeySpec> declare_analysis_keys() {
   keys.push_back(setting_key("step_extrapolation", &Analysis::step_extrapolation));
   keys.push_back(setting_key("dt_max", &Analysis::dt_max));
   keys.push_back(setting_key("creep_restart_on_contact_change", &Analysis::creep_restart_on_contact_change));
-  keys.push_back(number_key("analysis", "penalty", "stress", {0.0, true, kInf, false}, &Analysis::penalty,
-      "40 × the largest `young_modulus`",
-      "normal contact penalty p_n (the seed's eq. 17, p_n = k1·E, k1 = 10–100)"));
-  keys.push_back(number_key("analysis", "shear_normal_ratio", "–", {0.0, true, kInf, false}, &Analysis::shear_normal_ratio,
-      "2.5",
-      "p_n / p_s of penalty shear springs"));
-  keys.push_back(number_key("analysis", "search_factor", "–", {0.0, true, kInf, false}, &Analysis::search_factor,
-      "2.5",
-      "contact search distance / (max_displacement_ratio · half model size)"));
-  keys.push_back(number_key("analysis", "angle_tolerance", "deg", {0.0, true, 45.0, false}, &Analysis::angle_tolerance,
-      "3",
-      "angle rule tolerance, (0, 45]"));
-  keys.push_back(number_key("analysis", "penetration_ratio", "–", {0.0, true, 1.0, false}, &Analysis::penetration_ratio,
-      "1e-4",
-      "allowed penetration / half model size; above it the penalty is raised"));
-  keys.push_back(number_key("analysis", "friction_tolerance", "–", {0.0, true, kInf, false}, &Analysis::friction_tolerance,
-      "0.01",
-      "a sliding contact whose normal force moved by more than this fraction between two "
-         "iterates asks for another iterate (its friction is taken from the last iterate's N), > 0"));
-  keys.push_back(number_key("analysis", "force_resolution", "–", {0.0, false, 1.0, true}, &Analysis::force_resolution,
-      "1e-3",
-      "force resolution of the open–close decisions as a fraction of the largest contact normal "
-         "force of the last iterate: a contact closes, opens, slides or sticks only when the force "
-         "at stake exceeds it, [0, 1)"));
-  keys.push_back(integer_key("analysis", "max_flips", "–", {1.0, false, 1000.0, false}, &Analysis::max_flips,
-      "2",
-      "state changes of one contact in one step after which it may only change to locked "
-         "(anti-chattering), 1–1000"));
-  keys.push_back(integer_key("analysis", "max_refinements", "–", {0.0, false, 1000.0, false}, &Analysis::max_refinements,
-      "3",
-      "friction refinements (see `friction_tolerance`) one contact may ask for in one step, "
-         "0–1000"));
-  keys.push_back(number_key("analysis", "penalty_raise", "–", {1.0, false, kInf, false}, &Analysis::penalty_raise,
-      "2",
-      "factor on the penalty when a step's largest penetration exceeds `penetration_ratio` × "
-         "the half model size, ≥ 1"));
-  keys.push_back(number_key("analysis", "penalty_max_factor", "–", {1.0, false, kInf, false}, &Analysis::penalty_max_factor,
-      "64",
-      "largest penalty / initial penalty, ≥ 1"));
+  keys.push_back(contact_setting_key("penalty", &Analysis::penalty));
+  keys.back().default_text = fmt::format("{:g} × the largest `young_modulus`", core::kPenaltyFactor);  // the loader's
+  keys.push_back(contact_setting_key("shear_normal_ratio", &Analysis::shear_normal_ratio));
+  keys.push_back(contact_setting_key("search_factor", &Analysis::search_factor));
+  keys.push_back(contact_setting_key("angle_tolerance", &Analysis::angle_tolerance));
+  keys.push_back(contact_setting_key("penetration_ratio", &Analysis::penetration_ratio));
+  keys.push_back(contact_setting_key("friction_tolerance", &Analysis::friction_tolerance));
+  keys.push_back(contact_setting_key("force_resolution", &Analysis::force_resolution));
+  keys.push_back(contact_setting_key("max_flips", &Analysis::max_flips));
+  keys.push_back(contact_setting_key("max_refinements", &Analysis::max_refinements));
+  keys.push_back(contact_setting_key("penalty_raise", &Analysis::penalty_raise));
+  keys.push_back(contact_setting_key("penalty_max_factor", &Analysis::penalty_max_factor));
   keys.push_back(flag_key("analysis", "stick_keeps_force", "–", &Analysis::stick_keeps_force,
       "`true` in a dynamic analysis (Shi's rule ratchets a slope that stands down its friction "
          "limit at small steps) and in a static one with collapse stages (`settle.collapse_dt`: "

@@ -1,8 +1,13 @@
 // The declared keys of `materials:`, `joint_sets:` and a `law:` (keys.hpp), one entry per
-// key, in the order of docs/reference/scene-format.md. What ties keys together (a
-// residual strength at most the peak, damping only with dynamic steps, a law's E1 and
-// shear_stiffness) and a law's parameters (the law registry's) stay in read_joint_sets.cpp.
+// key, in the order of docs/reference/scene-format.md; a joint set's properties are the
+// contact layer's declarations (contact/joint_set_specs.hpp). What ties keys together (a
+// residual strength at most the peak: contact::check_joint_set; damping only with dynamic
+// steps, a law's E1 and shear_stiffness) and a law's parameters (the law registry's) are
+// read_joint_sets.cpp's.
+#include <algorithm>
+
 #include "key_builders.hpp"
+#include "rheodda/contact/joint_set_specs.hpp"
 
 namespace rheodda::scene {
 
@@ -51,57 +56,39 @@ std::vector<EntryKey<Material>>& material_keys() {
   return keys;
 }
 
+KeyInfo detail::joint_property_info(const std::string& map, const std::string& name) {
+  const contact::JointPropertySpec& s = contact::joint_property_spec(name);
+  const laws::ParameterSpec& p = s.parameter;
+  return KeyInfo{.map = map, .name = name, .type = KeyType::number, .unit = p.unit,
+                 .range = {p.min, p.min_exclusive, p.max, p.max_exclusive}, .default_text = s.default_text(),
+                 .meaning = p.meaning};
+}
+
 std::vector<EntryKey<JointSetDescription>>& joint_set_keys() {
   static std::vector<EntryKey<JointSetDescription>> keys = [] {
     using E = JointSetDescription;
     std::vector<EntryKey<E>> k;
-    k.push_back(detail::field_key(
-        KeyInfo{.map = "joint_sets", .name = "friction_angle", .type = KeyType::number, .unit = "deg",
-                .range = {0.0, false, 90.0, true}, .required = "phi [deg], 0 <= phi < 90",
-                .default_text = "required", .meaning = "Mohr–Coulomb φ, in [0, 90)"},
-        &E::friction_angle));
-    k.push_back(detail::field_key(
-        KeyInfo{.map = "joint_sets", .name = "cohesion", .type = KeyType::number, .unit = "stress",
-                .range = kNonNegative, .default_text = "0",
-                .meaning = "c, ≥ 0; acts until the contact first slides or opens"},
-        &E::cohesion));
-    k.push_back(detail::field_key(
-        KeyInfo{.map = "joint_sets", .name = "tensile_strength", .type = KeyType::number, .unit = "stress",
-                .range = kNonNegative, .default_text = "0",
-                .meaning = "≥ 0; acts until the contact first slides or opens"},
-        &E::tensile_strength));
-    k.push_back(detail::custom_key<E>(
-        KeyInfo{.map = "joint_sets", .name = "residual_friction_angle", .type = KeyType::number, .unit = "deg",
-                .range = kNonNegative, .default_text = "`friction_angle`",
-                .meaning = "φ_r in [0, `friction_angle`]: the friction of a contact once it slid or opened, or its "
-                           "damage law failed (residual strength, as UDEC and 3DEC; docs/reference/contacts.md, "
-                           "\"Friction, cohesion, tension\")"},
-        // Unset: the peak's (summary.json echoes the value that acts).
-        [](const E& j) -> KeyValue { return j.residual_friction_angle.value_or(j.friction_angle); },
-        [](E& j, const KeyValue& v) { j.residual_friction_angle = std::get<double>(v); }));
-    k.push_back(detail::field_key(
-        KeyInfo{.map = "joint_sets", .name = "residual_cohesion", .type = KeyType::number, .unit = "stress",
-                .range = kNonNegative, .default_text = "0",
-                .meaning = "c_r in [0, `cohesion`]: the cohesion of such a contact (its tensile strength is 0)"},
-        &E::residual_cohesion));
-    k.push_back(detail::optional_key(
-        KeyInfo{.map = "joint_sets", .name = "normal_stiffness", .type = KeyType::number, .unit = "stress/length",
-                .range = kPositive, .default_text = "the penalty",
-                .meaning = "joint normal stiffness per unit joint area, > 0"},
-        &E::normal_stiffness));
-    k.push_back(detail::optional_key(
-        KeyInfo{.map = "joint_sets", .name = "shear_stiffness", .type = KeyType::number, .unit = "stress/length",
-                .range = kPositive, .default_text = "penalty / `shear_normal_ratio`",
-                .meaning = "joint shear stiffness per unit joint area, > 0"},
-        &E::shear_stiffness));
-    k.push_back(detail::optional_key(
-        KeyInfo{.map = "joint_sets", .name = "restitution", .type = KeyType::number, .unit = "–",
-                .range = {0.0, false, 1.0, false}, .default_text = "none (Shi's undamped springs)",
-                .meaning = "coefficient of restitution e in [0, 1] of an impact on this joint set: dashpots beside "
-                           "the contact springs (docs/reference/contacts.md, \"Contact damping\"); dynamic "
-                           "analysis only",
-                .echoed = false},
-        &E::restitution));
+    // The joint set's properties: each the key of its declaration (contact/joint_set_specs.hpp),
+    // read into and from the JointProperties a JointSetDescription is.
+    for (const contact::JointPropertySpec& s : contact::joint_property_specs()) {
+      EntryKey<E>& key = k.emplace_back();
+      static_cast<KeyInfo&>(key) = detail::joint_property_info("joint_sets", s.name());
+      key.get = [&s](const E& j) -> KeyValue {
+        if (const std::optional<double> v = s.value(j)) return *v;
+        return std::monostate{};
+      };
+      key.set = [&s](E& j, const KeyValue& v) { s.set(j, std::get<double>(v)); };
+    }
+    auto key = [&k](const std::string& name) -> EntryKey<E>& {
+      return *std::find_if(k.begin(), k.end(), [&name](const EntryKey<E>& e) { return e.name == name; });
+    };
+    key("friction_angle").required = "friction angle phi [deg] in " + contact::joint_property_spec("friction_angle").range_text();
+    key("friction_angle").default_text = "required";
+    // Unset: the peak's (summary.json echoes the value that acts).
+    key("residual_friction_angle").get = [](const E& j) -> KeyValue {
+      return j.residual_friction_angle.value_or(j.friction_angle);
+    };
+    key("restitution").echoed = false;
     k.push_back(detail::reader_key<E>(
         KeyInfo{.map = "joint_sets", .name = "law", .type = KeyType::map, .unit = "–", .default_text = "none",
                 .meaning = "creep law of the joint's shear spring (below)", .submap = "law"}));

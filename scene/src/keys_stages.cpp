@@ -4,6 +4,7 @@
 // blocks removed before, a fixed point left), stage times and the checks that tie keys
 // together stay in load_stages.cpp.
 #include "key_builders.hpp"
+#include "rheodda/contact/joint_set_specs.hpp"
 
 namespace rheodda::scene {
 
@@ -153,20 +154,23 @@ std::vector<EntryKey<StageJointSet>>& stage_joint_set_keys() {
   static std::vector<EntryKey<StageJointSet>> keys = [] {
     using E = StageJointSet;
     const std::string map = "stages.joint_sets";
-    auto value = [&](const std::string& name, const std::string& unit, KeyRange range, std::optional<double> E::*field,
-                     const std::string& meaning) {
-      return detail::optional_key(KeyInfo{.map = map, .name = name, .type = KeyType::number, .unit = unit,
-                                          .range = range, .default_text = "unchanged", .meaning = meaning},
-                                  field);
-    };
+    // The joint set's properties that may change between steps: each the key of its
+    // declaration (contact/joint_set_specs.hpp, between_steps), unchanged when not given.
     std::vector<EntryKey<E>> k;
-    k.push_back(value("friction_angle", "deg", {0.0, false, 90.0, true}, &E::friction_angle, "φ, in [0, 90)"));
-    k.push_back(value("cohesion", "stress", detail::kNonNegative, &E::cohesion, "c, ≥ 0"));
-    k.push_back(value("tensile_strength", "stress", detail::kNonNegative, &E::tensile_strength, "≥ 0"));
-    k.push_back(value("residual_friction_angle", "deg", detail::kNonNegative, &E::residual_friction_angle,
-                      "φ_r, in [0, `friction_angle`]"));
-    k.push_back(value("residual_cohesion", "stress", detail::kNonNegative, &E::residual_cohesion,
-                      "c_r, in [0, `cohesion`]"));
+    for (const contact::JointPropertySpec& s : contact::joint_property_specs()) {
+      if (!s.between_steps) continue;
+      KeyInfo info = detail::joint_property_info(map, s.name());
+      info.default_text = "unchanged";
+      const std::string name = s.name();
+      k.push_back(detail::custom_key<E>(
+          std::move(info),
+          [name](const E& c) -> KeyValue {
+            const auto v = c.properties.find(name);
+            if (v == c.properties.end()) return std::monostate{};
+            return v->second;
+          },
+          [name](E& c, const KeyValue& v) { c.properties[name] = std::get<double>(v); }));
+    }
     k.push_back(detail::reader_key<E>(
         KeyInfo{.map = map, .name = "law", .type = KeyType::map, .unit = "–", .default_text = "unchanged",
                 .meaning = "the joint set's law with new parameters (below)", .submap = "law"}));

@@ -11,6 +11,7 @@
 #include <unordered_set>
 
 #include "read_keys.hpp"
+#include "rheodda/contact/joint_set_specs.hpp"
 #include "scene_readers.hpp"
 
 namespace rheodda::scene::detail {
@@ -142,16 +143,18 @@ std::vector<JointSetDescription> read_joint_sets(const Ctx& ctx, const YAML::Nod
     js.where = location(e.key_node);
     MapReader m(ctx, e.value, all.child(e.key), key_names(joint_set_keys(), "joint_sets"));
     read_declared(ctx, m, joint_set_keys(), "joint_sets", js);  // keys_joints.cpp
-    // Residual strength (UDEC/3DEC): once a contact slid, opened or its damage law failed.
-    if (YAML::Node v = m.find("residual_friction_angle");
-        v.IsDefined() && *js.residual_friction_angle > js.friction_angle)
-      ctx.fail(v, m.child("residual_friction_angle"),
-               fmt::format("{:g} deg is above the peak friction_angle {:g} deg: a residual strength is at most the peak",
-                           *js.residual_friction_angle, js.friction_angle));
-    if (YAML::Node v = m.find("residual_cohesion"); v.IsDefined() && js.residual_cohesion > js.cohesion)
-      ctx.fail(v, m.child("residual_cohesion"),
-               fmt::format("{:g} is above the peak cohesion {:g}: a residual strength is at most the peak",
-                           js.residual_cohesion, js.cohesion));
+    // The contact layer's checks of the properties (contact/joint_set_specs.hpp: the declared
+    // ranges, which the keys have checked, and a residual strength at most the peak), at the
+    // key they name. The law's E1 and shear_stiffness: below, in the scene's words.
+    contact::JointSet properties;
+    static_cast<contact::JointProperties&>(properties) = js;
+    properties.name = js.name;
+    try {
+      contact::check_joint_set(properties, out.size());
+    } catch (const contact::JointSetError& err) {
+      const YAML::Node at = m.find(err.key());
+      ctx.fail(at.IsDefined() ? at : e.value, m.child(err.key()), err.message());
+    }
     // Contact dashpots damp motion; a static analysis has none to damp.
     if (YAML::Node v = m.find("restitution"); v.IsDefined() && !dynamic_steps)
       ctx.fail(v, m.child("restitution"),

@@ -96,7 +96,7 @@ BOOST_AUTO_TEST_CASE(a_refused_joint_set_is_named_by_index_and_key_as_data) {
   } catch (const JointSetError& e) {
     BOOST_TEST(e.joint_set() == 1u);
     BOOST_TEST(e.key() == "cohesion");
-    BOOST_TEST(std::string(e.what()) == "joint_sets.cross.cohesion: -1 must be >= 0");
+    BOOST_TEST(std::string(e.what()) == "joint_sets.cross.cohesion: -1 is out of range [0, inf] [stress]");
   }
   bad.cohesion = 0.0;
   bad.restitution = 2.0;

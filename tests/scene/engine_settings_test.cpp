@@ -13,6 +13,7 @@
 #include <limits>
 #include <set>
 
+#include "declared_key_checks.hpp"
 #include "test_support.hpp"
 #include "rheodda/core/engine.hpp"
 #include "rheodda/core/settings.hpp"
@@ -45,15 +46,8 @@ BOOST_AUTO_TEST_CASE(every_engine_setting_is_the_analysis_key_of_its_name_with_i
     BOOST_TEST_CONTEXT("setting " << s.name()) {
       const scene::KeySpec& k = scene::analysis_key(s.name());
       BOOST_TEST((k.type == key_type(s.type)));
-      BOOST_TEST(k.unit == s.parameter.unit);
-      BOOST_TEST(k.meaning == s.parameter.meaning);
-      if (s.type != core::SettingType::flag) {
-        BOOST_TEST(k.range.min == s.parameter.min);
-        BOOST_TEST(k.range.min_exclusive == s.parameter.min_exclusive);
-        BOOST_TEST(k.range.max == s.parameter.max);
-        BOOST_TEST(k.range.max_exclusive == s.parameter.max_exclusive);
-        BOOST_TEST(scene::key_range_text(k) == s.range_text());
-      }
+      check_key_is_declaration(k, s.parameter, s.type != core::SettingType::flag);
+      if (s.type != core::SettingType::flag) BOOST_TEST(scene::key_range_text(k) == s.range_text());
       // Settings{} holds the default of a dynamic analysis; Analysis{}, of the scene's
       // default type, a static one. A key the scene requires has no default of its own.
       BOOST_TEST(*s.parameter.default_value == s.value(core::Settings{}));

@@ -99,7 +99,7 @@ BOOST_AUTO_TEST_CASE(stages_are_read_with_names_times_and_resolved_references) {
   BOOST_TEST(s.stages[0].at == 0.5);
   BOOST_TEST((s.stages[0].remove_blocks == std::vector<int>{1}));
   BOOST_TEST(s.stages[0].remove_loads[0] == "push");
-  BOOST_TEST(*s.stages[1].joint_sets[0].friction_angle == 10.0);
+  BOOST_TEST(s.stages[1].joint_sets[0].properties.at("friction_angle") == 10.0);
   BOOST_TEST(*s.stages[1].dynamic_ratio == 1.0);
   BOOST_TEST(s.fixed_points[0].name == "pin");
   BOOST_TEST(s.loads[0].at.name == "push");

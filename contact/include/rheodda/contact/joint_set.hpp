@@ -59,9 +59,10 @@ class JointSetError : public std::invalid_argument {
   std::string message_;
 };
 
-/// Mechanical properties of one family of joints.
-struct JointSet {
-  std::string name;               ///< joint_set name as the user gave it
+/// The scalar properties of one family of joints, each declared once (its scene word,
+/// unit, range, default and meaning) in joint_set_specs.hpp, bound to its member here;
+/// the members' initializers are the defaults the declarations read.
+struct JointProperties {
   double friction_angle = 0.0;    ///< Mohr-Coulomb friction angle phi [deg]
   double cohesion = 0.0;          ///< cohesion c [stress]; acts on contact length, until the contact first fails
   double tensile_strength = 0.0;  ///< tensile strength [stress]; acts on contact length, until the contact first fails
@@ -84,6 +85,19 @@ struct JointSet {
   /// Joint shear stiffness per unit joint area [stress/length]; unset: the
   /// penalty's shear spring p_n / shear_normal_ratio (the seed's eqs. 17-18).
   std::optional<double> shear_stiffness;
+  /// Coefficient of restitution e of an impact on this joint set [-], in
+  /// [0, 1]; unset: no contact dashpots (Shi's contact, elastic once the step
+  /// resolves its vibration). Set: the linear spring-dashpot contact of
+  /// Cundall & Strack (1979), a dashpot beside each spring (normal, and shear
+  /// while locked) of damping ratio zeta = -ln e / sqrt(pi^2 + ln^2 e)
+  /// (zeta = 1 at e = 0), c = 2 zeta sqrt(k m) with m the reduced mass of the
+  /// two blocks (docs/reference/contacts.md, "Contact damping"). Dynamic analysis only.
+  std::optional<double> restitution;
+};
+
+/// One family of joints: its name, its declared properties (JointProperties) and its creep law.
+struct JointSet : JointProperties {
+  std::string name;  ///< joint_set name as the user gave it
   /// Creep law of the joint's shear spring, or none (docs/reference/rheology-in-dda.md).
   /// Contacts on a joint set with a law get a laws::RheologyState slot that
   /// follows the contact (transfer, change of kind, rollback); the creep
@@ -94,14 +108,6 @@ struct JointSet {
   /// spring E1 (burgers, maxwell, nishihara) sets the joint's elastic shear
   /// stiffness, k_s = E1 l_t: shear_stiffness must then be unset.
   std::shared_ptr<const laws::ContactRheology> law;
-  /// Coefficient of restitution e of an impact on this joint set [-], in
-  /// [0, 1]; unset: no contact dashpots (Shi's contact, elastic once the step
-  /// resolves its vibration). Set: the linear spring-dashpot contact of
-  /// Cundall & Strack (1979), a dashpot beside each spring (normal, and shear
-  /// while locked) of damping ratio zeta = -ln e / sqrt(pi^2 + ln^2 e)
-  /// (zeta = 1 at e = 0), c = 2 zeta sqrt(k m) with m the reduced mass of the
-  /// two blocks (docs/reference/contacts.md, "Contact damping"). Dynamic analysis only.
-  std::optional<double> restitution;
 };
 
 /// Numerical settings of the contact layer (defaults: Shi's DDA code).

@@ -48,6 +48,20 @@ struct ParameterSpec {
   std::string what_its_value_decides() const;
 };
 
+/// A valid range as a ParameterSpec states it, written as one value in declarations
+/// (core/settings.cpp, contact/joint_set_specs.cpp): [min or (min, max] or max).
+struct ParameterRange {
+  double min = 0.0;
+  bool min_exclusive = false;
+  double max = std::numeric_limits<double>::max();
+  bool max_exclusive = false;
+};
+inline constexpr ParameterRange kPositiveRange{0.0, true, std::numeric_limits<double>::max(), false};     ///< > 0
+inline constexpr ParameterRange kNonNegativeRange{0.0, false, std::numeric_limits<double>::max(), false};  ///< >= 0
+
+/// The declaration of `name` [`unit`] valid in `range`, meaning `meaning`; no default.
+ParameterSpec declare_parameter(std::string name, std::string unit, const ParameterRange& range, std::string meaning);
+
 /// Parameter values by name.
 using ParameterValues = std::map<std::string, double, std::less<>>;
 

@@ -19,6 +19,8 @@
 #include <string_view>
 #include <vector>
 
+#include "rheodda/contact/contact_settings_specs.hpp"
+#include "rheodda/contact/joint_set.hpp"
 #include "rheodda/core/methods.hpp"
 #include "rheodda/core/setting_defaults.hpp"
 #include "rheodda/laws/contact_rheology.hpp"
@@ -63,6 +65,11 @@ struct Analysis {
   /// The default of the engine's setting `name` in a static analysis.
   template <class T>
   static T default_of(std::string_view name) { return core::setting_default_as<T>(name, false); }
+  /// The default of the contact layer's declared setting `name` (contact/contact_settings_specs.hpp).
+  template <class T>
+  static T contact_default_of(std::string_view name) {
+    return static_cast<T>(*contact::contact_setting_spec(name).parameter.default_value);
+  }
   AnalysisType type = AnalysisType::static_analysis;  ///< `type: static|dynamic`
   double duration = 0.0;               ///< simulated time [time]; required, > 0
   double dt = 0.0;                     ///< first and largest time step [time]; required, > 0
@@ -127,11 +134,14 @@ struct Analysis {
                                        ///< 0 = no limit
   bool creep_restart_on_contact_change = default_of<bool>("creep_restart_on_contact_change");  ///< under creep_tolerance: restart from dt after a step
                                                 ///< in which a creeping contact changed state
-  double penalty = 0.0;                ///< normal contact penalty p_n [stress]; default 40 x largest young_modulus (seed eq. 17)
-  double shear_normal_ratio = 2.5;     ///< p_n / p_s of penalty shear springs [-]
-  double search_factor = 2.5;          ///< contact search distance / (max_displacement_ratio w0) [-]
-  double angle_tolerance = 3.0;        ///< angle rule tolerance [deg]
-  double penetration_ratio = 1e-4;     ///< allowed penetration / half model size [-]
+  // The contact layer's settings of the same names (contact/contact_settings_specs.hpp
+  // declares them; their defaults are ContactSettings{}'s):
+  double penalty = contact_default_of<double>("penalty");  ///< normal contact penalty p_n [stress]; 0: the loader's,
+                                                           ///< 40 x largest young_modulus (seed eq. 17)
+  double shear_normal_ratio = contact_default_of<double>("shear_normal_ratio");  ///< p_n / p_s of penalty shear springs [-]
+  double search_factor = contact_default_of<double>("search_factor");  ///< search distance / (max_displacement_ratio w0) [-]
+  double angle_tolerance = contact_default_of<double>("angle_tolerance");  ///< angle rule tolerance [deg]
+  double penetration_ratio = contact_default_of<double>("penetration_ratio");  ///< allowed penetration / half model size [-]
   bool stick_keeps_force = false;      ///< a sliding contact that sticks keeps its friction force
                                        ///< (contact::ContactSettings::stick_keeps_force) [-];
                                        ///< the loader's default: true in a dynamic analysis
@@ -145,13 +155,14 @@ struct Analysis {
   bool accept_other_gravity = false;
   bool stick_keeps_force_given = false;  ///< the scene gave stick_keeps_force (else a dynamic settling
                                          ///< stage of a static analysis keeps the force, its static steps not)
-  // The open-close iteration (contact::ContactSettings fields of the same names):
-  double friction_tolerance = 0.01;    ///< relative change of N that asks for one more iterate [-]
-  double force_resolution = 1e-3;      ///< force resolution / largest normal force [-]
-  int max_flips = 2;                   ///< state changes per contact and step before only locking [-]
-  int max_refinements = 3;             ///< friction refinements per contact and step [-]
-  double penalty_raise = 2.0;          ///< factor on the penalty when penetration exceeds its limit [-]
-  double penalty_max_factor = 64.0;    ///< largest penalty / initial penalty [-]
+  // The open-close iteration (contact::ContactSettings fields of the same names, declared
+  // in contact/contact_settings_specs.hpp):
+  double friction_tolerance = contact_default_of<double>("friction_tolerance");  ///< relative change of N that asks for one more iterate [-]
+  double force_resolution = contact_default_of<double>("force_resolution");  ///< force resolution / largest normal force [-]
+  int max_flips = contact_default_of<int>("max_flips");  ///< state changes per contact and step before only locking [-]
+  int max_refinements = contact_default_of<int>("max_refinements");  ///< friction refinements per contact and step [-]
+  double penalty_raise = contact_default_of<double>("penalty_raise");  ///< factor on the penalty when penetration exceeds its limit [-]
+  double penalty_max_factor = contact_default_of<double>("penalty_max_factor");  ///< largest penalty / initial penalty [-]
   int open_close_limit = default_of<int>("open_close_limit");  ///< open-close iterations before a step is cut [-]
   double fixed_point_stiffness = default_of<double>("fixed_point_stiffness");  ///< fixed-point spring [force/length]; 0: automatic
   core::SolverKind solver = core::SolverKind::automatic;  ///< `solver`: the words are core::linear_solvers()'
@@ -223,17 +234,12 @@ struct LawChoice {
   std::optional<double> tested_duration;
 };
 
-/// `joint_sets: {NAME: {...}}` — joints: strength, stiffness, optional creep law.
-struct JointSetDescription {
+/// `joint_sets: {NAME: {...}}` — joints: strength, stiffness, optional creep law. Its
+/// strength and stiffness are the contact layer's JointProperties (friction_angle,
+/// cohesion, ... restitution), whose declarations (contact/joint_set_specs.hpp) are the
+/// keys of the same names; friction_angle is required in a scene.
+struct JointSetDescription : contact::JointProperties {
   std::string name;
-  double friction_angle = 0.0;    ///< phi [deg]; required, in [0, 90)
-  double cohesion = 0.0;          ///< c [stress], >= 0
-  double tensile_strength = 0.0;  ///< [stress], >= 0
-  std::optional<double> residual_friction_angle;  ///< phi_r [deg] in [0, friction_angle]; unset: friction_angle
-  double residual_cohesion = 0.0;  ///< c_r [stress] in [0, cohesion]
-  std::optional<double> normal_stiffness;  ///< per unit joint area [stress/length]; unset: penalty
-  std::optional<double> shear_stiffness;   ///< per unit joint area [stress/length]; unset: penalty / shear_normal_ratio
-  std::optional<double> restitution;       ///< coefficient of restitution e [-] in [0, 1] (contact dashpots); unset: none
   std::optional<LawChoice> law;   ///< creep of the shear spring; unset: none
   bool record = false;            ///< history.csv gets this set's mean shear displacement and force
   SourceLocation where{};

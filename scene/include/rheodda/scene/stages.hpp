@@ -8,6 +8,7 @@
 #pragma once
 
 #include <array>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -42,11 +43,9 @@ struct StagePoint {
 /// set's; those not given keep theirs.
 struct StageJointSet {
   int joint_set = 0;                            ///< index into SceneDescription::joint_sets
-  std::optional<double> friction_angle;         ///< [deg] in [0, 90)
-  std::optional<double> cohesion;               ///< [stress] >= 0
-  std::optional<double> tensile_strength;       ///< [stress] >= 0
-  std::optional<double> residual_friction_angle;  ///< [deg] in [0, friction_angle]
-  std::optional<double> residual_cohesion;      ///< [stress] in [0, cohesion]
+  /// The joint set's properties it changes, by name (contact/joint_set_specs.hpp: those
+  /// declared between_steps; each in its declared unit and range); the others unchanged.
+  std::map<std::string, double, std::less<>> properties;
   /// `law: {name, parameters...}`: the law given whole (its parameters; its
   /// name must be the joint set's law: a stage cannot add, remove or replace a law).
   std::optional<std::string> law_name;
