@@ -351,9 +351,10 @@ std::vector<KeySpec> declare_analysis_keys() {
          "keeps it"));
   keys.push_back(settle_number("rest_tolerance", "–", {0.0, true, 1.0, true}, &Analysis::Settle::rest_tolerance,
       "0 (stages last `until`)",
-      "the stage, and every collapse stage, ends at rest — after a step whose kinetic energy is "
-         "below this fraction of the work gravity and the loads did over the stage, not before "
-         "the gravity ramp has ended (docs/reference/engine.md, \"Dynamic stages\", which also says how to "
+      "the stage, and every collapse stage, ends at rest — after a step whose motion's kinetic energy "
+         "is below this fraction of the energy the stage took in or released (the largest of the work "
+         "gravity and the loads did over it, its dissipation and its kinetic peak) and no longer rising, "
+         "not before the gravity ramp has ended (docs/reference/engine.md, \"Dynamic stages\", which also says how to "
          "choose it); each stage is a row of events.csv (docs/reference/outputs.md); in (0, 1); `type: "
          "dynamic` only"));
   keys.push_back(settle_number("force_ratio", "–", {0.0, true, 1.0, true}, &Analysis::Settle::force_ratio,

@@ -217,8 +217,8 @@ struct Settings {
   /// collapse from the step's start [time]; 0 = off; >= 0, < dt
   double collapse_dt = 0.0;
   /// Dynamic stages end at rest (docs/reference/engine.md, "Dynamic stages"): a settling
-  /// or collapse stage ends after a step whose kinetic energy is below this
-  /// fraction of the work gravity and the loads did over the stage (not before
+  /// or collapse stage ends after a step whose motion's kinetic energy is below this
+  /// fraction of the energy the stage took in or released, and no longer rising (not before
   /// the gravity ramp has ended, Settings::settle_gravity_ramp), else at its
   /// longest, settle_until from its start [-]; 0 = stages run to their
   /// longest; in [0, 1)

@@ -98,8 +98,8 @@ struct Analysis {
     /// 0 = gravity at once; > 0, <= until.
     double gravity_ramp = 0.0;
     /// `rest_tolerance`: the stage, and every collapse stage, ends at rest:
-    /// after a step whose kinetic energy is below this fraction of the work
-    /// gravity and the loads did over the stage (docs/reference/engine.md, "Dynamic
+    /// after a step whose motion's kinetic energy is below this fraction of the
+    /// energy the stage took in or released (docs/reference/engine.md, "Dynamic
     /// stages"); `until` is then the longest a stage may last (default: the
     /// duration) [-]; 0 = stages last `until`; in (0, 1); dynamic stage only.
     double rest_tolerance = 0.0;
