@@ -4,7 +4,7 @@
 # each at its own step controls (L0) and with every step control halved twice,
 # and puts each refinement table, as `check` prints it, into
 # docs/notes/engineering-examples.md between its refinement-NAME markers.
-# About 40 min on 2 cores (the reservoir's finest level is 4 runs of a minute).
+# About 10 min on 2 cores (the reservoir's finest level is 4 runs of a minute).
 # Usage: scripts/refinement-engineering.sh   (uses $RHEODDA_BUILD_DIR or build/)
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # strict mode; root, build, work (removed at exit)
 splice() { "$root/scripts/splice-doc.sh" "$root/docs/notes/engineering-examples.md" "$1" "$2"; }
