@@ -14,22 +14,21 @@
 #
 #   scripts/bench-rock-masses.sh                  # about 1e3 blocks; about 40 CPU minutes
 #   BUDGET=3 scripts/bench-rock-masses.sh         # budgets x 3 (how far the runs get beyond them)
-#   LARGE=1 scripts/bench-rock-masses.sh          # and the slope at about 1e4 blocks (2 CPU hours)
-set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-"$root/scripts/build.sh" >/dev/null
-bench="$root/build/bench/rockmass_bench"
+#   LARGE=1 scripts/bench-rock-masses.sh          # and the slope at about 1e4 blocks (1 CPU hour)
+# (uses $RHEODDA_BUILD_DIR or build/)
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # strict mode; root, build, work (removed at exit)
+ensure_built rockmass_bench
+bench="$build/bench/rockmass_bench"
 budget="${BUDGET:-1}"
 days="${CHECK_DAYS:-5}"
 cpu() { python3 -c "print(int($1 * $budget))"; }
 slope="$root/bench/scenes/jointed-slope-cohesionless.yaml"
-log="$(mktemp)"
-table="$(mktemp)"
-trap 'rm -f "$log" "$table"' EXIT
+log="$work/log"
+table="$work/table"
 run() { "$bench" --no-generation "$@" | tee -a "$log"; }
 run --scene "$slope" --creep 1000 --max-cpu "$(cpu 600)"
 run --example tunnel --creep 1000 --rest-tolerance 1e-5 --max-cpu "$(cpu 300)"
-if [ -n "${LARGE:-}" ]; then run --scene "$slope" --creep 10000 --max-cpu "$(cpu 7200)"; fi
+if [ -n "${LARGE:-}" ]; then run --scene "$slope" --creep 10000 --max-cpu "$(cpu 3600)"; fi
 run --scene "$slope" --creep 1000 --duration "$days" --max-cpu 36000
 run --scene "$slope" --creep 1000 --duration "$days" --max-cpu 36000 --halve
 python3 - "$log" >"$table" <<'PY'
@@ -49,7 +48,7 @@ for line in open(sys.argv[1]):
     elif "tunnel" in m["scene"]:
         target = "100 d in <= 300 s"
     else:
-        target = "100 d in <= 7200 s" if blocks > 5000 else "100 d in <= 600 s"
+        target = "100 d in <= 3600 s" if blocks > 5000 else "100 d in <= 600 s"
     print(f"| {m['scene']} | {blocks} | {float(m['t']):.4g} of {m['end']} | {m['steps']} | {m['cuts']} | "
           f"{m['cpu']} | {m['stages']} | {float(m['disp']):.4g} | {target} |")
 PY
