@@ -16,12 +16,11 @@
 
 namespace rheodda::contact {
 
-void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_displacement,
-                               double dt, bool dynamic, double inertia, bool creep_error_wanted) {
-  step_dynamic_ = dynamic;
+void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepContext& step) {
+  step_dynamic_ = step.dynamic;
   cycled_ = false;
   cycle_damping_ = 0.0;
-  creep_error_wanted_ = creep_error_wanted;
+  creep_error_wanted_ = step.creep_error_wanted;
   can_retract_ = false;
   const int nb = static_cast<int>(blocks.size());
   // Half model size w0 [length].
@@ -36,7 +35,7 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
   }
   const double w0 = nb > 0 ? 0.5 * (model.hi - model.lo).maxCoeff() : 0.0;
   allowed_penetration_ = settings_.penetration_ratio * w0;
-  double d0 = std::max(settings_.search_factor * max_displacement, settings_.min_search_distance);
+  double d0 = std::max(settings_.search_factor * step.max_displacement, settings_.min_search_distance);
   if (!(d0 > 0.0)) d0 = settings_.search_factor * 0.01 * w0;  // max_displacement_ratio = 0.01 when the host gives none
 
   for (int i = 0; i < nb; ++i) boxes_[i] = bounding_box(blocks[i], 0.5 * d0);
@@ -191,9 +190,9 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
   seams_.assign(work_.size(), ShearSeam{});
   work_creep_.assign(work_.size(), 0.0);
 
-  start_laws(dt);
-  step_dt_ = dt;
-  step_inertia_ = inertia;
+  start_laws(step.dt);
+  step_dt_ = step.dt;
+  step_inertia_ = step.inertia;
   step_max_penetration_ = 0.0;
   force_scale_ = 0.0;
   for (const Contact& c : committed_) force_scale_ = std::max(force_scale_, std::abs(c.normal_force));

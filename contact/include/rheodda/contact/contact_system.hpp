@@ -42,6 +42,7 @@
 #include "rheodda/contact/detection.hpp"
 #include "rheodda/contact/joint_set.hpp"
 #include "rheodda/contact/kinematics.hpp"
+#include "rheodda/contact/step_context.hpp"
 #include "rheodda/laws/contact_rheology.hpp"
 
 namespace rheodda::contact {
@@ -143,18 +144,9 @@ class ContactSystem {
   ContactSystem(std::vector<JointSet> joint_sets, ContactSettings settings);
 
   /// Detects contacts on the step-start geometry (search distance
-  /// search_factor * max_displacement [length]) and carries states over.
-  /// dt is the step size [time] the creep laws integrate over (0: no creep).
-  /// `dynamic`: the step carries velocity; in a static step (false: a static
-  /// analysis after a dynamic settling stage) the contact dashpots and the
-  /// dynamic rules (ContactSettings::lock_at_touch,
-  /// reversal_at_normal_resolution) are off. `inertia`: the step's inertia
-  /// stiffness per unit mass, 1/(beta dt^2) of the host's Newmark scheme
-  /// [1/time^2] (0: unknown; ContactSettings::reversal_at_normal_resolution).
-  /// `creep_error_wanted`: the host will ask creep_error_estimate() and may
-  /// retract_step() after this step's end_step.
-  void begin_step(std::span<const BlockView> blocks, double max_displacement, double dt = 0.0,
-                  bool dynamic = true, double inertia = 0.0, bool creep_error_wanted = false);
+  /// search_factor * step.max_displacement [length]) and carries states over;
+  /// the creep laws integrate over step.dt (step_context.hpp).
+  void begin_step(std::span<const BlockView> blocks, const StepContext& step);
   /// Springs and friction loads of the trial states (the seed's eqs. 28-29).
   void assemble(std::span<const BlockView> blocks, SystemSink& sink) const;
   /// Updates the trial states from the trial displacements D (6 per block).
