@@ -28,7 +28,7 @@ void ContactSystem::stick(std::span<const BlockView> blocks, size_t c) {
   // not settle"): far fewer iterates and cuts on walls and slopes at the
   // friction limit; a creeping slope at its limit takes other, step-dependent
   // paths.
-  Contact& r = work_[c];
+  Contact& r = records_.work.contacts[c];
   Hot& h = hot_[c];
   const BlockView& eb = blocks[r.key.eblock];
   const Vec2 a = edge_start(eb, r.key.edge), b = edge_end(eb, r.key.edge);
@@ -45,7 +45,7 @@ void ContactSystem::stick(std::span<const BlockView> blocks, size_t c) {
 void ContactSystem::lock_at_touch(std::span<const BlockView> blocks, size_t c, double flight) {
   // The locking point moves along the entrance edge by the tangential motion
   // before the touch, so the spring's stretch counts from there.
-  Contact& r = work_[c];
+  Contact& r = records_.work.contacts[c];
   const BlockView& eb = blocks[r.key.eblock];
   r.locking_ratio += flight / edge_length(eb, r.key.edge);
   prepare(blocks, r, hot_[c]);
@@ -59,8 +59,8 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
   // not flip on round-off.
   const double f_res = settings_.force_resolution * force_scale_;
   double scale = 0.0;
-  for (size_t c = 0; c < work_.size(); ++c) {
-    Contact& r = work_[c];
+  for (size_t c = 0; c < records_.work.contacts.size(); ++c) {
+    Contact& r = records_.work.contacts[c];
     Hot& h = hot_[c];
     h.assembled_normal_force = h.normal_force;  // energy balance: the friction just solved with
     const auto Di = D.segment<6>(6 * r.key.vblock);
@@ -193,7 +193,7 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
       const double tau =
           shear_stiffness(c) * (h.dt0 + seams_[c].locking_shift + slip) / r.tributary_length;
       const laws::ContactRheology& law = *joint_sets_[r.joint_set].law;
-      if (law.failure_in_step(step_constants_of(c), work_rheology_[r.rheology], h.tau_start, tau)) {
+      if (law.failure_in_step(step_constants_of(c), records_.work.rheology[r.rheology], h.tau_start, tau)) {
         // The law fails within the step at this stress (damage 1, docs/reference/rheology-in-dda.md,
         // "Failure"): the joint's creep strength is gone. It becomes a residual
         // frictional joint - elastic spring, no creep, no cohesion or tensile
@@ -202,7 +202,7 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
         // stress stops its damaging creep there) is this step's.
         laws::RheologyState at_failure;
         const laws::CallSiteScope at(law_call_site(r));
-        fail_law(c, law.advance(step_constants_of(c), work_rheology_[r.rheology], h.tau_start, tau, at_failure));
+        fail_law(c, law.advance(step_constants_of(c), records_.work.rheology[r.rheology], h.tau_start, tau, at_failure));
         ++res.state_changes;
         ++res.changes.slipped;
         continue;
@@ -225,7 +225,7 @@ bool ContactSystem::relinearize_seam(size_t c, double tau, double f_res) {
   Hot& h = hot_[c];
   const ShearSeam before_seam = seams_[c];
   linearize(c, tau);
-  const Contact& r = work_[c];
+  const Contact& r = records_.work.contacts[c];
   if (joint_sets_[r.joint_set].law->linearity() == laws::Linearity::nonlinear) {
     // Newton (docs/reference/rheology-in-dda.md, "Nonlinear laws"): the iterate was
     // solved with the tangent at the last stress; the law's increment at

@@ -44,7 +44,7 @@ void ContactSystem::project_onto_envelope(std::span<const BlockView> blocks, siz
   // the next step's vertex, stopped, chatters between stick and slip again. The spring
   // energy this releases is booked with the springs detached in the step
   // (ContactEnergy::release; contact_energy.cpp).
-  Contact& r = work_[c];
+  Contact& r = records_.work.contacts[c];
   const Hot& h = hot_[c];
   const double f_res = settings_.force_resolution * force_scale_;
   if (beyond_tensile_cutoff(r.normal_force, h.tensile_strength, r.length, f_res)) {
@@ -71,13 +71,13 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
   // this commit changes beside the records (contact_creep_error.cpp).
   can_retract_ = false;
   if (creep_error_wanted_)
-    retract_ = {creep_counters_, last_max_penetration_, penalty_, stored_before_};
+    retract_ = {records_.counters, last_max_penetration_, penalty_, stored_before_};
   double max_pen = 0.0;
   projections_ = 0;
-  stored_before_ = stored_energy(committed_, committed_work_);  // energy balance
-  step_work_.resize(work_.size());                              // energy balance
-  for (size_t c = 0; c < work_.size(); ++c) {
-    Contact& r = work_[c];
+  stored_before_ = stored_energy(records_.committed.contacts, committed_work_);  // energy balance
+  step_work_.resize(records_.work.contacts.size());                              // energy balance
+  for (size_t c = 0; c < records_.work.contacts.size(); ++c) {
+    Contact& r = records_.work.contacts[c];
     const Hot& h = hot_[c];
     const auto Di = D.segment<6>(6 * r.key.vblock);
     const auto Dj = D.segment<6>(6 * r.key.eblock);
@@ -94,7 +94,7 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
                      r.state, 0.0};
     switch (r.state) {
       case ContactState::open:
-        if (h.law_failed) ++creep_counters_[r.joint_set].failures;  // failed at an iterate (check)
+        if (h.law_failed) ++records_.counters[r.joint_set].failures;  // failed at an iterate (check)
         r.normal_force = r.shear_force = 0.0;
         if (h.start_state != ContactState::open) r.intact = false;
         break;
@@ -111,17 +111,17 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
           // stress tau = F / l_t, move the locking point by the creep increment
           // along the entrance edge (the seed's eqs. 22-29) and take the force
           // from the spring's remaining stretch.
-          const laws::RheologyState old = work_rheology_[r.rheology];
+          const laws::RheologyState old = records_.work.rheology[r.rheology];
           const laws::CallSiteScope at(law_call_site(r));
           creep = joint_sets_[r.joint_set].law->advance(step_constants_of(c), old, h.tau_start,
                                                         r.shear_force / r.tributary_length,
-                                                        work_rheology_[r.rheology]);
-          CreepCounters& counters = creep_counters_[r.joint_set];
+                                                        records_.work.rheology[r.rheology]);
+          CreepCounters& counters = records_.counters[r.joint_set];
           counters.contact_time += step_dt_;
           if (!r.has_crept) ++counters.contacts;
           r.has_crept = true;
           r.creep_state = CreepState::creeping;
-          if (work_rheology_[r.rheology].failed()) {
+          if (records_.work.rheology[r.rheology].failed()) {
             // The law failed within the step at the converged stress although no
             // iterate saw it (e.g. anti-chattering): the joint becomes a
             // residual frictional joint now, with this step's creep up to the
@@ -141,16 +141,16 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
           const BlockView& eb = blocks[r.key.eblock];
           r.locking_ratio += creep / edge_length(eb, r.key.edge);
           r.shear_force = h.ps * (h.dt0 + slip - creep);
-          work_creep_[c] = creep;
+          records_.work.creep[c] = creep;
           r.creep_displacement += creep;
         }
-        if (h.law_failed) ++creep_counters_[r.joint_set].failures;
+        if (h.law_failed) ++records_.counters[r.joint_set].failures;
         step_work_[c].solved_shear_force = r.shear_force;
         project_onto_envelope(blocks, c);
         break;
       }
       case ContactState::sliding: {
-        if (h.law_failed) ++creep_counters_[r.joint_set].failures;  // failed at an iterate (check)
+        if (h.law_failed) ++records_.counters[r.joint_set].failures;  // failed at an iterate (check)
         r.normal_force = h.pn * dn;
         r.shear_force = r.slide_direction * mohr_coulomb_strength(r.normal_force, h.tan_phi, h.cohesion, r.length);
         r.shear_displacement += slip;
@@ -168,19 +168,15 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
     penalty_ *= settings_.penalty_raise;
   // History rules: an open or sliding contact loses its creep history (the
   // spring relocks unstretched, so the law restarts from rest).
-  for (const Contact& r : work_)
-    if (r.rheology >= 0 && r.state != ContactState::locked) work_rheology_[r.rheology] = {};
-  committed_.swap(work_);
-  committed_rheology_.swap(work_rheology_);
-  committed_creep_.swap(work_creep_);
+  for (const Contact& r : records_.work.contacts)
+    if (r.rheology >= 0 && r.state != ContactState::locked) records_.work.rheology[r.rheology] = {};
+  records_.committed.swap(records_.work);
   committed_work_.swap(step_work_);  // energy balance
   committed_cycle_damping_ = cycled_ ? cycle_damping_ : 0.0;
   if (creep_error_wanted_) {
     // The step-start records (now in the working arrays) are the estimate's
     // start, and what retract_step swaps back.
-    start_records_.swap(work_);
-    start_rheology_.swap(work_rheology_);
-    start_creep_.swap(work_creep_);
+    start_.swap(records_.work);
     start_work_.swap(step_work_);
     estimate_creep_error();
     can_retract_ = true;
@@ -188,9 +184,7 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
     creep_error_ = 0.0;
     creep_changes_ = 0;
   }
-  work_.clear();
-  work_rheology_.clear();
-  work_creep_.clear();
+  records_.work.clear();
 }
 
 }  // namespace rheodda::contact

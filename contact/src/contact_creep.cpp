@@ -26,27 +26,27 @@ std::optional<laws::Scheme> ContactSystem::scheme_used(int js) const {
 }
 
 const laws::StepConstants& ContactSystem::step_constants_of(size_t c) const {
-  const LawStep& ls = law_steps_[work_[c].joint_set];
+  const LawStep& ls = law_steps_[records_.work.contacts[c].joint_set];
   return hot_[c].creep_from_rest ? ls.from_rest : ls.main;
 }
 
 void ContactSystem::linearize(size_t c, double tau_guess) {
   // Delta d_c = h + c tau_e (laws/contact_rheology.hpp) with tau = F / l_t:
   // locking point shifted by h, compliance c / l_t in force terms.
-  const Contact& r = work_[c];
+  const Contact& r = records_.work.contacts[c];
   const laws::CallSiteScope at(law_call_site(r));
   const laws::Linearization lin = joint_sets_[r.joint_set].law->linearize(
-      step_constants_of(c), work_rheology_[r.rheology], hot_[c].tau_start, tau_guess);
+      step_constants_of(c), records_.work.rheology[r.rheology], hot_[c].tau_start, tau_guess);
   seams_[c] = {-lin.h, lin.c / r.tributary_length};
 }
 
 double ContactSystem::time_to_failure() const {
   double t = std::numeric_limits<double>::infinity();
-  for (const Contact& r : committed_)
+  for (const Contact& r : records_.committed.contacts)
     if (r.state == ContactState::locked && r.rheology >= 0 && r.tributary_length > 0.0 &&
         !r.creep_failed && joint_sets_[r.joint_set].law)
       t = std::min(t, joint_sets_[r.joint_set].law->time_to_failure(
-                          committed_rheology_[r.rheology], r.shear_force / r.tributary_length));
+                          records_.committed.rheology[r.rheology], r.shear_force / r.tributary_length));
   return t;
 }
 
@@ -56,12 +56,12 @@ void ContactSystem::fail_law(size_t c, double creep) {
   // point (compliance 0), as the law's own curve ends its creep at the failure
   // (laws/accurate_curve.cpp). Where the law's creep diverges at failure
   // (damage-burgers with n >= r + 1) none is kept.
-  Contact& r = work_[c];
+  Contact& r = records_.work.contacts[c];
   Hot& h = hot_[c];
   h.law_failed = true;
   h.failure_creep = std::isfinite(creep) ? creep : 0.0;
   r.creep_failed = true;
-  if (r.rheology >= 0) work_rheology_[r.rheology] = {};  // no history left
+  if (r.rheology >= 0) records_.work.rheology[r.rheology] = {};  // no history left
   r.intact = false;
   const JointSet& js = joint_sets_[r.joint_set];  // its residual strength from now on
   h.tan_phi = tan_deg(js.friction_angle_of(false));
@@ -78,10 +78,10 @@ void ContactSystem::start_laws(double dt) {
                                    [](const JointSet& j) { return j.law != nullptr; });
   if (dt > 0.0 && any_law) {
     std::vector<double> k_area(joint_sets_.size(), 0.0);
-    for (size_t c = 0; c < work_.size(); ++c)
-      if (work_[c].rheology >= 0 && work_[c].tributary_length > 0.0)
-        k_area[work_[c].joint_set] =
-            std::max(k_area[work_[c].joint_set], hot_[c].ps / work_[c].tributary_length);
+    for (size_t c = 0; c < records_.work.contacts.size(); ++c)
+      if (records_.work.contacts[c].rheology >= 0 && records_.work.contacts[c].tributary_length > 0.0)
+        k_area[records_.work.contacts[c].joint_set] =
+            std::max(k_area[records_.work.contacts[c].joint_set], hot_[c].ps / records_.work.contacts[c].tributary_length);
     for (size_t j = 0; j < joint_sets_.size(); ++j) {
       const auto& law = joint_sets_[j].law;
       if (!law) continue;
@@ -91,8 +91,8 @@ void ContactSystem::start_laws(double dt) {
       ls.main = law->step_constants(dt, ls.scheme);
       ls.from_rest = law->step_constants(dt, laws::Scheme::implicit);
     }
-    for (size_t c = 0; c < work_.size(); ++c)
-      if (work_[c].rheology >= 0 && work_[c].tributary_length > 0.0 && !work_[c].creep_failed)
+    for (size_t c = 0; c < records_.work.contacts.size(); ++c)
+      if (records_.work.contacts[c].rheology >= 0 && records_.work.contacts[c].tributary_length > 0.0 && !records_.work.contacts[c].creep_failed)
         linearize(c, hot_[c].tau_start);
   }
 }

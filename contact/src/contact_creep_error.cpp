@@ -19,8 +19,8 @@ void ContactSystem::estimate_creep_error() {
   creep_changes_ = 0;
   retract_prev_tau_ = prev_tau_;
   retract_prev_dt_ = prev_dt_;
-  const std::span<const Contact> start_contacts = start_records_;
-  const std::span<const laws::RheologyState> start_rheology = start_rheology_;
+  const std::span<const Contact> start_contacts = start_.contacts;
+  const std::span<const laws::RheologyState> start_rheology = start_.rheology;
   const double dt = step_dt_;
   std::unordered_map<std::uint64_t, std::size_t> start_of;
   start_of.reserve(start_contacts.size());
@@ -32,7 +32,7 @@ void ContactSystem::estimate_creep_error() {
            c.joint_set < static_cast<int>(joint_sets_.size()) && joint_sets_[c.joint_set].law != nullptr;
   };
   std::size_t matched_locked = 0;
-  for (const Contact& c : committed_) {
+  for (const Contact& c : records_.committed.contacts) {
     const auto it = start_of.find(c.id);
     if (it == start_of.end()) {
       if (creeps(c) && c.state != ContactState::open) ++creep_changes_;
@@ -53,9 +53,9 @@ void ContactSystem::estimate_creep_error() {
   };
   std::vector<std::optional<Pair>> ks(joint_sets_.size());
   std::unordered_map<std::uint64_t, double> tau_now;
-  tau_now.reserve(committed_.size());
+  tau_now.reserve(records_.committed.contacts.size());
   double worst = 0.0;
-  for (const Contact& c : committed_) {
+  for (const Contact& c : records_.committed.contacts) {
     if (c.rheology < 0 || c.tributary_length <= 0.0 || c.state != ContactState::locked ||
         c.creep_failed)  // a failed damage law no longer creeps (docs/reference/rheology-in-dda.md, "Failure")
       continue;
@@ -112,11 +112,9 @@ void ContactSystem::estimate_creep_error() {
 
 bool ContactSystem::retract_step() {
   if (!can_retract_) return false;
-  committed_.swap(start_records_);
-  committed_rheology_.swap(start_rheology_);
-  committed_creep_.swap(start_creep_);
+  records_.committed.swap(start_);
   committed_work_.swap(start_work_);
-  creep_counters_ = retract_.counters;
+  records_.counters = retract_.counters;
   last_max_penetration_ = retract_.last_max_penetration;
   penalty_ = retract_.penalty;
   stored_before_ = retract_.stored_before;

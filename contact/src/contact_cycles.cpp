@@ -129,14 +129,14 @@ void ContactSystem::begin_cycles(std::span<const BlockView> blocks, int threads)
   const int block_count = static_cast<int>(blocks.size());
   cycle_threads_ = threads;
   cycled_ = true;
-  const std::size_t n = work_.size();
+  const std::size_t n = records_.work.contacts.size();
   cycles::Arrays& a = cycles_;
   a.springs.resize(n);
   a.states.resize(n);
   a.bounds.resize(2 * n);
   a.force.assign(2 * n, Vec6::Zero());
   for (std::size_t c = 0; c < n; ++c) {
-    const Contact& r = work_[c];
+    const Contact& r = records_.work.contacts[c];
     const Hot& h = hot_[c];
     const JointSet& js = joint_sets_[r.joint_set];
     cycles::Spring& p = a.springs[c];
@@ -171,21 +171,21 @@ void ContactSystem::begin_cycles(std::span<const BlockView> blocks, int threads)
   // The contacts of each block in the order of the records (vertex side before edge side
   // where a contact has a block on both): the gather's fixed order.
   a.block_first.assign(static_cast<std::size_t>(block_count) + 1, 0);
-  for (const Contact& r : work_) ++a.block_first[r.key.vblock + 1], ++a.block_first[r.key.eblock + 1];
+  for (const Contact& r : records_.work.contacts) ++a.block_first[r.key.vblock + 1], ++a.block_first[r.key.eblock + 1];
   for (int b = 0; b < block_count; ++b) a.block_first[b + 1] += a.block_first[b];
   a.next.assign(a.block_first.begin(), a.block_first.end() - 1);
   for (std::size_t c = 0; c < n; ++c) {
-    a.springs[c].slot_i = a.next[work_[c].key.vblock]++;
-    a.springs[c].slot_j = a.next[work_[c].key.eblock]++;
+    a.springs[c].slot_i = a.next[records_.work.contacts[c].key.vblock]++;
+    a.springs[c].slot_j = a.next[records_.work.contacts[c].key.eblock]++;
   }
   // The first and last contact on each block, and the blocks by their last contact: the
   // order in which the cycles can gather them.
   a.block_first_contact.assign(static_cast<std::size_t>(block_count), static_cast<int>(n));
   a.block_last_contact.assign(static_cast<std::size_t>(block_count), -1);
   for (std::size_t c = n; c-- > 0;)
-    for (const int b : {work_[c].key.vblock, work_[c].key.eblock}) a.block_first_contact[b] = static_cast<int>(c);
+    for (const int b : {records_.work.contacts[c].key.vblock, records_.work.contacts[c].key.eblock}) a.block_first_contact[b] = static_cast<int>(c);
   for (std::size_t c = 0; c < n; ++c)
-    for (const int b : {work_[c].key.vblock, work_[c].key.eblock}) a.block_last_contact[b] = static_cast<int>(c);
+    for (const int b : {records_.work.contacts[c].key.vblock, records_.work.contacts[c].key.eblock}) a.block_last_contact[b] = static_cast<int>(c);
   a.completion.resize(static_cast<std::size_t>(block_count));
   for (int b = 0; b < block_count; ++b) a.completion[b] = b;
   std::stable_sort(a.completion.begin(), a.completion.end(),
@@ -204,7 +204,7 @@ void ContactSystem::cycle_stiffness(std::vector<Mat6>& K) const {
 void ContactSystem::cycle_damping(double tau, std::vector<Mat6>& C) {
   for (std::size_t c = 0; c < cycles_.springs.size(); ++c) {
     cycles::Spring& p = cycles_.springs[c];
-    if (joint_sets_[work_[c].joint_set].restitution) {
+    if (joint_sets_[records_.work.contacts[c].joint_set].restitution) {
       p.cn = hot_[c].cn, p.cs = hot_[c].cs;
     } else {
       p.cn = tau * p.pn;
@@ -281,8 +281,8 @@ int ContactSystem::cycle_relinearize(const Eigen::VectorXd& D) {
   // the cycles' springs follow.
   const double f_res = settings_.force_resolution * force_scale_;
   int changed = 0;
-  for (std::size_t c = 0; c < work_.size(); ++c) {
-    const Contact& r = work_[c];
+  for (std::size_t c = 0; c < records_.work.contacts.size(); ++c) {
+    const Contact& r = records_.work.contacts[c];
     const cycles::State& y = cycles_.states[c];
     if (y.state != ContactState::locked || r.rheology < 0 || !(r.tributary_length > 0.0) ||
         !law_steps_[r.joint_set].active || r.creep_failed || joint_sets_[r.joint_set].law->is_linear())
@@ -301,8 +301,8 @@ int ContactSystem::cycle_relinearize(const Eigen::VectorXd& D) {
 CheckResult ContactSystem::end_cycles(std::span<const BlockView> blocks, const Eigen::VectorXd& D) {
   CheckResult res;
   double scale = 0.0;
-  for (std::size_t c = 0; c < work_.size(); ++c) {
-    Contact& r = work_[c];
+  for (std::size_t c = 0; c < records_.work.contacts.size(); ++c) {
+    Contact& r = records_.work.contacts[c];
     Hot& h = hot_[c];
     const cycles::State& y = cycles_.states[c];
     const cycles::Spring& p = cycles_.springs[c];

@@ -41,8 +41,8 @@ double ContactSystem::stored_energy(std::span<const Contact> records,
 ContactEnergy ContactSystem::energy() const {
   ContactEnergy e;
   double start = 0.0;  // springs attached at the step start: sum of k s0^2/2
-  for (size_t c = 0; c < committed_.size() && c < committed_work_.size(); ++c) {
-    const Contact& r = committed_[c];
+  for (size_t c = 0; c < records_.committed.contacts.size() && c < committed_work_.size(); ++c) {
+    const Contact& r = records_.committed.contacts[c];
     const StepWork& w = committed_work_[c];
     // The springs' work follows the state the solve ended with (w.solved_state); what is
     // stored follows the committed one. They differ where the commit projected a locked
@@ -83,7 +83,7 @@ ContactEnergy ContactSystem::energy() const {
       const double us1 = r.state == ContactState::locked ? 0.5 * r.shear_force * r.shear_force / w.ps : 0.0;
       e.shear += us1;
       e.release += 0.5 * F1 * s1 - us1;
-      e.creep += F1 * (c < committed_creep_.size() ? committed_creep_[c] : 0.0);
+      e.creep += F1 * (c < records_.committed.creep.size() ? records_.committed.creep[c] : 0.0);
       if (s_start)
         e.integration += 0.5 * w.ps * d * d;
       else

@@ -108,8 +108,8 @@ double ContactSystem::shear_stiffness(size_t c) const {
 }
 
 void ContactSystem::assemble(std::span<const BlockView>, SystemSink& sink) const {
-  for (size_t c = 0; c < work_.size(); ++c) {
-    const Contact& r = work_[c];
+  for (size_t c = 0; c < records_.work.contacts.size(); ++c) {
+    const Contact& r = records_.work.contacts[c];
     const int i = r.key.vblock, j = r.key.eblock;
     if (r.state == ContactState::open) {
       // A zero block keeps the matrix pattern of the pair through the
@@ -164,8 +164,8 @@ void ContactSystem::assemble(std::span<const BlockView>, SystemSink& sink) const
 }
 
 void ContactSystem::contact_forces(const Eigen::VectorXd& D, Eigen::VectorXd& f) const {
-  for (size_t c = 0; c < work_.size(); ++c) {
-    const Contact& r = work_[c];
+  for (size_t c = 0; c < records_.work.contacts.size(); ++c) {
+    const Contact& r = records_.work.contacts[c];
     if (r.state == ContactState::open) continue;
     const Hot& h = hot_[c];
     const auto Di = D.segment<6>(6 * r.key.vblock);

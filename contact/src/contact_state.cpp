@@ -14,16 +14,16 @@ namespace rheodda::contact {
 
 ContactSystem::State ContactSystem::state() const {
   State s;
-  s.contacts = committed_;
-  s.rheology = committed_rheology_;
-  s.creep = committed_creep_;
+  s.contacts = records_.committed.contacts;
+  s.rheology = records_.committed.rheology;
+  s.creep = records_.committed.creep;
   s.work = committed_work_;
-  s.counters = creep_counters_;
+  s.counters = records_.counters;
   s.penalty = penalty_;
   s.allowed_penetration = allowed_penetration_;
   s.last_max_penetration = last_max_penetration_;
   s.stored_before = stored_before_;
-  s.next_id = next_id_;
+  s.next_id = records_.next_id;
   // Sorted, so that equal states give equal files (the map's order is not defined).
   s.previous_stress.assign(prev_tau_.begin(), prev_tau_.end());
   std::sort(s.previous_stress.begin(), s.previous_stress.end());
@@ -51,16 +51,16 @@ void ContactSystem::restore(const State& s) {
     if (c > 0 && r.key < s.contacts[c - 1].key) refuse("its contacts are not sorted by key");
   }
   if (!(s.penalty > 0.0)) refuse("its penalty is not positive");
-  committed_ = s.contacts;
-  committed_rheology_ = s.rheology;
-  committed_creep_ = s.creep;
+  records_.committed.contacts = s.contacts;
+  records_.committed.rheology = s.rheology;
+  records_.committed.creep = s.creep;
   committed_work_ = s.work;
-  creep_counters_ = s.counters;
+  records_.counters = s.counters;
   penalty_ = s.penalty;
   allowed_penetration_ = s.allowed_penetration;
   last_max_penetration_ = s.last_max_penetration;
   stored_before_ = s.stored_before;
-  next_id_ = s.next_id;
+  records_.next_id = s.next_id;
   prev_tau_.clear();
   prev_tau_.insert(s.previous_stress.begin(), s.previous_stress.end());
   prev_dt_ = s.previous_dt;
@@ -68,9 +68,7 @@ void ContactSystem::restore(const State& s) {
   creep_changes_ = s.creep_changes;
   // Between two steps: no trial, nothing to retract.
   abandon_step();
-  start_records_.clear();
-  start_rheology_.clear();
-  start_creep_.clear();
+  start_.clear();
   start_work_.clear();
   can_retract_ = false;
 }

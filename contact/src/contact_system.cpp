@@ -50,13 +50,11 @@ ContactSystem::ContactSystem(std::vector<JointSet> joint_sets, ContactSettings s
     joint_sets_.push_back(js);
   }
   for (size_t k = 0; k < joint_sets_.size(); ++k) check_joint_set(joint_sets_[k], k);
-  creep_counters_.assign(joint_sets_.size(), CreepCounters{});
+  records_.counters.assign(joint_sets_.size(), CreepCounters{});
 }
 
 void ContactSystem::abandon_step() {
-  work_.clear();
-  work_rheology_.clear();
-  work_creep_.clear();
+  records_.work.clear();
   hot_.clear();
   seams_.clear();
 }

@@ -49,8 +49,8 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepCont
   }
   const auto& pairs = *found_pairs;
 
-  previous_keys_.resize(committed_.size());
-  for (size_t k = 0; k < committed_.size(); ++k) previous_keys_[k] = committed_[k].key;
+  previous_keys_.resize(records_.committed.contacts.size());
+  for (size_t k = 0; k < records_.committed.contacts.size(); ++k) previous_keys_[k] = records_.committed.contacts[k].key;
   const std::vector<DetectedContact> found =
       detect_contacts(blocks, pairs, {d0, settings_.angle_tolerance, allowed_penetration_}, previous_keys_);
 
@@ -58,7 +58,7 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepCont
   // adjacent edge of the same block inherits it (the vertex slid over a corner).
   const size_t n = found.size();
   std::vector<int> from(n, -1);
-  std::vector<char> used(committed_.size(), 0);
+  std::vector<char> used(records_.committed.contacts.size(), 0);
   auto find_key = [&](const ContactKey& k) -> int {
     auto it = std::lower_bound(previous_keys_.begin(), previous_keys_.end(), k);
     return (it != previous_keys_.end() && *it == k) ? static_cast<int>(it - previous_keys_.begin())
@@ -77,8 +77,8 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepCont
     }
   }
 
-  work_.clear();
-  work_rheology_.clear();
+  records_.work.contacts.clear();
+  records_.work.rheology.clear();
   hot_.clear();
   DetectionStats restart;  // its restart_* only
   for (size_t c = 0; c < n; ++c) {
@@ -90,7 +90,7 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepCont
                               std::to_string(d.key.edge) + ": joint set " + std::to_string(js) +
                               " does not exist (" + std::to_string(joint_sets_.size()) + " defined)");
     Contact rec;
-    const Contact* old = from[c] >= 0 ? &committed_[from[c]] : nullptr;
+    const Contact* old = from[c] >= 0 ? &records_.committed.contacts[from[c]] : nullptr;
     if (old) {
       rec = *old;
       if (old->key.edge != d.key.edge) {
@@ -134,7 +134,7 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepCont
       // another face, e.g. a step corner within the search distance of the
       // next block's base).
       if (h.dn0 > allowed_penetration_) continue;
-      rec.id = next_id_++;
+      rec.id = records_.next_id++;
       // A new contact that already touches (to round-off: 1e-9 of the edge
       // length) or penetrates starts closed: blocks built touching each other
       // carry load from the first iterate instead of closing row by row.
@@ -144,9 +144,9 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepCont
     // contact on a joint set with a law.
     if (joint_sets_[js].law) {
       laws::RheologyState st;
-      if (old && old->rheology >= 0) st = committed_rheology_[old->rheology];
-      rec.rheology = static_cast<int>(work_rheology_.size());
-      work_rheology_.push_back(st);
+      if (old && old->rheology >= 0) st = records_.committed.rheology[old->rheology];
+      rec.rheology = static_cast<int>(records_.work.rheology.size());
+      records_.work.rheology.push_back(st);
     } else {
       rec.rheology = -1;
     }
@@ -184,21 +184,21 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepCont
                       : 0.0;
     h.flips = h.refinements = 0;
     h.normal_force = rec.state == ContactState::open ? 0.0 : rec.normal_force;
-    work_.push_back(rec);
+    records_.work.contacts.push_back(rec);
     hot_.push_back(h);
   }
-  seams_.assign(work_.size(), ShearSeam{});
-  work_creep_.assign(work_.size(), 0.0);
+  seams_.assign(records_.work.contacts.size(), ShearSeam{});
+  records_.work.creep.assign(records_.work.contacts.size(), 0.0);
 
   start_laws(step.dt);
   step_dt_ = step.dt;
   step_inertia_ = step.inertia;
   step_max_penetration_ = 0.0;
   force_scale_ = 0.0;
-  for (const Contact& c : committed_) force_scale_ = std::max(force_scale_, std::abs(c.normal_force));
+  for (const Contact& c : records_.committed.contacts) force_scale_ = std::max(force_scale_, std::abs(c.normal_force));
   stats_ = restart;
   stats_.candidate_pairs = static_cast<int>(pairs.size());
-  stats_.contacts = static_cast<int>(work_.size());
+  stats_.contacts = static_cast<int>(records_.work.contacts.size());
   stats_.transferred = transferred;
   stats_.search_distance = d0;
 }

@@ -38,6 +38,8 @@
 #include "rheodda/contact/broad_phase.hpp"
 #include "rheodda/contact/check_result.hpp"
 #include "rheodda/contact/contact_energy.hpp"
+#include "rheodda/contact/contact_record.hpp"
+#include "rheodda/contact/contact_records.hpp"
 #include "rheodda/contact/cycle_arrays.hpp"
 #include "rheodda/contact/detection.hpp"
 #include "rheodda/contact/joint_set.hpp"
@@ -46,68 +48,6 @@
 #include "rheodda/laws/contact_rheology.hpp"
 
 namespace rheodda::contact {
-
-/// State of a contact.
-enum class ContactState : std::uint8_t {
-  open,     ///< no spring, no force
-  sliding,  ///< normal spring + Mohr-Coulomb friction force along the entrance edge
-  locked    ///< normal spring + shear spring to the locking point
-};
-
-/// Name used in outputs: "open", "sliding", "locked".
-const char* contact_state_name(ContactState s);
-
-/// What the joint set's creep law did to a contact in the last accepted step.
-enum class CreepState : std::uint8_t {
-  none,      ///< the joint set has no law
-  creeping,  ///< locked: the law advanced its history and moved its locking point
-  idle       ///< has a law but did not creep: open or sliding (history lost), or a step without creep time (dt = 0)
-};
-
-/// Name used in outputs: "none", "creeping", "idle".
-const char* creep_state_name(CreepState s);
-
-/// Creep counters of one joint set since the ContactSystem was made (restored
-/// with the system on rollback).
-struct CreepCounters {
-  int contacts = 0;            ///< contacts the law advanced in at least one accepted step [-]
-  double contact_time = 0.0;   ///< sum over accepted steps of dt x contacts it advanced [time]
-  int failures = 0;            ///< contacts whose law reached failure (damage 1) [-]
-};
-
-/// Persistent record of one contact (also the per-step output record).
-/// Forces are per unit thickness [force/length]; positive normal force is compression.
-struct Contact {
-  std::uint64_t id = 0;  ///< unique, kept from step to step while the contact persists
-  ContactKey key;        ///< vertex block/vertex, entrance-edge block/edge
-  ContactKind kind = ContactKind::vertex_edge;
-  ContactState state = ContactState::open;
-  int joint_set = 0;          ///< joint set of the entrance edge
-  double length = 0.0;        ///< contact length [length] (half the shared length for edge_edge)
-  /// Joint length the contact stands for in its joint set's law [length]:
-  /// `length` for edge_edge, point_tributary_length (detection.hpp) for a point
-  /// contact; on a joint set with a law it sets the shear spring (E1 l_t or
-  /// shear_stiffness l_t) and the stress tau = F / l_t. Step-start geometry.
-  double tributary_length = 0.0;
-  double locking_ratio = 0.0; ///< locking point P0 on the entrance edge, as a fraction of its length [-]
-  int slide_direction = 0;    ///< +1 / -1: the vertex slides along +/- the edge direction
-  double normal_force = 0.0;  ///< p_n d_n [force/length]
-  double shear_force = 0.0;   ///< along the edge direction a->b; p_s d_t (locked) or friction (sliding) [force/length]
-  double shear_displacement = 0.0;  ///< accumulated relative slip + shear of the vertex along the edge [length]
-  double penetration = 0.0;   ///< d_n at the end of the step (trial records: of the last iterate), > 0 into the edge's block [length]
-  bool intact = true;         ///< cohesion and tensile strength act until the contact first slides or opens
-  int rheology = -1;          ///< slot in rheology_states(), or -1 without a law
-  /// Accumulated creep of the contact along the edge direction a->b [length]:
-  /// the sum of its creep increments Delta d_c since it was created. Kept
-  /// through transfer to the adjacent edge and changes of kind; not reset
-  /// when it slides or opens (the law's history is, rheology_states()).
-  double creep_displacement = 0.0;
-  CreepState creep_state = CreepState::none;  ///< in the last accepted step
-  bool has_crept = false;     ///< the law advanced it in at least one accepted step
-  /// Its damage law reached failure (docs/reference/rheology-in-dda.md, "Failure"): from
-  /// then on a residual frictional joint (no cohesion, no tensile strength, no creep).
-  bool creep_failed = false;
-};
 
 /// Hook for the creep increment of the shear spring (zero without a law).
 /// The spring's stretch is d + locking_shift with locking_shift = -h, and its
@@ -233,11 +173,11 @@ class ContactSystem {
   bool extrapolate(const ContactSystem& coarse);
 
   /// Records of the last accepted step, sorted by key.
-  std::span<const Contact> contacts() const { return committed_; }
+  std::span<const Contact> contacts() const { return records_.committed.contacts; }
   /// Working records of the step being solved (trial states).
-  std::span<const Contact> trial_contacts() const { return work_; }
+  std::span<const Contact> trial_contacts() const { return records_.work.contacts; }
   /// Rheology histories of the last accepted step (indexed by Contact::rheology).
-  std::span<const laws::RheologyState> rheology_states() const { return committed_rheology_; }
+  std::span<const laws::RheologyState> rheology_states() const { return records_.committed.rheology; }
   /// Creep seams of the step being solved, parallel to trial_contacts().
   std::span<ShearSeam> shear_seams() { return seams_; }
 
@@ -246,11 +186,11 @@ class ContactSystem {
   std::optional<laws::Scheme> scheme_used(int js) const;
   /// Creep increment Delta d_c of each contact in the last accepted step
   /// (parallel to contacts(); 0 without a law) [length].
-  std::span<const double> creep_increments() const { return committed_creep_; }
+  std::span<const double> creep_increments() const { return records_.committed.creep; }
   /// Per joint set (indexed like joint_sets()): how many contacts carried creep
   /// and for how long, over the accepted steps since construction. All zero
   /// for a joint set without a law.
-  std::span<const CreepCounters> creep_counters() const { return creep_counters_; }
+  std::span<const CreepCounters> creep_counters() const { return records_.counters; }
   /// Smallest time left before a damage law fails (ContactRheology::time_to_failure)
   /// over the locked contacts of the last accepted step, at their stress
   /// tau = F / l_t held constant [time]; infinity when no law can fail.
@@ -271,7 +211,7 @@ class ContactSystem {
   const DetectionStats& stats() const { return stats_; }
 
   /// What the energy balance needs of one contact's last accepted step,
-  /// recorded by end_step (parallel to committed_; contact_energy.cpp).
+  /// recorded by end_step (parallel to contacts(); contact_energy.cpp).
   struct StepWork {
     double pn = 0.0, ps = 0.0;   ///< normal and elastic shear springs of the step [stress]
     double dn0 = 0.0, dn = 0.0;  ///< penetration on the step-start geometry and at the end [length]
@@ -426,12 +366,8 @@ class ContactSystem {
   double step_max_penetration_ = 0.0;
   double force_scale_ = 0.0;  ///< largest |N| of the last iterate [force/length]
   bool step_dynamic_ = true;  ///< the step being solved carries velocity (begin_step)
-  std::uint64_t next_id_ = 1;
 
-  std::vector<Contact> committed_, work_;
-  std::vector<laws::RheologyState> committed_rheology_, work_rheology_;
-  std::vector<double> committed_creep_, work_creep_;
-  std::vector<CreepCounters> creep_counters_;  ///< per joint set, accepted steps only
+  ContactRecords records_;  ///< committed and working records (contact_records.hpp)
   double step_dt_ = 0.0;  ///< creep time of the step being solved [time]
   double step_inertia_ = 0.0;  ///< inertia stiffness per unit mass of the step, 1/(beta dt^2) [1/time^2]
   std::vector<StepWork> committed_work_, step_work_;  ///< energy balance (contact_energy.cpp)
@@ -451,9 +387,7 @@ class ContactSystem {
     double last_max_penetration = 0.0, penalty = 0.0, stored_before = 0.0;
   } retract_;
   /// The records at the start of the last accepted step (creep_error_wanted only).
-  std::vector<Contact> start_records_;
-  std::vector<laws::RheologyState> start_rheology_;
-  std::vector<double> start_creep_;
+  RecordSet start_;
   std::vector<StepWork> start_work_;
   std::unordered_map<std::uint64_t, double> prev_tau_;  ///< stress at the last step's start, by contact id [stress]
   double prev_dt_ = 0.0;                                ///< last accepted step [time]
