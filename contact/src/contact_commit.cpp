@@ -45,7 +45,7 @@ void ContactSystem::project_onto_envelope(std::span<const BlockView> blocks, siz
   // energy this releases is booked with the springs detached in the step
   // (ContactEnergy::release; contact_energy.cpp).
   Contact& r = records_.work.contacts[c];
-  const Hot& h = hot_[c];
+  const Hot& h = step_.hot[c];
   const double f_res = settings_.force_resolution * force_scale_;
   if (beyond_tensile_cutoff(r.normal_force, h.tensile_strength, r.length, f_res)) {
     r.state = ContactState::open;
@@ -78,12 +78,12 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
   step_work_.resize(records_.work.contacts.size());                              // energy balance
   for (size_t c = 0; c < records_.work.contacts.size(); ++c) {
     Contact& r = records_.work.contacts[c];
-    const Hot& h = hot_[c];
+    const Hot& h = step_.hot[c];
     const auto Di = D.segment<6>(6 * r.key.vblock);
     const auto Dj = D.segment<6>(6 * r.key.eblock);
     const double dn = h.dn0 + h.ni.dot(Di) + h.nj.dot(Dj);
     const double slip = h.ti.dot(Di) + h.tj.dot(Dj);
-    const double dt = h.dt0 + seams_[c].locking_shift + slip;
+    const double dt = h.dt0 + step_.seams[c].locking_shift + slip;
     r.penetration = dn;
     r.creep_state = r.rheology >= 0 ? CreepState::idle : CreepState::none;
     step_work_[c] = {h.pn, h.ps, h.dn0, dn, h.dt0, slip, h.start_state,  // energy balance
@@ -105,7 +105,7 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
         max_pen = std::max(max_pen, dn);
         bool crept = false;  // this step's creep moves the locking point
         double creep = 0.0;  // [length]
-        if (r.rheology >= 0 && r.tributary_length > 0.0 && law_steps_[r.joint_set].active &&
+        if (r.rheology >= 0 && r.tributary_length > 0.0 && step_.laws[r.joint_set].active &&
             !r.creep_failed) {
           // Advance the history from the step-start state with the step's end
           // stress tau = F / l_t, move the locking point by the creep increment

@@ -20,14 +20,14 @@
 namespace rheodda::contact {
 
 std::optional<laws::Scheme> ContactSystem::scheme_used(int js) const {
-  if (js < 0 || js >= static_cast<int>(law_steps_.size()) || !law_steps_[js].active)
+  if (js < 0 || js >= static_cast<int>(step_.laws.size()) || !step_.laws[js].active)
     return std::nullopt;
-  return law_steps_[js].scheme;
+  return step_.laws[js].scheme;
 }
 
 const laws::StepConstants& ContactSystem::step_constants_of(size_t c) const {
-  const LawStep& ls = law_steps_[records_.work.contacts[c].joint_set];
-  return hot_[c].creep_from_rest ? ls.from_rest : ls.main;
+  const LawStep& ls = step_.laws[records_.work.contacts[c].joint_set];
+  return step_.hot[c].creep_from_rest ? ls.from_rest : ls.main;
 }
 
 void ContactSystem::linearize(size_t c, double tau_guess) {
@@ -36,8 +36,8 @@ void ContactSystem::linearize(size_t c, double tau_guess) {
   const Contact& r = records_.work.contacts[c];
   const laws::CallSiteScope at(law_call_site(r));
   const laws::Linearization lin = joint_sets_[r.joint_set].law->linearize(
-      step_constants_of(c), records_.work.rheology[r.rheology], hot_[c].tau_start, tau_guess);
-  seams_[c] = {-lin.h, lin.c / r.tributary_length};
+      step_constants_of(c), records_.work.rheology[r.rheology], step_.hot[c].tau_start, tau_guess);
+  step_.seams[c] = {-lin.h, lin.c / r.tributary_length};
 }
 
 double ContactSystem::time_to_failure() const {
@@ -57,7 +57,7 @@ void ContactSystem::fail_law(size_t c, double creep) {
   // (laws/accurate_curve.cpp). Where the law's creep diverges at failure
   // (damage-burgers with n >= r + 1) none is kept.
   Contact& r = records_.work.contacts[c];
-  Hot& h = hot_[c];
+  Hot& h = step_.hot[c];
   h.law_failed = true;
   h.failure_creep = std::isfinite(creep) ? creep : 0.0;
   r.creep_failed = true;
@@ -67,13 +67,13 @@ void ContactSystem::fail_law(size_t c, double creep) {
   h.tan_phi = tan_deg(js.friction_angle_of(false));
   h.cohesion = js.cohesion_of(false);
   h.tensile_strength = 0.0;
-  seams_[c] = {-h.failure_creep, 0.0};
+  step_.seams[c] = {-h.failure_creep, 0.0};
 }
 
 void ContactSystem::start_laws(double dt) {
   // Law constants, once per joint set and step (never per contact). The
   // automatic scheme looks at the stiffest spring per unit area of the set.
-  law_steps_.assign(joint_sets_.size(), LawStep{});
+  step_.laws.assign(joint_sets_.size(), LawStep{});
   const bool any_law = std::any_of(joint_sets_.begin(), joint_sets_.end(),
                                    [](const JointSet& j) { return j.law != nullptr; });
   if (dt > 0.0 && any_law) {
@@ -81,11 +81,11 @@ void ContactSystem::start_laws(double dt) {
     for (size_t c = 0; c < records_.work.contacts.size(); ++c)
       if (records_.work.contacts[c].rheology >= 0 && records_.work.contacts[c].tributary_length > 0.0)
         k_area[records_.work.contacts[c].joint_set] =
-            std::max(k_area[records_.work.contacts[c].joint_set], hot_[c].ps / records_.work.contacts[c].tributary_length);
+            std::max(k_area[records_.work.contacts[c].joint_set], step_.hot[c].ps / records_.work.contacts[c].tributary_length);
     for (size_t j = 0; j < joint_sets_.size(); ++j) {
       const auto& law = joint_sets_[j].law;
       if (!law) continue;
-      LawStep& ls = law_steps_[j];
+      LawStep& ls = step_.laws[j];
       ls.active = true;
       ls.scheme = settings_.scheme ? *settings_.scheme : laws::automatic_scheme(*law, k_area[j], dt);
       ls.main = law->step_constants(dt, ls.scheme);
@@ -93,7 +93,7 @@ void ContactSystem::start_laws(double dt) {
     }
     for (size_t c = 0; c < records_.work.contacts.size(); ++c)
       if (records_.work.contacts[c].rheology >= 0 && records_.work.contacts[c].tributary_length > 0.0 && !records_.work.contacts[c].creep_failed)
-        linearize(c, hot_[c].tau_start);
+        linearize(c, step_.hot[c].tau_start);
   }
 }
 

@@ -137,12 +137,12 @@ void ContactSystem::begin_cycles(std::span<const BlockView> blocks, int threads)
   a.force.assign(2 * n, Vec6::Zero());
   for (std::size_t c = 0; c < n; ++c) {
     const Contact& r = records_.work.contacts[c];
-    const Hot& h = hot_[c];
+    const Hot& h = step_.hot[c];
     const JointSet& js = joint_sets_[r.joint_set];
     cycles::Spring& p = a.springs[c];
     p.ni = h.ni, p.nj = h.nj, p.ti = h.ti, p.tj = h.tj;
     p.dn0 = h.dn0;
-    p.reach0 = h.dt0 + seams_[c].locking_shift;
+    p.reach0 = h.dt0 + step_.seams[c].locking_shift;
     p.pn = h.pn;
     p.ks = shear_stiffness(c);
     p.tension = js.tensile_strength * r.length;
@@ -205,7 +205,7 @@ void ContactSystem::cycle_damping(double tau, std::vector<Mat6>& C) {
   for (std::size_t c = 0; c < cycles_.springs.size(); ++c) {
     cycles::Spring& p = cycles_.springs[c];
     if (joint_sets_[records_.work.contacts[c].joint_set].restitution) {
-      p.cn = hot_[c].cn, p.cs = hot_[c].cs;
+      p.cn = step_.hot[c].cn, p.cs = step_.hot[c].cs;
     } else {
       p.cn = tau * p.pn;
       p.cs = tau * p.ks;
@@ -285,14 +285,14 @@ int ContactSystem::cycle_relinearize(const Eigen::VectorXd& D) {
     const Contact& r = records_.work.contacts[c];
     const cycles::State& y = cycles_.states[c];
     if (y.state != ContactState::locked || r.rheology < 0 || !(r.tributary_length > 0.0) ||
-        !law_steps_[r.joint_set].active || r.creep_failed || joint_sets_[r.joint_set].law->is_linear())
+        !step_.laws[r.joint_set].active || r.creep_failed || joint_sets_[r.joint_set].law->is_linear())
       continue;
     cycles::Spring& p = cycles_.springs[c];
     const double slip = p.ti.dot(D.segment<6>(6 * p.i)) + p.tj.dot(D.segment<6>(6 * p.j));
     const double tau = p.ks * (p.reach0 + slip - y.shift) / r.tributary_length;
     if (!relinearize_seam(c, tau, f_res)) continue;
     p.ks = shear_stiffness(c);
-    p.reach0 = hot_[c].dt0 + seams_[c].locking_shift;
+    p.reach0 = step_.hot[c].dt0 + step_.seams[c].locking_shift;
     ++changed;
   }
   return changed;
@@ -303,7 +303,7 @@ CheckResult ContactSystem::end_cycles(std::span<const BlockView> blocks, const E
   double scale = 0.0;
   for (std::size_t c = 0; c < records_.work.contacts.size(); ++c) {
     Contact& r = records_.work.contacts[c];
-    Hot& h = hot_[c];
+    Hot& h = step_.hot[c];
     const cycles::State& y = cycles_.states[c];
     const cycles::Spring& p = cycles_.springs[c];
     const ContactState before = h.start_state;

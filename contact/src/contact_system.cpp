@@ -55,8 +55,7 @@ ContactSystem::ContactSystem(std::vector<JointSet> joint_sets, ContactSettings s
 
 void ContactSystem::abandon_step() {
   records_.work.clear();
-  hot_.clear();
-  seams_.clear();
+  step_.clear();
 }
 
 }  // namespace rheodda::contact

@@ -16,11 +16,11 @@
 
 namespace rheodda::contact {
 
-void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepContext& step) {
-  step_dynamic_ = step.dynamic;
+void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepContext& context) {
+  step_dynamic_ = context.dynamic;
   cycled_ = false;
   cycle_damping_ = 0.0;
-  creep_error_wanted_ = step.creep_error_wanted;
+  creep_error_wanted_ = context.creep_error_wanted;
   can_retract_ = false;
   const int nb = static_cast<int>(blocks.size());
   // Half model size w0 [length].
@@ -35,7 +35,7 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepCont
   }
   const double w0 = nb > 0 ? 0.5 * (model.hi - model.lo).maxCoeff() : 0.0;
   allowed_penetration_ = settings_.penetration_ratio * w0;
-  double d0 = std::max(settings_.search_factor * step.max_displacement, settings_.min_search_distance);
+  double d0 = std::max(settings_.search_factor * context.max_displacement, settings_.min_search_distance);
   if (!(d0 > 0.0)) d0 = settings_.search_factor * 0.01 * w0;  // max_displacement_ratio = 0.01 when the host gives none
 
   for (int i = 0; i < nb; ++i) boxes_[i] = bounding_box(blocks[i], 0.5 * d0);
@@ -79,7 +79,7 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepCont
 
   records_.work.contacts.clear();
   records_.work.rheology.clear();
-  hot_.clear();
+  step_.hot.clear();
   DetectionStats restart;  // its restart_* only
   for (size_t c = 0; c < n; ++c) {
     const DetectedContact& d = found[c];
@@ -185,14 +185,14 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepCont
     h.flips = h.refinements = 0;
     h.normal_force = rec.state == ContactState::open ? 0.0 : rec.normal_force;
     records_.work.contacts.push_back(rec);
-    hot_.push_back(h);
+    step_.hot.push_back(h);
   }
-  seams_.assign(records_.work.contacts.size(), ShearSeam{});
+  step_.seams.assign(records_.work.contacts.size(), ShearSeam{});
   records_.work.creep.assign(records_.work.contacts.size(), 0.0);
 
-  start_laws(step.dt);
-  step_dt_ = step.dt;
-  step_inertia_ = step.inertia;
+  start_laws(context.dt);
+  step_dt_ = context.dt;
+  step_inertia_ = context.inertia;
   step_max_penetration_ = 0.0;
   force_scale_ = 0.0;
   for (const Contact& c : records_.committed.contacts) force_scale_ = std::max(force_scale_, std::abs(c.normal_force));

@@ -44,18 +44,11 @@
 #include "rheodda/contact/detection.hpp"
 #include "rheodda/contact/joint_set.hpp"
 #include "rheodda/contact/kinematics.hpp"
+#include "rheodda/contact/step_arrays.hpp"
 #include "rheodda/contact/step_context.hpp"
 #include "rheodda/laws/contact_rheology.hpp"
 
 namespace rheodda::contact {
-
-/// Hook for the creep increment of the shear spring (zero without a law).
-/// The spring's stretch is d + locking_shift with locking_shift = -h, and its
-/// stiffness k / (1 + k compliance) with compliance = c / l.
-struct ShearSeam {
-  double locking_shift = 0.0;  ///< -h: minus the history part of the step's creep [length]
-  double compliance = 0.0;     ///< step creep compliance c / l [length/(force/length)]
-};
 
 /// Counters of the last begin_step (for benchmarks and logs).
 struct DetectionStats {
@@ -84,9 +77,9 @@ class ContactSystem {
   ContactSystem(std::vector<JointSet> joint_sets, ContactSettings settings);
 
   /// Detects contacts on the step-start geometry (search distance
-  /// search_factor * step.max_displacement [length]) and carries states over;
-  /// the creep laws integrate over step.dt (step_context.hpp).
-  void begin_step(std::span<const BlockView> blocks, const StepContext& step);
+  /// search_factor * context.max_displacement [length]) and carries states over;
+  /// the creep laws integrate over context.dt (step_context.hpp).
+  void begin_step(std::span<const BlockView> blocks, const StepContext& context);
   /// Springs and friction loads of the trial states (the seed's eqs. 28-29).
   void assemble(std::span<const BlockView> blocks, SystemSink& sink) const;
   /// Updates the trial states from the trial displacements D (6 per block).
@@ -179,7 +172,7 @@ class ContactSystem {
   /// Rheology histories of the last accepted step (indexed by Contact::rheology).
   std::span<const laws::RheologyState> rheology_states() const { return records_.committed.rheology; }
   /// Creep seams of the step being solved, parallel to trial_contacts().
-  std::span<ShearSeam> shear_seams() { return seams_; }
+  std::span<ShearSeam> shear_seams() { return step_.seams; }
 
   /// Scheme used by joint set js in the step being solved (or the last one);
   /// nullopt when the joint set has no law or the step has no creep (dt = 0).
@@ -275,45 +268,8 @@ class ContactSystem {
   void restore(const State& state);
 
  private:
-  /// Linearized geometry of one contact on the step-start configuration:
-  /// d_n = dn0 + ni.D_i + nj.D_j (penetration, the seed's normal spring, Shi 1988)
-  /// d_t = dt0 + ti.D_i + tj.D_j (shear along the edge from the locking point, eqs. 23-27).
-  struct Hot {
-    Vec6 ni = Vec6::Zero(), nj = Vec6::Zero();
-    Vec6 ti = Vec6::Zero(), tj = Vec6::Zero();
-    double dn0 = 0.0;  ///< [length]
-    double dt0 = 0.0;  ///< [length]
-    double pn = 0.0;   ///< normal spring [stress]
-    double ps = 0.0;   ///< shear spring [stress]
-    /// Contact dashpots (JointSet::restitution; 0 without): normal and shear
-    /// [force time / length^2 per unit thickness]. Over a step of length dt they
-    /// act as springs c/dt on the step's motion (implicit: the end-of-step rate).
-    double cn = 0.0, cs = 0.0;
-    /// Reduced mass m_i m_j / (m_i + m_j) of the two blocks [mass/length].
-    double reduced_mass = 0.0;
-    /// Penetration from which the normal dashpot counts the step's approach:
-    /// d_n0 for a contact closed at the step start, max(d_n0, 0) for one open
-    /// at the step start (from the touching point across a gap) [length].
-    double dn_ref = 0.0;
-    double tan_phi = 0.0;
-    double cohesion = 0.0;          ///< [stress]
-    double tensile_strength = 0.0;  ///< [stress]
-    double normal_force = 0.0;      ///< N of the last iterate, drives friction [force/length]
-    ContactState start_state = ContactState::open;
-    double tau_start = 0.0;       ///< shear stress driving creep at the step start [stress]
-    bool creep_from_rest = true;  ///< not locked at the step start: the step's creep uses
-                                  ///< the end force for the whole step (implicit constants)
-    int flips = 0;        ///< state changes of this contact in this step
-    ContactState undo_state = ContactState::open;  ///< state before its last change (diagnosis)
-    int undo_direction = 0;                        ///< slide direction before its last change
-    int refinements = 0;  ///< friction refinements of this contact in this step
-    int newton = 0;       ///< Newton iterates a nonlinear law asked for in this step
-    bool law_failed = false;  ///< its law failed in this step (damage 1): counted in end_step
-    /// Creep of this step up to the failure, kept by end_step (fail_law) [length].
-    double failure_creep = 0.0;
-    double assembled_normal_force = 0.0;  ///< normal_force as the last solve's assembly used it
-                                          ///< (set by check; energy balance) [force/length]
-  };
+  using Hot = step::Hot;
+  using LawStep = step::LawStep;
   /// Sum of p_n d_n^2/2 + F^2/(2 k_s) over records with their springs [force x length].
   static double stored_energy(std::span<const Contact> records, std::span<const StepWork> work);
   void prepare(std::span<const BlockView> blocks, const Contact& c, Hot& h) const;
@@ -331,18 +287,12 @@ class ContactSystem {
   /// Open -> locked across a gap: the locking point moves along the edge by
   /// `flight`, the tangential motion of the step before the vertex touched [length].
   void lock_at_touch(std::span<const BlockView> blocks, size_t c, double flight);
-  /// Step constants of one joint set: the scheme's and the implicit ones.
-  struct LawStep {
-    bool active = false;  ///< the joint set has a law and dt > 0
-    laws::Scheme scheme = laws::Scheme::implicit;
-    laws::StepConstants main, from_rest;
-  };
   const laws::StepConstants& step_constants_of(size_t c) const;
   /// Law constants of the step being solved, once per joint set (never per
   /// contact), and each creeping contact's seam at its start stress
   /// (contact_creep.cpp; called by begin_step).
   void start_laws(double dt);
-  /// Sets seams_[c] from the law's affine form at a guessed end stress [stress].
+  /// Sets step_.seams[c] from the law's affine form at a guessed end stress [stress].
   void linearize(size_t c, double tau_guess);
   /// Contact c (locked, its law not linear) takes the seam at the stress tau it carries
   /// [stress]; true when that asks for another iterate (the seam changed, within the bounds
@@ -372,9 +322,7 @@ class ContactSystem {
   double step_inertia_ = 0.0;  ///< inertia stiffness per unit mass of the step, 1/(beta dt^2) [1/time^2]
   std::vector<StepWork> committed_work_, step_work_;  ///< energy balance (contact_energy.cpp)
   double stored_before_ = 0.0;  ///< stored energy before the last accepted step [force x length]
-  std::vector<LawStep> law_steps_;  ///< per joint set, for the step being solved
-  std::vector<ShearSeam> seams_;
-  std::vector<Hot> hot_;
+  step::Arrays step_;  ///< the step's hot arrays: geometry, seams, law constants (step_arrays.hpp)
   // Creep error estimate and retraction (contact_creep_error.cpp).
   void estimate_creep_error();
   bool creep_error_wanted_ = false;  ///< set by begin_step for the step being solved
