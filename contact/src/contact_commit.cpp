@@ -71,11 +71,11 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
   // this commit changes beside the records (contact_creep_error.cpp).
   can_retract_ = false;
   if (creep_error_wanted_)
-    retract_ = {records_.counters, last_max_penetration_, penalty_, stored_before_};
+    retract_ = {records_.counters, last_max_penetration_, penalty_, energy_.stored_before};
   double max_pen = 0.0;
   projections_ = 0;
-  stored_before_ = stored_energy(records_.committed.contacts, committed_work_);  // energy balance
-  step_work_.resize(records_.work.contacts.size());                              // energy balance
+  energy_.stored_before = EnergyBook::stored_energy(records_.committed.contacts, energy_.committed);
+  energy_.step.resize(records_.work.contacts.size());
   for (size_t c = 0; c < records_.work.contacts.size(); ++c) {
     Contact& r = records_.work.contacts[c];
     const Hot& h = step_.hot[c];
@@ -86,7 +86,7 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
     const double dt = h.dt0 + step_.seams[c].locking_shift + slip;
     r.penetration = dn;
     r.creep_state = r.rheology >= 0 ? CreepState::idle : CreepState::none;
-    step_work_[c] = {h.pn, h.ps, h.dn0, dn, h.dt0, slip, h.start_state,  // energy balance
+    energy_.step[c] = {h.pn, h.ps, h.dn0, dn, h.dt0, slip, h.start_state,  // energy balance
                      r.slide_direction * mohr_coulomb_strength(h.assembled_normal_force, h.tan_phi, h.cohesion, r.length),
                      // (the dashpots of a step taken in cycles: booked cycle by cycle, contact_cycles.cpp)
                      !cycled_ && r.state != ContactState::open ? normal_dashpot(c) * (dn - h.dn_ref) : 0.0,
@@ -145,7 +145,7 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
           r.creep_displacement += creep;
         }
         if (h.law_failed) ++records_.counters[r.joint_set].failures;
-        step_work_[c].solved_shear_force = r.shear_force;
+        energy_.step[c].solved_shear_force = r.shear_force;
         project_onto_envelope(blocks, c);
         break;
       }
@@ -171,13 +171,13 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
   for (const Contact& r : records_.work.contacts)
     if (r.rheology >= 0 && r.state != ContactState::locked) records_.work.rheology[r.rheology] = {};
   records_.committed.swap(records_.work);
-  committed_work_.swap(step_work_);  // energy balance
-  committed_cycle_damping_ = cycled_ ? cycle_damping_ : 0.0;
+  energy_.committed.swap(energy_.step);  // energy balance
+  energy_.cycle_damping = cycled_ ? cycle_damping_ : 0.0;
   if (creep_error_wanted_) {
     // The step-start records (now in the working arrays) are the estimate's
     // start, and what retract_step swaps back.
     start_.swap(records_.work);
-    start_work_.swap(step_work_);
+    start_work_.swap(energy_.step);
     estimate_creep_error();
     can_retract_ = true;
   } else {

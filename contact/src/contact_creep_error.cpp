@@ -113,11 +113,11 @@ void ContactSystem::estimate_creep_error() {
 bool ContactSystem::retract_step() {
   if (!can_retract_) return false;
   records_.committed.swap(start_);
-  committed_work_.swap(start_work_);
+  energy_.committed.swap(start_work_);
   records_.counters = retract_.counters;
   last_max_penetration_ = retract_.last_max_penetration;
   penalty_ = retract_.penalty;
-  stored_before_ = retract_.stored_before;
+  energy_.stored_before = retract_.stored_before;
   prev_tau_ = retract_prev_tau_;
   prev_dt_ = retract_prev_dt_;
   abandon_step();  // no trial records: the step-start states remain

@@ -30,16 +30,16 @@ void ContactSystem::remove_blocks(std::span<const char> removed) {
       r.rheology = static_cast<int>(rheology.size()) - 1;
     }
     if (c < records_.committed.creep.size()) creep.push_back(records_.committed.creep[c]);
-    if (c < committed_work_.size()) work.push_back(committed_work_[c]);
+    if (c < energy_.committed.size()) work.push_back(energy_.committed[c]);
     contacts.push_back(r);
   }
   records_.committed.contacts = std::move(contacts);
   records_.committed.rheology = std::move(rheology);
   records_.committed.creep = std::move(creep);
-  committed_work_ = std::move(work);
+  energy_.committed = std::move(work);
   // The next step's restart energy (ContactEnergy::restart) is measured from
   // what the records left store, not from what the dropped ones stored.
-  stored_before_ = stored_energy(records_.committed.contacts, committed_work_);
+  energy_.stored_before = EnergyBook::stored_energy(records_.committed.contacts, energy_.committed);
   // Nothing of the last step is left to retract, nor any trial.
   abandon_step();
   can_retract_ = false;

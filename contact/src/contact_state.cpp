@@ -17,12 +17,12 @@ ContactSystem::State ContactSystem::state() const {
   s.contacts = records_.committed.contacts;
   s.rheology = records_.committed.rheology;
   s.creep = records_.committed.creep;
-  s.work = committed_work_;
+  s.work = energy_.committed;
   s.counters = records_.counters;
   s.penalty = penalty_;
   s.allowed_penetration = allowed_penetration_;
   s.last_max_penetration = last_max_penetration_;
-  s.stored_before = stored_before_;
+  s.stored_before = energy_.stored_before;
   s.next_id = records_.next_id;
   // Sorted, so that equal states give equal files (the map's order is not defined).
   s.previous_stress.assign(prev_tau_.begin(), prev_tau_.end());
@@ -54,12 +54,12 @@ void ContactSystem::restore(const State& s) {
   records_.committed.contacts = s.contacts;
   records_.committed.rheology = s.rheology;
   records_.committed.creep = s.creep;
-  committed_work_ = s.work;
+  energy_.committed = s.work;
   records_.counters = s.counters;
   penalty_ = s.penalty;
   allowed_penetration_ = s.allowed_penetration;
   last_max_penetration_ = s.last_max_penetration;
-  stored_before_ = s.stored_before;
+  energy_.stored_before = s.stored_before;
   records_.next_id = s.next_id;
   prev_tau_.clear();
   prev_tau_.insert(s.previous_stress.begin(), s.previous_stress.end());

@@ -157,8 +157,8 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepCont
       double u0 = 0.0, u_old = 0.0;
       if (rec.state != ContactState::open) u0 += 0.5 * h.pn * h.dn0 * h.dn0;
       if (rec.state == ContactState::locked) u0 += 0.5 * h.ps * h.dt0 * h.dt0;
-      if (old && from[c] < static_cast<int>(committed_work_.size())) {
-        const StepWork& w = committed_work_[from[c]];
+      if (old && from[c] < static_cast<int>(energy_.committed.size())) {
+        const StepWork& w = energy_.committed[from[c]];
         if (old->state != ContactState::open) u_old += 0.5 * w.pn * old->penetration * old->penetration;
         if (old->state == ContactState::locked && w.ps > 0.0) u_old += 0.5 * old->shear_force * old->shear_force / w.ps;
       }

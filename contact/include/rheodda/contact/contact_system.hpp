@@ -42,6 +42,7 @@
 #include "rheodda/contact/contact_records.hpp"
 #include "rheodda/contact/cycle_arrays.hpp"
 #include "rheodda/contact/detection.hpp"
+#include "rheodda/contact/energy_book.hpp"
 #include "rheodda/contact/joint_set.hpp"
 #include "rheodda/contact/kinematics.hpp"
 #include "rheodda/contact/step_arrays.hpp"
@@ -203,24 +204,8 @@ class ContactSystem {
   std::size_t last_projections() const { return projections_; }
   const DetectionStats& stats() const { return stats_; }
 
-  /// What the energy balance needs of one contact's last accepted step,
-  /// recorded by end_step (parallel to contacts(); contact_energy.cpp).
-  struct StepWork {
-    double pn = 0.0, ps = 0.0;   ///< normal and elastic shear springs of the step [stress]
-    double dn0 = 0.0, dn = 0.0;  ///< penetration on the step-start geometry and at the end [length]
-    double st0 = 0.0;            ///< stretch of the shear spring at the step start (dt0) [length]
-    double slip = 0.0;           ///< tangential relative motion of the step [length]
-    ContactState start_state = ContactState::open;
-    double friction = 0.0;       ///< friction force of the final solve, signed along the edge
-                                 ///< (sliding; from the N that solve assembled) [force/length]
-    double normal_damping = 0.0;  ///< normal dashpot force at the end (closed; JointSet::restitution) [force/length]
-    double shear_damping = 0.0;   ///< shear dashpot force at the end, along the edge (locked) [force/length]
-    /// State the step's solve ended with; the committed one differs where that was a
-    /// locked state outside the Mohr-Coulomb envelope (held by anti-chattering), which
-    /// the commit projects onto it (end_step, "Admissible states at commit").
-    ContactState solved_state = ContactState::open;
-    double solved_shear_force = 0.0;  ///< the shear spring's end force of the solve (locked) [force/length]
-  };
+  /// What the energy balance needs of one contact's last accepted step (energy_book.hpp).
+  using StepWork = contact::StepWork;
 
   /// Everything of the system that the next steps depend on, between two
   /// steps (contact_state.cpp): the records of the last accepted step with
@@ -270,8 +255,6 @@ class ContactSystem {
  private:
   using Hot = step::Hot;
   using LawStep = step::LawStep;
-  /// Sum of p_n d_n^2/2 + F^2/(2 k_s) over records with their springs [force x length].
-  static double stored_energy(std::span<const Contact> records, std::span<const StepWork> work);
   void prepare(std::span<const BlockView> blocks, const Contact& c, Hot& h) const;
   double shear_stiffness(size_t c) const;
   /// The dashpots as springs on the step's motion, c / dt [stress] (0 without).
@@ -320,8 +303,7 @@ class ContactSystem {
   ContactRecords records_;  ///< committed and working records (contact_records.hpp)
   double step_dt_ = 0.0;  ///< creep time of the step being solved [time]
   double step_inertia_ = 0.0;  ///< inertia stiffness per unit mass of the step, 1/(beta dt^2) [1/time^2]
-  std::vector<StepWork> committed_work_, step_work_;  ///< energy balance (contact_energy.cpp)
-  double stored_before_ = 0.0;  ///< stored energy before the last accepted step [force x length]
+  EnergyBook energy_;  ///< energy terms of the last accepted step (energy_book.hpp)
   step::Arrays step_;  ///< the step's hot arrays: geometry, seams, law constants (step_arrays.hpp)
   // Creep error estimate and retraction (contact_creep_error.cpp).
   void estimate_creep_error();
@@ -346,7 +328,6 @@ class ContactSystem {
   int cycle_threads_ = 0;
   bool cycled_ = false;                  ///< the step being solved is taken in cycles (begin_cycles)
   double cycle_damping_ = 0.0;            ///< the dashpots' work in the cycles of the step (end_cycles)
-  double committed_cycle_damping_ = 0.0; ///< the last accepted step's dashpot work in its cycles
   std::vector<char> removed_;  ///< remove_blocks: 1 for a removed block (empty: none removed)
   std::vector<Box> boxes_;
   BroadPhase broad_;
