@@ -69,9 +69,13 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
   assert(D.size() == 6 * static_cast<Eigen::Index>(blocks.size()));
   // A step that may be retracted (begin_step's creep_error_wanted) keeps what
   // this commit changes beside the records (contact_creep_error.cpp).
-  can_retract_ = false;
-  if (creep_error_wanted_)
-    retract_ = {records_.counters, last_max_penetration_, penalty_, energy_.stored_before};
+  start_.retractable = false;
+  if (creep_error_wanted_) {
+    start_.counters = records_.counters;
+    start_.last_max_penetration = last_max_penetration_;
+    start_.penalty = penalty_;
+    start_.stored_before = energy_.stored_before;
+  }
   double max_pen = 0.0;
   projections_ = 0;
   energy_.stored_before = EnergyBook::stored_energy(records_.committed.contacts, energy_.committed);
@@ -176,13 +180,13 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
   if (creep_error_wanted_) {
     // The step-start records (now in the working arrays) are the estimate's
     // start, and what retract_step swaps back.
-    start_.swap(records_.work);
-    start_work_.swap(energy_.step);
-    estimate_creep_error();
-    can_retract_ = true;
+    start_.records.swap(records_.work);
+    start_.work.swap(energy_.step);
+    creep_error_.estimate(start_.records.contacts, start_.records.rheology, records_.committed.contacts,
+                          joint_sets_, step_.laws, step_dt_);
+    start_.retractable = true;
   } else {
-    creep_error_ = 0.0;
-    creep_changes_ = 0;
+    creep_error_.skip();
   }
   records_.work.clear();
 }

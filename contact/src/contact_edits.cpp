@@ -42,7 +42,7 @@ void ContactSystem::remove_blocks(std::span<const char> removed) {
   energy_.stored_before = EnergyBook::stored_energy(records_.committed.contacts, energy_.committed);
   // Nothing of the last step is left to retract, nor any trial.
   abandon_step();
-  can_retract_ = false;
+  start_.retractable = false;
 }
 
 void ContactSystem::set_joint_set(int index, JointSet joint_set) {
@@ -64,7 +64,7 @@ void ContactSystem::set_joint_set(int index, JointSet joint_set) {
   check_joint_set(joint_set, static_cast<std::size_t>(index));
   joint_sets_[static_cast<std::size_t>(index)] = std::move(joint_set);
   abandon_step();
-  can_retract_ = false;
+  start_.retractable = false;
 }
 
 }  // namespace rheodda::contact

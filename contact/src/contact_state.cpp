@@ -24,12 +24,10 @@ ContactSystem::State ContactSystem::state() const {
   s.last_max_penetration = last_max_penetration_;
   s.stored_before = energy_.stored_before;
   s.next_id = records_.next_id;
-  // Sorted, so that equal states give equal files (the map's order is not defined).
-  s.previous_stress.assign(prev_tau_.begin(), prev_tau_.end());
-  std::sort(s.previous_stress.begin(), s.previous_stress.end());
-  s.previous_dt = prev_dt_;
-  s.creep_error = creep_error_;
-  s.creep_changes = creep_changes_;
+  s.previous_stress = creep_error_.previous_stress();
+  s.previous_dt = creep_error_.previous_dt();
+  s.creep_error = creep_error_.error();
+  s.creep_changes = creep_error_.state_changes();
   return s;
 }
 
@@ -61,16 +59,12 @@ void ContactSystem::restore(const State& s) {
   last_max_penetration_ = s.last_max_penetration;
   energy_.stored_before = s.stored_before;
   records_.next_id = s.next_id;
-  prev_tau_.clear();
-  prev_tau_.insert(s.previous_stress.begin(), s.previous_stress.end());
-  prev_dt_ = s.previous_dt;
-  creep_error_ = s.creep_error;
-  creep_changes_ = s.creep_changes;
+  creep_error_.restore(s.previous_stress, s.previous_dt, s.creep_error, s.creep_changes);
   // Between two steps: no trial, nothing to retract.
   abandon_step();
-  start_.clear();
-  start_work_.clear();
-  can_retract_ = false;
+  start_.records.clear();
+  start_.work.clear();
+  start_.retractable = false;
 }
 
 }  // namespace rheodda::contact

@@ -21,7 +21,7 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepCont
   cycled_ = false;
   cycle_damping_ = 0.0;
   creep_error_wanted_ = context.creep_error_wanted;
-  can_retract_ = false;
+  start_.retractable = false;
   const int nb = static_cast<int>(blocks.size());
   // Half model size w0 [length].
   Box model;

@@ -11,6 +11,14 @@
 // from the working records of the step being solved, so abandon_step restores
 // the step-start states exactly (by discarding the working copy).
 //
+// Parts, one concern per header; ContactSystem composes them and runs the step's
+// protocol over them: the records, committed and working, with their creep
+// histories and increments (contact_records.hpp; one record: contact_record.hpp),
+// the step's hot arrays (step_arrays.hpp), the energy book (energy_book.hpp), the
+// creep error estimate and what a retraction restores (creep_error.hpp), the
+// explicit cycles' arrays (cycle_arrays.hpp), and the state between two steps
+// that a resumed run restores (contact_system_state.hpp).
+//
 // Rheology (docs/reference/rheology-in-dda.md). A contact on a joint set with a law owns
 // a slot in a separate array of laws::RheologyState (with its committed copy
 // for rollback); other contacts have none (rheology == -1). Every locked
@@ -30,7 +38,6 @@
 
 #include <cstdint>
 #include <optional>
-#include <unordered_map>
 #include <span>
 #include <utility>
 #include <vector>
@@ -40,6 +47,8 @@
 #include "rheodda/contact/contact_energy.hpp"
 #include "rheodda/contact/contact_record.hpp"
 #include "rheodda/contact/contact_records.hpp"
+#include "rheodda/contact/contact_system_state.hpp"
+#include "rheodda/contact/creep_error.hpp"
 #include "rheodda/contact/cycle_arrays.hpp"
 #include "rheodda/contact/detection.hpp"
 #include "rheodda/contact/energy_book.hpp"
@@ -147,11 +156,11 @@ class ContactSystem {
   /// For exponential-linear: |tau''| dt^2/12 c, tau'' from the stresses at the
   /// last three step boundaries and c the implicit step compliance (~ dt/eta).
   /// Zero under a constant force.
-  double creep_error_estimate() const { return creep_error_; }
+  double creep_error_estimate() const { return creep_error_.error(); }
   /// Contacts on joint sets with a law whose state changed in the last
   /// accepted step (locked <-> sliding or open, appeared closed, vanished
   /// locked); 0 unless begin_step was asked for the creep error [-].
-  int creep_state_changes() const { return creep_changes_; }
+  int creep_state_changes() const { return creep_error_.state_changes(); }
   /// Undoes the last end_step (only right after it, and only when its
   /// begin_step was asked for the creep error): back to the step-start
   /// records, as after abandon_step. Returns false when it cannot.
@@ -207,29 +216,9 @@ class ContactSystem {
   /// What the energy balance needs of one contact's last accepted step (energy_book.hpp).
   using StepWork = contact::StepWork;
 
-  /// Everything of the system that the next steps depend on, between two
-  /// steps (contact_state.cpp): the records of the last accepted step with
-  /// their creep histories and energy terms, the counters, the penalty as
-  /// raised so far, the next contact id, and the stresses the creep error
-  /// estimate remembers. A system restored from it steps on bit for bit as
-  /// the one it was taken from (a resumed run, docs/reference/outputs.md).
-  struct State {
-    std::vector<Contact> contacts;                 ///< contacts(), sorted by key
-    std::vector<laws::RheologyState> rheology;     ///< rheology_states()
-    std::vector<double> creep;                     ///< creep_increments() [length]
-    std::vector<StepWork> work;                    ///< energy terms of the last step, parallel to contacts
-    std::vector<CreepCounters> counters;           ///< creep_counters(), per joint set
-    double penalty = 0.0;                          ///< [stress]
-    double allowed_penetration = 0.0;              ///< [length]
-    double last_max_penetration = 0.0;             ///< [length]
-    double stored_before = 0.0;                    ///< stored energy before the last step [force x length]
-    std::uint64_t next_id = 1;
-    /// Stress at the last step's start by contact id, sorted by id [stress].
-    std::vector<std::pair<std::uint64_t, double>> previous_stress;
-    double previous_dt = 0.0;                      ///< last accepted step with the creep estimate [time]
-    double creep_error = 0.0;                      ///< creep_error_estimate() [length]
-    int creep_changes = 0;                         ///< creep_state_changes() [-]
-  };
+  /// The system's state between two steps (contact_system_state.hpp).
+  using State = ContactSystemState;
+
   /// Model edits between two steps (stages, docs/reference/stages.md; contact_edits.cpp).
   /// Removes the blocks whose flags are set (indexed like the views; blocks
   /// already removed stay removed): their contacts are dropped from the
@@ -305,24 +294,10 @@ class ContactSystem {
   double step_inertia_ = 0.0;  ///< inertia stiffness per unit mass of the step, 1/(beta dt^2) [1/time^2]
   EnergyBook energy_;  ///< energy terms of the last accepted step (energy_book.hpp)
   step::Arrays step_;  ///< the step's hot arrays: geometry, seams, law constants (step_arrays.hpp)
-  // Creep error estimate and retraction (contact_creep_error.cpp).
-  void estimate_creep_error();
+  // Adaptive creep stepping (creep_error.hpp, contact_creep_error.cpp).
   bool creep_error_wanted_ = false;  ///< set by begin_step for the step being solved
-  bool can_retract_ = false;
-  double creep_error_ = 0.0;  ///< of the last accepted step [length]
-  int creep_changes_ = 0;     ///< creep_state_changes() of the last accepted step [-]
-  /// What an end_step changed beside the records, kept for retract_step.
-  struct Retract {
-    std::vector<CreepCounters> counters;
-    double last_max_penetration = 0.0, penalty = 0.0, stored_before = 0.0;
-  } retract_;
-  /// The records at the start of the last accepted step (creep_error_wanted only).
-  RecordSet start_;
-  std::vector<StepWork> start_work_;
-  std::unordered_map<std::uint64_t, double> prev_tau_;  ///< stress at the last step's start, by contact id [stress]
-  double prev_dt_ = 0.0;                                ///< last accepted step [time]
-  std::unordered_map<std::uint64_t, double> retract_prev_tau_;  ///< prev_tau_ before the last end_step
-  double retract_prev_dt_ = 0.0;                                ///< prev_dt_ before the last end_step [time]
+  CreepErrorEstimate creep_error_;   ///< the estimate of the last accepted step
+  StepStart start_;                  ///< what its commit replaced, for retract_step
   std::vector<ContactKey> previous_keys_;
   cycles::Arrays cycles_;  ///< the explicit cycles of the step (contact_cycles.cpp)
   int cycle_threads_ = 0;
