@@ -193,7 +193,8 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
       const double tau =
           shear_stiffness(c) * (h.dt0 + step_.seams[c].locking_shift + slip) / r.tributary_length;
       const laws::ContactRheology& law = *joint_sets_[r.joint_set].law;
-      if (law.failure_in_step(step_constants_of(c), records_.work.rheology[r.rheology], h.tau_start, tau)) {
+      const laws::RheologyState& history = records_.work.rheology[r.rheology];
+      if (law.failure_in_step(step_constants_of(c), history, h.tau_start, tau)) {
         // The law fails within the step at this stress (damage 1, docs/reference/rheology-in-dda.md,
         // "Failure"): the joint's creep strength is gone. It becomes a residual
         // frictional joint - elastic spring, no creep, no cohesion or tensile
@@ -202,7 +203,7 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
         // stress stops its damaging creep there) is this step's.
         laws::RheologyState at_failure;
         const laws::CallSiteScope at(law_call_site(r));
-        fail_law(c, law.advance(step_constants_of(c), records_.work.rheology[r.rheology], h.tau_start, tau, at_failure));
+        fail_law(c, law.advance(step_constants_of(c), history, h.tau_start, tau, at_failure));
         ++res.state_changes;
         ++res.changes.slipped;
         continue;
@@ -243,7 +244,8 @@ bool ContactSystem::relinearize_seam(size_t c, double tau, double f_res) {
     }
     return false;
   }
-  if ((step_.seams[c].compliance != before_seam.compliance || step_.seams[c].locking_shift != before_seam.locking_shift) &&
+  const ShearSeam& seam = step_.seams[c];
+  if ((seam.compliance != before_seam.compliance || seam.locking_shift != before_seam.locking_shift) &&
       h.refinements < settings_.max_refinements) {
     ++h.refinements;
     return true;

@@ -77,11 +77,11 @@ void ContactSystem::start_laws(double dt) {
   const bool any_law = std::any_of(joint_sets_.begin(), joint_sets_.end(),
                                    [](const JointSet& j) { return j.law != nullptr; });
   if (dt > 0.0 && any_law) {
+    const std::vector<Contact>& work = records_.work.contacts;
     std::vector<double> k_area(joint_sets_.size(), 0.0);
-    for (size_t c = 0; c < records_.work.contacts.size(); ++c)
-      if (records_.work.contacts[c].rheology >= 0 && records_.work.contacts[c].tributary_length > 0.0)
-        k_area[records_.work.contacts[c].joint_set] =
-            std::max(k_area[records_.work.contacts[c].joint_set], step_.hot[c].ps / records_.work.contacts[c].tributary_length);
+    for (size_t c = 0; c < work.size(); ++c)
+      if (work[c].rheology >= 0 && work[c].tributary_length > 0.0)
+        k_area[work[c].joint_set] = std::max(k_area[work[c].joint_set], step_.hot[c].ps / work[c].tributary_length);
     for (size_t j = 0; j < joint_sets_.size(); ++j) {
       const auto& law = joint_sets_[j].law;
       if (!law) continue;
@@ -91,8 +91,8 @@ void ContactSystem::start_laws(double dt) {
       ls.main = law->step_constants(dt, ls.scheme);
       ls.from_rest = law->step_constants(dt, laws::Scheme::implicit);
     }
-    for (size_t c = 0; c < records_.work.contacts.size(); ++c)
-      if (records_.work.contacts[c].rheology >= 0 && records_.work.contacts[c].tributary_length > 0.0 && !records_.work.contacts[c].creep_failed)
+    for (size_t c = 0; c < work.size(); ++c)
+      if (work[c].rheology >= 0 && work[c].tributary_length > 0.0 && !work[c].creep_failed)
         linearize(c, step_.hot[c].tau_start);
   }
 }

@@ -170,22 +170,23 @@ void ContactSystem::begin_cycles(std::span<const BlockView> blocks, int threads)
   }
   // The contacts of each block in the order of the records (vertex side before edge side
   // where a contact has a block on both): the gather's fixed order.
+  const std::vector<Contact>& work = records_.work.contacts;
   a.block_first.assign(static_cast<std::size_t>(block_count) + 1, 0);
-  for (const Contact& r : records_.work.contacts) ++a.block_first[r.key.vblock + 1], ++a.block_first[r.key.eblock + 1];
+  for (const Contact& r : work) ++a.block_first[r.key.vblock + 1], ++a.block_first[r.key.eblock + 1];
   for (int b = 0; b < block_count; ++b) a.block_first[b + 1] += a.block_first[b];
   a.next.assign(a.block_first.begin(), a.block_first.end() - 1);
   for (std::size_t c = 0; c < n; ++c) {
-    a.springs[c].slot_i = a.next[records_.work.contacts[c].key.vblock]++;
-    a.springs[c].slot_j = a.next[records_.work.contacts[c].key.eblock]++;
+    a.springs[c].slot_i = a.next[work[c].key.vblock]++;
+    a.springs[c].slot_j = a.next[work[c].key.eblock]++;
   }
   // The first and last contact on each block, and the blocks by their last contact: the
   // order in which the cycles can gather them.
   a.block_first_contact.assign(static_cast<std::size_t>(block_count), static_cast<int>(n));
   a.block_last_contact.assign(static_cast<std::size_t>(block_count), -1);
   for (std::size_t c = n; c-- > 0;)
-    for (const int b : {records_.work.contacts[c].key.vblock, records_.work.contacts[c].key.eblock}) a.block_first_contact[b] = static_cast<int>(c);
+    for (const int b : {work[c].key.vblock, work[c].key.eblock}) a.block_first_contact[b] = static_cast<int>(c);
   for (std::size_t c = 0; c < n; ++c)
-    for (const int b : {records_.work.contacts[c].key.vblock, records_.work.contacts[c].key.eblock}) a.block_last_contact[b] = static_cast<int>(c);
+    for (const int b : {work[c].key.vblock, work[c].key.eblock}) a.block_last_contact[b] = static_cast<int>(c);
   a.completion.resize(static_cast<std::size_t>(block_count));
   for (int b = 0; b < block_count; ++b) a.completion[b] = b;
   std::stable_sort(a.completion.begin(), a.completion.end(),

@@ -1,7 +1,7 @@
-// The contacts' terms of the energy balance (contact_energy.hpp; docs/reference/engine.md,
-// "Energy balance"), from the records of the last accepted step and what
-// end_step recorded of it (StepWork: springs, start and end stretches, slip,
-// state at the step start).
+// The contacts' terms of the energy balance (EnergyBook, energy_book.hpp;
+// contact_energy.hpp; docs/reference/engine.md, "Energy balance"), from the
+// records of the last accepted step and what end_step recorded of it
+// (StepWork: springs, start and end stretches, slip, state at the step start).
 //
 // Springs (Shi 1988; the seed's eqs. 17-18, 23-29), per contact:
 //   normal  p_n, stretch d_n (penetration): d_n0 on the step-start geometry,

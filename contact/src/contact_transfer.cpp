@@ -49,8 +49,9 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepCont
   }
   const auto& pairs = *found_pairs;
 
-  previous_keys_.resize(records_.committed.contacts.size());
-  for (size_t k = 0; k < records_.committed.contacts.size(); ++k) previous_keys_[k] = records_.committed.contacts[k].key;
+  const std::vector<Contact>& committed = records_.committed.contacts;
+  previous_keys_.resize(committed.size());
+  for (size_t k = 0; k < committed.size(); ++k) previous_keys_[k] = committed[k].key;
   const std::vector<DetectedContact> found =
       detect_contacts(blocks, pairs, {d0, settings_.angle_tolerance, allowed_penetration_}, previous_keys_);
 
@@ -58,7 +59,7 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepCont
   // adjacent edge of the same block inherits it (the vertex slid over a corner).
   const size_t n = found.size();
   std::vector<int> from(n, -1);
-  std::vector<char> used(records_.committed.contacts.size(), 0);
+  std::vector<char> used(committed.size(), 0);
   auto find_key = [&](const ContactKey& k) -> int {
     auto it = std::lower_bound(previous_keys_.begin(), previous_keys_.end(), k);
     return (it != previous_keys_.end() && *it == k) ? static_cast<int>(it - previous_keys_.begin())
@@ -90,7 +91,7 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepCont
                               std::to_string(d.key.edge) + ": joint set " + std::to_string(js) +
                               " does not exist (" + std::to_string(joint_sets_.size()) + " defined)");
     Contact rec;
-    const Contact* old = from[c] >= 0 ? &records_.committed.contacts[from[c]] : nullptr;
+    const Contact* old = from[c] >= 0 ? &committed[from[c]] : nullptr;
     if (old) {
       rec = *old;
       if (old->key.edge != d.key.edge) {
@@ -195,7 +196,7 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepCont
   step_inertia_ = context.inertia;
   step_max_penetration_ = 0.0;
   force_scale_ = 0.0;
-  for (const Contact& c : records_.committed.contacts) force_scale_ = std::max(force_scale_, std::abs(c.normal_force));
+  for (const Contact& c : committed) force_scale_ = std::max(force_scale_, std::abs(c.normal_force));
   stats_ = restart;
   stats_.candidate_pairs = static_cast<int>(pairs.size());
   stats_.contacts = static_cast<int>(records_.work.contacts.size());
