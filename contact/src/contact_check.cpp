@@ -33,7 +33,7 @@ void ContactSystem::stick(std::span<const BlockView> blocks, size_t c) {
   const BlockView& eb = blocks[r.key.eblock];
   const Vec2 a = edge_start(eb, r.key.edge), b = edge_end(eb, r.key.edge);
   const double friction = mohr_coulomb_strength(h.normal_force, h.tan_phi, h.cohesion, r.length);
-  const bool keep = step_dynamic_ && settings_.stick_keeps_force_dynamic ? *settings_.stick_keeps_force_dynamic
+  const bool keep = step_.dynamic && settings_.stick_keeps_force_dynamic ? *settings_.stick_keeps_force_dynamic
                                                                           : settings_.stick_keeps_force;
   const double stretch = keep ? r.slide_direction * friction / shear_stiffness(c) : 0.0;
   r.locking_ratio = line_ratio(a, b, blocks[r.key.vblock].vertices[r.key.vertex]) -
@@ -57,7 +57,7 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
   // Force resolution: forces below this are zero for the state decisions, so
   // contacts that carry (almost) nothing - the vertical joints of a wall - do
   // not flip on round-off.
-  const double f_res = settings_.force_resolution * force_scale_;
+  const double f_res = settings_.force_resolution * step_.force_scale;
   double scale = 0.0;
   for (size_t c = 0; c < records_.work.contacts.size(); ++c) {
     Contact& r = records_.work.contacts[c];
@@ -100,7 +100,7 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
           // (ContactSettings::lock_at_touch).
           const double gap = std::max(-h.dn0, 0.0);
           const double flight =
-              (settings_.lock_at_touch && step_dynamic_ && gap > 0.0) ? gap / (gap + dn) * slip : 0.0;
+              (settings_.lock_at_touch && step_.dynamic && gap > 0.0) ? gap / (gap + dn) * slip : 0.0;
           const double S = shear_stiffness(c) * (dt - flight);
           if (beyond_strength(S, N, h.tan_phi, h.cohesion, r.length, f_res)) {
             r.state = ContactState::sliding;
@@ -214,8 +214,8 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
       }
     }
   }
-  force_scale_ = scale;
-  step_max_penetration_ = res.max_penetration;
+  step_.force_scale = scale;
+  step_.max_penetration = res.max_penetration;
   return res;
 }
 

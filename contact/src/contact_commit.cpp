@@ -46,7 +46,7 @@ void ContactSystem::project_onto_envelope(std::span<const BlockView> blocks, siz
   // (ContactEnergy::release; contact_energy.cpp).
   Contact& r = records_.work.contacts[c];
   const Hot& h = step_.hot[c];
-  const double f_res = settings_.force_resolution * force_scale_;
+  const double f_res = settings_.force_resolution * step_.force_scale;
   if (beyond_tensile_cutoff(r.normal_force, h.tensile_strength, r.length, f_res)) {
     r.state = ContactState::open;
     r.normal_force = r.shear_force = 0.0;
@@ -121,7 +121,7 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
                                                         r.shear_force / r.tributary_length,
                                                         records_.work.rheology[r.rheology]);
           CreepCounters& counters = records_.counters[r.joint_set];
-          counters.contact_time += step_dt_;
+          counters.contact_time += step_.dt;
           if (!r.has_crept) ++counters.contacts;
           r.has_crept = true;
           r.creep_state = CreepState::creeping;
@@ -183,7 +183,7 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
     start_.records.swap(records_.work);
     start_.work.swap(energy_.step);
     creep_error_.estimate(start_.records.contacts, start_.records.rheology, records_.committed.contacts,
-                          joint_sets_, step_.laws, step_dt_);
+                          joint_sets_, step_.laws, step_.dt);
     start_.retractable = true;
   } else {
     creep_error_.skip();

@@ -211,7 +211,7 @@ void ContactSystem::cycle_damping(double tau, std::vector<Mat6>& C) {
       p.cn = tau * p.pn;
       p.cs = tau * p.ks;
     }
-    if (!step_dynamic_ || (p.cn == 0.0 && p.cs == 0.0)) continue;
+    if (!step_.dynamic || (p.cn == 0.0 && p.cs == 0.0)) continue;
     const double bi = cycles_.bounds[2 * c], bj = cycles_.bounds[2 * c + 1];
     C[p.i].noalias() += bi * (p.cn * p.ni * p.ni.transpose() + p.cs * p.ti * p.ti.transpose());
     C[p.j].noalias() += bj * (p.cn * p.nj * p.nj.transpose() + p.cs * p.tj * p.tj.transpose());
@@ -222,7 +222,7 @@ void ContactSystem::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd
                                  Eigen::VectorXd& f) {
   const auto n = static_cast<std::ptrdiff_t>(cycles_.springs.size());
   const auto nb = static_cast<std::ptrdiff_t>(cycles_.block_first.size()) - 1;
-  const bool dashpots = step_dynamic_;
+  const bool dashpots = step_.dynamic;
   const int threads = thread_count(cycle_threads_);
   const cycles::Spring* springs = cycles_.springs.data();
   cycles::State* states = cycles_.states.data();
@@ -280,7 +280,7 @@ int ContactSystem::cycle_relinearize(const Eigen::VectorXd& D) {
   // As check does for an iterate of the implicit step: each locked contact of a law that
   // is not linear takes the seam of the stress its spring carries at D (relinearize_seam);
   // the cycles' springs follow.
-  const double f_res = settings_.force_resolution * force_scale_;
+  const double f_res = settings_.force_resolution * step_.force_scale;
   int changed = 0;
   for (std::size_t c = 0; c < records_.work.contacts.size(); ++c) {
     const Contact& r = records_.work.contacts[c];
@@ -340,8 +340,8 @@ CheckResult ContactSystem::end_cycles(std::span<const BlockView> blocks, const E
     else if (y.state == ContactState::sliding) ++res.changes.slipped;
     else ++res.changes.stuck;
   }
-  force_scale_ = scale;
-  step_max_penetration_ = res.max_penetration;
+  step_.force_scale = scale;
+  step_.max_penetration = res.max_penetration;
   cycle_damping_ = 0.0;  // in the records' order: the same sum whatever the threads
   for (const cycles::State& y : cycles_.states) cycle_damping_ += y.damped;
   return res;

@@ -74,11 +74,11 @@ void ContactSystem::prepare(std::span<const BlockView> blocks, const Contact& c,
 }
 
 double ContactSystem::normal_dashpot(size_t c) const {
-  return step_dt_ > 0.0 && step_dynamic_ ? step_.hot[c].cn / step_dt_ : 0.0;
+  return step_.dt > 0.0 && step_.dynamic ? step_.hot[c].cn / step_.dt : 0.0;
 }
 
 double ContactSystem::shear_dashpot(size_t c) const {
-  return step_dt_ > 0.0 && step_dynamic_ ? step_.hot[c].cs / step_dt_ : 0.0;
+  return step_.dt > 0.0 && step_.dynamic ? step_.hot[c].cs / step_.dt : 0.0;
 }
 
 double ContactSystem::reversal_stiffness(size_t c) const {
@@ -97,8 +97,8 @@ double ContactSystem::reversal_stiffness(size_t c) const {
   // more the smaller the step, and the joints' shear displacement would not
   // converge (docs/notes/contact-solves.md, "Contacts that stop").
   const Hot& h = step_.hot[c];
-  if (!(settings_.reversal_at_normal_resolution && step_dynamic_)) return shear_stiffness(c);
-  return h.pn + h.reduced_mass * step_inertia_;
+  if (!(settings_.reversal_at_normal_resolution && step_.dynamic)) return shear_stiffness(c);
+  return h.pn + h.reduced_mass * step_.inertia;
 }
 
 double ContactSystem::shear_stiffness(size_t c) const {

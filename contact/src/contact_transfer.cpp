@@ -17,7 +17,7 @@
 namespace rheodda::contact {
 
 void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepContext& context) {
-  step_dynamic_ = context.dynamic;
+  step_.dynamic = context.dynamic;
   cycled_ = false;
   cycle_damping_ = 0.0;
   creep_error_wanted_ = context.creep_error_wanted;
@@ -192,11 +192,11 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepCont
   records_.work.creep.assign(records_.work.contacts.size(), 0.0);
 
   start_laws(context.dt);
-  step_dt_ = context.dt;
-  step_inertia_ = context.inertia;
-  step_max_penetration_ = 0.0;
-  force_scale_ = 0.0;
-  for (const Contact& c : committed) force_scale_ = std::max(force_scale_, std::abs(c.normal_force));
+  step_.dt = context.dt;
+  step_.inertia = context.inertia;
+  step_.max_penetration = 0.0;
+  step_.force_scale = 0.0;
+  for (const Contact& c : committed) step_.force_scale = std::max(step_.force_scale, std::abs(c.normal_force));
   stats_ = restart;
   stats_.candidate_pairs = static_cast<int>(pairs.size());
   stats_.contacts = static_cast<int>(records_.work.contacts.size());

@@ -285,15 +285,10 @@ class ContactSystem {
   double allowed_penetration_ = 0.0;
   double last_max_penetration_ = 0.0;
   std::size_t projections_ = 0;  ///< last_projections()
-  double step_max_penetration_ = 0.0;
-  double force_scale_ = 0.0;  ///< largest |N| of the last iterate [force/length]
-  bool step_dynamic_ = true;  ///< the step being solved carries velocity (begin_step)
 
   ContactRecords records_;  ///< committed and working records (contact_records.hpp)
-  double step_dt_ = 0.0;  ///< creep time of the step being solved [time]
-  double step_inertia_ = 0.0;  ///< inertia stiffness per unit mass of the step, 1/(beta dt^2) [1/time^2]
   EnergyBook energy_;  ///< energy terms of the last accepted step (energy_book.hpp)
-  step::Arrays step_;  ///< the step's hot arrays: geometry, seams, law constants (step_arrays.hpp)
+  step::Data step_;  ///< the step being solved: its hot arrays and values (step_arrays.hpp)
   // Adaptive creep stepping (creep_error.hpp, contact_creep_error.cpp).
   bool creep_error_wanted_ = false;  ///< set by begin_step for the step being solved
   CreepErrorEstimate creep_error_;   ///< the estimate of the last accepted step

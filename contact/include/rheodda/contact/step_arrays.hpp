@@ -1,9 +1,10 @@
 // What a ContactSystem (contact_system.hpp) computes once per step and reads at
 // every iterate of it (after Box2D's "hot" contact data): each contact's
 // linearized geometry on the step-start configuration with its springs and
-// strength, the creep seam in its shear spring, and the creep laws' step
-// constants per joint set. begin_step builds them, abandon_step and the commit
-// drop them; nothing of them outlives the step.
+// strength, the creep seam in its shear spring, the creep laws' step
+// constants per joint set, and the step's values (creep time, inertia,
+// dynamic or not, the last iterate's largest penetration and normal force).
+// begin_step builds them, abandon_step and the commit drop the arrays.
 #pragma once
 
 #include <vector>
@@ -71,13 +72,20 @@ struct LawStep {
   laws::StepConstants main, from_rest;
 };
 
-/// The step's arrays, parallel to the working records (laws: per joint set).
-struct Arrays {
+/// The step being solved: its arrays, parallel to the working records (laws:
+/// per joint set), and what begin_step and the iterates set for all contacts.
+struct Data {
   std::vector<Hot> hot;
   std::vector<ShearSeam> seams;
   std::vector<LawStep> laws;  ///< per joint set, for the step being solved (kept for scheme_used)
+  double dt = 0.0;       ///< creep time of the step [time]
+  double inertia = 0.0;  ///< inertia stiffness per unit mass of the step, 1/(beta dt^2) [1/time^2]
+  bool dynamic = true;   ///< the step carries velocity (StepContext::dynamic)
+  double max_penetration = 0.0;  ///< largest penetration of the last iterate [length]
+  double force_scale = 0.0;      ///< largest |N| of the last iterate [force/length]
 
-  /// Drops the contacts' arrays (the laws' constants stay for scheme_used).
+  /// Drops the contacts' arrays (the laws' constants stay for scheme_used, the
+  /// values for the commit's creep error estimate).
   void clear() {
     hot.clear();
     seams.clear();
