@@ -264,7 +264,7 @@ int main(int argc, char** argv) {
     const int reps = n < 5000 ? 20 : 3;
     const auto d0 = Clock::now();
     for (int r = 0; r < reps; ++r) {
-      contacts.begin_step(engine.views(), engine.allowed_displacement());
+      contacts.begin_step(engine.views(), {.max_displacement = engine.allowed_displacement()});
       contacts.abandon_step();
     }
     const double detect = seconds(d0, Clock::now()) / reps;

@@ -28,12 +28,12 @@ void ContactSystem::stick(std::span<const BlockView> blocks, size_t c) {
   // not settle"): far fewer iterates and cuts on walls and slopes at the
   // friction limit; a creeping slope at its limit takes other, step-dependent
   // paths.
-  Contact& r = work_[c];
-  Hot& h = hot_[c];
+  Contact& r = records_.work.contacts[c];
+  Hot& h = step_.hot[c];
   const BlockView& eb = blocks[r.key.eblock];
   const Vec2 a = edge_start(eb, r.key.edge), b = edge_end(eb, r.key.edge);
   const double friction = mohr_coulomb_strength(h.normal_force, h.tan_phi, h.cohesion, r.length);
-  const bool keep = step_dynamic_ && settings_.stick_keeps_force_dynamic ? *settings_.stick_keeps_force_dynamic
+  const bool keep = step_.dynamic && settings_.stick_keeps_force_dynamic ? *settings_.stick_keeps_force_dynamic
                                                                           : settings_.stick_keeps_force;
   const double stretch = keep ? r.slide_direction * friction / shear_stiffness(c) : 0.0;
   r.locking_ratio = line_ratio(a, b, blocks[r.key.vblock].vertices[r.key.vertex]) -
@@ -45,10 +45,10 @@ void ContactSystem::stick(std::span<const BlockView> blocks, size_t c) {
 void ContactSystem::lock_at_touch(std::span<const BlockView> blocks, size_t c, double flight) {
   // The locking point moves along the entrance edge by the tangential motion
   // before the touch, so the spring's stretch counts from there.
-  Contact& r = work_[c];
+  Contact& r = records_.work.contacts[c];
   const BlockView& eb = blocks[r.key.eblock];
   r.locking_ratio += flight / edge_length(eb, r.key.edge);
-  prepare(blocks, r, hot_[c]);
+  prepare(blocks, r, step_.hot[c]);
 }
 
 CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen::VectorXd& D) {
@@ -57,17 +57,17 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
   // Force resolution: forces below this are zero for the state decisions, so
   // contacts that carry (almost) nothing - the vertical joints of a wall - do
   // not flip on round-off.
-  const double f_res = settings_.force_resolution * force_scale_;
+  const double f_res = settings_.force_resolution * step_.force_scale;
   double scale = 0.0;
-  for (size_t c = 0; c < work_.size(); ++c) {
-    Contact& r = work_[c];
-    Hot& h = hot_[c];
+  for (size_t c = 0; c < records_.work.contacts.size(); ++c) {
+    Contact& r = records_.work.contacts[c];
+    Hot& h = step_.hot[c];
     h.assembled_normal_force = h.normal_force;  // energy balance: the friction just solved with
     const auto Di = D.segment<6>(6 * r.key.vblock);
     const auto Dj = D.segment<6>(6 * r.key.eblock);
     const double dn = h.dn0 + h.ni.dot(Di) + h.nj.dot(Dj);
     const double slip = h.ti.dot(Di) + h.tj.dot(Dj);  // tangential motion this step [length]
-    const double dt = h.dt0 + seams_[c].locking_shift + slip;
+    const double dt = h.dt0 + step_.seams[c].locking_shift + slip;
     // The states follow the springs alone (the overlap and the shear spring's
     // stretch), as in Cundall & Strack's spring-dashpot contact: a contact
     // dashpot (JointSet::restitution) adds its force c rate beside the spring
@@ -100,7 +100,7 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
           // (ContactSettings::lock_at_touch).
           const double gap = std::max(-h.dn0, 0.0);
           const double flight =
-              (settings_.lock_at_touch && step_dynamic_ && gap > 0.0) ? gap / (gap + dn) * slip : 0.0;
+              (settings_.lock_at_touch && step_.dynamic && gap > 0.0) ? gap / (gap + dn) * slip : 0.0;
           const double S = shear_stiffness(c) * (dt - flight);
           if (beyond_strength(S, N, h.tan_phi, h.cohesion, r.length, f_res)) {
             r.state = ContactState::sliding;
@@ -188,12 +188,13 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
     // at this iterate's stress; a change asks for another iteration (bounded
     // by max_refinements, so the switch cannot chatter).
     if (r.state == ContactState::locked && r.rheology >= 0 && r.tributary_length > 0.0 &&
-        law_steps_[r.joint_set].active && !r.creep_failed &&
+        step_.laws[r.joint_set].active && !r.creep_failed &&
         !joint_sets_[r.joint_set].law->is_linear()) {
       const double tau =
-          shear_stiffness(c) * (h.dt0 + seams_[c].locking_shift + slip) / r.tributary_length;
+          shear_stiffness(c) * (h.dt0 + step_.seams[c].locking_shift + slip) / r.tributary_length;
       const laws::ContactRheology& law = *joint_sets_[r.joint_set].law;
-      if (law.failure_in_step(step_constants_of(c), work_rheology_[r.rheology], h.tau_start, tau)) {
+      const laws::RheologyState& history = records_.work.rheology[r.rheology];
+      if (law.failure_in_step(step_constants_of(c), history, h.tau_start, tau)) {
         // The law fails within the step at this stress (damage 1, docs/reference/rheology-in-dda.md,
         // "Failure"): the joint's creep strength is gone. It becomes a residual
         // frictional joint - elastic spring, no creep, no cohesion or tensile
@@ -202,7 +203,7 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
         // stress stops its damaging creep there) is this step's.
         laws::RheologyState at_failure;
         const laws::CallSiteScope at(law_call_site(r));
-        fail_law(c, law.advance(step_constants_of(c), work_rheology_[r.rheology], h.tau_start, tau, at_failure));
+        fail_law(c, law.advance(step_constants_of(c), history, h.tau_start, tau, at_failure));
         ++res.state_changes;
         ++res.changes.slipped;
         continue;
@@ -213,8 +214,8 @@ CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen:
       }
     }
   }
-  force_scale_ = scale;
-  step_max_penetration_ = res.max_penetration;
+  step_.force_scale = scale;
+  step_.max_penetration = res.max_penetration;
   return res;
 }
 
@@ -222,10 +223,10 @@ bool ContactSystem::relinearize_seam(size_t c, double tau, double f_res) {
   // A piecewise-affine law (Nishihara's threshold) takes the piece that holds at tau, a
   // nonlinear one its tangent there; another iterate is wanted when the seam changed,
   // bounded by max_refinements so that a switch cannot chatter.
-  Hot& h = hot_[c];
-  const ShearSeam before_seam = seams_[c];
+  Hot& h = step_.hot[c];
+  const ShearSeam before_seam = step_.seams[c];
   linearize(c, tau);
-  const Contact& r = work_[c];
+  const Contact& r = records_.work.contacts[c];
   if (joint_sets_[r.joint_set].law->linearity() == laws::Linearity::nonlinear) {
     // Newton (docs/reference/rheology-in-dda.md, "Nonlinear laws"): the iterate was
     // solved with the tangent at the last stress; the law's increment at
@@ -234,7 +235,7 @@ bool ContactSystem::relinearize_seam(size_t c, double tau, double f_res) {
     // k_eff e / l_t. Another iterate while that exceeds the tolerance.
     const double lt = r.tributary_length;
     const double model = -before_seam.locking_shift + before_seam.compliance * lt * tau;
-    const double actual = -seams_[c].locking_shift + seams_[c].compliance * lt * tau;
+    const double actual = -step_.seams[c].locking_shift + step_.seams[c].compliance * lt * tau;
     const double stress_error = shear_stiffness(c) * std::abs(actual - model) / lt;
     if (stress_error > settings_.creep_newton_tolerance * std::max(std::abs(tau), f_res / lt) &&
         h.newton < settings_.max_creep_newton) {
@@ -243,7 +244,8 @@ bool ContactSystem::relinearize_seam(size_t c, double tau, double f_res) {
     }
     return false;
   }
-  if ((seams_[c].compliance != before_seam.compliance || seams_[c].locking_shift != before_seam.locking_shift) &&
+  const ShearSeam& seam = step_.seams[c];
+  if ((seam.compliance != before_seam.compliance || seam.locking_shift != before_seam.locking_shift) &&
       h.refinements < settings_.max_refinements) {
     ++h.refinements;
     return true;

@@ -44,9 +44,9 @@ void ContactSystem::project_onto_envelope(std::span<const BlockView> blocks, siz
   // the next step's vertex, stopped, chatters between stick and slip again. The spring
   // energy this releases is booked with the springs detached in the step
   // (ContactEnergy::release; contact_energy.cpp).
-  Contact& r = work_[c];
-  const Hot& h = hot_[c];
-  const double f_res = settings_.force_resolution * force_scale_;
+  Contact& r = records_.work.contacts[c];
+  const Hot& h = step_.hot[c];
+  const double f_res = settings_.force_resolution * step_.force_scale;
   if (beyond_tensile_cutoff(r.normal_force, h.tensile_strength, r.length, f_res)) {
     r.state = ContactState::open;
     r.normal_force = r.shear_force = 0.0;
@@ -69,24 +69,28 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
   assert(D.size() == 6 * static_cast<Eigen::Index>(blocks.size()));
   // A step that may be retracted (begin_step's creep_error_wanted) keeps what
   // this commit changes beside the records (contact_creep_error.cpp).
-  can_retract_ = false;
-  if (creep_error_wanted_)
-    retract_ = {creep_counters_, last_max_penetration_, penalty_, stored_before_};
+  start_.retractable = false;
+  if (creep_error_wanted_) {
+    start_.counters = records_.counters;
+    start_.last_max_penetration = last_max_penetration_;
+    start_.penalty = penalty_;
+    start_.stored_before = energy_.stored_before;
+  }
   double max_pen = 0.0;
   projections_ = 0;
-  stored_before_ = stored_energy(committed_, committed_work_);  // energy balance
-  step_work_.resize(work_.size());                              // energy balance
-  for (size_t c = 0; c < work_.size(); ++c) {
-    Contact& r = work_[c];
-    const Hot& h = hot_[c];
+  energy_.stored_before = EnergyBook::stored_energy(records_.committed.contacts, energy_.committed);
+  energy_.step.resize(records_.work.contacts.size());
+  for (size_t c = 0; c < records_.work.contacts.size(); ++c) {
+    Contact& r = records_.work.contacts[c];
+    const Hot& h = step_.hot[c];
     const auto Di = D.segment<6>(6 * r.key.vblock);
     const auto Dj = D.segment<6>(6 * r.key.eblock);
     const double dn = h.dn0 + h.ni.dot(Di) + h.nj.dot(Dj);
     const double slip = h.ti.dot(Di) + h.tj.dot(Dj);
-    const double dt = h.dt0 + seams_[c].locking_shift + slip;
+    const double dt = h.dt0 + step_.seams[c].locking_shift + slip;
     r.penetration = dn;
     r.creep_state = r.rheology >= 0 ? CreepState::idle : CreepState::none;
-    step_work_[c] = {h.pn, h.ps, h.dn0, dn, h.dt0, slip, h.start_state,  // energy balance
+    energy_.step[c] = {h.pn, h.ps, h.dn0, dn, h.dt0, slip, h.start_state,  // energy balance
                      r.slide_direction * mohr_coulomb_strength(h.assembled_normal_force, h.tan_phi, h.cohesion, r.length),
                      // (the dashpots of a step taken in cycles: booked cycle by cycle, contact_cycles.cpp)
                      !cycled_ && r.state != ContactState::open ? normal_dashpot(c) * (dn - h.dn_ref) : 0.0,
@@ -94,7 +98,7 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
                      r.state, 0.0};
     switch (r.state) {
       case ContactState::open:
-        if (h.law_failed) ++creep_counters_[r.joint_set].failures;  // failed at an iterate (check)
+        if (h.law_failed) ++records_.counters[r.joint_set].failures;  // failed at an iterate (check)
         r.normal_force = r.shear_force = 0.0;
         if (h.start_state != ContactState::open) r.intact = false;
         break;
@@ -105,23 +109,23 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
         max_pen = std::max(max_pen, dn);
         bool crept = false;  // this step's creep moves the locking point
         double creep = 0.0;  // [length]
-        if (r.rheology >= 0 && r.tributary_length > 0.0 && law_steps_[r.joint_set].active &&
+        if (r.rheology >= 0 && r.tributary_length > 0.0 && step_.laws[r.joint_set].active &&
             !r.creep_failed) {
           // Advance the history from the step-start state with the step's end
           // stress tau = F / l_t, move the locking point by the creep increment
           // along the entrance edge (the seed's eqs. 22-29) and take the force
           // from the spring's remaining stretch.
-          const laws::RheologyState old = work_rheology_[r.rheology];
+          const laws::RheologyState old = records_.work.rheology[r.rheology];
           const laws::CallSiteScope at(law_call_site(r));
           creep = joint_sets_[r.joint_set].law->advance(step_constants_of(c), old, h.tau_start,
                                                         r.shear_force / r.tributary_length,
-                                                        work_rheology_[r.rheology]);
-          CreepCounters& counters = creep_counters_[r.joint_set];
-          counters.contact_time += step_dt_;
+                                                        records_.work.rheology[r.rheology]);
+          CreepCounters& counters = records_.counters[r.joint_set];
+          counters.contact_time += step_.dt;
           if (!r.has_crept) ++counters.contacts;
           r.has_crept = true;
           r.creep_state = CreepState::creeping;
-          if (work_rheology_[r.rheology].failed()) {
+          if (records_.work.rheology[r.rheology].failed()) {
             // The law failed within the step at the converged stress although no
             // iterate saw it (e.g. anti-chattering): the joint becomes a
             // residual frictional joint now, with this step's creep up to the
@@ -141,16 +145,16 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
           const BlockView& eb = blocks[r.key.eblock];
           r.locking_ratio += creep / edge_length(eb, r.key.edge);
           r.shear_force = h.ps * (h.dt0 + slip - creep);
-          work_creep_[c] = creep;
+          records_.work.creep[c] = creep;
           r.creep_displacement += creep;
         }
-        if (h.law_failed) ++creep_counters_[r.joint_set].failures;
-        step_work_[c].solved_shear_force = r.shear_force;
+        if (h.law_failed) ++records_.counters[r.joint_set].failures;
+        energy_.step[c].solved_shear_force = r.shear_force;
         project_onto_envelope(blocks, c);
         break;
       }
       case ContactState::sliding: {
-        if (h.law_failed) ++creep_counters_[r.joint_set].failures;  // failed at an iterate (check)
+        if (h.law_failed) ++records_.counters[r.joint_set].failures;  // failed at an iterate (check)
         r.normal_force = h.pn * dn;
         r.shear_force = r.slide_direction * mohr_coulomb_strength(r.normal_force, h.tan_phi, h.cohesion, r.length);
         r.shear_displacement += slip;
@@ -168,29 +172,23 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
     penalty_ *= settings_.penalty_raise;
   // History rules: an open or sliding contact loses its creep history (the
   // spring relocks unstretched, so the law restarts from rest).
-  for (const Contact& r : work_)
-    if (r.rheology >= 0 && r.state != ContactState::locked) work_rheology_[r.rheology] = {};
-  committed_.swap(work_);
-  committed_rheology_.swap(work_rheology_);
-  committed_creep_.swap(work_creep_);
-  committed_work_.swap(step_work_);  // energy balance
-  committed_cycle_damping_ = cycled_ ? cycle_damping_ : 0.0;
+  for (const Contact& r : records_.work.contacts)
+    if (r.rheology >= 0 && r.state != ContactState::locked) records_.work.rheology[r.rheology] = {};
+  records_.committed.swap(records_.work);
+  energy_.committed.swap(energy_.step);  // energy balance
+  energy_.cycle_damping = cycled_ ? cycle_damping_ : 0.0;
   if (creep_error_wanted_) {
     // The step-start records (now in the working arrays) are the estimate's
     // start, and what retract_step swaps back.
-    start_records_.swap(work_);
-    start_rheology_.swap(work_rheology_);
-    start_creep_.swap(work_creep_);
-    start_work_.swap(step_work_);
-    estimate_creep_error();
-    can_retract_ = true;
+    start_.records.swap(records_.work);
+    start_.work.swap(energy_.step);
+    creep_error_.estimate(start_.records.contacts, start_.records.rheology, records_.committed.contacts,
+                          joint_sets_, step_.laws, step_.dt);
+    start_.retractable = true;
   } else {
-    creep_error_ = 0.0;
-    creep_changes_ = 0;
+    creep_error_.skip();
   }
-  work_.clear();
-  work_rheology_.clear();
-  work_creep_.clear();
+  records_.work.clear();
 }
 
 }  // namespace rheodda::contact

@@ -1,8 +1,8 @@
-// The creep error estimate of adaptive creep stepping (docs/reference/step-controls.md,
-// "Adaptive creep stepping") and the retraction of a step whose estimate is
-// too large. The step-start records are those the commit replaced (kept by
-// end_step when begin_step was asked for the estimate), so neither the
-// estimate nor a retraction copies the contact system.
+// The creep error estimate of adaptive creep stepping (creep_error.hpp;
+// docs/reference/step-controls.md, "Adaptive creep stepping") and the retraction
+// of a step whose estimate is too large. The step-start records are those the
+// commit replaced (kept by end_step when begin_step was asked for the
+// estimate), so neither the estimate nor a retraction copies the contact system.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -12,16 +12,17 @@
 
 #include "law_call_site.hpp"
 #include "rheodda/contact/contact_system.hpp"
+#include "rheodda/contact/creep_error.hpp"
 
 namespace rheodda::contact {
 
-void ContactSystem::estimate_creep_error() {
-  creep_changes_ = 0;
+void CreepErrorEstimate::estimate(std::span<const Contact> start_contacts,
+                                  std::span<const laws::RheologyState> start_rheology,
+                                  std::span<const Contact> end, std::span<const JointSet> joint_sets,
+                                  std::span<const step::LawStep> law_steps, double dt) {
+  changes_ = 0;
   retract_prev_tau_ = prev_tau_;
   retract_prev_dt_ = prev_dt_;
-  const std::span<const Contact> start_contacts = start_records_;
-  const std::span<const laws::RheologyState> start_rheology = start_rheology_;
-  const double dt = step_dt_;
   std::unordered_map<std::uint64_t, std::size_t> start_of;
   start_of.reserve(start_contacts.size());
   for (std::size_t k = 0; k < start_contacts.size(); ++k) start_of[start_contacts[k].id] = k;
@@ -29,33 +30,33 @@ void ContactSystem::estimate_creep_error() {
   // contact that locks, slides or opens moves load onto its neighbours at once.
   auto creeps = [&](const Contact& c) {
     return c.tributary_length > 0.0 && c.joint_set >= 0 &&
-           c.joint_set < static_cast<int>(joint_sets_.size()) && joint_sets_[c.joint_set].law != nullptr;
+           c.joint_set < static_cast<int>(joint_sets.size()) && joint_sets[c.joint_set].law != nullptr;
   };
   std::size_t matched_locked = 0;
-  for (const Contact& c : committed_) {
+  for (const Contact& c : end) {
     const auto it = start_of.find(c.id);
     if (it == start_of.end()) {
-      if (creeps(c) && c.state != ContactState::open) ++creep_changes_;
+      if (creeps(c) && c.state != ContactState::open) ++changes_;
       continue;
     }
     const Contact& s = start_contacts[it->second];
     if (s.state == ContactState::locked && creeps(s)) ++matched_locked;
-    if ((creeps(c) || creeps(s)) && s.state != c.state) ++creep_changes_;
+    if ((creeps(c) || creeps(s)) && s.state != c.state) ++changes_;
   }
   std::size_t start_locked = 0;
   for (const Contact& s : start_contacts)
     if (s.state == ContactState::locked && creeps(s)) ++start_locked;
-  creep_changes_ += static_cast<int>(start_locked - matched_locked);  // vanished while locked
+  changes_ += static_cast<int>(start_locked - matched_locked);  // vanished while locked
   // Per joint set: the scheme the step used and the constants to compare with.
   struct Pair {
     laws::Scheme used;
     laws::StepConstants main, other;  // the used scheme's and exponential-linear's (or implicit's)
   };
-  std::vector<std::optional<Pair>> ks(joint_sets_.size());
+  std::vector<std::optional<Pair>> ks(joint_sets.size());
   std::unordered_map<std::uint64_t, double> tau_now;
-  tau_now.reserve(committed_.size());
+  tau_now.reserve(end.size());
   double worst = 0.0;
-  for (const Contact& c : committed_) {
+  for (const Contact& c : end) {
     if (c.rheology < 0 || c.tributary_length <= 0.0 || c.state != ContactState::locked ||
         c.creep_failed)  // a failed damage law no longer creeps (docs/reference/rheology-in-dda.md, "Failure")
       continue;
@@ -63,11 +64,14 @@ void ContactSystem::estimate_creep_error() {
     if (it == start_of.end()) continue;
     const Contact& s = start_contacts[it->second];
     if (s.rheology < 0 || s.tributary_length <= 0.0 || s.state != ContactState::locked) continue;
-    const auto& law = joint_sets_[c.joint_set].law;
+    const auto& law = joint_sets[c.joint_set].law;
     if (!law) continue;
     auto& k = ks[c.joint_set];
     if (!k) {
-      const laws::Scheme used = scheme_used(c.joint_set).value_or(laws::Scheme::implicit);
+      // The scheme the step used (ContactSystem::scheme_used).
+      const laws::Scheme used = c.joint_set < static_cast<int>(law_steps.size()) && law_steps[c.joint_set].active
+                                    ? law_steps[c.joint_set].scheme
+                                    : laws::Scheme::implicit;
       const laws::Scheme other = used == laws::Scheme::exponential_linear
                                      ? laws::Scheme::implicit
                                      : laws::Scheme::exponential_linear;
@@ -107,25 +111,42 @@ void ContactSystem::estimate_creep_error() {
   }
   prev_tau_.swap(tau_now);
   prev_dt_ = dt;
-  creep_error_ = worst;
+  error_ = worst;
+}
+
+void CreepErrorEstimate::retract() {
+  prev_tau_ = retract_prev_tau_;
+  prev_dt_ = retract_prev_dt_;
+  skip();
+}
+
+std::vector<std::pair<std::uint64_t, double>> CreepErrorEstimate::previous_stress() const {
+  // Sorted, so that equal states give equal files (the map's order is not defined).
+  std::vector<std::pair<std::uint64_t, double>> s(prev_tau_.begin(), prev_tau_.end());
+  std::sort(s.begin(), s.end());
+  return s;
+}
+
+void CreepErrorEstimate::restore(std::span<const std::pair<std::uint64_t, double>> previous_stress,
+                                 double previous_dt, double error, int state_changes) {
+  prev_tau_.clear();
+  prev_tau_.insert(previous_stress.begin(), previous_stress.end());
+  prev_dt_ = previous_dt;
+  error_ = error;
+  changes_ = state_changes;
 }
 
 bool ContactSystem::retract_step() {
-  if (!can_retract_) return false;
-  committed_.swap(start_records_);
-  committed_rheology_.swap(start_rheology_);
-  committed_creep_.swap(start_creep_);
-  committed_work_.swap(start_work_);
-  creep_counters_ = retract_.counters;
-  last_max_penetration_ = retract_.last_max_penetration;
-  penalty_ = retract_.penalty;
-  stored_before_ = retract_.stored_before;
-  prev_tau_ = retract_prev_tau_;
-  prev_dt_ = retract_prev_dt_;
+  if (!start_.retractable) return false;
+  records_.committed.swap(start_.records);
+  energy_.committed.swap(start_.work);
+  records_.counters = start_.counters;
+  last_max_penetration_ = start_.last_max_penetration;
+  penalty_ = start_.penalty;
+  energy_.stored_before = start_.stored_before;
+  creep_error_.retract();
   abandon_step();  // no trial records: the step-start states remain
-  can_retract_ = false;
-  creep_error_ = 0.0;
-  creep_changes_ = 0;
+  start_.retractable = false;
   return true;
 }
 

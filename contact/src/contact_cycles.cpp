@@ -129,20 +129,20 @@ void ContactSystem::begin_cycles(std::span<const BlockView> blocks, int threads)
   const int block_count = static_cast<int>(blocks.size());
   cycle_threads_ = threads;
   cycled_ = true;
-  const std::size_t n = work_.size();
+  const std::size_t n = records_.work.contacts.size();
   cycles::Arrays& a = cycles_;
   a.springs.resize(n);
   a.states.resize(n);
   a.bounds.resize(2 * n);
   a.force.assign(2 * n, Vec6::Zero());
   for (std::size_t c = 0; c < n; ++c) {
-    const Contact& r = work_[c];
-    const Hot& h = hot_[c];
+    const Contact& r = records_.work.contacts[c];
+    const Hot& h = step_.hot[c];
     const JointSet& js = joint_sets_[r.joint_set];
     cycles::Spring& p = a.springs[c];
     p.ni = h.ni, p.nj = h.nj, p.ti = h.ti, p.tj = h.tj;
     p.dn0 = h.dn0;
-    p.reach0 = h.dt0 + seams_[c].locking_shift;
+    p.reach0 = h.dt0 + step_.seams[c].locking_shift;
     p.pn = h.pn;
     p.ks = shear_stiffness(c);
     p.tension = js.tensile_strength * r.length;
@@ -170,22 +170,23 @@ void ContactSystem::begin_cycles(std::span<const BlockView> blocks, int threads)
   }
   // The contacts of each block in the order of the records (vertex side before edge side
   // where a contact has a block on both): the gather's fixed order.
+  const std::vector<Contact>& work = records_.work.contacts;
   a.block_first.assign(static_cast<std::size_t>(block_count) + 1, 0);
-  for (const Contact& r : work_) ++a.block_first[r.key.vblock + 1], ++a.block_first[r.key.eblock + 1];
+  for (const Contact& r : work) ++a.block_first[r.key.vblock + 1], ++a.block_first[r.key.eblock + 1];
   for (int b = 0; b < block_count; ++b) a.block_first[b + 1] += a.block_first[b];
   a.next.assign(a.block_first.begin(), a.block_first.end() - 1);
   for (std::size_t c = 0; c < n; ++c) {
-    a.springs[c].slot_i = a.next[work_[c].key.vblock]++;
-    a.springs[c].slot_j = a.next[work_[c].key.eblock]++;
+    a.springs[c].slot_i = a.next[work[c].key.vblock]++;
+    a.springs[c].slot_j = a.next[work[c].key.eblock]++;
   }
   // The first and last contact on each block, and the blocks by their last contact: the
   // order in which the cycles can gather them.
   a.block_first_contact.assign(static_cast<std::size_t>(block_count), static_cast<int>(n));
   a.block_last_contact.assign(static_cast<std::size_t>(block_count), -1);
   for (std::size_t c = n; c-- > 0;)
-    for (const int b : {work_[c].key.vblock, work_[c].key.eblock}) a.block_first_contact[b] = static_cast<int>(c);
+    for (const int b : {work[c].key.vblock, work[c].key.eblock}) a.block_first_contact[b] = static_cast<int>(c);
   for (std::size_t c = 0; c < n; ++c)
-    for (const int b : {work_[c].key.vblock, work_[c].key.eblock}) a.block_last_contact[b] = static_cast<int>(c);
+    for (const int b : {work[c].key.vblock, work[c].key.eblock}) a.block_last_contact[b] = static_cast<int>(c);
   a.completion.resize(static_cast<std::size_t>(block_count));
   for (int b = 0; b < block_count; ++b) a.completion[b] = b;
   std::stable_sort(a.completion.begin(), a.completion.end(),
@@ -204,13 +205,13 @@ void ContactSystem::cycle_stiffness(std::vector<Mat6>& K) const {
 void ContactSystem::cycle_damping(double tau, std::vector<Mat6>& C) {
   for (std::size_t c = 0; c < cycles_.springs.size(); ++c) {
     cycles::Spring& p = cycles_.springs[c];
-    if (joint_sets_[work_[c].joint_set].restitution) {
-      p.cn = hot_[c].cn, p.cs = hot_[c].cs;
+    if (joint_sets_[records_.work.contacts[c].joint_set].restitution) {
+      p.cn = step_.hot[c].cn, p.cs = step_.hot[c].cs;
     } else {
       p.cn = tau * p.pn;
       p.cs = tau * p.ks;
     }
-    if (!step_dynamic_ || (p.cn == 0.0 && p.cs == 0.0)) continue;
+    if (!step_.dynamic || (p.cn == 0.0 && p.cs == 0.0)) continue;
     const double bi = cycles_.bounds[2 * c], bj = cycles_.bounds[2 * c + 1];
     C[p.i].noalias() += bi * (p.cn * p.ni * p.ni.transpose() + p.cs * p.ti * p.ti.transpose());
     C[p.j].noalias() += bj * (p.cn * p.nj * p.nj.transpose() + p.cs * p.tj * p.tj.transpose());
@@ -221,7 +222,7 @@ void ContactSystem::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd
                                  Eigen::VectorXd& f) {
   const auto n = static_cast<std::ptrdiff_t>(cycles_.springs.size());
   const auto nb = static_cast<std::ptrdiff_t>(cycles_.block_first.size()) - 1;
-  const bool dashpots = step_dynamic_;
+  const bool dashpots = step_.dynamic;
   const int threads = thread_count(cycle_threads_);
   const cycles::Spring* springs = cycles_.springs.data();
   cycles::State* states = cycles_.states.data();
@@ -279,20 +280,20 @@ int ContactSystem::cycle_relinearize(const Eigen::VectorXd& D) {
   // As check does for an iterate of the implicit step: each locked contact of a law that
   // is not linear takes the seam of the stress its spring carries at D (relinearize_seam);
   // the cycles' springs follow.
-  const double f_res = settings_.force_resolution * force_scale_;
+  const double f_res = settings_.force_resolution * step_.force_scale;
   int changed = 0;
-  for (std::size_t c = 0; c < work_.size(); ++c) {
-    const Contact& r = work_[c];
+  for (std::size_t c = 0; c < records_.work.contacts.size(); ++c) {
+    const Contact& r = records_.work.contacts[c];
     const cycles::State& y = cycles_.states[c];
     if (y.state != ContactState::locked || r.rheology < 0 || !(r.tributary_length > 0.0) ||
-        !law_steps_[r.joint_set].active || r.creep_failed || joint_sets_[r.joint_set].law->is_linear())
+        !step_.laws[r.joint_set].active || r.creep_failed || joint_sets_[r.joint_set].law->is_linear())
       continue;
     cycles::Spring& p = cycles_.springs[c];
     const double slip = p.ti.dot(D.segment<6>(6 * p.i)) + p.tj.dot(D.segment<6>(6 * p.j));
     const double tau = p.ks * (p.reach0 + slip - y.shift) / r.tributary_length;
     if (!relinearize_seam(c, tau, f_res)) continue;
     p.ks = shear_stiffness(c);
-    p.reach0 = hot_[c].dt0 + seams_[c].locking_shift;
+    p.reach0 = step_.hot[c].dt0 + step_.seams[c].locking_shift;
     ++changed;
   }
   return changed;
@@ -301,9 +302,9 @@ int ContactSystem::cycle_relinearize(const Eigen::VectorXd& D) {
 CheckResult ContactSystem::end_cycles(std::span<const BlockView> blocks, const Eigen::VectorXd& D) {
   CheckResult res;
   double scale = 0.0;
-  for (std::size_t c = 0; c < work_.size(); ++c) {
-    Contact& r = work_[c];
-    Hot& h = hot_[c];
+  for (std::size_t c = 0; c < records_.work.contacts.size(); ++c) {
+    Contact& r = records_.work.contacts[c];
+    Hot& h = step_.hot[c];
     const cycles::State& y = cycles_.states[c];
     const cycles::Spring& p = cycles_.springs[c];
     const ContactState before = h.start_state;
@@ -339,8 +340,8 @@ CheckResult ContactSystem::end_cycles(std::span<const BlockView> blocks, const E
     else if (y.state == ContactState::sliding) ++res.changes.slipped;
     else ++res.changes.stuck;
   }
-  force_scale_ = scale;
-  step_max_penetration_ = res.max_penetration;
+  step_.force_scale = scale;
+  step_.max_penetration = res.max_penetration;
   cycle_damping_ = 0.0;  // in the records' order: the same sum whatever the threads
   for (const cycles::State& y : cycles_.states) cycle_damping_ += y.damped;
   return res;

@@ -22,27 +22,27 @@ void ContactSystem::remove_blocks(std::span<const char> removed) {
   std::vector<laws::RheologyState> rheology;
   std::vector<double> creep;
   std::vector<StepWork> work;
-  for (std::size_t c = 0; c < committed_.size(); ++c) {
-    Contact r = committed_[c];
+  for (std::size_t c = 0; c < records_.committed.contacts.size(); ++c) {
+    Contact r = records_.committed.contacts[c];
     if (gone(r.key.vblock) || gone(r.key.eblock)) continue;
     if (r.rheology >= 0) {
-      rheology.push_back(committed_rheology_[static_cast<std::size_t>(r.rheology)]);
+      rheology.push_back(records_.committed.rheology[static_cast<std::size_t>(r.rheology)]);
       r.rheology = static_cast<int>(rheology.size()) - 1;
     }
-    if (c < committed_creep_.size()) creep.push_back(committed_creep_[c]);
-    if (c < committed_work_.size()) work.push_back(committed_work_[c]);
+    if (c < records_.committed.creep.size()) creep.push_back(records_.committed.creep[c]);
+    if (c < energy_.committed.size()) work.push_back(energy_.committed[c]);
     contacts.push_back(r);
   }
-  committed_ = std::move(contacts);
-  committed_rheology_ = std::move(rheology);
-  committed_creep_ = std::move(creep);
-  committed_work_ = std::move(work);
+  records_.committed.contacts = std::move(contacts);
+  records_.committed.rheology = std::move(rheology);
+  records_.committed.creep = std::move(creep);
+  energy_.committed = std::move(work);
   // The next step's restart energy (ContactEnergy::restart) is measured from
   // what the records left store, not from what the dropped ones stored.
-  stored_before_ = stored_energy(committed_, committed_work_);
+  energy_.stored_before = EnergyBook::stored_energy(records_.committed.contacts, energy_.committed);
   // Nothing of the last step is left to retract, nor any trial.
   abandon_step();
-  can_retract_ = false;
+  start_.retractable = false;
 }
 
 void ContactSystem::set_joint_set(int index, JointSet joint_set) {
@@ -64,7 +64,7 @@ void ContactSystem::set_joint_set(int index, JointSet joint_set) {
   check_joint_set(joint_set, static_cast<std::size_t>(index));
   joint_sets_[static_cast<std::size_t>(index)] = std::move(joint_set);
   abandon_step();
-  can_retract_ = false;
+  start_.retractable = false;
 }
 
 }  // namespace rheodda::contact

@@ -1,7 +1,7 @@
-// The contacts' terms of the energy balance (contact_energy.hpp; docs/reference/engine.md,
-// "Energy balance"), from the records of the last accepted step and what
-// end_step recorded of it (StepWork: springs, start and end stretches, slip,
-// state at the step start).
+// The contacts' terms of the energy balance (EnergyBook, energy_book.hpp;
+// contact_energy.hpp; docs/reference/engine.md, "Energy balance"), from the
+// records of the last accepted step and what end_step recorded of it
+// (StepWork: springs, start and end stretches, slip, state at the step start).
 //
 // Springs (Shi 1988; the seed's eqs. 17-18, 23-29), per contact:
 //   normal  p_n, stretch d_n (penetration): d_n0 on the step-start geometry,
@@ -24,11 +24,11 @@
 #include <span>
 
 #include "rheodda/contact/contact_system.hpp"
+#include "rheodda/contact/energy_book.hpp"
 
 namespace rheodda::contact {
 
-double ContactSystem::stored_energy(std::span<const Contact> records,
-                                    std::span<const StepWork> work) {
+double EnergyBook::stored_energy(std::span<const Contact> records, std::span<const StepWork> work) {
   double e = 0.0;
   for (size_t c = 0; c < records.size() && c < work.size(); ++c) {
     const Contact& r = records[c];
@@ -38,12 +38,12 @@ double ContactSystem::stored_energy(std::span<const Contact> records,
   return e;
 }
 
-ContactEnergy ContactSystem::energy() const {
+ContactEnergy EnergyBook::energy(std::span<const Contact> records, std::span<const double> creep) const {
   ContactEnergy e;
   double start = 0.0;  // springs attached at the step start: sum of k s0^2/2
-  for (size_t c = 0; c < committed_.size() && c < committed_work_.size(); ++c) {
-    const Contact& r = committed_[c];
-    const StepWork& w = committed_work_[c];
+  for (size_t c = 0; c < records.size() && c < committed.size(); ++c) {
+    const Contact& r = records[c];
+    const StepWork& w = committed[c];
     // The springs' work follows the state the solve ended with (w.solved_state); what is
     // stored follows the committed one. They differ where the commit projected a locked
     // contact onto its Mohr-Coulomb envelope (end_step): the spring energy that released
@@ -83,7 +83,7 @@ ContactEnergy ContactSystem::energy() const {
       const double us1 = r.state == ContactState::locked ? 0.5 * r.shear_force * r.shear_force / w.ps : 0.0;
       e.shear += us1;
       e.release += 0.5 * F1 * s1 - us1;
-      e.creep += F1 * (c < committed_creep_.size() ? committed_creep_[c] : 0.0);
+      e.creep += F1 * (c < creep.size() ? creep[c] : 0.0);
       if (s_start)
         e.integration += 0.5 * w.ps * d * d;
       else
@@ -99,9 +99,13 @@ ContactEnergy ContactSystem::energy() const {
     // Shear dashpot (locked; JointSet::restitution): its end force over the slip.
     e.damping += w.shear_damping * w.slip;
   }
-  e.damping += committed_cycle_damping_;  // a step taken in cycles: its dashpots' work (contact_cycles.cpp)
-  e.restart = start - stored_before_;
+  e.damping += cycle_damping;  // a step taken in cycles: its dashpots' work (contact_cycles.cpp)
+  e.restart = start - stored_before;
   return e;
+}
+
+ContactEnergy ContactSystem::energy() const {
+  return energy_.energy(records_.committed.contacts, records_.committed.creep);
 }
 
 }  // namespace rheodda::contact

@@ -14,10 +14,10 @@
 namespace rheodda::contact {
 
 bool ContactSystem::extrapolate(const ContactSystem& coarse) {
-  const std::vector<Contact>& cc = coarse.committed_;
-  if (cc.size() != committed_.size() || coarse.penalty_ != penalty_) return false;
-  for (size_t k = 0; k < committed_.size(); ++k) {
-    const Contact& f = committed_[k];
+  const std::vector<Contact>& cc = coarse.records_.committed.contacts;
+  if (cc.size() != records_.committed.contacts.size() || coarse.penalty_ != penalty_) return false;
+  for (size_t k = 0; k < records_.committed.contacts.size(); ++k) {
+    const Contact& f = records_.committed.contacts[k];
     const Contact& c = cc[k];
     if (!(f.key == c.key) || f.joint_set != c.joint_set || f.state != c.state ||
         f.intact != c.intact || (f.rheology >= 0) != (c.rheology >= 0) ||
@@ -28,8 +28,8 @@ bool ContactSystem::extrapolate(const ContactSystem& coarse) {
   // Richardson: y_f - y = C dt^2/2 and y_c - y = C dt^2 to leading order, so
   // 2 y_f - y_c cancels the leading error (docs/reference/step-controls.md).
   auto richardson = [](double& fine, double c) { fine = 2.0 * fine - c; };
-  for (size_t k = 0; k < committed_.size(); ++k) {
-    Contact& f = committed_[k];
+  for (size_t k = 0; k < records_.committed.contacts.size(); ++k) {
+    Contact& f = records_.committed.contacts[k];
     const Contact& c = cc[k];
     richardson(f.locking_ratio, c.locking_ratio);
     richardson(f.normal_force, c.normal_force);
@@ -38,8 +38,8 @@ bool ContactSystem::extrapolate(const ContactSystem& coarse) {
     richardson(f.penetration, c.penetration);
     richardson(f.creep_displacement, c.creep_displacement);
     if (f.rheology < 0) continue;
-    laws::RheologyState& qf = committed_rheology_[f.rheology];
-    const laws::RheologyState& qc = coarse.committed_rheology_[c.rheology];
+    laws::RheologyState& qf = records_.committed.rheology[f.rheology];
+    const laws::RheologyState& qc = coarse.records_.committed.rheology[c.rheology];
     // Both runs start from the same history, so the fine run's creep over the
     // step is the coarse one's plus qf.creep() - qc.creep(); the extrapolated
     // increment is 2 (that) - coarse's.
@@ -48,7 +48,7 @@ bool ContactSystem::extrapolate(const ContactSystem& coarse) {
     // Damage of a damage law: extrapolated like the displacements, but never
     // to failure or below 0 by extrapolation (the fine value is kept then).
     if (const double d = 2.0 * qf.damage - qc.damage; d >= 0.0 && d < 1.0) qf.damage = d;
-    committed_creep_[k] = coarse.committed_creep_[k] + 2.0 * creep_fine_minus_coarse;
+    records_.committed.creep[k] = coarse.records_.committed.creep[k] + 2.0 * creep_fine_minus_coarse;
   }
   return true;
 }

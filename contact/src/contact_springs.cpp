@@ -74,11 +74,11 @@ void ContactSystem::prepare(std::span<const BlockView> blocks, const Contact& c,
 }
 
 double ContactSystem::normal_dashpot(size_t c) const {
-  return step_dt_ > 0.0 && step_dynamic_ ? hot_[c].cn / step_dt_ : 0.0;
+  return step_.dt > 0.0 && step_.dynamic ? step_.hot[c].cn / step_.dt : 0.0;
 }
 
 double ContactSystem::shear_dashpot(size_t c) const {
-  return step_dt_ > 0.0 && step_dynamic_ ? hot_[c].cs / step_dt_ : 0.0;
+  return step_.dt > 0.0 && step_.dynamic ? step_.hot[c].cs / step_.dt : 0.0;
 }
 
 double ContactSystem::reversal_stiffness(size_t c) const {
@@ -96,20 +96,20 @@ double ContactSystem::reversal_stiffness(size_t c) const {
   // dt^2 (the inertia holds it), so contacts that stop would stay sliding, the
   // more the smaller the step, and the joints' shear displacement would not
   // converge (docs/notes/contact-solves.md, "Contacts that stop").
-  const Hot& h = hot_[c];
-  if (!(settings_.reversal_at_normal_resolution && step_dynamic_)) return shear_stiffness(c);
-  return h.pn + h.reduced_mass * step_inertia_;
+  const Hot& h = step_.hot[c];
+  if (!(settings_.reversal_at_normal_resolution && step_.dynamic)) return shear_stiffness(c);
+  return h.pn + h.reduced_mass * step_.inertia;
 }
 
 double ContactSystem::shear_stiffness(size_t c) const {
   // Creep compliance folded into the spring: k_eff = k / (1 + k c) (laws/contact_rheology.hpp).
-  const double k = hot_[c].ps;
-  return k / (1.0 + k * seams_[c].compliance);
+  const double k = step_.hot[c].ps;
+  return k / (1.0 + k * step_.seams[c].compliance);
 }
 
 void ContactSystem::assemble(std::span<const BlockView>, SystemSink& sink) const {
-  for (size_t c = 0; c < work_.size(); ++c) {
-    const Contact& r = work_[c];
+  for (size_t c = 0; c < records_.work.contacts.size(); ++c) {
+    const Contact& r = records_.work.contacts[c];
     const int i = r.key.vblock, j = r.key.eblock;
     if (r.state == ContactState::open) {
       // A zero block keeps the matrix pattern of the pair through the
@@ -117,7 +117,7 @@ void ContactSystem::assemble(std::span<const BlockView>, SystemSink& sink) const
       sink.add_stiffness(i, j, Mat6::Zero());
       continue;
     }
-    const Hot& h = hot_[c];
+    const Hot& h = step_.hot[c];
     // Normal spring: energy p_n d_n^2 / 2 (Shi 1988).
     Mat6 kii = h.pn * h.ni * h.ni.transpose();
     Mat6 kjj = h.pn * h.nj * h.nj.transpose();
@@ -136,7 +136,7 @@ void ContactSystem::assemble(std::span<const BlockView>, SystemSink& sink) const
       // Shear spring: the seed's eqs. 28-29, with the locking point shifted by
       // the creep seam (zero without a law).
       const double ps = shear_stiffness(c);
-      const double d0 = h.dt0 + seams_[c].locking_shift;
+      const double d0 = h.dt0 + step_.seams[c].locking_shift;
       kii += ps * h.ti * h.ti.transpose();
       kjj += ps * h.tj * h.tj.transpose();
       kij += ps * h.ti * h.tj.transpose();
@@ -164,10 +164,10 @@ void ContactSystem::assemble(std::span<const BlockView>, SystemSink& sink) const
 }
 
 void ContactSystem::contact_forces(const Eigen::VectorXd& D, Eigen::VectorXd& f) const {
-  for (size_t c = 0; c < work_.size(); ++c) {
-    const Contact& r = work_[c];
+  for (size_t c = 0; c < records_.work.contacts.size(); ++c) {
+    const Contact& r = records_.work.contacts[c];
     if (r.state == ContactState::open) continue;
-    const Hot& h = hot_[c];
+    const Hot& h = step_.hot[c];
     const auto Di = D.segment<6>(6 * r.key.vblock);
     const auto Dj = D.segment<6>(6 * r.key.eblock);
     const double dn = h.dn0 + h.ni.dot(Di) + h.nj.dot(Dj);
@@ -177,7 +177,7 @@ void ContactSystem::contact_forces(const Eigen::VectorXd& D, Eigen::VectorXd& f)
     double T = 0.0;
     if (r.state == ContactState::locked) {
       // Shear spring to the locking point shifted by the creep seam, and its dashpot.
-      T = shear_stiffness(c) * (h.dt0 + seams_[c].locking_shift + slip) + shear_dashpot(c) * slip;
+      T = shear_stiffness(c) * (h.dt0 + step_.seams[c].locking_shift + slip) + shear_dashpot(c) * slip;
     } else {
       // Mohr-Coulomb friction from the spring's normal force at D.
       T = r.slide_direction * mohr_coulomb_strength(h.pn * dn, h.tan_phi, h.cohesion, r.length);

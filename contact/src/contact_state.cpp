@@ -14,22 +14,20 @@ namespace rheodda::contact {
 
 ContactSystem::State ContactSystem::state() const {
   State s;
-  s.contacts = committed_;
-  s.rheology = committed_rheology_;
-  s.creep = committed_creep_;
-  s.work = committed_work_;
-  s.counters = creep_counters_;
+  s.contacts = records_.committed.contacts;
+  s.rheology = records_.committed.rheology;
+  s.creep = records_.committed.creep;
+  s.work = energy_.committed;
+  s.counters = records_.counters;
   s.penalty = penalty_;
   s.allowed_penetration = allowed_penetration_;
   s.last_max_penetration = last_max_penetration_;
-  s.stored_before = stored_before_;
-  s.next_id = next_id_;
-  // Sorted, so that equal states give equal files (the map's order is not defined).
-  s.previous_stress.assign(prev_tau_.begin(), prev_tau_.end());
-  std::sort(s.previous_stress.begin(), s.previous_stress.end());
-  s.previous_dt = prev_dt_;
-  s.creep_error = creep_error_;
-  s.creep_changes = creep_changes_;
+  s.stored_before = energy_.stored_before;
+  s.next_id = records_.next_id;
+  s.previous_stress = creep_error_.previous_stress();
+  s.previous_dt = creep_error_.previous_dt();
+  s.creep_error = creep_error_.error();
+  s.creep_changes = creep_error_.state_changes();
   return s;
 }
 
@@ -51,28 +49,22 @@ void ContactSystem::restore(const State& s) {
     if (c > 0 && r.key < s.contacts[c - 1].key) refuse("its contacts are not sorted by key");
   }
   if (!(s.penalty > 0.0)) refuse("its penalty is not positive");
-  committed_ = s.contacts;
-  committed_rheology_ = s.rheology;
-  committed_creep_ = s.creep;
-  committed_work_ = s.work;
-  creep_counters_ = s.counters;
+  records_.committed.contacts = s.contacts;
+  records_.committed.rheology = s.rheology;
+  records_.committed.creep = s.creep;
+  energy_.committed = s.work;
+  records_.counters = s.counters;
   penalty_ = s.penalty;
   allowed_penetration_ = s.allowed_penetration;
   last_max_penetration_ = s.last_max_penetration;
-  stored_before_ = s.stored_before;
-  next_id_ = s.next_id;
-  prev_tau_.clear();
-  prev_tau_.insert(s.previous_stress.begin(), s.previous_stress.end());
-  prev_dt_ = s.previous_dt;
-  creep_error_ = s.creep_error;
-  creep_changes_ = s.creep_changes;
+  energy_.stored_before = s.stored_before;
+  records_.next_id = s.next_id;
+  creep_error_.restore(s.previous_stress, s.previous_dt, s.creep_error, s.creep_changes);
   // Between two steps: no trial, nothing to retract.
   abandon_step();
-  start_records_.clear();
-  start_rheology_.clear();
-  start_creep_.clear();
-  start_work_.clear();
-  can_retract_ = false;
+  start_.records.clear();
+  start_.work.clear();
+  start_.retractable = false;
 }
 
 }  // namespace rheodda::contact

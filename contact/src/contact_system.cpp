@@ -1,10 +1,13 @@
 // ContactSystem (contact_system.hpp): construction and the checks of the joint
-// sets, output names, abandoning a step. The other concerns are one file each:
+// sets, abandoning a step. The other concerns are one file each:
 // contact_transfer.cpp (detection and transfer of states into a step),
 // contact_springs.cpp (springs, dashpots and their assembly), contact_check.cpp
 // (the open-close check of a trial), contact_creep.cpp (the creep laws'
 // coupling), contact_commit.cpp (accepting a step), contact_extrapolation.cpp
-// (Richardson extrapolation), contact_energy.cpp (energy balance).
+// (Richardson extrapolation), contact_energy.cpp (energy balance),
+// contact_creep_error.cpp (the creep error estimate and retraction),
+// contact_state.cpp (the state between steps), contact_edits.cpp (model edits),
+// contact_cycles.cpp (explicit cycles), contact_record.cpp (output names).
 #include "rheodda/contact/contact_system.hpp"
 
 #include <algorithm>
@@ -20,24 +23,6 @@
 
 namespace rheodda::contact {
 
-const char* contact_state_name(ContactState s) {
-  switch (s) {
-    case ContactState::open: return "open";
-    case ContactState::sliding: return "sliding";
-    case ContactState::locked: return "locked";
-  }
-  return "?";
-}
-
-const char* creep_state_name(CreepState s) {
-  switch (s) {
-    case CreepState::none: return "none";
-    case CreepState::creeping: return "creeping";
-    case CreepState::idle: return "idle";
-  }
-  return "?";
-}
-
 ContactSystem::ContactSystem(std::vector<JointSet> joint_sets, ContactSettings settings)
     : joint_sets_(std::move(joint_sets)), settings_(settings), penalty_(settings.penalty) {
   if (!(settings_.penalty > 0.0))
@@ -50,15 +35,12 @@ ContactSystem::ContactSystem(std::vector<JointSet> joint_sets, ContactSettings s
     joint_sets_.push_back(js);
   }
   for (size_t k = 0; k < joint_sets_.size(); ++k) check_joint_set(joint_sets_[k], k);
-  creep_counters_.assign(joint_sets_.size(), CreepCounters{});
+  records_.counters.assign(joint_sets_.size(), CreepCounters{});
 }
 
 void ContactSystem::abandon_step() {
-  work_.clear();
-  work_rheology_.clear();
-  work_creep_.clear();
-  hot_.clear();
-  seams_.clear();
+  records_.work.clear();
+  step_.clear();
 }
 
 }  // namespace rheodda::contact

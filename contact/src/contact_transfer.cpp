@@ -16,13 +16,12 @@
 
 namespace rheodda::contact {
 
-void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_displacement,
-                               double dt, bool dynamic, double inertia, bool creep_error_wanted) {
-  step_dynamic_ = dynamic;
+void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepContext& context) {
+  step_.dynamic = context.dynamic;
   cycled_ = false;
   cycle_damping_ = 0.0;
-  creep_error_wanted_ = creep_error_wanted;
-  can_retract_ = false;
+  creep_error_wanted_ = context.creep_error_wanted;
+  start_.retractable = false;
   const int nb = static_cast<int>(blocks.size());
   // Half model size w0 [length].
   Box model;
@@ -36,7 +35,7 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
   }
   const double w0 = nb > 0 ? 0.5 * (model.hi - model.lo).maxCoeff() : 0.0;
   allowed_penetration_ = settings_.penetration_ratio * w0;
-  double d0 = std::max(settings_.search_factor * max_displacement, settings_.min_search_distance);
+  double d0 = std::max(settings_.search_factor * context.max_displacement, settings_.min_search_distance);
   if (!(d0 > 0.0)) d0 = settings_.search_factor * 0.01 * w0;  // max_displacement_ratio = 0.01 when the host gives none
 
   for (int i = 0; i < nb; ++i) boxes_[i] = bounding_box(blocks[i], 0.5 * d0);
@@ -50,8 +49,9 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
   }
   const auto& pairs = *found_pairs;
 
-  previous_keys_.resize(committed_.size());
-  for (size_t k = 0; k < committed_.size(); ++k) previous_keys_[k] = committed_[k].key;
+  const std::vector<Contact>& committed = records_.committed.contacts;
+  previous_keys_.resize(committed.size());
+  for (size_t k = 0; k < committed.size(); ++k) previous_keys_[k] = committed[k].key;
   const std::vector<DetectedContact> found =
       detect_contacts(blocks, pairs, {d0, settings_.angle_tolerance, allowed_penetration_}, previous_keys_);
 
@@ -59,7 +59,7 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
   // adjacent edge of the same block inherits it (the vertex slid over a corner).
   const size_t n = found.size();
   std::vector<int> from(n, -1);
-  std::vector<char> used(committed_.size(), 0);
+  std::vector<char> used(committed.size(), 0);
   auto find_key = [&](const ContactKey& k) -> int {
     auto it = std::lower_bound(previous_keys_.begin(), previous_keys_.end(), k);
     return (it != previous_keys_.end() && *it == k) ? static_cast<int>(it - previous_keys_.begin())
@@ -78,9 +78,9 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
     }
   }
 
-  work_.clear();
-  work_rheology_.clear();
-  hot_.clear();
+  records_.work.contacts.clear();
+  records_.work.rheology.clear();
+  step_.hot.clear();
   DetectionStats restart;  // its restart_* only
   for (size_t c = 0; c < n; ++c) {
     const DetectedContact& d = found[c];
@@ -91,7 +91,7 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
                               std::to_string(d.key.edge) + ": joint set " + std::to_string(js) +
                               " does not exist (" + std::to_string(joint_sets_.size()) + " defined)");
     Contact rec;
-    const Contact* old = from[c] >= 0 ? &committed_[from[c]] : nullptr;
+    const Contact* old = from[c] >= 0 ? &committed[from[c]] : nullptr;
     if (old) {
       rec = *old;
       if (old->key.edge != d.key.edge) {
@@ -135,7 +135,7 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
       // another face, e.g. a step corner within the search distance of the
       // next block's base).
       if (h.dn0 > allowed_penetration_) continue;
-      rec.id = next_id_++;
+      rec.id = records_.next_id++;
       // A new contact that already touches (to round-off: 1e-9 of the edge
       // length) or penetrates starts closed: blocks built touching each other
       // carry load from the first iterate instead of closing row by row.
@@ -145,9 +145,9 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
     // contact on a joint set with a law.
     if (joint_sets_[js].law) {
       laws::RheologyState st;
-      if (old && old->rheology >= 0) st = committed_rheology_[old->rheology];
-      rec.rheology = static_cast<int>(work_rheology_.size());
-      work_rheology_.push_back(st);
+      if (old && old->rheology >= 0) st = records_.committed.rheology[old->rheology];
+      rec.rheology = static_cast<int>(records_.work.rheology.size());
+      records_.work.rheology.push_back(st);
     } else {
       rec.rheology = -1;
     }
@@ -158,8 +158,8 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
       double u0 = 0.0, u_old = 0.0;
       if (rec.state != ContactState::open) u0 += 0.5 * h.pn * h.dn0 * h.dn0;
       if (rec.state == ContactState::locked) u0 += 0.5 * h.ps * h.dt0 * h.dt0;
-      if (old && from[c] < static_cast<int>(committed_work_.size())) {
-        const StepWork& w = committed_work_[from[c]];
+      if (old && from[c] < static_cast<int>(energy_.committed.size())) {
+        const StepWork& w = energy_.committed[from[c]];
         if (old->state != ContactState::open) u_old += 0.5 * w.pn * old->penetration * old->penetration;
         if (old->state == ContactState::locked && w.ps > 0.0) u_old += 0.5 * old->shear_force * old->shear_force / w.ps;
       }
@@ -185,21 +185,21 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, double max_dis
                       : 0.0;
     h.flips = h.refinements = 0;
     h.normal_force = rec.state == ContactState::open ? 0.0 : rec.normal_force;
-    work_.push_back(rec);
-    hot_.push_back(h);
+    records_.work.contacts.push_back(rec);
+    step_.hot.push_back(h);
   }
-  seams_.assign(work_.size(), ShearSeam{});
-  work_creep_.assign(work_.size(), 0.0);
+  step_.seams.assign(records_.work.contacts.size(), ShearSeam{});
+  records_.work.creep.assign(records_.work.contacts.size(), 0.0);
 
-  start_laws(dt);
-  step_dt_ = dt;
-  step_inertia_ = inertia;
-  step_max_penetration_ = 0.0;
-  force_scale_ = 0.0;
-  for (const Contact& c : committed_) force_scale_ = std::max(force_scale_, std::abs(c.normal_force));
+  start_laws(context.dt);
+  step_.dt = context.dt;
+  step_.inertia = context.inertia;
+  step_.max_penetration = 0.0;
+  step_.force_scale = 0.0;
+  for (const Contact& c : committed) step_.force_scale = std::max(step_.force_scale, std::abs(c.normal_force));
   stats_ = restart;
   stats_.candidate_pairs = static_cast<int>(pairs.size());
-  stats_.contacts = static_cast<int>(work_.size());
+  stats_.contacts = static_cast<int>(records_.work.contacts.size());
   stats_.transferred = transferred;
   stats_.search_distance = d0;
 }

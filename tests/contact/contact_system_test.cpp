@@ -41,7 +41,7 @@ struct StepResult {
 StepResult solve_step(ContactSystem& cs, const Scene& s, double mass, double dt, const Vec6& load,
                       double rigid = 1e13) {
   const int n = static_cast<int>(s.views().size());
-  cs.begin_step(s.views(), 1e-4);
+  cs.begin_step(s.views(), {.max_displacement = 1e-4});
   StepResult r;
   for (r.iterations = 1; r.iterations <= 20; ++r.iterations) {
     DenseSink sink(n);
@@ -189,7 +189,7 @@ BOOST_AUTO_TEST_CASE(contact_moves_to_the_adjacent_edge_keeping_identity_state_a
   const double step = 1e-4;
   int on_edge2 = 0;
   for (int k = 0; k < 2000 && on_edge2 < 20; ++k) {
-    cs.begin_step(s.views(), 1e-4);
+    cs.begin_step(s.views(), {.max_displacement = 1e-4});
     BOOST_TEST_REQUIRE(cs.trial_contacts().size() == 1u);
     const Contact& t = cs.trial_contacts()[0];
     if (k == 0) {
@@ -236,7 +236,7 @@ BOOST_AUTO_TEST_CASE(abandon_step_restores_the_step_start_contact_states_exactly
   const std::vector<Contact> before(cs.contacts().begin(), cs.contacts().end());
   BOOST_TEST_REQUIRE(before.size() == 2u);
 
-  cs.begin_step(s.views(), 1e-4);
+  cs.begin_step(s.views(), {.max_displacement = 1e-4});
   const std::vector<Contact> trial0(cs.trial_contacts().begin(), cs.trial_contacts().end());
   // A trial that lifts the block: both contacts open.
   Eigen::VectorXd D = Eigen::VectorXd::Zero(12);
@@ -253,7 +253,7 @@ BOOST_AUTO_TEST_CASE(abandon_step_restores_the_step_start_contact_states_exactly
   BOOST_TEST_REQUIRE(cs.contacts().size() == before.size());
   for (size_t k = 0; k < before.size(); ++k) BOOST_TEST(same(cs.contacts()[k], before[k]));
   // Redoing the step starts from exactly the same trial states.
-  cs.begin_step(s.views(), 1e-4);
+  cs.begin_step(s.views(), {.max_displacement = 1e-4});
   BOOST_TEST_REQUIRE(cs.trial_contacts().size() == trial0.size());
   for (size_t k = 0; k < trial0.size(); ++k) BOOST_TEST(same(cs.trial_contacts()[k], trial0[k]));
 }
@@ -316,7 +316,7 @@ BOOST_AUTO_TEST_CASE(slide_to_lock_counts_as_a_state_change) {
   load(1) = -1e4;
   solve_step(cs, s, 1300.0, 1e-3, load);  // slides in -x
   for (const Contact& c : cs.contacts()) BOOST_TEST((c.state == ContactState::sliding));
-  cs.begin_step(s.views(), 1e-4);
+  cs.begin_step(s.views(), {.max_displacement = 1e-4});
   Eigen::VectorXd D = Eigen::VectorXd::Zero(12);
   D(6) = +1e-6;  // the trial moves against the sliding direction
   D(7) = -1e-7;  // and presses on the base (N = 1e10 x 1e-7 per contact): friction acts
@@ -355,7 +355,7 @@ BOOST_AUTO_TEST_CASE(stick_keeps_force_keeps_the_friction_force_through_a_stick_
                boost::test_tools::tolerance(1e-12));
     friction.push_back(c.shear_force);
   }
-  cs.begin_step(s.views(), 1e-4);
+  cs.begin_step(s.views(), {.max_displacement = 1e-4});
   Eigen::VectorXd D = Eigen::VectorXd::Zero(12);
   D(6) = +1e-8;  // back against the slip
   D(7) = -1e-6;  // pressed on the base harder than before: the stuck spring holds
@@ -384,7 +384,7 @@ BOOST_AUTO_TEST_CASE(check_tells_closing_opening_and_slipping_apart) {
   s.add_rect(0.5, 1, 1.5, 1.5);
   s.add_rect(2.5, 1.001, 3.5, 1.5);
   ContactSystem cs({joint(30.0)}, settings(1e10));
-  cs.begin_step(s.views(), 1e-3);
+  cs.begin_step(s.views(), {.max_displacement = 1e-3});
   int open = 0, locked = 0;
   for (const Contact& c : cs.trial_contacts()) {
     if (c.state == ContactState::open) ++open;
@@ -405,7 +405,7 @@ BOOST_AUTO_TEST_CASE(check_tells_closing_opening_and_slipping_apart) {
   // Block 1 pressed down 1e-6 m (normal force 1e4 N per contact) and moved
   // 1e-5 m sideways: the shear spring (p / 2.5 x 1e-5 = 4e4 N) exceeds
   // N tan 30 deg = 5.8e3 N, both contacts slip.
-  cs.begin_step(s.views(), 1e-3);
+  cs.begin_step(s.views(), {.max_displacement = 1e-3});
   D.setZero();
   D(7) = -1e-6;
   D(6) = 1e-5;
@@ -441,7 +441,7 @@ BOOST_AUTO_TEST_CASE(a_vertex_deep_inside_another_block_is_no_new_contact) {
   ContactSettings st = settings(1e10);
   st.penetration_ratio = 1e-4;  // allowed penetration 1e-4 w0 = 1.5e-4 m
   ContactSystem cs({joint(30.0)}, st);
-  cs.begin_step(s.views(), 0.4);  // search distance 1 m > step height
+  cs.begin_step(s.views(), {.max_displacement = 0.4});  // search distance 1 m > step height
   for (const Contact& c : cs.trial_contacts()) BOOST_TEST(c.penetration <= 0.0 + 1e-12);
   for (const Contact& c : cs.trial_contacts())
     BOOST_TEST(!(c.key.vblock == 0 && c.key.vertex == 3 && c.key.eblock == 1 && c.key.edge == 0));

@@ -72,7 +72,7 @@ struct Rig {
   /// iteration), or with perturbed trial displacements first when `perturb`.
   void step(double dt, double shift, int checks = 1, bool perturb = false) {
     const int n = static_cast<int>(scene.views().size());
-    cs.begin_step(scene.views(), 1.0, dt);
+    cs.begin_step(scene.views(), {.max_displacement = 1.0, .dt = dt});
     Eigen::VectorXd D = Eigen::VectorXd::Zero(6 * n);
     for (int b : movers) D(6 * b) = shift;
     for (int k = 0; k < checks; ++k) {
@@ -231,7 +231,7 @@ BOOST_AUTO_TEST_CASE(repeated_iterations_and_step_cuts_never_count_creep_twice) 
     for (int n = 1; n <= 30; ++n) {
       const double shift = n <= 10 ? 1e-4 : 0.0;  // loading ramp, then held
       once.step(1.0, shift);
-      many.cs.begin_step(many.scene.views(), 1.0, 0.3);  // a cut attempt, abandoned
+      many.cs.begin_step(many.scene.views(), {.max_displacement = 1.0, .dt = 0.3});  // a cut attempt, abandoned
       Eigen::VectorXd junk = Eigen::VectorXd::Constant(6 * 2, 5e-4);
       many.cs.check(many.scene.views(), junk);
       many.cs.abandon_step();
@@ -321,7 +321,7 @@ BOOST_AUTO_TEST_CASE(an_edge_edge_contact_stands_for_half_its_overlap_and_for_it
       scene.add_rect(200 - L, -1e-6, 300 - L, 100 - 1e-6);
       scene.block(1).edge_joint_set = {0, 0, 0, 0};
       scene.rebuild();
-      cs.begin_step(scene.views(), 1.0, 0.1);
+      cs.begin_step(scene.views(), {.max_displacement = 1.0, .dt = 0.1});
       // (A vanishing overlap's corners lie within the search distance of each other: one end
       // may be taken as the two vertices' contact, the other keeps the edge-edge kind.)
       const bool vanishing = L < 1.0;
@@ -370,7 +370,7 @@ BOOST_AUTO_TEST_CASE(a_point_contact_creeps_over_its_tributary_length) {
       for (int n = 1; n <= 2000; ++n) {
         Eigen::VectorXd D = Eigen::VectorXd::Zero(12);
         if (n == 1) D(6) = delta;
-        cs.begin_step(scene.views(), 1.0, dt);
+        cs.begin_step(scene.views(), {.max_displacement = 1.0, .dt = dt});
         cs.check(scene.views(), D);
         cs.end_step(scene.views(), D);
         if (n == 1) scene.translate(1, {delta, 0.0});
@@ -550,7 +550,7 @@ BOOST_AUTO_TEST_CASE(sliding_or_opening_loses_the_history_and_relocking_restarts
   for (const Contact& ct : rig.cs.contacts()) crept.push_back(ct.creep_displacement);
   // Lift the block by 0.5 mm (within the search distance): contacts open.
   const int n = static_cast<int>(rig.scene.views().size());
-  rig.cs.begin_step(rig.scene.views(), 1.0, 1.0);
+  rig.cs.begin_step(rig.scene.views(), {.max_displacement = 1.0, .dt = 1.0});
   Eigen::VectorXd D = Eigen::VectorXd::Zero(6 * n);
   D(6 * rig.movers[0] + 1) = 0.5;
   for (int k = 0; k < 3; ++k) rig.cs.check(rig.scene.views(), D);
@@ -593,7 +593,7 @@ BOOST_AUTO_TEST_CASE(the_history_follows_a_contact_onto_the_adjacent_edge) {
   double last_creep = 0.0;
   bool transferred = false;
   for (int k = 0; k < 80; ++k) {
-    cs.begin_step(scene.views(), 1.0, 1.0);
+    cs.begin_step(scene.views(), {.max_displacement = 1.0, .dt = 1.0});
     cs.check(scene.views(), D);
     cs.end_step(scene.views(), D);
     const Contact* right = nullptr;
@@ -699,7 +699,7 @@ BOOST_AUTO_TEST_CASE(nishihara_relaxation_across_its_threshold_matches_rk4) {
       for (int n = 1; n <= 1000; ++n) {
         // Open-close iterations as the host runs them: check until no change.
         const int nb = static_cast<int>(rig.scene.views().size());
-        rig.cs.begin_step(rig.scene.views(), 1.0, dt);
+        rig.cs.begin_step(rig.scene.views(), {.max_displacement = 1.0, .dt = dt});
         Eigen::VectorXd D = Eigen::VectorXd::Zero(6 * nb);
         if (n == 1) D(6 * rig.movers[0]) = delta;
         for (int it = 0; it < 8 && rig.cs.check(rig.scene.views(), D).state_changes > 0; ++it) {
@@ -723,7 +723,7 @@ namespace {
 /// (at most `max_checks`), then end_step. Returns the checks it took.
 int held_step(Rig& rig, double dt, double shift, int max_checks = 40) {
   const int nb = static_cast<int>(rig.scene.views().size());
-  rig.cs.begin_step(rig.scene.views(), 1.0, dt);
+  rig.cs.begin_step(rig.scene.views(), {.max_displacement = 1.0, .dt = dt});
   Eigen::VectorXd D = Eigen::VectorXd::Zero(6 * nb);
   D(6 * rig.movers[0]) = shift;
   int checks = 0;
@@ -805,7 +805,7 @@ BOOST_AUTO_TEST_CASE(the_contact_newton_iterates_converge_quadratically) {
   Rig rig({joint("p", law)}, {0}, s);
   const double delta = 3 * tref / E1, dt = 50.0;
   const int nb = static_cast<int>(rig.scene.views().size());
-  rig.cs.begin_step(rig.scene.views(), 1.0, dt);
+  rig.cs.begin_step(rig.scene.views(), {.max_displacement = 1.0, .dt = dt});
   Eigen::VectorXd D = Eigen::VectorXd::Zero(6 * nb);
   D(6 * rig.movers[0]) = delta;
   // The stress the next solve gives with the seam of the last check: the

@@ -11,6 +11,14 @@
 // from the working records of the step being solved, so abandon_step restores
 // the step-start states exactly (by discarding the working copy).
 //
+// Parts, one concern per header; ContactSystem composes them and runs the step's
+// protocol over them: the records, committed and working, with their creep
+// histories and increments (contact_records.hpp; one record: contact_record.hpp),
+// the step's hot arrays (step_arrays.hpp), the energy book (energy_book.hpp), the
+// creep error estimate and what a retraction restores (creep_error.hpp), the
+// explicit cycles' arrays (cycle_arrays.hpp), and the state between two steps
+// that a resumed run restores (contact_system_state.hpp).
+//
 // Rheology (docs/reference/rheology-in-dda.md). A contact on a joint set with a law owns
 // a slot in a separate array of laws::RheologyState (with its committed copy
 // for rollback); other contacts have none (rheology == -1). Every locked
@@ -30,7 +38,6 @@
 
 #include <cstdint>
 #include <optional>
-#include <unordered_map>
 #include <span>
 #include <utility>
 #include <vector>
@@ -38,83 +45,20 @@
 #include "rheodda/contact/broad_phase.hpp"
 #include "rheodda/contact/check_result.hpp"
 #include "rheodda/contact/contact_energy.hpp"
+#include "rheodda/contact/contact_record.hpp"
+#include "rheodda/contact/contact_records.hpp"
+#include "rheodda/contact/contact_system_state.hpp"
+#include "rheodda/contact/creep_error.hpp"
 #include "rheodda/contact/cycle_arrays.hpp"
 #include "rheodda/contact/detection.hpp"
+#include "rheodda/contact/energy_book.hpp"
 #include "rheodda/contact/joint_set.hpp"
 #include "rheodda/contact/kinematics.hpp"
+#include "rheodda/contact/step_arrays.hpp"
+#include "rheodda/contact/step_context.hpp"
 #include "rheodda/laws/contact_rheology.hpp"
 
 namespace rheodda::contact {
-
-/// State of a contact.
-enum class ContactState : std::uint8_t {
-  open,     ///< no spring, no force
-  sliding,  ///< normal spring + Mohr-Coulomb friction force along the entrance edge
-  locked    ///< normal spring + shear spring to the locking point
-};
-
-/// Name used in outputs: "open", "sliding", "locked".
-const char* contact_state_name(ContactState s);
-
-/// What the joint set's creep law did to a contact in the last accepted step.
-enum class CreepState : std::uint8_t {
-  none,      ///< the joint set has no law
-  creeping,  ///< locked: the law advanced its history and moved its locking point
-  idle       ///< has a law but did not creep: open or sliding (history lost), or a step without creep time (dt = 0)
-};
-
-/// Name used in outputs: "none", "creeping", "idle".
-const char* creep_state_name(CreepState s);
-
-/// Creep counters of one joint set since the ContactSystem was made (restored
-/// with the system on rollback).
-struct CreepCounters {
-  int contacts = 0;            ///< contacts the law advanced in at least one accepted step [-]
-  double contact_time = 0.0;   ///< sum over accepted steps of dt x contacts it advanced [time]
-  int failures = 0;            ///< contacts whose law reached failure (damage 1) [-]
-};
-
-/// Persistent record of one contact (also the per-step output record).
-/// Forces are per unit thickness [force/length]; positive normal force is compression.
-struct Contact {
-  std::uint64_t id = 0;  ///< unique, kept from step to step while the contact persists
-  ContactKey key;        ///< vertex block/vertex, entrance-edge block/edge
-  ContactKind kind = ContactKind::vertex_edge;
-  ContactState state = ContactState::open;
-  int joint_set = 0;          ///< joint set of the entrance edge
-  double length = 0.0;        ///< contact length [length] (half the shared length for edge_edge)
-  /// Joint length the contact stands for in its joint set's law [length]:
-  /// `length` for edge_edge, point_tributary_length (detection.hpp) for a point
-  /// contact; on a joint set with a law it sets the shear spring (E1 l_t or
-  /// shear_stiffness l_t) and the stress tau = F / l_t. Step-start geometry.
-  double tributary_length = 0.0;
-  double locking_ratio = 0.0; ///< locking point P0 on the entrance edge, as a fraction of its length [-]
-  int slide_direction = 0;    ///< +1 / -1: the vertex slides along +/- the edge direction
-  double normal_force = 0.0;  ///< p_n d_n [force/length]
-  double shear_force = 0.0;   ///< along the edge direction a->b; p_s d_t (locked) or friction (sliding) [force/length]
-  double shear_displacement = 0.0;  ///< accumulated relative slip + shear of the vertex along the edge [length]
-  double penetration = 0.0;   ///< d_n at the end of the step (trial records: of the last iterate), > 0 into the edge's block [length]
-  bool intact = true;         ///< cohesion and tensile strength act until the contact first slides or opens
-  int rheology = -1;          ///< slot in rheology_states(), or -1 without a law
-  /// Accumulated creep of the contact along the edge direction a->b [length]:
-  /// the sum of its creep increments Delta d_c since it was created. Kept
-  /// through transfer to the adjacent edge and changes of kind; not reset
-  /// when it slides or opens (the law's history is, rheology_states()).
-  double creep_displacement = 0.0;
-  CreepState creep_state = CreepState::none;  ///< in the last accepted step
-  bool has_crept = false;     ///< the law advanced it in at least one accepted step
-  /// Its damage law reached failure (docs/reference/rheology-in-dda.md, "Failure"): from
-  /// then on a residual frictional joint (no cohesion, no tensile strength, no creep).
-  bool creep_failed = false;
-};
-
-/// Hook for the creep increment of the shear spring (zero without a law).
-/// The spring's stretch is d + locking_shift with locking_shift = -h, and its
-/// stiffness k / (1 + k compliance) with compliance = c / l.
-struct ShearSeam {
-  double locking_shift = 0.0;  ///< -h: minus the history part of the step's creep [length]
-  double compliance = 0.0;     ///< step creep compliance c / l [length/(force/length)]
-};
 
 /// Counters of the last begin_step (for benchmarks and logs).
 struct DetectionStats {
@@ -143,18 +87,9 @@ class ContactSystem {
   ContactSystem(std::vector<JointSet> joint_sets, ContactSettings settings);
 
   /// Detects contacts on the step-start geometry (search distance
-  /// search_factor * max_displacement [length]) and carries states over.
-  /// dt is the step size [time] the creep laws integrate over (0: no creep).
-  /// `dynamic`: the step carries velocity; in a static step (false: a static
-  /// analysis after a dynamic settling stage) the contact dashpots and the
-  /// dynamic rules (ContactSettings::lock_at_touch,
-  /// reversal_at_normal_resolution) are off. `inertia`: the step's inertia
-  /// stiffness per unit mass, 1/(beta dt^2) of the host's Newmark scheme
-  /// [1/time^2] (0: unknown; ContactSettings::reversal_at_normal_resolution).
-  /// `creep_error_wanted`: the host will ask creep_error_estimate() and may
-  /// retract_step() after this step's end_step.
-  void begin_step(std::span<const BlockView> blocks, double max_displacement, double dt = 0.0,
-                  bool dynamic = true, double inertia = 0.0, bool creep_error_wanted = false);
+  /// search_factor * context.max_displacement [length]) and carries states over;
+  /// the creep laws integrate over context.dt (step_context.hpp).
+  void begin_step(std::span<const BlockView> blocks, const StepContext& context);
   /// Springs and friction loads of the trial states (the seed's eqs. 28-29).
   void assemble(std::span<const BlockView> blocks, SystemSink& sink) const;
   /// Updates the trial states from the trial displacements D (6 per block).
@@ -221,11 +156,11 @@ class ContactSystem {
   /// For exponential-linear: |tau''| dt^2/12 c, tau'' from the stresses at the
   /// last three step boundaries and c the implicit step compliance (~ dt/eta).
   /// Zero under a constant force.
-  double creep_error_estimate() const { return creep_error_; }
+  double creep_error_estimate() const { return creep_error_.error(); }
   /// Contacts on joint sets with a law whose state changed in the last
   /// accepted step (locked <-> sliding or open, appeared closed, vanished
   /// locked); 0 unless begin_step was asked for the creep error [-].
-  int creep_state_changes() const { return creep_changes_; }
+  int creep_state_changes() const { return creep_error_.state_changes(); }
   /// Undoes the last end_step (only right after it, and only when its
   /// begin_step was asked for the creep error): back to the step-start
   /// records, as after abandon_step. Returns false when it cannot.
@@ -241,24 +176,24 @@ class ContactSystem {
   bool extrapolate(const ContactSystem& coarse);
 
   /// Records of the last accepted step, sorted by key.
-  std::span<const Contact> contacts() const { return committed_; }
+  std::span<const Contact> contacts() const { return records_.committed.contacts; }
   /// Working records of the step being solved (trial states).
-  std::span<const Contact> trial_contacts() const { return work_; }
+  std::span<const Contact> trial_contacts() const { return records_.work.contacts; }
   /// Rheology histories of the last accepted step (indexed by Contact::rheology).
-  std::span<const laws::RheologyState> rheology_states() const { return committed_rheology_; }
+  std::span<const laws::RheologyState> rheology_states() const { return records_.committed.rheology; }
   /// Creep seams of the step being solved, parallel to trial_contacts().
-  std::span<ShearSeam> shear_seams() { return seams_; }
+  std::span<ShearSeam> shear_seams() { return step_.seams; }
 
   /// Scheme used by joint set js in the step being solved (or the last one);
   /// nullopt when the joint set has no law or the step has no creep (dt = 0).
   std::optional<laws::Scheme> scheme_used(int js) const;
   /// Creep increment Delta d_c of each contact in the last accepted step
   /// (parallel to contacts(); 0 without a law) [length].
-  std::span<const double> creep_increments() const { return committed_creep_; }
+  std::span<const double> creep_increments() const { return records_.committed.creep; }
   /// Per joint set (indexed like joint_sets()): how many contacts carried creep
   /// and for how long, over the accepted steps since construction. All zero
   /// for a joint set without a law.
-  std::span<const CreepCounters> creep_counters() const { return creep_counters_; }
+  std::span<const CreepCounters> creep_counters() const { return records_.counters; }
   /// Smallest time left before a damage law fails (ContactRheology::time_to_failure)
   /// over the locked contacts of the last accepted step, at their stress
   /// tau = F / l_t held constant [time]; infinity when no law can fail.
@@ -278,48 +213,12 @@ class ContactSystem {
   std::size_t last_projections() const { return projections_; }
   const DetectionStats& stats() const { return stats_; }
 
-  /// What the energy balance needs of one contact's last accepted step,
-  /// recorded by end_step (parallel to committed_; contact_energy.cpp).
-  struct StepWork {
-    double pn = 0.0, ps = 0.0;   ///< normal and elastic shear springs of the step [stress]
-    double dn0 = 0.0, dn = 0.0;  ///< penetration on the step-start geometry and at the end [length]
-    double st0 = 0.0;            ///< stretch of the shear spring at the step start (dt0) [length]
-    double slip = 0.0;           ///< tangential relative motion of the step [length]
-    ContactState start_state = ContactState::open;
-    double friction = 0.0;       ///< friction force of the final solve, signed along the edge
-                                 ///< (sliding; from the N that solve assembled) [force/length]
-    double normal_damping = 0.0;  ///< normal dashpot force at the end (closed; JointSet::restitution) [force/length]
-    double shear_damping = 0.0;   ///< shear dashpot force at the end, along the edge (locked) [force/length]
-    /// State the step's solve ended with; the committed one differs where that was a
-    /// locked state outside the Mohr-Coulomb envelope (held by anti-chattering), which
-    /// the commit projects onto it (end_step, "Admissible states at commit").
-    ContactState solved_state = ContactState::open;
-    double solved_shear_force = 0.0;  ///< the shear spring's end force of the solve (locked) [force/length]
-  };
+  /// What the energy balance needs of one contact's last accepted step (energy_book.hpp).
+  using StepWork = contact::StepWork;
 
-  /// Everything of the system that the next steps depend on, between two
-  /// steps (contact_state.cpp): the records of the last accepted step with
-  /// their creep histories and energy terms, the counters, the penalty as
-  /// raised so far, the next contact id, and the stresses the creep error
-  /// estimate remembers. A system restored from it steps on bit for bit as
-  /// the one it was taken from (a resumed run, docs/reference/outputs.md).
-  struct State {
-    std::vector<Contact> contacts;                 ///< contacts(), sorted by key
-    std::vector<laws::RheologyState> rheology;     ///< rheology_states()
-    std::vector<double> creep;                     ///< creep_increments() [length]
-    std::vector<StepWork> work;                    ///< energy terms of the last step, parallel to contacts
-    std::vector<CreepCounters> counters;           ///< creep_counters(), per joint set
-    double penalty = 0.0;                          ///< [stress]
-    double allowed_penetration = 0.0;              ///< [length]
-    double last_max_penetration = 0.0;             ///< [length]
-    double stored_before = 0.0;                    ///< stored energy before the last step [force x length]
-    std::uint64_t next_id = 1;
-    /// Stress at the last step's start by contact id, sorted by id [stress].
-    std::vector<std::pair<std::uint64_t, double>> previous_stress;
-    double previous_dt = 0.0;                      ///< last accepted step with the creep estimate [time]
-    double creep_error = 0.0;                      ///< creep_error_estimate() [length]
-    int creep_changes = 0;                         ///< creep_state_changes() [-]
-  };
+  /// The system's state between two steps (contact_system_state.hpp).
+  using State = ContactSystemState;
+
   /// Model edits between two steps (stages, docs/reference/stages.md; contact_edits.cpp).
   /// Removes the blocks whose flags are set (indexed like the views; blocks
   /// already removed stay removed): their contacts are dropped from the
@@ -343,47 +242,8 @@ class ContactSystem {
   void restore(const State& state);
 
  private:
-  /// Linearized geometry of one contact on the step-start configuration:
-  /// d_n = dn0 + ni.D_i + nj.D_j (penetration, the seed's normal spring, Shi 1988)
-  /// d_t = dt0 + ti.D_i + tj.D_j (shear along the edge from the locking point, eqs. 23-27).
-  struct Hot {
-    Vec6 ni = Vec6::Zero(), nj = Vec6::Zero();
-    Vec6 ti = Vec6::Zero(), tj = Vec6::Zero();
-    double dn0 = 0.0;  ///< [length]
-    double dt0 = 0.0;  ///< [length]
-    double pn = 0.0;   ///< normal spring [stress]
-    double ps = 0.0;   ///< shear spring [stress]
-    /// Contact dashpots (JointSet::restitution; 0 without): normal and shear
-    /// [force time / length^2 per unit thickness]. Over a step of length dt they
-    /// act as springs c/dt on the step's motion (implicit: the end-of-step rate).
-    double cn = 0.0, cs = 0.0;
-    /// Reduced mass m_i m_j / (m_i + m_j) of the two blocks [mass/length].
-    double reduced_mass = 0.0;
-    /// Penetration from which the normal dashpot counts the step's approach:
-    /// d_n0 for a contact closed at the step start, max(d_n0, 0) for one open
-    /// at the step start (from the touching point across a gap) [length].
-    double dn_ref = 0.0;
-    double tan_phi = 0.0;
-    double cohesion = 0.0;          ///< [stress]
-    double tensile_strength = 0.0;  ///< [stress]
-    double normal_force = 0.0;      ///< N of the last iterate, drives friction [force/length]
-    ContactState start_state = ContactState::open;
-    double tau_start = 0.0;       ///< shear stress driving creep at the step start [stress]
-    bool creep_from_rest = true;  ///< not locked at the step start: the step's creep uses
-                                  ///< the end force for the whole step (implicit constants)
-    int flips = 0;        ///< state changes of this contact in this step
-    ContactState undo_state = ContactState::open;  ///< state before its last change (diagnosis)
-    int undo_direction = 0;                        ///< slide direction before its last change
-    int refinements = 0;  ///< friction refinements of this contact in this step
-    int newton = 0;       ///< Newton iterates a nonlinear law asked for in this step
-    bool law_failed = false;  ///< its law failed in this step (damage 1): counted in end_step
-    /// Creep of this step up to the failure, kept by end_step (fail_law) [length].
-    double failure_creep = 0.0;
-    double assembled_normal_force = 0.0;  ///< normal_force as the last solve's assembly used it
-                                          ///< (set by check; energy balance) [force/length]
-  };
-  /// Sum of p_n d_n^2/2 + F^2/(2 k_s) over records with their springs [force x length].
-  static double stored_energy(std::span<const Contact> records, std::span<const StepWork> work);
+  using Hot = step::Hot;
+  using LawStep = step::LawStep;
   void prepare(std::span<const BlockView> blocks, const Contact& c, Hot& h) const;
   double shear_stiffness(size_t c) const;
   /// The dashpots as springs on the step's motion, c / dt [stress] (0 without).
@@ -399,18 +259,12 @@ class ContactSystem {
   /// Open -> locked across a gap: the locking point moves along the edge by
   /// `flight`, the tangential motion of the step before the vertex touched [length].
   void lock_at_touch(std::span<const BlockView> blocks, size_t c, double flight);
-  /// Step constants of one joint set: the scheme's and the implicit ones.
-  struct LawStep {
-    bool active = false;  ///< the joint set has a law and dt > 0
-    laws::Scheme scheme = laws::Scheme::implicit;
-    laws::StepConstants main, from_rest;
-  };
   const laws::StepConstants& step_constants_of(size_t c) const;
   /// Law constants of the step being solved, once per joint set (never per
   /// contact), and each creeping contact's seam at its start stress
   /// (contact_creep.cpp; called by begin_step).
   void start_laws(double dt);
-  /// Sets seams_[c] from the law's affine form at a guessed end stress [stress].
+  /// Sets step_.seams[c] from the law's affine form at a guessed end stress [stress].
   void linearize(size_t c, double tau_guess);
   /// Contact c (locked, its law not linear) takes the seam at the stress tau it carries
   /// [stress]; true when that asks for another iterate (the seam changed, within the bounds
@@ -431,48 +285,19 @@ class ContactSystem {
   double allowed_penetration_ = 0.0;
   double last_max_penetration_ = 0.0;
   std::size_t projections_ = 0;  ///< last_projections()
-  double step_max_penetration_ = 0.0;
-  double force_scale_ = 0.0;  ///< largest |N| of the last iterate [force/length]
-  bool step_dynamic_ = true;  ///< the step being solved carries velocity (begin_step)
-  std::uint64_t next_id_ = 1;
 
-  std::vector<Contact> committed_, work_;
-  std::vector<laws::RheologyState> committed_rheology_, work_rheology_;
-  std::vector<double> committed_creep_, work_creep_;
-  std::vector<CreepCounters> creep_counters_;  ///< per joint set, accepted steps only
-  double step_dt_ = 0.0;  ///< creep time of the step being solved [time]
-  double step_inertia_ = 0.0;  ///< inertia stiffness per unit mass of the step, 1/(beta dt^2) [1/time^2]
-  std::vector<StepWork> committed_work_, step_work_;  ///< energy balance (contact_energy.cpp)
-  double stored_before_ = 0.0;  ///< stored energy before the last accepted step [force x length]
-  std::vector<LawStep> law_steps_;  ///< per joint set, for the step being solved
-  std::vector<ShearSeam> seams_;
-  std::vector<Hot> hot_;
-  // Creep error estimate and retraction (contact_creep_error.cpp).
-  void estimate_creep_error();
+  ContactRecords records_;  ///< committed and working records (contact_records.hpp)
+  EnergyBook energy_;  ///< energy terms of the last accepted step (energy_book.hpp)
+  step::Data step_;  ///< the step being solved: its hot arrays and values (step_arrays.hpp)
+  // Adaptive creep stepping (creep_error.hpp, contact_creep_error.cpp).
   bool creep_error_wanted_ = false;  ///< set by begin_step for the step being solved
-  bool can_retract_ = false;
-  double creep_error_ = 0.0;  ///< of the last accepted step [length]
-  int creep_changes_ = 0;     ///< creep_state_changes() of the last accepted step [-]
-  /// What an end_step changed beside the records, kept for retract_step.
-  struct Retract {
-    std::vector<CreepCounters> counters;
-    double last_max_penetration = 0.0, penalty = 0.0, stored_before = 0.0;
-  } retract_;
-  /// The records at the start of the last accepted step (creep_error_wanted only).
-  std::vector<Contact> start_records_;
-  std::vector<laws::RheologyState> start_rheology_;
-  std::vector<double> start_creep_;
-  std::vector<StepWork> start_work_;
-  std::unordered_map<std::uint64_t, double> prev_tau_;  ///< stress at the last step's start, by contact id [stress]
-  double prev_dt_ = 0.0;                                ///< last accepted step [time]
-  std::unordered_map<std::uint64_t, double> retract_prev_tau_;  ///< prev_tau_ before the last end_step
-  double retract_prev_dt_ = 0.0;                                ///< prev_dt_ before the last end_step [time]
+  CreepErrorEstimate creep_error_;   ///< the estimate of the last accepted step
+  StepStart start_;                  ///< what its commit replaced, for retract_step
   std::vector<ContactKey> previous_keys_;
   cycles::Arrays cycles_;  ///< the explicit cycles of the step (contact_cycles.cpp)
   int cycle_threads_ = 0;
   bool cycled_ = false;                  ///< the step being solved is taken in cycles (begin_cycles)
   double cycle_damping_ = 0.0;            ///< the dashpots' work in the cycles of the step (end_cycles)
-  double committed_cycle_damping_ = 0.0; ///< the last accepted step's dashpot work in its cycles
   std::vector<char> removed_;  ///< remove_blocks: 1 for a removed block (empty: none removed)
   std::vector<Box> boxes_;
   BroadPhase broad_;
