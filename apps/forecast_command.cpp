@@ -30,6 +30,7 @@
 #include "commands.hpp"
 #include "rheodda/forecast/bands.hpp"
 #include "rheodda/forecast/forecast.hpp"
+#include "rheodda/scene/history_columns.hpp"
 #include "rheodda/scene/loader.hpp"
 #include "rheodda/scene/output.hpp"
 #include "rheodda/scene/plot.hpp"
@@ -88,7 +89,8 @@ std::string yaml_quoted(const std::string& s) {
 
 /// Columns of history.csv that are not results (time stepping bookkeeping).
 bool bookkeeping(const std::string& c) {
-  return c == "time" || c == "step" || c == "dt" || c == "cuts" || c == "iterations";
+  const std::vector<std::string> step = scene::history_part_columns(scene::HistoryPart::step);
+  return std::find(step.begin(), step.end(), c) != step.end();
 }
 
 /// The ensemble as a study file: one case per accepted sample, the law's parameters set

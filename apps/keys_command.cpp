@@ -11,6 +11,7 @@
 
 #include "commands.hpp"
 #include "rheodda/core/settings.hpp"
+#include "rheodda/scene/history_columns.hpp"
 #include "rheodda/scene/keys.hpp"
 
 namespace rheodda::apps {
@@ -21,9 +22,19 @@ void add_keys_command(CLI::App& app) {
   auto map = std::make_shared<std::string>();
   auto markdown = std::make_shared<bool>(false);
   cmd->add_option("map", *map, "Only this map, as `rheodda keys` names it: analysis, analysis.settle, materials, ...; "
-                               "`settings`: the engine's settings (docs/reference/engine.md)");
+                               "`settings`: the engine's settings (docs/reference/engine.md); `history`: history.csv's columns "
+                               "(docs/reference/outputs.md)");
   cmd->add_flag("--markdown", *markdown, "Print Markdown tables, as docs/reference/scene-format.md (and engine.md) hold them");
   cmd->callback([map, markdown] {
+    if (*map == "history") {  // history.csv's columns (scene/history_columns.hpp): docs/reference/outputs.md's table
+      if (*markdown) {
+        std::cout << scene::history_table_markdown();
+        return;
+      }
+      for (const scene::HistoryColumns& c : scene::history_column_specs())
+        for (const std::string& n : c.names) std::cout << fmt::format("history.{} [{}]: {}\n", n, c.unit, c.meaning);
+      return;
+    }
     if (*map == "settings") {  // the engine's settings (core/settings.hpp): docs/reference/engine.md's table
       if (*markdown) {
         std::cout << core::settings_table_markdown();
@@ -39,7 +50,7 @@ void add_keys_command(CLI::App& app) {
     if (!map->empty()) {
       if (std::find(maps.begin(), maps.end(), *map) == maps.end())
         throw CLI::ValidationError("map", fmt::format("'{}' has no declared keys; declared maps: {}, settings", *map,
-                                                      fmt::join(maps, ", ")));
+                                                      fmt::join(maps, ", ")) + ", history");
       maps = {*map};
     }
     for (const auto& m : maps) {

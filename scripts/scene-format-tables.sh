@@ -3,7 +3,10 @@
 # (scene/src/keys*.cpp) through `rheodda keys --markdown MAP`, between each pair of
 # <!-- keys-MAP:begin/end --> markers the doc holds, and the table of the engine's settings
 # in docs/reference/engine.md from their declarations (core/src/settings.cpp) through
-# `rheodda keys --markdown settings`, between <!-- settings:begin/end -->.
+# `rheodda keys --markdown settings`, between <!-- settings:begin/end -->, and the table of
+# history.csv's columns in docs/reference/outputs.md from their declarations
+# (scene/src/history_columns.cpp) through `rheodda keys --markdown history`, between
+# <!-- history:begin/end -->.
 # tests/scene/schema_test.cpp checks that the docs hold what this writes.
 # Usage: scripts/scene-format-tables.sh     (RHEODDA_BUILD_DIR: the build to use, default build/)
 set -euo pipefail
@@ -18,4 +21,6 @@ for map in $(sed -n 's/^<!-- keys-\(.*\):begin -->$/\1/p' "$doc"); do
 done
 "$build/apps/rheodda" keys --markdown settings >"$tmp"
 "$root/scripts/splice-doc.sh" "$root/docs/reference/engine.md" settings "$tmp"
+"$build/apps/rheodda" keys --markdown history >"$tmp"
+"$root/scripts/splice-doc.sh" "$root/docs/reference/outputs.md" history "$tmp"
 echo "scene-format-tables: docs/reference/scene-format.md key tables and engine.md's settings regenerated"

@@ -8,6 +8,7 @@
 
 #include "engine_impl.hpp"
 #include "bolts.hpp"
+#include "rheodda/core/property_specs.hpp"
 
 namespace rheodda::core {
 
@@ -27,12 +28,9 @@ void validate_bolt_values(const Bolt& b, const ModelEntry& key) {
   if (b.block_a == b.block_b) throw ModelError(key, "block_b", "a bolt joins two blocks, not a block to itself");
   if (!((b.point_b - b.point_a).norm() > 0.0) || !(b.installed_length >= 0.0))
     throw ModelError(key, "point_b", "the two ends coincide: a bolt needs a length");
-  if (!(b.axial_stiffness > 0.0 && std::isfinite(b.axial_stiffness)))
-    throw ModelError(key, "axial_stiffness", "must be > 0 (force/length)");
-  if (!(b.yield_force > 0.0)) throw ModelError(key, "yield_force", "must be > 0 (force)");
-  if (!(b.rupture_elongation > 0.0)) throw ModelError(key, "rupture_elongation", "must be > 0 (length)");
-  if (!std::isfinite(b.pretension) || std::abs(b.pretension) > b.yield_force)
-    throw ModelError(key, "pretension", "must be finite and within the yield force (force)");
+  check_declared(bolt_specs(), static_cast<const BoltProperties&>(b), key);  // property_specs.hpp
+  if (std::abs(b.pretension) > b.yield_force)
+    throw ModelError(key, "pretension", "must be within the yield force (force)");
   if (b.pretension / b.axial_stiffness >= b.rupture_elongation)
     throw ModelError(key, "pretension", "stretches the bolt beyond its rupture elongation when installed");
   if (b.law) {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "engine_impl.hpp"
+#include "rheodda/core/property_specs.hpp"
 #include "rheodda/core/settings.hpp"
 
 namespace rheodda::core {
@@ -38,14 +39,7 @@ void Engine::Impl::validate() {
   if (m.materials.empty()) throw ModelError("materials", "at least one material is required");
   for (std::size_t k = 0; k < m.materials.size(); ++k) {
     const Material& mat = m.materials[k];
-    if (!(mat.density > 0.0 && std::isfinite(mat.density)))
-      throw ModelError(ModelEntry{"materials", k}, "density", "must be > 0 (mass/length^3)");
-    if (!(mat.young_modulus > 0.0 && std::isfinite(mat.young_modulus)))
-      throw ModelError(ModelEntry{"materials", k}, "young_modulus", "must be > 0 (stress)");
-    if (!(mat.poisson_ratio >= 0.0 && mat.poisson_ratio < 0.5))
-      throw ModelError(ModelEntry{"materials", k}, "poisson_ratio", "must be in [0, 0.5)");
-    if (!(mat.damping_ratio >= 0.0 && mat.damping_ratio <= 1.0))
-      throw ModelError(ModelEntry{"materials", k}, "damping_ratio", "must be in [0, 1]");
+    check_declared(material_specs(), mat, ModelEntry{"materials", k});  // property_specs.hpp
     if (mat.damping_ratio > 0.0 && !m.settings.has_dynamic_steps())
       throw ModelError(ModelEntry{"materials", k}, "damping_ratio",
                        "damps velocities; a static analysis (dynamic_ratio 0) without a dynamic "

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "rheodda/core/defaults.hpp"
+#include "rheodda/core/property_specs.hpp"
 #include "rheodda/core/setting_defaults.hpp"
 #include "rheodda/laws/spec_lookup.hpp"
 
@@ -149,9 +150,7 @@ double setting_default(std::string_view name, bool dynamic) { return setting_spe
 std::string settings_table_markdown() { return laws::settings_table_markdown(setting_specs()); }
 
 void check_setting_ranges(const Settings& s) {
-  for (const SettingSpec& spec : setting_specs())
-    if (const double v = spec.value(s); !spec.admits(v))
-      throw ModelError("settings." + spec.name(), laws::setting_refusal(spec, v));
+  check_declared(setting_specs(), s, std::string("settings"));
 }
 
 }  // namespace rheodda::core

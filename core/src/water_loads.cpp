@@ -18,6 +18,7 @@
 
 #include "rheodda/contact/kinematics.hpp"
 #include "rheodda/core/model.hpp"
+#include "rheodda/core/property_specs.hpp"
 #include "rheodda/core/water.hpp"
 
 namespace rheodda::core {
@@ -130,8 +131,7 @@ double next_water_break(const Water& w, double after) {
 }
 
 void validate_water(const Water& w, double x_min, double x_max) {
-  if (!(w.unit_weight > 0.0 && std::isfinite(w.unit_weight)))
-    throw ModelError("water.unit_weight", "must be > 0 (force/length^3)");
+  check_declared(water_specs(), static_cast<const WaterProperties&>(w), std::string("water"));  // property_specs.hpp
   if (w.history.empty()) throw ModelError("water.history", "needs at least one surface");
   for (std::size_t k = 0; k < w.history.size(); ++k) {
     const WaterSurface& s = w.history[k];

@@ -12,6 +12,7 @@ namespace {
 /// A bound of a range: "∞" for none, an integer's without decimals.
 std::string bound_text(double v, SettingType t) {
   if (v == std::numeric_limits<double>::max()) return "∞";
+  if (v == std::numeric_limits<double>::lowest()) return "−∞";
   return t == SettingType::integer && v < 1e6 ? fmt::format("{:.0f}", v) : setting_number_text(v);
 }
 
@@ -32,7 +33,8 @@ std::string setting_number_text(double v) {
 
 std::string setting_range_text(const ParameterSpec& p, SettingType type) {
   if (type == SettingType::flag) return "true or false";
-  return fmt::format("{}{}, {}{}", p.min_exclusive ? "(" : "[", bound_text(p.min, type), bound_text(p.max, type),
+  return fmt::format("{}{}, {}{}", p.min_exclusive || p.min == std::numeric_limits<double>::lowest() ? "(" : "[",
+                     bound_text(p.min, type), bound_text(p.max, type),
                      p.max_exclusive || p.max == std::numeric_limits<double>::max() ? ")" : "]");
 }
 

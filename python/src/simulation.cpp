@@ -5,6 +5,7 @@
 #include <rheodda/core/settings.hpp>
 #include <rheodda/laws/registry.hpp>
 #include <rheodda/scene/assemble.hpp>
+#include <rheodda/scene/history_columns.hpp>
 #include <rheodda/scene/output.hpp>
 
 #include <cmath>
@@ -78,15 +79,12 @@ Simulation::Simulation(const Scene& s, const py::dict& law_overrides, py::object
   for (std::size_t j = 0; j < scene_.joint_sets.size(); ++j)
     if (scene_.joint_sets[j].record) recorded_.push_back(static_cast<int>(j));
   for (std::size_t k = 0; k < engine_->model().point_loads.size(); ++k) load_ids_.push_back(next_load_id_++);
-  columns_ = {"time", "step", "dt", "cuts", "iterations"};
-  for (const auto& mp : scene_.measurement_points) {
-    columns_.push_back(mp.name + ".u");
-    columns_.push_back(mp.name + ".v");
-  }
-  for (int j : recorded_)
-    for (const char* c : {".contacts", ".shear_displacement", ".shear_force", ".shear_displacement_magnitude"})
-      columns_.push_back(scene_.joint_sets[j].name + c);
-  for (const char* c : scene::kHistoryEnergyColumns) columns_.push_back(c);
+  // history.csv's declared columns (scene/history_columns.hpp), without those after the
+  // settling stage, of the bolts and of the stage.
+  std::vector<std::string> points, recorded;
+  for (const auto& mp : scene_.measurement_points) points.push_back(mp.name);
+  for (int j : recorded_) recorded.push_back(scene_.joint_sets[j].name);
+  columns_ = scene::history_columns_of(points, false, recorded, false, false);
   history_.assign(columns_.size(), {});
   record(nullptr);
 }

@@ -133,11 +133,7 @@ BuiltScene build_scene(const SceneDescription& s) {
   const Analysis& a = s.analysis;
 
   m.materials.clear();
-  for (const auto& mat : s.materials)
-    m.materials.push_back({mat.density, mat.young_modulus, mat.poisson_ratio,
-                           mat.plane == PlaneKind::strain ? core::PlaneMode::plane_strain
-                                                          : core::PlaneMode::plane_stress,
-                           mat.damping_ratio});
+  for (const auto& mat : s.materials) m.materials.push_back(mat);  // the engine's Material, whole
 
   for (std::size_t i = 0; i < s.blocks.size(); ++i) {
     const BlockDescription& b = s.blocks[i];
@@ -218,10 +214,7 @@ core::Bolt build_bolt(const BoltDescription& b) {
   bolt.point_a = {b.from.point[0], b.from.point[1]};
   bolt.block_b = b.to_fixed ? -1 : b.to.block;
   bolt.point_b = {b.to.point[0], b.to.point[1]};
-  bolt.axial_stiffness = b.axial_stiffness;
-  bolt.pretension = b.pretension;
-  if (b.yield_force) bolt.yield_force = *b.yield_force;
-  if (b.rupture_elongation) bolt.rupture_elongation = *b.rupture_elongation;
+  static_cast<core::BoltProperties&>(bolt) = b;  // the declared properties (core/property_specs.hpp), whole
   if (b.law) bolt.law = laws::LawRegistry::builtin().create(b.law->name, b.law->parameters);
   return bolt;
 }

@@ -5,8 +5,11 @@
 #include <array>
 #include <limits>
 #include <optional>
+#include <stdexcept>
+#include <type_traits>
 #include <utility>
 
+#include "rheodda/laws/setting_spec.hpp"
 #include "rheodda/scene/keys.hpp"
 
 namespace rheodda::scene::detail {
@@ -19,6 +22,54 @@ inline constexpr KeyRange kNonNegative{0.0, false, kInf, false};  ///< >= 0
 /// number), unit, range, default and meaning are the property's declaration
 /// (contact/joint_set_specs.hpp; keys_joints.cpp).
 KeyInfo joint_property_info(const std::string& map, const std::string& name);
+
+/// The key `s.name()` of `map` that is a declared setting or property (laws::SettingSpec:
+/// of the engine, core/settings.hpp; of the contact layer, contact/contact_settings_specs.hpp;
+/// of a material, a bolt or the water, core/property_specs.hpp): its type, unit, range,
+/// default and meaning are the declaration's.
+template <class S>
+KeyInfo declared_info(const std::string& map, const laws::SettingSpec<S>& s) {
+  const KeyType type = s.type == laws::SettingType::number    ? KeyType::number
+                       : s.type == laws::SettingType::integer ? KeyType::integer
+                                                              : KeyType::flag;
+  const laws::ParameterSpec& p = s.parameter;
+  const KeyRange range = type == KeyType::flag ? KeyRange{} : KeyRange{p.min, p.min_exclusive, p.max, p.max_exclusive};
+  return KeyInfo{.map = map, .name = s.name(), .type = type, .unit = p.unit, .range = range,
+                 .default_text = s.default_text(), .meaning = p.meaning};
+}
+
+/// The key of the declared property `s` of an entry E that is an S (derives from it): read
+/// into and from its member; a default that is a mark outside the range ("never yields")
+/// reads as not set. `s` must outlive the key (the declarations are static).
+template <class E, class S>
+EntryKey<E> declared_key(const std::string& map, const laws::SettingSpec<S>& s) {
+  static_assert(std::is_base_of_v<S, E>);
+  EntryKey<E> k;
+  static_cast<KeyInfo&>(k) = declared_info(map, s);
+  k.get = [&s, type = k.type](const E& e) -> KeyValue {
+    const double v = s.value(e);
+    if (!s.default_meaning.empty() && v == *s.parameter.default_value) return std::monostate{};
+    return key_value_of(type, v);
+  };
+  k.set = [&s](E& e, const KeyValue& v) { s.set(e, key_number(v)); };
+  return k;
+}
+
+/// The keys of the declarations `specs` in `map`, in their order.
+template <class E, class S>
+std::vector<EntryKey<E>> declared_keys_of(const std::string& map, const std::vector<laws::SettingSpec<S>>& specs) {
+  std::vector<EntryKey<E>> k;
+  for (const laws::SettingSpec<S>& s : specs) k.push_back(declared_key<E>(map, s));
+  return k;
+}
+
+/// The key `name` in `keys`; std::logic_error if there is none.
+template <class E>
+EntryKey<E>& key_named(std::vector<EntryKey<E>>& keys, const std::string& name) {
+  for (EntryKey<E>& k : keys)
+    if (k.name == name) return k;
+  throw std::logic_error("no declared key " + name);
+}
 
 /// A key that reads and writes the field `field` of its entry as is.
 template <class E, class T>

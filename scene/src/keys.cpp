@@ -49,16 +49,12 @@ KeySpec flag_key(const std::string& map, const std::string& name, const std::str
 /// type, unit, range, default and meaning are the setting's declaration.
 template <class S, class T>
 KeySpec declared_setting_key(const laws::SettingSpec<S>& s, T Analysis::*field) {
-  const KeyType type = s.type == laws::SettingType::number    ? KeyType::number
-                       : s.type == laws::SettingType::integer ? KeyType::integer
-                                                              : KeyType::flag;
+  KeyInfo i = detail::declared_info("analysis", s);
   constexpr KeyType field_type = std::is_same_v<T, double> ? KeyType::number
                                  : std::is_same_v<T, int>  ? KeyType::integer
                                                            : KeyType::flag;
-  if (type != field_type) throw std::logic_error("analysis." + s.name() + ": the field is not of the setting's type");
-  const laws::ParameterSpec& p = s.parameter;
-  const KeyRange range = type == KeyType::flag ? KeyRange{} : KeyRange{p.min, p.min_exclusive, p.max, p.max_exclusive};
-  return detail::field_key(info("analysis", s.name(), type, p.unit, range, s.default_text(), p.meaning), field);
+  if (i.type != field_type) throw std::logic_error("analysis." + s.name() + ": the field is not of the setting's type");
+  return detail::field_key(std::move(i), field);
 }
 
 /// The key of the engine's setting `name` (core/settings.hpp).

@@ -3,6 +3,7 @@
 // (the law registry's parameters) and the checks that tie keys together (a pretension
 // within the yield force, axial_stiffness and the law's E1) stay in load_bolts.cpp.
 #include "key_builders.hpp"
+#include "rheodda/core/property_specs.hpp"
 
 namespace rheodda::scene {
 
@@ -25,26 +26,10 @@ std::vector<EntryKey<BoltDescription>>& bolt_keys() {
                 .default_text = "required",
                 .meaning = "the second end, `{point: [x, y], block: NAME}` on another block, or `{fixed: [x, y]}` "
                            "an anchor fixed in space"}));
-    k.push_back(detail::field_key(
-        KeyInfo{.map = "bolts", .name = "axial_stiffness", .type = KeyType::number, .unit = "force/length",
-                .range = detail::kPositive, .default_text = "required, unless the law has E1 (then E1)",
-                .meaning = "k, axial force per unit elongation, > 0"},
-        &E::axial_stiffness));
-    k.push_back(detail::field_key(
-        KeyInfo{.map = "bolts", .name = "pretension", .type = KeyType::number, .unit = "force", .default_text = "0",
-                .meaning = "axial force at t = 0 (tension > 0), within `yield_force`"},
-        &E::pretension));
-    k.push_back(detail::optional_key(
-        KeyInfo{.map = "bolts", .name = "yield_force", .type = KeyType::number, .unit = "force",
-                .range = detail::kPositive, .default_text = "never yields",
-                .meaning = "N_y > 0: the axial force stays within ±N_y; at it the bolt stretches (or shortens) "
-                           "plastically"},
-        &E::yield_force));
-    k.push_back(detail::optional_key(
-        KeyInfo{.map = "bolts", .name = "rupture_elongation", .type = KeyType::number, .unit = "length",
-                .range = detail::kPositive, .default_text = "never ruptures",
-                .meaning = "> 0: once the elongation exceeds it the bolt carries nothing for the rest of the run"},
-        &E::rupture_elongation));
+    // The bolt's properties: each the key of its declaration (core/property_specs.hpp), read
+    // into and from the core::BoltProperties a BoltDescription is.
+    for (EntryKey<E>& p : detail::declared_keys_of<E>("bolts", core::bolt_specs())) k.push_back(std::move(p));
+    detail::key_named(k, "axial_stiffness").default_text = "required, unless the law has E1 (then E1)";
     k.push_back(detail::reader_key<E>(
         KeyInfo{.map = "bolts", .name = "law", .type = KeyType::map, .unit = "–", .default_text = "none",
                 .meaning = "the law's name and parameters, as a joint set's `law` (above): creep of the axial force "

@@ -8,6 +8,7 @@
 
 #include "key_builders.hpp"
 #include "rheodda/contact/joint_set_specs.hpp"
+#include "rheodda/core/property_specs.hpp"
 
 namespace rheodda::scene {
 
@@ -17,40 +18,28 @@ using detail::kPositive;
 std::vector<EntryKey<Material>>& material_keys() {
   static std::vector<EntryKey<Material>> keys = [] {
     using E = Material;
-    std::vector<EntryKey<E>> k;
-    k.push_back(detail::field_key(
-        KeyInfo{.map = "materials", .name = "density", .type = KeyType::number, .unit = "mass/length³",
-                .range = kPositive, .required = "[mass/length^3]", .default_text = "required", .meaning = "> 0"},
-        &E::density));
-    k.push_back(detail::field_key(
-        KeyInfo{.map = "materials", .name = "young_modulus", .type = KeyType::number, .unit = "stress",
-                .range = kPositive, .required = "E [stress]", .default_text = "required", .meaning = "E, > 0"},
-        &E::young_modulus));
-    k.push_back(detail::field_key(
-        KeyInfo{.map = "materials", .name = "poisson_ratio", .type = KeyType::number, .unit = "–",
-                .range = {0.0, false, 0.5, true}, .required = "nu [-]", .default_text = "required",
-                .meaning = "ν, in [0, 0.5)"},
-        &E::poisson_ratio));
-    k.push_back(detail::custom_key<E>(
+    // The material's properties: each the key of its declaration (core/property_specs.hpp),
+    // read into and from the core::Material a scene's Material is.
+    std::vector<EntryKey<E>> k = detail::declared_keys_of<E>("materials", core::material_specs());
+    for (const auto& [name, required] : {std::pair{"density", "[mass/length^3]"}, std::pair{"young_modulus", "E [stress]"},
+                                         std::pair{"poisson_ratio", "nu [-]"}}) {
+      detail::key_named(k, name).required = required;
+      detail::key_named(k, name).default_text = "required";
+    }
+    EntryKey<E>& damping = detail::key_named(k, "damping_ratio");
+    damping.echoed = false;
+    damping.get = [](const E& m) -> KeyValue {  // 0 is none: `check` names the damping only where there is some
+      if (m.damping_ratio > 0.0) return m.damping_ratio;
+      return std::monostate{};
+    };
+    k.insert(k.begin() + 3, detail::custom_key<E>(
         KeyInfo{.map = "materials", .name = "plane", .type = KeyType::choice, .unit = "–",
                 .choices = {"strain", "stress"}, .default_text = "`strain`",
                 .meaning = "`strain` (long body) or `stress` (thin plate)"},
         [](const E& m) -> KeyValue { return std::string(plane_name(m.plane)); },
         [](E& m, const KeyValue& v) {
-          m.plane = std::get<std::string>(v) == "strain" ? PlaneKind::strain : PlaneKind::stress;
+          m.plane = std::get<std::string>(v) == "strain" ? core::PlaneMode::plane_strain : core::PlaneMode::plane_stress;
         }));
-    k.push_back(detail::custom_key<E>(
-        KeyInfo{.map = "materials", .name = "damping_ratio", .type = KeyType::number, .unit = "–",
-                .range = {0.0, false, 1.0, false}, .default_text = "`0` (none)",
-                .meaning = "ζ in [0, 1]: Kelvin–Voigt damping of each block's strain, ζ on its lowest strain mode "
-                           "(docs/reference/engine.md, \"Block damping\"); dynamic analysis only",
-                .echoed = false},
-        // 0 is none: `check` names the damping only where there is some.
-        [](const E& m) -> KeyValue {
-          if (m.damping_ratio > 0.0) return m.damping_ratio;
-          return std::monostate{};
-        },
-        [](E& m, const KeyValue& v) { m.damping_ratio = std::get<double>(v); }));
     return k;
   }();
   return keys;

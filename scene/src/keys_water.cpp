@@ -2,18 +2,18 @@
 // entry per key, in the order of docs/reference/scene-format.md. One form of the
 // surface, the surfaces' x-span and increasing times stay in load_water.cpp.
 #include "key_builders.hpp"
+#include "rheodda/core/property_specs.hpp"
 
 namespace rheodda::scene {
 
 std::vector<EntryKey<WaterDescription>>& water_keys() {
   static std::vector<EntryKey<WaterDescription>> keys = [] {
     using E = WaterDescription;
-    std::vector<EntryKey<E>> k;
-    k.push_back(detail::field_key(
-        KeyInfo{.map = "water", .name = "unit_weight", .type = KeyType::number, .unit = "force/length³",
-                .range = detail::kPositive, .required = "the water's unit weight gamma_w [force/length^3]",
-                .default_text = "required", .meaning = "the water's unit weight γ_w, > 0 (9810 N/m³)"},
-        &E::unit_weight));
+    // unit_weight: the key of its declaration (core/property_specs.hpp), read into and from
+    // the core::WaterProperties a WaterDescription is.
+    std::vector<EntryKey<E>> k = detail::declared_keys_of<E>("water", core::water_specs());
+    detail::key_named(k, "unit_weight").required = "the water's unit weight gamma_w [force/length^3]";
+    detail::key_named(k, "unit_weight").default_text = "required";
     k.push_back(detail::custom_key<E>(
         KeyInfo{.map = "water", .name = "level", .type = KeyType::number, .unit = "length", .default_text = "–",
                 .meaning = "a horizontal surface at this height, constant in time"},

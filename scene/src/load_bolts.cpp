@@ -104,13 +104,13 @@ BoltDescription read_bolt(const Ctx& ctx, const YAML::Node& n, const std::string
     m.required("axial_stiffness", "axial force per unit elongation [force/length]");
   }
   if (const YAML::Node v = m.find("pretension"); v.IsDefined()) {
-    if (b.yield_force && std::abs(b.pretension) > *b.yield_force)
+    if (std::abs(b.pretension) > b.yield_force)  // never, without a yield_force (infinite)
       ctx.fail(v, m.child("pretension"),
-               fmt::format("{:g} exceeds the yield force {:g}", b.pretension, *b.yield_force));
-    if (b.rupture_elongation && b.pretension / b.axial_stiffness >= *b.rupture_elongation)
+               fmt::format("{:g} exceeds the yield force {:g}", b.pretension, b.yield_force));
+    if (b.pretension / b.axial_stiffness >= b.rupture_elongation)
       ctx.fail(v, m.child("pretension"),
                fmt::format("stretches the bolt by {:g} {}, not below its rupture_elongation {:g}",
-                           b.pretension / b.axial_stiffness, installed, *b.rupture_elongation));
+                           b.pretension / b.axial_stiffness, installed, b.rupture_elongation));
   }
   return b;
 }

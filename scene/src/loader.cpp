@@ -33,7 +33,7 @@ namespace rheodda::scene {
 std::string_view analysis_type_name(AnalysisType t) {
   return t == AnalysisType::static_analysis ? "static" : "dynamic";
 }
-std::string_view plane_name(PlaneKind p) { return p == PlaneKind::strain ? "strain" : "stress"; }
+std::string_view plane_name(core::PlaneMode p) { return p == core::PlaneMode::plane_strain ? "strain" : "stress"; }
 std::string_view time_integration_name(TimeIntegration t) {
   return t == TimeIntegration::trapezoidal ? "trapezoidal" : "shi";
 }

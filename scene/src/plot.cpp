@@ -1,5 +1,7 @@
 #include "rheodda/scene/plot.hpp"
 
+#include "rheodda/scene/history_columns.hpp"
+
 #include <fmt/format.h>
 #include <fcntl.h>
 #include <spawn.h>
@@ -101,17 +103,22 @@ std::string history_column_unit(const std::string& column, const std::string& le
   auto ends_with = [&](const std::string& tail) {
     return column.size() > tail.size() && column.compare(column.size() - tail.size(), tail.size(), tail) == 0;
   };
-  auto starts_with = [&](const std::string& head) { return column.rfind(head, 0) == 0; };
-  if (column == "time" || column == "dt") return time;
-  if (column == "step" || column == "cuts" || column == "iterations" || column == "stage" ||
-      column == "energy_residual_relative" || column == "inertia_share" || ends_with(".contacts"))
+  // The declared unit of the column (history_columns.hpp), in the scene's units; forces and
+  // energies per unit thickness.
+  auto in_units = [&](const std::string& unit) -> std::string {
+    if (unit == "time") return time;
+    if (unit == "length") return length;
+    if (unit == "force") return fmt::format("{}/{} thickness", force, length);
+    if (unit == "force·length") return fmt::format("{}*{}/{} thickness", force, length, length);
     return "-";
-  if (ends_with(".u") || ends_with(".v") || ends_with(".displacement") || ends_with(".shear_displacement") ||
-      ends_with(".shear_displacement_magnitude"))
-    return length;
-  if (ends_with(".shear_force")) return fmt::format("{}/{} thickness", force, length);
-  if (starts_with("energy_") || starts_with("work_") || starts_with("dissipation_"))
-    return fmt::format("{}*{}/{} thickness", force, length, length);
+  };
+  for (const HistoryColumns& c : history_column_specs()) {
+    const bool suffix = c.part == HistoryPart::point || c.part == HistoryPart::point_settled ||
+                        c.part == HistoryPart::joint_set;
+    for (const std::string& n : c.names)
+      if (suffix ? ends_with(n) : column == n) return in_units(c.unit);
+  }
+  if (ends_with(".displacement")) return length;  // a study's derived column (study/study_series.cpp)
   return "";
 }
 

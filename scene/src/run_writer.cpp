@@ -11,6 +11,7 @@
 #include <filesystem>
 
 #include "rheodda/contact/strength.hpp"
+#include "rheodda/scene/history_columns.hpp"
 #include "run_internal.hpp"
 
 namespace rheodda::scene {
@@ -42,23 +43,14 @@ std::string contacts_collection(const Run& run) {
 }  // namespace
 
 std::vector<std::string> history_columns(const SceneDescription& s) {
-  std::vector<std::string> c{"time", "step", "dt", "cuts", "iterations"};
-  for (const auto& mp : s.measurement_points) {
-    for (const char* f : {".u", ".v"}) c.push_back(mp.name + f);
-    if (s.analysis.settle)  // the displacement since the end of the settling stage
-      for (const char* f : {".u_after_settling", ".v_after_settling"}) c.push_back(mp.name + f);
-  }
-  for (const auto& j : s.joint_sets)  // the recorded joint sets (Run::recorded)
-    if (j.record)
-      for (const char* f : {".contacts", ".shear_displacement", ".shear_force", ".shear_displacement_magnitude"})
-        c.push_back(j.name + f);
-  c.insert(c.end(), kHistoryEnergyColumns.begin(), kHistoryEnergyColumns.end());
-  if (has_bolts(s)) {  // docs/reference/bolts.md, "Energy"
-    c.emplace_back("energy_bolt");
-    c.emplace_back("dissipation_bolt");
-  }
-  if (!s.stages.empty()) c.emplace_back("stage");  // docs/reference/stages.md
-  return c;
+  // The declared columns (history_columns.hpp) of the scene's points, its recorded joint
+  // sets (Run::recorded), its settling stage, bolts (docs/reference/bolts.md, "Energy") and
+  // stages (docs/reference/stages.md).
+  std::vector<std::string> points, recorded;
+  for (const auto& mp : s.measurement_points) points.push_back(mp.name);
+  for (const auto& j : s.joint_sets)
+    if (j.record) recorded.push_back(j.name);
+  return history_columns_of(points, s.analysis.settle.has_value(), recorded, has_bolts(s), !s.stages.empty());
 }
 
 std::string make_history_header(const SceneDescription& s) { return fmt::format("{}\n", fmt::join(history_columns(s), ",")); }

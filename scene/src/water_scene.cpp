@@ -32,7 +32,7 @@ bool is_level(WaterDescription::Form f) {
 
 core::Water build_water(const WaterDescription& water, const SceneDescription& scene) {
   core::Water w;
-  w.unit_weight = water.unit_weight;
+  static_cast<core::WaterProperties&>(w) = water;  // the declared properties (core/property_specs.hpp), whole
   // A level: a horizontal line over the blocks' x-range widened by that range on
   // each side (the engine holds it level beyond its ends anyway), so that it still
   // spans the blocks where they have moved when a stage brings it in.

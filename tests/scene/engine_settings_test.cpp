@@ -168,13 +168,7 @@ BOOST_AUTO_TEST_CASE(a_setting_given_reaches_the_engine_and_out_of_range_is_refu
 BOOST_AUTO_TEST_CASE(the_engine_docs_table_is_the_declarations) {
   // docs/reference/engine.md holds, between its settings markers, what `rheodda keys
   // --markdown settings` prints (scripts/scene-format-tables.sh writes it).
-  const std::string doc = read_text(source_path("docs/reference/engine.md"));
-  const std::string begin = "<!-- settings:begin -->\n", end = "<!-- settings:end -->";
-  const auto b = doc.find(begin), e = doc.find(end);
-  BOOST_TEST_REQUIRE((b != std::string::npos && e != std::string::npos), "no settings markers in engine.md");
-  BOOST_TEST(doc.substr(b + begin.size(), e - b - begin.size()) == core::settings_table_markdown(),
-             "docs/reference/engine.md's table of the settings is not the declarations': run "
-             "scripts/scene-format-tables.sh");
+  check_doc_table("docs/reference/engine.md", "settings", core::settings_table_markdown());
 }
 
 BOOST_AUTO_TEST_SUITE_END()

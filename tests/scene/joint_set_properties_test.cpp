@@ -28,12 +28,6 @@ using namespace rheodda::test;
 
 namespace {
 
-const scene::KeyInfo& key_of(const std::vector<scene::KeyInfo>& keys, const std::string& name) {
-  for (const scene::KeyInfo& k : keys)
-    if (k.name == name) return k;
-  throw std::logic_error("no key " + name);
-}
-
 /// One value inside each declared property's range, other than its default, that the
 /// properties hold together (residual at most the peak); every declared property must have one.
 const std::map<std::string, double> kGiven{

@@ -28,7 +28,7 @@ BOOST_AUTO_TEST_CASE(base_scene_loads_with_documented_defaults) {
   BOOST_TEST(s.analysis.fixed_point_stiffness == 100.0 * 1.0e9);
   BOOST_TEST(s.analysis.open_close_limit == 8);  // static: Shi's limit (the next test: 30 in dynamic analysis)
   BOOST_TEST(s.analysis.max_cuts == 30);
-  BOOST_TEST((s.materials[0].plane == scene::PlaneKind::strain));
+  BOOST_TEST((s.materials[0].plane == core::PlaneMode::plane_strain));
   BOOST_TEST(s.joint_sets.size() == 2u);
   BOOST_TEST(s.joint_sets[0].cohesion == 0.0);
   BOOST_TEST(!s.joint_sets[0].normal_stiffness.has_value());

@@ -26,13 +26,9 @@ namespace rheodda::core {
 
 using Vec2 = Eigen::Vector2d;  // as in model.hpp, which includes this header
 
-/// One bolt of the Model (Model::bolts).
-struct Bolt {
-  int block_a = 0;             ///< index into Model::blocks of the first end's block
-  Vec2 point_a = Vec2::Zero(); ///< initial position of the first end, on block_a [length]
-  int block_b = -1;            ///< index into Model::blocks of the second end's block; -1: the
-                               ///< second end is fixed in space at point_b
-  Vec2 point_b = Vec2::Zero(); ///< initial position of the second end [length]; != point_a
+/// A bolt's properties, declared in core/property_specs.hpp (their units, ranges and
+/// meanings; the scene's keys of the same names, whose BoltDescription is one).
+struct BoltProperties {
   double axial_stiffness = 0.0;  ///< k, axial force per unit elongation [force/length]; > 0
   /// Axial force when installed (t = 0, or the stage that installs it) [force] (tension
   /// > 0): the bolt's unstressed length is L_rest = L0 - pretension / k, L0 its length
@@ -44,6 +40,15 @@ struct Bolt {
   /// Rupture elongation [length], > 0: when the elongation L - L_rest exceeds it, the
   /// bolt breaks and carries nothing for the rest of the run. Infinity: never.
   double rupture_elongation = std::numeric_limits<double>::infinity();
+};
+
+/// One bolt of the Model (Model::bolts): its properties and where it is.
+struct Bolt : BoltProperties {
+  int block_a = 0;             ///< index into Model::blocks of the first end's block
+  Vec2 point_a = Vec2::Zero(); ///< initial position of the first end, on block_a [length]
+  int block_b = -1;            ///< index into Model::blocks of the second end's block; -1: the
+                               ///< second end is fixed in space at point_b
+  Vec2 point_b = Vec2::Zero(); ///< initial position of the second end [length]; != point_a
   /// Length between the two ends when the bolt was installed [length]; 0: a bolt of
   /// the model from t = 0, installed at L0 = |point_b - point_a|. A bolt a stage
   /// installs (ModelEdit::add_bolts) joins blocks that have moved since t = 0: its

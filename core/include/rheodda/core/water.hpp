@@ -34,9 +34,14 @@ struct WaterSurface {
   std::vector<Vec2> points;
 };
 
-/// Water in the joints of a model (Model::water).
-struct Water {
+/// The water's properties, declared in core/property_specs.hpp (the scene's keys of the
+/// same names, whose WaterDescription is one).
+struct WaterProperties {
   double unit_weight = 0.0;  ///< gamma_w [force/length^3]; > 0 when there is water
+};
+
+/// Water in the joints of a model (Model::water).
+struct Water : WaterProperties {
   /// The surface's time samples, times strictly increasing: h(x, t) is linear in
   /// t between two samples (at every x) and held before the first and after the
   /// last; one sample: a surface constant in time. Empty: no water (nothing

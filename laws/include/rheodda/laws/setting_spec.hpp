@@ -72,8 +72,8 @@ struct SettingSpec {
   }
   /// `v` is valid: within the range, or the default mark of a setting with default_meaning.
   bool admits(double v) const {
+    if (!default_meaning.empty() && v == *parameter.default_value) return true;  // infinite too ("never yields")
     if (!std::isfinite(v)) return false;
-    if (!default_meaning.empty() && v == *parameter.default_value) return true;
     if (type == SettingType::integer && v != std::floor(v)) return false;
     return parameter.admits(v);
   }

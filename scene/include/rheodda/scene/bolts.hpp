@@ -7,22 +7,22 @@
 #include <optional>
 #include <string>
 
+#include "rheodda/core/bolt.hpp"
+
 namespace rheodda::scene {
 
-/// One bolt (core/include/rheodda/core/bolt.hpp is what it builds into).
-struct BoltDescription {
+/// One bolt (core/include/rheodda/core/bolt.hpp is what it builds into): its properties
+/// are the engine's BoltProperties (axial_stiffness, pretension, yield_force,
+/// rupture_elongation), declared in core/property_specs.hpp (the keys of the same names;
+/// build_bolt hands them on whole); infinite yield_force and rupture_elongation (their
+/// defaults): never yields, never ruptures.
+struct BoltDescription : core::BoltProperties {
   std::string name;  ///< `name:`, unique among the bolts (bolts.csv's `bolt` column)
   BlockPoint from;   ///< `from: {point, block}`: the first end, on a block
   /// `to: {point, block}` (on a block) or `to: {fixed: [x, y]}` (fixed in space;
   /// then to_fixed is true and to.block is -1).
   BlockPoint to;
   bool to_fixed = false;
-  /// `axial_stiffness:` axial force per unit elongation [force/length], > 0;
-  /// may be left out when the law has an instantaneous stiffness E1 (then E1).
-  double axial_stiffness = 0.0;
-  double pretension = 0.0;  ///< `pretension:` axial force at t = 0 [force], tension > 0
-  std::optional<double> yield_force;         ///< `yield_force:` [force], > 0; unset: never yields
-  std::optional<double> rupture_elongation;  ///< `rupture_elongation:` [length], > 0; unset: never ruptures
   std::optional<LawChoice> law;              ///< `law:` creep of the axial force; unset: none
   SourceLocation where{};
 };

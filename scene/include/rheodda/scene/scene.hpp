@@ -22,6 +22,7 @@
 #include "rheodda/contact/contact_settings_specs.hpp"
 #include "rheodda/contact/joint_set.hpp"
 #include "rheodda/core/methods.hpp"
+#include "rheodda/core/model.hpp"
 #include "rheodda/core/setting_defaults.hpp"
 #include "rheodda/laws/contact_rheology.hpp"
 #include "rheodda/laws/parameters.hpp"
@@ -46,7 +47,6 @@ struct Units {
 };
 
 enum class AnalysisType { static_analysis, dynamic_analysis };
-enum class PlaneKind { strain, stress };
 
 enum class TimeIntegration { shi, trapezoidal };
 /// `history`: history.csv's rows at the output times (and the steps that end a dynamic
@@ -210,13 +210,13 @@ struct Analysis {
 };
 
 /// `materials: {NAME: {...}}` — block material.
-struct Material {
+/// `materials: {NAME: {...}}`: the engine's Material, whose density, young_modulus,
+/// poisson_ratio and damping_ratio are declared in core/property_specs.hpp (the keys of
+/// the same names; build_scene hands it on whole). A scene requires the first three, and
+/// its `plane` defaults to strain (the engine's Material{} to plane stress).
+struct Material : core::Material {
+  Material() { plane = core::PlaneMode::plane_strain; }
   std::string name;
-  double density = 0.0;        ///< [mass/length^3] = [force*time^2/length^4]; required, > 0
-  double young_modulus = 0.0;  ///< E [stress]; required, > 0
-  double poisson_ratio = 0.0;  ///< nu [-]; required, in [0, 0.5)
-  PlaneKind plane = PlaneKind::strain;  ///< `plane: strain|stress`
-  double damping_ratio = 0.0;  ///< zeta of each block's lowest strain mode [-], in [0, 1]; dynamic only
   SourceLocation where{};
 };
 
@@ -352,7 +352,7 @@ struct SceneDescription {
 };
 
 std::string_view analysis_type_name(AnalysisType t);
-std::string_view plane_name(PlaneKind p);
+std::string_view plane_name(core::PlaneMode p);
 std::string_view time_integration_name(TimeIntegration t);
 std::string_view history_rows_name(HistoryRows h);
 

@@ -16,7 +16,9 @@ struct SceneDescription;
 struct Units;
 
 /// `water: {unit_weight, level | surface | level_history | surface_history}`.
-struct WaterDescription {
+/// Its properties are the engine's WaterProperties (unit_weight), declared in
+/// core/property_specs.hpp (the key of the same name; build_water hands them on whole).
+struct WaterDescription : core::WaterProperties {
   /// Which key gave the surface (echoed as given).
   enum class Form { level, surface, level_history, surface_history };
   /// One time sample of the phreatic surface.
@@ -27,7 +29,6 @@ struct WaterDescription {
                                                  ///< (forms surface and surface_history)
     SourceLocation where{};
   };
-  double unit_weight = 0.0;  ///< gamma_w [force/length^3]; required, > 0
   Form form = Form::level;
   std::vector<Sample> history;  ///< >= 1 sample, times strictly increasing
   SourceLocation where{};
