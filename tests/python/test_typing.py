@@ -45,6 +45,28 @@ def test_the_stubs_name_every_public_name():
     assert not missing, "not in __init__.pyi: {}".format(sorted(missing))
 
 
+def test_the_joint_set_stub_follows_the_declarations():
+    """JointSet's properties in __init__.pyi are the declared ones (contact/joint_set_specs.hpp):
+    an annotated attribute where the declaration lets it change between steps, a read-only
+    property where it does not, and no property the declarations do not hold."""
+    cls = next(n for n in ast.parse((PACKAGE / "__init__.pyi").read_text()).body
+               if isinstance(n, ast.ClassDef) and n.name == "JointSet")
+    settable = {n.target.id for n in cls.body if isinstance(n, ast.AnnAssign) and isinstance(n.target, ast.Name)}
+    read_only = {n.name for n in cls.body if isinstance(n, ast.FunctionDef)
+                 and any(isinstance(d, ast.Name) and d.id == "property" for d in n.decorator_list)}
+    declared = rheodda._rheodda._Simulation._joint_set_properties()
+    assert declared, "no joint-set property declared"
+    for p in declared:
+        if p["between_steps"]:
+            assert p["name"] in settable, "{}: settable, not an attribute of the stub's JointSet".format(p["name"])
+        else:
+            assert p["name"] in read_only, "{}: read-only, not a property of the stub's JointSet".format(p["name"])
+    names = {p["name"] for p in declared}
+    # index: the joint set's position; name, law, law_parameters: the scene's, not properties
+    assert settable - names == {"index"}, sorted(settable - names)
+    assert read_only - names == {"name", "law", "law_parameters"}, sorted(read_only - names)
+
+
 def test_every_public_name_has_a_docstring():
     undocumented = []
     for name in rheodda.__all__:
