@@ -33,7 +33,7 @@ run --scene "$slope" --creep 1000 --duration "$days" --max-cpu 36000
 run --scene "$slope" --creep 1000 --duration "$days" --max-cpu 36000 --halve
 python3 - "$log" >"$table" <<'PY'
 import re, sys
-row = re.compile(r"^creep: (?P<scene>[^,]*), lengths x [0-9.]+: (?P<blocks>\d+) blocks.*?(completed|stopped) at "
+row = re.compile(r"^creep: (?P<scene>.*?), lengths x [0-9.]+: (?P<blocks>\d+) blocks.*?(completed|stopped) at "
                  r"t = (?P<t>\S+) of (?P<end>\S+) d: (?P<steps>\d+) steps, (?P<cuts>\d+) cuts.*?CPU (?P<cpu>[0-9.]+) s"
                  r".*dynamic stages: (?P<stages>[^;]*); first measurement point displaced (?P<disp>\S+)$")
 print("| scene | blocks | reached [d] | steps | cuts | CPU [s] | dynamic stages | first measurement point [m] | target |")
