@@ -176,7 +176,8 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
     if (r.rheology >= 0 && r.state != ContactState::locked) records_.work.rheology[r.rheology] = {};
   records_.committed.swap(records_.work);
   energy_.committed.swap(energy_.step);  // energy balance
-  energy_.cycle_damping = cycled_ ? cycle_damping_ : 0.0;
+  energy_.cycled = cycled_;
+  energy_.cycle = cycled_ ? cycle_work_ : CycleWork{};
   if (creep_error_wanted_) {
     // The step-start records (now in the working arrays) are the estimate's
     // start, and what retract_step swaps back.

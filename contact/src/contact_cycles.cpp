@@ -46,7 +46,7 @@ constexpr std::ptrdiff_t kGatherChunk = 256;
 /// One contact at one cycle (the file's head): its state, and its forces on its blocks
 /// into their slots of `force`.
 inline void cycle_contact(const cycles::Spring& p, cycles::State& y, Vec6* force, const Eigen::VectorXd& D,
-                          const Eigen::VectorXd& V, double h_work, bool dashpots) {
+                          const Eigen::VectorXd& V, double kick, bool dashpots) {
   Vec6& fi = force[p.slot_i];
   Vec6& fj = force[p.slot_j];
   const auto Di = D.segment<6>(6 * p.i);
@@ -66,11 +66,14 @@ inline void cycle_contact(const cycles::Spring& p, cycles::State& y, Vec6* force
     rates = true;
   };
   if (y.nd != 0.0 || y.ts != 0.0) {
-    // The dashpot forces of the last cycle did work over the drift just made, h V (the
-    // scheme's discrete work; their power at the lagged rate would overstate it for the
-    // modes near the stable cycle, whose rates change sign from cycle to cycle).
+    // The second half of the last cycle's dashpot work: its forces (kept times half its
+    // kick) at the rates its kick led to. With the first half, booked where the forces were
+    // found, each force F does F kick (v_before + v_after)/2: the kinetic energy a kick
+    // changes is kick R.(v_before + v_after)/2, so this is the scheme's discrete work (the
+    // power at either rate alone overstates it for the modes near the stable cycle, whose
+    // rates change sign from cycle to cycle).
     find_rates();
-    y.damped += h_work * (y.nd * vn + y.ts * vt);
+    y.damped += y.nd * vn + y.ts * vt;
     y.nd = y.ts = 0.0;
   }
   if (y.state == ContactState::open) {
@@ -80,7 +83,12 @@ inline void cycle_contact(const cycles::Spring& p, cycles::State& y, Vec6* force
     }
     y.state = ContactState::locked;  // touches: the shear spring locks here, unstretched
     y.shift = reach;
+    y.attached += 0.5 * N * dn;  // the overlap the normal spring finds on touching, gained without work
   } else if (N < -(y.intact ? p.tension : 0.0)) {
+    // Opens: both springs detach with the energy they hold (the shear spring's stretch
+    // reach - shift, locked or sliding).
+    const double stretch = reach - y.shift;
+    y.released += 0.5 * N * dn + 0.5 * p.ks * stretch * stretch;
     y.state = ContactState::open;
     y.intact = false;
     fi.setZero(), fj.setZero();
@@ -104,12 +112,18 @@ inline void cycle_contact(const cycles::Spring& p, cycles::State& y, Vec6* force
     y.intact = false;
     y.direction = T >= 0.0 ? 1 : -1;
     T = y.direction * mohr_coulomb_strength(N, p.tan_phi_residual, p.cohesion_residual);
-    y.shift = reach - T / p.ks;
+    const double shift = reach - T / p.ks;
+    y.slid += T * (shift - y.shift);  // the strength over the drag: friction's work (>= 0)
+    y.shift = shift;
     y.state = ContactState::sliding;
-    y.nd = Nd;  // the shear force is the strength: friction's, not a dashpot's
+    Ts = 0.0;  // the shear force is the strength: friction's, not a dashpot's
   } else {
     y.state = ContactState::locked;
-    y.nd = Nd, y.ts = Ts;
+  }
+  if (Nd != 0.0 || Ts != 0.0) {
+    // The dashpots' work, first half: at the rates their forces were found at.
+    y.damped += 0.5 * kick * (Nd * vn + Ts * vt);
+    y.nd = 0.5 * kick * Nd, y.ts = 0.5 * kick * Ts;
   }
   fi.noalias() = (N + Nd) * p.ni + T * p.ti;
   fj.noalias() = (N + Nd) * p.nj + T * p.tj;
@@ -157,7 +171,7 @@ void ContactSystem::begin_cycles(std::span<const BlockView> blocks, int threads)
     y.direction = static_cast<std::int8_t>(r.slide_direction);
     y.intact = r.intact;
     y.shift = 0.0;
-    y.damped = y.nd = y.ts = 0.0;
+    y.damped = y.nd = y.ts = y.slid = y.released = y.attached = 0.0;
     a.bounds[2 * c] = std::isfinite(blocks[r.key.eblock].mass) ? 2.0 : 1.0;
     a.bounds[2 * c + 1] = std::isfinite(blocks[r.key.vblock].mass) ? 2.0 : 1.0;
     if (r.state == ContactState::sliding) {
@@ -166,6 +180,7 @@ void ContactSystem::begin_cycles(std::span<const BlockView> blocks, int threads)
       // an elastic-plastic joint's shear displacement).
       const double f = mohr_coulomb_strength(h.normal_force, h.tan_phi, h.cohesion, r.length);
       y.shift = p.reach0 - r.slide_direction * f / p.ks;
+      y.attached = 0.5 * f * f / p.ks;  // a sliding contact's book stores no shear spring
     }
   }
   // The contacts of each block in the order of the records (vertex side before edge side
@@ -218,7 +233,7 @@ void ContactSystem::cycle_damping(double tau, std::vector<Mat6>& C) {
   }
 }
 
-void ContactSystem::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double h_work,
+void ContactSystem::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double kick,
                                  Eigen::VectorXd& f) {
   const auto n = static_cast<std::ptrdiff_t>(cycles_.springs.size());
   const auto nb = static_cast<std::ptrdiff_t>(cycles_.block_first.size()) - 1;
@@ -247,7 +262,7 @@ void ContactSystem::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd
                           }) - done;
     for (std::ptrdiff_t c0 = lo; c0 < hi; c0 += kGatherChunk) {
       const std::ptrdiff_t c1 = std::min(hi, c0 + kGatherChunk);
-      for (std::ptrdiff_t k = c0; k < c1; ++k) cycle_contact(springs[k], states[k], force, D, V, h_work, dashpots);
+      for (std::ptrdiff_t k = c0; k < c1; ++k) cycle_contact(springs[k], states[k], force, D, V, kick, dashpots);
       for (; next < nb && last_contact[done[next]] < c1; ++next)
         if (first_contact[done[next]] >= lo) gather_block(first, force, done[next], f);
     }
@@ -302,6 +317,7 @@ int ContactSystem::cycle_relinearize(const Eigen::VectorXd& D) {
 CheckResult ContactSystem::end_cycles(std::span<const BlockView> blocks, const Eigen::VectorXd& D) {
   CheckResult res;
   double scale = 0.0;
+  cycle_work_ = {};
   for (std::size_t c = 0; c < records_.work.contacts.size(); ++c) {
     Contact& r = records_.work.contacts[c];
     Hot& h = step_.hot[c];
@@ -333,6 +349,11 @@ CheckResult ContactSystem::end_cycles(std::span<const BlockView> blocks, const E
       res.max_penetration = std::max(res.max_penetration, dn);
       scale = std::max(scale, std::abs(h.normal_force));
     }
+    if (y.state == ContactState::sliding) {
+      // Committed sliding, it stores no shear spring: the stretch the cycles left is released.
+      const double stretch = p.reach0 + p.ti.dot(Di) + p.tj.dot(Dj) - y.shift;
+      cycle_work_.release += 0.5 * p.ks * stretch * stretch;
+    }
     if (y.state == before) continue;
     ++res.state_changes;
     if (before == ContactState::open) ++res.changes.closed;
@@ -342,8 +363,13 @@ CheckResult ContactSystem::end_cycles(std::span<const BlockView> blocks, const E
   }
   step_.force_scale = scale;
   step_.max_penetration = res.max_penetration;
-  cycle_damping_ = 0.0;  // in the records' order: the same sum whatever the threads
-  for (const cycles::State& y : cycles_.states) cycle_damping_ += y.damped;
+  // In the records' order: the same sums whatever the threads.
+  for (const cycles::State& y : cycles_.states) {
+    cycle_work_.damping += y.damped;
+    cycle_work_.friction += y.slid;
+    cycle_work_.release += y.released;
+    cycle_work_.attach += y.attached;
+  }
   return res;
 }
 

@@ -21,6 +21,17 @@
 // before it) F slip. A spring attached during the step has no start energy:
 // its k (s1 - s0)^2/2 - k s0^2/2 is `closing`; a spring detached during the
 // step does no work and loses k s0^2/2: `release`.
+//
+// A step taken in explicit cycles (contact_cycles.cpp) applies each cycle's spring forces
+// over that cycle's motion only, so none of the end-force terms above holds for it: its
+// springs lose nothing to integration (the cycles' own discrete error is O(h) per cycle,
+// left to the residual), a spring attached during the step takes from the blocks only the
+// work after it touched, and one that slid or detached did so at some cycle, with the
+// force and stretch of that cycle. For such a step the book keeps the stored energies at
+// its ends and the creep term, and takes friction, release and attachment from what the
+// cycles summed (CycleWork: friction T x drag of the locking point at each cycle; release,
+// the springs' energy at the cycle they detached; attachment, the energy springs gained
+// without work, booked as a negative `closing`).
 #include <span>
 
 #include "rheodda/contact/contact_system.hpp"
@@ -53,7 +64,9 @@ ContactEnergy EnergyBook::energy(std::span<const Contact> records, std::span<con
     const bool n_end = w.solved_state != ContactState::open;
     const double un0 = 0.5 * w.pn * w.dn0 * w.dn0;
     if (n_start) start += un0;
-    if (n_end) {
+    if (cycled) {
+      if (n_end) e.normal += 0.5 * w.pn * r.penetration * r.penetration;
+    } else if (n_end) {
       const double d = w.dn - w.dn0;
       const double un1 = 0.5 * w.pn * r.penetration * r.penetration;
       if (r.state != ContactState::open)
@@ -75,6 +88,13 @@ ContactEnergy EnergyBook::energy(std::span<const Contact> records, std::span<con
     const bool s_end = w.solved_state == ContactState::locked;
     const double us0 = 0.5 * w.ps * w.st0 * w.st0;
     if (s_start) start += us0;
+    if (cycled) {
+      if (s_end) {
+        e.shear += 0.5 * r.shear_force * r.shear_force / w.ps;
+        e.creep += r.shear_force * (c < creep.size() ? creep[c] : 0.0);
+      }
+      continue;  // friction and dashpots: the cycles' (below)
+    }
     if (s_end) {
       const double F1 = w.solved_shear_force;
       const double s1 = F1 / w.ps;
@@ -99,7 +119,12 @@ ContactEnergy EnergyBook::energy(std::span<const Contact> records, std::span<con
     // Shear dashpot (locked; JointSet::restitution): its end force over the slip.
     e.damping += w.shear_damping * w.slip;
   }
-  e.damping += cycle_damping;  // a step taken in cycles: its dashpots' work (contact_cycles.cpp)
+  if (cycled) {
+    e.damping += cycle.damping;
+    e.friction += cycle.friction;
+    e.release += cycle.release;
+    e.closing -= cycle.attach;
+  }
   e.restart = start - stored_before;
   return e;
 }

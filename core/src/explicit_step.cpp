@@ -246,8 +246,8 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
     if (!frozen[k])
       V.segment<6>(6 * static_cast<Eigen::Index>(k)) =
           ratio * std::sqrt(st.blocks[k].mass_scale / blocks.scale[k]) * st.blocks[k].velocity;
-  // The work the blocks' damping takes (strain damping, local damping), per block: its
-  // forces over the drift that follows, summed over the blocks in order.
+  // The work the blocks' damping takes (strain damping, local damping), per block, summed
+  // over the blocks in order.
   std::vector<double> damped(nb, 0.0);
   // |R| of each block's translation at the step's end, where a stage's rest test asks for it (8).
   const bool force_ratio_wanted = s.settle_force_ratio > 0.0 && settling();
@@ -259,7 +259,7 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
     const double w = static_cast<double>(c) / n;
     const double kick = (c == 0 || c == n) ? 0.5 * h : h;
     const bool drift = c < n;
-    contacts->cycle_forces(Dn, V, h, f);
+    contacts->cycle_forces(Dn, V, kick, f);
     if (bolts) bolt_set.cycle_forces(Dn, V, h, f);  // added per block after the contacts' sum
     const auto kick_block = [&](std::ptrdiff_t k) {
       if (frozen[k]) return;
@@ -270,18 +270,18 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
       const Vec3 strain_force = C[k] * Vk.tail<3>();
       R.tail<3>() -= strain_force;
       if (force_ratio_wanted && c == n) unbalanced[k] = R.head<2>().norm();
-      double taken = 0.0;  // kinetic energy local damping took in this kick
+      // The strain damping's work in this kick: its force times kick (v_before + u)/2, u the
+      // kicked velocity before local damping. Summed over the kicks, these are the scheme's
+      // exact discrete work (the kinetic energy a kick changes is kick R.(v_before + u)/2).
+      const Vec3 v_before = Vk.tail<3>();
+      const Vec6 dv = kick * (M_inv[k] * R);
+      damped[k] += 0.5 * kick * strain_force.dot(2.0 * v_before + dv.tail<3>());
       if (alpha > 0.0) {
-        taken = cycles::damped_kick(blocks.L[k], R, kick, alpha, Vk);  // (7)
+        damped[k] += cycles::damped_kick(blocks.L[k], R, kick, alpha, Vk);  // (7): the kinetic energy it took
       } else {
-        Vk += kick * (M_inv[k] * R);
+        Vk += dv;
       }
-      damped[k] += taken;
-      if (drift) {
-        // The damping forces' work over the drift they lead to (the scheme's discrete work).
-        damped[k] += h * strain_force.dot(Vk.tail<3>());
-        Dk += h * Vk;
-      }
+      if (drift) Dk += h * Vk;
     };
     if (parallel_blocks) {
 #pragma omp parallel for schedule(static) num_threads(threads)

@@ -130,10 +130,11 @@ class ContactSystem {
   /// the rates V (6 per block each), after each contact's state is decided at D: f (6 per
   /// block, set) is the force the contacts resist with (the residual of a block is its
   /// load minus f). Summed per block over its contacts in a fixed order, so the result is
-  /// the same bits whatever the number of threads. The work of the last cycle's dashpot
-  /// forces over the drift since, h V (h: the cycle [time]), is booked per contact for the
-  /// energy balance (energy()).
-  void cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double h, Eigen::VectorXd& f);
+  /// the same bits whatever the number of threads. The dashpots' work is booked per contact
+  /// for the energy balance (energy()): each cycle's dashpot force times kick (its rate +
+  /// the rate at the next cycle)/2, kick the length of the kick the forces make [time] (the
+  /// cycle, half of it at a step's first and last): the scheme's discrete work.
+  void cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double kick, Eigen::VectorXd& f);
   /// At a state of rest D of the cycles: each locked contact whose law is not linear takes
   /// the seam of the stress its spring carries at D (as check does for an iterate of the
   /// implicit step), its cycle spring with it. Returns how many changed.
@@ -297,7 +298,7 @@ class ContactSystem {
   cycles::Arrays cycles_;  ///< the explicit cycles of the step (contact_cycles.cpp)
   int cycle_threads_ = 0;
   bool cycled_ = false;                  ///< the step being solved is taken in cycles (begin_cycles)
-  double cycle_damping_ = 0.0;            ///< the dashpots' work in the cycles of the step (end_cycles)
+  CycleWork cycle_work_;                 ///< what the cycles of the step did to the springs (end_cycles)
   std::vector<char> removed_;  ///< remove_blocks: 1 for a removed block (empty: none removed)
   std::vector<Box> boxes_;
   BroadPhase broad_;

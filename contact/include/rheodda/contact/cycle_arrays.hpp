@@ -36,8 +36,12 @@ struct Spring {
 /// One contact's state, changed cycle by cycle.
 struct State {
   double shift = 0.0;   ///< how far the cycles dragged the locking point along the edge [length]
-  double nd = 0.0, ts = 0.0;  ///< its dashpots' forces at the last cycle [force per unit thickness]
+  double nd = 0.0, ts = 0.0;  ///< its dashpots' forces at the last cycle times half that cycle's kick,
+                              ///< for their work at the next cycle's rates [force x time per unit thickness]
   double damped = 0.0;  ///< work its dashpots took over the cycles [force x length per unit thickness]
+  double slid = 0.0;    ///< friction's work over the cycles: T times the drag of the locking point [force x length per unit thickness]
+  double released = 0.0;  ///< its springs' energy at the cycles it opened [force x length per unit thickness]
+  double attached = 0.0;  ///< its springs' energy at the cycles they attached without work [force x length per unit thickness]
   ContactState state{};
   std::int8_t direction = 0;  ///< slide direction (+1 / -1) while sliding
   bool intact = true;         ///< cohesion and tensile strength still act

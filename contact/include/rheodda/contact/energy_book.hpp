@@ -31,12 +31,30 @@ struct StepWork {
   double solved_shear_force = 0.0;  ///< the shear spring's end force of the solve (locked) [force/length]
 };
 
+/// What the explicit cycles of a step did to the contacts' springs, summed over its cycles
+/// and contacts (contact_cycles.cpp), in place of what the step's end forces over its end
+/// motion give for a step solved at once [force x length per unit thickness].
+struct CycleWork {
+  double damping = 0.0;   ///< the dashpots' work: each cycle's force over the drift it leads to
+  double friction = 0.0;  ///< the shear force times the locking point's drag, cycle by cycle
+  double release = 0.0;   ///< springs' energy where they detached: at the cycle a contact
+                          ///< opened, and a sliding contact's shear spring at the step's end
+                          ///< (the committed sliding state stores none)
+  double attach = 0.0;    ///< springs' energy where they attached without work: the normal
+                          ///< spring's overlap at the cycle a contact closed, and a contact
+                          ///< sliding at the step start, whose shear spring starts stretched
+                          ///< by its friction force
+};
+
 /// The energy terms of the last accepted step, kept beside the records.
 struct EnergyBook {
   std::vector<StepWork> committed;  ///< of the last accepted step, parallel to its records
   std::vector<StepWork> step;       ///< of the step being committed (end_step)
   double stored_before = 0.0;       ///< stored energy before the last accepted step [force x length]
-  double cycle_damping = 0.0;       ///< the last accepted step's dashpot work in its cycles [force x length]
+  /// The last accepted step was taken in cycles: its springs' flows are `cycle`'s, and
+  /// the springs attached through it lose nothing to integration (contact_energy.cpp).
+  bool cycled = false;
+  CycleWork cycle;
 
   /// Sum of p_n d_n^2/2 + F^2/(2 k_s) over records with their springs [force x length].
   static double stored_energy(std::span<const Contact> records, std::span<const StepWork> work);

@@ -46,8 +46,8 @@ class ContactAdapter final : public ContactModel {
   }
   void cycle_stiffness(std::vector<Mat6>& K) const override { system_.cycle_stiffness(K); }
   void cycle_damping(double tau, std::vector<Mat6>& C) override { system_.cycle_damping(tau, C); }
-  void cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double h, Eigen::VectorXd& f) override {
-    system_.cycle_forces(D, V, h, f);
+  void cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double kick, Eigen::VectorXd& f) override {
+    system_.cycle_forces(D, V, kick, f);
   }
   int cycle_relinearize(const Eigen::VectorXd& D) override { return system_.cycle_relinearize(D); }
   ContactCheck end_cycles(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) override;

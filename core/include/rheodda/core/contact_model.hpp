@@ -83,10 +83,12 @@ class ContactModel {
   /// [tau: time]; adds a bound of all the dashpots on each block to C.
   virtual void cycle_damping(double /*tau*/, std::vector<Mat6>& /*C*/) {}
   /// The contacts' resisting forces f (6 per block, set) at the displacements D since the
-  /// step start and rates V, each contact's state decided at D; h: the cycle, the drift that
-  /// led to D (for the work the dashpots took over it) [time].
-  virtual void cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double h, Eigen::VectorXd& f) {
-    (void)V, (void)h;
+  /// step start and rates V, each contact's state decided at D; kick: the length of the kick
+  /// these forces make [time] (the cycle, half of it at the step's first and last), for the
+  /// dashpots' work: each force times kick (its rate + the rate after the kick)/2, the
+  /// scheme's discrete work.
+  virtual void cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double kick, Eigen::VectorXd& f) {
+    (void)V, (void)kick;
     f = Eigen::VectorXd::Zero(D.size());
   }
   /// Between cycles at a state of rest D (the static steps by cycles): each contact whose
