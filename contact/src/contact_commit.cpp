@@ -93,8 +93,8 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
     energy_.step[c] = {h.pn, h.ps, h.dn0, dn, h.dt0, slip, h.start_state,  // energy balance
                      r.slide_direction * mohr_coulomb_strength(h.assembled_normal_force, h.tan_phi, h.cohesion, r.length),
                      // (the dashpots of a step taken in cycles: booked cycle by cycle, contact_cycles.cpp)
-                     !cycled_ && r.state != ContactState::open ? normal_dashpot(c) * (dn - h.dn_ref) : 0.0,
-                     !cycled_ && r.state == ContactState::locked ? shear_dashpot(c) * slip : 0.0,
+                     !cycles_.active && r.state != ContactState::open ? normal_dashpot(c) * (dn - h.dn_ref) : 0.0,
+                     !cycles_.active && r.state == ContactState::locked ? shear_dashpot(c) * slip : 0.0,
                      r.state, 0.0};
     switch (r.state) {
       case ContactState::open:
@@ -176,8 +176,8 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
     if (r.rheology >= 0 && r.state != ContactState::locked) records_.work.rheology[r.rheology] = {};
   records_.committed.swap(records_.work);
   energy_.committed.swap(energy_.step);  // energy balance
-  energy_.cycled = cycled_;
-  energy_.cycle = cycled_ ? cycle_work_ : CycleWork{};
+  energy_.cycled = cycles_.active;
+  energy_.cycle = cycles_.active ? cycles_.work : CycleWork{};
   if (creep_error_wanted_) {
     // The step-start records (now in the working arrays) are the estimate's
     // start, and what retract_step swaps back.

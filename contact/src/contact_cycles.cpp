@@ -140,15 +140,13 @@ inline void gather_block(const int* first, const Vec6* force, std::ptrdiff_t b, 
 }  // namespace
 
 void ContactSystem::begin_cycles(std::span<const BlockView> blocks, int threads) {
-  const int block_count = static_cast<int>(blocks.size());
-  cycle_threads_ = threads;
-  cycled_ = true;
+  ExplicitCycles& a = cycles_;
+  a.threads = threads;
+  a.active = true;
   const std::size_t n = records_.work.contacts.size();
-  cycles::Arrays& a = cycles_;
   a.springs.resize(n);
   a.states.resize(n);
   a.bounds.resize(2 * n);
-  a.force.assign(2 * n, Vec6::Zero());
   for (std::size_t c = 0; c < n; ++c) {
     const Contact& r = records_.work.contacts[c];
     const Hot& h = step_.hot[c];
@@ -183,35 +181,42 @@ void ContactSystem::begin_cycles(std::span<const BlockView> blocks, int threads)
       y.attached = 0.5 * f * f / p.ks;  // a sliding contact's book stores no shear spring
     }
   }
+  a.order_by_block(records_.work.contacts, static_cast<int>(blocks.size()));
+}
+
+void ExplicitCycles::order_by_block(std::span<const Contact> work, int block_count) {
+  const std::size_t n = work.size();
+  force.assign(2 * n, Vec6::Zero());
   // The contacts of each block in the order of the records (vertex side before edge side
   // where a contact has a block on both): the gather's fixed order.
-  const std::vector<Contact>& work = records_.work.contacts;
-  a.block_first.assign(static_cast<std::size_t>(block_count) + 1, 0);
-  for (const Contact& r : work) ++a.block_first[r.key.vblock + 1], ++a.block_first[r.key.eblock + 1];
-  for (int b = 0; b < block_count; ++b) a.block_first[b + 1] += a.block_first[b];
-  a.next.assign(a.block_first.begin(), a.block_first.end() - 1);
+  block_first.assign(static_cast<std::size_t>(block_count) + 1, 0);
+  for (const Contact& r : work) ++block_first[r.key.vblock + 1], ++block_first[r.key.eblock + 1];
+  for (int b = 0; b < block_count; ++b) block_first[b + 1] += block_first[b];
+  next.assign(block_first.begin(), block_first.end() - 1);
   for (std::size_t c = 0; c < n; ++c) {
-    a.springs[c].slot_i = a.next[work[c].key.vblock]++;
-    a.springs[c].slot_j = a.next[work[c].key.eblock]++;
+    springs[c].slot_i = next[work[c].key.vblock]++;
+    springs[c].slot_j = next[work[c].key.eblock]++;
   }
   // The first and last contact on each block, and the blocks by their last contact: the
   // order in which the cycles can gather them.
-  a.block_first_contact.assign(static_cast<std::size_t>(block_count), static_cast<int>(n));
-  a.block_last_contact.assign(static_cast<std::size_t>(block_count), -1);
+  block_first_contact.assign(static_cast<std::size_t>(block_count), static_cast<int>(n));
+  block_last_contact.assign(static_cast<std::size_t>(block_count), -1);
   for (std::size_t c = n; c-- > 0;)
-    for (const int b : {work[c].key.vblock, work[c].key.eblock}) a.block_first_contact[b] = static_cast<int>(c);
+    for (const int b : {work[c].key.vblock, work[c].key.eblock}) block_first_contact[b] = static_cast<int>(c);
   for (std::size_t c = 0; c < n; ++c)
-    for (const int b : {work[c].key.vblock, work[c].key.eblock}) a.block_last_contact[b] = static_cast<int>(c);
-  a.completion.resize(static_cast<std::size_t>(block_count));
-  for (int b = 0; b < block_count; ++b) a.completion[b] = b;
-  std::stable_sort(a.completion.begin(), a.completion.end(),
-                   [&](int x, int y) { return a.block_last_contact[x] < a.block_last_contact[y]; });
+    for (const int b : {work[c].key.vblock, work[c].key.eblock}) block_last_contact[b] = static_cast<int>(c);
+  completion.resize(static_cast<std::size_t>(block_count));
+  for (int b = 0; b < block_count; ++b) completion[b] = b;
+  std::stable_sort(completion.begin(), completion.end(),
+                   [&](int x, int y) { return block_last_contact[x] < block_last_contact[y]; });
 }
 
-void ContactSystem::cycle_stiffness(std::vector<Mat6>& K) const {
-  for (std::size_t c = 0; c < cycles_.springs.size(); ++c) {
-    const cycles::Spring& p = cycles_.springs[c];
-    const double bi = cycles_.bounds[2 * c], bj = cycles_.bounds[2 * c + 1];
+void ContactSystem::cycle_stiffness(std::vector<Mat6>& K) const { cycles_.add_stiffness(K); }
+
+void ExplicitCycles::add_stiffness(std::vector<Mat6>& K) const {
+  for (std::size_t c = 0; c < springs.size(); ++c) {
+    const cycles::Spring& p = springs[c];
+    const double bi = bounds[2 * c], bj = bounds[2 * c + 1];
     K[p.i].noalias() += bi * (p.pn * p.ni * p.ni.transpose() + p.ks * p.ti * p.ti.transpose());
     K[p.j].noalias() += bj * (p.pn * p.nj * p.nj.transpose() + p.ks * p.tj * p.tj.transpose());
   }
@@ -235,17 +240,21 @@ void ContactSystem::cycle_damping(double tau, std::vector<Mat6>& C) {
 
 void ContactSystem::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double kick,
                                  Eigen::VectorXd& f) {
-  const auto n = static_cast<std::ptrdiff_t>(cycles_.springs.size());
-  const auto nb = static_cast<std::ptrdiff_t>(cycles_.block_first.size()) - 1;
-  const bool dashpots = step_.dynamic;
-  const int threads = thread_count(cycle_threads_);
-  const cycles::Spring* springs = cycles_.springs.data();
-  cycles::State* states = cycles_.states.data();
-  Vec6* force = cycles_.force.data();
-  const int* first = cycles_.block_first.data();
-  const int* first_contact = cycles_.block_first_contact.data();
-  const int* last_contact = cycles_.block_last_contact.data();
-  const int* done = cycles_.completion.data();
+  cycles_.forces(D, V, kick, step_.dynamic, f);
+}
+
+void ExplicitCycles::forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double kick, bool dashpots,
+                            Eigen::VectorXd& f) {
+  const auto n = static_cast<std::ptrdiff_t>(springs.size());
+  const auto nb = static_cast<std::ptrdiff_t>(block_first.size()) - 1;
+  const int thread_total = thread_count(threads);
+  const cycles::Spring* spring = springs.data();
+  cycles::State* state = states.data();
+  Vec6* slot = force.data();
+  const int* first = block_first.data();
+  const int* first_contact = block_first_contact.data();
+  const int* last_contact = block_last_contact.data();
+  const int* done = completion.data();
   f.resize(6 * nb);
   // Each thread works a contiguous range of the contacts, in chunks, and gathers a block as
   // soon as the last contact on it is done, while its slots are still in the cache; a
@@ -257,14 +266,14 @@ void ContactSystem::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd
   const auto work_range = [&](int nt, int t) {
     const std::ptrdiff_t lo = n * t / nt, hi = n * (t + 1) / nt;
     // The blocks whose last contact is in [lo, hi), by their last contact.
-    std::ptrdiff_t next = std::lower_bound(done, done + nb, lo, [&](int b, std::ptrdiff_t c) {
-                            return last_contact[b] < c;
-                          }) - done;
+    std::ptrdiff_t up_to = std::lower_bound(done, done + nb, lo, [&](int b, std::ptrdiff_t c) {
+                             return last_contact[b] < c;
+                           }) - done;
     for (std::ptrdiff_t c0 = lo; c0 < hi; c0 += kGatherChunk) {
       const std::ptrdiff_t c1 = std::min(hi, c0 + kGatherChunk);
-      for (std::ptrdiff_t k = c0; k < c1; ++k) cycle_contact(springs[k], states[k], force, D, V, kick, dashpots);
-      for (; next < nb && last_contact[done[next]] < c1; ++next)
-        if (first_contact[done[next]] >= lo) gather_block(first, force, done[next], f);
+      for (std::ptrdiff_t k = c0; k < c1; ++k) cycle_contact(spring[k], state[k], slot, D, V, kick, dashpots);
+      for (; up_to < nb && last_contact[done[up_to]] < c1; ++up_to)
+        if (first_contact[done[up_to]] >= lo) gather_block(first, slot, done[up_to], f);
     }
   };
   const auto gather_left = [&](std::ptrdiff_t b, int nt) {
@@ -274,10 +283,10 @@ void ContactSystem::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd
       const std::ptrdiff_t split = n * u / nt;
       spans = first_contact[b] < split && last_contact[b] >= split;
     }
-    if (spans) gather_block(first, force, b, f);
+    if (spans) gather_block(first, slot, b, f);
   };
-  if (threads > 1 && n >= kParallelContacts) {
-#pragma omp parallel num_threads(threads)
+  if (thread_total > 1 && n >= kParallelContacts) {
+#pragma omp parallel num_threads(thread_total)
     {
       const int nt = omp_get_num_threads();
       work_range(nt, omp_get_thread_num());
@@ -317,7 +326,7 @@ int ContactSystem::cycle_relinearize(const Eigen::VectorXd& D) {
 CheckResult ContactSystem::end_cycles(std::span<const BlockView> blocks, const Eigen::VectorXd& D) {
   CheckResult res;
   double scale = 0.0;
-  cycle_work_ = {};
+  cycles_.work = {};
   for (std::size_t c = 0; c < records_.work.contacts.size(); ++c) {
     Contact& r = records_.work.contacts[c];
     Hot& h = step_.hot[c];
@@ -352,7 +361,7 @@ CheckResult ContactSystem::end_cycles(std::span<const BlockView> blocks, const E
     if (y.state == ContactState::sliding) {
       // Committed sliding, it stores no shear spring: the stretch the cycles left is released.
       const double stretch = p.reach0 + p.ti.dot(Di) + p.tj.dot(Dj) - y.shift;
-      cycle_work_.release += 0.5 * p.ks * stretch * stretch;
+      cycles_.work.release += 0.5 * p.ks * stretch * stretch;
     }
     if (y.state == before) continue;
     ++res.state_changes;
@@ -363,14 +372,25 @@ CheckResult ContactSystem::end_cycles(std::span<const BlockView> blocks, const E
   }
   step_.force_scale = scale;
   step_.max_penetration = res.max_penetration;
-  // In the records' order: the same sums whatever the threads.
-  for (const cycles::State& y : cycles_.states) {
-    cycle_work_.damping += y.damped;
-    cycle_work_.friction += y.slid;
-    cycle_work_.release += y.released;
-    cycle_work_.attach += y.attached;
-  }
+  // What the cycles did to the springs, with what end_cycles added above (the stretch of
+  // the springs committed sliding).
+  const CycleWork summed = cycles_.summed();
+  cycles_.work.damping += summed.damping;
+  cycles_.work.friction += summed.friction;
+  cycles_.work.release += summed.release;
+  cycles_.work.attach += summed.attach;
   return res;
+}
+
+CycleWork ExplicitCycles::summed() const {
+  CycleWork sum;  // in the records' order: the same sums whatever the threads
+  for (const cycles::State& y : states) {
+    sum.damping += y.damped;
+    sum.friction += y.slid;
+    sum.release += y.released;
+    sum.attach += y.attached;
+  }
+  return sum;
 }
 
 }  // namespace rheodda::contact

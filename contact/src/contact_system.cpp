@@ -7,7 +7,8 @@
 // (Richardson extrapolation), contact_energy.cpp (energy balance),
 // contact_creep_error.cpp (the creep error estimate and retraction),
 // contact_state.cpp (the state between steps), contact_edits.cpp (model edits),
-// contact_cycles.cpp (explicit cycles), contact_record.cpp (output names).
+// contact_cycles.cpp (explicit cycles), contact_record.cpp (output names),
+// contact_records.cpp (the records of a saved state, checked).
 #include "rheodda/contact/contact_system.hpp"
 
 #include <algorithm>

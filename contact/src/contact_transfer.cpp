@@ -18,8 +18,7 @@ namespace rheodda::contact {
 
 void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepContext& context) {
   step_.dynamic = context.dynamic;
-  cycled_ = false;
-  cycle_work_ = {};
+  cycles_.reset();
   creep_error_wanted_ = context.creep_error_wanted;
   start_.retractable = false;
   const int nb = static_cast<int>(blocks.size());

@@ -20,11 +20,7 @@ contact::ContactSettings contact_settings_for(const Model& model, double penalty
 }
 
 void ContactAdapter::begin_step(std::span<const contact::BlockView> blocks, const StepContext& ctx) {
-  system_.begin_step(blocks, {.max_displacement = ctx.max_displacement,
-                              .dt = ctx.dt,
-                              .dynamic = ctx.dynamic,
-                              .inertia = ctx.inertia,
-                              .creep_error_wanted = ctx.creep_error_wanted});
+  system_.begin_step(blocks, ctx);  // what the contacts need of the step (contact_model.hpp)
 }
 
 void ContactAdapter::assemble(std::span<const contact::BlockView> blocks,

@@ -90,6 +90,16 @@ struct Engine::Impl {
   /// max_displacement_ratio w0 where that is below search_floor, else adapted to the motion
   /// (search_reach(), docs/reference/engine.md, "Contact search reach") [length].
   double search_disp = 0.0;
+  /// The context of the step starting now, of size dt [time] (contact_model.hpp): its index,
+  /// time and search distance; dynamic, inertia and creep_error_wanted at their defaults.
+  StepContext step_context(double dt) const {
+    StepContext ctx;
+    ctx.step = st.step;
+    ctx.time = st.time;
+    ctx.dt = dt;
+    ctx.max_displacement = search_disp;
+    return ctx;
+  }
   double search_floor = 0.0;  // kSearchFloor x the median block size [length]
   double search_reach(const Eigen::VectorXd& d) const;
   double fixed_k = 0.0;                   // fixed point penalty [force/length]

@@ -164,8 +164,7 @@ void Engine::Impl::cycle_block_pass(const std::vector<Mat6>& bound, CycleBlocks&
 }
 
 Engine::StableCycle Engine::Impl::stable_cycle() {
-  StepContext ctx{st.step, st.time, model.settings.dt, search_disp};
-  contacts->begin_step(views, ctx);
+  contacts->begin_step(views, step_context(model.settings.dt));
   if (!model.bolts.empty()) bolt_set.begin_step(model, st.blocks, st.bolts, model.settings.dt);
   StableCycle out;
   try {
@@ -186,8 +185,7 @@ std::vector<double> Engine::Impl::block_cycles() {
   // cycle_blocks keeps each block's cycle (3) to itself; a second pass over its blocks, on
   // the same bound and masses, gives them.
   std::vector<double> h(st.blocks.size(), std::numeric_limits<double>::infinity());
-  StepContext ctx{st.step, st.time, model.settings.dt, search_disp};
-  contacts->begin_step(views, ctx);
+  contacts->begin_step(views, step_context(model.settings.dt));
   if (!model.bolts.empty()) bolt_set.begin_step(model, st.blocks, st.bolts, model.settings.dt);
   try {
     if (contacts->begin_cycles(views, model.settings.threads)) {

@@ -58,7 +58,7 @@ class Engine::Impl::Problem final : public StepProblem {
 };
 
 Engine::Impl::Trial Engine::Impl::solve_trial(double dt, bool creep_error_wanted, StepReport& rep) {
-  StepContext ctx{st.step, st.time, dt, search_disp};
+  StepContext ctx = step_context(dt);
   ctx.creep_error_wanted = creep_error_wanted;
   ctx.dynamic = dynamic_now();
   ctx.inertia = 1.0 / (newmark().beta * dt * dt);  // as assemble_blocks adds M/(beta dt^2)

@@ -7,6 +7,7 @@
 // by a trial.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -14,6 +15,8 @@
 #include "rheodda/laws/contact_rheology.hpp"
 
 namespace rheodda::contact {
+
+struct ContactSystemState;
 
 /// One set of contact records with what they own, parallel arrays.
 struct RecordSet {
@@ -39,6 +42,17 @@ struct ContactRecords {
   RecordSet work;       ///< the step being solved's (trial states); empty between steps
   std::vector<CreepCounters> counters;  ///< per joint set, accepted steps only
   std::uint64_t next_id = 1;            ///< id of the next new contact
+
+  /// The committed records with their creep histories and increments, the counters
+  /// and the next id into a saved state (ContactSystem::state; contact_records.cpp).
+  void save(ContactSystemState& s) const;
+  /// Throws std::invalid_argument ("contact state: ...") unless the records of the saved
+  /// state `s` can be those of a system with `joint_sets` joint sets: a counter per joint
+  /// set, a creep increment per contact (or none), each contact's joint set, rheology
+  /// slot and id in range, the contacts sorted by key.
+  static void check(const ContactSystemState& s, std::size_t joint_sets);
+  /// Takes up the records of a saved state that check accepted, as the committed ones.
+  void restore(const ContactSystemState& s);
 };
 
 }  // namespace rheodda::contact

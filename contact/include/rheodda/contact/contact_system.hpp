@@ -16,7 +16,7 @@
 // histories and increments (contact_records.hpp; one record: contact_record.hpp),
 // the step's hot arrays (step_arrays.hpp), the energy book (energy_book.hpp), the
 // creep error estimate and what a retraction restores (creep_error.hpp), the
-// explicit cycles' arrays (cycle_arrays.hpp), and the state between two steps
+// explicit cycles of the step (explicit_cycles.hpp), and the state between two steps
 // that a resumed run restores (contact_system_state.hpp).
 //
 // Rheology (docs/reference/rheology-in-dda.md). A contact on a joint set with a law owns
@@ -49,9 +49,9 @@
 #include "rheodda/contact/contact_records.hpp"
 #include "rheodda/contact/contact_system_state.hpp"
 #include "rheodda/contact/creep_error.hpp"
-#include "rheodda/contact/cycle_arrays.hpp"
 #include "rheodda/contact/detection.hpp"
 #include "rheodda/contact/energy_book.hpp"
+#include "rheodda/contact/explicit_cycles.hpp"
 #include "rheodda/contact/joint_set.hpp"
 #include "rheodda/contact/kinematics.hpp"
 #include "rheodda/contact/step_arrays.hpp"
@@ -295,10 +295,7 @@ class ContactSystem {
   CreepErrorEstimate creep_error_;   ///< the estimate of the last accepted step
   StepStart start_;                  ///< what its commit replaced, for retract_step
   std::vector<ContactKey> previous_keys_;
-  cycles::Arrays cycles_;  ///< the explicit cycles of the step (contact_cycles.cpp)
-  int cycle_threads_ = 0;
-  bool cycled_ = false;                  ///< the step being solved is taken in cycles (begin_cycles)
-  CycleWork cycle_work_;                 ///< what the cycles of the step did to the springs (end_cycles)
+  ExplicitCycles cycles_;  ///< the explicit cycles of the step being solved (explicit_cycles.hpp)
   std::vector<char> removed_;  ///< remove_blocks: 1 for a removed block (empty: none removed)
   std::vector<Box> boxes_;
   BroadPhase broad_;

@@ -13,6 +13,7 @@
 #include "rheodda/contact/contact_energy.hpp"
 #include "rheodda/contact/joint_set.hpp"
 #include "rheodda/contact/kinematics.hpp"
+#include "rheodda/contact/step_context.hpp"
 
 namespace rheodda::core {
 
@@ -22,20 +23,14 @@ using Mat6 = contact::Mat6;
 /// accepted step and its flows; docs/reference/engine.md, "Energy balance").
 using ContactEnergy = contact::ContactEnergy;
 
-/// Facts of the step being solved.
-struct StepContext {
-  int step = 0;         ///< index of the step being solved (0-based)
-  double time = 0.0;    ///< time at the start of the step [time]
-  double dt = 0.0;      ///< step size [time]
-  double max_displacement = 0.0;  ///< allowed displacement per step (max_displacement_ratio * half model size) [length]
-  bool creep_error_wanted = false;  ///< the host will ask creep_error_estimate() after end_step
-  /// The step carries velocity (a dynamic analysis, or a dynamic settling
-  /// stage): contact dashpots act, and the contacts follow their dynamic rules
-  /// (ContactSettings::lock_at_touch, reversal_at_normal_resolution) where set.
-  bool dynamic = true;
-  /// Inertia stiffness per unit mass the step adds to each block, 1/(beta dt^2)
-  /// of the Newmark scheme (Settings::time_integration) [1/time^2].
-  double inertia = 0.0;
+/// Facts of the step being solved: what the contacts need of it (the step size,
+/// the search distance, dynamic or static, the Newmark inertia 1/(beta dt^2) of
+/// Settings::time_integration, whether the creep error is wanted; stated once, in
+/// contact/step_context.hpp) and which step it is. ContactAdapter hands it to
+/// contact::ContactSystem::begin_step as it is.
+struct StepContext : contact::StepContext {
+  int step = 0;       ///< index of the step being solved (0-based)
+  double time = 0.0;  ///< time at the start of the step [time]
 };
 
 /// What the open-close iteration changed, by kind, and the result of one check

@@ -1,18 +1,22 @@
-// What the explicit cycles of a step read and write per contact (contact_cycles.cpp;
-// docs/reference/explicit-step.md), apart from the contact records: a cycle visits every
-// contact, so what it reads lies in one contiguous array, built by begin_cycles from the
-// records and their step-start linearization, and nothing else of the records is touched
-// until end_cycles. Internal to ContactSystem.
+// The explicit cycles of a step (contact_cycles.cpp; docs/reference/explicit-step.md): what
+// they read and write per contact, apart from the contact records, and what the step keeps
+// of them. A cycle visits every contact, so what it reads lies in one contiguous array, built
+// by ContactSystem::begin_cycles from the records and their step-start linearization, and
+// nothing else of the records is touched until end_cycles. Internal to ContactSystem, which
+// holds one ExplicitCycles for the step being solved.
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
+#include "rheodda/contact/energy_book.hpp"
 #include "rheodda/contact/kinematics.hpp"
 
 namespace rheodda::contact {
 
 enum class ContactState : std::uint8_t;
+struct Contact;
 
 namespace cycles {
 
@@ -30,7 +34,7 @@ struct Spring {
   double tan_phi = 0.0, tan_phi_residual = 0.0;    ///< [-]
   double cn = 0.0, cs = 0.0;  ///< normal and shear dashpots [force time / length^2 per unit thickness]
   int i = 0, j = 0;           ///< vertex block, edge block
-  int slot_i = 0, slot_j = 0; ///< where its forces on them go in Arrays::force
+  int slot_i = 0, slot_j = 0; ///< where its forces on them go in ExplicitCycles::force
 };
 
 /// One contact's state, changed cycle by cycle.
@@ -47,10 +51,19 @@ struct State {
   bool intact = true;         ///< cohesion and tensile strength still act
 };
 
-/// The cycles' arrays, in the order of the contact records.
-struct Arrays {
-  std::vector<Spring> springs;
-  std::vector<State> states;
+}  // namespace cycles
+
+/// The explicit cycles of the step being solved: whether it is taken in cycles, on how many
+/// threads, the cycles' arrays in the order of the contact records, and what they did to the
+/// springs. What needs no more than these arrays is done here; ContactSystem fills
+/// the springs and states from its records and hands the states back to them.
+struct ExplicitCycles {
+  bool active = false;  ///< the step being solved is taken in cycles (begin_cycles)
+  int threads = 0;      ///< OpenMP threads of the cycles (0: OpenMP's default)
+  CycleWork work;       ///< what the cycles of the step did to the springs (end_cycles)
+
+  std::vector<cycles::Spring> springs;
+  std::vector<cycles::State> states;
   /// Factors of the stiffness bound on the vertex and edge blocks (2 per contact): 2, or 1
   /// where the other block does not move (held: infinite mass), so the spring acts on one
   /// block alone.
@@ -63,7 +76,24 @@ struct Arrays {
   /// Per block the first and the last contact on it (records' order; none: the contact
   /// count and -1), and the blocks by their last contact (completion order).
   std::vector<int> block_first_contact, block_last_contact, completion;
+
+  /// Into a step (begin_step): not in cycles, no work.
+  void reset() {
+    active = false;
+    work = {};
+  }
+  /// Lays out the force slots and the gather's order for the records `work` (the contacts in
+  /// the order of the springs) on `block_count` blocks.
+  void order_by_block(std::span<const Contact> work, int block_count);
+  /// ContactSystem::cycle_stiffness: the springs' bound on each block into K.
+  void add_stiffness(std::vector<Mat6>& K) const;
+  /// ContactSystem::cycle_forces: one cycle, every contact's state decided at D and the
+  /// forces f gathered per block; `kick`: the length of the kick the forces make (the
+  /// dashpots' work, ContactSystem::cycle_forces); `dashpots`: the step is dynamic.
+  void forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double kick, bool dashpots, Eigen::VectorXd& f);
+  /// The contacts' cycle work (dashpots, friction, springs detached and attached), summed in
+  /// the records' order (the same sums whatever the threads).
+  CycleWork summed() const;
 };
 
-}  // namespace cycles
 }  // namespace rheodda::contact
