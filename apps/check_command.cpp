@@ -150,8 +150,8 @@ std::string explicit_cycle_text(const scene::SceneDescription& s) {
     return statics + fmt::format("  integrator explicit: nothing stiff holds a block at the start; its cycles are "
                                  "set once contacts close\n");
   // The dynamic steps are the analysis's own in a dynamic analysis, the stages' in a static one.
-  const bool staged = s.analysis.type != scene::AnalysisType::dynamic_analysis && s.analysis.settle;
-  const double dt = staged ? s.analysis.settle->dt : s.analysis.dt;
+  const bool staged = s.analysis.type != scene::AnalysisType::dynamic_analysis && s.analysis.has_settle();
+  const double dt = staged ? s.analysis.settle.dt : s.analysis.dt;
   const auto cycles = static_cast<long long>(std::ceil(dt / c.cycle - 1e-9));
   std::string text = fmt::format(
       "  integrator explicit: dynamic steps in cycles of {:.3g} {} (explicit_safety {:g} of the stable cycle at the "

@@ -191,8 +191,8 @@ Settled settle(const scene::BuiltScene& built) {
   core::Model m = built.model;
   m.settings.creep_tolerance = 0.0;
   m.settings.step_tolerance = 0.0;
-  const bool own = m.settings.settle_until > 0.0;
-  const double end = own ? m.settings.settle_until : kSettleEnd;
+  const bool own = m.settings.settle.until > 0.0;
+  const double end = own ? m.settings.settle.until : kSettleEnd;
   if (!own) {
     m.settings.max_displacement_ratio = kSettleMaxDisplacementRatio;
     m.settings.dt = kSettleStep;
@@ -201,8 +201,8 @@ Settled settle(const scene::BuiltScene& built) {
   core::ContactAdapter adapter(contacts);
   core::Engine engine(m, adapter);
   engine.run_until(end);
-  return Settled{engine.save(), contacts, engine.step_count(), own ? m.settings.settle_dt : kSettleStep, end,
-                 own ? m.settings.settle_max_displacement_ratio : kSettleMaxDisplacementRatio};
+  return Settled{engine.save(), contacts, engine.step_count(), own ? m.settings.settle.dt : kSettleStep, end,
+                 own ? m.settings.settle.max_displacement_ratio : kSettleMaxDisplacementRatio};
 }
 
 struct CreepRun {

@@ -45,6 +45,17 @@ std::vector<ContactSettingSpec> declare_contact_settings() {
                       "(anti-chattering)"));
   add(declare_setting("max_refinements", "–", {0.0, false, 1000.0, false}, &CS::max_refinements,
                       "friction refinements (see `friction_tolerance`) one contact may ask for in one step"));
+  add(declare_setting("stick_keeps_force", "–", {}, &CS::stick_keeps_force,
+                      "`true`: a sliding contact that sticks keeps the friction force it slid against in its "
+                      "shear spring (an elastic–plastic joint); `false`: the spring restarts unstretched (Shi's "
+                      "rule). Fewer iterates and cuts on walls and slopes at their friction limit, but a "
+                      "creeping slope at its limit then takes step-dependent paths "
+                      "(docs/notes/contact-solves.md, \"Stick and slip\")"))
+      .host_default =
+      "`true` in a dynamic analysis (Shi's rule ratchets a slope that stands down its friction "
+      "limit at small steps) and in a static one with collapse stages (`settle.collapse_dt`: "
+      "the static steps keep the stages' rule, docs/reference/engine.md \"Collapse stages\"), `false` in "
+      "other static ones";
   add(declare_setting("penalty_raise", "–", {1.0, false, kInf, false}, &CS::penalty_raise,
                       "factor on the penalty when a step's largest penetration exceeds `penetration_ratio` × "
                       "the half model size"));

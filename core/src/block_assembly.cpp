@@ -49,7 +49,7 @@ void Engine::Impl::assemble_blocks(double dt, double t_end, std::vector<Mat6>& d
       K.block<3, 3>(3, 3) += (tau / dt) * g.S * elastic[b.material];
     // Body force rho g over the area; the other rows vanish about the centroid.
     F.setZero();
-    // With a gravity ramp (Settings::settle_gravity_ramp) its value at the
+    // With a gravity ramp (SettleStage::gravity_ramp) its value at the
     // step's end, where the step's equilibrium is written.
     const Vec2 gravity = s.gravity_at(t_end);
     F(0) = rho * gravity.x() * g.S;

@@ -1,10 +1,10 @@
 // Dynamic stages of a static analysis (docs/reference/engine.md, "Dynamic stages"): the
-// settling stage at the start (Settings::settle_until) and the stages that take
-// a collapse dynamically (Settings::collapse_dt). A stage carries velocity with
-// settle_dt and settle_max_displacement_ratio; it ends at rest - after a step whose kinetic
-// energy is below Settings::settle_rest_tolerance of the work gravity and the
-// loads did over the stage (with the explicit step and Settings::settle_force_ratio: after a
-// step whose unbalanced-force ratio is below it) - or at its longest, settle_until from its start.
+// settling stage at the start (SettleStage::until) and the stages that take
+// a collapse dynamically (SettleStage::collapse_dt). A stage carries velocity with
+// settle.dt and settle.max_displacement_ratio; it ends at rest - after a step whose kinetic
+// energy is below SettleStage::rest_tolerance of the work gravity and the
+// loads did over the stage (with the explicit step and SettleStage::force_ratio: after a
+// step whose unbalanced-force ratio is below it) - or at its longest, settle.until from its start.
 // Each stage is recorded as a StageEvent when it ends.
 #include <algorithm>
 #include <cmath>
@@ -68,14 +68,14 @@ void Engine::Impl::update_stage(const StepReport& rep) {
   // stage; a stage that releases stored energy (a model edit that excavates, a mechanism
   // whose failing contacts let their springs go) can move while gravity does little or
   // negative work, and would never be at rest against it.
-  const double ramp_end = s.settle_gravity_ramp;
+  const double ramp_end = s.settle.gravity_ramp;
   const double not_before = std::max(ramp_end, g.not_before);
   const bool late_enough = st.time >= not_before - 1e-12 * std::max(1.0, std::abs(not_before));
   const double reference = std::max({e.work, e.energy_dissipated, e.kinetic_energy_peak});
-  // An explicit step with settle_force_ratio is at rest by its unbalanced-force ratio
+  // An explicit step with settle.force_ratio is at rest by its unbalanced-force ratio
   // (explicit_step.cpp (8)), UDEC's test: the kinetic energy of density-scaled masses, or of
   // a part that creeps along at its friction limit, says little of the forces' balance.
-  const bool by_force = s.settle_force_ratio > 0.0 && rep.cycles > 0;
+  const bool by_force = s.settle.force_ratio > 0.0 && rep.cycles > 0;
   // The kinetic energy read is the step's motion's, (D/dt)^T M (D/dt) / 2 (engine.cpp), not
   // the end velocity's: in Shi's scheme (v' = 2 D/dt - v) a stiff mode the step does not
   // resolve (omega dt >> 1) is held by its spring, D ~ 0, while its velocity changes sign
@@ -83,17 +83,17 @@ void Engine::Impl::update_stage(const StepReport& rep) {
   // the stage's damping cannot reach. Where the step resolves the motion the two agree.
   // And not rising: a stage released from rest speeds up over its first steps, and its
   // kinetic energy is small then only because the motion has not yet come.
-  const bool rests = by_force ? cycle_force_ratio <= s.settle_force_ratio
-                              : reference > 0.0 && step_motion_kinetic <= s.settle_rest_tolerance * reference &&
+  const bool rests = by_force ? cycle_force_ratio <= s.settle.force_ratio
+                              : reference > 0.0 && step_motion_kinetic <= s.settle.rest_tolerance * reference &&
                                     step_motion_kinetic <= g.motion_kinetic;
   g.motion_kinetic = step_motion_kinetic;
-  if (settling() && s.settle_rest_tolerance > 0.0 && e.steps >= kMinStageSteps && late_enough && rests) {
+  if (settling() && s.settle.rest_tolerance > 0.0 && e.steps >= kMinStageSteps && late_enough && rests) {
     e.at_rest = true;
     g.until = st.time;  // the stage is over: the next step is static
   }
   if (settling()) return;
   // The stage has ended (at rest or at its longest): its event.
-  const double reach = s.settle_max_displacement_ratio * w0;  // the stage's step limit [length]
+  const double reach = s.settle.max_displacement_ratio * w0;  // the stage's step limit [length]
   for (std::size_t k = 0; k < st.blocks.size(); ++k) {
     double moved = 0.0;
     const auto& v = st.blocks[k].vertices;

@@ -173,7 +173,7 @@ void EnergyAccount::begin(const EnergyInputs& in, const Eigen::VectorXd& D, doub
     const Mat6 M = rho * unit_mass_matrix(g);
     if (!dynamic) {
       // A static step starts at rest: the velocity a dynamic settling stage
-      // left (Settings::settle_dynamic) is dropped, its kinetic energy with it.
+      // left (SettleStage::dynamic) is dropped, its kinetic energy with it.
       flows_.integration_inertia +=
           Dk.dot(M * Dk) / (beta * dt * dt) + 0.5 * b.mass_scale * b.velocity.dot(M * b.velocity);
       continue;

@@ -53,9 +53,9 @@ void Engine::Impl::initialise() {
   }
   st.step = 0;
   st.time = 0.0;
-  if (s.settle_until > 0.0) start_stage(StageKind::settling, s.settle_until);
+  if (s.settle.until > 0.0) start_stage(StageKind::settling, s.settle.until);
   search_disp = std::min(max_displacement_ratio_now() * w0, search_floor);
-  st.next_dt = settling() ? std::min(s.dt, s.settle_dt) : s.dt;
+  st.next_dt = settling() ? std::min(s.dt, s.settle.dt) : s.dt;
   solver = std::make_unique<LinearSolver>(s.solver, s.solver_tolerance, s.solver_max_iterations);
   contact_solve = make_contact_solve(s.contact_solver);
   D = Eigen::VectorXd::Zero(6 * static_cast<Eigen::Index>(st.blocks.size()));

@@ -104,9 +104,9 @@ struct Engine::Impl {
   double search_reach(const Eigen::VectorXd& d) const;
   double fixed_k = 0.0;                   // fixed point penalty [force/length]
   /// Share of the velocity the step starting now carries: the analysis's
-  /// dynamic_ratio, or 1 in a dynamic settling stage (Settings::settle_dynamic).
+  /// dynamic_ratio, or 1 in a dynamic settling stage (SettleStage::dynamic).
   double ratio_now() const {
-    return settling() && model.settings.settle_dynamic ? 1.0 : model.settings.dynamic_ratio;
+    return settling() && model.settings.settle.dynamic ? 1.0 : model.settings.dynamic_ratio;
   }
   /// The step starting now carries velocity (a dynamic step).
   bool dynamic_now() const { return ratio_now() > 0.0; }
@@ -164,7 +164,7 @@ struct Engine::Impl {
   /// End of the stage the run is in or was last in: the settling stage or a
   /// collapse stage (EngineState::stage; dynamic_stages.cpp) [time].
   double stage_end() const { return st.stage.until; }
-  /// In the settling stage (Settings::settle_until; docs/reference/engine.md, "Settling
+  /// In the settling stage (SettleStage::until; docs/reference/engine.md, "Settling
   /// stage") or in a collapse stage.
   bool settling() const {
     const double end = stage_end();
@@ -174,15 +174,15 @@ struct Engine::Impl {
   /// it may end at rest, at least `shortest` (dynamic_stages.cpp).
   void start_stage(StageKind kind, double length, double shortest = 0.0);
   /// After an accepted step: the stage's figures, and its end at rest
-  /// (Settings::settle_rest_tolerance) or at its longest, recorded as an event.
+  /// (SettleStage::rest_tolerance) or at its longest, recorded as an event.
   void update_stage(const StepReport& rep);
   /// A static step of dt whose trial D moves as a mechanism (collapse stages).
   bool collapses(double dt) const {
     return EnergyAccount::static_trial_share(energy_inputs(), D, dt, newmark().beta, st.time + dt) >
            kMechanismStepShare;
   }
-  /// The displacement limit (max_displacement_ratio) in force now: settle_max_displacement_ratio in the settling stage.
-  double max_displacement_ratio_now() const { return settling() ? model.settings.settle_max_displacement_ratio : model.settings.max_displacement_ratio; }
+  /// The displacement limit (max_displacement_ratio) in force now: settle.max_displacement_ratio in the settling stage.
+  double max_displacement_ratio_now() const { return settling() ? model.settings.settle.max_displacement_ratio : model.settings.max_displacement_ratio; }
   void accept(const Eigen::VectorXd& d, double dt, int step_index, double t_end);
   void record_measurements(int step_index);
   /// One accepted step (step_control.cpp). On StepInterrupted from within it, what the step's

@@ -41,7 +41,7 @@
 // Local damping (Settings::stage_local_damping, alpha), in the same stages: Cundall's on each
 // of the block's mass-normalised unknowns q = L^T v (M = L L^T): |q_i| loses alpha |r_i| h  (7)
 // at each kick, r = L^-1 R, never more than it has
-// The unbalanced-force ratio (Settings::settle_force_ratio; UDEC's "ratio", Itasca): at the
+// The unbalanced-force ratio (SettleStage::force_ratio; UDEC's "ratio", Itasca): at the
 // step's end, over the blocks that move, max_k |R_k| / mean_k |F_k|, R_k the translation rows
 // of (1) at the last cycle and F_k those of the loads                                  (8)
 // Blocks held at two or more fixed points (or at one and in rotation; count_held) and
@@ -248,7 +248,7 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
   // over the blocks in order.
   std::vector<double> damped(nb, 0.0);
   // |R| of each block's translation at the step's end, where a stage's rest test asks for it (8).
-  const bool force_ratio_wanted = s.settle_force_ratio > 0.0 && settling();
+  const bool force_ratio_wanted = s.settle.force_ratio > 0.0 && settling();
   std::vector<double> unbalanced(force_ratio_wanted ? nb : 0, 0.0);
   // One thread works without a parallel region (cycle_kernels.hpp, kParallelBlocks).
   const bool parallel_blocks = threads > 1 && nbi >= cycles::kParallelBlocks;

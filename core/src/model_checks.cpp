@@ -126,31 +126,26 @@ void Engine::Impl::validate() {
                      "give step_tolerance or creep_tolerance, not both (two step controls)");
   if (s.step_tolerance > 0.0 && s.dt_max > 0.0 && s.dt_max < s.dt)
     throw ModelError("settings.dt_max", "must be >= dt (the first step) under step_tolerance");
-  if (!(s.settle_until >= 0.0 && std::isfinite(s.settle_until)))
-    throw ModelError("settings.settle_until", "must be >= 0 (time; 0 = no settling stage)");
-  if (s.settle_until > 0.0 && !(s.settle_dt > 0.0 && std::isfinite(s.settle_dt)))
-    throw ModelError("settings.settle_dt", "must be > 0 (time) with a settling stage");
-  if (s.settle_until > 0.0 && !(s.settle_max_displacement_ratio > 0.0 && std::isfinite(s.settle_max_displacement_ratio)))
-    throw ModelError("settings.settle_max_displacement_ratio", "must be > 0 with a settling stage");
-  if (!(s.settle_rest_tolerance >= 0.0 && s.settle_rest_tolerance < 1.0))
-    throw ModelError("settings.settle_rest_tolerance", "must be in [0, 1) (0 = stages run to their longest)");
-  if (s.settle_rest_tolerance > 0.0 && !(s.settle_until > 0.0 && s.settle_dynamic))
-    throw ModelError("settings.settle_rest_tolerance",
+  // The settling stage's numbers one by one (settle_specs, settings.hpp: a 0 is the mark
+  // of "none"), then what ties them together.
+  check_declared(settle_specs(), s.settle, std::string("settings.settle"));
+  if (s.settle.until > 0.0 && !(s.settle.dt > 0.0))
+    throw ModelError("settings.settle.dt", "must be > 0 (time) with a settling stage");
+  if (s.settle.until > 0.0 && !(s.settle.max_displacement_ratio > 0.0))
+    throw ModelError("settings.settle.max_displacement_ratio", "must be > 0 with a settling stage");
+  if (s.settle.rest_tolerance > 0.0 && !(s.settle.until > 0.0 && s.settle.dynamic))
+    throw ModelError("settings.settle.rest_tolerance",
                      "ends dynamic stages at rest; the analysis has no dynamic settling stage");
-  if (!(s.settle_force_ratio >= 0.0 && s.settle_force_ratio < 1.0))
-    throw ModelError("settings.settle_force_ratio", "must be in [0, 1) (0 = the kinetic-energy test)");
-  if (s.settle_force_ratio > 0.0 && !(s.settle_rest_tolerance > 0.0))
-    throw ModelError("settings.settle_force_ratio", "decides when a stage that ends at rest is at rest: "
-                                                     "give settle_rest_tolerance too");
-  if (!(s.collapse_dt >= 0.0 && std::isfinite(s.collapse_dt)))
-    throw ModelError("settings.collapse_dt", "must be >= 0 (time; 0 = no collapse stages)");
-  if (s.collapse_dt > 0.0) {
-    if (!(s.settle_until > 0.0 && s.settle_dynamic && s.dynamic_ratio == 0.0))
-      throw ModelError("settings.collapse_dt",
+  if (s.settle.force_ratio > 0.0 && !(s.settle.rest_tolerance > 0.0))
+    throw ModelError("settings.settle.force_ratio", "decides when a stage that ends at rest is at rest: "
+                                                     "give settle.rest_tolerance too");
+  if (s.settle.collapse_dt > 0.0) {
+    if (!(s.settle.until > 0.0 && s.settle.dynamic && s.dynamic_ratio == 0.0))
+      throw ModelError("settings.settle.collapse_dt",
                        "collapse stages are for a static analysis with a dynamic settling stage (their model)");
-    if (!(s.collapse_dt < s.dt)) throw ModelError("settings.collapse_dt", "must be < dt");
+    if (!(s.settle.collapse_dt < s.dt)) throw ModelError("settings.settle.collapse_dt", "must be < dt");
     if (s.step_tolerance > 0.0)
-      throw ModelError("settings.collapse_dt", "not with step_tolerance (step doubling takes no collapse stage)");
+      throw ModelError("settings.settle.collapse_dt", "not with step_tolerance (step doubling takes no collapse stage)");
   }
   if (s.threads < 0) throw ModelError("settings.threads", "must be >= 0 (0: OpenMP's default)");
   if (const IntegratorEntry& in = integrator_entry(s.integrator); !in.dynamic_trial)
@@ -181,13 +176,9 @@ void Engine::Impl::validate() {
                        "difference");
   }
   if (!finite(s.gravity)) throw ModelError("settings.gravity", "must be finite");
-  if (!(s.settle_gravity_ramp >= 0.0 && std::isfinite(s.settle_gravity_ramp)))
-    throw ModelError("settings.settle_gravity_ramp", "must be >= 0 (time; 0 = gravity at once)");
-  if (s.settle_gravity_ramp > 0.0 && !(s.settle_gravity_ramp <= s.settle_until))
-    throw ModelError("settings.settle_gravity_ramp",
-                     "must end within the settling stage (<= settle_until), so that the creep starts under full gravity");
-  if (s.settle_open_close_limit < 0)
-    throw ModelError("settings.settle_open_close_limit", "must be >= 0 (0 = open_close_limit)");
+  if (s.settle.gravity_ramp > 0.0 && !(s.settle.gravity_ramp <= s.settle.until))
+    throw ModelError("settings.settle.gravity_ramp",
+                     "must end within the settling stage (<= settle.until), so that the creep starts under full gravity");
   if (s.time_integration == TimeIntegration::trapezoidal && s.dynamic_ratio == 0.0)
     throw ModelError("settings.time_integration",
                      "the trapezoidal rule needs a dynamic analysis (settings.dynamic_ratio > 0)");

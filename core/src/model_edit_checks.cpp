@@ -112,7 +112,7 @@ std::vector<char> Engine::Impl::check_edit(const ModelEdit& e) const {
   // leaving the block's fixed points after the edit at rest (held_velocity.hpp).
   {
     const bool dynamic_after = (e.dynamic_ratio ? *e.dynamic_ratio > 0.0 : m.dynamic_now()) ||
-                               (e.settle && m.model.settings.settle_dynamic);
+                               (e.settle && m.model.settings.settle.dynamic);
     std::vector<char> dropped(m.model.fixed_points.size(), 0);
     for (int i : e.remove_fixed_points) dropped[static_cast<std::size_t>(i)] = 1;
     for (std::size_t k = 0; k < e.set_velocities.size(); ++k) {
@@ -160,8 +160,8 @@ std::vector<char> Engine::Impl::check_edit(const ModelEdit& e) const {
     validate_water(*e.water, x_min, x_max);  // keys water.*
   }
   const Settings& s = m.model.settings;
-  if (e.settle && !(s.settle_until > 0.0 && s.settle_dt > 0.0 && s.settle_max_displacement_ratio > 0.0))
-    throw ModelError("settle", "a settling stage needs settings.settle_until, settle_dt and settle_max_displacement_ratio");
+  if (e.settle && !(s.settle.until > 0.0 && s.settle.dt > 0.0 && s.settle.max_displacement_ratio > 0.0))
+    throw ModelError("settle", "a settling stage needs settings.settle.until, settle.dt and settle.max_displacement_ratio");
   return gone;
 }
 

@@ -192,7 +192,7 @@ EditReport Engine::edit(const ModelEdit& e) {
     if (g.open) {  // ends now, not at rest: its event as update_stage records one
       StageEvent& ev = g.event;
       ev.end_time = m.st.time;
-      const double reach = s.settle_max_displacement_ratio * m.w0;  // the stage's step limit [length]
+      const double reach = s.settle.max_displacement_ratio * m.w0;  // the stage's step limit [length]
       for (std::size_t k = 0; k < nb && k < g.start_vertices.size(); ++k) {
         double moved = 0.0;
         const auto& v = m.st.blocks[k].vertices;
@@ -204,8 +204,8 @@ EditReport Engine::edit(const ModelEdit& e) {
       m.st.events.push_back(ev);
       g.open = false;
     }
-    m.start_stage(StageKind::settling, s.settle_until);
-    m.st.next_dt = std::min(s.dt, s.settle_dt);
+    m.start_stage(StageKind::settling, s.settle.until);
+    m.st.next_dt = std::min(s.dt, s.settle.dt);
   }
   m.count_held();
   m.refresh_geometry();

@@ -11,7 +11,6 @@
 
 #include "rheodda/core/defaults.hpp"
 #include "rheodda/core/property_specs.hpp"
-#include "rheodda/core/setting_defaults.hpp"
 #include "rheodda/laws/spec_lookup.hpp"
 
 namespace rheodda::core {
@@ -134,7 +133,70 @@ std::vector<SettingSpec> declare_settings() {
   return out;
 }
 
+/// The declaration of the stage's member `field`, named `name` (the scene's word under
+/// `analysis.settle`), whose default 0 is the mark `mark` ("0 (none)").
+template <class T>
+SettleSpec declare_stage(const char* name, const char* unit, Range r, T SettleStage::*field, std::string mark,
+                         const char* meaning) {
+  SettleSpec s = laws::declare_setting(name, unit, r, field, meaning);
+  s.default_meaning = std::move(mark);
+  return s;
+}
+
+std::vector<SettleSpec> declare_settle() {
+  using S = SettleStage;
+  std::vector<SettleSpec> out;
+  out.push_back(declare_stage("until", "time", kPositive, &S::until, "0 (no settling stage)",
+      "end of the settling stage, > 0, before `duration`; with `rest_tolerance` optional: the "
+      "longest the stage may last. Until then the steps are at most `dt`, with the "
+      "displacement limit `max_displacement_ratio` and without `creep_tolerance` or "
+      "`step_tolerance`; then the analysis's `dt` and `max_displacement_ratio` take over"));
+  out.push_back(declare_stage("dt", "time", kPositive, &S::dt, "0 (none: required with a stage)",
+      "largest step of the settling stage, > 0, ≤ `until`"));
+  out.push_back(declare_stage("max_displacement_ratio", "–", {0.0, true, 1.0, false}, &S::max_displacement_ratio,
+      "the analysis's `max_displacement_ratio`", "Shi's g2 of the stage's steps, (0, 1]"));
+  out.push_back(declare_stage("collapse_dt", "time", kPositive, &S::collapse_dt, "0 (none)",
+      "collapse stages (docs/reference/engine.md, \"Collapse stages\"): a later static step that moves as "
+      "a mechanism (its inertia share above 0.1) is cut down to `collapse_dt`, and there taken "
+      "as a dynamic stage as long as this one, with its `dt` and `max_displacement_ratio`; > 0, "
+      "below the analysis's `dt`; a dynamic stage in a static analysis only; not with "
+      "`step_tolerance`; `rheodda check --refine` halves it with the other step controls"));
+  out.push_back(declare_stage("gravity_ramp", "time", kPositive, &S::gravity_ramp, "0 (gravity at once)",
+      "gravity rises linearly from zero at t = 0 to its full value at this time, so that a "
+      "model that stands is loaded slowly instead of at once (docs/reference/engine.md, \"Gravity "
+      "ramp\"); > 0, ≤ `until`; a physical loading time, not a step control: `check --refine` "
+      "keeps it"));
+  out.push_back(declare_stage("rest_tolerance", "–", kOpenFraction, &S::rest_tolerance, "0 (stages last `until`)",
+      "the stage, and every collapse stage, ends at rest — after a step whose motion's kinetic energy "
+      "is below this fraction of the energy the stage took in or released (the largest of the work "
+      "gravity and the loads did over it, its dissipation and its kinetic peak) and no longer rising, "
+      "not before the gravity ramp has ended (docs/reference/engine.md, \"Dynamic stages\", which also says how to "
+      "choose it); each stage is a row of events.csv (docs/reference/outputs.md); in (0, 1); `type: "
+      "dynamic` only"));
+  out.push_back(declare_stage("force_ratio", "–", kOpenFraction, &S::force_ratio, "0 (the kinetic-energy test)",
+      "with the explicit step: a stage's explicit step is at rest when the largest unbalanced "
+      "force of a moving block is below this fraction of the mean force applied to the moving "
+      "blocks (UDEC's ratio; 1e-5 is customary), instead of the kinetic-energy test of "
+      "`rest_tolerance` (docs/reference/explicit-step.md, \"Rest by the unbalanced force\"); in "
+      "(0, 1); with `rest_tolerance` and `integrator: explicit` or `automatic`"));
+  out.push_back(declare_stage("open_close_limit", "–", {1.0, false, 1000.0, false}, &S::open_close_limit,
+      "the analysis's `open_close_limit`",
+      "open–close iterates before a step of the settling stage or a collapse stage is cut, "
+      "1–1000 (a dynamic stage of a static analysis needs more than the 8 of its static steps "
+      "where many contacts change at once; docs/reference/contacts.md, \"Contact solves\")"));
+  return out;
+}
+
 }  // namespace
+
+const std::vector<SettleSpec>& settle_specs() {
+  static const std::vector<SettleSpec> specs = declare_settle();
+  return specs;
+}
+
+const SettleSpec& settle_spec(std::string_view name) {
+  return laws::spec_named(settle_specs(), name, "core::SettleStage", "setting");
+}
 
 const std::vector<SettingSpec>& setting_specs() {
   static const std::vector<SettingSpec> specs = declare_settings();
@@ -145,7 +207,6 @@ const SettingSpec& setting_spec(std::string_view name) {
   return laws::spec_named(setting_specs(), name, "core::Settings", "setting");
 }
 
-double setting_default(std::string_view name, bool dynamic) { return setting_spec(name).default_for(dynamic); }
 
 std::string settings_table_markdown() { return laws::settings_table_markdown(setting_specs()); }
 

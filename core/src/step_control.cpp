@@ -51,7 +51,7 @@ StepReport Engine::Impl::step(double dt_cap) {
 StepReport Engine::Impl::step_attempts(double dt_cap, StepStart& start) {
   const Settings& s = model.settings;
   // Settling stage (docs/reference/engine.md, "Settling stage"): steps of at most
-  // settle_dt with max_displacement_ratio = settle_max_displacement_ratio, ending on settle_until, no adaptive control.
+  // settle.dt with max_displacement_ratio = settle.max_displacement_ratio, ending on settle.until, no adaptive control.
   bool settle = settling();
   if (settle) dt_cap = std::min(dt_cap, stage_end() - st.time);
   if (s.step_tolerance > 0.0 && !settle) return doubling_step(dt_cap);
@@ -87,7 +87,7 @@ StepReport Engine::Impl::step_attempts(double dt_cap, StepStart& start) {
   if (failure_step < dt || (failure_step <= kFailureReach * dt && failure_step <= dt_cap && within_dt_max))
     dt = failure_step;
   double allowed = max_displacement_ratio_now() * w0;
-  const bool watch = s.collapse_dt > 0.0;  // collapse stages (docs/reference/engine.md, "Collapse stages")
+  const bool watch = s.settle.collapse_dt > 0.0;  // collapse stages (docs/reference/engine.md, "Collapse stages")
   for (;;) {
     const Trial trial = solve_trial(dt, adaptive, rep);
     if (watch && !settle && trial.singular.empty() &&
@@ -155,7 +155,7 @@ StepReport Engine::Impl::step_attempts(double dt_cap, StepStart& start) {
           next = std::min(next, s.dt);
         st.next_dt = next;
       } else if (rep.cuts > 0 || !capped) {
-        st.next_dt = std::min(settle ? std::min(s.dt, s.settle_dt) : s.dt, dt * s.dt_growth);
+        st.next_dt = std::min(settle ? std::min(s.dt, s.settle.dt) : s.dt, dt * s.dt_growth);
       }
       if (settle && !settling()) st.next_dt = s.dt;  // the stage is over: the analysis's dt
       return rep;
@@ -167,20 +167,20 @@ StepReport Engine::Impl::step_attempts(double dt_cap, StepStart& start) {
 
 bool Engine::Impl::open_collapse_stage(double& dt, StepReport& rep) {
   const Settings& s = model.settings;
-  if (dt > s.collapse_dt * (1.0 + 1e-9)) {  // locate the onset: retry smaller, not below collapse_dt
+  if (dt > s.settle.collapse_dt * (1.0 + 1e-9)) {  // locate the onset: retry smaller, not below collapse_dt
     if (rep.cuts >= s.max_cuts)
       throw std::runtime_error("step " + std::to_string(st.step) + " at time " + std::to_string(st.time) +
                                ": moves as a mechanism at dt = " + std::to_string(dt) + " after " +
                                std::to_string(rep.cuts) + " cuts, above collapse_dt = " +
-                               std::to_string(s.collapse_dt) + " (settings.max_cuts)");
-    dt = std::max(dt * s.dt_cut, s.collapse_dt);
+                               std::to_string(s.settle.collapse_dt) + " (settings.max_cuts)");
+    dt = std::max(dt * s.dt_cut, s.settle.collapse_dt);
     ++rep.cuts;
     return false;
   }
   // At most as long as the settling stage; at least over the failed step.
-  start_stage(StageKind::mechanism, s.settle_until, dt);
+  start_stage(StageKind::mechanism, s.settle.until, dt);
   rep.collapse_stage = true;
-  dt = std::min(s.settle_dt, stage_end() - st.time);
+  dt = std::min(s.settle.dt, stage_end() - st.time);
   return true;
 }
 

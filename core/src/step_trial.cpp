@@ -40,7 +40,7 @@ class Engine::Impl::Problem final : public StepProblem {
   bool dynamic() const override { return e_.dynamic_now(); }
   int iteration_limit() const override {
     const Settings& s = e_.model.settings;
-    return e_.settling() && s.settle_open_close_limit > 0 ? s.settle_open_close_limit : s.open_close_limit;
+    return e_.settling() && s.settle.open_close_limit > 0 ? s.settle.open_close_limit : s.open_close_limit;
   }
   ContactCheck check(const Eigen::VectorXd& d) override {
     ContactCheck c = e_.contacts->check(e_.views, d);

@@ -102,7 +102,7 @@ std::vector<std::string> scene_warnings(const SceneDescription& s) {
     const bool adaptive = a.creep_tolerance > 0.0 || a.step_tolerance > 0.0;
     // The dynamic steps: the analysis's, or a dynamic settling stage's in a static analysis.
     const bool settle = a.type == AnalysisType::static_analysis;
-    const double largest = settle ? a.settle->dt : adaptive && a.dt_max > 0.0 ? a.dt_max : a.dt;
+    const double largest = settle ? a.settle.dt : adaptive && a.dt_max > 0.0 ? a.dt_max : a.dt;
     const char* key = settle ? "settle.dt" : adaptive && a.dt_max > 0.0 ? "dt_max" : "dt";
     std::vector<std::string> sets;
     for (const auto& js : s.joint_sets)
@@ -162,39 +162,18 @@ BuiltScene build_scene(const SceneDescription& s) {
   if (s.water) m.water = build_water(*s.water, s);  // water.hpp
   for (const auto& b : s.bolts) m.bolts.push_back(build_bolt(b));  // docs/reference/bolts.md
 
+  // The scene's analysis is the engine's settings and the contact layer's (scene.hpp):
+  // handed on whole; the integrator `automatic` is decided here (integrator_choice.cpp).
   core::Settings& st = m.settings;
-  // The engine's declared settings (core/settings.hpp), each from the key of its name.
-  for (const core::SettingSpec& spec : core::setting_specs())
-    spec.set(st, key_number(analysis_key(spec.name()).get(a)));
-  st.time_integration = a.time_integration == TimeIntegration::trapezoidal ? core::TimeIntegration::trapezoidal
-                                                                          : core::TimeIntegration::shi;
-  st.gravity = {a.gravity[0], a.gravity[1]};
-  if (a.settle) {  // docs/reference/engine.md, "Settling stage"
-    st.settle_until = a.settle->until;
-    st.settle_dt = a.settle->dt;
-    st.settle_max_displacement_ratio = a.settle->max_displacement_ratio;
-    st.settle_dynamic = a.settle->dynamic;
-    st.collapse_dt = a.settle->collapse_dt;
-    st.settle_gravity_ramp = a.settle->gravity_ramp;
-    st.settle_rest_tolerance = a.settle->rest_tolerance;
-    st.settle_force_ratio = a.settle->force_ratio;
-    st.settle_open_close_limit = a.settle->open_close_limit;
-  }
-  st.solver = a.solver;
-  st.contact_solver = a.contact_solver;
-  st.integrator = choose_integrator(s).integrator;  // integrator_choice.cpp: `automatic` decided here
-
+  st = a;
+  st.integrator = choose_integrator(s).integrator;
   contact::ContactSettings& cs = out.contact_settings;
-  // The contact layer's declared settings (contact/contact_settings_specs.hpp), each from the key of its name.
-  for (const contact::ContactSettingSpec& spec : contact::contact_setting_specs())
-    spec.set(cs, key_number(analysis_key(spec.name()).get(a)));
-  cs.stick_keeps_force = a.stick_keeps_force;
+  cs = a;
   // A dynamic settling stage of a static analysis keeps the dynamic default.
   if (a.type == AnalysisType::static_analysis && a.has_dynamic_steps() && !a.stick_keeps_force_given)
     cs.stick_keeps_force_dynamic = true;
   cs.lock_at_touch = a.has_dynamic_steps();  // the static steps turn it off (StepContext::dynamic)
   cs.reversal_at_normal_resolution = cs.lock_at_touch;
-  cs.scheme = a.scheme;
 
   const auto& registry = laws::LawRegistry::builtin();
   for (const auto& js : s.joint_sets) {

@@ -60,7 +60,7 @@ std::string describe_analysis(const SceneDescription& s) {
   std::size_t width = settings.size();
   for (const KeySpec& k : analysis_keys()) {
     if (k.type == KeyType::map) continue;
-    if (k.map != "analysis" && !a.settle) continue;
+    if (k.map != "analysis" && !a.has_settle()) continue;
     const std::string name = k.map == "analysis" ? k.name : k.map.substr(std::string("analysis.").size()) + "." + k.name;
     const std::string item = fmt::format(" {} {}", name, key_value_text(k, a, u));
     if (width + item.size() > 100) {
@@ -101,36 +101,36 @@ std::string describe_analysis(const SceneDescription& s) {
     line(fmt::format("  time step: fixed dt {:g} {} (cut by dt_cut {:g} when a step fails, then grown back by "
                      "dt_growth {:g} per step)",
                      a.dt, u.time, a.dt_cut, a.dt_growth));
-  if (a.settle && a.settle->rest_tolerance > 0.0)
+  if (a.has_settle() && a.settle.rest_tolerance > 0.0)
     line(fmt::format("  settling stage (dynamic): until at rest (kinetic energy below {:g} of the stage's work of "
                      "gravity and loads{}), at most {:g} {}, steps of at most {:g} {}, max_displacement_ratio {:g} "
                      "(docs/reference/engine.md, \"Dynamic stages\")",
-                     a.settle->rest_tolerance,
-                     a.settle->force_ratio > 0.0
-                         ? fmt::format("; explicit steps: unbalanced-force ratio below {:g}", a.settle->force_ratio)
+                     a.settle.rest_tolerance,
+                     a.settle.force_ratio > 0.0
+                         ? fmt::format("; explicit steps: unbalanced-force ratio below {:g}", a.settle.force_ratio)
                          : std::string(),
-                     a.settle->until, u.time, a.settle->dt, u.time, a.settle->max_displacement_ratio));
-  else if (a.settle)
+                     a.settle.until, u.time, a.settle.dt, u.time, a.settle.max_displacement_ratio));
+  else if (a.has_settle())
     line(fmt::format("  settling stage ({}): until {:g} {}, steps of at most {:g} {}, max_displacement_ratio {:g} "
                      "(docs/reference/engine.md, \"Settling stage\")",
-                     a.settle->dynamic ? "dynamic" : "static", a.settle->until, u.time, a.settle->dt, u.time,
-                     a.settle->max_displacement_ratio));
-  if (a.settle && a.settle->open_close_limit > 0)
+                     a.settle.dynamic ? "dynamic" : "static", a.settle.until, u.time, a.settle.dt, u.time,
+                     a.settle.max_displacement_ratio));
+  if (a.has_settle() && a.settle.open_close_limit > 0)
     line(fmt::format("  stage steps: cut after {} open-close iterates (the analysis's steps after {}; docs/reference/engine.md, "
                      "\"Dynamic stages\")",
-                     a.settle->open_close_limit, a.open_close_limit));
-  if (a.settle && a.settle->gravity_ramp > 0.0)
+                     a.settle.open_close_limit, a.open_close_limit));
+  if (a.has_settle() && a.settle.gravity_ramp > 0.0)
     line(fmt::format("  gravity ramp: gravity rises linearly from zero to its full value over the first {:g} {} of "
                      "the stage (docs/reference/engine.md, \"Gravity ramp\")",
-                     a.settle->gravity_ramp, u.time));
-  if (a.settle && a.settle->collapse_dt > 0.0 && a.settle->rest_tolerance > 0.0)
+                     a.settle.gravity_ramp, u.time));
+  if (a.has_settle() && a.settle.collapse_dt > 0.0 && a.settle.rest_tolerance > 0.0)
     line(fmt::format("  collapse stages: a static step that moves as a mechanism is cut down to {:g} {}, then taken "
                      "as a dynamic stage until at rest, at most {:g} {} (docs/reference/engine.md, \"Dynamic stages\")",
-                     a.settle->collapse_dt, u.time, a.settle->until, u.time));
-  else if (a.settle && a.settle->collapse_dt > 0.0)
+                     a.settle.collapse_dt, u.time, a.settle.until, u.time));
+  else if (a.has_settle() && a.settle.collapse_dt > 0.0)
     line(fmt::format("  collapse stages: a static step that moves as a mechanism is cut down to {:g} {}, then taken "
                      "as a dynamic stage of {:g} {} (docs/reference/engine.md, \"Collapse stages\")",
-                     a.settle->collapse_dt, u.time, a.settle->until, u.time));
+                     a.settle.collapse_dt, u.time, a.settle.until, u.time));
   line(fmt::format("  output every {:g} {}{}: {} output times, a step ends on each{}; history.csv {}; {}",
                    a.output_interval, u.time,
                    a.output_times.empty() ? "" : fmt::format(" and at {} output_times", a.output_times.size()),

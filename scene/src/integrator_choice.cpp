@@ -72,7 +72,7 @@ IntegratorChoice choose_integrator(const SceneDescription& s) {
     return out;
   }
   const bool staged = s.analysis.type != AnalysisType::dynamic_analysis;  // the dynamic steps are the stages'
-  const double dt = staged ? s.analysis.settle->dt : s.analysis.dt;
+  const double dt = staged ? s.analysis.settle.dt : s.analysis.dt;
   const double blocks = a.engine->block_count();
   out.implicit_seconds = kImplicitSolves * kSolveSecondsPerBlock2 * blocks * blocks;  // (2)
   if (c.block < 0) {

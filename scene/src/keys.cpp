@@ -13,6 +13,7 @@
 #include "rheodda/core/integrator.hpp"
 #include "rheodda/core/settings.hpp"
 #include "rheodda/core/solver.hpp"
+#include "rheodda/laws/spec_lookup.hpp"
 
 #include <fmt/format.h>
 
@@ -44,29 +45,58 @@ KeySpec flag_key(const std::string& map, const std::string& name, const std::str
                            field);
 }
 
-/// A key of `analysis:` that is a declared setting of the same name (of the engine,
-/// core/settings.hpp, or of the contact layer, contact/contact_settings_specs.hpp): its
-/// type, unit, range, default and meaning are the setting's declaration.
-template <class S, class T>
-KeySpec declared_setting_key(const laws::SettingSpec<S>& s, T Analysis::*field) {
-  KeyInfo i = detail::declared_info("analysis", s);
-  constexpr KeyType field_type = std::is_same_v<T, double> ? KeyType::number
-                                 : std::is_same_v<T, int>  ? KeyType::integer
-                                                           : KeyType::flag;
-  if (i.type != field_type) throw std::logic_error("analysis." + s.name() + ": the field is not of the setting's type");
-  return detail::field_key(std::move(i), field);
+/// The key `s.name()` of `map` that is a declared setting of a struct S that Analysis is
+/// (the engine's core::Settings, core/settings.hpp; the contact layer's ContactSettings,
+/// contact/contact_settings_specs.hpp; the scene's Acceptances): its type, unit, range,
+/// default and meaning are the declaration's, and it reads into and from the member.
+template <class S>
+KeySpec setting_key(const laws::SettingSpec<S>& s) {
+  static_assert(std::is_base_of_v<S, Analysis>);
+  KeySpec k;
+  static_cast<KeyInfo&>(k) = detail::declared_info("analysis", s);
+  k.get = [&s, type = k.type](const Analysis& a) -> KeyValue { return key_value_of(type, s.value(a)); };
+  k.set = [&s](Analysis& a, const KeyValue& v) { s.set(a, key_number(v)); };
+  return k;
 }
 
 /// The key of the engine's setting `name` (core/settings.hpp).
-template <class T>
-KeySpec setting_key(const std::string& name, T Analysis::*field) {
-  return declared_setting_key(core::setting_spec(name), field);
-}
+KeySpec setting_key(const std::string& name) { return setting_key(core::setting_spec(name)); }
 
 /// The key of the contact layer's setting `name` (contact/contact_settings_specs.hpp).
-template <class T>
-KeySpec contact_setting_key(const std::string& name, T Analysis::*field) {
-  return declared_setting_key(contact::contact_setting_spec(name), field);
+KeySpec contact_setting_key(const std::string& name) { return setting_key(contact::contact_setting_spec(name)); }
+
+/// The key of the scene's acceptance `name` (Acceptances, acceptance_specs).
+KeySpec acceptance_key(const std::string& name) {
+  return setting_key(laws::spec_named(acceptance_specs(), name, "scene::Acceptances", "setting"));
+}
+
+/// The key `name` of `analysis.settle`: the settling stage's declared number of that name
+/// (core::SettleStage, core/settings.hpp: settle_specs), not applicable without `settle:`.
+KeySpec settle_key(const std::string& name) {
+  const core::SettleSpec& s = core::settle_spec(name);
+  KeySpec k;
+  static_cast<KeyInfo&>(k) = detail::declared_info("analysis.settle", s);
+  k.get = [&s, type = k.type](const Analysis& a) -> KeyValue {
+    if (!a.has_settle()) return std::monostate{};
+    return key_value_of(type, s.value(a.settle));
+  };
+  k.set = [&s](Analysis& a, const KeyValue& v) { s.set(a.settle, key_number(v)); };
+  return k;
+}
+
+std::vector<AcceptanceSpec> declare_acceptances() {
+  std::vector<AcceptanceSpec> out;
+  out.push_back(laws::declare_setting("accept_unresolved_impacts", "–", {}, &Acceptances::accept_unresolved_impacts,
+      "`true`: no warning that the dynamic steps (`dt`, or `settle.dt`) are above a tenth of the "
+         "contacts' vibration period, where a joint set's `restitution` does not act as given and "
+         "impacts are left to the time integration. For scenes whose answer was shown not to "
+         "depend on it (`rheodda check --refine`; docs/reference/contacts.md, \"Contact damping\"); "
+         "`true` or `false`"));
+  out.push_back(laws::declare_setting("accept_other_gravity", "–", {}, &Acceptances::accept_other_gravity,
+      "`true`: no warning that the magnitude of `gravity` is not 9.81 m/s² within 2 % in the "
+         "scene's units (a gravity of 0 is never warned about); for a deliberate other gravity; "
+         "`true` or `false`"));
+  return out;
 }
 
 /// The words of a registry of methods (core/methods.hpp: rows with `method` and `word`), in its order.
@@ -118,29 +148,6 @@ KeySpec map_key(const std::string& map, const std::string& name, std::string def
   return detail::reader_key<Analysis>(info(map, name, KeyType::map, "–", {}, std::move(default_text), std::move(meaning)));
 }
 
-/// A key of `analysis.settle`: its field of Analysis::Settle; not applicable without `settle:`.
-template <class T>
-KeySpec settle_key(const std::string& name, KeyType type, const std::string& unit, KeyRange range,
-                   T Analysis::Settle::*field, std::string default_text, std::string meaning) {
-  return detail::custom_key<Analysis>(
-      info("analysis.settle", name, type, unit, range, std::move(default_text), std::move(meaning)),
-      [field](const Analysis& a) -> KeyValue {
-        if (!a.settle) return std::monostate{};
-        return (*a.settle).*field;
-      },
-      [field](Analysis& a, const KeyValue& v) { (*a.settle).*field = std::get<T>(v); });
-}
-
-KeySpec settle_number(const std::string& name, const std::string& unit, KeyRange range,
-                      double Analysis::Settle::*field, std::string default_text, std::string meaning) {
-  return settle_key(name, KeyType::number, unit, range, field, std::move(default_text), std::move(meaning));
-}
-
-KeySpec settle_integer(const std::string& name, const std::string& unit, KeyRange range,
-                       int Analysis::Settle::*field, std::string default_text, std::string meaning) {
-  return settle_key(name, KeyType::integer, unit, range, field, std::move(default_text), std::move(meaning));
-}
-
 std::vector<KeySpec> declare_analysis_keys() {
   std::vector<KeySpec> keys;
   keys.push_back(choice_key("analysis", "type", "–", {"static", "dynamic"},
@@ -152,20 +159,20 @@ std::vector<KeySpec> declare_analysis_keys() {
       "required",
       "simulated time, > 0"));
   keys.back().required = "simulated time [time]";
-  keys.push_back(setting_key("dt", &Analysis::dt));
+  keys.push_back(setting_key("dt"));
   keys.back().required = "first and largest time step [time]";
   keys.back().default_text = "required";
-  keys.push_back(setting_key("dt_growth", &Analysis::dt_growth));
-  keys.push_back(setting_key("dt_cut", &Analysis::dt_cut));
-  keys.push_back(setting_key("max_cuts", &Analysis::max_cuts));
-  keys.push_back(setting_key("max_displacement_ratio", &Analysis::max_displacement_ratio));
+  keys.push_back(setting_key("dt_growth"));
+  keys.push_back(setting_key("dt_cut"));
+  keys.push_back(setting_key("max_cuts"));
+  keys.push_back(setting_key("max_displacement_ratio"));
   keys.push_back(map_key("analysis", "settle",
       "none",
       "a settling stage at the start of the run (docs/reference/engine.md, \"Settling "
          "stage\"); its keys are in the table `analysis.settle` below. For a static model that "
          "settles as a mechanism when gravity comes on: every run, whatever its `dt`, starts its "
          "creep from the same settled state"));
-  keys.push_back(setting_key("dynamic_ratio", &Analysis::dynamic_ratio));
+  keys.push_back(setting_key("dynamic_ratio"));
   keys.push_back(choice_key("analysis", "time_integration", "–", {"shi", "trapezoidal"},
       [](const Analysis& a) { return std::string(time_integration_name(a.time_integration)); },
       [](Analysis& a, const std::string& v) { a.time_integration = v == "trapezoidal" ? TimeIntegration::trapezoidal : TimeIntegration::shi; },
@@ -182,42 +189,27 @@ std::vector<KeySpec> declare_analysis_keys() {
       "creep integration scheme of the joint laws: `lagged`, `implicit`, `exponential-linear` "
          "(docs/reference/laws.md), or `automatic`: per joint set and step, exponential-linear where the "
          "step is below its no-ringing limit, implicit otherwise"));
-  keys.push_back(setting_key("creep_tolerance", &Analysis::creep_tolerance));
-  keys.push_back(setting_key("step_tolerance", &Analysis::step_tolerance));
-  keys.push_back(setting_key("step_extrapolation", &Analysis::step_extrapolation));
-  keys.push_back(setting_key("dt_max", &Analysis::dt_max));
-  keys.push_back(setting_key("creep_restart_on_contact_change", &Analysis::creep_restart_on_contact_change));
-  keys.push_back(contact_setting_key("penalty", &Analysis::penalty));
+  keys.push_back(setting_key("creep_tolerance"));
+  keys.push_back(setting_key("step_tolerance"));
+  keys.push_back(setting_key("step_extrapolation"));
+  keys.push_back(setting_key("dt_max"));
+  keys.push_back(setting_key("creep_restart_on_contact_change"));
+  keys.push_back(contact_setting_key("penalty"));
   keys.back().default_text = fmt::format("{:g} × the largest `young_modulus`", core::kPenaltyFactor);  // the loader's
-  keys.push_back(contact_setting_key("shear_normal_ratio", &Analysis::shear_normal_ratio));
-  keys.push_back(contact_setting_key("search_factor", &Analysis::search_factor));
-  keys.push_back(contact_setting_key("angle_tolerance", &Analysis::angle_tolerance));
-  keys.push_back(contact_setting_key("penetration_ratio", &Analysis::penetration_ratio));
-  keys.push_back(contact_setting_key("friction_tolerance", &Analysis::friction_tolerance));
-  keys.push_back(contact_setting_key("force_resolution", &Analysis::force_resolution));
-  keys.push_back(contact_setting_key("max_flips", &Analysis::max_flips));
-  keys.push_back(contact_setting_key("max_refinements", &Analysis::max_refinements));
-  keys.push_back(contact_setting_key("penalty_raise", &Analysis::penalty_raise));
-  keys.push_back(contact_setting_key("penalty_max_factor", &Analysis::penalty_max_factor));
-  keys.push_back(flag_key("analysis", "stick_keeps_force", "–", &Analysis::stick_keeps_force,
-      "`true` in a dynamic analysis (Shi's rule ratchets a slope that stands down its friction "
-         "limit at small steps) and in a static one with collapse stages (`settle.collapse_dt`: "
-         "the static steps keep the stages' rule, docs/reference/engine.md \"Collapse stages\"), `false` in "
-         "other static ones",
-      "`true`: a sliding contact that sticks keeps the friction force it slid against in its "
-         "shear spring (an elastic–plastic joint); `false`: the spring restarts unstretched (Shi's "
-         "rule). Fewer iterates and cuts on walls and slopes at their friction limit, but a "
-         "creeping slope at its limit then takes step-dependent paths "
-         "(docs/notes/contact-solves.md, \"Stick and slip\")"));
-  keys.push_back(flag_key("analysis", "accept_unresolved_impacts", "–", &Analysis::accept_unresolved_impacts,
-      "false",
-      "`true`: no warning that the dynamic steps (`dt`, or `settle.dt`) are above a tenth of the "
-         "contacts' vibration period, where a joint set's `restitution` does not act as given and "
-         "impacts are left to the time integration. For scenes whose answer was shown not to "
-         "depend on it (`rheodda check --refine`; docs/reference/contacts.md, \"Contact damping\"); "
-         "`true` or `false`"));
-  keys.push_back(setting_key("open_close_limit", &Analysis::open_close_limit));
-  keys.push_back(setting_key("fixed_point_stiffness", &Analysis::fixed_point_stiffness));
+  keys.push_back(contact_setting_key("shear_normal_ratio"));
+  keys.push_back(contact_setting_key("search_factor"));
+  keys.push_back(contact_setting_key("angle_tolerance"));
+  keys.push_back(contact_setting_key("penetration_ratio"));
+  keys.push_back(contact_setting_key("friction_tolerance"));
+  keys.push_back(contact_setting_key("force_resolution"));
+  keys.push_back(contact_setting_key("max_flips"));
+  keys.push_back(contact_setting_key("max_refinements"));
+  keys.push_back(contact_setting_key("penalty_raise"));
+  keys.push_back(contact_setting_key("penalty_max_factor"));
+  keys.push_back(contact_setting_key("stick_keeps_force"));
+  keys.push_back(acceptance_key("accept_unresolved_impacts"));
+  keys.push_back(setting_key("open_close_limit"));
+  keys.push_back(setting_key("fixed_point_stiffness"));
   keys.push_back(choice_key("analysis", "solver", "–", method_words(core::linear_solvers()),
       [](const Analysis& a) { return word_of(core::linear_solvers(), a.solver); },
       [](Analysis& a, const std::string& v) { a.solver = method_of(core::linear_solvers(), v); },
@@ -226,9 +218,9 @@ std::vector<KeySpec> declare_analysis_keys() {
          "Cholesky), `amg` (conjugate gradient with a multigrid V-cycle whose coarse unknowns are "
          "the DDA unknowns of groups of blocks; O(N) per iteration, for large models) or `pcg` "
          "(block-Jacobi conjugate gradient, a reference); docs/reference/engine.md, \"Solvers\""));
-  keys.push_back(setting_key("solver_tolerance", &Analysis::solver_tolerance));
-  keys.push_back(setting_key("solver_max_iterations", &Analysis::solver_max_iterations));
-  keys.push_back(setting_key("solver_iterate_tolerance", &Analysis::solver_iterate_tolerance));
+  keys.push_back(setting_key("solver_tolerance"));
+  keys.push_back(setting_key("solver_max_iterations"));
+  keys.push_back(setting_key("solver_iterate_tolerance"));
   keys.push_back(choice_key("analysis", "contact_solver", "–", method_words(core::contact_solves()),
       [](const Analysis& a) { return word_of(core::contact_solves(), a.contact_solver); },
       [](Analysis& a, const std::string& v) { a.contact_solver = method_of(core::contact_solves(), v); },
@@ -249,14 +241,14 @@ std::vector<KeySpec> declare_analysis_keys() {
          "its dynamic stages (`settle`) are explicit) or `automatic` (the one whose estimated cost "
          "per dynamic step is lower on the scene's initial state; `rheodda check` prints which and "
          "why)"));
-  keys.push_back(setting_key("explicit_safety", &Analysis::explicit_safety));
-  keys.push_back(setting_key("explicit_damping", &Analysis::explicit_damping));
-  keys.push_back(setting_key("stage_local_damping", &Analysis::stage_local_damping));
-  keys.push_back(setting_key("stage_cycles", &Analysis::stage_cycles));
-  keys.push_back(setting_key("static_force_ratio", &Analysis::static_force_ratio));
-  keys.push_back(setting_key("static_max_cycles", &Analysis::static_max_cycles));
-  keys.push_back(setting_key("static_local_damping", &Analysis::static_local_damping));
-  keys.push_back(setting_key("contact_residual_tolerance", &Analysis::contact_residual_tolerance));
+  keys.push_back(setting_key("explicit_safety"));
+  keys.push_back(setting_key("explicit_damping"));
+  keys.push_back(setting_key("stage_local_damping"));
+  keys.push_back(setting_key("stage_cycles"));
+  keys.push_back(setting_key("static_force_ratio"));
+  keys.push_back(setting_key("static_max_cycles"));
+  keys.push_back(setting_key("static_local_damping"));
+  keys.push_back(setting_key("contact_residual_tolerance"));
   keys.push_back(number_key("analysis", "output_interval", "time", {0.0, true, kInf, false}, &Analysis::output_interval,
       "duration / 100, `dt` when longer",
       "time between output times, ≤ duration: at k × `output_interval` (and at the end) a step "
@@ -293,35 +285,24 @@ std::vector<KeySpec> declare_analysis_keys() {
       "run guard: the run stops when history.csv, contacts.csv and the frames written together "
          "exceed this size; ≥ 0, 0 = no limit"));
   keys.push_back(point_key("analysis", "gravity", "length/time²",
-      [](const Analysis& a) { return a.gravity; }, [](Analysis& a, const Point& p) { a.gravity = p; },
+      [](const Analysis& a) { return Point{a.gravity[0], a.gravity[1]}; },
+      [](Analysis& a, const Point& p) { a.gravity = core::Vec2(p[0], p[1]); },
       "required",
       "`[gx, gy]`"));
   keys.back().required = "gravity acceleration [gx, gy] [length/time^2]";
-  keys.push_back(flag_key("analysis", "accept_other_gravity", "–", &Analysis::accept_other_gravity,
-      "false",
-      "`true`: no warning that the magnitude of `gravity` is not 9.81 m/s² within 2 % in the "
-         "scene's units (a gravity of 0 is never warned about); for a deliberate other gravity; "
-         "`true` or `false`"));
+  keys.push_back(acceptance_key("accept_other_gravity"));
   keys.back().echoed = false;  // summary.json's inputs stay as they were
 
   // analysis.settle: the settling stage (docs/reference/engine.md, "Settling stage").
-  keys.push_back(settle_number("until", "time", {0.0, true, kInf, false}, &Analysis::Settle::until,
-      "required; with `rest_tolerance`: `duration`",
-      "end of the settling stage, > 0, before `duration`; with `rest_tolerance` optional: the "
-         "longest the stage may last. Until then the steps are at most `dt`, with the "
-         "displacement limit `max_displacement_ratio` and without `creep_tolerance` or "
-         "`step_tolerance`; then the analysis's `dt` and `max_displacement_ratio` take over"));
-  keys.push_back(settle_number("dt", "time", {0.0, true, kInf, false}, &Analysis::Settle::dt,
-      "required",
-      "largest step of the settling stage, > 0, ≤ `until`"));
+  keys.push_back(settle_key("until"));
+  keys.back().default_text = "required; with `rest_tolerance`: `duration`";  // read_analysis.cpp
+  keys.push_back(settle_key("dt"));
+  keys.back().default_text = "required";
   keys.back().required = "largest step of the settling stage [time]";
-  keys.push_back(settle_number("max_displacement_ratio", "–", {0.0, true, 1.0, false},
-      &Analysis::Settle::max_displacement_ratio,
-      "the analysis's `max_displacement_ratio`",
-      "Shi's g2 of the stage's steps, (0, 1]"));
+  keys.push_back(settle_key("max_displacement_ratio"));
   keys.push_back(choice_key("analysis.settle", "type", "–", {"static", "dynamic"},
-      [](const Analysis& a) { return std::string(a.settle && a.settle->dynamic ? "dynamic" : "static"); },
-      [](Analysis& a, const std::string& v) { a.settle->dynamic = v == "dynamic"; },
+      [](const Analysis& a) { return std::string(a.settle.dynamic ? "dynamic" : "static"); },
+      [](Analysis& a, const std::string& v) { a.settle.dynamic = v == "dynamic"; },
       "`static` (the stage's steps are the analysis's kind)",
       "`static` or `dynamic`: in a static analysis the stage's steps carry velocity (the blocks "
          "move with their inertia, with the materials' `damping_ratio` and the joint sets' "
@@ -329,47 +310,31 @@ std::vector<KeySpec> declare_analysis_keys() {
          "unless `stick_keeps_force` is given), and the first static step after it starts at "
          "rest; a dynamic analysis's stage is dynamic (`type: static` is refused there)"));
   keys.back().get = [](const Analysis& a) -> KeyValue {
-    if (!a.settle) return std::monostate{};
-    return std::string(a.settle->dynamic ? "dynamic" : "static");
+    if (!a.has_settle()) return std::monostate{};
+    return std::string(a.settle.dynamic ? "dynamic" : "static");
   };
-  keys.push_back(settle_number("collapse_dt", "time", {0.0, true, kInf, false}, &Analysis::Settle::collapse_dt,
-      "0 (none)",
-      "collapse stages (docs/reference/engine.md, \"Collapse stages\"): a later static step that moves as "
-         "a mechanism (its inertia share above 0.1) is cut down to `collapse_dt`, and there taken "
-         "as a dynamic stage as long as this one, with its `dt` and `max_displacement_ratio`; > 0, "
-         "below the analysis's `dt`; a dynamic stage in a static analysis only; not with "
-         "`step_tolerance`; `rheodda check --refine` halves it with the other step controls"));
-  keys.push_back(settle_number("gravity_ramp", "time", {0.0, true, kInf, false}, &Analysis::Settle::gravity_ramp,
-      "0 (gravity at once)",
-      "gravity rises linearly from zero at t = 0 to its full value at this time, so that a "
-         "model that stands is loaded slowly instead of at once (docs/reference/engine.md, \"Gravity "
-         "ramp\"); > 0, ≤ `until`; a physical loading time, not a step control: `check --refine` "
-         "keeps it"));
-  keys.push_back(settle_number("rest_tolerance", "–", {0.0, true, 1.0, true}, &Analysis::Settle::rest_tolerance,
-      "0 (stages last `until`)",
-      "the stage, and every collapse stage, ends at rest — after a step whose motion's kinetic energy "
-         "is below this fraction of the energy the stage took in or released (the largest of the work "
-         "gravity and the loads did over it, its dissipation and its kinetic peak) and no longer rising, "
-         "not before the gravity ramp has ended (docs/reference/engine.md, \"Dynamic stages\", which also says how to "
-         "choose it); each stage is a row of events.csv (docs/reference/outputs.md); in (0, 1); `type: "
-         "dynamic` only"));
-  keys.push_back(settle_number("force_ratio", "–", {0.0, true, 1.0, true}, &Analysis::Settle::force_ratio,
-      "0 (the kinetic-energy test)",
-      "with the explicit step: a stage's explicit step is at rest when the largest unbalanced "
-         "force of a moving block is below this fraction of the mean force applied to the moving "
-         "blocks (UDEC's ratio; 1e-5 is customary), instead of the kinetic-energy test of "
-         "`rest_tolerance` (docs/reference/explicit-step.md, \"Rest by the unbalanced force\"); in "
-         "(0, 1); with `rest_tolerance` and `integrator: explicit` or `automatic`"));
-  keys.push_back(settle_integer("open_close_limit", "–", {1.0, false, 1000.0, false},
-      &Analysis::Settle::open_close_limit,
-      "the analysis's `open_close_limit`",
-      "open–close iterates before a step of the settling stage or a collapse stage is cut, "
-         "1–1000 (a dynamic stage of a static analysis needs more than the 8 of its static steps "
-         "where many contacts change at once; docs/reference/contacts.md, \"Contact solves\")"));
+  keys.push_back(settle_key("collapse_dt"));
+  keys.push_back(settle_key("gravity_ramp"));
+  keys.push_back(settle_key("rest_tolerance"));
+  keys.push_back(settle_key("force_ratio"));
+  keys.push_back(settle_key("open_close_limit"));
   return keys;
 }
 
 }  // namespace
+
+Analysis::Analysis() {
+  // A static analysis's defaults where the engine's declarations say they differ
+  // (dynamic_ratio, open_close_limit; the loader gives a dynamic one the others).
+  for (const core::SettingSpec& s : core::setting_specs())
+    if (s.static_default) s.set(*this, *s.static_default);
+  gravity = core::Vec2::Zero();  // required: none until the file gives it
+}
+
+const std::vector<AcceptanceSpec>& acceptance_specs() {
+  static const std::vector<AcceptanceSpec> specs = declare_acceptances();
+  return specs;
+}
 
 std::vector<KeySpec>& analysis_keys() {
   static std::vector<KeySpec> keys = declare_analysis_keys();

@@ -252,7 +252,7 @@ void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s) {
   const Analysis& a = s.analysis;
   StageWorld w(s);
   // The settling stage a stage `after: settled` waits for: the analysis's at first.
-  bool settling_to_wait_for = a.settle && a.settle->rest_tolerance > 0.0;
+  bool settling_to_wait_for = a.has_settle() && a.settle.rest_tolerance > 0.0;
   double last_at = 0.0;
   for (std::size_t i = 0; i < n.size(); ++i) {
     const std::string path = fmt::format("stages[{}]", i);
@@ -310,7 +310,7 @@ void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s) {
     }
     if (YAML::Node v = m.find("settle"); v.IsDefined()) {
       st.settle_where = location(v);
-      if (st.settle && !a.settle)
+      if (st.settle && !a.has_settle())
         ctx.fail(v, m.child("settle"), "a settling stage takes analysis.settle's values: give analysis.settle");
     }
     if (YAML::Node v = m.find("water"); v.IsDefined()) {  // docs/reference/water.md
@@ -319,7 +319,7 @@ void read_stages(const Ctx& ctx, const YAML::Node& n, SceneDescription& s) {
     }
     if (m.entries().size() == 2 + (m.has("settle") && !st.settle ? 1 : 0))
       ctx.fail(m.node(), path, "changes nothing: give what the stage does (remove_blocks, joint_sets, ...)");
-    settling_to_wait_for = st.settle && a.settle && a.settle->rest_tolerance > 0.0;
+    settling_to_wait_for = st.settle && a.has_settle() && a.settle.rest_tolerance > 0.0;
     s.stages.push_back(std::move(st));
   }
 }

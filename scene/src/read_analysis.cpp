@@ -26,9 +26,8 @@ namespace {
 /// `settle:` (docs/reference/engine.md, "Settling stage"), after the analysis's own keys.
 void read_settle(const Ctx& ctx, const MapReader& m, Analysis& a) {
   MapReader sm(ctx, m.find("settle"), m.child("settle"), declared_key_names("analysis.settle"));
-  a.settle = Analysis::Settle{};
   read_declared(ctx, sm, analysis_keys(), "analysis.settle", a);
-  Analysis::Settle& st = *a.settle;
+  core::SettleStage& st = a.settle;
   if (!sm.has("max_displacement_ratio")) st.max_displacement_ratio = a.max_displacement_ratio;
   // A stage that ends at rest (docs/reference/engine.md, "Dynamic stages") needs no length:
   // `until` is then its longest, by default the analysis's duration.
@@ -162,7 +161,7 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
       ctx.fail(v, m.child("step_tolerance"),
                "give step_tolerance (step doubling) or creep_tolerance (creep error estimate), "
                "not both: they are two step controls");
-    if (a.settle && a.settle->collapse_dt > 0.0)
+    if (a.has_settle() && a.settle.collapse_dt > 0.0)
       ctx.fail(v, m.child("step_tolerance"),
                "step doubling takes no collapse stage: give step_tolerance or settle.collapse_dt, not both");
   }
@@ -192,7 +191,7 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
   // with their friction dropped, and the slope slid again (measured: a stage
   // every 0.007 d, 23 in 4 d of the seed's slope against 4 with the force kept).
   a.stick_keeps_force_given = m.has("stick_keeps_force");
-  if (!a.stick_keeps_force_given) a.stick_keeps_force = dynamic || (a.settle && a.settle->collapse_dt > 0.0);
+  if (!a.stick_keeps_force_given) a.stick_keeps_force = dynamic || (a.has_settle() && a.settle.collapse_dt > 0.0);
   if (const YAML::Node v = m.find("output_interval"); !v.IsDefined()) {
     // A step ends on each output time (docs/reference/outputs.md, "Output times"): the
     // default asks for no step shorter than dt.

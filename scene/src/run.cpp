@@ -85,7 +85,7 @@ void check_law_stresses(Run& run, const core::Engine& e, bool at_end) {
   run.law_stresses_done = true;
   const std::string when = at_end           ? "at the end of the run"
                            : run.opt.resume ? "at the first step after resuming"
-                           : run.a.settle   ? "after settling"
+                           : run.a.has_settle()   ? "after settling"
                                             : "after the first step";
   for (auto& w : detail::law_stress_warnings(run.s, run.contacts.contacts(), e.time(), when))
     run.result.warnings.push_back(std::move(w));

@@ -32,7 +32,7 @@ void RunProgress::follow(const Run& run, const core::StepReport* r) {
     const core::StageState stage = e.save().stage;
     kind_ = stage.event.kind;
     phase_start_ = stage.event.start_time;
-  } else if (in && r && r->collapse_stage) {  // the step opened a mechanism stage (Settings::collapse_dt)
+  } else if (in && r && r->collapse_stage) {  // the step opened a mechanism stage (SettleStage::collapse_dt)
     kind_ = core::StageKind::mechanism;
     phase_start_ = e.time() - r->dt;
   } else if (in && (!in_dynamic_ || ended != events_)) {  // opened by a scene's stage (`settle: true`)
@@ -69,7 +69,7 @@ std::string RunProgress::text(const Run& run, const char* how) {
   t += fmt::format("{}wall {}", sep, duration_text(display_.elapsed()));
   if (how) return t;
   if (in_dynamic_) {
-    const double latest = phase_start_ + e.model().settings.settle_until;
+    const double latest = phase_start_ + e.model().settings.settle.until;
     return t + fmt::format(fmt::runtime(term ? "{}time left: after {} (at rest, by t = {:g} {})"
                                 : "{}time left: known once the {} stage ends (at rest, or at t = {:g} {} at the latest)"),
                            sep, core::stage_kind_name(kind_), latest, u);

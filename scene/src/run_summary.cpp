@@ -110,7 +110,7 @@ void write_summary(Run& run, const std::string& status, const std::string& error
   } else {
     j["static_mechanism"] = nullptr;
   }
-  if (a.settle) {
+  if (a.has_settle()) {
     // Dynamic stages (docs/reference/engine.md, "Dynamic stages"): summary.json's
     // "events" and the events table events.csv, rewritten whole each time.
     j["events"] = json::array();
@@ -203,7 +203,7 @@ void add_end_warnings(Run& run) {
         m.steps, m.first_time, m.last_time, s.units.time, 100.0 * m.inertia_share,
         s.file.empty() ? std::string("SCENE") : s.file,
         // Settling under gravity applied at once: the usual case, with its remedy.
-        m.first_step >= 0 && m.first_step < 10 && !s.analysis.settle
+        m.first_step >= 0 && m.first_step < 10 && !s.analysis.has_settle()
             ? "; from the first steps: a settling stage (analysis.settle) starts every run settled"
             : ""));
 }

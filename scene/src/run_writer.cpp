@@ -50,7 +50,7 @@ std::vector<std::string> history_columns(const SceneDescription& s) {
   for (const auto& mp : s.measurement_points) points.push_back(mp.name);
   for (const auto& j : s.joint_sets)
     if (j.record) recorded.push_back(j.name);
-  return history_columns_of(points, s.analysis.settle.has_value(), recorded, has_bolts(s), !s.stages.empty());
+  return history_columns_of(points, s.analysis.has_settle(), recorded, has_bolts(s), !s.stages.empty());
 }
 
 std::string make_history_header(const SceneDescription& s) { return fmt::format("{}\n", fmt::join(history_columns(s), ",")); }
@@ -65,7 +65,7 @@ std::string history_row(const Run& run, const core::StepReport* r) {
     const auto& mp = s.measurement_points[k];
     const core::Vec2 d = engine.point_displacement(mp.at.block, {mp.at.point[0], mp.at.point[1]});
     row += fmt::format(",{:.10g},{:.10g}", d.x(), d.y());
-    if (!s.analysis.settle) continue;
+    if (!s.analysis.has_settle()) continue;
     // Empty until the settling stage has ended, then 0 at its end (docs/reference/outputs.md).
     if (settled.empty())
       row += ",,";
@@ -132,7 +132,7 @@ bool history_row_due(Run& run, const core::StepReport& r) {
 void note_settled(Run& run) {
   const SceneDescription& s = run.s;
   std::vector<double>& settled = run.run_totals.settled;
-  if (!s.analysis.settle || !settled.empty()) return;
+  if (!s.analysis.has_settle() || !settled.empty()) return;
   // The settling stage at the start is the first dynamic stage to end; a stage's own
   // settling (docs/reference/stages.md) comes later, a collapse stage only after it.
   const auto& events = run.engine.events();

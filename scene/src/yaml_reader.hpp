@@ -6,9 +6,11 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -64,7 +66,7 @@ class MapReader {
       const std::string key = k.Scalar();
       if (std::find(allowed_.begin(), allowed_.end(), key) == allowed_.end()) {
         const std::string hint = laws::nearest_name(key, allowed_);
-        ctx.fail(k, child(key),
+        ctx.fail(k, path_of(key),
                  fmt::format("unknown key '{}'{}; valid keys here: {}", key,
                              hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint),
                              join(allowed_)));
@@ -77,12 +79,20 @@ class MapReader {
     }
   }
 
-  std::string child(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  /// The path of the key `key` of this map ("analysis.dt"); `key` must be one of its keys.
+  std::string child(const std::string& key) const {
+    check_declared(key);
+    return path_of(key);
+  }
   const YAML::Node& node() const { return node_; }
   SourceLocation where() const { return location(node_); }
 
-  /// The value of `key`, or an undefined node.
+  /// The value of `key`, or an undefined node. `key` must be one of the map's keys (its
+  /// declared keys, or a name the file gave): a reader's cross-key check that asks for
+  /// another word (a typo, a key renamed) throws std::logic_error instead of finding
+  /// nothing and so never applying.
   YAML::Node find(const std::string& key) const {
+    check_declared(key);
     for (const auto& e : entries_)
       if (e.key == key) return e.value;
     return YAML::Node(YAML::NodeType::Undefined);
@@ -98,6 +108,12 @@ class MapReader {
   const auto& entries() const { return entries_; }
 
  private:
+  std::string path_of(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  void check_declared(const std::string& key) const {
+    if (std::find(allowed_.begin(), allowed_.end(), key) == allowed_.end())
+      throw std::logic_error(fmt::format("{}: the reader asks for '{}', which is not a key of this map ({})",
+                                         path_.empty() ? "the file" : path_, key, join(allowed_)));
+  }
   struct Entry {
     std::string key;
     YAML::Node key_node;

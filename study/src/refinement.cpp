@@ -41,9 +41,9 @@ RefinementStudy refinement_study(const std::string& scene_path, const std::strin
                                             a.duration, s.units.time));
   // A settling stage that ends at rest (rest_tolerance) has `until` only as its longest:
   // where it ends is the run's to find.
-  if (a.settle && !(a.settle->rest_tolerance > 0.0) && until <= a.settle->until)
+  if (a.has_settle() && !(a.settle.rest_tolerance > 0.0) && until <= a.settle.until)
     throw std::invalid_argument(fmt::format("--until {:g}: must be after the end of the settling stage ({:g} {})",
-                                            until, a.settle->until, s.units.time));
+                                            until, a.settle.until, s.units.time));
 
   RefinementStudy r;
   StudyDescription& st = r.study;
@@ -61,7 +61,7 @@ RefinementStudy refinement_study(const std::string& scene_path, const std::strin
         "(record: true), no gravity and no load", scene_path));
   st.plot = st.outputs.front();
   st.times = {0.5 * until, until};
-  if (a.settle && st.times[0] <= a.settle->until) st.times.erase(st.times.begin());
+  if (a.has_settle() && st.times[0] <= a.settle.until) st.times.erase(st.times.begin());
 
   // The common `set`: the shorter duration, when asked for.
   std::vector<Override> common;
@@ -95,13 +95,13 @@ RefinementStudy refinement_study(const std::string& scene_path, const std::strin
     const std::string& lu = s.units.length;
     control("analysis.dt", a.dt, "dt", tu);
     control("analysis.max_displacement_ratio", a.max_displacement_ratio, "g2", "");
-    if (a.settle) {
-      control("analysis.settle.dt", a.settle->dt, "settle dt", tu);
+    if (a.has_settle()) {
+      control("analysis.settle.dt", a.settle.dt, "settle dt", tu);
       control("analysis.settle.max_displacement_ratio",
-              a.settle->max_displacement_ratio > 0.0 ? a.settle->max_displacement_ratio : a.max_displacement_ratio,
+              a.settle.max_displacement_ratio > 0.0 ? a.settle.max_displacement_ratio : a.max_displacement_ratio,
               "settle g2", "");
-      if (a.settle->collapse_dt > 0.0)
-        control("analysis.settle.collapse_dt", a.settle->collapse_dt, "collapse_dt", tu);
+      if (a.settle.collapse_dt > 0.0)
+        control("analysis.settle.collapse_dt", a.settle.collapse_dt, "collapse_dt", tu);
     }
     if (a.integrator != core::Integrator::implicit)  // the explicit step's cycle (explicit-step.md);
       // under `automatic` each level decides for itself (its halved explicit_safety may tip it)

@@ -302,7 +302,7 @@ std::set<std::string> output_columns(const scene::SceneDescription& s) {
   std::set<std::string> c(run.begin(), run.end());
   for (const auto& m : s.measurement_points) {
     c.insert(m.name + ".displacement");
-    if (s.analysis.settle) c.insert(m.name + ".displacement_after_settling");
+    if (s.analysis.has_settle()) c.insert(m.name + ".displacement_after_settling");
   }
   return c;
 }

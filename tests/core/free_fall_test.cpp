@@ -54,7 +54,7 @@ BOOST_AUTO_TEST_CASE(free_fall_follows_half_g_t_squared_to_round_off) {
 
 BOOST_AUTO_TEST_CASE(a_dynamic_settling_stage_carries_velocity_then_the_static_analysis_starts_at_rest) {
   // A static analysis (dynamic_ratio 0) with a dynamic settling stage
-  // (Settings::settle_dynamic) until 0.1 s: in the stage the square falls
+  // (SettleStage::dynamic) until 0.1 s: in the stage the square falls
   // freely, y = -g t^2/2 and v = -g t to round-off; the first static step after
   // it starts at rest (D = g dt^2/2, Shi's static step), and the kinetic energy
   // the stage left, m (g t1)^2 / 2, is booked as dissipated by the time
@@ -63,10 +63,10 @@ BOOST_AUTO_TEST_CASE(a_dynamic_settling_stage_carries_velocity_then_the_static_a
   const double g = 9.81, dt = 0.01, t1 = 0.1;
   Model m = falling_square(dt);
   m.settings.dynamic_ratio = 0.0;
-  m.settings.settle_until = t1;
-  m.settings.settle_dt = dt;
-  m.settings.settle_max_displacement_ratio = 1.0;
-  m.settings.settle_dynamic = true;
+  m.settings.settle.until = t1;
+  m.settings.settle.dt = dt;
+  m.settings.settle.max_displacement_ratio = 1.0;
+  m.settings.settle.dynamic = true;
   m.materials[0].damping_ratio = 0.05;  // allowed: the stage has dynamic steps
   const double mass = m.materials[0].density * 1.0;  // 1 m x 1 m
   Engine e(m);
@@ -88,7 +88,7 @@ BOOST_AUTO_TEST_CASE(a_dynamic_settling_stage_carries_velocity_then_the_static_a
   BOOST_TEST(e.energy().max_relative_residual < 1e-9);
 
   Model s = m;
-  s.settings.settle_dynamic = false;
+  s.settings.settle.dynamic = false;
   BOOST_CHECK_THROW(Engine{s}, ModelError);  // damping_ratio in a wholly static run
   s.materials[0].damping_ratio = 0.0;
   Engine st(s);

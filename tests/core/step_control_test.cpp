@@ -214,9 +214,9 @@ BOOST_AUTO_TEST_CASE(a_settling_stage_takes_its_own_steps_and_limit_then_hands_o
   Model m;
   m.settings.dt = 0.05;
   m.settings.max_displacement_ratio = 1.0;
-  m.settings.settle_until = 0.03;
-  m.settings.settle_dt = 0.01;
-  m.settings.settle_max_displacement_ratio = 0.01;
+  m.settings.settle.until = 0.03;
+  m.settings.settle.dt = 0.01;
+  m.settings.settle.max_displacement_ratio = 0.01;
   m.blocks.push_back(block({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));
   Engine e(m);
   BOOST_TEST(e.allowed_displacement() == 0.005, boost::test_tools::tolerance(1e-15));
@@ -232,17 +232,17 @@ BOOST_AUTO_TEST_CASE(a_settling_stage_takes_its_own_steps_and_limit_then_hands_o
   // A static analysis (no carried velocity) would fall g dt^2/2 per step; this
   // one is dynamic: free fall is exact through the hand-over.
   BOOST_TEST(e.centroid(0).y() == 0.5 - 0.5 * 9.81 * 0.08 * 0.08, boost::test_tools::tolerance(1e-12));
-  // The stage's limit cuts its steps as max_displacement_ratio does: settle_max_displacement_ratio 1e-4 (0.05 mm).
+  // The stage's limit cuts its steps as max_displacement_ratio does: settle.max_displacement_ratio 1e-4 (0.05 mm).
   Model tight = m;
-  tight.settings.settle_max_displacement_ratio = 1e-4;
+  tight.settings.settle.max_displacement_ratio = 1e-4;
   Engine t(tight);
   const StepReport r = t.step();
   BOOST_TEST(r.cuts > 0);
   BOOST_TEST(r.max_displacement <= 0.5e-4 * (1.0 + 1e-12));
   // Bad stage settings name their key.
   Model bad = m;
-  bad.settings.settle_dt = 0.0;
-  BOOST_CHECK_EXCEPTION(Engine{bad}, ModelError, [](const ModelError& x) { return x.key() == "settings.settle_dt"; });
+  bad.settings.settle.dt = 0.0;
+  BOOST_CHECK_EXCEPTION(Engine{bad}, ModelError, [](const ModelError& x) { return x.key() == "settings.settle.dt"; });
 }
 
 BOOST_AUTO_TEST_CASE(observers_see_every_accepted_step) {

@@ -23,14 +23,17 @@ using namespace rheodda::test;
 BOOST_AUTO_TEST_SUITE(contact_settings)
 
 BOOST_AUTO_TEST_CASE(every_contact_setting_is_the_analysis_key_of_its_name_with_its_declaration) {
-  BOOST_TEST_REQUIRE(contact::contact_setting_specs().size() == 11u);
+  BOOST_TEST_REQUIRE(contact::contact_setting_specs().size() == 12u);
   const scene::Analysis fresh{};
   for (const contact::ContactSettingSpec& s : contact::contact_setting_specs()) {
     BOOST_TEST_CONTEXT("setting " << s.name()) {
       const scene::KeySpec& k = scene::analysis_key(s.name());
-      BOOST_TEST((k.type == (s.type == laws::SettingType::integer ? scene::KeyType::integer : scene::KeyType::number)));
-      check_key_is_declaration(k, s.parameter);
-      BOOST_TEST(scene::key_range_text(k) == s.range_text());
+      const bool flag = s.type == laws::SettingType::flag;
+      BOOST_TEST((k.type == (flag                                   ? scene::KeyType::flag
+                             : s.type == laws::SettingType::integer ? scene::KeyType::integer
+                                                                    : scene::KeyType::number)));
+      check_key_is_declaration(k, s.parameter, !flag);
+      if (!flag) BOOST_TEST(scene::key_range_text(k) == s.range_text());
       // The default is ContactSettings{}'s, and the scene starts from it; the penalty's is a
       // mark the loader replaces (its key says by what).
       BOOST_TEST(*s.parameter.default_value == s.value(contact::ContactSettings{}));
@@ -43,6 +46,7 @@ BOOST_AUTO_TEST_CASE(every_contact_setting_is_the_analysis_key_of_its_name_with_
 
 BOOST_AUTO_TEST_CASE(a_contact_setting_given_reaches_the_contact_layer_and_out_of_range_is_refused_by_both) {
   for (const contact::ContactSettingSpec& s : contact::contact_setting_specs()) {
+    if (s.type == laws::SettingType::flag) continue;  // stick_keeps_force: its own test below
     BOOST_TEST_CONTEXT("setting " << s.name()) {
       const bool integer = s.type == laws::SettingType::integer;
       // Inside, away from the default: the value the scene gives is the contact layer's.
@@ -80,6 +84,30 @@ BOOST_AUTO_TEST_CASE(a_contact_setting_given_reaches_the_contact_layer_and_out_o
         BOOST_TEST(std::string(err.what()).find(s.range_text()) != std::string::npos, err.what());
       }
     }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(stick_keeps_force_is_declared_with_the_scenes_rule_for_its_default) {
+  // The declaration states the rule the loader applies (its host_default), the key's
+  // default text is it, and each case of the rule reaches the contact layer.
+  const contact::ContactSettingSpec& s = contact::contact_setting_spec("stick_keeps_force");
+  BOOST_TEST((s.type == laws::SettingType::flag));
+  BOOST_TEST(!s.host_default.empty());
+  BOOST_TEST(scene::analysis_key("stick_keeps_force").default_text == s.host_default);
+  BOOST_TEST(!s.admits(0.5));
+  const auto built_with = [](const std::string& text) {
+    return scene::build_scene(scene::parse_scene(text, "stick.yaml")).contact_settings.stick_keeps_force;
+  };
+  BOOST_TEST(!built_with(kBaseScene));                                                  // static
+  BOOST_TEST(built_with(with("  dt: 0.01", "  dt: 0.01\n  type: dynamic")));            // dynamic
+  BOOST_TEST(built_with(with("  dt: 0.01", "  dt: 0.01\n  stick_keeps_force: true")));  // given
+  BOOST_TEST(!built_with(with("  dt: 0.01", "  dt: 0.01\n  type: dynamic\n  stick_keeps_force: false")));
+  try {
+    (void)scene::parse_scene(with("  dt: 0.01", "  dt: 0.01\n  stick_keeps_force: 2"), "flag.yaml");
+    BOOST_ERROR("the scene took stick_keeps_force: 2");
+  } catch (const scene::SceneError& err) {
+    BOOST_TEST(err.key() == "analysis.stick_keeps_force", err.what());
+    BOOST_TEST(err.line() == 5, err.what());
   }
 }
 

@@ -15,6 +15,7 @@
 
 #include "declared_key_checks.hpp"
 #include "test_support.hpp"
+#include "rheodda/contact/contact_settings_specs.hpp"
 #include "rheodda/core/engine.hpp"
 #include "rheodda/core/settings.hpp"
 #include "rheodda/scene/build.hpp"
@@ -63,26 +64,32 @@ BOOST_AUTO_TEST_CASE(every_engine_setting_is_the_analysis_key_of_its_name_with_i
   }
 }
 
-BOOST_AUTO_TEST_CASE(every_analysis_key_is_an_engine_setting_or_one_the_scene_keeps_or_hands_the_contacts) {
-  // Not settings of core::Settings declared in core/settings.hpp: the scene's own keys
-  // (type, duration, outputs, guards, warnings), the contact layer's (ContactSettings), the
-  // settling stage and the choices, which core does not declare yet (engine.md, "Parameters").
-  const std::set<std::string> others{
-      "type", "duration", "settle", "time_integration", "scheme", "penalty", "shear_normal_ratio",
-      "search_factor", "angle_tolerance", "penetration_ratio", "friction_tolerance", "force_resolution",
-      "max_flips", "max_refinements", "penalty_raise", "penalty_max_factor", "stick_keeps_force",
-      "accept_unresolved_impacts", "solver", "contact_solver", "integrator", "output_interval", "output_times",
-      "history", "frames", "max_travel_ratio", "max_output_size", "gravity", "accept_other_gravity"};
-  std::set<std::string> declared;
+BOOST_AUTO_TEST_CASE(every_analysis_key_is_a_declared_setting_or_one_the_scene_keeps) {
+  // Declared once in the declaration type of laws::SettingSpec: the engine's settings
+  // (core/settings.hpp), the contact layer's (contact/contact_settings_specs.hpp), the
+  // scene's acceptances (keys.hpp) and the settling stage's numbers (core::settle_specs).
+  // Not declared so: the scene's own keys (type, duration, outputs, guards), the settling
+  // stage's map and its `type`, the choices and gravity (a vector).
+  const std::set<std::string> others{"type", "duration", "settle", "time_integration", "scheme", "solver",
+                                     "contact_solver", "integrator", "output_interval", "output_times",
+                                     "history", "frames", "max_travel_ratio", "max_output_size", "gravity"};
+  std::multiset<std::string> declared;
   for (const core::SettingSpec& s : core::setting_specs()) declared.insert(s.name());
+  for (const contact::ContactSettingSpec& s : contact::contact_setting_specs()) declared.insert(s.name());
+  for (const scene::AcceptanceSpec& s : scene::acceptance_specs()) declared.insert(s.name());
   for (const std::string& key : scene::declared_key_names("analysis")) {
     BOOST_TEST_CONTEXT("analysis." << key) {
       BOOST_TEST((declared.count(key) + others.count(key) == 1u),
-                 "each key of analysis: is a declared setting of the engine or one the scene keeps (not both)");
+                 "each key of analysis: is one declared setting or one the scene keeps (not both)");
     }
   }
   for (const std::string& name : declared)
     BOOST_TEST(scene::analysis_key(name).name == name);
+  // analysis.settle: the stage's declared numbers and its `type`.
+  std::set<std::string> stage{"type"};
+  for (const core::SettleSpec& s : core::settle_specs()) BOOST_TEST(stage.insert(s.name()).second);
+  const std::vector<std::string> settle_keys = scene::declared_key_names("analysis.settle");
+  BOOST_TEST(std::set<std::string>(settle_keys.begin(), settle_keys.end()) == stage);
 }
 
 BOOST_AUTO_TEST_CASE(the_loader_gives_each_setting_its_default_by_analysis_type_and_build_hands_it_over) {

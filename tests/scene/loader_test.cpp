@@ -183,19 +183,19 @@ BOOST_AUTO_TEST_CASE(a_settling_stage_reaches_the_engine_settings_and_bad_ones_a
   // docs/reference/engine.md, "Settling stage".
   const auto text = with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, max_displacement_ratio: 0.0005}");
   const scene::SceneDescription s = scene::parse_scene(text, "settle.yaml");
-  BOOST_TEST_REQUIRE(s.analysis.settle.has_value());
-  BOOST_TEST(s.analysis.settle->until == 0.1);
-  BOOST_TEST(s.analysis.settle->dt == 0.001);
-  BOOST_TEST(s.analysis.settle->max_displacement_ratio == 0.0005);
+  BOOST_TEST_REQUIRE(s.analysis.has_settle());
+  BOOST_TEST(s.analysis.settle.until == 0.1);
+  BOOST_TEST(s.analysis.settle.dt == 0.001);
+  BOOST_TEST(s.analysis.settle.max_displacement_ratio == 0.0005);
   const scene::BuiltScene built = scene::build_scene(s);
-  BOOST_TEST(built.model.settings.settle_until == 0.1);
-  BOOST_TEST(built.model.settings.settle_dt == 0.001);
-  BOOST_TEST(built.model.settings.settle_max_displacement_ratio == 0.0005);
+  BOOST_TEST(built.model.settings.settle.until == 0.1);
+  BOOST_TEST(built.model.settings.settle.dt == 0.001);
+  BOOST_TEST(built.model.settings.settle.max_displacement_ratio == 0.0005);
   // Its max_displacement_ratio defaults to the analysis's; no stage by default.
   BOOST_TEST(scene::parse_scene(with("  dt: 0.01", "  dt: 0.01\n  max_displacement_ratio: 0.002\n"
                                                    "  settle: {until: 0.1, dt: 0.001}"), "d.yaml")
-                 .analysis.settle->max_displacement_ratio == 0.002);
-  BOOST_TEST(scene::build_scene(scene::parse_scene(kBaseScene, "base.yaml")).model.settings.settle_until == 0.0);
+                 .analysis.settle.max_displacement_ratio == 0.002);
+  BOOST_TEST(scene::build_scene(scene::parse_scene(kBaseScene, "base.yaml")).model.settings.settle.until == 0.0);
   expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 1, dt: 0.001}"), 5, "1,",
                   "analysis.settle.until", "not before the analysis does");
   expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.5}"), 5, "0.5",
@@ -216,11 +216,11 @@ BOOST_AUTO_TEST_CASE(a_dynamic_settling_stage_admits_the_damping_keys_in_a_stati
       with("poisson_ratio: 0.25}", "poisson_ratio: 0.25, damping_ratio: 1}",
            with("bedding: {friction_angle: 30}", "bedding: {friction_angle: 30, restitution: 0}", stage)),
       "settle-dynamic.yaml");
-  BOOST_TEST_REQUIRE(s.analysis.settle.has_value());
-  BOOST_TEST(s.analysis.settle->dynamic);
+  BOOST_TEST_REQUIRE(s.analysis.has_settle());
+  BOOST_TEST(s.analysis.settle.dynamic);
   BOOST_TEST(s.analysis.has_dynamic_steps());
   const scene::BuiltScene built = scene::build_scene(s);
-  BOOST_TEST(built.model.settings.settle_dynamic);
+  BOOST_TEST(built.model.settings.settle.dynamic);
   BOOST_TEST(built.model.settings.dynamic_ratio == 0.0);
   BOOST_TEST(built.model.materials[0].damping_ratio == 1.0);
   BOOST_TEST(built.contact_settings.lock_at_touch);
@@ -248,10 +248,10 @@ BOOST_AUTO_TEST_CASE(collapse_dt_reaches_the_engine_with_a_dynamic_stage_of_a_st
   // docs/reference/engine.md, "Collapse stages".
   const auto text = with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, type: dynamic, collapse_dt: 0.002}");
   const auto s = scene::parse_scene(text, "collapse.yaml");
-  BOOST_TEST_REQUIRE(s.analysis.settle.has_value());
-  BOOST_TEST(s.analysis.settle->collapse_dt == 0.002);
+  BOOST_TEST_REQUIRE(s.analysis.has_settle());
+  BOOST_TEST(s.analysis.settle.collapse_dt == 0.002);
   const scene::BuiltScene built = scene::build_scene(s);
-  BOOST_TEST(built.model.settings.collapse_dt == 0.002);
+  BOOST_TEST(built.model.settings.settle.collapse_dt == 0.002);
   // The static steps keep the stages' stick rule unless the scene gives one.
   BOOST_TEST(built.contact_settings.stick_keeps_force);
   BOOST_TEST(*built.contact_settings.stick_keeps_force_dynamic);
@@ -275,17 +275,17 @@ BOOST_AUTO_TEST_CASE(gravity_ramp_reaches_the_engine_and_must_end_within_the_set
   // docs/reference/engine.md, "Gravity ramp".
   const auto text = with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, type: dynamic, gravity_ramp: 0.05}");
   const auto s = scene::parse_scene(text, "ramp.yaml");
-  BOOST_TEST_REQUIRE(s.analysis.settle.has_value());
-  BOOST_TEST(s.analysis.settle->gravity_ramp == 0.05);
+  BOOST_TEST_REQUIRE(s.analysis.has_settle());
+  BOOST_TEST(s.analysis.settle.gravity_ramp == 0.05);
   const scene::BuiltScene built = scene::build_scene(s);
-  BOOST_TEST(built.model.settings.settle_gravity_ramp == 0.05);
+  BOOST_TEST(built.model.settings.settle.gravity_ramp == 0.05);
   BOOST_TEST(built.model.settings.gravity_at(0.025).y() == 0.5 * built.model.settings.gravity.y());
   BOOST_TEST(built.model.settings.gravity_at(0.06).y() == built.model.settings.gravity.y());
   BOOST_TEST(scene::describe_scene(s).find("gravity ramp") != std::string::npos);
   // Without it gravity comes on at once.
   BOOST_TEST(scene::build_scene(scene::parse_scene(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001}"),
                                                    "once.yaml"))
-                 .model.settings.settle_gravity_ramp == 0.0);
+                 .model.settings.settle.gravity_ramp == 0.0);
   // Not beyond the stage, not zero or negative.
   expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, gravity_ramp: 0.2}"), 5, "0.2}",
                   "analysis.settle.gravity_ramp", "after the settling stage");
@@ -297,18 +297,18 @@ BOOST_AUTO_TEST_CASE(rest_tolerance_ends_stages_at_rest_and_makes_until_their_lo
   // docs/reference/engine.md, "Dynamic stages".
   const auto text = with("  dt: 0.01", "  dt: 0.01\n  settle: {dt: 0.001, type: dynamic, rest_tolerance: 1.0e-5}");
   const auto s = scene::parse_scene(text, "rest.yaml");
-  BOOST_TEST_REQUIRE(s.analysis.settle.has_value());
-  BOOST_TEST(s.analysis.settle->rest_tolerance == 1e-5);
-  BOOST_TEST(s.analysis.settle->until == s.analysis.duration);  // no length given: at most the duration
+  BOOST_TEST_REQUIRE(s.analysis.has_settle());
+  BOOST_TEST(s.analysis.settle.rest_tolerance == 1e-5);
+  BOOST_TEST(s.analysis.settle.until == s.analysis.duration);  // no length given: at most the duration
   const scene::BuiltScene built = scene::build_scene(s);
-  BOOST_TEST(built.model.settings.settle_rest_tolerance == 1e-5);
-  BOOST_TEST(built.model.settings.settle_until == s.analysis.duration);
+  BOOST_TEST(built.model.settings.settle.rest_tolerance == 1e-5);
+  BOOST_TEST(built.model.settings.settle.until == s.analysis.duration);
   BOOST_TEST(scene::describe_scene(s).find("until at rest") != std::string::npos);
   // With `until`, it is the longest; without rest_tolerance `until` is still required.
   BOOST_TEST(scene::parse_scene(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, type: dynamic, "
                                                   "rest_tolerance: 1.0e-5}"),
                                 "rest.yaml")
-                 .analysis.settle->until == 0.1);
+                 .analysis.settle.until == 0.1);
   expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  settle: {dt: 0.001, type: dynamic}"), 5, "{dt",
                   "analysis.settle.until", "required");
   // Only a dynamic stage comes to rest; a fraction in (0, 1).
@@ -323,13 +323,13 @@ BOOST_AUTO_TEST_CASE(a_stage_takes_its_own_open_close_limit) {
   // iterates; without it they take the analysis's (8 in a static analysis).
   const auto text = with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, type: dynamic, open_close_limit: 30}");
   const auto s = scene::parse_scene(text, "limit.yaml");
-  BOOST_TEST(s.analysis.settle->open_close_limit == 30);
+  BOOST_TEST(s.analysis.settle.open_close_limit == 30);
   const scene::BuiltScene built = scene::build_scene(s);
-  BOOST_TEST(built.model.settings.settle_open_close_limit == 30);
+  BOOST_TEST(built.model.settings.settle.open_close_limit == 30);
   BOOST_TEST(built.model.settings.open_close_limit == s.analysis.open_close_limit);
   BOOST_TEST(scene::describe_scene(s).find("cut after 30 open-close iterates") != std::string::npos);
   const auto plain = scene::parse_scene(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001}"), "limit.yaml");
-  BOOST_TEST(scene::build_scene(plain).model.settings.settle_open_close_limit == 0);
+  BOOST_TEST(scene::build_scene(plain).model.settings.settle.open_close_limit == 0);
   expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  settle: {until: 0.1, dt: 0.001, open_close_limit: 0}"), 5, "0}",
                   "analysis.settle.open_close_limit", "out of range");
 }
@@ -455,8 +455,8 @@ BOOST_AUTO_TEST_CASE(the_explicit_step_keys_reach_the_engine_and_are_refused_whe
   // settle.force_ratio (docs/reference/explicit-step.md, "Rest by the unbalanced force").
   const auto ratio = with("  dt: 0.01", "  dt: 0.01\n  integrator: explicit\n"
                                        "  settle: {type: dynamic, dt: 0.001, rest_tolerance: 1.0e-5, force_ratio: 1.0e-5}");
-  BOOST_TEST(scene::build_scene(scene::parse_scene(ratio, "ratio.yaml")).model.settings.settle_force_ratio == 1e-5);
-  BOOST_TEST(staged.settle_force_ratio == 0.0);
+  BOOST_TEST(scene::build_scene(scene::parse_scene(ratio, "ratio.yaml")).model.settings.settle.force_ratio == 1e-5);
+  BOOST_TEST(staged.settle.force_ratio == 0.0);
   expect_error_at(with("  dt: 0.01", "  dt: 0.01\n  integrator: explicit\n"
                                     "  settle: {type: dynamic, until: 0.1, dt: 0.001, force_ratio: 1.0e-5}"),
                   6, "1.0e-5", "analysis.settle.force_ratio", "give `rest_tolerance` too");

@@ -307,7 +307,7 @@ BOOST_AUTO_TEST_CASE(the_toppling_example_settles_in_its_stage_then_converges_wi
   // ends 100 d within the 0.5 % that the six levels of `check --refine` span
   // (block 10 at 3.276-3.281 m), neither run moving as a mechanism.
   auto s = example("goodman-toppling-creep.yaml", 100.0, 100.0);
-  BOOST_TEST_REQUIRE(s.analysis.settle.has_value());
+  BOOST_TEST_REQUIRE(s.analysis.has_settle());
   BOOST_TEST(s.analysis.dt == 0.03125);
   BOOST_TEST(s.analysis.open_close_limit == 8);  // the static default
   std::vector<double> block10;
@@ -315,8 +315,8 @@ BOOST_AUTO_TEST_CASE(the_toppling_example_settles_in_its_stage_then_converges_wi
     auto level = s;
     level.analysis.dt *= f;
     level.analysis.max_displacement_ratio *= f;
-    level.analysis.settle->dt *= f;
-    level.analysis.settle->max_displacement_ratio *= f;
+    level.analysis.settle.dt *= f;
+    level.analysis.settle.max_displacement_ratio *= f;
     const fs::path out = fresh_dir(fmt::format("settle_{}", f));
     const auto r = run(level, out);
     BOOST_TEST_REQUIRE((r.status == scene::RunStatus::completed));
@@ -327,7 +327,7 @@ BOOST_AUTO_TEST_CASE(the_toppling_example_settles_in_its_stage_then_converges_wi
     BOOST_TEST(sum.at("static_mechanism").at("inertia_share").get<double>() < core::kMechanismRunShare);
     BOOST_TEST(sum.at("inputs").at("analysis").at("settle").at("until").get<double>() == 0.01);
     // The stage's steps (0.01 d / its dt, cuts allowed) and then (100 - 0.01) / dt creep steps.
-    BOOST_TEST(r.steps >= static_cast<int>(std::floor(0.01 / level.analysis.settle->dt + 0.5)) +
+    BOOST_TEST(r.steps >= static_cast<int>(std::floor(0.01 / level.analysis.settle.dt + 0.5)) +
                              static_cast<int>(std::floor((100.0 - 0.01) / level.analysis.dt)));
   }
   BOOST_TEST(std::abs(block10[0] - block10[1]) < 5e-3 * block10[1], block10[0] << " vs " << block10[1]);

@@ -1,4 +1,4 @@
-// Collapse stages (core::Settings::collapse_dt; docs/reference/engine.md, "Collapse
+// Collapse stages (core::SettleStage::collapse_dt; docs/reference/engine.md, "Collapse
 // stages"): in a static analysis a step that moves as a mechanism is located
 // to within collapse_dt and taken as a dynamic stage, so the collapse follows
 // the dynamics whatever the static step, and a model that stands takes none.
@@ -23,11 +23,11 @@ core::Model pushed_block(double dt, double collapse_dt, double& push) {
   core::Model m;
   m.settings.dynamic_ratio = 0.0;
   m.settings.dt = dt;
-  m.settings.settle_until = 0.05;
-  m.settings.settle_dt = 1e-3;
-  m.settings.settle_max_displacement_ratio = 0.01;
-  m.settings.settle_dynamic = true;
-  m.settings.collapse_dt = collapse_dt;
+  m.settings.settle.until = 0.05;
+  m.settings.settle.dt = 1e-3;
+  m.settings.settle.max_displacement_ratio = 0.01;
+  m.settings.settle.dynamic = true;
+  m.settings.settle.collapse_dt = collapse_dt;
   add_fixed(m, rect(-1.0, -1.0, 5.0, 0.0));
   m.blocks.push_back(block(rect(1.0, 0.0, 2.0, 0.5)));
   const double weight = m.materials[0].density * 0.5 * 9.81;  // [N/m]
@@ -107,10 +107,10 @@ BOOST_AUTO_TEST_CASE(collapse_dt_needs_a_static_analysis_with_a_dynamic_settling
   double push = 0.0;
   auto refused = [](const core::Model& m) {
     BOOST_CHECK_EXCEPTION(core::Engine{m}, core::ModelError,
-                          [](const core::ModelError& e) { return e.key() == "settings.collapse_dt"; });
+                          [](const core::ModelError& e) { return e.key() == "settings.settle.collapse_dt"; });
   };
   core::Model m = pushed_block(0.1, 0.01, push);
-  m.settings.settle_dynamic = false;
+  m.settings.settle.dynamic = false;
   refused(m);
   m = pushed_block(0.1, 0.01, push);
   m.settings.dynamic_ratio = 1.0;

@@ -1,4 +1,4 @@
-// Dynamic stages that end at rest (core::Settings::settle_rest_tolerance;
+// Dynamic stages that end at rest (core::SettleStage::rest_tolerance;
 // docs/reference/engine.md, "Dynamic stages"): a mechanism a static step finds is taken
 // dynamically until its kinetic energy has decayed, then the static steps go
 // on; the settling stage ends the same way; each stage is an event.
@@ -25,12 +25,12 @@ core::Model pushed_block(double dt, double rest_tolerance, double& push) {
   core::Model m;
   m.settings.dynamic_ratio = 0.0;
   m.settings.dt = dt;
-  m.settings.settle_until = 0.5;  // the longest a stage may last
-  m.settings.settle_dt = 1e-3;
-  m.settings.settle_max_displacement_ratio = 0.01;
-  m.settings.settle_dynamic = true;
-  m.settings.settle_rest_tolerance = rest_tolerance;
-  m.settings.collapse_dt = 0.01;
+  m.settings.settle.until = 0.5;  // the longest a stage may last
+  m.settings.settle.dt = 1e-3;
+  m.settings.settle.max_displacement_ratio = 0.01;
+  m.settings.settle.dynamic = true;
+  m.settings.settle.rest_tolerance = rest_tolerance;
+  m.settings.settle.collapse_dt = 0.01;
   m.materials[0].damping_ratio = 1.0;
   add_fixed(m, rect(-1.0, -1.0, 5.0, 0.0));
   m.blocks.push_back(block(rect(1.0, 0.0, 2.0, 0.5)));
@@ -153,8 +153,8 @@ BOOST_AUTO_TEST_CASE(a_stiff_mode_the_step_does_not_resolve_does_not_keep_the_st
   double push = 0.0;
   auto settling = [&](double rest_tolerance) {
     core::Model m = pushed_block(0.1, rest_tolerance, push);
-    m.settings.settle_dt = 0.05;
-    m.settings.settle_max_displacement_ratio = 0.05;
+    m.settings.settle.dt = 0.05;
+    m.settings.settle.max_displacement_ratio = 0.05;
     m.materials[0].damping_ratio = 0.0;
     return m;
   };
@@ -178,11 +178,11 @@ BOOST_AUTO_TEST_CASE(rest_tolerance_needs_a_dynamic_settling_stage_and_a_fractio
   double push = 0.0;
   auto refused = [](const core::Model& m) {
     BOOST_CHECK_EXCEPTION(core::Engine{m}, core::ModelError,
-                          [](const core::ModelError& e) { return e.key() == "settings.settle_rest_tolerance"; });
+                          [](const core::ModelError& e) { return e.key() == "settings.settle.rest_tolerance"; });
   };
   core::Model m = pushed_block(0.1, 1e-3, push);
-  m.settings.settle_dynamic = false;
-  m.settings.collapse_dt = 0.0;
+  m.settings.settle.dynamic = false;
+  m.settings.settle.collapse_dt = 0.0;
   m.materials[0].damping_ratio = 0.0;
   refused(m);
   refused(pushed_block(0.1, 1.0, push));

@@ -245,11 +245,11 @@ core::Model explicit_settling_model(double until) {
   core::Model m;
   m.settings.dt = 1e-2;
   m.settings.dynamic_ratio = 0.0;
-  m.settings.settle_until = until;
-  m.settings.settle_dt = 1e-3;
-  m.settings.settle_max_displacement_ratio = 1e-3;
-  m.settings.settle_dynamic = true;
-  m.settings.settle_rest_tolerance = 1e-6;
+  m.settings.settle.until = until;
+  m.settings.settle.dt = 1e-3;
+  m.settings.settle.max_displacement_ratio = 1e-3;
+  m.settings.settle.dynamic = true;
+  m.settings.settle.rest_tolerance = 1e-6;
   m.settings.integrator = core::Integrator::explicit_step;
   return m;
 }
@@ -393,7 +393,7 @@ BOOST_AUTO_TEST_CASE(each_blocks_cycle_shrinks_with_its_size_and_the_smallest_is
 
 BOOST_AUTO_TEST_CASE(a_stage_at_rest_by_its_unbalanced_force_ratio_holds_the_stack_in_equilibrium) {
   // The density-scaled stack of the case above, its stage ending at rest by the unbalanced-force
-  // ratio (settle_force_ratio, UDEC's test) instead of the kinetic energy. At rest the plate's
+  // ratio (settle.force_ratio, UDEC's test) instead of the kinetic energy. At rest the plate's
   // weight is carried by its contacts: the sum of their normal forces on the plate equals its
   // weight to the ratio's order, and its settlement on the penalty springs equals the
   // kinetic-energy stage's within 1e-3 relative; a tighter ratio takes more steps.
@@ -406,7 +406,7 @@ BOOST_AUTO_TEST_CASE(a_stage_at_rest_by_its_unbalanced_force_ratio_holds_the_sta
     core::Model m = explicit_settling_model(1.0);
     m.settings.stage_local_damping = 0.8;
     m.settings.stage_cycles = 20;
-    m.settings.settle_force_ratio = force_ratio;
+    m.settings.settle.force_ratio = force_ratio;
     add_fixed(m, rect(-1.0, -1.0, 2.0, 0.0));
     m.blocks.push_back(block(rect(0.0, 0.0, 1.0, 0.5)));
     m.blocks.push_back(block(rect(0.2, 0.5, 0.8, 0.52)));

@@ -1,4 +1,4 @@
-// Gravity ramp of the settling stage (core::Settings::settle_gravity_ramp;
+// Gravity ramp of the settling stage (core::SettleStage::gravity_ramp;
 // docs/reference/engine.md, "Gravity ramp"): gravity that comes on at once sets a block
 // resting on its support vibrating about its static position, the first swing
 // reaching twice the static settlement (a suddenly applied load), and the work
@@ -26,11 +26,11 @@ constexpr double kDt = 1e-5;     // [s]: about 25 steps per period of the block 
 core::Model resting_block(double ramp) {
   core::Model m;
   m.settings.dt = kDt;
-  m.settings.settle_until = kStage;
-  m.settings.settle_dt = kDt;
-  m.settings.settle_max_displacement_ratio = 0.01;
-  m.settings.settle_dynamic = true;
-  m.settings.settle_gravity_ramp = ramp;
+  m.settings.settle.until = kStage;
+  m.settings.settle.dt = kDt;
+  m.settings.settle.max_displacement_ratio = 0.01;
+  m.settings.settle.dynamic = true;
+  m.settings.settle.gravity_ramp = ramp;
   add_fixed(m, rect(-1.0, -1.0, 3.0, 0.0));
   m.blocks.push_back(block(rect(0.5, 0.0, 1.5, 0.5)));
   return m;
@@ -90,9 +90,9 @@ BOOST_AUTO_TEST_CASE(a_slow_ramp_loads_without_overshoot_and_gravity_at_once_swi
 BOOST_AUTO_TEST_CASE(the_ramp_must_end_within_the_settling_stage) {
   core::Model m = resting_block(2.0 * kStage);
   BOOST_CHECK_THROW(core::Engine{m}, core::ModelError);
-  m.settings.settle_gravity_ramp = -1.0;
+  m.settings.settle.gravity_ramp = -1.0;
   BOOST_CHECK_THROW(core::Engine{m}, core::ModelError);
-  m.settings.settle_gravity_ramp = kStage;  // ending with the stage is allowed
+  m.settings.settle.gravity_ramp = kStage;  // ending with the stage is allowed
   BOOST_CHECK_NO_THROW(core::Engine{m});
 }
 

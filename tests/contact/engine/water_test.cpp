@@ -116,7 +116,7 @@ BOOST_AUTO_TEST_CASE(a_submerged_block_presses_on_its_base_with_its_weight_less_
 }
 
 BOOST_AUTO_TEST_CASE(under_a_gravity_ramp_the_water_weighs_with_gravity_and_a_submerged_block_stays_down) {
-  // Gravity rises over the first second (Settings::settle_gravity_ramp) and the
+  // Gravity rises over the first second (SettleStage::gravity_ramp) and the
   // water's pressure (gamma_w = rho_w g) with it: the submerged block then presses
   // on its base at every step as the same block in air under the gravity its
   // buoyancy leaves, g' = g - gamma_w / rho, ramped alike (same mass, so the same
@@ -126,10 +126,10 @@ BOOST_AUTO_TEST_CASE(under_a_gravity_ramp_the_water_weighs_with_gravity_and_a_su
     core::Model m;
     m.settings.dt = 0.01;
     m.settings.dynamic_ratio = 0.0;
-    m.settings.settle_until = 1.0;
-    m.settings.settle_dt = 0.01;
-    m.settings.settle_max_displacement_ratio = 0.01;
-    m.settings.settle_gravity_ramp = 1.0;
+    m.settings.settle.until = 1.0;
+    m.settings.settle.dt = 0.01;
+    m.settings.settle.max_displacement_ratio = 0.01;
+    m.settings.settle.gravity_ramp = 1.0;
     m.settings.gravity = {0.0, water ? -kG : -(kG - kGammaW / 2600.0)};
     // A base that does not move: under water its exposed top is loaded too, and a
     // base yielding on its fixed points would change the top block's steps (and

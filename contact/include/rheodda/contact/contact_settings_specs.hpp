@@ -5,9 +5,9 @@
 //
 // What reads them: ContactSystem's constructor (check_contact_setting_ranges), the scene's
 // `analysis:` keys of the same names (scene/src/keys.cpp takes each key's unit, range,
-// default and meaning from its declaration; the scene's Analysis initializes its fields
-// from them, build_scene copies them into ContactSettings through them), and the key table
-// of docs/reference/scene-format.md (generated from the keys).
+// default and meaning from its declaration and reads into the member: the scene's
+// Analysis is a ContactSettings, which build_scene hands on whole), and the key table of
+// docs/reference/scene-format.md (generated from the keys).
 //
 // The default is ContactSettings{}'s (the member's initializer in joint_set.hpp is the one
 // place it is written); `penalty`'s is a mark (0) that the host replaces by its own rule.
@@ -15,8 +15,9 @@
 // Not declared here: what a host decides rather than takes from its user
 // (min_search_distance, lock_at_touch, reversal_at_normal_resolution,
 // stick_keeps_force_dynamic), the Newton settings of nonlinear laws (creep_newton_tolerance,
-// max_creep_newton: no scene key), the scheme (a choice) and stick_keeps_force (the scene's
-// default depends on the analysis: its key says so).
+// max_creep_newton: no scene key) and the scheme (a choice). stick_keeps_force's default in a
+// scene depends on the analysis (its declaration's host_default says how; the scene's loader
+// applies it); ContactSettings{}'s is Shi's rule.
 #pragma once
 
 #include <string_view>

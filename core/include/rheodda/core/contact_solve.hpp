@@ -61,7 +61,7 @@ class StepProblem {
   /// The step carries velocity (a dynamic step).
   virtual bool dynamic() const = 0;
   /// Iterates a solve may take before the step is cut (Settings::open_close_limit,
-  /// or settle_open_close_limit in the settling stage and collapse stages).
+  /// or settle.open_close_limit in the settling stage and collapse stages).
   virtual int iteration_limit() const = 0;
 };
 

@@ -57,7 +57,7 @@ struct StepReport {
                                   ///< step_tolerance) [-]
   int creep_state_changes = 0;    ///< creeping contacts whose state changed in the step, under
                                   ///< Settings::creep_tolerance only (else 0) [-]
-  bool collapse_stage = false;    ///< the step opened a collapse stage (Settings::collapse_dt):
+  bool collapse_stage = false;    ///< the step opened a collapse stage (SettleStage::collapse_dt):
                                   ///< its static attempt moved as a mechanism at collapse_dt [-]
   double step_error = 0.0;         ///< step-doubling error estimate max |y(dt/2, twice) - y(dt)| over
                                   ///< the block vertices, under Settings::step_tolerance only [length]
@@ -86,8 +86,8 @@ struct MeasurementSample {
 
 /// What kind of dynamic stage (docs/reference/engine.md, "Dynamic stages").
 enum class StageKind {
-  settling,   ///< the settling stage at the start of a static analysis (Settings::settle_until)
-  mechanism,  ///< a part a static step found without equilibrium, taken dynamically (Settings::collapse_dt)
+  settling,   ///< the settling stage at the start of a static analysis (SettleStage::until)
+  mechanism,  ///< a part a static step found without equilibrium, taken dynamically (SettleStage::collapse_dt)
 };
 
 /// Name used in outputs: "settling", "mechanism".
@@ -102,9 +102,9 @@ struct StageEvent {
   int start_step = 0;                ///< first step of the stage
   int steps = 0;                     ///< accepted steps in the stage [-]
   bool at_rest = false;              ///< ended because its kinetic energy had decayed
-                                     ///< (Settings::settle_rest_tolerance), not at its longest
+                                     ///< (SettleStage::rest_tolerance), not at its longest
   int blocks_involved = 0;           ///< blocks with a vertex that moved more than the stage's
-                                     ///< step limit (settle_max_displacement_ratio w0) over the stage [-]
+                                     ///< step limit (settle.max_displacement_ratio w0) over the stage [-]
   double largest_displacement = 0.0; ///< largest vertex displacement over the stage [length]
   double kinetic_energy_peak = 0.0;  ///< largest kinetic energy after a step of the stage [force x length]
   double kinetic_energy_end = 0.0;   ///< kinetic energy left at its end (dropped by the next
@@ -196,8 +196,8 @@ struct ModelEdit {
   /// must leave the block's fixed points at rest in the directions they hold.
   /// The kinetic energy it adds is booked (EnergyFlows::dissipation_edits).
   std::vector<std::pair<int, Vec6>> set_velocities;
-  /// Opens a settling stage from now (Settings::settle_until long, with
-  /// settle_dt, settle_max_displacement_ratio, settle_dynamic and settle_rest_tolerance; docs/reference/engine.md,
+  /// Opens a settling stage from now (SettleStage::until long, with
+  /// settle.dt, settle.max_displacement_ratio, settle.dynamic and settle.rest_tolerance; docs/reference/engine.md,
   /// "Dynamic stages"); a dynamic stage in progress ends here.
   bool settle = false;
 };
@@ -329,7 +329,7 @@ class Engine {
   /// Validates it first and throws ModelError naming the field ("remove_blocks[0]",
   /// ...) with the model unchanged when it is invalid: an index out of range,
   /// a block already removed, every block removed, no fixed point left where
-  /// the model had some, a settling stage without Settings::settle_until.
+  /// the model had some, a settling stage without SettleStage::until.
   EditReport edit(const ModelEdit& edit);
   /// Block b was removed by an edit.
   bool removed(int b) const;

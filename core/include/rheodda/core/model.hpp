@@ -162,6 +162,50 @@ enum class TimeIntegration {
   trapezoidal,  ///< beta = 1/4, gamma = 1/2: keeps the energy of linear vibrations (dynamic only)
 };
 
+/// The settling stage at the start of a run and the collapse stages of a static analysis
+/// (docs/reference/engine.md, "Settling stage", "Collapse stages", "Dynamic stages",
+/// "Gravity ramp"): Settings::settle, the scene's `analysis.settle` map, each member named as
+/// its key (`dynamic` is the key `type: dynamic`). Its numbers are declared in settings.hpp
+/// (settle_specs: unit, range, default mark and meaning); a default of 0 is a mark.
+struct SettleStage {
+  /// End of the settling stage: until this time the steps are at most `dt`, with the
+  /// displacement limit `max_displacement_ratio` and without the adaptive controls; from
+  /// it on, Settings::dt and max_displacement_ratio (the next step starts at dt); the
+  /// longest a collapse stage lasts [time]; 0 = no settling stage; >= 0
+  double until = 0.0;
+  double dt = 0.0;        ///< largest step of the stage [time]; > 0 with until
+  double max_displacement_ratio = 0.0;  ///< Shi's g2 of the stage's steps [-]; > 0 with until
+  /// The stage is dynamic: its steps carry the whole velocity (dynamic_ratio 1, with the
+  /// materials' damping_ratio and the joint sets' restitution), whatever the analysis's
+  /// dynamic_ratio; a static analysis then starts its first step after the stage at rest
+  /// (the kinetic energy left is booked as dissipated by the time integration) [-]
+  bool dynamic = false;
+  /// Collapse stages: with a dynamic settling stage, a later static step that moves as a
+  /// mechanism (its inertia share above kMechanismStepShare) is cut down to this size; one
+  /// that still does at it is not taken, and a dynamic stage as long as the settling stage
+  /// (`until`, with `dt` and `max_displacement_ratio`) carries the collapse from the step's
+  /// start [time]; 0 = off; >= 0, < Settings::dt
+  double collapse_dt = 0.0;
+  /// Gravity ramp: the body force rises linearly from zero at t = 0 to its full value at
+  /// this time, which lies within the stage (0 < gravity_ramp <= until), so that the model
+  /// is loaded slowly on the scale of its vibration instead of at once [time]; 0 = gravity at once
+  double gravity_ramp = 0.0;
+  /// Dynamic stages end at rest: a settling or collapse stage ends after a step whose
+  /// motion's kinetic energy is below this fraction of the energy the stage took in or
+  /// released, and no longer rising (not before the gravity ramp has ended), else at its
+  /// longest, `until` from its start [-]; 0 = stages run to their longest; in [0, 1)
+  double rest_tolerance = 0.0;
+  /// A stage's explicit step is at rest when its unbalanced-force ratio (explicit_step.cpp
+  /// (8)) is below this, instead of the kinetic-energy test of rest_tolerance [-];
+  /// 0 = the kinetic-energy test; in [0, 1); with rest_tolerance only.
+  double force_ratio = 0.0;
+  /// Open-close iterates before a step of the settling stage or a collapse stage is cut
+  /// [-]; 0 = Settings::open_close_limit. A static analysis limits its static steps to
+  /// Shi's 8 (docs/notes/contact-solves.md, "The iteration limit in static analysis"); its
+  /// dynamic stages are dynamic steps, which a dynamic analysis gives 30.
+  int open_close_limit = 0;
+};
+
 /// Analysis settings (Shi's control parameters); settings.hpp declares most once (scene word, unit, range, meaning).
 struct Settings {
   double dt = 1.0e-3;            ///< largest (and first) step size [time]; > 0
@@ -194,61 +238,19 @@ struct Settings {
   int max_cuts = 30;             ///< cuts allowed in one step before the engine gives up [-]; >= 0
   double max_displacement_ratio = 0.01;  ///< allowed displacement per step as a fraction of the
                                         ///< half model size (Shi's g2) [-]; > 0
-  /// Settling stage (docs/reference/engine.md, "Settling stage"): until this time the
-  /// steps are at most settle_dt, with the displacement limit settle_max_displacement_ratio and
-  /// without the adaptive controls; from it on, dt and max_displacement_ratio (the next step
-  /// starts at dt) [time]; 0 = no settling stage; >= 0
-  double settle_until = 0.0;
-  double settle_dt = 0.0;        ///< largest step of the settling stage [time]; > 0 with settle_until
-  double settle_max_displacement_ratio = 0.0;  ///< max_displacement_ratio of the settling stage [-];
-                                               ///< > 0 with settle_until
-  /// The settling stage is dynamic (docs/reference/engine.md, "Settling stage"): its
-  /// steps carry the whole velocity (dynamic_ratio 1, with the materials'
-  /// damping_ratio and the joint sets' restitution), whatever the analysis's
-  /// dynamic_ratio; a static analysis then starts its first step after the
-  /// stage at rest (the kinetic energy left is booked as dissipated by the
-  /// time integration) [-]
-  bool settle_dynamic = false;
-  /// Collapse stages (docs/reference/engine.md, "Collapse stages"): with a dynamic
-  /// settling stage, a later static step that moves as a mechanism (its
-  /// inertia share above kMechanismStepShare) is cut down to this size; one
-  /// that still does at it is not taken, and a dynamic stage as long as the
-  /// settling stage (settle_until, with settle_dt and settle_max_displacement_ratio) carries the
-  /// collapse from the step's start [time]; 0 = off; >= 0, < dt
-  double collapse_dt = 0.0;
-  /// Dynamic stages end at rest (docs/reference/engine.md, "Dynamic stages"): a settling
-  /// or collapse stage ends after a step whose motion's kinetic energy is below this
-  /// fraction of the energy the stage took in or released, and no longer rising (not before
-  /// the gravity ramp has ended, Settings::settle_gravity_ramp), else at its
-  /// longest, settle_until from its start [-]; 0 = stages run to their
-  /// longest; in [0, 1)
-  double settle_rest_tolerance = 0.0;
-  /// A stage's explicit step is at rest when its unbalanced-force ratio (explicit_step.cpp
-  /// (8)) is below this, instead of the kinetic-energy test of settle_rest_tolerance [-];
-  /// 0 = the kinetic-energy test; in [0, 1); with settle_rest_tolerance only.
-  double settle_force_ratio = 0.0;
-  /// Open-close iterates before a step of the settling stage or a collapse
-  /// stage is cut [-]; 0 = open_close_limit. A static analysis limits its static
-  /// steps to Shi's 8 (docs/notes/contact-solves.md, "The iteration limit in static
-  /// analysis"); its dynamic stages are dynamic steps, which a dynamic analysis
-  /// gives 30.
-  int settle_open_close_limit = 0;
-  /// Gravity ramp of the settling stage (docs/reference/engine.md, "Gravity ramp"): the
-  /// body force rises linearly from zero at t = 0 to its full value at this
-  /// time, which lies within the stage (0 < settle_gravity_ramp <= settle_until),
-  /// so that the model is loaded slowly on the scale of its vibration instead of
-  /// at once [time]; 0 = gravity at once
-  double settle_gravity_ramp = 0.0;
-  /// The body acceleration at time t: gravity times min(1, t / settle_gravity_ramp)
+  /// The settling stage and the collapse stages (SettleStage above; the scene's
+  /// `analysis.settle`); until = 0: none.
+  SettleStage settle;
+  /// The body acceleration at time t: gravity times min(1, t / settle.gravity_ramp)
   /// [length/time^2].
   Vec2 gravity_at(double t) const { return gravity_factor(t) * gravity; }
-  /// The share of gravity on at time t: min(1, t / settle_gravity_ramp) [-]; the
+  /// The share of gravity on at time t: min(1, t / settle.gravity_ramp) [-]; the
   /// water's weight (its unit weight, water.hpp) ramps with it.
   double gravity_factor(double t) const {
-    return settle_gravity_ramp > 0.0 && t < settle_gravity_ramp ? t / settle_gravity_ramp : 1.0;
+    return settle.gravity_ramp > 0.0 && t < settle.gravity_ramp ? t / settle.gravity_ramp : 1.0;
   }
   /// Some steps carry velocity: a dynamic analysis, or a dynamic settling stage.
-  bool has_dynamic_steps() const { return dynamic_ratio > 0.0 || (settle_until > 0.0 && settle_dynamic); }
+  bool has_dynamic_steps() const { return dynamic_ratio > 0.0 || (settle.until > 0.0 && settle.dynamic); }
   /// Integrator of the dynamic steps (docs/reference/explicit-step.md): the dynamic steps of a
   /// dynamic analysis and the dynamic stages of a static one; default implicit.
   Integrator integrator = Integrator::implicit;

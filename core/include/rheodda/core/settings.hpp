@@ -5,19 +5,23 @@
 //
 // Everything that lists these settings reads them from here: the engine's range checks
 // (model_checks.cpp), the scene's `analysis:` keys (scene/src/keys.cpp takes each
-// key's unit, range, default and meaning from its declaration; the loader's defaults
-// by analysis type and the copy into the Model go through it), Python's
-// Simulation.set_settings, and the table of docs/reference/engine.md ("Parameters",
+// key's unit, range, default and meaning from its declaration and reads into the member:
+// the scene's Analysis is a Settings; the loader's defaults by analysis type go through
+// it), Python's Simulation.set_settings, and the table of docs/reference/engine.md ("Parameters",
 // `rheodda keys --markdown settings`, checked by a test).
 //
 // The default is Settings{}'s (the member's initializer in model.hpp is the one place
 // it is written); where a static analysis (dynamic_ratio 0) defaults otherwise, the
 // declaration says so (static_default), and the scene applies it.
 //
-// Not declared here yet: the settling stage's settle_* (the scene's `analysis.settle`
-// sub-map, where 0 means no stage), the choices (time_integration, solver,
-// contact_solver, integrator: their words are core/methods.hpp's registries), gravity
-// (a vector) and threads (a command-line option, not a scene key).
+// The settling stage's numbers (Settings::settle, a SettleStage: the scene's
+// `analysis.settle` map) are declared the same way (settle_specs), each by its key's word;
+// their default 0 is a mark ("none", "the analysis's"), not a value in the range.
+//
+// Not declared here: the choices (time_integration, solver, contact_solver, integrator,
+// and the stage's `type`, SettleStage::dynamic: their words are core/methods.hpp's
+// registries or the scene's), gravity (a vector) and threads (a command-line option, not a
+// scene key).
 #pragma once
 
 #include <optional>
@@ -27,7 +31,6 @@
 #include <vector>
 
 #include "rheodda/core/model.hpp"
-#include "rheodda/core/setting_defaults.hpp"
 #include "rheodda/laws/setting_spec.hpp"
 
 namespace rheodda::core {
@@ -46,6 +49,15 @@ const std::vector<SettingSpec>& setting_specs();
 
 /// The declaration of the setting `name`; std::out_of_range if there is none.
 const SettingSpec& setting_spec(std::string_view name);
+
+/// One number of the settling stage (SettleStage, model.hpp; the scene's `analysis.settle`).
+using SettleSpec = laws::SettingSpec<SettleStage>;
+
+/// Every declared number of the settling stage, in the order of the docs.
+const std::vector<SettleSpec>& settle_specs();
+
+/// The declaration of the settling stage's number `name`; std::out_of_range if there is none.
+const SettleSpec& settle_spec(std::string_view name);
 
 /// A number as the docs write it: "0.3", "30", "1e-4", "1e-10".
 using laws::setting_number_text;

@@ -46,6 +46,9 @@ struct SettingSpec {
   /// The default value is a mark outside the range that the host replaces by what this
   /// says ("100 × the largest `young_modulus`"): not a value a user gives.
   std::string default_meaning{};
+  /// The default where the host decides it by a rule of its own (the analysis's type, its
+  /// stages), S{}'s being the engine's when no host sets it: the rule as the docs state it.
+  std::string host_default{};
   /// May change between steps (Python's Simulation.set_settings).
   bool between_steps = false;
 
@@ -74,15 +77,16 @@ struct SettingSpec {
   bool admits(double v) const {
     if (!default_meaning.empty() && v == *parameter.default_value) return true;  // infinite too ("never yields")
     if (!std::isfinite(v)) return false;
-    if (type == SettingType::integer && v != std::floor(v)) return false;
+    if (type != SettingType::number && v != std::floor(v)) return false;  // an integer, a flag 0 or 1
     return parameter.admits(v);
   }
   /// The valid range as text: "(0, 1]", "[1, ∞)", "true or false".
   std::string range_text() const { return setting_range_text(parameter, type); }
   /// The default as the docs state it: "1.5", "1e-10", "1 (dynamic), 0 (static)",
-  /// "100 × the largest `young_modulus`".
+  /// "100 × the largest `young_modulus`", or the host's rule.
   std::string default_text() const {
     if (!default_meaning.empty()) return default_meaning;
+    if (!host_default.empty()) return host_default;
     if (static_default)
       return setting_value_text(default_for(true), type) + " (dynamic), " + setting_value_text(default_for(false), type) +
              " (static)";

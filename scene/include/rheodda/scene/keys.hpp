@@ -29,6 +29,7 @@
 #include <variant>
 #include <vector>
 
+#include "rheodda/laws/setting_spec.hpp"
 #include "rheodda/scene/scene.hpp"
 
 namespace rheodda::scene {
@@ -104,6 +105,14 @@ using KeySpec = EntryKey<Analysis>;
 
 /// The key `name` of `analysis:` (not of `analysis.settle`); std::logic_error if none is declared.
 const KeySpec& analysis_key(const std::string& name);
+
+/// The declaration of one of the scene's own `analysis.accept_*` settings (Acceptances,
+/// scene.hpp), in the declaration type of the engine's settings: the keys of the same names
+/// are read from them (keys.cpp).
+using AcceptanceSpec = laws::SettingSpec<Acceptances>;
+
+/// Every declared acceptance, in the order of the docs.
+const std::vector<AcceptanceSpec>& acceptance_specs();
 
 /// The value of a number, integer or flag key as a double (a flag as 0 or 1);
 /// std::logic_error for a value of another kind.
