@@ -5,6 +5,7 @@
 #include "rheodda/contact/contact_settings_specs.hpp"
 
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -64,7 +65,31 @@ std::vector<ContactSettingSpec> declare_contact_settings() {
   return out;
 }
 
+/// The choices of ContactSettings: the scheme, `automatic` (no scheme: per joint set and
+/// step) or one of laws::Scheme's by its name.
+std::vector<ContactChoiceSpec> declare_contact_choices() {
+  using Row = laws::ChoiceWord<std::optional<laws::Scheme>>;
+  std::vector<Row> schemes{{std::nullopt, "automatic"}};
+  for (laws::Scheme m : {laws::Scheme::lagged, laws::Scheme::implicit, laws::Scheme::exponential_linear})
+    schemes.push_back(Row{m, laws::scheme_name(m)});
+  std::vector<ContactChoiceSpec> out;
+  out.push_back(laws::declare_choice("scheme", schemes, &ContactSettings::scheme,
+      "creep integration scheme of the joint laws: `lagged`, `implicit`, `exponential-linear` "
+         "(docs/reference/laws.md), or `automatic`: per joint set and step, exponential-linear where the "
+         "step is below its no-ringing limit, implicit otherwise"));
+  return out;
+}
+
 }  // namespace
+
+const std::vector<ContactChoiceSpec>& contact_choice_specs() {
+  static const std::vector<ContactChoiceSpec> specs = declare_contact_choices();
+  return specs;
+}
+
+const ContactChoiceSpec& contact_choice_spec(std::string_view name) {
+  return laws::spec_named(contact_choice_specs(), name, "contact::ContactSettings", "choice");
+}
 
 const std::vector<ContactSettingSpec>& contact_setting_specs() {
   static const std::vector<ContactSettingSpec> specs = declare_contact_settings();

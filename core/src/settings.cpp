@@ -5,12 +5,16 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
+#include "rheodda/core/contact_solve.hpp"
 #include "rheodda/core/defaults.hpp"
+#include "rheodda/core/integrator.hpp"
 #include "rheodda/core/property_specs.hpp"
+#include "rheodda/core/solver.hpp"
 #include "rheodda/laws/spec_lookup.hpp"
 
 namespace rheodda::core {
@@ -187,7 +191,81 @@ std::vector<SettleSpec> declare_settle() {
   return out;
 }
 
+/// The choices of Settings (laws::ChoiceSpec), in the order of the docs: each the words of
+/// its method table, its meaning and Settings{}'s value as its default.
+std::vector<ChoiceSpec> declare_choices() {
+  std::vector<ChoiceSpec> out;
+  out.push_back(laws::declare_choice("time_integration", time_integrations(), &Settings::time_integration,
+      "integration of the inertia terms (docs/reference/engine.md, \"Time integration\"): `shi` (Shi's "
+         "scheme, Newmark β = 1/2, γ = 1: exact for constant acceleration, damps vibrations "
+         "numerically, for quasi-static and creep runs) or `trapezoidal` (β = 1/4, γ = 1/2: keeps "
+         "the energy of linear vibrations); `trapezoidal` only with `type: dynamic` and "
+         "`dynamic_ratio` > 0"));
+  out.push_back(laws::declare_choice("solver", linear_solvers(), &Settings::solver,
+      "`automatic` (`cholmod` below 2 000 blocks, `amg` from 2 000), `cholmod` (sparse "
+         "Cholesky), `amg` (conjugate gradient with a multigrid V-cycle whose coarse unknowns are "
+         "the DDA unknowns of groups of blocks; O(N) per iteration, for large models) or `pcg` "
+         "(block-Jacobi conjugate gradient, a reference); docs/reference/engine.md, \"Solvers\""));
+  out.push_back(laws::declare_choice("contact_solver", contact_solves(), &Settings::contact_solver,
+      "how a step's contacts are solved (docs/reference/contacts.md, \"Contact solves\"): `open-close` "
+         "(Shi's iteration: solve, check every contact, repeat until none changes its state) or "
+         "`newton` (the same iterates, a step accepted once the residual of its equations is "
+         "within `contact_residual_tolerance` of the contact forces, a dynamic step starting from "
+         "the states its inertia alone would give)"));
+  out.push_back(laws::declare_choice("integrator", integrators(), &Settings::integrator,
+      "how dynamic steps are integrated (docs/reference/explicit-step.md): `implicit` (Shi's step: "
+         "the step's equations solved with the open–close iteration), `explicit` (each dynamic "
+         "step in cycles of central difference with every contact's state decided on its own: no "
+         "matrix, no iteration, in parallel; the static steps of a static analysis stay implicit, "
+         "its dynamic stages (`settle`) are explicit) or `automatic` (the one whose estimated cost "
+         "per dynamic step is lower on the scene's initial state; `rheodda check` prints which and "
+         "why)"));
+  return out;
+}
+
+std::vector<SettleChoiceSpec> declare_settle_choices() {
+  static constexpr std::array<laws::ChoiceWord<bool>, 2> kKinds{{{false, "static"}, {true, "dynamic"}}};
+  std::vector<SettleChoiceSpec> out;
+  out.push_back(laws::declare_choice("type", kKinds, &SettleStage::dynamic,
+      "`static` or `dynamic`: in a static analysis the stage's steps carry velocity (the blocks "
+         "move with their inertia, with the materials' `damping_ratio` and the joint sets' "
+         "`restitution`, which a static analysis then accepts; a sticking contact keeps its force "
+         "unless `stick_keeps_force` is given), and the first static step after it starts at "
+         "rest; a dynamic analysis's stage is dynamic (`type: static` is refused there)"));
+  out.back().default_note = "(the stage's steps are the analysis's kind)";
+  return out;
+}
+
 }  // namespace
+
+std::span<const laws::ChoiceWord<TimeIntegration>> time_integrations() {
+  static constexpr std::array<laws::ChoiceWord<TimeIntegration>, 2> kRows{
+      {{TimeIntegration::shi, "shi"}, {TimeIntegration::trapezoidal, "trapezoidal"}}};
+  return kRows;
+}
+
+const std::vector<ChoiceSpec>& choice_specs() {
+  static const std::vector<ChoiceSpec> specs = declare_choices();
+  return specs;
+}
+
+const ChoiceSpec& choice_spec(std::string_view name) {
+  return laws::spec_named(choice_specs(), name, "core::Settings", "choice");
+}
+
+const std::vector<SettleChoiceSpec>& settle_choice_specs() {
+  static const std::vector<SettleChoiceSpec> specs = declare_settle_choices();
+  return specs;
+}
+
+const SettleChoiceSpec& settle_choice_spec(std::string_view name) {
+  return laws::spec_named(settle_choice_specs(), name, "core::SettleStage", "choice");
+}
+
+const VectorSettingSpec& gravity_spec() {
+  static const VectorSettingSpec spec{"gravity", "length/time²", "`[gx, gy]`", &Settings::gravity};
+  return spec;
+}
 
 const std::vector<SettleSpec>& settle_specs() {
   static const std::vector<SettleSpec> specs = declare_settle();

@@ -15,7 +15,8 @@
 // Not declared here: what a host decides rather than takes from its user
 // (min_search_distance, lock_at_touch, reversal_at_normal_resolution,
 // stick_keeps_force_dynamic), the Newton settings of nonlinear laws (creep_newton_tolerance,
-// max_creep_newton: no scene key) and the scheme (a choice). stick_keeps_force's default in a
+// max_creep_newton: no scene key). The scheme, a choice, is declared here in laws::ChoiceSpec
+// (contact_choice_specs: its words, meaning, and ContactSettings{}'s value as its default). stick_keeps_force's default in a
 // scene depends on the analysis (its declaration's host_default says how; the scene's loader
 // applies it); ContactSettings{}'s is Shi's rule.
 #pragma once
@@ -24,6 +25,7 @@
 #include <vector>
 
 #include "rheodda/contact/joint_set.hpp"
+#include "rheodda/laws/choice_spec.hpp"
 #include "rheodda/laws/setting_spec.hpp"
 
 namespace rheodda::contact {
@@ -36,6 +38,15 @@ const std::vector<ContactSettingSpec>& contact_setting_specs();
 
 /// The declaration of the setting `name`; std::out_of_range if there is none.
 const ContactSettingSpec& contact_setting_spec(std::string_view name);
+
+/// A choice of ContactSettings (the scheme): its scene word, words, meaning and default.
+using ContactChoiceSpec = laws::ChoiceSpec<ContactSettings>;
+
+/// Every declared choice of ContactSettings, in the order of the docs.
+const std::vector<ContactChoiceSpec>& contact_choice_specs();
+
+/// The declaration of the choice `name`; std::out_of_range if there is none.
+const ContactChoiceSpec& contact_choice_spec(std::string_view name);
 
 /// Throws std::invalid_argument("contact setting NAME: MESSAGE") for the first declared
 /// setting of `s` that its declaration does not admit (ContactSystem's constructor); a

@@ -5,7 +5,8 @@
 // contact solve is one value here and one
 // row of contact_solves() (contact_solve.cpp: its scene word and its maker), an integrator one
 // value here and one row of integrators() (integrator.cpp: its scene word and the engine's member
-// that takes a dynamic step); the scene's keys take their words from those rows.
+// that takes a dynamic step); the declarations of the settings that hold them (core/settings.hpp:
+// choice_specs), and so the scene's keys, take their words from those rows.
 #pragma once
 
 namespace rheodda::core {

@@ -18,19 +18,23 @@
 // `analysis.settle` map) are declared the same way (settle_specs), each by its key's word;
 // their default 0 is a mark ("none", "the analysis's"), not a value in the range.
 //
-// Not declared here: the choices (time_integration, solver, contact_solver, integrator,
-// and the stage's `type`, SettleStage::dynamic: their words are core/methods.hpp's
-// registries or the scene's), gravity (a vector) and threads (a command-line option, not a
-// scene key).
+// The choices (time_integration, solver, contact_solver, integrator, and the stage's
+// `type`, SettleStage::dynamic) are declared here too, in laws::ChoiceSpec: each by its scene
+// word, its words (the rows of its method table: time_integrations() below, core/methods.hpp's
+// registries linear_solvers(), contact_solves(), integrators()), its meaning and its default,
+// the word of Settings{}'s value; gravity (a vector) by gravity_spec(). Not declared here:
+// threads (a command-line option, not a scene key).
 #pragma once
 
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <variant>
 #include <vector>
 
 #include "rheodda/core/model.hpp"
+#include "rheodda/laws/choice_spec.hpp"
 #include "rheodda/laws/setting_spec.hpp"
 
 namespace rheodda::core {
@@ -58,6 +62,43 @@ const std::vector<SettleSpec>& settle_specs();
 
 /// The declaration of the settling stage's number `name`; std::out_of_range if there is none.
 const SettleSpec& settle_spec(std::string_view name);
+
+/// A choice of core::Settings (time_integration, solver, contact_solver, integrator): its
+/// scene word, its words, meaning and default (laws/choice_spec.hpp).
+using ChoiceSpec = laws::ChoiceSpec<Settings>;
+
+/// Every declared choice of Settings, in the order of the docs.
+const std::vector<ChoiceSpec>& choice_specs();
+
+/// The declaration of the choice `name`; std::out_of_range if there is none.
+const ChoiceSpec& choice_spec(std::string_view name);
+
+/// A choice of the settling stage (its `type`: SettleStage::dynamic).
+using SettleChoiceSpec = laws::ChoiceSpec<SettleStage>;
+
+/// Every declared choice of the settling stage.
+const std::vector<SettleChoiceSpec>& settle_choice_specs();
+
+/// The declaration of the settling stage's choice `name`; std::out_of_range if there is none.
+const SettleChoiceSpec& settle_choice_spec(std::string_view name);
+
+/// The word of each time integration (the scene's `time_integration`), in the docs' order.
+std::span<const laws::ChoiceWord<TimeIntegration>> time_integrations();
+
+/// A vector setting of Settings (gravity): its scene word, unit, meaning and member; its
+/// default is Settings{}'s.
+struct VectorSettingSpec {
+  std::string key;      ///< the member's scene word
+  std::string unit;     ///< its dimension
+  std::string meaning;  ///< one table cell of the docs
+  Vec2 Settings::*field = nullptr;
+
+  const std::string& name() const { return key; }
+  Vec2 default_value() const { return Settings{}.*field; }
+};
+
+/// The declaration of Settings::gravity.
+const VectorSettingSpec& gravity_spec();
 
 /// A number as the docs write it: "0.3", "30", "1e-4", "1e-10".
 using laws::setting_number_text;
