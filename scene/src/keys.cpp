@@ -8,15 +8,14 @@
 
 #include "key_builders.hpp"
 #include "rheodda/contact/contact_settings_specs.hpp"
-#include "rheodda/core/contact_solve.hpp"
 #include "rheodda/core/defaults.hpp"
-#include "rheodda/core/integrator.hpp"
 #include "rheodda/core/settings.hpp"
-#include "rheodda/core/solver.hpp"
+#include "rheodda/laws/choice_spec.hpp"
 #include "rheodda/laws/spec_lookup.hpp"
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <type_traits>
@@ -99,48 +98,69 @@ std::vector<AcceptanceSpec> declare_acceptances() {
   return out;
 }
 
-/// The words of a registry of methods (core/methods.hpp: rows with `method` and `word`), in its order.
-template <class Rows>
-std::vector<std::string> method_words(const Rows& rows) {
-  std::vector<std::string> words;
-  for (const auto& r : rows) words.emplace_back(r.word);
-  return words;
+/// The scene's own choices (`type`, `history`): their words and Analysis{}'s values as defaults.
+std::vector<laws::ChoiceSpec<Analysis>> declare_scene_choices() {
+  static constexpr std::array<laws::ChoiceWord<AnalysisType>, 2> kTypes{
+      {{AnalysisType::static_analysis, "static"}, {AnalysisType::dynamic_analysis, "dynamic"}}};
+  static constexpr std::array<laws::ChoiceWord<HistoryRows>, 2> kRows{
+      {{HistoryRows::outputs, "outputs"}, {HistoryRows::steps, "steps"}}};
+  std::vector<laws::ChoiceSpec<Analysis>> out;
+  out.push_back(laws::declare_choice("type", kTypes, &Analysis::type,
+      "`static` (no velocity carried between steps) or `dynamic`"));
+  out.push_back(laws::declare_choice("history", kRows, &Analysis::history,
+      "the rows of history.csv: `outputs` (at t = 0, at each output time, and at the steps that end a "
+         "dynamic stage, open a collapse stage or bring a contact's damage law to failure) or `steps` "
+         "(after every accepted step: for a step-by-step look at the step control; large)"));
+  return out;
 }
 
-/// The word of `method` in its registry.
-template <class Rows, class Method>
-std::string word_of(const Rows& rows, Method method) {
-  for (const auto& r : rows)
-    if (r.method == method) return std::string(r.word);
-  throw std::logic_error("a method without a row in its registry");
+const laws::ChoiceSpec<Analysis>& scene_choice(const std::string& name) {
+  static const std::vector<laws::ChoiceSpec<Analysis>> specs = declare_scene_choices();
+  return laws::spec_named(specs, name, "scene::Analysis", "choice");
 }
 
-/// The method a word names (the key's reader has checked the word against method_words).
-template <class Rows>
-auto method_of(const Rows& rows, const std::string& word) {
-  for (const auto& r : rows)
-    if (r.word == word) return r.method;
-  throw std::logic_error("an unlisted word " + word);
+/// The KeyInfo of the declared choice `c` in `map`: its words, default and meaning.
+template <class S>
+KeyInfo choice_info(const std::string& map, const laws::ChoiceSpec<S>& c) {
+  KeyInfo i = info(map, c.name(), KeyType::choice, "–", {}, c.default_text(), c.meaning);
+  i.choices = c.words;
+  return i;
 }
 
-KeySpec choice_key(const std::string& map, const std::string& name, const std::string& unit,
-                   std::vector<std::string> choices, std::function<std::string(const Analysis&)> get,
-                   std::function<void(Analysis&, const std::string&)> set, std::string default_text,
-                   std::string meaning) {
-  KeyInfo i = info(map, name, KeyType::choice, unit, {}, std::move(default_text), std::move(meaning));
-  i.choices = std::move(choices);
+/// The key of `analysis:` that is the declared choice `c` of a struct S that Analysis is
+/// (core::Settings: core/settings.hpp; ContactSettings: contact/contact_settings_specs.hpp;
+/// the scene's own, above): read into and from the member by its words.
+template <class S>
+KeySpec choice_key(const laws::ChoiceSpec<S>& c) {
+  static_assert(std::is_base_of_v<S, Analysis>);  // Analysis itself too
   return detail::custom_key<Analysis>(
-      std::move(i), [get](const Analysis& a) -> KeyValue { return get(a); },
-      [set](Analysis& a, const KeyValue& v) { set(a, std::get<std::string>(v)); });
+      choice_info("analysis", c), [&c](const Analysis& a) -> KeyValue { return c.word_of(a); },
+      [&c](Analysis& a, const KeyValue& v) { c.set(a, std::get<std::string>(v)); });
 }
 
-KeySpec point_key(const std::string& map, const std::string& name, const std::string& unit,
-                  std::function<Point(const Analysis&)> get, std::function<void(Analysis&, const Point&)> set,
-                  std::string default_text, std::string meaning) {
+/// The key `name` of `analysis.settle` that is the settling stage's declared choice of that
+/// name (core/settings.hpp: settle_choice_specs), not applicable without `settle:`.
+KeySpec settle_choice_key(const std::string& name) {
+  const core::SettleChoiceSpec& c = core::settle_choice_spec(name);
   return detail::custom_key<Analysis>(
-      info(map, name, KeyType::point, unit, {}, std::move(default_text), std::move(meaning)),
-      [get](const Analysis& a) -> KeyValue { return get(a); },
-      [set](Analysis& a, const KeyValue& v) { set(a, std::get<Point>(v)); });
+      choice_info("analysis.settle", c),
+      [&c](const Analysis& a) -> KeyValue {
+        if (!a.has_settle()) return std::monostate{};
+        return c.word_of(a.settle);
+      },
+      [&c](Analysis& a, const KeyValue& v) { c.set(a.settle, std::get<std::string>(v)); });
+}
+
+/// The key of the engine's declared vector setting `s` (gravity: core/settings.hpp).
+KeySpec vector_key(const core::VectorSettingSpec& s) {
+  const core::Vec2 d = s.default_value();
+  return detail::custom_key<Analysis>(
+      info("analysis", s.name(), KeyType::point, s.unit, {}, fmt::format("`[{:g}, {:g}]`", d[0], d[1]), s.meaning),
+      [&s](const Analysis& a) -> KeyValue { return Point{(a.*s.field)[0], (a.*s.field)[1]}; },
+      [&s](Analysis& a, const KeyValue& v) {
+        const Point& p = std::get<Point>(v);
+        a.*s.field = core::Vec2(p[0], p[1]);
+      });
 }
 
 /// A sub-map (`settle`): read by read_analysis.cpp.
@@ -150,11 +170,7 @@ KeySpec map_key(const std::string& map, const std::string& name, std::string def
 
 std::vector<KeySpec> declare_analysis_keys() {
   std::vector<KeySpec> keys;
-  keys.push_back(choice_key("analysis", "type", "–", {"static", "dynamic"},
-      [](const Analysis& a) { return std::string(analysis_type_name(a.type)); },
-      [](Analysis& a, const std::string& v) { a.type = v == "dynamic" ? AnalysisType::dynamic_analysis : AnalysisType::static_analysis; },
-      "`static`",
-      "`static` (no velocity carried between steps) or `dynamic`"));
+  keys.push_back(choice_key(scene_choice("type")));
   keys.push_back(number_key("analysis", "duration", "time", {0.0, true, kInf, false}, &Analysis::duration,
       "required",
       "simulated time, > 0"));
@@ -173,22 +189,8 @@ std::vector<KeySpec> declare_analysis_keys() {
          "settles as a mechanism when gravity comes on: every run, whatever its `dt`, starts its "
          "creep from the same settled state"));
   keys.push_back(setting_key("dynamic_ratio"));
-  keys.push_back(choice_key("analysis", "time_integration", "–", {"shi", "trapezoidal"},
-      [](const Analysis& a) { return std::string(time_integration_name(a.time_integration)); },
-      [](Analysis& a, const std::string& v) { a.time_integration = v == "trapezoidal" ? TimeIntegration::trapezoidal : TimeIntegration::shi; },
-      "`shi`",
-      "integration of the inertia terms (docs/reference/engine.md, \"Time integration\"): `shi` (Shi's "
-         "scheme, Newmark β = 1/2, γ = 1: exact for constant acceleration, damps vibrations "
-         "numerically, for quasi-static and creep runs) or `trapezoidal` (β = 1/4, γ = 1/2: keeps "
-         "the energy of linear vibrations); `trapezoidal` only with `type: dynamic` and "
-         "`dynamic_ratio` > 0"));
-  keys.push_back(choice_key("analysis", "scheme", "–", {"automatic", "lagged", "implicit", "exponential-linear"},
-      [](const Analysis& a) { return a.scheme ? std::string(laws::scheme_name(*a.scheme)) : std::string("automatic"); },
-      [](Analysis& a, const std::string& v) { if (v == "automatic") a.scheme.reset(); else a.scheme = laws::parse_scheme(v); },
-      "`automatic`",
-      "creep integration scheme of the joint laws: `lagged`, `implicit`, `exponential-linear` "
-         "(docs/reference/laws.md), or `automatic`: per joint set and step, exponential-linear where the "
-         "step is below its no-ringing limit, implicit otherwise"));
+  keys.push_back(choice_key(core::choice_spec("time_integration")));
+  keys.push_back(choice_key(contact::contact_choice_spec("scheme")));
   keys.push_back(setting_key("creep_tolerance"));
   keys.push_back(setting_key("step_tolerance"));
   keys.push_back(setting_key("step_extrapolation"));
@@ -210,37 +212,12 @@ std::vector<KeySpec> declare_analysis_keys() {
   keys.push_back(acceptance_key("accept_unresolved_impacts"));
   keys.push_back(setting_key("open_close_limit"));
   keys.push_back(setting_key("fixed_point_stiffness"));
-  keys.push_back(choice_key("analysis", "solver", "–", method_words(core::linear_solvers()),
-      [](const Analysis& a) { return word_of(core::linear_solvers(), a.solver); },
-      [](Analysis& a, const std::string& v) { a.solver = method_of(core::linear_solvers(), v); },
-      "`automatic`",
-      "`automatic` (`cholmod` below 2 000 blocks, `amg` from 2 000), `cholmod` (sparse "
-         "Cholesky), `amg` (conjugate gradient with a multigrid V-cycle whose coarse unknowns are "
-         "the DDA unknowns of groups of blocks; O(N) per iteration, for large models) or `pcg` "
-         "(block-Jacobi conjugate gradient, a reference); docs/reference/engine.md, \"Solvers\""));
+  keys.push_back(choice_key(core::choice_spec("solver")));
   keys.push_back(setting_key("solver_tolerance"));
   keys.push_back(setting_key("solver_max_iterations"));
   keys.push_back(setting_key("solver_iterate_tolerance"));
-  keys.push_back(choice_key("analysis", "contact_solver", "–", method_words(core::contact_solves()),
-      [](const Analysis& a) { return word_of(core::contact_solves(), a.contact_solver); },
-      [](Analysis& a, const std::string& v) { a.contact_solver = method_of(core::contact_solves(), v); },
-      "`open-close`",
-      "how a step's contacts are solved (docs/reference/contacts.md, \"Contact solves\"): `open-close` "
-         "(Shi's iteration: solve, check every contact, repeat until none changes its state) or "
-         "`newton` (the same iterates, a step accepted once the residual of its equations is "
-         "within `contact_residual_tolerance` of the contact forces, a dynamic step starting from "
-         "the states its inertia alone would give)"));
-  keys.push_back(choice_key("analysis", "integrator", "–", method_words(core::integrators()),
-      [](const Analysis& a) { return word_of(core::integrators(), a.integrator); },
-      [](Analysis& a, const std::string& v) { a.integrator = method_of(core::integrators(), v); },
-      "`implicit`",
-      "how dynamic steps are integrated (docs/reference/explicit-step.md): `implicit` (Shi's step: "
-         "the step's equations solved with the open–close iteration), `explicit` (each dynamic "
-         "step in cycles of central difference with every contact's state decided on its own: no "
-         "matrix, no iteration, in parallel; the static steps of a static analysis stay implicit, "
-         "its dynamic stages (`settle`) are explicit) or `automatic` (the one whose estimated cost "
-         "per dynamic step is lower on the scene's initial state; `rheodda check` prints which and "
-         "why)"));
+  keys.push_back(choice_key(core::choice_spec("contact_solver")));
+  keys.push_back(choice_key(core::choice_spec("integrator")));
   keys.push_back(setting_key("explicit_safety"));
   keys.push_back(setting_key("explicit_damping"));
   keys.push_back(setting_key("stage_local_damping"));
@@ -262,13 +239,7 @@ std::vector<KeySpec> declare_analysis_keys() {
         if (a.output_times.empty()) return std::monostate{};
         return a.output_times;
       }));
-  keys.push_back(choice_key("analysis", "history", "–", {"outputs", "steps"},
-      [](const Analysis& a) { return std::string(history_rows_name(a.history)); },
-      [](Analysis& a, const std::string& v) { a.history = v == "steps" ? HistoryRows::steps : HistoryRows::outputs; },
-      "`outputs`",
-      "the rows of history.csv: `outputs` (at t = 0, at each output time, and at the steps that end a "
-         "dynamic stage, open a collapse stage or bring a contact's damage law to failure) or `steps` "
-         "(after every accepted step: for a step-by-step look at the step control; large)"));
+  keys.push_back(choice_key(scene_choice("history")));
   keys.push_back(flag_key("analysis", "frames", "–", &Analysis::frames,
       "true",
       "`true`: contacts.csv, bolts.csv and the VTK frames at each output time; `false`: history.csv, "
@@ -284,11 +255,8 @@ std::vector<KeySpec> declare_analysis_keys() {
       "10000",
       "run guard: the run stops when history.csv, contacts.csv and the frames written together "
          "exceed this size; ≥ 0, 0 = no limit"));
-  keys.push_back(point_key("analysis", "gravity", "length/time²",
-      [](const Analysis& a) { return Point{a.gravity[0], a.gravity[1]}; },
-      [](Analysis& a, const Point& p) { a.gravity = core::Vec2(p[0], p[1]); },
-      "required",
-      "`[gx, gy]`"));
+  keys.push_back(vector_key(core::gravity_spec()));
+  keys.back().default_text = "required";
   keys.back().required = "gravity acceleration [gx, gy] [length/time^2]";
   keys.push_back(acceptance_key("accept_other_gravity"));
   keys.back().echoed = false;  // summary.json's inputs stay as they were
@@ -300,19 +268,7 @@ std::vector<KeySpec> declare_analysis_keys() {
   keys.back().default_text = "required";
   keys.back().required = "largest step of the settling stage [time]";
   keys.push_back(settle_key("max_displacement_ratio"));
-  keys.push_back(choice_key("analysis.settle", "type", "–", {"static", "dynamic"},
-      [](const Analysis& a) { return std::string(a.settle.dynamic ? "dynamic" : "static"); },
-      [](Analysis& a, const std::string& v) { a.settle.dynamic = v == "dynamic"; },
-      "`static` (the stage's steps are the analysis's kind)",
-      "`static` or `dynamic`: in a static analysis the stage's steps carry velocity (the blocks "
-         "move with their inertia, with the materials' `damping_ratio` and the joint sets' "
-         "`restitution`, which a static analysis then accepts; a sticking contact keeps its force "
-         "unless `stick_keeps_force` is given), and the first static step after it starts at "
-         "rest; a dynamic analysis's stage is dynamic (`type: static` is refused there)"));
-  keys.back().get = [](const Analysis& a) -> KeyValue {
-    if (!a.has_settle()) return std::monostate{};
-    return std::string(a.settle.dynamic ? "dynamic" : "static");
-  };
+  keys.push_back(settle_choice_key("type"));
   keys.push_back(settle_key("collapse_dt"));
   keys.push_back(settle_key("gravity_ramp"));
   keys.push_back(settle_key("rest_tolerance"));
