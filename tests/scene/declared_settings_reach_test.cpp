@@ -6,6 +6,11 @@
 // what summary.json's inputs echo, and its key's row of the docs table is the declaration's.
 // tests/python/test_declared_settings.py follows the same declarations into Python.
 //
+// The choices (laws::ChoiceSpec: core's choice_specs and settle_choice_specs, the contact
+// layer's contact_choice_specs) the same way: each of a choice's words given in a file
+// reaches the loader, the engine's struct, summary.json, and its docs row is the
+// declaration's; a word not among them is refused naming the file, line, key and the words.
+//
 // A value is taken inside the declared range, away from the default; a setting that only
 // applies with another key gets that key from kContext, so that a new declaration either
 // passes as it is or fails here until its context is stated.
@@ -14,6 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -135,6 +141,72 @@ void reaches(const std::vector<laws::SettingSpec<S>>& specs, const std::string& 
   }
 }
 
+/// Lines a choice's word needs beside it in `analysis:` (two spaces in) to apply.
+const std::map<std::string, std::string> kChoiceContext{
+    {"time_integration: trapezoidal", "  type: dynamic\n"},
+    {"integrator: explicit", "  type: dynamic\n"},
+    {"integrator: automatic", "  type: dynamic\n"},
+};
+
+/// The scene of kBaseScene with the choice `key` (of `map`) given as `word`, and the line it
+/// is on.
+std::pair<std::string, int> scene_with_choice(const std::string& map, const std::string& key, const std::string& word) {
+  if (map == "analysis") {
+    const std::string line = "  " + key + ": " + word + "\n";
+    const std::string context = kChoiceContext.count(key + ": " + word) ? kChoiceContext.at(key + ": " + word) : "";
+    return {with("  dt: 0.01\n", "  dt: 0.01\n" + context + line), 5 + static_cast<int>(std::count(context.begin(), context.end(), '\n'))};
+  }
+  return {with("  dt: 0.01\n", "  dt: 0.01\n  settle: {type: " + word + ", until: 0.5, dt: 0.001}\n"), 5};
+}
+
+/// Each declared choice of `specs` in `map`: its docs row is the declaration's (words,
+/// meaning, default the word of the struct's default); each of its words given in a file
+/// reaches the loader, `engine` (the word of the engine's struct that build_scene makes)
+/// and summary.json; a word not among them is refused naming the file, line, key and words.
+template <class S, class Engine>
+void choice_reaches(const std::vector<laws::ChoiceSpec<S>>& specs, const std::string& map, Engine engine) {
+  const std::string table = scene::key_table_markdown(map);
+  const std::vector<scene::KeyInfo> keys = scene::declared_keys(map);
+  for (const laws::ChoiceSpec<S>& c : specs) {
+    BOOST_TEST_CONTEXT(map << "." << c.name()) {
+      const scene::KeyInfo& k = key_of(keys, c.name());
+      BOOST_TEST((k.type == scene::KeyType::choice));
+      BOOST_TEST(k.choices == c.words, boost::test_tools::per_element());
+      BOOST_TEST(k.meaning == c.meaning);
+      const std::string row = fmt::format("| `{}` | – |  | {} | ", c.name(), c.meaning);
+      BOOST_TEST(table.find(row) != std::string::npos, row);
+      BOOST_TEST(table.find(row + c.default_text() + " |\n") != std::string::npos);
+      BOOST_TEST(c.default_word() == c.word_of(S{}));
+      for (const std::string& word : c.words) {
+        BOOST_TEST_CONTEXT("word " << word) {
+          const scene::SceneDescription d = scene::parse_scene(scene_with_choice(map, c.name(), word).first, "given.yaml");
+          if constexpr (std::is_same_v<S, core::SettleStage>) {
+            BOOST_TEST(c.word_of(d.analysis.settle) == word);  // the loader
+          } else {
+            BOOST_TEST(c.word_of(d.analysis) == word);
+          }
+          engine(c, scene::build_scene(d), word);
+          const nlohmann::json inputs = nlohmann::json::parse(scene::scene_json_text(d)).at("analysis");
+          const nlohmann::json& echoed = map == "analysis" ? inputs : inputs.at("settle");
+          BOOST_TEST(echoed.at(c.name()).template get<std::string>() == word);
+        }
+      }
+      // A word not among them.
+      const auto [text, line] = scene_with_choice(map, c.name(), "nonesuch");
+      try {
+        (void)scene::parse_scene(text, "bad.yaml");
+        BOOST_ERROR("an unknown word was taken");
+      } catch (const scene::SceneError& e) {
+        BOOST_TEST(std::string(e.what()).find("bad.yaml:" + std::to_string(line) + ":") == 0u, e.what());
+        BOOST_TEST(e.key().find(c.name()) != std::string::npos, e.what());
+        std::string words;
+        for (const std::string& w : c.words) words += (words.empty() ? "" : ", ") + w;
+        BOOST_TEST(e.message().find("'nonesuch' is not one of: " + words) != std::string::npos, e.what());
+      }
+    }
+  }
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(declared_settings_reach)
@@ -163,6 +235,46 @@ BOOST_AUTO_TEST_CASE(an_acceptance_reaches_the_loader_check_summary_and_docs) {
   reaches(scene::acceptance_specs(), "analysis", [](const scene::AcceptanceSpec& s, const scene::BuiltScene&, double v) {
     BOOST_TEST(v == 1.0, s.name() << ": an acceptance given is true");
   });
+}
+
+BOOST_AUTO_TEST_CASE(an_engine_choice_reaches_the_loader_the_engine_summary_and_docs) {
+  choice_reaches(core::choice_specs(), "analysis", [](const core::ChoiceSpec& c, const scene::BuiltScene& b, const std::string& w) {
+    if (c.name() == "integrator" && w == "automatic")  // chosen before the engine runs (integrator_choice.hpp)
+      BOOST_TEST(c.word_of(b.model.settings) != "automatic");
+    else
+      BOOST_TEST(c.word_of(b.model.settings) == w);
+  });
+}
+
+BOOST_AUTO_TEST_CASE(a_settling_stage_choice_reaches_the_loader_the_engine_summary_and_docs) {
+  choice_reaches(core::settle_choice_specs(), "analysis.settle",
+                 [](const core::SettleChoiceSpec& c, const scene::BuiltScene& b, const std::string& w) {
+                   BOOST_TEST(c.word_of(b.model.settings.settle) == w);
+                 });
+}
+
+BOOST_AUTO_TEST_CASE(a_contact_choice_reaches_the_loader_the_contact_layer_summary_and_docs) {
+  choice_reaches(contact::contact_choice_specs(), "analysis",
+                 [](const contact::ContactChoiceSpec& c, const scene::BuiltScene& b, const std::string& w) {
+                   BOOST_TEST(c.word_of(b.contact_settings) == w);
+                 });
+}
+
+BOOST_AUTO_TEST_CASE(gravity_reaches_the_loader_the_engine_summary_and_docs) {
+  const core::VectorSettingSpec& g = core::gravity_spec();
+  const scene::KeyInfo& k = key_of(scene::declared_keys("analysis"), g.name());
+  BOOST_TEST((k.type == scene::KeyType::point));
+  BOOST_TEST(k.unit == g.unit);
+  BOOST_TEST(k.meaning == g.meaning);
+  const scene::SceneDescription d = scene::parse_scene(with("  gravity: [0, -9.81]", "  gravity: [1.5, -7]"), "given.yaml");
+  BOOST_TEST((d.analysis.*g.field)[0] == 1.5);
+  BOOST_TEST((d.analysis.*g.field)[1] == -7.0);
+  const scene::BuiltScene b = scene::build_scene(d);
+  BOOST_TEST((b.model.settings.*g.field)[0] == 1.5);
+  BOOST_TEST((b.model.settings.*g.field)[1] == -7.0);
+  const nlohmann::json echoed = nlohmann::json::parse(scene::scene_json_text(d)).at("analysis").at("gravity");
+  BOOST_TEST(echoed.at(0).get<double>() == 1.5);
+  BOOST_TEST(echoed.at(1).get<double>() == -7.0);
 }
 
 BOOST_AUTO_TEST_CASE(every_declared_settle_number_is_checked_by_the_engine_under_its_scene_word) {
