@@ -30,14 +30,7 @@
 
 namespace rheodda::scene {
 
-std::string_view analysis_type_name(AnalysisType t) {
-  return t == AnalysisType::static_analysis ? "static" : "dynamic";
-}
 std::string_view plane_name(core::PlaneMode p) { return p == core::PlaneMode::plane_strain ? "strain" : "stress"; }
-std::string_view time_integration_name(TimeIntegration t) {
-  return t == TimeIntegration::trapezoidal ? "trapezoidal" : "shi";
-}
-std::string_view history_rows_name(HistoryRows h) { return h == HistoryRows::steps ? "steps" : "outputs"; }
 
 SceneError::SceneError(std::string file, SourceLocation where, std::string key, std::string message)
     : std::runtime_error(where.line > 0 ? fmt::format("{}:{}:{}: {}{}", file, where.line, where.column,

@@ -253,9 +253,6 @@ struct SceneDescription {
   std::vector<GivenQuantity> given_quantities;  ///< the values written with a unit, in file order
 };
 
-std::string_view analysis_type_name(AnalysisType t);
 std::string_view plane_name(core::PlaneMode p);
-std::string_view time_integration_name(TimeIntegration t);
-std::string_view history_rows_name(HistoryRows h);
 
 }  // namespace rheodda::scene
