@@ -4,6 +4,7 @@
 // (model.hpp, bolt.hpp, water.hpp), read from the struct's S{}.
 #include "rheodda/core/property_specs.hpp"
 
+#include <array>
 #include <limits>
 
 #include "rheodda/laws/spec_lookup.hpp"
@@ -26,6 +27,13 @@ std::vector<MaterialSpec> declare_material() {
                             "ζ: Kelvin–Voigt damping of each block's strain, ζ on its lowest strain mode "
                             "(docs/reference/engine.md, \"Block damping\"); dynamic analysis only"),
   };
+}
+
+std::vector<MaterialChoiceSpec> declare_material_choices() {
+  static constexpr std::array<laws::ChoiceWord<PlaneMode>, 2> kPlanes{
+      {{PlaneMode::plane_strain, "strain"}, {PlaneMode::plane_stress, "stress"}}};
+  return {laws::declare_choice("plane", kPlanes, &Material::plane,
+                               "`strain` (long body) or `stress` (thin plate)")};
 }
 
 std::vector<BoltSpec> declare_bolt() {
@@ -59,6 +67,11 @@ const std::vector<MaterialSpec>& material_specs() {
   return specs;
 }
 
+const std::vector<MaterialChoiceSpec>& material_choice_specs() {
+  static const std::vector<MaterialChoiceSpec> specs = declare_material_choices();
+  return specs;
+}
+
 const std::vector<BoltSpec>& bolt_specs() {
   static const std::vector<BoltSpec> specs = declare_bolt();
   return specs;
@@ -71,6 +84,10 @@ const std::vector<WaterSpec>& water_specs() {
 
 const MaterialSpec& material_spec(std::string_view name) {
   return laws::spec_named(material_specs(), name, "core::Material", "property");
+}
+
+const MaterialChoiceSpec& material_choice_spec(std::string_view name) {
+  return laws::spec_named(material_choice_specs(), name, "core::Material", "choice");
 }
 
 const BoltSpec& bolt_spec(std::string_view name) {

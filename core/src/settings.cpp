@@ -206,12 +206,14 @@ std::vector<ChoiceSpec> declare_choices() {
          "Cholesky), `amg` (conjugate gradient with a multigrid V-cycle whose coarse unknowns are "
          "the DDA unknowns of groups of blocks; O(N) per iteration, for large models) or `pcg` "
          "(block-Jacobi conjugate gradient, a reference); docs/reference/engine.md, \"Solvers\""));
+  out.back().between_steps = true;  // the solver keeps no state another cannot restore (solver_state.cpp)
   out.push_back(laws::declare_choice("contact_solver", contact_solves(), &Settings::contact_solver,
       "how a step's contacts are solved (docs/reference/contacts.md, \"Contact solves\"): `open-close` "
          "(Shi's iteration: solve, check every contact, repeat until none changes its state) or "
          "`newton` (the same iterates, a step accepted once the residual of its equations is "
          "within `contact_residual_tolerance` of the contact forces, a dynamic step starting from "
          "the states its inertia alone would give)"));
+  out.back().between_steps = true;  // how a step's contacts are solved, not what they are
   out.push_back(laws::declare_choice("integrator", integrators(), &Settings::integrator,
       "how dynamic steps are integrated (docs/reference/explicit-step.md): `implicit` (Shi's step: "
          "the step's equations solved with the open–close iteration), `explicit` (each dynamic "

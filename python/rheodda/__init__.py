@@ -352,10 +352,9 @@ class Simulation:
         return self._sim.law_parameters(joint_set)
 
     def set_settings(self, **settings):
-        """Step settings by their scene names: dt, dt_growth, dt_cut, max_cuts,
-        max_displacement_ratio, creep_tolerance, step_tolerance, step_extrapolation, dt_max,
-        open_close_limit, solver_tolerance, solver_max_iterations,
-        solver_iterate_tolerance."""
+        """Step settings by their scene names (``analysis.*``): the engine's declared settings
+        that may change between steps, the keys of :attr:`settings`: numbers, integers and
+        flags as such (``dt=0.001``), choices by their words (``solver="amg"``)."""
         self._sim.set_settings(**settings)
 
     # --- saving and restoring ---------------------------------------------------------

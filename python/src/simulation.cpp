@@ -8,6 +8,7 @@
 #include <rheodda/scene/history_columns.hpp>
 #include <rheodda/scene/output.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <optional>
@@ -23,9 +24,10 @@ namespace {
 struct LeaveRun {};
 
 /// The step settings Simulation.set_settings takes: the engine's declared settings that
-/// may change between steps (core/settings.hpp, SettingSpec::between_steps), by their
-/// scene names (analysis.*); the one list the setter, the getter and the error's list of
-/// valid names read.
+/// may change between steps (core/settings.hpp, SettingSpec::between_steps and
+/// ChoiceSpec::between_steps), by their scene names (analysis.*); the one list the setter,
+/// the getter and the error's list of valid names read. A number's or flag's value is
+/// kept in the change log as its member's type, a choice's as its word.
 using SettingMember = decltype(core::SettingSpec::field);
 
 std::vector<const core::SettingSpec*> step_settings() {
@@ -35,12 +37,39 @@ std::vector<const core::SettingSpec*> step_settings() {
   return out;
 }
 
+std::vector<const core::ChoiceSpec*> step_choices() {
+  std::vector<const core::ChoiceSpec*> out;
+  for (const core::ChoiceSpec& c : core::choice_specs())
+    if (c.between_steps) out.push_back(&c);
+  return out;
+}
+
+/// The step choice named `key`; nullptr when `key` names none.
+const core::ChoiceSpec* step_choice(const std::string& key) {
+  for (const core::ChoiceSpec* c : step_choices())
+    if (key == c->name()) return c;
+  return nullptr;
+}
+
 const SettingMember& setting(const std::string& key) {
   for (const core::SettingSpec* s : step_settings())
     if (key == s->name()) return s->field;
   std::vector<std::string> names;
   for (const core::SettingSpec* s : step_settings()) names.push_back(s->name());
+  for (const core::ChoiceSpec* c : step_choices()) names.push_back(c->name());
   throw InputError(fmt::format("set_settings: unknown setting '{}'; valid: {}", key, fmt::join(names, ", ")));
+}
+
+/// The word `value` given for the choice `c`, refused unless it is a string among its words.
+std::string choice_word(const core::ChoiceSpec& c, const py::handle& value) {
+  const std::string words = fmt::format("{}", fmt::join(c.words, ", "));
+  if (!py::isinstance<py::str>(value))
+    throw InputError(fmt::format("set_settings: {} is a word ({}), not {}", c.name(), words,
+                                 py::str(py::type::of(value).attr("__name__")).cast<std::string>()));
+  const auto word = value.cast<std::string>();
+  if (std::find(c.words.begin(), c.words.end(), word) == c.words.end())
+    throw InputError(fmt::format("set_settings: {} '{}' is not one of: {}", c.name(), word, words));
+  return word;
 }
 
 }  // namespace
@@ -205,6 +234,10 @@ void Simulation::set_settings(const py::kwargs& kw) {
   json values = json::object();
   for (auto item : kw) {
     const auto key = item.first.cast<std::string>();
+    if (const core::ChoiceSpec* c = step_choice(key)) {
+      values[key] = choice_word(*c, item.second);
+      continue;
+    }
     std::visit(
         [&](auto member) {
           using T = std::remove_reference_t<decltype(std::declval<core::Settings>().*member)>;
@@ -224,6 +257,10 @@ void Simulation::set_settings(const py::kwargs& kw) {
 bool Simulation::apply_settings(core::Settings& s, const json& values) {
   bool dt_changed = false;
   for (const auto& [key, v] : values.items()) {
+    if (const core::ChoiceSpec* c = step_choice(key)) {
+      c->set(s, v.get<std::string>());
+      continue;
+    }
     std::visit(
         [&](auto member) {
           using T = std::remove_reference_t<decltype(s.*member)>;
@@ -243,6 +280,7 @@ py::dict Simulation::settings() const {
   py::dict d;
   for (const core::SettingSpec* spec : step_settings())
     std::visit([&](auto m) { d[spec->name().c_str()] = s.*m; }, spec->field);
+  for (const core::ChoiceSpec* c : step_choices()) d[c->name().c_str()] = c->word_of(s);
   return d;
 }
 

@@ -9,6 +9,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "rheodda/laws/choice_spec.hpp"
 #include "rheodda/laws/setting_spec.hpp"
 #include "rheodda/scene/keys.hpp"
 
@@ -103,6 +104,14 @@ EntryKey<E> optional_name_key(KeyInfo info, std::string E::*field) {
     return e.*field;
   };
   return k;
+}
+
+/// The KeyInfo of the declared choice `c` (laws::ChoiceSpec) in `map`: its words, default
+/// and meaning.
+template <class S>
+KeyInfo choice_info(const std::string& map, const laws::ChoiceSpec<S>& c) {
+  return KeyInfo{.map = map, .name = c.name(), .type = KeyType::choice, .unit = "–", .choices = c.words,
+                 .default_text = c.default_text(), .meaning = c.meaning};
 }
 
 /// A key with its own getter and setter (a choice kept as an enum, a field of a member).

@@ -32,18 +32,6 @@ KeyInfo info(const std::string& map, const std::string& name, KeyType type, cons
                  .default_text = std::move(default_text), .meaning = std::move(meaning)};
 }
 
-KeySpec number_key(const std::string& map, const std::string& name, const std::string& unit, KeyRange range,
-                   double Analysis::*field, std::string default_text, std::string meaning) {
-  return detail::field_key(info(map, name, KeyType::number, unit, range, std::move(default_text), std::move(meaning)),
-                           field);
-}
-
-KeySpec flag_key(const std::string& map, const std::string& name, const std::string& unit,
-                 bool Analysis::*field, std::string default_text, std::string meaning) {
-  return detail::field_key(info(map, name, KeyType::flag, unit, {}, std::move(default_text), std::move(meaning)),
-                           field);
-}
-
 /// The key `s.name()` of `map` that is a declared setting of a struct S that Analysis is
 /// (the engine's core::Settings, core/settings.hpp; the contact layer's ContactSettings,
 /// contact/contact_settings_specs.hpp; the scene's Acceptances): its type, unit, range,
@@ -64,6 +52,11 @@ KeySpec setting_key(const std::string& name) { return setting_key(core::setting_
 /// The key of the contact layer's setting `name` (contact/contact_settings_specs.hpp).
 KeySpec contact_setting_key(const std::string& name) { return setting_key(contact::contact_setting_spec(name)); }
 
+/// The key of the run's control `name` (RunControls, run_control_specs).
+KeySpec run_control_key(const std::string& name) {
+  return setting_key(laws::spec_named(run_control_specs(), name, "scene::RunControls", "setting"));
+}
+
 /// The key of the scene's acceptance `name` (Acceptances, acceptance_specs).
 KeySpec acceptance_key(const std::string& name) {
   return setting_key(laws::spec_named(acceptance_specs(), name, "scene::Acceptances", "setting"));
@@ -81,6 +74,31 @@ KeySpec settle_key(const std::string& name) {
   };
   k.set = [&s](Analysis& a, const KeyValue& v) { s.set(a.settle, key_number(v)); };
   return k;
+}
+
+std::vector<RunControlSpec> declare_run_controls() {
+  using R = RunControls;
+  constexpr laws::ParameterRange kAbove0 = laws::kPositiveRange, kFrom0 = laws::kNonNegativeRange;
+  std::vector<RunControlSpec> out;
+  out.push_back(laws::declare_setting("duration", "time", kAbove0, &R::duration, "simulated time, > 0"));
+  out.push_back(laws::declare_setting("output_interval", "time", kAbove0, &R::output_interval,
+      "time between output times, ≤ duration: at k × `output_interval` (and at the end) a step "
+         "ends, a frame is written and history.csv has a row (docs/reference/outputs.md); shorter "
+         "than `dt`, it shortens the steps to it"));
+  out.back().default_meaning = "duration / 100, `dt` when longer";  // the loader's (read_analysis.cpp)
+  out.push_back(laws::declare_setting("frames", "–", {}, &R::frames,
+      "`true`: contacts.csv, bolts.csv and the VTK frames at each output time; `false`: history.csv, "
+         "events.csv and summary.json only (what a study's cases write unless the study asks for "
+         "`frames`); `true` or `false`"));
+  out.push_back(laws::declare_setting("max_travel_ratio", "–", kFrom0, &R::max_travel_ratio,
+      "run guard: the run stops (exit 1, outputs kept, summary.json says why) when a block "
+         "vertex has moved more than this × the model size (the larger extent of the initial "
+         "blocks), as unbounded motion (no friction, a near-zero viscosity, an unsupported block) "
+         "would; ≥ 0, 0 = no limit"));
+  out.push_back(laws::declare_setting("max_output_size", "MB", kFrom0, &R::max_output_size,
+      "run guard: the run stops when history.csv, contacts.csv and the frames written together "
+         "exceed this size; ≥ 0, 0 = no limit"));
+  return out;
 }
 
 std::vector<AcceptanceSpec> declare_acceptances() {
@@ -119,14 +137,6 @@ const laws::ChoiceSpec<Analysis>& scene_choice(const std::string& name) {
   return laws::spec_named(specs, name, "scene::Analysis", "choice");
 }
 
-/// The KeyInfo of the declared choice `c` in `map`: its words, default and meaning.
-template <class S>
-KeyInfo choice_info(const std::string& map, const laws::ChoiceSpec<S>& c) {
-  KeyInfo i = info(map, c.name(), KeyType::choice, "–", {}, c.default_text(), c.meaning);
-  i.choices = c.words;
-  return i;
-}
-
 /// The key of `analysis:` that is the declared choice `c` of a struct S that Analysis is
 /// (core::Settings: core/settings.hpp; ContactSettings: contact/contact_settings_specs.hpp;
 /// the scene's own, above): read into and from the member by its words.
@@ -134,7 +144,7 @@ template <class S>
 KeySpec choice_key(const laws::ChoiceSpec<S>& c) {
   static_assert(std::is_base_of_v<S, Analysis>);  // Analysis itself too
   return detail::custom_key<Analysis>(
-      choice_info("analysis", c), [&c](const Analysis& a) -> KeyValue { return c.word_of(a); },
+      detail::choice_info("analysis", c), [&c](const Analysis& a) -> KeyValue { return c.word_of(a); },
       [&c](Analysis& a, const KeyValue& v) { c.set(a, std::get<std::string>(v)); });
 }
 
@@ -143,7 +153,7 @@ KeySpec choice_key(const laws::ChoiceSpec<S>& c) {
 KeySpec settle_choice_key(const std::string& name) {
   const core::SettleChoiceSpec& c = core::settle_choice_spec(name);
   return detail::custom_key<Analysis>(
-      choice_info("analysis.settle", c),
+      detail::choice_info("analysis.settle", c),
       [&c](const Analysis& a) -> KeyValue {
         if (!a.has_settle()) return std::monostate{};
         return c.word_of(a.settle);
@@ -171,10 +181,9 @@ KeySpec map_key(const std::string& map, const std::string& name, std::string def
 std::vector<KeySpec> declare_analysis_keys() {
   std::vector<KeySpec> keys;
   keys.push_back(choice_key(scene_choice("type")));
-  keys.push_back(number_key("analysis", "duration", "time", {0.0, true, kInf, false}, &Analysis::duration,
-      "required",
-      "simulated time, > 0"));
+  keys.push_back(run_control_key("duration"));
   keys.back().required = "simulated time [time]";
+  keys.back().default_text = "required";
   keys.push_back(setting_key("dt"));
   keys.back().required = "first and largest time step [time]";
   keys.back().default_text = "required";
@@ -226,11 +235,7 @@ std::vector<KeySpec> declare_analysis_keys() {
   keys.push_back(setting_key("static_max_cycles"));
   keys.push_back(setting_key("static_local_damping"));
   keys.push_back(setting_key("contact_residual_tolerance"));
-  keys.push_back(number_key("analysis", "output_interval", "time", {0.0, true, kInf, false}, &Analysis::output_interval,
-      "duration / 100, `dt` when longer",
-      "time between output times, ≤ duration: at k × `output_interval` (and at the end) a step "
-         "ends, a frame is written and history.csv has a row (docs/reference/outputs.md); shorter "
-         "than `dt`, it shortens the steps to it"));
+  keys.push_back(run_control_key("output_interval"));
   keys.push_back(detail::reader_key<Analysis>(
       info("analysis", "output_times", KeyType::list, "time", {}, "none",
            "`[t1, t2, ...]`: output times besides those of `output_interval`, strictly increasing, in "
@@ -240,21 +245,9 @@ std::vector<KeySpec> declare_analysis_keys() {
         return a.output_times;
       }));
   keys.push_back(choice_key(scene_choice("history")));
-  keys.push_back(flag_key("analysis", "frames", "–", &Analysis::frames,
-      "true",
-      "`true`: contacts.csv, bolts.csv and the VTK frames at each output time; `false`: history.csv, "
-         "events.csv and summary.json only (what a study's cases write unless the study asks for "
-         "`frames`); `true` or `false`"));
-  keys.push_back(number_key("analysis", "max_travel_ratio", "–", {0.0, false, kInf, false}, &Analysis::max_travel_ratio,
-      "10",
-      "run guard: the run stops (exit 1, outputs kept, summary.json says why) when a block "
-         "vertex has moved more than this × the model size (the larger extent of the initial "
-         "blocks), as unbounded motion (no friction, a near-zero viscosity, an unsupported block) "
-         "would; ≥ 0, 0 = no limit"));
-  keys.push_back(number_key("analysis", "max_output_size", "MB", {0.0, false, kInf, false}, &Analysis::max_output_size,
-      "10000",
-      "run guard: the run stops when history.csv, contacts.csv and the frames written together "
-         "exceed this size; ≥ 0, 0 = no limit"));
+  keys.push_back(run_control_key("frames"));
+  keys.push_back(run_control_key("max_travel_ratio"));
+  keys.push_back(run_control_key("max_output_size"));
   keys.push_back(vector_key(core::gravity_spec()));
   keys.back().default_text = "required";
   keys.back().required = "gravity acceleration [gx, gy] [length/time^2]";
@@ -285,6 +278,11 @@ Analysis::Analysis() {
   for (const core::SettingSpec& s : core::setting_specs())
     if (s.static_default) s.set(*this, *s.static_default);
   gravity = core::Vec2::Zero();  // required: none until the file gives it
+}
+
+const std::vector<RunControlSpec>& run_control_specs() {
+  static const std::vector<RunControlSpec> specs = declare_run_controls();
+  return specs;
 }
 
 const std::vector<AcceptanceSpec>& acceptance_specs() {

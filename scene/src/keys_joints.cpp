@@ -32,14 +32,15 @@ std::vector<EntryKey<Material>>& material_keys() {
       if (m.damping_ratio > 0.0) return m.damping_ratio;
       return std::monostate{};
     };
-    k.insert(k.begin() + 3, detail::custom_key<E>(
-        KeyInfo{.map = "materials", .name = "plane", .type = KeyType::choice, .unit = "–",
-                .choices = {"strain", "stress"}, .default_text = "`strain`",
-                .meaning = "`strain` (long body) or `stress` (thin plate)"},
-        [](const E& m) -> KeyValue { return std::string(plane_name(m.plane)); },
-        [](E& m, const KeyValue& v) {
-          m.plane = std::get<std::string>(v) == "strain" ? core::PlaneMode::plane_strain : core::PlaneMode::plane_stress;
-        }));
+    // The material's choices (`plane`): declared beside the properties; the default is the
+    // scene's Material's (plane strain), not the engine's.
+    for (const core::MaterialChoiceSpec& c : core::material_choice_specs()) {
+      KeyInfo i = detail::choice_info("materials", c);
+      i.default_text = "`" + c.word_of(E{}) + "`";
+      k.insert(k.begin() + 3, detail::custom_key<E>(
+          std::move(i), [&c](const E& m) -> KeyValue { return c.word_of(m); },
+          [&c](E& m, const KeyValue& v) { c.set(m, std::get<std::string>(v)); }));
+    }
     return k;
   }();
   return keys;

@@ -30,8 +30,6 @@
 
 namespace rheodda::scene {
 
-std::string_view plane_name(core::PlaneMode p) { return p == core::PlaneMode::plane_strain ? "strain" : "stress"; }
-
 SceneError::SceneError(std::string file, SourceLocation where, std::string key, std::string message)
     : std::runtime_error(where.line > 0 ? fmt::format("{}:{}:{}: {}{}", file, where.line, where.column,
                                                       key.empty() ? "" : key + ": ", message)

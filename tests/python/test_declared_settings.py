@@ -165,3 +165,85 @@ def test_a_value_given_reaches_python_summary_check_and_the_engine(root, base_sc
             assert rheodda.Simulation(scene).settings[key] == value, full
     if map_name == "analysis":
         assert {"dt", "max_displacement_ratio", "open_close_limit", "solver_tolerance"} <= step_settings
+
+
+# Keys a choice's word needs beside it to apply (as declared_settings_reach_test.cpp's kChoiceContext).
+CHOICE_CONTEXT = {
+    ("time_integration", "trapezoidal"): {"type": "dynamic"},
+    ("integrator", "explicit"): {"type": "dynamic"},
+    ("integrator", "automatic"): {"type": "dynamic"},
+}
+
+
+def declared_words(map_name, key):
+    """The words of the choice `key`, as the refusal of a word that is none of them lists them."""
+    with pytest.raises(rheodda.SceneError, match=r"'nonesuch' is not one of: ") as refused:
+        scene_with(map_name, key, "nonesuch")
+    assert key in str(refused.value)
+    return re.search(r"'nonesuch' is not one of: ([^(]*?)(?: \(did you mean|$)", str(refused.value)).group(1).split(", ")
+
+
+@pytest.mark.parametrize("map_name", ["analysis", "analysis.settle"])
+def test_each_word_of_a_declared_choice_reaches_python_summary_check_and_the_engine(root, base_scene, step_settings,
+                                                                                   map_name):
+    # The choices (laws::ChoiceSpec: core::Settings', the settling stage's, the contact layer's,
+    # the scene's own): the docs' default is Scene.analysis's, and each word given reaches
+    # Scene.analysis, Scene.inputs, Scene.describe() and, for the choices that may change
+    # between steps, Simulation.settings, which set_settings changes by the same words.
+    defaults = base_scene.analysis if map_name == "analysis" else base_scene.analysis["settle"]
+    rows = [r for r in doc_table(root, map_name) if isinstance(defaults.get(r["key"]), str)]
+    assert len(rows) >= (7 if map_name == "analysis" else 1)  # 7 and 1 when written
+    for row in rows:
+        key = row["key"]
+        full = key if map_name == "analysis" else "settle." + key
+        if map_name == "analysis":
+            assert row["default"] == f"`{defaults[key]}`", full
+        words = declared_words(map_name, key)
+        assert defaults[key] in words, full
+        for word in words:
+            d = copy.deepcopy(BASE)
+            d["analysis"].update(CHOICE_CONTEXT.get((key, word), {}))
+            if map_name == "analysis":
+                d["analysis"][key] = word
+            else:
+                d["analysis"]["settle"] = {**STAGE, key: word}
+            scene = rheodda.scene_from_dict(d)
+            read = scene.analysis if map_name == "analysis" else scene.analysis["settle"]
+            assert read[key] == word, (full, word)
+            inputs = scene.inputs["analysis"]
+            assert (inputs if map_name == "analysis" else inputs["settle"])[key] == word, (full, word)
+            assert f" {full} {word}" in scene.describe(), (full, word)
+            if map_name == "analysis" and key in step_settings:
+                sim = rheodda.Simulation(scene)
+                assert sim.settings[key] == word, (full, word)
+                other = next(w for w in words if w != word)
+                sim.set_settings(**{key: other})
+                assert sim.settings[key] == other, (full, other)
+                with pytest.raises(rheodda.Error, match=f"set_settings: {key} 'nonesuch' is not one of: {', '.join(words)}"):
+                    sim.set_settings(**{key: "nonesuch"})
+                with pytest.raises(rheodda.Error, match=f"set_settings: {key} is a word"):
+                    sim.set_settings(**{key: 1.0})
+    if map_name == "analysis":
+        assert {"solver", "contact_solver"} <= step_settings
+
+
+def test_the_material_plane_is_its_declared_choice(root):
+    # materials.NAME.plane: declared beside the material's properties (core/property_specs.hpp),
+    # the scene's default plane strain; each word reaches Scene.inputs (summary.json's).
+    row = next(r for r in doc_table(root, "materials") if r["key"] == "plane")
+    assert row["default"] == "`strain`"
+    d = copy.deepcopy(BASE)
+    d["materials"]["rock"]["plane"] = "nonesuch"
+    with pytest.raises(rheodda.SceneError, match=r"materials\.rock\.plane.*'nonesuch' is not one of: strain, stress"):
+        rheodda.scene_from_dict(d)
+    for word in ("strain", "stress"):
+        d["materials"]["rock"]["plane"] = word
+        assert rheodda.scene_from_dict(d).inputs["materials"]["rock"]["plane"] == word
+
+
+def test_the_guide_lists_the_step_settings_python_takes(root, step_settings):
+    # docs/guide/python.md's row of set_settings names exactly the keys of Simulation.settings.
+    text = (root / "docs" / "guide" / "python.md").read_text()
+    row = next(line for line in text.splitlines() if line.startswith("| `sim.set_settings("))
+    named = set(re.findall(r"`([a-z_]+)`", row.split("step settings by their scene names:", 1)[1].split("; the keys", 1)[0]))
+    assert named == step_settings

@@ -190,13 +190,18 @@ def test_blocks_are_fixed_freed_removed_and_loaded_between_steps():
 
 def test_every_step_setting_is_set_and_read_back_by_its_scene_name():
     # Simulation.set_settings and Simulation.settings read one list of the core's settings,
-    # each by its scene name (python/src/simulation.cpp, kSettings): every one set reads back
+    # each by its scene name (python/src/simulation.cpp, step_settings and step_choices): every one set reads back
     # exactly, of its own type; an unknown name is refused with the valid ones.
     sim = rheodda.Simulation(SHEAR_TEST)
     before = sim.settings
     wanted = {}
     for name, value in before.items():
-        if isinstance(value, bool):
+        if isinstance(value, str):  # a choice (`solver`, `contact_solver`): another of its words
+            with pytest.raises(rheodda.Error, match="is not one of: ") as refused:
+                sim.set_settings(**{name: "nonesuch"})
+            words = str(refused.value).split("is not one of: ")[1].split(", ")
+            wanted[name] = next(w for w in words if w != value)
+        elif isinstance(value, bool):
             wanted[name] = value  # a flag: set as it is (its partner settings are not changed)
         elif isinstance(value, int):
             wanted[name] = value + 1

@@ -16,6 +16,7 @@
 // passes as it is or fails here until its context is stated.
 #include <boost/test/unit_test.hpp>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <nlohmann/json.hpp>
 
@@ -29,6 +30,7 @@
 #include "test_support.hpp"
 #include "rheodda/contact/contact_settings_specs.hpp"
 #include "rheodda/core/engine.hpp"
+#include "rheodda/core/property_specs.hpp"
 #include "rheodda/core/settings.hpp"
 #include "rheodda/scene/build.hpp"
 #include "rheodda/scene/describe.hpp"
@@ -60,10 +62,11 @@ const std::map<std::string, std::string> kContext{
 const std::map<std::string, double> kValue{
     {"dt", 0.005},          {"settle.until", 0.25},        {"settle.dt", 0.005},
     {"settle.collapse_dt", 0.002}, {"settle.gravity_ramp", 0.25}, {"settle.force_ratio", 1e-5},
+    {"duration", 2.0},      {"output_interval", 0.5},
 };
 
 /// The keys whose default the scene states itself: required ones, and the penalty's rule.
-const std::set<std::string> kSceneDefault{"dt", "penalty", "settle.until", "settle.dt"};
+const std::set<std::string> kSceneDefault{"dt", "duration", "penalty", "settle.until", "settle.dt"};
 
 /// A value of the declaration `s` inside its range, other than its default(s).
 template <class S>
@@ -91,6 +94,7 @@ std::string value_text(double v, laws::SettingType type) {
 std::string scene_with(const std::string& map, const std::string& key, const std::string& line) {
   const std::string context = kContext.count(key) ? kContext.at(key) : "";
   if (key == "dt") return with("  dt: 0.01\n", line + "\n");
+  if (key == "duration") return with("  duration: 1\n", line + "\n");
   if (map == "analysis") return with("  dt: 0.01\n", "  dt: 0.01\n" + context + line + "\n");
   std::string stage = "  settle: {type: dynamic, until: 0.5, dt: 0.001, " + line + "}\n";
   if (key == "settle.force_ratio") stage = "  settle: {type: dynamic, until: 0.5, dt: 0.001, rest_tolerance: 0.01, " + line + "}\n";
@@ -237,6 +241,13 @@ BOOST_AUTO_TEST_CASE(an_acceptance_reaches_the_loader_check_summary_and_docs) {
   });
 }
 
+BOOST_AUTO_TEST_CASE(a_run_control_reaches_the_loader_check_summary_and_docs) {
+  // Not the engine's: the run reads them from the scene (run.cpp).
+  reaches(scene::run_control_specs(), "analysis", [](const scene::RunControlSpec& s, const scene::BuiltScene&, double v) {
+    BOOST_TEST(s.admits(v), s.name());
+  });
+}
+
 BOOST_AUTO_TEST_CASE(an_engine_choice_reaches_the_loader_the_engine_summary_and_docs) {
   choice_reaches(core::choice_specs(), "analysis", [](const core::ChoiceSpec& c, const scene::BuiltScene& b, const std::string& w) {
     if (c.name() == "integrator" && w == "automatic")  // chosen before the engine runs (integrator_choice.hpp)
@@ -258,6 +269,39 @@ BOOST_AUTO_TEST_CASE(a_contact_choice_reaches_the_loader_the_contact_layer_summa
                  [](const contact::ContactChoiceSpec& c, const scene::BuiltScene& b, const std::string& w) {
                    BOOST_TEST(c.word_of(b.contact_settings) == w);
                  });
+}
+
+BOOST_AUTO_TEST_CASE(a_material_choice_reaches_the_loader_the_engine_summary_and_docs) {
+  // Declared beside the material's properties (core/property_specs.hpp); the scene's
+  // materials default to plane strain (scene::Material), the engine's to plane stress.
+  const std::string table = scene::key_table_markdown("materials");
+  const std::vector<scene::KeyInfo> keys = scene::declared_keys("materials");
+  for (const core::MaterialChoiceSpec& c : core::material_choice_specs()) {
+    BOOST_TEST_CONTEXT("materials." << c.name()) {
+      const scene::KeyInfo& k = key_of(keys, c.name());
+      BOOST_TEST((k.type == scene::KeyType::choice));
+      BOOST_TEST(k.choices == c.words, boost::test_tools::per_element());
+      const std::string row = fmt::format("| `{}` | – |  | {} | `{}` |\n", c.name(), c.meaning, c.word_of(scene::Material{}));
+      BOOST_TEST(table.find(row) != std::string::npos, row);
+      // Not given: the scene's default reaches the engine.
+      BOOST_TEST(c.word_of(scene::build_scene(scene::parse_scene(kBaseScene, "given.yaml")).model.materials.at(0)) ==
+                 c.word_of(scene::Material{}));
+      const std::string given = "  rock: {density: 2600, young_modulus: 1.0e9, poisson_ratio: 0.25}\n";
+      for (const std::string& word : c.words) {
+        BOOST_TEST_CONTEXT("word " << word) {
+          const std::string text =
+              with(given, "  rock: {density: 2600, young_modulus: 1.0e9, poisson_ratio: 0.25, " + c.name() + ": " + word + "}\n");
+          const scene::SceneDescription d = scene::parse_scene(text, "given.yaml");
+          BOOST_TEST(c.word_of(d.materials.at(0)) == word);                              // the loader
+          BOOST_TEST(c.word_of(scene::build_scene(d).model.materials.at(0)) == word);   // the engine
+          const nlohmann::json inputs = nlohmann::json::parse(scene::scene_json_text(d));
+          BOOST_TEST(inputs.at("materials").at("rock").at(c.name()).get<std::string>() == word);  // summary.json
+        }
+      }
+      expect_error(with(given, "  rock: {density: 2600, young_modulus: 1.0e9, poisson_ratio: 0.25, " + c.name() + ": nonesuch}\n"),
+                   7, 0, c.name(), "'nonesuch' is not one of: " + fmt::format("{}", fmt::join(c.words, ", ")));
+    }
+  }
 }
 
 BOOST_AUTO_TEST_CASE(gravity_reaches_the_loader_the_engine_summary_and_docs) {

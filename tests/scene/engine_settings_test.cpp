@@ -67,16 +67,16 @@ BOOST_AUTO_TEST_CASE(every_engine_setting_is_the_analysis_key_of_its_name_with_i
 BOOST_AUTO_TEST_CASE(every_analysis_key_is_a_declared_setting_or_one_the_scene_keeps) {
   // Declared once in the declaration type of laws::SettingSpec: the engine's settings
   // (core/settings.hpp), the contact layer's (contact/contact_settings_specs.hpp), the
-  // scene's acceptances (keys.hpp) and the settling stage's numbers (core::settle_specs).
-  // Not declared so: the scene's own keys (type, duration, outputs, guards), the settling
-  // stage's map and its `type`, the choices and gravity (a vector).
-  const std::set<std::string> others{"type", "duration", "settle", "time_integration", "scheme", "solver",
-                                     "contact_solver", "integrator", "output_interval", "output_times",
-                                     "history", "frames", "max_travel_ratio", "max_output_size", "gravity"};
+  // scene's acceptances (keys.hpp), the settling stage's numbers (core::settle_specs),
+  // and the scene's run controls (duration, outputs, guards). Not declared so: the settling
+  // stage's map, the output times (a list), the choices and gravity (a vector).
+  const std::set<std::string> others{"type", "settle", "time_integration", "scheme", "solver",
+                                     "contact_solver", "integrator", "output_times", "history", "gravity"};
   std::multiset<std::string> declared;
   for (const core::SettingSpec& s : core::setting_specs()) declared.insert(s.name());
   for (const contact::ContactSettingSpec& s : contact::contact_setting_specs()) declared.insert(s.name());
   for (const scene::AcceptanceSpec& s : scene::acceptance_specs()) declared.insert(s.name());
+  for (const scene::RunControlSpec& s : scene::run_control_specs()) declared.insert(s.name());
   for (const std::string& key : scene::declared_key_names("analysis")) {
     BOOST_TEST_CONTEXT("analysis." << key) {
       BOOST_TEST((declared.count(key) + others.count(key) == 1u),

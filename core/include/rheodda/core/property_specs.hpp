@@ -15,8 +15,10 @@
 // The default is the struct's (the member's initializer is the one place it is written);
 // a default that is a mark outside the range says what it means ("never yields"). What
 // ties properties together (a pretension within the yield force, a law's E1 and the bolt's
-// axial_stiffness, damping only with dynamic steps) stays in the checks named above; a
-// material's `plane` is a choice, not a number, and not declared here.
+// axial_stiffness, damping only with dynamic steps) stays in the checks named above. A
+// material's `plane` is a choice between words (laws::ChoiceSpec: material_choice_specs),
+// declared here too; the scene's materials default to plane strain (scene::Material), the
+// engine's to plane stress (Material{}), so the key's default is read from the scene's struct.
 #pragma once
 
 #include <string>
@@ -24,6 +26,7 @@
 #include <vector>
 
 #include "rheodda/core/model.hpp"
+#include "rheodda/laws/choice_spec.hpp"
 #include "rheodda/laws/setting_spec.hpp"
 
 namespace rheodda::core {
@@ -36,8 +39,13 @@ using BoltSpec = laws::SettingSpec<BoltProperties>;
 /// One property of the water (name: the member of WaterProperties and the key of `water:`).
 using WaterSpec = laws::SettingSpec<WaterProperties>;
 
+/// One choice of a block material (`plane`).
+using MaterialChoiceSpec = laws::ChoiceSpec<Material>;
+
 /// Every declared property of a material, in the order of the docs.
 const std::vector<MaterialSpec>& material_specs();
+/// Every declared choice of a material (`plane`: `strain` or `stress`).
+const std::vector<MaterialChoiceSpec>& material_choice_specs();
 /// Every declared property of a bolt, in the order of the docs.
 const std::vector<BoltSpec>& bolt_specs();
 /// Every declared property of the water, in the order of the docs.
@@ -45,6 +53,7 @@ const std::vector<WaterSpec>& water_specs();
 
 /// The declaration of the property `name`; std::out_of_range if there is none.
 const MaterialSpec& material_spec(std::string_view name);
+const MaterialChoiceSpec& material_choice_spec(std::string_view name);
 const BoltSpec& bolt_spec(std::string_view name);
 const WaterSpec& water_spec(std::string_view name);
 

@@ -32,6 +32,9 @@ struct ChoiceSpec {
   /// What the host says beside the default's word ("(the stage's steps are the
   /// analysis's kind)"); empty for none.
   std::string default_note{};
+  /// The choice may change between two steps of a run (Python's Simulation.set_settings
+  /// takes it, as SettingSpec::between_steps says of a number).
+  bool between_steps = false;
   std::function<std::string(const S&)> word_of;              ///< the word of the member's value in `s`
   std::function<void(S&, const std::string&)> set;           ///< sets the member from one of `words`
 

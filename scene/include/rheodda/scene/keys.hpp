@@ -114,6 +114,13 @@ using AcceptanceSpec = laws::SettingSpec<Acceptances>;
 /// Every declared acceptance, in the order of the docs.
 const std::vector<AcceptanceSpec>& acceptance_specs();
 
+/// The declaration of one of the run's own `analysis:` numbers and flags (RunControls,
+/// scene.hpp: duration, output_interval, frames, max_travel_ratio, max_output_size).
+using RunControlSpec = laws::SettingSpec<RunControls>;
+
+/// Every declared run control, in the order of the docs.
+const std::vector<RunControlSpec>& run_control_specs();
+
 /// The value of a number, integer or flag key as a double (a flag as 0 or 1);
 /// std::logic_error for a value of another kind.
 double key_number(const KeyValue& v);

@@ -65,6 +65,23 @@ struct Acceptances {
   bool accept_other_gravity = false;
 };
 
+/// The run's own numbers and flags (how long, what is written, when it stops):
+/// `analysis.duration`, `output_interval`, `frames`, `max_travel_ratio` and
+/// `max_output_size`, declared in run_control_specs (keys.hpp) as the engine's settings
+/// are, by key word, unit, range, default (these initializers) and meaning.
+struct RunControls {
+  double duration = 0.0;         ///< simulated time [time]; required, > 0
+  double output_interval = 0.0;  ///< time between output times [time]; 0: duration / 100, dt when longer
+  /// `frames`: contacts.csv, bolts.csv and the VTK frames are written at the output
+  /// times; false: history.csv, events.csv and summary.json only (a study's cases).
+  bool frames = true;
+  /// Run guard: the run stops when a block vertex has moved more than this times the
+  /// model size (largest extent of the initial blocks) [-]; 0 = no limit.
+  double max_travel_ratio = 10.0;
+  /// Run guard: the run stops when its outputs (CSV files and frames) exceed this size [MB]; 0 = no limit.
+  double max_output_size = 10000.0;
+};
+
 /// `analysis:` — time stepping, contact numerics, outputs.
 ///
 /// It is the engine's settings (core::Settings: dt, dt_growth, ..., the settling stage
@@ -80,10 +97,9 @@ struct Acceptances {
 /// default `type`) where the declaration says they differ (dynamic_ratio, open_close_limit);
 /// the loader gives a dynamic one the engine's dynamic default, and stick_keeps_force the
 /// rule its declaration states. `gravity` is required (0 until read).
-struct Analysis : core::Settings, contact::ContactSettings, Acceptances {
+struct Analysis : core::Settings, contact::ContactSettings, Acceptances, RunControls {
   Analysis();
   AnalysisType type = AnalysisType::static_analysis;  ///< `type: static|dynamic`
-  double duration = 0.0;               ///< simulated time [time]; required, > 0
   /// The scene has a settling stage (`settle:`; Settings::settle, whose `until` the
   /// loader always sets > 0 then).
   bool has_settle() const { return settle.until > 0.0; }
@@ -94,20 +110,11 @@ struct Analysis : core::Settings, contact::ContactSettings, Acceptances {
   }
   bool stick_keeps_force_given = false;  ///< the scene gave stick_keeps_force (else a dynamic settling
                                          ///< stage of a static analysis keeps the force, its static steps not)
-  double output_interval = 0.0;        ///< time between output times [time]; default duration / 100
   /// `output_times`: output times besides every output_interval [time]; strictly
   /// increasing, in (0, duration]; empty: none. A study adds its `times` here.
   std::vector<double> output_times;
   /// `history`: which steps history.csv has a row of (docs/reference/outputs.md, "history.csv").
   HistoryRows history = HistoryRows::outputs;
-  /// `frames`: contacts.csv, bolts.csv and the VTK frames are written at the output
-  /// times; false: history.csv, events.csv and summary.json only (a study's cases).
-  bool frames = true;
-  /// Run guard: the run stops when a block vertex has moved more than this times the
-  /// model size (largest extent of the initial blocks) [-]; 0 = no limit.
-  double max_travel_ratio = 10.0;
-  /// Run guard: the run stops when its outputs (CSV files and frames) exceed this size [MB]; 0 = no limit.
-  double max_output_size = 10000.0;
   SourceLocation where{};
 };
 
@@ -252,7 +259,5 @@ struct SceneDescription {
   std::vector<BoltDescription> bolts;  ///< `bolts:` (bolts.hpp); empty: none
   std::vector<GivenQuantity> given_quantities;  ///< the values written with a unit, in file order
 };
-
-std::string_view plane_name(core::PlaneMode p);
 
 }  // namespace rheodda::scene
