@@ -12,14 +12,17 @@
 # Prints, per way, the steps, the cycles of the last step, the CPU seconds and the CPU
 # seconds per step.
 #   scripts/notes-large-slope.sh            # about 5 CPU minutes
-#   STEPS="3 60 1" scripts/notes-large-slope.sh   # steps of each way (implicit explicit cycles)
+#   STEPS="3 60 1" scripts/notes-large-slope.sh   # steps of each way (implicit explicit cycles; 0: not run)
+#   CREEP=1000 STEPS="0 0 3" scripts/notes-large-slope.sh   # the 744-block slope's settling by cycles
+#                                                           # (about 6 CPU minutes; "Settling by static steps")
+# With the cycles way, each of its steps is printed too (cycles, cuts, the step's dt).
 # (uses $RHEODDA_BUILD_DIR or build/)
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # strict mode; root, build, work (removed at exit)
 ensure_built rockmass_bench scene_trace
 read -r n_implicit n_explicit n_cycles <<<"${STEPS:-3 60 1}"
 "$build/bench/rockmass_bench" --no-generation --scene "$root/bench/scenes/jointed-slope-cohesionless.yaml" \
-  --creep 10000 --write-scenes "$work" --max-wall 0 >/dev/null
-scene="$work/jointed-slope-cohesionless-10000.yaml"
+  --creep "${CREEP:-10000}" --write-scenes "$work" --max-wall 0 >/dev/null
+scene="$work/jointed-slope-cohesionless-${CREEP:-10000}.yaml"
 python3 - "$scene" "$work" <<'PY'
 import sys
 src = open(sys.argv[1]).read()
@@ -38,6 +41,7 @@ PY
 "$build/apps/rheodda" check "$scene" | grep -E "^rock mass|block area"
 run() {  # NAME SCENE STEPS
   local out
+  [ "$3" -gt 0 ] || return 0
   out="$work/$1.log"
   /usr/bin/time -f "%U" -o "$work/$1.cpu" env OMP_NUM_THREADS=1 "$build/bench/scene_trace" "$2" --steps "$3" --cycles >"$out"
   python3 - "$1" "$3" "$out" "$work/$1.cpu" <<'PY'
@@ -53,3 +57,4 @@ PY
 run implicit "$scene" "$n_implicit"
 run explicit "$work/explicit.yaml" "$n_explicit"
 run cycles "$work/cycles.yaml" "$n_cycles"
+if [ "$n_cycles" -gt 0 ]; then grep "^step " "$work/cycles.log" | sed 's/^/  cycles /'; fi
