@@ -110,7 +110,6 @@ class KeyMap {
 /// The handles, by map: `key::<entry>::<key>`, the entry named as one of its map's items.
 namespace key {
 
-// clang-format off
 struct top : KeyMap<"top"> {
   static constexpr KeyName units = handle("units"), analysis = handle("analysis"), materials = handle("materials"),
       joint_sets = handle("joint_sets"), blocks = handle("blocks"), rock_mass = handle("rock_mass"),
@@ -213,7 +212,6 @@ struct stage_joint_set : KeyMap<"stages.joint_sets"> {
 struct stage_analysis : KeyMap<"stages.analysis"> {
   static constexpr KeyName type = handle("type"), dynamic_ratio = handle("dynamic_ratio");
 };
-// clang-format on
 
 }  // namespace key
 
