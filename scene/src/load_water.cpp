@@ -67,31 +67,32 @@ double sample_time(const Ctx& ctx, const YAML::Node& n, const std::string& key, 
 }  // namespace
 
 WaterDescription read_water(const Ctx& ctx, const YAML::Node& n, const SceneDescription& s, const std::string& path) {
-  MapReader m(ctx, n, path, key_names(water_keys(), "water"));
+  const MapReader m = declared_reader(ctx, n, path, water_keys(), "water");
   WaterDescription w;
   w.where = m.where();
-  read_declared(ctx, m, water_keys(), "water", w);  // unit_weight, level (keys_water.cpp)
-  const std::vector<std::string> forms{"level", "surface", "level_history", "surface_history"};
+  read_declared(ctx, m, water_keys(), w);  // unit_weight, level (keys_water.cpp)
   int given = 0;
-  for (const auto& f : forms) given += m.has(f) ? 1 : 0;
+  for (const KeyName f :
+       {key::water::level, key::water::surface, key::water::level_history, key::water::surface_history})
+    given += m.has(f) ? 1 : 0;
   if (given != 1)
     ctx.fail(m.node(), path,
              given == 0 ? "missing the phreatic surface: give one of level, surface, level_history, surface_history"
                         : "give only one of level, surface, level_history, surface_history");
-  if (const YAML::Node level = m.find("level"); level.IsDefined()) {
+  if (const YAML::Node level = m.find(key::water::level); level.IsDefined()) {
     w.history.front().where = location(level);  // the one sample, read with the declared keys
-  } else if (const YAML::Node surface = m.find("surface"); surface.IsDefined()) {
+  } else if (const YAML::Node surface = m.find(key::water::surface); surface.IsDefined()) {
     w.form = WaterDescription::Form::surface;
     WaterDescription::Sample smp;
-    smp.surface = read_surface(ctx, surface, m.child("surface"), s);
+    smp.surface = read_surface(ctx, surface, m.child(key::water::surface), s);
     smp.where = location(surface);
     w.history.push_back(smp);
-  } else if (YAML::Node v = m.find("level_history"); v.IsDefined()) {
+  } else if (YAML::Node v = m.find(key::water::level_history); v.IsDefined()) {
     w.form = WaterDescription::Form::level_history;
     if (!v.IsSequence() || v.size() == 0 || v.size() > kMaxSamples)
-      ctx.fail(v, m.child("level_history"), "expected a list of [t, level] samples [time, length]");
+      ctx.fail(v, m.child(key::water::level_history), "expected a list of [t, level] samples [time, length]");
     for (std::size_t k = 0; k < v.size(); ++k) {
-      const std::string key = fmt::format("{}[{}]", m.child("level_history"), k);
+      const std::string key = fmt::format("{}[{}]", m.child(key::water::level_history), k);
       const auto x = numbers(ctx, v[k], key, 2, any("time, length"));
       WaterDescription::Sample smp;
       smp.time = sample_time(ctx, v[k], key, x[0], w);
@@ -100,18 +101,18 @@ WaterDescription read_water(const Ctx& ctx, const YAML::Node& n, const SceneDesc
       w.history.push_back(smp);
     }
   } else {
-    const YAML::Node h = m.find("surface_history");
+    const YAML::Node h = m.find(key::water::surface_history);
     w.form = WaterDescription::Form::surface_history;
     if (!h.IsSequence() || h.size() == 0 || h.size() > kMaxSamples)
-      ctx.fail(h, m.child("surface_history"), "expected a list of {time, surface} samples");
+      ctx.fail(h, m.child(key::water::surface_history), "expected a list of {time, surface} samples");
     for (std::size_t k = 0; k < h.size(); ++k) {
-      MapReader sm(ctx, h[k], fmt::format("{}[{}]", m.child("surface_history"), k),
-                   key_names(water_sample_keys(), "water.surface_history"));
+      const MapReader sm = declared_reader(ctx, h[k], fmt::format("{}[{}]", m.child(key::water::surface_history), k),
+                                           water_sample_keys(), "water.surface_history");
       WaterDescription::Sample smp;
-      read_declared(ctx, sm, water_sample_keys(), "water.surface_history", smp);  // time
-      smp.time = sample_time(ctx, sm.find("time"), sm.child("time"), smp.time, w);
-      smp.surface = read_surface(ctx, required_key(sm, water_sample_keys(), "water.surface_history", "surface"),
-                                 sm.child("surface"), s);
+      read_declared(ctx, sm, water_sample_keys(), smp);  // time
+      smp.time = sample_time(ctx, sm.find(key::surface_sample::time), sm.child(key::surface_sample::time), smp.time, w);
+      smp.surface = read_surface(ctx, required_key(sm, water_sample_keys(), key::surface_sample::surface),
+                                 sm.child(key::surface_sample::surface), s);
       smp.where = sm.where();
       w.history.push_back(smp);
     }

@@ -55,26 +55,27 @@ SceneDescription parse_scene(const std::string& text_in, const std::string& file
     // The sections (keys_top.cpp): each read by its reader; a required one asked for
     // with its declaration's words.
     const std::vector<EntryKey<SceneDescription>>& sections = top_keys();
-    MapReader top(ctx, root, "", key_names(sections, "top"));
-    auto section = [&](const std::string& name) { return required_key(top, sections, "top", name); };
+    const MapReader top = declared_reader(ctx, root, "", sections, "top");
+    auto section = [&](KeyName name) { return required_key(top, sections, name); };
     s.title = file.substr(file.find_last_of('/') == std::string::npos ? 0 : file.find_last_of('/') + 1);
-    read_declared(ctx, top, sections, "top", s);  // title
-    s.units = read_units(ctx, section("units"));
+    read_declared(ctx, top, sections, s);  // title
+    s.units = read_units(ctx, section(key::top::units));
     ctx.units = &s.units;  // from here a value may carry a unit of its own (read_quantity.cpp)
     ctx.given = &s.given_quantities;
-    s.analysis = read_analysis(ctx, section("analysis"));
-    s.materials = read_materials(ctx, section("materials"), s.analysis.has_dynamic_steps());
-    s.joint_sets = read_joint_sets(ctx, section("joint_sets"), s.analysis.has_dynamic_steps());
+    s.analysis = read_analysis(ctx, section(key::top::analysis));
+    s.materials = read_materials(ctx, section(key::top::materials), s.analysis.has_dynamic_steps());
+    s.joint_sets = read_joint_sets(ctx, section(key::top::joint_sets), s.analysis.has_dynamic_steps());
     std::vector<RawBlock> raw;
     // With `rock_mass:`, `blocks:` is optional (blocks besides the generated ones).
-    const YAML::Node rock_mass = top.find("rock_mass");
-    if (!rock_mass.IsDefined() || top.has("blocks")) read_blocks(ctx, top.required("blocks", "the list of blocks"), s, raw);
+    const YAML::Node rock_mass = top.find(key::top::rock_mass);
+    if (!rock_mass.IsDefined() || top.has(key::top::blocks))
+      read_blocks(ctx, top.required(key::top::blocks, "the list of blocks"), s, raw);
     if (rock_mass.IsDefined()) read_rock_mass(ctx, rock_mass, s, raw);
     check_geometry(ctx, raw, s);
     read_points(ctx, top, s);
-    if (YAML::Node v = top.find("water"); v.IsDefined()) s.water = read_water(ctx, v, s);
+    if (YAML::Node v = top.find(key::top::water); v.IsDefined()) s.water = read_water(ctx, v, s);
     read_bolts(ctx, top, s);
-    if (YAML::Node v = top.find("stages"); v.IsDefined()) read_stages(ctx, v, s);  // docs/reference/stages.md
+    if (YAML::Node v = top.find(key::top::stages); v.IsDefined()) read_stages(ctx, v, s);  // docs/reference/stages.md
     // The model's defaults, as the engine would take them (core/defaults.hpp): the
     // penalty k1 E (the seed's eq. 17), the fixed-point spring 100 E.
     const double e_max = core::largest_young_modulus(s.materials, [](const Material& m) { return m.young_modulus; });

@@ -24,27 +24,33 @@ std::vector<std::string> key_names(const std::vector<EntryKey<E>>& keys, const s
   return names;
 }
 
-/// Every declared key of `map` with a setter that the file gives, in order: read,
-/// checked and stored into `e`; a required one must be given. The keys without a setter
-/// are their reader's (required_key()).
+/// The reader of a map whose keys are those of the declared map `map` in `keys`.
 template <class E>
-void read_declared(const Ctx& ctx, const MapReader& m, const std::vector<EntryKey<E>>& keys, const std::string& map,
-                   E& e) {
+MapReader declared_reader(const Ctx& ctx, const YAML::Node& n, std::string path, const std::vector<EntryKey<E>>& keys,
+                          const std::string& map) {
+  return MapReader(ctx, n, std::move(path), map, key_names(keys, map));
+}
+
+/// Every declared key of the map `m` reads (m.map()) with a setter that the file gives,
+/// in order: read, checked and stored into `e`; a required one must be given. The keys
+/// without a setter are their reader's (required_key()). The keys are asked for by
+/// their declared names (MapReader::find_named): these are the map's keys by definition.
+template <class E>
+void read_declared(const Ctx& ctx, const MapReader& m, const std::vector<EntryKey<E>>& keys, E& e) {
   for (const EntryKey<E>& k : keys) {
-    if (k.map != map || !k.set) continue;
-    const YAML::Node v = k.required.empty() ? m.find(k.name) : m.required(k.name, k.required);
-    if (v.IsDefined()) k.set(e, read_value(ctx, v, m.child(k.name), k));
+    if (k.map != m.map() || !k.set) continue;
+    const YAML::Node v = k.required.empty() ? m.find_named(k.name) : m.required_named(k.name, k.required);
+    if (v.IsDefined()) k.set(e, read_value(ctx, v, m.child_named(k.name), k));
   }
 }
 
-/// The value of the key `name` of `map` that its reader reads, refused as its declaration
-/// says when it is required and not given (an undefined node when optional and not given).
+/// The value of the key `key` that its reader reads, refused as its declaration says
+/// when it is required and not given (an undefined node when optional and not given).
 template <class E>
-YAML::Node required_key(const MapReader& m, const std::vector<EntryKey<E>>& keys, const std::string& map,
-                        const std::string& name) {
+YAML::Node required_key(const MapReader& m, const std::vector<EntryKey<E>>& keys, KeyName key) {
   for (const EntryKey<E>& k : keys)
-    if (k.map == map && k.name == name && !k.required.empty()) return m.required(name, k.required);
-  return m.find(name);
+    if (k.map == key.map() && k.name == key.word() && !k.required.empty()) return m.required(key, k.required);
+  return m.find(key);
 }
 
 }  // namespace rheodda::scene::detail

@@ -21,26 +21,29 @@ namespace rheodda::scene::detail {
 /// explicit traces, generates and cuts (rockmass::generate_traces, cut_blocks) and
 /// appends the blocks to `raw`; they are checked with the hand-written ones.
 void read_rock_mass(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, std::vector<RawBlock>& raw) {
-  MapReader m(ctx, n, "rock_mass", key_names(rock_mass_keys(), "rock_mass"));
+  const MapReader m = declared_reader(ctx, n, "rock_mass", rock_mass_keys(), "rock_mass");
   RockMassDescription rm;
   rm.where = m.where();
-  read_declared(ctx, m, rock_mass_keys(), "rock_mass", rm);  // name, seed, sliver_area (keys_blocks.cpp)
-  if (YAML::Node v = m.find("material"); v.IsDefined())
-    rm.material = resolve(ctx, v, m.child("material"), s.materials, "material");
+  read_declared(ctx, m, rock_mass_keys(), rm);  // name, seed, sliver_area (keys_blocks.cpp)
+  if (YAML::Node v = m.find(key::rock_mass::material); v.IsDefined())
+    rm.material = resolve(ctx, v, m.child(key::rock_mass::material), s.materials, "material");
   else if (s.materials.size() != 1)
-    ctx.fail(m.node(), m.child("material"), "missing key 'material': the scene has several materials");
-  const YAML::Node region = required_key(m, rock_mass_keys(), "rock_mass", "region");
-  rm.region.outer = polygon_points(ctx, region, m.child("region"));
-  if (auto defect = coordinate_defect(rm.region.outer)) ctx.fail(region, m.child("region"), "the region " + *defect);
+    ctx.fail(m.node(), m.child(key::rock_mass::material), "missing key 'material': the scene has several materials");
+  const YAML::Node region = required_key(m, rock_mass_keys(), key::rock_mass::region);
+  rm.region.outer = polygon_points(ctx, region, m.child(key::rock_mass::region));
+  if (auto defect = coordinate_defect(rm.region.outer))
+    ctx.fail(region, m.child(key::rock_mass::region), "the region " + *defect);
   rockmass::Box box{rm.region.outer[0][0], rm.region.outer[0][1], rm.region.outer[0][0], rm.region.outer[0][1]};
   for (const Point& p : rm.region.outer)
     box = {std::min(box.x0, p[0]), std::min(box.y0, p[1]), std::max(box.x1, p[0]), std::max(box.y1, p[1])};
   const double tol = std::max(1e-9 * std::hypot(box.x1 - box.x0, box.y1 - box.y0), std::numeric_limits<double>::min());
-  if (auto defect = polygon_defect(rm.region.outer, tol)) ctx.fail(region, m.child("region"), "the region " + *defect);
-  if (YAML::Node h = m.find("holes"); h.IsDefined()) {
-    if (!h.IsSequence()) ctx.fail(h, m.child("holes"), fmt::format("expected a list of polygons, got {}", type_word(h)));
+  if (auto defect = polygon_defect(rm.region.outer, tol))
+    ctx.fail(region, m.child(key::rock_mass::region), "the region " + *defect);
+  if (YAML::Node h = m.find(key::rock_mass::holes); h.IsDefined()) {
+    if (!h.IsSequence())
+      ctx.fail(h, m.child(key::rock_mass::holes), fmt::format("expected a list of polygons, got {}", type_word(h)));
     for (std::size_t k = 0; k < h.size(); ++k) {
-      const std::string key = fmt::format("{}[{}]", m.child("holes"), k);
+      const std::string key = fmt::format("{}[{}]", m.child(key::rock_mass::holes), k);
       auto hole = polygon_points(ctx, h[k], key);
       if (auto defect = polygon_defect(hole, tol)) ctx.fail(h[k], key, "the hole " + *defect);
       for (const Point& p : hole)
@@ -58,70 +61,71 @@ void read_rock_mass(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, st
       rm.region.holes.push_back(std::move(hole));
     }
   }
-  if (YAML::Node v = m.find("boundary_joint_set"); v.IsDefined())
-    rm.boundary_joint_set = resolve(ctx, v, m.child("boundary_joint_set"), s.joint_sets, "joint set");
+  if (YAML::Node v = m.find(key::rock_mass::boundary_joint_set); v.IsDefined())
+    rm.boundary_joint_set = resolve(ctx, v, m.child(key::rock_mass::boundary_joint_set), s.joint_sets, "joint set");
   else if (s.joint_sets.size() != 1)
-    ctx.fail(m.node(), m.child("boundary_joint_set"),
+    ctx.fail(m.node(), m.child(key::rock_mass::boundary_joint_set),
              "missing key 'boundary_joint_set' (the joint set of the edges on the region's boundary): the scene "
              "has several joint sets");
-  auto list = [&](const char* key) {
-    YAML::Node v = m.find(key);
+  auto list = [&](KeyName k) {
+    YAML::Node v = m.find(k);
     if (v.IsDefined() && !v.IsSequence())
-      ctx.fail(v, m.child(key), fmt::format("expected a list of maps, got {}", type_word(v)));
+      ctx.fail(v, m.child(k), fmt::format("expected a list of maps, got {}", type_word(v)));
     return v;
   };
   std::vector<rockmass::Trace> traces;
   std::vector<std::pair<std::size_t, std::size_t>> set_traces;  // per joint set: its range in `traces`
-  if (YAML::Node sets = list("joint_sets"); sets.IsDefined())
+  if (YAML::Node sets = list(key::rock_mass::joint_sets); sets.IsDefined())
     for (std::size_t i = 0; i < sets.size(); ++i) {
-      const std::string set_map = "rock_mass.joint_sets";
-      MapReader j(ctx, sets[i], fmt::format("{}[{}]", m.child("joint_sets"), i),
-                  key_names(rock_mass_joint_set_keys(), set_map));
+      const MapReader j = declared_reader(ctx, sets[i], fmt::format("{}[{}]", m.child(key::rock_mass::joint_sets), i),
+                                          rock_mass_joint_set_keys(), "rock_mass.joint_sets");
       rockmass::JointSetGeneration g;
-      read_declared(ctx, j, rock_mass_joint_set_keys(), set_map, g);  // keys_blocks.cpp
-      g.tag = resolve(ctx, required_key(j, rock_mass_joint_set_keys(), set_map, "joint_set"), j.child("joint_set"),
-                      s.joint_sets, "joint set");
+      read_declared(ctx, j, rock_mass_joint_set_keys(), g);  // keys_blocks.cpp
+      g.tag = resolve(ctx, required_key(j, rock_mass_joint_set_keys(), key::rock_mass_joint_set::joint_set),
+                      j.child(key::rock_mass_joint_set::joint_set), s.joint_sets, "joint set");
       const bool deviation = g.spacing_distribution == rockmass::SpacingDistribution::normal ||
                              g.spacing_distribution == rockmass::SpacingDistribution::log_normal;
-      if (YAML::Node v = j.find("spacing_deviation"); v.IsDefined() && !deviation)
-        ctx.fail(v, j.child("spacing_deviation"),
+      if (YAML::Node v = j.find(key::rock_mass_joint_set::spacing_deviation); v.IsDefined() && !deviation)
+        ctx.fail(v, j.child(key::rock_mass_joint_set::spacing_deviation),
                  fmt::format("a {} spacing has no deviation; spacing_deviation applies to spacing_distribution "
                              "normal or log-normal",
                              rockmass::spacing_distribution_name(g.spacing_distribution)));
       else if (!v.IsDefined() && deviation)
-        ctx.fail(j.node(), j.child("spacing_deviation"),
+        ctx.fail(j.node(), j.child(key::rock_mass_joint_set::spacing_deviation),
                  fmt::format("missing key 'spacing_deviation' (standard deviation of a {} spacing [length])",
                              rockmass::spacing_distribution_name(g.spacing_distribution)));
-      YAML::Node length = j.find("trace_length"), gap = j.find("gap");
+      YAML::Node length = j.find(key::rock_mass_joint_set::trace_length), gap = j.find(key::rock_mass_joint_set::gap);
       if (length.IsDefined() != gap.IsDefined())
-        ctx.fail(length.IsDefined() ? length : gap, j.child(length.IsDefined() ? "gap" : "trace_length"),
+        ctx.fail(length.IsDefined() ? length : gap,
+                 j.child(length.IsDefined() ? key::rock_mass_joint_set::gap : key::rock_mass_joint_set::trace_length),
                  "give trace_length and gap together (non-persistent joints), or neither (persistent joints)");
       // Lines across the region: its box's diagonal over the smallest likely spacing.
       const double lines = std::hypot(box.x1 - box.x0, box.y1 - box.y0) / g.spacing;
       if (lines > 1e6)
-        ctx.fail(j.find("spacing"), j.child("spacing"),
+        ctx.fail(j.find(key::rock_mass_joint_set::spacing), j.child(key::rock_mass_joint_set::spacing),
                  fmt::format("spacing {:g} gives about {:.3g} joints across the region (more than 1e6)", g.spacing, lines));
       std::vector<rockmass::Trace> t;
       try {
         t = rockmass::generate_traces(g, {box.x0, box.y0, box.x1, box.y1}, rm.seed, static_cast<int>(i));
       } catch (const std::invalid_argument& e) {
-        ctx.fail(j.node(), j.child("spacing"), e.what());
+        ctx.fail(j.node(), j.child(key::rock_mass_joint_set::spacing), e.what());
       }
       if (traces.size() + t.size() > rockmass::kMaxTraces)
-        ctx.fail(j.node(), j.child("spacing"), "the joint sets give more than 2e6 traces: larger spacing or fewer sets");
+        ctx.fail(j.node(), j.child(key::rock_mass_joint_set::spacing),
+                 "the joint sets give more than 2e6 traces: larger spacing or fewer sets");
       set_traces.push_back({traces.size(), traces.size() + t.size()});
       traces.insert(traces.end(), t.begin(), t.end());
       rm.joint_sets.push_back(g);
     }
-  if (YAML::Node list_t = list("traces"); list_t.IsDefined())
+  if (YAML::Node list_t = list(key::rock_mass::traces); list_t.IsDefined())
     for (std::size_t i = 0; i < list_t.size(); ++i) {
-      MapReader j(ctx, list_t[i], fmt::format("{}[{}]", m.child("traces"), i),
-                  key_names(rock_mass_trace_keys(), "rock_mass.traces"));
+      const MapReader j = declared_reader(ctx, list_t[i], fmt::format("{}[{}]", m.child(key::rock_mass::traces), i),
+                                          rock_mass_trace_keys(), "rock_mass.traces");
       rockmass::Trace t;
-      read_declared(ctx, j, rock_mass_trace_keys(), "rock_mass.traces", t);  // from, to (keys_blocks.cpp)
-      t.tag = resolve(ctx, required_key(j, rock_mass_trace_keys(), "rock_mass.traces", "joint_set"),
-                      j.child("joint_set"), s.joint_sets, "joint set");
-      if (t.a == t.b) ctx.fail(j.find("to"), j.child("to"), "the trace ends where it starts");
+      read_declared(ctx, j, rock_mass_trace_keys(), t);  // from, to (keys_blocks.cpp)
+      t.tag = resolve(ctx, required_key(j, rock_mass_trace_keys(), key::trace::joint_set),
+                      j.child(key::trace::joint_set), s.joint_sets, "joint set");
+      if (t.a == t.b) ctx.fail(j.find(key::trace::to), j.child(key::trace::to), "the trace ends where it starts");
       rm.traces.push_back(t);
       traces.push_back(t);
     }
@@ -130,14 +134,14 @@ void read_rock_mass(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, st
   {
     const rockmass::CutEstimate e = rm.estimate = rockmass::estimate_cut(rm.region, traces);
     // Located at the joint set that draws the most traces (or the explicit traces).
-    YAML::Node at = m.find("traces");
-    std::string key = m.child("traces");
+    YAML::Node at = m.find(key::rock_mass::traces);
+    std::string key = m.child(key::rock_mass::traces);
     std::size_t most = 0;
     for (std::size_t i = 0; i < set_traces.size(); ++i)
       if (const std::size_t k = set_traces[i].second - set_traces[i].first; k >= most) {
         most = k;
-        at = list("joint_sets")[i]["spacing"];
-        key = fmt::format("{}[{}].spacing", m.child("joint_sets"), i);
+        at = list(key::rock_mass::joint_sets)[i]["spacing"];
+        key = fmt::format("{}[{}].spacing", m.child(key::rock_mass::joint_sets), i);
       }
     if (!at.IsDefined()) at = n, key = "rock_mass";
     const std::string what =
@@ -157,7 +161,7 @@ void read_rock_mass(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, st
   try {
     cut = rockmass::cut_blocks(rm.region, traces, {rm.sliver_area});
   } catch (const rockmass::CutError& e) {
-    ctx.fail(region, m.child("region"), e.what());
+    ctx.fail(region, m.child(key::rock_mass::region), e.what());
   }
   for (const auto& [first, last] : set_traces)
     rm.traces_generated.push_back(static_cast<std::size_t>(

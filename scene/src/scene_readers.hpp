@@ -44,14 +44,16 @@ void read_blocks(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, std::
 void read_rock_mass(const Ctx& ctx, const YAML::Node& n, SceneDescription& s, std::vector<RawBlock>& raw);
 /// Tolerance for "same place": a billionth of the model size [length] (read_points.cpp).
 double geometry_tolerance(const std::vector<BlockDescription>& blocks);
-/// `{point, block}` of a fixed point, load or measurement point (read_points.cpp).
-BlockPoint read_block_point(const Ctx& ctx, const MapReader& m, const SceneDescription& s, double tol);
+/// `{point, block}` of a fixed point, load, measurement point or bolt's end, by the keys
+/// `keys` of its map (read_points.cpp).
+BlockPoint read_block_point(const Ctx& ctx, const MapReader& m, const PointOnBlock& keys, const SceneDescription& s,
+                            double tol);
 /// A load's `force: [fx, fy]` (already read into `history` as its one sample) or
 /// `history: [[t, fx, fy], ...]` (times >= 0, strictly increasing) into `history`;
 /// exactly one of them. `times` ends the message asking for one (" (t from the
-/// stage's start)" for a stage's load).
-void read_force_or_history(const Ctx& ctx, const MapReader& m, std::vector<std::array<double, 3>>& history,
-                           const std::string& times);
+/// stage's start)" for a stage's load). `keys`: the two keys of the load's map.
+void read_force_or_history(const Ctx& ctx, const MapReader& m, const ForceOrHistory& keys,
+                           std::vector<std::array<double, 3>>& history, const std::string& times);
 /// `fixed_points:`, `loads:`, `measurement_points:` (read_points.cpp).
 void read_points(const Ctx& ctx, const MapReader& top, SceneDescription& s);
 /// `water:` (load_water.cpp; after the blocks: its surface must span them).

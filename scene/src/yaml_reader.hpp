@@ -1,6 +1,7 @@
-// Reading a scene file's YAML: the map reader that knows each map's valid keys, and
-// the typed readers of numbers (with their range and unit), words, flags, choices,
-// points and polygons, each failing with file:line:col and the key (SceneError).
+// Reading a scene file's YAML: the map reader that knows each map's valid keys (which
+// its reader looks up by handle, key_names.hpp), and the typed readers of numbers (with
+// their range and unit), words, flags, choices, points and polygons, each failing with
+// file:line:col and the key (SceneError).
 // Internal to the loader (scene/src/read_*.cpp) and study/src/study_file.cpp; not installed.
 #pragma once
 
@@ -12,10 +13,12 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
 
+#include "key_names.hpp"
 #include "rheodda/laws/registry.hpp"
 #include "rheodda/scene/scene.hpp"
 
@@ -54,9 +57,14 @@ const char* type_word(const YAML::Node& n);
 /// One YAML map with a fixed set of valid keys.
 class MapReader {
  public:
-  MapReader(const Ctx& ctx, const YAML::Node& node, std::string path,
+  /// The map at `path` in the file ("stages[2].water"), whose keys are `allowed`: those
+  /// of the declared map `map` (keys.hpp: "water", "analysis.settle", ...), which the
+  /// handles of that map look up (key_names.hpp); or, `map` empty, names the file gives
+  /// (the materials, the joint sets) or keys of another file (a study's), which no
+  /// handle names and the reader asks for by name (find_named, child_named).
+  MapReader(const Ctx& ctx, const YAML::Node& node, std::string path, std::string map,
             std::vector<std::string> allowed)
-      : ctx_(ctx), node_(node), path_(std::move(path)), allowed_(std::move(allowed)) {
+      : ctx_(ctx), node_(node), path_(std::move(path)), map_(std::move(map)), allowed_(std::move(allowed)) {
     if (!node.IsMap())
       ctx.fail(node, path_, fmt::format("expected a map of keys ({}), got {}", join(allowed_),
                                         type_word(node)));
@@ -73,43 +81,67 @@ class MapReader {
       }
       for (const auto& e : entries_)
         if (e.key == key)
-          ctx.fail(k, child(key), fmt::format("key '{}' is given twice (first at line {})", key,
-                                              location(e.key_node).line));
+          ctx.fail(k, path_of(key), fmt::format("key '{}' is given twice (first at line {})", key,
+                                                location(e.key_node).line));
       entries_.push_back({key, k, it->second});
     }
   }
 
-  /// The path of the key `key` of this map ("analysis.dt"); `key` must be one of its keys.
-  std::string child(const std::string& key) const {
+  const YAML::Node& node() const { return node_; }
+  SourceLocation where() const { return location(node_); }
+  /// The declared map whose keys this map holds ("" for a map of names).
+  const std::string& map() const { return map_; }
+
+  // A reader's cross-key checks look keys up by handle (key_names.hpp), so that a word
+  // the map does not declare cannot be written; a handle of another map throws
+  // std::logic_error (the word may name another key there, or none).
+
+  /// The path of the key `key` of this map ("analysis.dt").
+  std::string child(KeyName key) const { return child_named(word_of(key)); }
+  /// The value of `key`, or an undefined node.
+  YAML::Node find(KeyName key) const { return find_named(word_of(key)); }
+  bool has(KeyName key) const { return find(key).IsDefined(); }
+  /// The value of `key`, refused with `what` to give when the file does not give it.
+  YAML::Node required(KeyName key, const std::string& what) const { return required_named(word_of(key), what); }
+
+  // The same by a name known only at run time: what the generic readers ask for (each
+  // declared key of a map in turn, read_keys.hpp; an engine setting by its name), and
+  // the maps of names the file gives (a material, a law's parameter, a key an error
+  // names). `key` must be one of the map's keys (its declared keys, or a name the file
+  // gave): another word throws std::logic_error instead of finding nothing.
+
+  std::string child_named(std::string_view key) const {
     check_declared(key);
     return path_of(key);
   }
-  const YAML::Node& node() const { return node_; }
-  SourceLocation where() const { return location(node_); }
-
-  /// The value of `key`, or an undefined node. `key` must be one of the map's keys (its
-  /// declared keys, or a name the file gave): a reader's cross-key check that asks for
-  /// another word (a typo, a key renamed) throws std::logic_error instead of finding
-  /// nothing and so never applying.
-  YAML::Node find(const std::string& key) const {
+  YAML::Node find_named(std::string_view key) const {
     check_declared(key);
     for (const auto& e : entries_)
       if (e.key == key) return e.value;
     return YAML::Node(YAML::NodeType::Undefined);
   }
-  bool has(const std::string& key) const { return find(key).IsDefined(); }
-  YAML::Node required(const std::string& key, const std::string& what) const {
-    YAML::Node v = find(key);
+  bool has_named(std::string_view key) const { return find_named(key).IsDefined(); }
+  YAML::Node required_named(std::string_view key, const std::string& what) const {
+    YAML::Node v = find_named(key);
     if (!v.IsDefined())
-      ctx_.fail(node_, child(key), fmt::format("missing required key '{}' ({})", key, what));
+      ctx_.fail(node_, child_named(key), fmt::format("missing required key '{}' ({})", key, what));
     return v;
   }
   /// Key nodes in file order (for maps of named items).
   const auto& entries() const { return entries_; }
 
  private:
-  std::string path_of(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
-  void check_declared(const std::string& key) const {
+  std::string path_of(std::string_view key) const {
+    return path_.empty() ? std::string(key) : fmt::format("{}.{}", path_, key);
+  }
+  std::string_view word_of(KeyName key) const {
+    if (key.map() != map_)
+      throw std::logic_error(fmt::format("{}: the reader asks for '{}' by a handle of the map '{}', not of this "
+                                         "map ('{}')",
+                                         path_.empty() ? "the file" : path_, key.word(), key.map(), map_));
+    return key.word();
+  }
+  void check_declared(std::string_view key) const {
     if (std::find(allowed_.begin(), allowed_.end(), key) == allowed_.end())
       throw std::logic_error(fmt::format("{}: the reader asks for '{}', which is not a key of this map ({})",
                                          path_.empty() ? "the file" : path_, key, join(allowed_)));
@@ -122,6 +154,7 @@ class MapReader {
   const Ctx& ctx_;
   YAML::Node node_;
   std::string path_;
+  std::string map_;
   std::vector<std::string> allowed_;
   std::vector<Entry> entries_;
 };

@@ -37,7 +37,7 @@ using scene::detail::location;
 /// an unknown key is refused at its place with the valid keys and the nearest of them
 /// ("did you mean"), a key given twice at its second place.
 void check_keys(const Ctx& ctx, const YAML::Node& map, const std::string& path, std::vector<std::string> valid) {
-  (void)scene::detail::MapReader(ctx, map, path, std::move(valid));
+  (void)scene::detail::MapReader(ctx, map, path, "", std::move(valid));  // no scene map: no handle applies
 }
 
 std::string scalar_string(const Ctx& ctx, const YAML::Node& n, const std::string& key) {
