@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <set>
+#include <string>
+#include <tuple>
 
 #include "rheodda/scene/geometry.hpp"
 #include "read_keys.hpp"
@@ -237,9 +239,11 @@ void read_stage_bolts(const Ctx& ctx, const MapReader& m, const SceneDescription
   for (std::size_t k = 0; k < v.size(); ++k) {
     const std::string bp = fmt::format("{}[{}]", m.child(key::stage::add_bolts), k);
     BoltDescription b = read_bolt(ctx, v[k], bp, s, taken, true);
-    for (const auto& [end, key] : {std::pair<const BlockPoint*, const char*>{&b.from, "from"}, {&b.to, "to"}})
+    for (const auto& [end, side, block] : {std::tuple<const BlockPoint*, KeyName, KeyName>{&b.from, key::bolt::from, key::bolt_from::block},
+                                           {&b.to, key::bolt::to, key::bolt_to::block}})
       if (end->block >= 0 && w.is_removed(end->block))
-        ctx.fail(v[k][key]["block"], fmt::format("{}.{}.block", bp, key), w.removed_text(s, end->block));
+        ctx.fail(v[k][std::string(side.word())][std::string(block.word())],
+                 fmt::format("{}.{}.{}", bp, side.word(), block.word()), w.removed_text(s, end->block));
     taken.push_back(b.name);
     st.add_bolts.push_back(std::move(b));
   }

@@ -156,8 +156,8 @@ Analysis read_analysis(const Ctx& ctx, const YAML::Node& n) {
         ctx.fail(w, m.child(k),
                  fmt::format("{} applies to the explicit step; give integrator: explicit or automatic", k.word()));
     if (const YAML::Node sm = m.find(key::analysis::settle); sm.IsDefined() && sm.IsMap())
-      if (const YAML::Node f = sm["force_ratio"]; f.IsDefined())
-        ctx.fail(f, m.child(key::analysis::settle) + ".force_ratio",
+      if (const YAML::Node f = sm[std::string(key::settle::force_ratio.word())]; f.IsDefined())
+        ctx.fail(f, fmt::format("{}.{}", m.child(key::analysis::settle), key::settle::force_ratio.word()),
                  "force_ratio applies to the explicit step (only its cycles find the unbalanced force); give "
                  "integrator: explicit or automatic");
   }
