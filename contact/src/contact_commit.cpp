@@ -176,8 +176,7 @@ void ContactSystem::end_step(std::span<const BlockView> blocks, const Eigen::Vec
     if (r.rheology >= 0 && r.state != ContactState::locked) records_.work.rheology[r.rheology] = {};
   records_.committed.swap(records_.work);
   energy_.committed.swap(energy_.step);  // energy balance
-  energy_.cycled = cycles_.active;
-  energy_.cycle = cycles_.active ? cycles_.work : CycleWork{};
+  energy_.cycle = cycles_.active ? std::optional<CycleWork>(cycles_.work) : std::nullopt;
   if (creep_error_wanted_) {
     // The step-start records (now in the working arrays) are the estimate's
     // start, and what retract_step swaps back.

@@ -64,7 +64,7 @@ ContactEnergy EnergyBook::energy(std::span<const Contact> records, std::span<con
     const bool n_end = w.solved_state != ContactState::open;
     const double un0 = 0.5 * w.pn * w.dn0 * w.dn0;
     if (n_start) start += un0;
-    if (cycled) {
+    if (cycle) {
       if (n_end) e.normal += 0.5 * w.pn * r.penetration * r.penetration;
     } else if (n_end) {
       const double d = w.dn - w.dn0;
@@ -88,7 +88,7 @@ ContactEnergy EnergyBook::energy(std::span<const Contact> records, std::span<con
     const bool s_end = w.solved_state == ContactState::locked;
     const double us0 = 0.5 * w.ps * w.st0 * w.st0;
     if (s_start) start += us0;
-    if (cycled) {
+    if (cycle) {
       if (s_end) {
         e.shear += 0.5 * r.shear_force * r.shear_force / w.ps;
         e.creep += r.shear_force * (c < creep.size() ? creep[c] : 0.0);
@@ -119,11 +119,11 @@ ContactEnergy EnergyBook::energy(std::span<const Contact> records, std::span<con
     // Shear dashpot (locked; JointSet::restitution): its end force over the slip.
     e.damping += w.shear_damping * w.slip;
   }
-  if (cycled) {
-    e.damping += cycle.damping;
-    e.friction += cycle.friction;
-    e.release += cycle.release;
-    e.closing -= cycle.attach;
+  if (cycle) {
+    e.damping += cycle->damping;
+    e.friction += cycle->friction;
+    e.release += cycle->release;
+    e.closing -= cycle->attach;
   }
   e.restart = start - stored_before;
   return e;

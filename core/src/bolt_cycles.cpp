@@ -15,10 +15,18 @@
 // contact/src/contact_cycles.cpp). Within the yield force a dashpot beside the spring,
 //     N = clamp(N_e + c n . (G_b V_b - G_a V_a), -N_y, N_y),  c = tau k_eff          (C3)
 // (the stiffness-proportional damping of (5) of explicit_step.cpp; tau = 0 without
-// explicit_damping), its work over the drift that follows booked as the contacts' is. The
-// generalized forces are (3) of bolts.hpp along the cycle's axis n(D): the bolt turns with
-// the blocks exactly, as Newton's iterate does in the implicit step. The rupture is checked
-// at the step's end (commit), as in the implicit step.
+// explicit_damping). The generalized forces are (3) of bolts.hpp along the cycle's axis
+// n(D): the bolt turns with the blocks exactly, as Newton's iterate does in the implicit
+// step. The dashpot's force N_d = N - N_e of a cycle makes, with the bolt's other forces, a
+// kick of length kick (h, h/2 at the step's first and last cycle; (2) of explicit_step.cpp),
+// and its work is booked as the contacts' dashpots' (contact_cycles.cpp):
+//     W_d += N_d kick (Ldot(V_before) + Ldot(V_after)) / 2,
+//     Ldot(V) = g_b . V_b - g_a . V_a,  g = G^T n at the cycle's D                  (C4)
+// V_before the rates the force was found at, V_after those its kick led to: the kinetic
+// energy a kick changes is kick R . (V_before + V_after)/2, so (C4) is the scheme's own
+// discrete work (docs/reference/explicit-step.md, "Energy balance"). The first half is
+// booked at the cycle, the second at the next cycle (or end_cycles) once V_after is known.
+// The rupture is checked at the step's end (commit), as in the implicit step.
 //
 // Each bolt is worked on its own (OpenMP); each block gathers its bolts' forces in the
 // bolts' order, so that the sums are the same bits whatever the number of threads.
@@ -36,6 +44,14 @@ namespace {
 /// Bound factor of an end's stiffness for the stable cycle: 2 when the other end is on a
 /// block too (the two blocks' modes together, as the contacts' bound), 1 at a fixed anchor.
 double bound_factor(const Bolt& bolt) { return bolt.block_b >= 0 ? 2.0 : 1.0; }
+
+/// Ldot of (C4): the rate of the bolt's length at the rates V, g_b . V_b - g_a . V_a (g = G^T n;
+/// a fixed anchor has no rate) [length/time].
+double length_rate(const Bolt& bolt, const contact::Vec6& g_a, const contact::Vec6& g_b, const Eigen::VectorXd& V) {
+  double r = -g_a.dot(V.segment<6>(6 * static_cast<Eigen::Index>(bolt.block_a)));
+  if (bolt.block_b >= 0) r += g_b.dot(V.segment<6>(6 * static_cast<Eigen::Index>(bolt.block_b)));
+  return r;
+}
 
 /// Fewer bolts than this are worked on one thread: a parallel region per cycle costs more
 /// than a few bolts' forces (the results are the same bits either way).
@@ -79,7 +95,7 @@ void BoltSet::begin_cycles(double tau, int block_count, int threads) {
   cycle_force_.assign(2 * n, contact::Vec6::Zero());
   for (Trial& t : trials_) {
     t.cycled = true;
-    t.cycle_plastic = t.cycle_work = t.damper_force = 0.0;
+    t.cycle_plastic = t.cycle_work = t.damper_half = 0.0;
     t.damper = tau * t.k_eff;
   }
   // The bolts of each block in the bolts' order: the gather's fixed order (CSR).
@@ -101,7 +117,14 @@ void BoltSet::begin_cycles(double tau, int block_count, int threads) {
   }
 }
 
-void BoltSet::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double h, Eigen::VectorXd& f) {
+void BoltSet::book_damper(std::size_t k, const Eigen::VectorXd& V) {
+  Trial& t = trials_[k];
+  if (t.damper_half == 0.0) return;
+  t.cycle_work += t.damper_half * length_rate(model_->bolts[k], t.damper_g_a, t.damper_g_b, V);  // (C4)
+  t.damper_half = 0.0;
+}
+
+void BoltSet::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double kick, Eigen::VectorXd& f) {
   const auto n = static_cast<std::ptrdiff_t>(trials_.size());
   const int threads = cycle_threads_ > 0 ? cycle_threads_ : omp_get_max_threads();
   // One thread works without a parallel region: a team of one still wakes a futex at the
@@ -115,15 +138,8 @@ void BoltSet::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, d
     const Point p = point(k, D);  // the ends and the axis at D
     const contact::Vec6 g_a = p.a.G.transpose() * p.n;  // d L / d D_a = -g_a, d L / d D_b = g_b
     const contact::Vec6 g_b = p.b.G.transpose() * p.n;
-    auto rate = [&] {  // dL/dt at the rates V [length/time]
-      double r = -g_a.dot(V.segment<6>(6 * static_cast<Eigen::Index>(bolt.block_a)));
-      if (bolt.block_b >= 0) r += g_b.dot(V.segment<6>(6 * static_cast<Eigen::Index>(bolt.block_b)));
-      return r;
-    };
-    // The last cycle's dashpot force over the drift h V just made (the scheme's discrete
-    // work, as contact_cycles.cpp books the contacts' dashpots).
-    if (t.damper_force != 0.0) t.cycle_work += h * t.damper_force * rate();
-    t.damper_force = 0.0;
+    // (C4), second half: the last cycle's dashpot force at the rates V its kick led to.
+    book_damper(k, V);
     const double ny = bolt.yield_force;
     const double elastic = t.elastic_force(p.L);  // (C1)
     double N = 0.0;
@@ -139,8 +155,16 @@ void BoltSet::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, d
       t.sign = 0;
       N = elastic;
       if (t.damper > 0.0) {
-        N = std::clamp(elastic + t.damper * rate(), -ny, ny);
-        t.damper_force = N - elastic;
+        const double rate = length_rate(bolt, g_a, g_b, V);
+        N = std::clamp(elastic + t.damper * rate, -ny, ny);
+        const double damper = N - elastic;  // N_d [force]
+        if (damper != 0.0) {
+          // (C4), first half: at the rates the force was found at; the second at the next
+          // cycle's (book_damper), along this cycle's axis.
+          t.cycle_work += 0.5 * kick * damper * rate;
+          t.damper_half = 0.5 * kick * damper;
+          t.damper_g_a = g_a, t.damper_g_b = g_b;
+        }
       }
     }
     // (3): -N g_a on block a, N g_b on block b.
@@ -168,11 +192,15 @@ void BoltSet::cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, d
   }
 }
 
-void BoltSet::end_cycles(const Eigen::VectorXd& D) {
+void BoltSet::end_cycles(const Eigen::VectorXd& D, const Eigen::VectorXd& V) {
   // The mode of the last cycle stands (Trial::sign); the iterate at the end D, for the
-  // creep error estimate (bolt_creep_error.cpp) and commit.
-  for (std::size_t k = 0; k < trials_.size(); ++k)
-    if (trials_[k].active) trials_[k].at = point(k, D);
+  // creep error estimate (bolt_creep_error.cpp) and commit; the last cycle's dashpot work
+  // completed at the step's end rates V (C4).
+  for (std::size_t k = 0; k < trials_.size(); ++k) {
+    if (!trials_[k].active) continue;
+    book_damper(k, V);
+    trials_[k].at = point(k, D);
+  }
 }
 
 }  // namespace rheodda::core

@@ -118,12 +118,15 @@ class BoltSet {
   /// OpenMP's default).
   void begin_cycles(double tau, int block_count, int threads);
   /// Adds the bolts' resisting forces (3) at the displacements D since the step start and the
-  /// rates V to f (6 per block), each bolt's mode decided at D; h: the cycle that led to D,
-  /// for the work its dashpot took over it [time].
-  void cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double h, Eigen::VectorXd& f);
-  /// After the last cycle at D: each bolt's trial mode, plastic elongation and iterate where the
-  /// cycles left them, ready for commit.
-  void end_cycles(const Eigen::VectorXd& D);
+  /// rates V to f (6 per block), each bolt's mode decided at D; kick: the length of the kick
+  /// these forces make [time] (the cycle, half of it at the step's first and last), for the
+  /// dashpot's work, its force times kick (its rate + the rate after the kick)/2 ((C4) of
+  /// bolt_cycles.cpp), as ContactModel::cycle_forces books the contacts'.
+  void cycle_forces(const Eigen::VectorXd& D, const Eigen::VectorXd& V, double kick, Eigen::VectorXd& f);
+  /// After the last cycle at D, V the rates its kick led to: each bolt's trial mode, plastic
+  /// elongation and iterate where the cycles left them, its dashpot's work completed, ready
+  /// for commit.
+  void end_cycles(const Eigen::VectorXd& D, const Eigen::VectorXd& V);
 
   /// Where an end of a bolt goes for the block unknowns D, by (1).
   struct EndMotion {
@@ -164,7 +167,10 @@ class BoltSet {
     double cycle_plastic = 0.0; ///< plastic elongation the cycles took so far [length]
     double cycle_work = 0.0;    ///< the plastic work and the dashpot's work in the cycles [force x length]
     double damper = 0.0;        ///< dashpot coefficient c = tau k_eff [force x time/length]
-    double damper_force = 0.0;  ///< the dashpot's axial force of the last cycle [force]
+    double damper_half = 0.0;   ///< the last cycle's dashpot force times half its kick, for its
+                                ///< work at the rates the kick led to ((C4); 0: none) [force x time]
+    contact::Vec6 damper_g_a = contact::Vec6::Zero(), damper_g_b = contact::Vec6::Zero();  ///< g = G^T n of
+                                ///< the ends at that cycle [-, length]
     /// (2) on the elastic branch at the length L: k_eff (s0 - cycle_plastic + L - L0) [force].
     double elastic_force(double L) const { return k_eff * (s0 - cycle_plastic + L - length_start); }
   };
@@ -187,6 +193,9 @@ class BoltSet {
   std::vector<int> block_first_, block_entries_;
   int cycle_threads_ = 0;
   void linearize(std::size_t k, double guess);
+  /// (C4) of bolt_cycles.cpp, second half: bolt k's last dashpot force at the rates V its kick
+  /// led to, into its cycle work.
+  void book_damper(std::size_t k, const Eigen::VectorXd& V);
   /// The Hessian block (4) of an end: G^T K2 G with its rotation term curv on e_r.
   static contact::Mat6 end_hessian(const EndMotion& e, const Eigen::Matrix2d& K2, double curv);
   /// The bolt k at the iterate D (its blocks' segments of D), in its trial mode.

@@ -34,14 +34,15 @@ inline int begin(ContactModel& contacts, std::span<const contact::BlockView> vie
   return threads > 0 ? threads : omp_get_max_threads();
 }
 
-/// After the last cycle, at D: the contacts (and the bolts, `with_bolts`) take the cycles'
-/// states, their changes counted into rep; the trial converged there.
+/// After the last cycle, at D with the rates V its kick led to: the contacts (and the bolts,
+/// `with_bolts`) take the cycles' states, their changes counted into rep; the trial
+/// converged there.
 inline StepTrial end(ContactModel& contacts, BoltSet& bolts, bool with_bolts, std::span<const contact::BlockView> views,
-                     const Eigen::VectorXd& D, StepReport& rep) {
+                     const Eigen::VectorXd& D, const Eigen::VectorXd& V, StepReport& rep) {
   StepTrial trial;
   trial.converged = true;
   trial.check = contacts.end_cycles(views, D);
-  if (with_bolts) bolts.end_cycles(D);
+  if (with_bolts) bolts.end_cycles(D, V);
   rep.changes += trial.check.changes;
   return trial;
 }

@@ -167,7 +167,7 @@ Engine::Impl::Trial Engine::Impl::relax_trial(double dt, StepReport& rep) {
     return trial;  // the caller abandons the step
   }
   D = Dn;
-  Trial taken = cycles::end(*contacts, bolt_set, bolts, views, D, rep);
+  Trial taken = cycles::end(*contacts, bolt_set, bolts, views, D, V, rep);
   taken.iterations = n;
   taken.short_of_rest = partial;
   return taken;

@@ -258,7 +258,7 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
     const double kick = (c == 0 || c == n) ? 0.5 * h : h;
     const bool drift = c < n;
     contacts->cycle_forces(Dn, V, kick, f);
-    if (bolts) bolt_set.cycle_forces(Dn, V, h, f);  // added per block after the contacts' sum
+    if (bolts) bolt_set.cycle_forces(Dn, V, kick, f);  // added per block after the contacts' sum
     const auto kick_block = [&](std::ptrdiff_t k) {
       if (frozen[k]) return;
       auto Dk = Dn.segment<6>(6 * k);
@@ -300,7 +300,7 @@ Engine::Impl::Trial Engine::Impl::cycle_trial(double dt, StepReport& rep) {
   rep.cycles = n;
   rep.cycle_dt = h;
   rep.stable_block = stable_block;
-  return cycles::end(*contacts, bolt_set, bolts, views, D, rep);
+  return cycles::end(*contacts, bolt_set, bolts, views, D, V, rep);
 }
 
 }  // namespace rheodda::core

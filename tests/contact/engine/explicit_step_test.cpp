@@ -134,7 +134,8 @@ BOOST_AUTO_TEST_CASE(the_same_bits_whatever_the_number_of_threads) {
   // to the last bit. Bolted: each brick of the top row to the fixed base and each brick to its
   // right-hand neighbour in its row (33 bolts, enough to be worked in parallel; several on a
   // block, gathered in the bolts' order), the kicked brick's to its neighbour with a yield
-  // force it passes; their forces and plastic elongations as well.
+  // force it passes; their forces and plastic elongations as well, and the energy balance's
+  // dashpot and damping terms booked cycle by cycle (contacts', blocks', bolts') and residual.
   auto run = [](int threads, bool bolted) {
     core::Model m = running_bond_wall(6, 5, core::SolverKind::cholmod);
     m.settings.integrator = core::Integrator::explicit_step;
@@ -177,6 +178,9 @@ BOOST_AUTO_TEST_CASE(the_same_bits_whatever_the_number_of_threads) {
       for (int i = 0; i < 6; ++i) out.push_back(sim.engine.velocity(b)(i));
     }
     for (const core::BoltState& s : sim.engine.bolts()) out.push_back(s.force), out.push_back(s.plastic_elongation);
+    const core::EnergyFlows& e = sim.engine.energy().total;
+    for (const double x : {e.dissipation_contact_damping, e.dissipation_block_damping, e.dissipation_bolt, e.residual})
+      out.push_back(x);
     if (bolted) {
       const core::BoltState& kicked = sim.engine.bolts().back();
       BOOST_TEST_MESSAGE("threads " << threads << ": the kicked brick's bolt " << core::bolt_mode_name(kicked.state)

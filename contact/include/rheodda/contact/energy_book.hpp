@@ -4,6 +4,7 @@
 // contacts' terms of the balance (contact_energy.hpp, contact_energy.cpp).
 #pragma once
 
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -35,7 +36,7 @@ struct StepWork {
 /// and contacts (contact_cycles.cpp), in place of what the step's end forces over its end
 /// motion give for a step solved at once [force x length per unit thickness].
 struct CycleWork {
-  double damping = 0.0;   ///< the dashpots' work: each cycle's force over the drift it leads to
+  double damping = 0.0;   ///< the dashpots' work: each cycle's force times kick (v_before + v_after)/2
   double friction = 0.0;  ///< the shear force times the locking point's drag, cycle by cycle
   double release = 0.0;   ///< springs' energy where they detached: at the cycle a contact
                           ///< opened, and a sliding contact's shear spring at the step's end
@@ -51,10 +52,10 @@ struct EnergyBook {
   std::vector<StepWork> committed;  ///< of the last accepted step, parallel to its records
   std::vector<StepWork> step;       ///< of the step being committed (end_step)
   double stored_before = 0.0;       ///< stored energy before the last accepted step [force x length]
-  /// The last accepted step was taken in cycles: its springs' flows are `cycle`'s, and
-  /// the springs attached through it lose nothing to integration (contact_energy.cpp).
-  bool cycled = false;
-  CycleWork cycle;
+  /// What the cycles did, when the last accepted step was taken in cycles: its springs'
+  /// flows are then these, and the springs attached through it lose nothing to
+  /// integration (contact_energy.cpp); empty for a step solved at once.
+  std::optional<CycleWork> cycle;
 
   /// Sum of p_n d_n^2/2 + F^2/(2 k_s) over records with their springs [force x length].
   static double stored_energy(std::span<const Contact> records, std::span<const StepWork> work);
