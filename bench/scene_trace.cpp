@@ -129,8 +129,9 @@ class Tracer final : public core::ContactModel {
     inner_.cycle_forces(D, V, h, f);
   }
   int cycle_relinearize(const Eigen::VectorXd& D) override { return inner_.cycle_relinearize(D); }
-  core::ContactCheck end_cycles(std::span<const contact::BlockView> b, const Eigen::VectorXd& D) override {
-    return inner_.end_cycles(b, D);
+  core::ContactCheck end_cycles(std::span<const contact::BlockView> b, const Eigen::VectorXd& D,
+                                const Eigen::VectorXd& V) override {
+    return inner_.end_cycles(b, D, V);
   }
   double creep_error_estimate() const override { return inner_.creep_error_estimate(); }
   int creep_state_changes() const override { return inner_.creep_state_changes(); }

@@ -323,7 +323,8 @@ int ContactSystem::cycle_relinearize(const Eigen::VectorXd& D) {
   return changed;
 }
 
-CheckResult ContactSystem::end_cycles(std::span<const BlockView> blocks, const Eigen::VectorXd& D) {
+CheckResult ContactSystem::end_cycles(std::span<const BlockView> blocks, const Eigen::VectorXd& D,
+                                      const Eigen::VectorXd& V) {
   CheckResult res;
   double scale = 0.0;
   cycles_.work = {};
@@ -349,6 +350,13 @@ CheckResult ContactSystem::end_cycles(std::span<const BlockView> blocks, const E
       r.locking_ratio += y.shift / edge_length(eb, r.key.edge);
       h.dt0 -= y.shift;
     }
+    if (y.nd != 0.0 || y.ts != 0.0) {
+      // The second half of the last cycle's dashpot work (cycle_contact): its forces at the
+      // step's end rates, which its kick led to.
+      const auto Vi = V.segment<6>(6 * p.i);
+      const auto Vj = V.segment<6>(6 * p.j);
+      cycles_.work.damping += y.nd * (p.ni.dot(Vi) + p.nj.dot(Vj)) + y.ts * (p.ti.dot(Vi) + p.tj.dot(Vj));
+    }
     const auto Di = D.segment<6>(6 * r.key.vblock);
     const auto Dj = D.segment<6>(6 * r.key.eblock);
     const double dn = h.dn0 + h.ni.dot(Di) + h.nj.dot(Dj);
@@ -373,7 +381,7 @@ CheckResult ContactSystem::end_cycles(std::span<const BlockView> blocks, const E
   step_.force_scale = scale;
   step_.max_penetration = res.max_penetration;
   // What the cycles did to the springs, with what end_cycles added above (the stretch of
-  // the springs committed sliding).
+  // the springs committed sliding, the last cycle's dashpot halves).
   const CycleWork summed = cycles_.summed();
   cycles_.work.damping += summed.damping;
   cycles_.work.friction += summed.friction;

@@ -33,8 +33,9 @@ ContactCheck ContactAdapter::check(std::span<const contact::BlockView> blocks,
   return system_.check(blocks, D);
 }
 
-ContactCheck ContactAdapter::end_cycles(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) {
-  return system_.end_cycles(blocks, D);
+ContactCheck ContactAdapter::end_cycles(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D,
+                                        const Eigen::VectorXd& V) {
+  return system_.end_cycles(blocks, D, V);
 }
 
 void ContactAdapter::end_step(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) {

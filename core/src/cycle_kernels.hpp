@@ -41,7 +41,7 @@ inline StepTrial end(ContactModel& contacts, BoltSet& bolts, bool with_bolts, st
                      const Eigen::VectorXd& D, const Eigen::VectorXd& V, StepReport& rep) {
   StepTrial trial;
   trial.converged = true;
-  trial.check = contacts.end_cycles(views, D);
+  trial.check = contacts.end_cycles(views, D, V);
   if (with_bolts) bolts.end_cycles(D, V);
   rep.changes += trial.check.changes;
   return trial;

@@ -141,8 +141,9 @@ class ContactSystem {
   int cycle_relinearize(const Eigen::VectorXd& D);
   /// After the last cycle, at the step's D: the trial records take the cycles' states
   /// (the locking point dragged by the slip, the slide direction, intact or not, the
-  /// normal force), ready for end_step. Returns the changes from the step-start states.
-  CheckResult end_cycles(std::span<const BlockView> blocks, const Eigen::VectorXd& D);
+  /// normal force), ready for end_step; the last cycle's dashpot work completed at the rates
+  /// V its kick led to [length/time]. Returns the changes from the step-start states.
+  CheckResult end_cycles(std::span<const BlockView> blocks, const Eigen::VectorXd& D, const Eigen::VectorXd& V);
 
   /// Accepts the step: locking points, forces, accumulated shear; may raise the penalty.
   void end_step(std::span<const BlockView> blocks, const Eigen::VectorXd& D);

@@ -50,7 +50,8 @@ class ContactAdapter final : public ContactModel {
     system_.cycle_forces(D, V, kick, f);
   }
   int cycle_relinearize(const Eigen::VectorXd& D) override { return system_.cycle_relinearize(D); }
-  ContactCheck end_cycles(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D) override;
+  ContactCheck end_cycles(std::span<const contact::BlockView> blocks, const Eigen::VectorXd& D,
+                          const Eigen::VectorXd& V) override;
   void abandon_step() override;
   /// contact::ContactSystem::creep_error_estimate (asked for by the step context).
   double creep_error_estimate() const override { return system_.creep_error_estimate(); }

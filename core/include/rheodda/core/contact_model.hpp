@@ -91,8 +91,10 @@ class ContactModel {
   /// iterate of the implicit step does; returns how many changed (0: the cycles' state is
   /// consistent with its laws).
   virtual int cycle_relinearize(const Eigen::VectorXd& /*D*/) { return 0; }
-  /// After the last cycle: the trial states take the cycles' states, ready for end_step.
-  virtual ContactCheck end_cycles(std::span<const contact::BlockView> /*blocks*/, const Eigen::VectorXd& /*D*/) {
+  /// After the last cycle, at D with the rates V its kick led to [length/time]: the trial
+  /// states take the cycles' states, ready for end_step.
+  virtual ContactCheck end_cycles(std::span<const contact::BlockView> /*blocks*/, const Eigen::VectorXd& /*D*/,
+                                  const Eigen::VectorXd& /*V*/) {
     return {};
   }
   /// Accept the step: commit states, locking points, forces and rheology history.
