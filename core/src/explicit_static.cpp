@@ -99,6 +99,7 @@ Engine::Impl::Trial Engine::Impl::relax_trial(double dt, StepReport& rep) {
   double ratio = 0.0;
   bool settled = false, partial = false;
   const double allowed = max_displacement_ratio_now() * w0;  // (3): the step's displacement limit
+  const std::vector<double> radius = cycles::vertex_radii(st.blocks);  // for its test at each cycle
   Eigen::VectorXd D_before;
   const bool parallel_blocks = threads > 1 && nbi >= cycles::kParallelBlocks;  // (cycle_kernels.hpp)
   for (;; ++n) {
@@ -140,7 +141,7 @@ Engine::Impl::Trial Engine::Impl::relax_trial(double dt, StepReport& rep) {
     } else {
       for (std::ptrdiff_t k = 0; k < nbi; ++k) kick_block(k);
     }
-    if (max_vertex_displacement(Dn) > allowed) {
+    if (cycles::moves_beyond(st.blocks, radius, Dn, allowed)) {
       // The way to rest is longer than a step may move on its step-start contacts: the step
       // ends short of rest, where the limit is reached, and the next goes on (3).
       Dn = D_before;
