@@ -108,10 +108,7 @@ inline bool moves_beyond(const std::vector<BlockState>& blocks, const std::vecto
   for (std::size_t k = 0; k < blocks.size(); ++k) {
     const Vec6 Dk = d.segment<6>(6 * static_cast<Eigen::Index>(k));
     if (vertex_displacement_bound(Dk, radius[k]) <= sure) continue;
-    double worst = 0.0;
-    for (const Vec2& v : blocks[k].vertices)
-      worst = std::max(worst, (contact::displacement_matrix(blocks[k].centroid, v) * Dk).squaredNorm());
-    if (std::sqrt(worst) > allowed) return true;
+    if (std::sqrt(largest_vertex_displacement_sq(blocks[k], Dk)) > allowed) return true;
   }
   return false;
 }

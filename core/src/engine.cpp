@@ -98,14 +98,8 @@ void Engine::Impl::refresh_geometry() {
 
 double Engine::Impl::max_vertex_displacement(const Eigen::VectorXd& d) const {
   double worst = 0.0;
-  for (std::size_t k = 0; k < st.blocks.size(); ++k) {
-    const BlockState& b = st.blocks[k];
-    const auto Dk = d.segment<6>(6 * static_cast<Eigen::Index>(k));
-    for (const auto& v : b.vertices) {
-      const Vec2 u = contact::displacement_matrix(b.centroid, v) * Dk;
-      worst = std::max(worst, u.squaredNorm());
-    }
-  }
+  for (std::size_t k = 0; k < st.blocks.size(); ++k)
+    worst = std::max(worst, largest_vertex_displacement_sq(st.blocks[k], d.segment<6>(6 * static_cast<Eigen::Index>(k))));
   return std::sqrt(worst);
 }
 

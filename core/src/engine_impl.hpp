@@ -8,6 +8,7 @@
 // Richardson extrapolation).
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -27,6 +28,14 @@
 namespace rheodda::core {
 
 using Clock = std::chrono::steady_clock;
+
+/// The largest squared displacement of block b's vertices under its unknowns D [length^2]:
+/// |T(v) D|^2 over its vertices v (contact/kinematics.hpp, displacement_matrix).
+inline double largest_vertex_displacement_sq(const BlockState& b, const Vec6& D) {
+  double worst = 0.0;
+  for (const Vec2& v : b.vertices) worst = std::max(worst, (contact::displacement_matrix(b.centroid, v) * D).squaredNorm());
+  return worst;
+}
 
 inline double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();

@@ -5,6 +5,7 @@
 // steps, a law's E1 and shear_stiffness) and a law's parameters (the law registry's) are
 // read_joint_sets.cpp's.
 #include <algorithm>
+#include <iterator>
 
 #include "key_builders.hpp"
 #include "rheodda/contact/joint_set_specs.hpp"
@@ -34,12 +35,13 @@ std::vector<EntryKey<Material>>& material_keys() {
     };
     // The material's choices (`plane`): declared beside the properties; the default is the
     // scene's Material's (plane strain), not the engine's.
+    auto at = k.begin() + 3;  // after the three required properties, in the declarations' order
     for (const core::MaterialChoiceSpec& c : core::material_choice_specs()) {
       KeyInfo i = detail::choice_info("materials", c);
       i.default_text = "`" + c.word_of(E{}) + "`";
-      k.insert(k.begin() + 3, detail::custom_key<E>(
+      at = std::next(k.insert(at, detail::custom_key<E>(
           std::move(i), [&c](const E& m) -> KeyValue { return c.word_of(m); },
-          [&c](E& m, const KeyValue& v) { c.set(m, std::get<std::string>(v)); }));
+          [&c](E& m, const KeyValue& v) { c.set(m, std::get<std::string>(v)); })));
     }
     return k;
   }();
