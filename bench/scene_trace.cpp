@@ -3,14 +3,23 @@
 //
 // Sample runs:
 //   build/bench/scene_trace examples/sliding-block.yaml --steps 20
-//   build/bench/scene_trace scene.yaml --from 40 --to 45 --contacts
-//       # steps 40-45: each iterate's changes, then per contact: id, vertex
-//       # block/vertex, edge block/edge, state, N, shear force, penetration
+//   build/bench/scene_trace scene.yaml --from 40 --to 45 --contacts --block 1
+//       # steps 40-45: the spring energy contacts start each with beyond what they
+//       # stored (by cause, and the largest contact's id), each iterate's changes,
+//       # then per contact: id, vertex block/vertex, edge block/edge, state, N,
+//       # shear force, penetration, length, tributary length, locking point (its
+//       # ratio along the edge); --block B adds block B's vertices at each step's start
 //   build/bench/scene_trace scene.yaml --dt 1e-4 --duration 0.5 --summary
 //       # only the totals: steps, cuts, solves per step, changes by kind
 //   build/bench/scene_trace scene.yaml --restore saved.state --steps 2 --contacts
 //       # from a state rheodda.Simulation.save wrote for this scene file (the
-//       # Python API steps to where a run goes wrong; the trace goes on from there)
+//       # Python API steps to where a run goes wrong; the trace goes on from there),
+//       # or from a run's checkpoint (OUTDIR/checkpoint-K.state)
+//   build/bench/scene_trace variant.yaml --restore OUT/checkpoint-0.state --state-scene scene.yaml --cycles
+//       # the same, the state written for scene.yaml, traced on a variant of it whose
+//       # settings differ (its integrator, its step controls); the blocks must be the same.
+//       # --cycles: per accepted step its cycles, largest displacement, kinetic energy
+//       # (whether within a dynamic stage) and, for a step in cycles, the fastest block
 //   build/bench/scene_trace scene.yaml --duration 1e-4 --diagnose
 //       # why attempts were cut, by class (docs/notes/rock-mass-steps.md): iterates
 //       # that still changed states (and of their changes the 2-cycles, at corners),
@@ -43,6 +52,7 @@ class Tracer final : public core::ContactModel {
  public:
   Tracer(core::ContactAdapter& inner, contact::ContactSystem& sys) : inner_(inner), sys_(sys) {}
   int from = 0, to = 1 << 30;
+  std::vector<int> shown_blocks;  ///< --block B: its vertices at each traced step's start
   bool contacts = false, quiet = false;
 
   bool on() const { return !quiet && step_ >= from && step_ <= to; }
@@ -59,7 +69,23 @@ class Tracer final : public core::ContactModel {
     step_ = ctx.step;
     checked_ = false;
     inner_.begin_step(b, ctx);
-    if (on()) std::printf("step %d t %.6g dt %.3g (search distance %.3g):", ctx.step, ctx.time, ctx.dt, sys_.stats().search_distance);
+    if (on()) {
+      std::printf("step %d t %.6g dt %.3g (search distance %.3g):", ctx.step, ctx.time, ctx.dt,
+                  sys_.stats().search_distance);
+      for (const int sb : shown_blocks)
+        if (sb >= 0 && sb < static_cast<int>(b.size())) {
+          std::printf(" block %d:", sb);
+          for (const auto& v : b[sb].vertices) std::printf(" (%.9g, %.9g)", v.x(), v.y());
+        }
+      // The spring energy contacts start with beyond what they stored, by cause, and its
+      // largest contact (docs/notes/rock-mass-steps.md).
+      const contact::DetectionStats& st = sys_.stats();
+      for (const auto& [name, r] : {std::pair{"new", st.restart_new}, std::pair{"edge", st.restart_edge},
+                                    std::pair{"kind", st.restart_kind}, std::pair{"same", st.restart_same}})
+        if (r.contacts > 0)
+          std::printf(" restart %s %d / %.3g (largest #%llu %.3g)", name, r.contacts, r.energy,
+                      static_cast<unsigned long long>(r.largest_id), r.largest);
+    }
   }
   void assemble(std::span<const contact::BlockView> b, contact::SystemSink& s) override {
     inner_.assemble(b, s);
@@ -74,10 +100,10 @@ class Tracer final : public core::ContactModel {
       if (contacts) {
         std::printf("\n");
         for (const auto& c : sys_.trial_contacts())
-          std::printf("   #%llu v%d.%d e%d.%d %-7s N %.6g F %.6g pen %.4g len %.3g\n",
+          std::printf("   #%llu v%d.%d e%d.%d %-7s N %.6g F %.6g pen %.4g len %.3g lt %.3g lock %.6g\n",
                       static_cast<unsigned long long>(c.id), c.key.vblock, c.key.vertex, c.key.eblock,
                       c.key.edge, contact::contact_state_name(c.state), c.normal_force, c.shear_force,
-                      c.penetration, c.length);
+                      c.penetration, c.length, c.tributary_length, c.locking_ratio);
       }
     }
     return r;
@@ -156,7 +182,7 @@ int trace(int argc, char** argv);
 int main(int argc, char** argv) {
   const char* usage =
       "usage: scene_trace SCENE.yaml [--steps N] [--from S] [--to S] [--contacts] "
-      "[--dt DT] [--duration T] [--summary] [--diagnose] [--cycles] [--restore STATE]\n";
+      "[--dt DT] [--duration T] [--summary] [--diagnose] [--cycles] [--block B]... [--restore STATE [--state-scene SCENE.yaml]]\n";
   if (argc >= 2 && (!std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h"))) {
     std::printf("%s", usage);
     return 0;
@@ -177,7 +203,7 @@ int trace(int argc, char** argv) {
   int steps = -1;
   double dt = 0.0, duration = 0.0;
   bool summary = false, diagnose = false, cycles = false;
-  std::string restore;
+  std::string restore, state_scene = argv[1];
   scene::SceneDescription sd = scene::load_scene(argv[1]);
   scene::BuiltScene built = scene::build_scene(sd);
   contact::ContactSystem sys(built.joint_sets, built.contact_settings);
@@ -188,12 +214,14 @@ int trace(int argc, char** argv) {
     else if (!std::strcmp(argv[k], "--from") && k + 1 < argc) tracer.from = std::atoi(argv[++k]);
     else if (!std::strcmp(argv[k], "--to") && k + 1 < argc) tracer.to = std::atoi(argv[++k]);
     else if (!std::strcmp(argv[k], "--contacts")) tracer.contacts = true;
+    else if (!std::strcmp(argv[k], "--block") && k + 1 < argc) tracer.shown_blocks.push_back(std::atoi(argv[++k]));
     else if (!std::strcmp(argv[k], "--dt") && k + 1 < argc) dt = std::atof(argv[++k]);
     else if (!std::strcmp(argv[k], "--duration") && k + 1 < argc) duration = std::atof(argv[++k]);
     else if (!std::strcmp(argv[k], "--summary")) summary = true;
     else if (!std::strcmp(argv[k], "--diagnose")) diagnose = summary = true;
     else if (!std::strcmp(argv[k], "--cycles")) cycles = summary = true;
     else if (!std::strcmp(argv[k], "--restore") && k + 1 < argc) restore = argv[++k];
+    else if (!std::strcmp(argv[k], "--state-scene") && k + 1 < argc) state_scene = argv[++k];
     else {
       std::fprintf(stderr, "scene_trace: unknown option '%s'\n", argv[k]);
       return 2;
@@ -212,10 +240,13 @@ int trace(int argc, char** argv) {
       ss << in.rdbuf();
       return ss.str();
     };
+    // A run's checkpoint (OUTDIR/checkpoint-K.state) is the snapshot itself, without that line.
     const std::string bytes = read(restore);
     const auto eol = bytes.find('\n');
     if (eol == std::string::npos) throw std::runtime_error(restore + ": not a saved simulation");
-    const scene::EngineSnapshot snap = scene::decode_snapshot(bytes.substr(eol + 1), restore, read(argv[1]));
+    const bool checkpoint = bytes.compare(0, 16, "{\"rheodda_state\"") == 0;
+    const scene::EngineSnapshot snap =
+        scene::decode_snapshot(checkpoint ? bytes : bytes.substr(eol + 1), restore, read(state_scene));
     engine.restore(snap.engine);
     sys.restore(snap.contacts);
   }
@@ -223,11 +254,21 @@ int trace(int argc, char** argv) {
   if (cycles)
     engine.add_observer([&](const core::Engine& e, const core::StepReport& r) {
       const auto now = std::chrono::steady_clock::now();
-      std::printf("step %d t %.6g dt %.3g cuts %d: %d cycles of %.3g (block %d), %zu contacts, %.3f s\n", r.step,
-                  r.time, r.dt, r.cuts, r.cycles, r.cycle_dt, r.stable_block, sys.contacts().size(),
+      std::printf("step %d t %.6g dt %.3g cuts %d: %d cycles of %.3g (block %d), %zu contacts, largest displacement "
+                  "%.3g, kinetic energy %.4g%s, %.3f s\n",
+                  r.step, r.time, r.dt, r.cuts, r.cycles, r.cycle_dt, r.stable_block, sys.contacts().size(),
+                  r.max_displacement, e.energy().stored.kinetic, e.in_stage() ? " (in a stage)" : "",
                   std::chrono::duration<double>(now - last).count());
+      if (r.cycles > 0) {  // the fastest block: where a stage's motion is
+        int fast = -1;
+        double speed = 0.0;
+        for (int b = 0; b < e.block_count(); ++b)
+          if (const double v = e.velocity(b).head<2>().norm(); v > speed) speed = v, fast = b;
+        if (fast >= 0)
+          std::printf("  fastest block %d at (%.4g, %.4g): %.3g per unit time\n", fast, e.centroid(fast).x(),
+                      e.centroid(fast).y(), speed);
+      }
       last = now;
-      (void)e;
     });
   if (steps >= 0)
     engine.run(steps);

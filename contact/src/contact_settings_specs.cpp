@@ -39,8 +39,8 @@ std::vector<ContactSettingSpec> declare_contact_settings() {
                       "iterates asks for another iterate (its friction is taken from the last iterate's N)"));
   add(declare_setting("force_resolution", "–", {0.0, false, 1.0, true}, &CS::force_resolution,
                       "force resolution of the open–close decisions as a fraction of the largest contact normal "
-                      "force of the last iterate: a contact closes, opens, slides or sticks only when the force "
-                      "at stake exceeds it"));
+                      "force of the last iterate (at most the stiffest spring's at `penetration_ratio`): a contact "
+                      "closes, opens, slides or sticks only when the force at stake exceeds it"));
   add(declare_setting("max_flips", "–", {1.0, false, 1000.0, false}, &CS::max_flips,
                       "state changes of one contact in one step after which it may only change to locked "
                       "(anti-chattering)"));

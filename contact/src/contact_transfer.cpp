@@ -169,6 +169,7 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepCont
                                                                        : restart.restart_same;
         ++cause.contacts;
         cause.energy += u0 - u_old;
+        if (u0 - u_old > cause.largest) cause.largest = u0 - u_old, cause.largest_id = rec.id;
       }
     }
     // The dashpot counts the step's approach from the step start, or for a

@@ -73,6 +73,8 @@ struct DetectionStats {
   struct Restart {
     int contacts = 0;
     double energy = 0.0;
+    double largest = 0.0;             ///< the largest of one contact [force x length]
+    std::uint64_t largest_id = 0;     ///< that contact's id (Contact::id)
   };
   Restart restart_new;   ///< new contacts that start closed, already overlapping
   Restart restart_edge;  ///< contacts moved to an adjacent edge of the same block
