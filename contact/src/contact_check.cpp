@@ -51,24 +51,25 @@ void ContactSystem::lock_at_touch(std::span<const BlockView> blocks, size_t c, d
   prepare(blocks, r, step_.hot[c]);
 }
 
+double ContactSystem::force_resolution() const {
+  // Forces below this are zero for the state decisions, so that contacts that carry
+  // (almost) nothing - the vertical joints of a wall - do not flip on round-off. Its
+  // scale is the largest normal force of the last iterate's closed contacts, but never
+  // more than the stiffest contact spring carries at the allowed penetration
+  // (penetration_ratio x w0; beyond it the penalty is raised, step_.force_cap): a force
+  // beyond that is no contact state but an iterate that sent a block far (in a static
+  // step a block its contacts no longer hold moves g dt^2/2, and the contacts it is
+  // driven into carry 1e20 N/m). Judged at a resolution taken from such an iterate, no
+  // open contact closed however deep it went, and the trial, with nothing left to
+  // change, was accepted (docs/notes/rock-mass-steps.md, "A resolution taken from an
+  // absurd iterate").
+  return settings_.force_resolution * std::min(step_.force_scale, step_.force_cap);
+}
+
 CheckResult ContactSystem::check(std::span<const BlockView> blocks, const Eigen::VectorXd& D) {
   assert(D.size() == 6 * static_cast<Eigen::Index>(blocks.size()));
   CheckResult res;
-  // Force resolution: forces below this are zero for the state decisions, so
-  // contacts that carry (almost) nothing - the vertical joints of a wall - do
-  // not flip on round-off. Its scale is the largest normal force of the last
-  // iterate's closed contacts, but never more than the stiffest contact spring
-  // carries at the allowed penetration (penetration_ratio x w0; beyond it the
-  // penalty is raised): a force beyond that is no contact state but an iterate
-  // that sent a block far (in a static step a block its contacts no longer hold
-  // moves g dt^2/2, and the contacts it is driven into carry 1e20 N/m). Judged at
-  // a resolution taken from such an iterate, no open contact closed however deep
-  // it went, and the trial, with nothing left to change, was accepted
-  // (docs/notes/rock-mass-steps.md, "A resolution taken from an absurd iterate").
-  double stiffest = 0.0;
-  for (const Hot& h : step_.hot) stiffest = std::max(stiffest, h.pn);
-  const double f_res =
-      settings_.force_resolution * std::min(step_.force_scale, stiffest * allowed_penetration_);
+  const double f_res = force_resolution();
   double scale = 0.0;
   for (size_t c = 0; c < records_.work.contacts.size(); ++c) {
     Contact& r = records_.work.contacts[c];

@@ -46,7 +46,7 @@ void ContactSystem::project_onto_envelope(std::span<const BlockView> blocks, siz
   // (ContactEnergy::release; contact_energy.cpp).
   Contact& r = records_.work.contacts[c];
   const Hot& h = step_.hot[c];
-  const double f_res = settings_.force_resolution * step_.force_scale;
+  const double f_res = force_resolution();
   if (beyond_tensile_cutoff(r.normal_force, h.tensile_strength, r.length, f_res)) {
     r.state = ContactState::open;
     r.normal_force = r.shear_force = 0.0;

@@ -197,6 +197,9 @@ void ContactSystem::begin_step(std::span<const BlockView> blocks, const StepCont
   step_.max_penetration = 0.0;
   step_.force_scale = 0.0;
   for (const Contact& c : committed) step_.force_scale = std::max(step_.force_scale, std::abs(c.normal_force));
+  step_.force_cap = 0.0;
+  for (const Hot& h : step_.hot) step_.force_cap = std::max(step_.force_cap, h.pn);
+  step_.force_cap *= allowed_penetration_;
   stats_ = restart;
   stats_.candidate_pairs = static_cast<int>(pairs.size());
   stats_.contacts = static_cast<int>(records_.work.contacts.size());

@@ -274,6 +274,9 @@ class ContactSystem {
   /// [stress]; true when that asks for another iterate (the seam changed, within the bounds
   /// max_refinements and max_creep_newton). f_res: the force resolution [force/length].
   bool relinearize_seam(size_t c, double tau, double f_res);
+  /// The force resolution of the open-close decisions and of the commit's projection
+  /// (contact_check.cpp) [force/length].
+  double force_resolution() const;
   /// Contact c's damage law failed: residual frictional joint (no creep, cohesion, tension)
   /// from now on; `creep` [length], the law's creep of this step up to the failure, still
   /// moves its locking point in this step (0 where it is not finite).

@@ -83,6 +83,8 @@ struct Data {
   bool dynamic = true;   ///< the step carries velocity (StepContext::dynamic)
   double max_penetration = 0.0;  ///< largest penetration of the last iterate [length]
   double force_scale = 0.0;      ///< largest |N| of the last iterate [force/length]
+  double force_cap = 0.0;        ///< the most force_scale counts for the force resolution: the
+                                 ///< stiffest normal spring at the allowed penetration [force/length]
 
   /// Drops the contacts' arrays (the laws' constants stay for scheme_used, the
   /// values for the commit's creep error estimate).
