@@ -9,6 +9,15 @@ build="${RHEODDA_BUILD_DIR:-$root/build}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
+# bench_slope: writes the benchmark's 744-block cohesionless slope (bench/scenes/
+# jointed-slope-cohesionless.yaml scaled by rockmass_bench --creep 1000) into $work and sets
+# slope_scene to its path (needs rockmass_bench built).
+bench_slope() {
+  "$build/bench/rockmass_bench" --no-generation --scene "$root/bench/scenes/jointed-slope-cohesionless.yaml" \
+    --write-scenes "$work" --creep 1000 --max-wall 0 >/dev/null
+  slope_scene="$work/jointed-slope-cohesionless-1000.yaml"
+}
+
 # ensure_built TARGET...: configures and builds the CMake targets (Release) in $build
 # unless each is there already (bench/TARGET or apps/TARGET).
 ensure_built() {

@@ -22,10 +22,9 @@
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 seconds="${1:-600}"
 ensure_built rockmass_bench rheodda scene_trace
-"$build/bench/rockmass_bench" --no-generation --scene "$root/bench/scenes/jointed-slope-cohesionless.yaml" \
-  --write-scenes "$work" --creep 1000 --max-wall 0 >/dev/null
+bench_slope
 scene="$work/slope-30.02.yaml"
-/usr/bin/python3 - "$work/jointed-slope-cohesionless-1000.yaml" "$scene" <<'EOF'
+/usr/bin/python3 - "$slope_scene" "$scene" <<'EOF'
 import sys
 src = open(sys.argv[1]).read()
 old = "creeping bedding planes\n    friction_angle: 30"

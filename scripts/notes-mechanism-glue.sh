@@ -20,9 +20,8 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 from="${1:-3312}"
 to="${2:-3320}"
 ensure_built rockmass_bench
-"$build/bench/rockmass_bench" --no-generation --scene "$root/bench/scenes/jointed-slope-cohesionless.yaml" \
-  --write-scenes "$work" --creep 1000 --max-wall 0 >/dev/null
-scene="$work/jointed-slope-cohesionless-1000.yaml"
+bench_slope
+scene="$slope_scene"
 RHEODDA_BUILD_DIR="$build" /usr/bin/python3 "$root/bench/stage_glue.py" "$scene" "$from" "$to" 3
 # run_for ENV_VAR BUILD SECONDS: the slope by `rheodda run` of BUILD for SECONDS of wall time
 # (ENV_VAR set to 1 unless empty).

@@ -17,9 +17,8 @@
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 seconds="${1:-900}"
 ensure_built rockmass_bench rheodda
-"$build/bench/rockmass_bench" --no-generation --scene "$root/bench/scenes/jointed-slope-cohesionless.yaml" \
-  --write-scenes "$work" --creep 1000 --max-wall 0 >/dev/null
-base="$work/jointed-slope-cohesionless-1000.yaml"
+bench_slope
+base="$slope_scene"
 
 # variant NAME OLD=NEW...: the base scene with each OLD text replaced by NEW (once).
 variant() {

@@ -21,9 +21,8 @@
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 seconds="${1:-900}"
 ensure_built rockmass_bench rheodda scene_trace
-"$build/bench/rockmass_bench" --no-generation --scene "$root/bench/scenes/jointed-slope-cohesionless.yaml" \
-  --write-scenes "$work" --creep 1000 --max-wall 0 >/dev/null
-scene="$work/jointed-slope-cohesionless-1000.yaml"
+bench_slope
+scene="$slope_scene"
 # run_for BUILD: the slope by `rheodda run` of BUILD for $seconds of wall time.
 run_for() {
   rm -rf "$work/run"
