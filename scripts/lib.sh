@@ -18,6 +18,21 @@ bench_slope() {
   slope_scene="$work/jointed-slope-cohesionless-1000.yaml"
 }
 
+# scene_variant BASE OUT OLD=>NEW...: the scene file BASE with each OLD text replaced by NEW
+# (once), written to OUT; a text not in BASE stops the script.
+scene_variant() {
+  /usr/bin/python3 - "$@" <<'EOF'
+import sys
+src = open(sys.argv[1]).read()
+for sub in sys.argv[3:]:
+    old, new = sub.split("=>")
+    if old not in src:
+        sys.exit(f"scene_variant: {old!r} not in {sys.argv[1]}")
+    src = src.replace(old, new, 1)
+open(sys.argv[2], "w").write(src)
+EOF
+}
+
 # ensure_built TARGET...: configures and builds the CMake targets (Release) in $build
 # unless each is there already (bench/TARGET or apps/TARGET).
 ensure_built() {

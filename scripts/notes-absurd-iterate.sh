@@ -8,8 +8,8 @@
 # [N*m/m]).
 #
 # With BEFORE=1 first the same with bench/prototypes/resolution-last-iterate.patch (the open-close
-# decisions judged at the force resolution of the last iterate alone, as before
-# contact/src/contact_check.cpp took the smaller of it and the trial's), then the steps from its
+# decisions judged at the force resolution of the last iterate, uncapped, as before
+# ContactSystem::force_resolution capped it, contact/src/contact_check.cpp), then the steps from its
 # last checkpoint (25 d) traced by scene_trace --restore: each attempt's iterates, the spring
 # energy contacts start each step with beyond what they stored (by cause, with the largest
 # contact), and the two contacts of the toe block on the foundation (#6: its corner on the
@@ -24,14 +24,7 @@ seconds="${1:-600}"
 ensure_built rockmass_bench rheodda scene_trace
 bench_slope
 scene="$work/slope-30.02.yaml"
-/usr/bin/python3 - "$slope_scene" "$scene" <<'EOF'
-import sys
-src = open(sys.argv[1]).read()
-old = "creeping bedding planes\n    friction_angle: 30"
-if old not in src:
-    sys.exit("notes-absurd-iterate.sh: the bedding's friction angle is not in the scene")
-open(sys.argv[2], "w").write(src.replace(old, "creeping bedding planes\n    friction_angle: 30.02", 1))
-EOF
+scene_variant "$slope_scene" "$scene" $'creeping bedding planes\n    friction_angle: 30=>creeping bedding planes\n    friction_angle: 30.02'
 # run_for BUILD: the scene by `rheodda run` of BUILD for $seconds of wall time, into $work/run.
 run_for() {
   rm -rf "$work/run"

@@ -20,20 +20,11 @@ ensure_built rockmass_bench rheodda
 bench_slope
 base="$slope_scene"
 
-# variant NAME OLD=NEW...: the base scene with each OLD text replaced by NEW (once).
+# variant NAME OLD=>NEW...: the base scene with each OLD text replaced by NEW (once), as $work/NAME.yaml.
 variant() {
   local name="$1"
   shift
-  /usr/bin/python3 - "$base" "$work/$name.yaml" "$@" <<'EOF'
-import sys
-src = open(sys.argv[1]).read()
-for sub in sys.argv[3:]:
-    old, new = sub.split("=>")
-    if old not in src:
-        sys.exit(f"notes-slope-convergence.sh: {old!r} not in the scene")
-    src = src.replace(old, new, 1)
-open(sys.argv[2], "w").write(src)
-EOF
+  scene_variant "$base" "$work/$name.yaml" "$@"
 }
 dt="dt: 0.03125            # d, the first step"
 g2="max_displacement_ratio: 0.000625"
