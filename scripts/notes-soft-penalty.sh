@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A softer penalty while settling (docs/notes/explicit-step.md, "A softer penalty"): the
+# A softer penalty (docs/notes/explicit-step.md, "A softer penalty"): the
 # benchmark's 744-block cohesionless slope (rockmass_bench --creep 1000) run for its 100 d by
 # `rheodda run`, one thread each, with the contacts' penalty `analysis.penalty` at 1 E, 10 E,
 # 40 E (the scene's default) and 160 E (E = 1e10 Pa), the settling and mechanism stages implicit as
@@ -10,13 +10,15 @@
 #
 #   scripts/notes-soft-penalty.sh            # about 40 CPU minutes
 #   LARGE=1 scripts/notes-soft-penalty.sh    # and the slope at 7 307 blocks (--creep 10000),
-#                                            # explicit at 1 E, for up to SECONDS (default 3 600) of wall time
+#                                            # explicit at 1 E, for up to SECONDS_LARGE (default 3 600) s of wall time
 # (uses $RHEODDA_BUILD_DIR or build/)
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 ensure_built rockmass_bench rheodda
 bench_slope
 explicit=("rest_tolerance: 1.0e-5,=>rest_tolerance: 1.0e-5, force_ratio: 1.0e-5,"
           $'  gravity:=>  integrator: explicit\n  stage_cycles: 200\n  stage_local_damping: 0.8\n  gravity:')
+# penalty P: the replacement that gives the scene analysis.penalty P [Pa]
+penalty() { printf '  gravity:=>  penalty: %s\n  gravity:' "$1"; }
 # run NAME SCENE [OLD=>NEW...]: the scene (with the replacements) run for its 100 d, or
 # for $seconds of wall time; one line of figures.
 run() {
@@ -44,16 +46,16 @@ print(f"{name}: t = {summary['time']:g} d, {summary['steps']} steps, CPU {cpu:.1
       f"{len(mech)} mechanism stages{'' if rest else ' (not all at rest)'}; toe {toe:.5f} m, since settling {after:.5f} m")
 PY
 }
-run implicit-1E "$slope_scene" $'  gravity:=>  penalty: 1.0e10\n  gravity:'
-run implicit-10E "$slope_scene" $'  gravity:=>  penalty: 1.0e11\n  gravity:'
+run implicit-1E "$slope_scene" "$(penalty 1.0e10)"
+run implicit-10E "$slope_scene" "$(penalty 1.0e11)"
 run implicit-40E "$slope_scene"
-run implicit-160E "$slope_scene" $'  gravity:=>  penalty: 1.6e12\n  gravity:'
-run explicit-1E "$slope_scene" "${explicit[@]}" $'  gravity:=>  penalty: 1.0e10\n  gravity:'
-run explicit-10E "$slope_scene" "${explicit[@]}" $'  gravity:=>  penalty: 1.0e11\n  gravity:'
+run implicit-160E "$slope_scene" "$(penalty 1.6e12)"
+run explicit-1E "$slope_scene" "${explicit[@]}" "$(penalty 1.0e10)"
+run explicit-10E "$slope_scene" "${explicit[@]}" "$(penalty 1.0e11)"
 run explicit-40E "$slope_scene" "${explicit[@]}"
 if [[ -n "${LARGE:-}" ]]; then
   "$build/bench/rockmass_bench" --no-generation --scene "$root/bench/scenes/jointed-slope-cohesionless.yaml" \
     --write-scenes "$work" --creep 10000 --max-wall 0 >/dev/null
   seconds="${SECONDS_LARGE:-3600}" run large-explicit-1E "$work/jointed-slope-cohesionless-10000.yaml" "${explicit[@]}" \
-    $'  gravity:=>  penalty: 1.0e10\n  gravity:'
+    "$(penalty 1.0e10)"
 fi
